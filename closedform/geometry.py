@@ -1,0 +1,141 @@
+"""Punch geometry of the three-part piecewise-quadratic indenter (paper eq. 2).
+
+This module is the only part of :mod:`closedform` that the independent solvers
+(:mod:`sie`, :mod:`fem`) may import: it holds the profile, not the solution.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+__all__ = ["Punch", "check_finite", "check_positive"]
+
+
+def check_finite(**values: float) -> None:
+    """Raise ``ValueError`` naming the first argument that is not a finite number."""
+    for name, value in values.items():
+        if not isinstance(value, (int, float, np.floating, np.integer)) or not math.isfinite(value):
+            raise ValueError(f"`{name}` = {value!r} must be a finite number")
+
+
+def check_positive(**values: float) -> None:
+    """Raise ``ValueError`` naming the first argument that is not finite and > 0."""
+    check_finite(**values)
+    for name, value in values.items():
+        if value <= 0:
+            raise ValueError(f"`{name}` = {value!r} must be > 0")
+
+
+@dataclass(frozen=True)
+class Punch:
+    """Three-part punch: radius ``R1`` on the left, ``R`` over ``[-b, b]``, ``R2`` on the right.
+
+    Parameters
+    ----------
+    R1, R2
+        Radii of the outer rounded segments, > 0.
+    b
+        Half-width of the central segment, >= 0 (``b = 0`` is case C).
+    R
+        Radius of the central segment: ``math.inf`` (default) is the flat
+        centre of case A, a negative value is the concave centre of case B,
+        and it must not be 0.
+
+    Notes
+    -----
+    The slopes are continuous at ``x = ±b``; the curvature jumps there.
+    ``k1 = 1 - R1/R`` and ``k2 = 1 - R2/R`` as in eq. (2); the code uses the
+    curvature jumps ``kappa1 = k1/R1 = 1/R1 - 1/R`` and ``kappa2 = k2/R2``.
+    """
+
+    R1: float
+    R2: float
+    b: float
+    R: float = math.inf
+
+    def __post_init__(self) -> None:
+        check_positive(R1=self.R1, R2=self.R2)
+        check_finite(b=self.b)
+        if self.b < 0:
+            raise ValueError(f"`b` = {self.b!r} must be >= 0 (half-width of the central segment)")
+        if isinstance(self.R, (int, float, np.floating)) and math.isnan(self.R):
+            raise ValueError("`R` = nan must be a number, +inf, or negative")
+        if self.R == 0:
+            raise ValueError("`R` = 0 is not allowed: use R = math.inf for a flat centre (case A)")
+        if self.R == -math.inf:
+            raise ValueError("`R` = -inf is not allowed: use R = math.inf for a flat centre")
+
+    # -- derived constants -------------------------------------------------
+    @property
+    def kappa0(self) -> float:
+        """Curvature of the central segment, ``1/R`` (0 for case A)."""
+        return 0.0 if math.isinf(self.R) else 1.0 / self.R
+
+    @property
+    def kappa1(self) -> float:
+        """Curvature jump at ``x = -b``: ``k1/R1 = 1/R1 - 1/R``."""
+        return 1.0 / self.R1 - self.kappa0
+
+    @property
+    def kappa2(self) -> float:
+        """Curvature jump at ``x = +b``: ``k2/R2 = 1/R2 - 1/R``."""
+        return 1.0 / self.R2 - self.kappa0
+
+    @property
+    def k1(self) -> float:
+        """``k1 = 1 - R1/R`` of eq. (2)."""
+        return 1.0 - self.R1 * self.kappa0
+
+    @property
+    def k2(self) -> float:
+        """``k2 = 1 - R2/R`` of eq. (2)."""
+        return 1.0 - self.R2 * self.kappa0
+
+    @property
+    def case(self) -> str:
+        """``"A"`` (flat centre), ``"B"`` (concave), ``"C"`` (b = 0), ``"Hertz"`` or ``"general"``."""
+        if self.b == 0:
+            return "Hertz" if self.R1 == self.R2 else "C"
+        if math.isinf(self.R):
+            return "A"
+        return "B" if self.R < 0 else "general"
+
+    def mirrored(self) -> "Punch":
+        """The punch reflected about ``x = 0`` (``R1`` and ``R2`` swap)."""
+        return Punch(R1=self.R2, R2=self.R1, b=self.b, R=self.R)
+
+    # -- profile, eq. (2) ---------------------------------------------------
+    def segment(self, x: ArrayLike) -> np.ndarray:
+        """Segment index of ``x``: 1 for ``x < -b``, 0 for ``|x| <= b``, 2 for ``x > b``."""
+        x = np.asarray(x, dtype=float)
+        return np.where(x < -self.b, 1, np.where(x > self.b, 2, 0))
+
+    def curvature(self, x: ArrayLike) -> np.ndarray:
+        """Profile curvature ``v''(x)``: ``1/R1``, ``1/R`` or ``1/R2`` (eq. 2)."""
+        seg = self.segment(x)
+        return np.choose(seg, [self.kappa0, 1.0 / self.R1, 1.0 / self.R2]).astype(float)
+
+    def profile(self, x: ArrayLike, alpha: float = 0.0, Delta: float = 0.0) -> np.ndarray:
+        """Relative normal displacement ``v(x)`` of eq. (2).
+
+        ``v = Delta + alpha x + g(x)`` with ``g`` the quadratic shape
+        ``x^2/(2R)`` on the centre and ``(x^2 ± 2 b k_i x + b^2 k_i)/(2 R_i)``
+        outside.
+        """
+        x = np.asarray(x, dtype=float)
+        g_centre = 0.5 * self.kappa0 * x**2
+        g_left = (x**2 + 2 * self.b * self.k1 * x + self.b**2 * self.k1) / (2 * self.R1)
+        g_right = (x**2 - 2 * self.b * self.k2 * x + self.b**2 * self.k2) / (2 * self.R2)
+        g = np.where(x < -self.b, g_left, np.where(x > self.b, g_right, g_centre))
+        return Delta + alpha * x + g
+
+    def slope(self, x: ArrayLike, alpha: float = 0.0) -> np.ndarray:
+        """Profile gradient ``v'(x)`` of eq. (2)."""
+        x = np.asarray(x, dtype=float)
+        left = (x + self.b * self.k1) / self.R1
+        right = (x - self.b * self.k2) / self.R2
+        centre = self.kappa0 * x
+        return alpha + np.where(x < -self.b, left, np.where(x > self.b, right, centre))

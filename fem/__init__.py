@@ -1,0 +1,1 @@
+"""fem: filled by its own issue."""

@@ -1,0 +1,1 @@
+"""meshes: filled by its own issue."""

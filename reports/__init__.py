@@ -1,0 +1,1 @@
+"""reports: filled by its own issue."""

@@ -1,0 +1,1 @@
+"""sie: filled by its own issue."""
