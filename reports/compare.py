@@ -1,0 +1,193 @@
+"""Method-agnostic comparison of two results of the shared shape.
+
+:func:`compare` takes a reference (the closed form) and another solution of
+the same case (SIE or FEM) and returns one :class:`Check` per quantity of
+:mod:`reports.tolerances`, each already judged against the tolerance table.
+It only uses the shared result attributes (``a``, ``c``, ``alpha``, ``P``,
+``s``, ``pressure``, ``peaks`` and, for partial slip, ``d``, ``e``, ``shear``),
+so it never needs to know which solver made a result.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from .tolerances import NORMAL_QUANTITIES, SLIP_QUANTITIES, tolerance
+
+__all__ = ["Check", "FieldErrors", "compare", "field_errors", "is_slip", "normal_of",
+           "EDGE_FRACTION"]
+
+#: fraction of the contact width excluded at each end for the "interior" errors
+EDGE_FRACTION = 0.05
+_NGRID = 4001
+
+
+@dataclass(frozen=True)
+class Check:
+    """One compared quantity: values, normalised error, its tolerance and the verdict."""
+
+    comparison: str
+    quantity: str
+    reference: float
+    obtained: float
+    error: float
+    limit: float
+    reason: str
+
+    @property
+    def passed(self) -> bool:
+        """``error <= limit``; a NaN error never passes."""
+        return bool(self.error <= self.limit)
+
+    def as_dict(self) -> dict[str, Any]:
+        return {"comparison": self.comparison, "quantity": self.quantity,
+                "reference": _finite_or_none(self.reference), "obtained": _finite_or_none(self.obtained),
+                "error": _finite_or_none(self.error), "limit": self.limit,
+                "passed": self.passed, "reason": self.reason}
+
+
+@dataclass(frozen=True)
+class FieldErrors:
+    """A traction field of two results on one grid, for the error curves.
+
+    ``x`` spans the union of both contacts; ``ref`` and ``other`` are the fields,
+    ``scale`` the normalising maximum of the reference, ``interior`` a mask of
+    the points more than ``EDGE_FRACTION * W`` inside the reference contact.
+    """
+
+    x: np.ndarray
+    ref: np.ndarray
+    other: np.ndarray
+    scale: float
+    interior: np.ndarray
+
+    @property
+    def error(self) -> np.ndarray:
+        """Pointwise error ``(other - ref) / scale``."""
+        return (self.other - self.ref) / self.scale
+
+    @property
+    def interior_max(self) -> float:
+        return float(np.max(np.abs(self.error[self.interior]))) if self.interior.any() else math.nan
+
+    @property
+    def l2(self) -> float:
+        """``||other - ref||_2 / ||ref||_2`` by the trapezoidal rule."""
+        num = np.trapezoid((self.other - self.ref) ** 2, self.x)
+        den = np.trapezoid(self.ref**2, self.x)
+        return float(np.sqrt(num / den))
+
+
+def _finite_or_none(v: float) -> float | None:
+    return float(v) if v is not None and math.isfinite(v) else None
+
+
+def is_slip(result: Any) -> bool:
+    """True for a partial-slip result (it has a stick zone and a shear field)."""
+    return hasattr(result, "d") and hasattr(result, "shear")
+
+
+def normal_of(result: Any) -> Any:
+    """The normal result inside a slip result, or the result itself."""
+    return result.normal if is_slip(result) and hasattr(result, "normal") else result
+
+
+def field_errors(ref: Any, other: Any, field: str = "pressure", n: int = _NGRID) -> FieldErrors:
+    """Evaluate ``field`` (``"pressure"`` or ``"shear"``) of both results on a common grid."""
+    lo = min(-ref.a, -other.a)
+    hi = max(ref.c, other.c)
+    x = np.linspace(lo, hi, n)
+    fr = np.asarray(getattr(ref, field)(x), dtype=float)
+    fo = np.asarray(getattr(other, field)(x), dtype=float)
+    scale = float(np.max(np.abs(fr)))
+    if not scale > 0:
+        scale = 1.0
+    margin = EDGE_FRACTION * (ref.a + ref.c)
+    interior = (x > -ref.a + margin) & (x < ref.c - margin)
+    return FieldErrors(x=x, ref=fr, other=fo, scale=scale, interior=interior)
+
+
+def _slope_scale(ref: Any) -> float:
+    """``v'(c) - v'(-a)`` of the untilted punch: the slope scale over the contact."""
+    try:
+        punch = ref.punch
+        ds = float(punch.slope(ref.c) - punch.slope(-ref.a))
+        if ds > 0:
+            return ds
+    except AttributeError:
+        pass
+    return (ref.a + ref.c) * 1e-3  # pragma: no cover - results always carry their punch
+
+
+def _normal_figures(ref: Any, other: Any) -> dict[str, tuple[float, float, float]]:
+    """``quantity -> (reference, obtained, normalised error)`` for the normal problem."""
+    W = ref.a + ref.c
+    out: dict[str, tuple[float, float, float]] = {}
+    out["a"] = (ref.a, other.a, abs(other.a - ref.a) / W)
+    out["c"] = (ref.c, other.c, abs(other.c - ref.c) / W)
+    alpha_scale = max(abs(ref.alpha), _slope_scale(ref))
+    out["alpha"] = (ref.alpha, other.alpha, abs(other.alpha - ref.alpha) / alpha_scale)
+    out["P"] = (ref.P, other.P, abs(other.P - ref.P) / abs(ref.P))
+    out["s"] = (ref.s, other.s, abs(other.s - ref.s) / W)
+    (rl, rr), (ol, orr) = ref.peaks(), other.peaks()
+    pmax = max(rl.p, rr.p)
+    out["p_left"] = (rl.p, ol.p, abs(ol.p - rl.p) / pmax)
+    out["x_left"] = (rl.x, ol.x, abs(ol.x - rl.x) / W)
+    out["p_right"] = (rr.p, orr.p, abs(orr.p - rr.p) / pmax)
+    out["x_right"] = (rr.x, orr.x, abs(orr.x - rr.x) / W)
+    fe = field_errors(ref, other, "pressure")
+    out["p_interior_max"] = (fe.scale, float(np.max(fe.other[fe.interior], initial=0.0)), fe.interior_max)
+    out["p_L2"] = (float(np.sqrt(np.trapezoid(fe.ref**2, fe.x))),
+                   float(np.sqrt(np.trapezoid(fe.other**2, fe.x))), fe.l2)
+    return out
+
+
+def _slip_figures(ref: Any, other: Any) -> dict[str, tuple[float, float, float]]:
+    """``quantity -> (reference, obtained, normalised error)`` for the stick zone and shear."""
+    out: dict[str, tuple[float, float, float]] = {}
+    out["d"] = (ref.d, other.d, abs(other.d - ref.d) / abs(ref.d))
+    out["e"] = (ref.e, other.e, abs(other.e - ref.e) / abs(ref.d))
+    fe = field_errors(ref, other, "shear")
+    out["q_interior_max"] = (fe.scale, float(np.max(np.abs(fe.other[fe.interior]), initial=0.0)),
+                             fe.interior_max)
+    out["q_L2"] = (float(np.sqrt(np.trapezoid(fe.ref**2, fe.x))),
+                   float(np.sqrt(np.trapezoid(fe.other**2, fe.x))), fe.l2)
+    return out
+
+
+def compare(ref: Any, other: Any, comparison: str) -> list[Check]:
+    """Compare ``other`` with the reference ``ref`` and judge each figure.
+
+    Parameters
+    ----------
+    ref
+        The reference result (the closed form), normal or partial slip.
+    other
+        The result to check. When both are partial-slip results the stick
+        zone and the shear field are compared too; when only ``ref`` is (the
+        FEM is frictionless) only its normal problem is compared.
+    comparison
+        Row group of :data:`reports.tolerances.TOLERANCES`: ``"sie"``,
+        ``"fem-quick"`` or ``"fem-default"``.
+
+    Returns
+    -------
+    list of Check
+        One per quantity, in the order of :mod:`reports.tolerances`.
+    """
+    slip = is_slip(ref) and is_slip(other)
+    figures = _normal_figures(normal_of(ref), normal_of(other))
+    quantities = NORMAL_QUANTITIES
+    if slip:
+        figures.update(_slip_figures(ref, other))
+        quantities = NORMAL_QUANTITIES + SLIP_QUANTITIES
+    checks = []
+    for q in quantities:
+        r, o, err = figures[q]
+        tol = tolerance(comparison, q)
+        err = float(err) if math.isfinite(err) else math.inf
+        checks.append(Check(comparison, q, float(r), float(o), err, tol.limit, tol.reason))
+    return checks

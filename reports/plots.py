@@ -1,0 +1,156 @@
+"""PNG plots of the verification report (matplotlib, Agg canvas, no pyplot state).
+
+Each function takes numbers or results, draws one figure and writes it to
+``path``; nothing here solves anything. Pressures are normalised by the
+closed-form peak, positions by the closed-form contact width.
+"""
+from __future__ import annotations
+
+import math
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+from matplotlib.backends.backend_agg import FigureCanvasAgg
+from matplotlib.figure import Figure
+
+from .compare import field_errors, is_slip, normal_of
+from .studies import STUDY_QUANTITIES, Study
+
+__all__ = ["new_figure", "save", "overlay", "error_curves", "sie_convergence", "fem_convergence",
+           "STYLE"]
+
+#: how each method is drawn
+STYLE = {
+    "closedform": dict(color="k", lw=1.6, ls="-", label="closed form"),
+    "sie": dict(color="tab:red", marker="o", ms=3.5, ls="none", mfc="none", label="SIE"),
+    "fem": dict(color="tab:blue", lw=1.2, ls="--", label="FEM"),
+}
+
+
+def new_figure(ncols: int = 1, nrows: int = 1, size: tuple[float, float] = (6.4, 4.0)) -> tuple[Figure, Any]:
+    """A figure with an Agg canvas and its axes (no global pyplot state)."""
+    fig = Figure(figsize=(size[0] * ncols, size[1] * nrows), layout="constrained")
+    FigureCanvasAgg(fig)
+    axes = fig.subplots(nrows, ncols, squeeze=False)
+    return fig, axes
+
+
+def save(fig: Figure, path: str | Path, dpi: int = 110) -> Path:
+    """Write ``fig`` as PNG to ``path`` (parents created)."""
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fig.savefig(path, dpi=dpi, format="png")
+    return path
+
+
+def _grid(res: Any, n: int = 801) -> np.ndarray:
+    return np.linspace(-res.a, res.c, n)
+
+
+def overlay(results: dict[str, Any], title: str, path: str | Path) -> Path:
+    """Pressure (and, for partial slip, shear) of every method on one plot."""
+    ref = results.get("closedform") or next(iter(results.values()))
+    nref = normal_of(ref)
+    W = nref.a + nref.c
+    slip = is_slip(ref)
+    fig, axes = new_figure(2 if slip else 1)
+    ax = axes[0, 0]
+    x = np.linspace(-1.05 * nref.a, 1.05 * nref.c, 1201)
+    pscale = max(p.p for p in nref.peaks())
+    for method, res in results.items():
+        st = dict(STYLE.get(method, {"label": method}))
+        xx = x
+        if method == "sie":
+            xx = np.linspace(-nref.a, nref.c, 41)
+        ax.plot(xx / W, normal_of(res).pressure(xx) / pscale, **st)
+    b = nref.punch.b
+    if b > 0:
+        for xb in (-b, b):
+            ax.axvline(xb / W, color="0.7", lw=0.8, ls=":")
+    ax.set_xlabel("x / W")
+    ax.set_ylabel("p / p_max (closed form)")
+    ax.set_title(f"{title}: pressure")
+    ax.legend(loc="best", fontsize=8)
+    if slip:
+        ax = axes[0, 1]
+        qscale = float(np.max(np.abs(ref.shear(x))))
+        for method, res in results.items():
+            if not is_slip(res):
+                continue
+            st = dict(STYLE.get(method, {"label": method}))
+            xx = x if method != "sie" else np.linspace(-nref.a, nref.c, 41)
+            ax.plot(xx / W, res.shear(xx) / qscale, **st)
+        lo, hi = ref.stick_zone
+        ax.axvspan(lo / W, hi / W, color="tab:green", alpha=0.1, label="stick zone (closed form)")
+        ax.set_xlabel("x / W")
+        ax.set_ylabel("q / max|q| (closed form)")
+        ax.set_title(f"{title}: shear, Q/fP = {ref.Q / (ref.f * ref.P):.2g}")
+        ax.legend(loc="best", fontsize=8)
+    return save(fig, path)
+
+
+def error_curves(results: dict[str, Any], title: str, path: str | Path) -> Path:
+    """|p_method - p_closedform| / p_max against x / W (log scale), and the same for shear."""
+    ref = results["closedform"]
+    nref = normal_of(ref)
+    W = nref.a + nref.c
+    slip = is_slip(ref) and any(is_slip(r) for m, r in results.items() if m != "closedform")
+    fig, axes = new_figure(2 if slip else 1)
+    fields = [("pressure", axes[0, 0])] + ([("shear", axes[0, 1])] if slip else [])
+    for field, ax in fields:
+        for method, res in results.items():
+            if method == "closedform":
+                continue
+            if field == "pressure":
+                fe = field_errors(nref, normal_of(res), "pressure")
+            elif is_slip(res):
+                fe = field_errors(ref, res, "shear")
+            else:
+                continue
+            err = np.abs(fe.error)
+            err = np.where(err > 0, err, np.nan)
+            color = STYLE.get(method, {}).get("color")
+            ax.semilogy(fe.x / W, err, color=color, lw=1.0, label=f"{method}")
+        ax.axvspan(-nref.a / W, (-nref.a + 0.05 * W) / W, color="0.9")
+        ax.axvspan((nref.c - 0.05 * W) / W, nref.c / W, color="0.9", label="edge bands (not interior)")
+        ax.set_xlabel("x / W")
+        ax.set_ylabel(f"|Δ{field[0]}| / max|{field[0]}|")
+        ax.set_title(f"{title}: {field} error against the closed form")
+        ax.legend(loc="best", fontsize=8)
+    return save(fig, path)
+
+
+def _study_axes(st: Study, ax: Any, xlabel: str, inverse: bool) -> None:
+    x = np.asarray(st.values, dtype=float)
+    for q in STUDY_QUANTITIES:
+        e = np.asarray(st.errors[q], dtype=float)
+        e = np.where(e > 0, e, np.nan)
+        p = st.orders.get(q, math.nan)
+        lab = f"{q}: order {p:.2f}" if math.isfinite(p) else q
+        g = st.gci.get(q)
+        if g is not None and math.isfinite(g):
+            lab += f", GCI {g:.1e}"
+        ax.loglog(x, e, marker="o", ms=3.5, lw=1.0, label=lab)
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel("normalised error vs closed form")
+    ax.grid(True, which="both", color="0.9", lw=0.6)
+    ax.legend(loc="best", fontsize=7)
+    if not inverse:
+        ax.invert_xaxis()
+
+
+def sie_convergence(st: Study, path: str | Path) -> Path:
+    """SIE errors against n (log-log), with fitted orders in the legend."""
+    fig, axes = new_figure()
+    _study_axes(st, axes[0, 0], "n (Gauss–Chebyshev nodes)", inverse=True)
+    axes[0, 0].set_title(f"SIE convergence in n, case {st.case}")
+    return save(fig, path)
+
+
+def fem_convergence(st: Study, path: str | Path) -> Path:
+    """FEM errors against h (log-log, h decreasing to the right), orders and GCI in the legend."""
+    fig, axes = new_figure()
+    _study_axes(st, axes[0, 0], "h at the contact (mm), refining →", inverse=False)
+    axes[0, 0].set_title(f"FEM convergence in h, case {st.case}")
+    return save(fig, path)

@@ -1,0 +1,204 @@
+"""Convergence studies: SIE in the number of nodes n, FEM in the mesh size h.
+
+Both are measured against the closed form, so they live in :mod:`reports`.
+Each study returns a :class:`Study` of plain numbers: the errors per level, the
+observed orders fitted as ``np.polyfit(np.log(h), np.log(err), 1)``, and, for
+the FEM, Roache's grid-convergence index (GCI) of the three finest levels.
+"""
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass, field
+from typing import Any, Callable, Sequence
+
+import numpy as np
+
+from .catalogue import Case, Mode, solve_normal
+from .compare import field_errors
+
+__all__ = ["Study", "observed_order", "gci", "sie_study", "fem_study", "STUDY_QUANTITIES"]
+
+#: figures followed through a study (errors normalised as in reports.tolerances)
+STUDY_QUANTITIES = ("a", "c", "alpha", "p_left", "p_right", "p_interior_max")
+
+
+@dataclass
+class Study:
+    """Errors of one method against the closed form over a sequence of discretisations.
+
+    ``param`` is ``"n"`` (SIE) or ``"h"`` (FEM); ``values`` the parameter per
+    level; ``errors[q]`` the normalised error of quantity ``q`` per level;
+    ``raw[q]`` the quantity itself per level; ``orders[q]`` the fitted
+    observed order (error ~ n^-p or h^p, so p > 0 means convergence);
+    ``gci[q]`` the fine-grid GCI (FEM only); ``extrapolated[q]`` the
+    Richardson estimate of ``q`` from the two finest levels.
+    """
+
+    method: str
+    case: str
+    param: str
+    values: list[float]
+    labels: list[str]
+    errors: dict[str, list[float]]
+    raw: dict[str, list[float]]
+    reference: dict[str, float]
+    times: list[float]
+    orders: dict[str, float] = field(default_factory=dict)
+    gci: dict[str, float] = field(default_factory=dict)
+    extrapolated: dict[str, float] = field(default_factory=dict)
+    notes: list[str] = field(default_factory=list)
+
+    def as_dict(self) -> dict[str, Any]:
+        def clean(v: Any) -> Any:
+            if isinstance(v, dict):
+                return {k: clean(x) for k, x in v.items()}
+            if isinstance(v, (list, tuple)):
+                return [clean(x) for x in v]
+            if isinstance(v, float) and not math.isfinite(v):
+                return None
+            return v
+
+        return clean({"method": self.method, "case": self.case, "param": self.param,
+                      "values": self.values, "labels": self.labels, "errors": self.errors,
+                      "raw": self.raw, "reference": self.reference, "times": self.times,
+                      "orders": self.orders, "gci": self.gci, "extrapolated": self.extrapolated,
+                      "notes": self.notes})
+
+
+def observed_order(param: Sequence[float], err: Sequence[float], inverse: bool = False) -> float:
+    """Slope of ``log err`` against ``log param`` (negated when ``inverse``, for n).
+
+    Levels with a zero or non-finite error (round-off floor) are dropped; NaN
+    if fewer than two remain.
+    """
+    x = np.asarray(param, dtype=float)
+    y = np.asarray(err, dtype=float)
+    ok = np.isfinite(y) & (y > 0) & np.isfinite(x) & (x > 0)
+    if ok.sum() < 2:
+        return math.nan
+    slope = float(np.polyfit(np.log(x[ok]), np.log(y[ok]), 1)[0])
+    return -slope if inverse else slope
+
+
+def gci(f: Sequence[float], h: Sequence[float], Fs: float = 1.25) -> tuple[float, float, float]:
+    """Roache's grid-convergence index of the finest of three levels.
+
+    Parameters
+    ----------
+    f, h
+        Values and mesh sizes of three levels, coarse to fine.
+    Fs
+        Safety factor (1.25 for three grids).
+
+    Returns
+    -------
+    (p, gci_fine, f_extrapolated)
+        Observed order from the three values, the relative GCI of the finest
+        value, and the Richardson extrapolation. NaN when the three values do
+        not converge monotonically.
+    """
+    f3, f2, f1 = (float(v) for v in f[-3:])
+    h3, h2, h1 = (float(v) for v in h[-3:])
+    r21, r32 = h2 / h1, h3 / h2
+    e21, e32 = f2 - f1, f3 - f2
+    if e21 == 0 or e32 == 0 or e21 / e32 <= 0:
+        return math.nan, math.nan, math.nan
+    # fixed-point iteration for unequal refinement ratios (Celik et al. 2008)
+    p = abs(math.log(abs(e32 / e21))) / math.log(r21)
+    for _ in range(50):
+        sgn = 1.0 if e32 / e21 > 0 else -1.0
+        q = math.log((r21**p - sgn) / (r32**p - sgn))
+        p_new = abs(math.log(abs(e32 / e21)) + q) / math.log(r21)
+        if abs(p_new - p) < 1e-10:
+            p = p_new
+            break
+        p = p_new
+    f_ext = (r21**p * f1 - f2) / (r21**p - 1)
+    g = Fs * abs(e21 / f1) / (r21**p - 1) if f1 != 0 else math.nan
+    return p, g, f_ext
+
+
+def _figures(ref: Any, res: Any) -> tuple[dict[str, float], dict[str, float]]:
+    W = ref.a + ref.c
+    rl, rr = ref.peaks()
+    ol, orr = res.peaks()
+    pmax = max(rl.p, rr.p)
+    slope = float(ref.punch.slope(ref.c) - ref.punch.slope(-ref.a))
+    raw = {"a": res.a, "c": res.c, "alpha": res.alpha, "p_left": ol.p, "p_right": orr.p}
+    err = {"a": abs(res.a - ref.a) / W, "c": abs(res.c - ref.c) / W,
+           "alpha": abs(res.alpha - ref.alpha) / max(abs(ref.alpha), slope),
+           "p_left": abs(ol.p - rl.p) / pmax, "p_right": abs(orr.p - rr.p) / pmax,
+           "p_interior_max": field_errors(ref, res).interior_max}
+    raw["p_interior_max"] = err["p_interior_max"]
+    return raw, err
+
+
+def _run(method: str, case: Case, labels: Sequence[str], make_mode: Callable[[str], Mode],
+         param_of: Callable[[Any, str], float], param: str,
+         progress: Callable[[str], None] | None) -> Study:
+    case = case.resolved()
+    ref = solve_normal(case, "closedform", make_mode(labels[0]))
+    rl, rr = ref.peaks()
+    reference = {"a": ref.a, "c": ref.c, "alpha": ref.alpha, "p_left": rl.p, "p_right": rr.p,
+                 "p_interior_max": 0.0}
+    st = Study(method, case.name, param, [], [], {q: [] for q in STUDY_QUANTITIES},
+               {q: [] for q in STUDY_QUANTITIES}, reference, [])
+    for lab in labels:
+        t0 = time.perf_counter()
+        try:
+            res = solve_normal(case, method, make_mode(lab))
+        except Exception as exc:  # noqa: BLE001 - a failed level is a note, not a crash
+            st.notes.append(f"level {lab}: {type(exc).__name__}: {exc}")
+            continue
+        dt = time.perf_counter() - t0
+        raw, err = _figures(ref, res)
+        st.values.append(param_of(res, lab))
+        st.labels.append(str(lab))
+        st.times.append(dt)
+        for q in STUDY_QUANTITIES:
+            st.errors[q].append(err[q])
+            st.raw[q].append(raw[q])
+        if progress:
+            progress(f"{method} {param}={st.values[-1]:.4g} ({lab}) {dt:.2f} s")
+    inverse = param == "n"
+    for q in STUDY_QUANTITIES:
+        st.orders[q] = observed_order(st.values, st.errors[q], inverse=inverse)
+        if len(st.values) >= 2 and q != "p_interior_max":
+            v = np.asarray(st.values, dtype=float)
+            hs = 1.0 / v if inverse else v
+            f = st.raw[q]
+            p = st.orders[q]
+            r = hs[-2] / hs[-1]
+            if math.isfinite(p) and p > 0 and r > 1:
+                st.extrapolated[q] = (r**p * f[-1] - f[-2]) / (r**p - 1)
+        if len(st.values) >= 3 and q != "p_interior_max":
+            hs = (1.0 / np.asarray(st.values)) if inverse else np.asarray(st.values)
+            _, g, _ = gci(st.raw[q], list(hs))
+            st.gci[q] = g
+    return st
+
+
+def sie_study(case: Case, ns: Sequence[int], progress: Callable[[str], None] | None = None) -> Study:
+    """SIE errors against the closed form for each ``n`` in ``ns``."""
+    def mode(lab: str) -> Mode:
+        return Mode("study", int(lab), "quick", (), ())
+
+    return _run("sie", case, [str(n) for n in ns], mode,
+                lambda res, lab: float(getattr(res, "n", None) or res.info.get("n", int(lab))),
+                "n", progress)
+
+
+def fem_study(case: Case, levels: Sequence[str],
+              progress: Callable[[str], None] | None = None) -> Study:
+    """FEM errors against the closed form for each mesh level (coarse to fine)."""
+    def mode(lab: str) -> Mode:
+        return Mode("study", None, lab, (), ())
+
+    def h_of(res: Any, lab: str) -> float:
+        h = getattr(res, "h", None)
+        if h is None:
+            h = res.info.get("h")
+        return float(h)
+
+    return _run("fem", case, list(levels), mode, h_of, "h", progress)

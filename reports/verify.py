@@ -1,0 +1,303 @@
+"""``threepart verify``: run the catalogue through all three solvers and write the report.
+
+The report directory holds ``report.md``, a self-contained ``report.html`` (the
+PNGs embedded as data URIs), ``report.json`` (valid against
+``reports/report.schema.json``) and ``plots/*.png``. It is written into a
+temporary sibling directory and renamed into place only when complete, so a
+report is never half-written; an existing directory is replaced only with
+``force``. The exit status is 0 when every tolerance holds, 1 otherwise.
+"""
+from __future__ import annotations
+
+import datetime as _dt
+import json
+import math
+import os
+import platform
+import shutil
+import subprocess
+import sys
+import tempfile
+import time
+from contextlib import contextmanager
+from importlib import metadata
+from pathlib import Path
+from typing import Any, Callable, Iterator, Sequence
+
+from . import render
+from .catalogue import MODES, Case, CaseRun, Mode, load_cases, run_case
+from .studies import Study, fem_study, sie_study
+
+__all__ = ["main", "run", "build_report", "write_report", "atomic_dir", "ReportExistsError",
+           "SCHEMA_FILE", "load_schema", "validate", "STUDY_CASE", "SCHEMA_VERSION"]
+
+SCHEMA_FILE = Path(__file__).with_name("report.schema.json")
+SCHEMA_VERSION = "1.0"
+#: the catalogue case on which the convergence studies are run
+STUDY_CASE = "caseA_moment"
+PACKAGES = ("threepart", "numpy", "scipy", "matplotlib", "scikit-fem", "gmsh", "meshio",
+            "threadpoolctl")
+
+
+class ReportExistsError(ValueError):
+    """The report directory exists and ``force`` was not given."""
+
+
+@contextmanager
+def atomic_dir(out: str | Path, force: bool = False) -> Iterator[Path]:
+    """Yield a temporary directory that replaces ``out`` only if the block succeeds.
+
+    Raises
+    ------
+    ReportExistsError
+        If ``out`` exists and ``force`` is false (checked before any work).
+    """
+    out = Path(out).absolute()
+    if out.exists() and not force:
+        raise ReportExistsError(f"`out` = {str(out)!r} exists; pass --force to overwrite it")
+    out.parent.mkdir(parents=True, exist_ok=True)
+    tmp = Path(tempfile.mkdtemp(prefix=f".{out.name}.", suffix=".tmp", dir=out.parent))
+    try:
+        yield tmp
+    except BaseException:
+        shutil.rmtree(tmp, ignore_errors=True)
+        raise
+    old = None
+    if out.exists():
+        old = out.parent / f".{out.name}.old-{os.getpid()}-{time.time_ns()}"
+        os.rename(out, old)
+    os.rename(tmp, out)
+    if old is not None:
+        shutil.rmtree(old, ignore_errors=True)
+
+
+def _versions() -> dict[str, str | None]:
+    out: dict[str, str | None] = {}
+    for name in PACKAGES:
+        try:
+            out[name] = metadata.version(name)
+        except metadata.PackageNotFoundError:
+            out[name] = None
+    return out
+
+
+def _git() -> dict[str, Any]:
+    root = Path(__file__).resolve().parents[1]
+    try:
+        commit = subprocess.run(["git", "rev-parse", "HEAD"], cwd=root, capture_output=True,
+                                text=True, timeout=10, check=True).stdout.strip()
+        dirty = bool(subprocess.run(["git", "status", "--porcelain", "--untracked-files=no"], cwd=root,
+                                    capture_output=True, text=True, timeout=10).stdout.strip())
+        return {"commit": commit, "dirty": dirty}
+    except (OSError, subprocess.SubprocessError):
+        return {"commit": None, "dirty": None}
+
+
+def _clean(v: Any) -> Any:
+    """JSON-safe copy: non-finite floats become None, numpy scalars become Python numbers."""
+    if isinstance(v, dict):
+        return {str(k): _clean(x) for k, x in v.items()}
+    if isinstance(v, (list, tuple)):
+        return [_clean(x) for x in v]
+    if hasattr(v, "item") and not isinstance(v, (str, bytes)):
+        try:
+            v = v.item()
+        except (ValueError, AttributeError):
+            return str(v)
+    if isinstance(v, float):
+        return v if math.isfinite(v) else None
+    if v is None or isinstance(v, (bool, int, str)):
+        return v
+    return str(v)
+
+
+def _result_dict(res: Any, dt: float) -> dict[str, Any]:
+    normal = getattr(res, "normal", res)
+    left, right = normal.peaks()
+    d: dict[str, Any] = {"a": normal.a, "c": normal.c, "alpha": normal.alpha, "P": normal.P,
+                         "s": normal.s, "tilt": normal.tilt,
+                         "peak_left": {"x": left.x, "p": left.p},
+                         "peak_right": {"x": right.x, "p": right.p},
+                         "time_s": dt, "info": {k: v for k, v in dict(normal.info).items()
+                                                 if isinstance(v, (int, float, str, bool))}}
+    if res is not normal:
+        d.update({"Q": res.Q, "f": res.f, "d": res.d, "e": res.e})
+    return d
+
+
+def run(mode: Mode, cases: Sequence[Case], say: Callable[[str], None]) -> tuple[list[CaseRun], list[Study], dict[str, float]]:
+    """Solve and compare every case, then the convergence studies; return the numbers."""
+    runs: list[CaseRun] = []
+    cache: dict[Any, Any] = {}
+    timings: dict[str, float] = {}
+    t0 = time.perf_counter()
+    for i, case in enumerate(cases, 1):
+        tag = f"[{i:>2}/{len(cases)}] {case.name:<14}"
+        say(f"{tag} solving ...")
+        tc = time.perf_counter()
+        r = run_case(case, mode, cache, progress=lambda m, tag=tag: say(f"{tag}   {m}"))
+        failed = r.failed()
+        verdict = "PASS" if r.passed else (
+            "FAIL " + ", ".join(f"{c.comparison}:{c.quantity}" for c in failed) if failed else "ERROR")
+        say(f"{tag} {verdict}  ({time.perf_counter() - tc:.2f} s)")
+        runs.append(r)
+    timings["cases_s"] = time.perf_counter() - t0
+    studies: list[Study] = []
+    study_case = next((c for c in cases if c.name == STUDY_CASE), cases[0] if cases else None)
+    if study_case is not None and mode.sie_study_n:
+        t1 = time.perf_counter()
+        say(f"[study] SIE convergence in n on {study_case.name}: n = {list(mode.sie_study_n)}")
+        studies.append(sie_study(study_case, mode.sie_study_n, progress=lambda m: say(f"[study]   {m}")))
+        timings["sie_study_s"] = time.perf_counter() - t1
+    if study_case is not None and mode.fem_study_levels:
+        t1 = time.perf_counter()
+        say(f"[study] FEM convergence in h on {study_case.name}: meshes {list(mode.fem_study_levels)}")
+        studies.append(fem_study(study_case, mode.fem_study_levels,
+                                 progress=lambda m: say(f"[study]   {m}")))
+        timings["fem_study_s"] = time.perf_counter() - t1
+    return runs, studies, timings
+
+
+def build_report(mode: Mode, runs: Sequence[CaseRun], studies: Sequence[Study],
+                 timings: dict[str, float], plots: dict[str, list[str]]) -> dict[str, Any]:
+    """The ``report.json`` document (see ``reports/report.schema.json``)."""
+    from .tolerances import TOLERANCES
+
+    checks = [c for r in runs for c in r.checks]
+    failed = [f"{r.case.name}/{c.comparison}/{c.quantity}" for r in runs for c in r.failed()]
+    errors = [f"{r.case.name}/{m}: {e}" for r in runs for m, e in r.errors.items()]
+    comparisons = sorted({c.comparison for c in checks})
+    by_comparison = {cmp: {"checks": sum(c.comparison == cmp for c in checks),
+                           "failed": sum(c.comparison == cmp and not c.passed for c in checks)}
+                     for cmp in comparisons}
+    cases = []
+    for r in runs:
+        cases.append({
+            **r.case.as_dict(),
+            "passed": r.passed,
+            "results": {m: _result_dict(res, r.times[m]) for m, res in r.results.items()},
+            "errors": dict(r.errors),
+            "checks": [c.as_dict() for c in r.checks],
+            "plots": plots.get(r.case.name, []),
+        })
+    doc = {
+        "schema_version": SCHEMA_VERSION,
+        "tool": "threepart verify",
+        "mode": mode.name,
+        "created": _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds"),
+        "passed": bool(runs) and not failed and not errors,
+        "summary": {"cases": len(runs), "checks": len(checks), "failed_checks": len(failed),
+                    "errors": len(errors), "failed": failed, "error_messages": errors,
+                    "by_comparison": by_comparison},
+        "settings": {"sie_n": mode.sie_n, "fem_mesh": mode.fem_mesh,
+                     "sie_study_n": list(mode.sie_study_n),
+                     "fem_study_levels": list(mode.fem_study_levels), "study_case": STUDY_CASE},
+        "environment": {"python": sys.version.split()[0], "platform": platform.platform(),
+                        "packages": _versions(), "git": _git()},
+        "timings": dict(timings),
+        "tolerances": [{"comparison": k[0], "quantity": k[1], "limit": t.limit, "reason": t.reason}
+                       for k, t in TOLERANCES.items()],
+        "cases": cases,
+        "studies": [s.as_dict() for s in studies],
+        "plots": plots.get("_studies", []),
+    }
+    return _clean(doc)
+
+
+def load_schema() -> dict[str, Any]:
+    """The JSON schema of ``report.json``."""
+    return json.loads(SCHEMA_FILE.read_text(encoding="utf-8"))
+
+
+def validate(doc: dict[str, Any]) -> None:
+    """Validate ``doc`` against the schema (needs ``jsonschema``; skipped without it)."""
+    try:
+        import jsonschema
+    except ImportError:  # pragma: no cover - jsonschema is in the test extra
+        return
+    jsonschema.validate(doc, load_schema())
+
+
+def write_report(tmp: Path, mode: Mode, runs: Sequence[CaseRun], studies: Sequence[Study],
+                 timings: dict[str, float], say: Callable[[str], None]) -> dict[str, Any]:
+    """Draw the plots and write md, html and json into the directory ``tmp``."""
+    from . import plots as P
+
+    t0 = time.perf_counter()
+    pdir = tmp / "plots"
+    plots: dict[str, list[str]] = {}
+    for r in runs:
+        if "closedform" not in r.results:
+            continue
+        names = []
+        title = r.case.name
+        P.overlay(r.results, title, pdir / f"{r.case.name}_overlay.png")
+        names.append(f"plots/{r.case.name}_overlay.png")
+        if len(r.results) > 1:
+            P.error_curves(r.results, title, pdir / f"{r.case.name}_errors.png")
+            names.append(f"plots/{r.case.name}_errors.png")
+        plots[r.case.name] = names
+    plots["_studies"] = []
+    for st in studies:
+        if not st.values:
+            continue
+        name = f"plots/{st.method}_convergence.png"
+        (P.sie_convergence if st.method == "sie" else P.fem_convergence)(st, tmp / name)
+        plots["_studies"].append(name)
+    timings = dict(timings, plots_s=time.perf_counter() - t0)
+    timings["total_s"] = timings.get("solve_s", 0.0) + timings["plots_s"]
+    doc = build_report(mode, runs, studies, timings, plots)
+    validate(doc)
+    (tmp / "report.json").write_text(json.dumps(doc, indent=1, allow_nan=False), encoding="utf-8")
+    (tmp / "report.md").write_text(render.markdown(doc), encoding="utf-8")
+    (tmp / "report.html").write_text(render.html(doc, tmp), encoding="utf-8")
+    say(f"report written ({time.perf_counter() - t0:.1f} s for plots and files)")
+    return doc
+
+
+def main(mode: str = "default", out: str | Path = "report", force: bool = False,
+         cases: Sequence[Case] | None = None, quiet: bool = False) -> int:
+    """Run the verification and write the report to ``out``; return the exit status.
+
+    Parameters
+    ----------
+    mode
+        ``"quick"`` (quick FEM mesh, short studies), ``"default"`` or ``"full"``
+        (adds the slow study levels).
+    out
+        Report directory; must not exist unless ``force``.
+    force
+        Replace an existing report directory.
+    cases
+        Cases to run (default: the whole catalogue).
+
+    Returns
+    -------
+    int
+        0 when every check passed, 1 when a tolerance failed or a solver raised.
+    """
+    if mode not in MODES:
+        raise ValueError(f"`mode` = {mode!r} must be one of {sorted(MODES)}")
+    out = Path(out)
+    t0 = time.perf_counter()
+
+    def say(msg: str) -> None:
+        if not quiet:
+            print(f"{time.perf_counter() - t0:7.1f}s  {msg}", flush=True)
+
+    with atomic_dir(out, force) as tmp:
+        m = MODES[mode]
+        cases = list(load_cases() if cases is None else cases)
+        say(f"threepart verify --{mode}: {len(cases)} cases, FEM mesh {m.fem_mesh!r}, report -> {out}")
+        runs, studies, timings = run(m, cases, say)
+        timings["solve_s"] = time.perf_counter() - t0
+        doc = write_report(tmp, m, runs, studies, timings, say)
+    s = doc["summary"]
+    verdict = "PASSED" if doc["passed"] else "FAILED"
+    say(f"{verdict}: {s['checks'] - s['failed_checks']}/{s['checks']} checks within tolerance, "
+        f"{s['errors']} solver errors, {time.perf_counter() - t0:.1f} s -> {out / 'report.html'}")
+    for f in s["failed"]:
+        say(f"  failed: {f}")
+    for e in s["error_messages"]:
+        say(f"  error: {e}")
+    return 0 if doc["passed"] else 1

@@ -1,0 +1,192 @@
+"""The comparator, the report's schema and the safe writes, on fake solver results."""
+from __future__ import annotations
+
+import json
+import math
+from dataclasses import replace
+
+import pytest
+
+from closedform.geometry import Punch
+from reports import catalogue, verify
+from reports.compare import compare
+from reports.tolerances import COMPARISONS, QUANTITIES, TOLERANCES, tolerance
+
+from .fakes import _normal, _slip, fake_module
+
+PUNCH = Punch(R1=10.0, R2=10.0, b=1.0)
+A = 2 * (1 - 0.3**2) / 210e3
+P = 28846.0
+
+
+def _pair(slip: bool = False):
+    ref = _normal(PUNCH, P, 0.1, A=A)
+    if slip:
+        ref = _slip(ref, 0.4 * 0.5 * P, 0.5)
+    return ref
+
+
+def test_table_has_a_reason_for_every_entry():
+    for key, tol in TOLERANCES.items():
+        assert tol.reason.strip(), key
+        assert tol.limit > 0, key
+    for cmp in COMPARISONS:
+        for q in QUANTITIES:
+            if cmp.startswith("fem") and q in ("d", "e", "q_interior_max", "q_L2"):
+                continue  # the FEM is frictionless: no stick zone to compare
+            assert tolerance(cmp, q).limit > 0
+
+
+def test_identical_results_pass_everything():
+    ref = _pair(slip=True)
+    checks = compare(ref, ref, "sie")
+    assert [c.quantity for c in checks] == list(QUANTITIES)
+    assert all(c.passed and c.error == 0 for c in checks)
+
+
+def _perturb(ref, quantity: str, size: float):
+    """``ref`` with exactly one figure moved by ``size`` (normalised as in the table)."""
+    n = ref.normal if hasattr(ref, "normal") else ref
+    W = n.a + n.c
+    pmax = 2 * n.P / (math.pi * n.half)
+    if quantity in ("a", "c"):
+        n = replace(n, **{quantity: getattr(n, quantity) + size * W})
+    elif quantity == "alpha":
+        scale = float(n.punch.slope(n.c) - n.punch.slope(-n.a))
+        n = replace(n, alpha=n.alpha + size * scale)
+    elif quantity == "P":
+        n = replace(n, P=n.P * (1 + size))  # the field scales by the same tiny factor
+    elif quantity == "s":
+        n = replace(n, s=n.s + size * W)
+    elif quantity == "p_right":
+        n = replace(n, peak_shift=size)
+    elif quantity == "p_interior_max":
+        n = replace(n, bump=size)
+    elif quantity in ("d", "e"):
+        return replace(ref, **{quantity: getattr(ref, quantity) + size * ref.d})
+    else:  # pragma: no cover
+        raise AssertionError(quantity)
+    return replace(ref, normal=n) if hasattr(ref, "normal") else n
+
+
+@pytest.mark.parametrize("comparison", ["sie", "fem-default", "fem-quick"])
+@pytest.mark.parametrize("quantity", ["a", "c", "alpha", "P", "s", "p_right", "p_interior_max", "d", "e"])
+def test_a_perturbed_result_fails_that_tolerance_only(comparison, quantity):
+    slip = quantity in ("d", "e")
+    if slip and comparison != "sie":
+        pytest.skip("only the SIE solves partial slip")
+    ref = _pair(slip)
+    limit = tolerance(comparison, quantity).limit
+    if quantity == "P":
+        # P moves the pressure too; keep it inside the field tolerances
+        size = 3 * limit if 3 * limit < 0.3 * tolerance(comparison, "p_L2").limit else None
+        if size is None:
+            pytest.skip("P tolerance not separable from the field tolerances for this comparison")
+    else:
+        size = 3 * limit
+    bad = _perturb(ref, quantity, size)
+    # below the limit the same perturbation passes
+    ok = _perturb(ref, quantity, 0.3 * limit)
+    failed = [c.quantity for c in compare(ref, bad, comparison) if not c.passed]
+    assert failed == [quantity], f"{quantity} perturbed by {size:g}: failed {failed}"
+    assert all(c.passed for c in compare(ref, ok, comparison))
+
+
+def test_nan_never_passes():
+    ref = _pair()
+    bad = replace(ref, alpha=math.nan)
+    failed = [c.quantity for c in compare(ref, bad, "sie") if not c.passed]
+    assert failed == ["alpha"]
+
+
+def test_fem_compares_only_the_normal_part_of_a_slip_case():
+    ref = _pair(slip=True)
+    checks = compare(ref, ref.normal, "fem-quick")
+    assert {c.quantity for c in checks}.isdisjoint({"d", "e", "q_L2"})
+
+
+# ---------------------------------------------------------------------------------------
+# the verification run on fake solvers: schema, exit status, safe writes
+# ---------------------------------------------------------------------------------------
+@pytest.fixture
+def fake_solvers(monkeypatch):
+    monkeypatch.setattr(catalogue, "_module", fake_module)
+    cases = [c for c in catalogue.load_cases() if c.name in ("caseA_sym", "slip_Q0.4", "caseA_moment")]
+    monkeypatch.setattr(verify, "STUDY_CASE", "caseA_moment")
+    return cases
+
+
+def test_report_json_validates_against_its_schema(tmp_path, fake_solvers):
+    jsonschema = pytest.importorskip("jsonschema")
+    out = tmp_path / "rep"
+    status = verify.main(mode="default", out=out, cases=fake_solvers, quiet=True)
+    doc = json.loads((out / "report.json").read_text())
+    jsonschema.validate(doc, verify.load_schema())
+    assert status == 0 and doc["passed"]
+    assert {p.name for p in (out / "plots").iterdir()} >= {"caseA_sym_overlay.png", "sie_convergence.png",
+                                                            "fem_convergence.png"}
+    html = (out / "report.html").read_text()
+    assert "data:image/png;base64," in html and 'src="plots/' not in html
+    assert doc["environment"]["packages"]["numpy"]
+    # a broken document does not validate
+    doc["cases"][0]["checks"][0]["passed"] = "yes"
+    with pytest.raises(jsonschema.ValidationError):
+        jsonschema.validate(doc, verify.load_schema())
+
+
+def test_failed_tolerance_gives_nonzero_exit(tmp_path, fake_solvers, monkeypatch):
+    fake = fake_module("sie")
+    good = fake.solve_normal
+    fake.solve_normal = lambda *a, **k: replace(good(*a, **k), alpha=1e-3)
+    monkeypatch.setattr(catalogue, "_module", lambda m: fake if m == "sie" else fake_module(m))
+    status = verify.main(mode="quick", out=tmp_path / "rep", cases=fake_solvers, quiet=True)
+    doc = json.loads((tmp_path / "rep" / "report.json").read_text())
+    assert status == 1 and not doc["passed"]
+    assert all(f.endswith("/sie/alpha") for f in doc["summary"]["failed"])
+
+
+def test_solver_error_is_reported_not_raised(tmp_path, fake_solvers, monkeypatch):
+    def broken(m):
+        if m == "fem":
+            raise ImportError("fem not built")
+        return fake_module(m)
+
+    monkeypatch.setattr(catalogue, "_module", broken)
+    status = verify.main(mode="quick", out=tmp_path / "rep", cases=fake_solvers, quiet=True)
+    doc = json.loads((tmp_path / "rep" / "report.json").read_text())
+    assert status == 1 and doc["summary"]["errors"] == len(fake_solvers)
+
+
+def test_existing_report_is_not_overwritten_without_force(tmp_path, fake_solvers):
+    out = tmp_path / "rep"
+    out.mkdir()
+    (out / "mine.txt").write_text("keep me")
+    with pytest.raises(verify.ReportExistsError, match="exists; pass --force"):
+        verify.main(mode="quick", out=out, cases=fake_solvers, quiet=True)
+    assert (out / "mine.txt").read_text() == "keep me"
+    assert verify.main(mode="quick", out=out, cases=fake_solvers, quiet=True, force=True) == 0
+    assert not (out / "mine.txt").exists() and (out / "report.json").exists()
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["rep"]  # no temporary left behind
+
+
+def test_a_crash_leaves_no_half_written_report(tmp_path, fake_solvers, monkeypatch):
+    out = tmp_path / "rep"
+    out.mkdir()
+    (out / "report.json").write_text("{}")
+
+    def boom(*a, **k):
+        raise RuntimeError("disk full")
+
+    monkeypatch.setattr(verify, "write_report", boom)
+    with pytest.raises(RuntimeError, match="disk full"):
+        verify.main(mode="quick", out=out, cases=fake_solvers, quiet=True, force=True)
+    assert (out / "report.json").read_text() == "{}"  # the old report is untouched
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["rep"]
+
+
+def test_cli_refuses_to_overwrite(tmp_path, capsys):
+    from reports.cli import main
+
+    (tmp_path / "rep").mkdir()
+    assert main(["verify", "--quick", "--out", str(tmp_path / "rep")]) == 2
+    assert "pass --force" in capsys.readouterr().err
