@@ -1,1 +1,32 @@
-"""fem: filled by its own issue."""
+"""Independent finite-element model: plane-strain frictionless contact of a rigid punch.
+
+Solver
+------
+solve_normal        -- load-controlled normal contact (tilt "free" or "suppressed") on a gmsh mesh
+FemResult           -- the shared result shape plus h, dofs, L, delta, timings and nodal pressures
+NoConvergenceError  -- the contact active-set iteration did not converge
+ContactZoneError    -- the contact reached the end of the candidate zone of the mesh
+locate_contact      -- coarse trial solves that place the refined zone (no closed form used)
+
+Building blocks
+---------------
+MeshPreset, PRESETS -- mesh density relative to the contact width ("quick", "default", "fine")
+Substrate           -- a scikit-fem triangle mesh with boundaries by physical-group name
+read_substrate      -- read a gmsh ``.msh`` through meshio
+make_substrate      -- mesh a SubstrateSpec with gmsh and read it back
+SurfaceCompliance   -- elastic body condensed onto the candidate contact nodes
+condense            -- P2 plane-strain stiffness, condensed by one ordered factorisation
+plane_strain_modulus-- A = 2 (1 - nu^2) / E
+solve_contact       -- primal-dual active set with translation and tilt as unknowns
+"""
+from __future__ import annotations
+
+from .contact import ContactSolution, NoConvergenceError, solve_contact
+from .elasticity import SurfaceCompliance, condense, plane_strain_modulus
+from .mesh import PRESETS, MeshPreset, Substrate, make_substrate, read_substrate
+from .solve import ContactZoneError, FemResult, locate_contact, solve_normal
+
+__all__ = ["solve_normal", "FemResult", "NoConvergenceError", "ContactZoneError",
+           "locate_contact", "MeshPreset", "PRESETS", "Substrate", "read_substrate",
+           "make_substrate", "SurfaceCompliance", "condense", "plane_strain_modulus",
+           "solve_contact", "ContactSolution"]

@@ -1,0 +1,133 @@
+"""Plane-strain elasticity on quadratic triangles, condensed onto the candidate contact nodes.
+
+The block is clamped on its ``"base"`` group. The vertical displacement DOFs on
+the ``"contact"`` group (vertices and edge midpoints of the P2 field) are the
+candidate contact nodes. One sparse factorisation of the stiffness, with those
+DOFs ordered last, yields their Schur complement ``S`` in its trailing block, and
+the surface compliance is ``C = S^{-1}``: ``u_y = -C f`` for downward nodal
+forces ``f``.
+"""
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+import scipy.sparse as sp
+import scipy.sparse.linalg as sla
+from skfem import Basis, ElementTriP2, ElementVector, FacetBasis, LinearForm, asm
+from skfem.models.elasticity import lame_parameters, linear_elasticity
+from threadpoolctl import threadpool_limits
+
+from .mesh import Substrate
+
+__all__ = ["SurfaceCompliance", "condense", "plane_strain_modulus"]
+
+_LU_OPTIONS: dict[str, Any] = dict(diag_pivot_thresh=0.0, options=dict(SymmetricMode=True))
+
+
+def plane_strain_modulus(E: float, nu: float) -> float:
+    """Compliance ``A = 2 (1 - nu^2) / E`` of a rigid punch on an elastic half-plane."""
+    return 2.0 * (1.0 - nu**2) / E
+
+
+@dataclass(frozen=True, eq=False)
+class SurfaceCompliance:
+    """The elastic body seen from its candidate contact nodes.
+
+    Attributes
+    ----------
+    x
+        Positions of the candidate nodes along the surface, increasing.
+    weights
+        Lumped surface weights ``w_i = \\int phi_i ds`` (pressure ``p_i = f_i / w_i``).
+    C
+        Dense compliance, ``u_y = -C f`` for downward nodal forces ``f``.
+    dofs
+        Number of FE degrees of freedom (before the base is clamped).
+    h
+        Largest element size along the candidate surface.
+    timings
+        Seconds spent in ``assemble`` and ``factorise``.
+    """
+
+    x: np.ndarray
+    weights: np.ndarray
+    C: np.ndarray
+    dofs: int
+    h: float
+    timings: dict[str, float]
+    _solver: Any = field(repr=False, default=None)
+
+    def displacement(self, f: np.ndarray) -> tuple[Basis, np.ndarray]:
+        """The P2 displacement field for nodal forces ``f`` (downward) at the candidates."""
+        basis, y_dofs, free, order, lu = self._solver
+        F = np.zeros(basis.N)
+        F[y_dofs] = -np.asarray(f, dtype=float)
+        u = np.zeros(basis.N)
+        rhs = F[free][order]
+        sol = np.empty_like(rhs)
+        with threadpool_limits(limits=1, user_api="blas"):
+            sol[:] = lu.solve(rhs)
+        u_free = np.empty_like(sol)
+        u_free[order] = sol
+        u[free] = u_free
+        return basis, u
+
+
+def _ordering(K: sp.csc_matrix, last: np.ndarray) -> np.ndarray:
+    """Fill-reducing order of ``K`` (minimum degree on the rest) with ``last`` at the end."""
+    rest = np.setdiff1d(np.arange(K.shape[0]), last)
+    lu = sla.splu(K[rest][:, rest].tocsc(), permc_spec="MMD_AT_PLUS_A", **_LU_OPTIONS)
+    return np.concatenate([rest[np.argsort(lu.perm_c)], last])
+
+
+def condense(substrate: Substrate, E: float, nu: float) -> SurfaceCompliance:
+    """Assemble the plane-strain stiffness and condense it onto the candidate nodes.
+
+    Parameters
+    ----------
+    substrate
+        Mesh with ``"contact"`` (candidates) and ``"base"`` (clamped) groups.
+    E, nu
+        Young's modulus and Poisson's ratio of the substrate.
+
+    Returns
+    -------
+    SurfaceCompliance
+    """
+    t0 = time.perf_counter()
+    mesh, groups = substrate.mesh, substrate.boundaries
+    basis = Basis(mesh, ElementVector(ElementTriP2()))
+    lam, mu = lame_parameters(E, nu)  # 3-D Lame constants: plane strain
+    K = asm(linear_elasticity(lam, mu), basis)
+    y_dofs = basis.get_dofs(facets=groups["contact"]).all(["u^2"])
+    fb = FacetBasis(mesh, basis.elem, facets=groups["contact"])
+    w_all = asm(LinearForm(lambda v, w: v[1]), fb)
+    x = basis.doflocs[0, y_dofs]
+    sort = np.argsort(x)
+    y_dofs, x = y_dofs[sort], x[sort]
+    weights = w_all[y_dofs]
+    clamped = basis.get_dofs(facets=groups["base"]).all()
+    free = np.setdiff1d(np.arange(basis.N), clamped)
+    Kf = K[free][:, free].tocsc()
+    cand = np.searchsorted(free, y_dofs)
+    t1 = time.perf_counter()
+    with threadpool_limits(limits=1, user_api="blas"):
+        order = _ordering(Kf, cand)
+        lu = sla.splu(Kf[order][:, order].tocsc(), permc_spec="NATURAL", **_LU_OPTIONS)
+        n = len(cand)
+        if not (np.array_equal(lu.perm_c, np.arange(Kf.shape[0]))
+                and np.array_equal(lu.perm_r, np.arange(Kf.shape[0]))):
+            raise RuntimeError("SuperLU reordered the stiffness; the Schur block is not trailing")
+        L = lu.L.tocsc()[-n:, -n:].toarray()
+        U = lu.U.tocsc()[-n:, -n:].toarray()
+        C = np.linalg.inv(L @ U)
+    C = 0.5 * (C + C.T)
+    t2 = time.perf_counter()
+    f = mesh.facets[:, groups["contact"]]
+    h = float(np.abs(mesh.p[0, f[1]] - mesh.p[0, f[0]]).max())
+    return SurfaceCompliance(x=x, weights=weights, C=C, dofs=int(basis.N), h=h,
+                             timings={"assemble": t1 - t0, "factorise": t2 - t1},
+                             _solver=(basis, y_dofs, free, order, lu))

@@ -1,0 +1,142 @@
+"""Substrate meshes for the FE model: named presets, building through :mod:`meshes`, reading.
+
+Meshing and solving stay apart: :mod:`meshes` writes an ``.msh`` file with gmsh,
+and this module reads it back through meshio into a scikit-fem ``MeshTri`` with
+its boundaries looked up by physical-group name.
+"""
+from __future__ import annotations
+
+import tempfile
+from dataclasses import dataclass
+from pathlib import Path
+
+import meshio
+import numpy as np
+from skfem import MeshTri
+
+from meshes import SubstrateSpec, build_substrate
+
+__all__ = ["MeshPreset", "PRESETS", "Substrate", "read_substrate", "make_substrate", "preset"]
+
+
+@dataclass(frozen=True)
+class MeshPreset:
+    """Mesh density relative to the contact width ``W``.
+
+    Parameters
+    ----------
+    n
+        Elements across ``W`` along the surface (``h = W / n``).
+    growth
+        Size growth rate away from the candidate zone.
+    L
+        Block size in units of ``W`` (width and depth).
+    margin
+        Candidate zone extends ``margin * W`` beyond each estimated contact end.
+    """
+
+    n: float
+    growth: float = 0.15
+    L: float = 200.0
+    margin: float = 0.1
+
+    def __post_init__(self) -> None:
+        if not self.n >= 4:
+            raise ValueError(f"`n` = {self.n!r} must be >= 4 elements across the contact")
+        if not 0 < self.growth <= 1:
+            raise ValueError(f"`growth` = {self.growth!r} must lie in (0, 1]")
+        if not self.L >= 4:
+            raise ValueError(f"`L` = {self.L!r} must be >= 4 contact widths")
+        if not 0 < self.margin <= 2:
+            raise ValueError(f"`margin` = {self.margin!r} must lie in (0, 2]")
+
+    def spec(self, lo: float, hi: float, breakpoints: tuple[float, ...] = ()) -> SubstrateSpec:
+        """Substrate spec for an estimated contact ``[lo, hi]``."""
+        W = hi - lo
+        return SubstrateSpec(x_lo=lo - self.margin * W, x_hi=hi + self.margin * W,
+                             h=W / self.n, L=self.L * W, growth=self.growth,
+                             breakpoints=tuple(breakpoints))
+
+
+#: Named presets. ``trial`` only locates the contact for the others.
+PRESETS: dict[str, MeshPreset] = {
+    "trial": MeshPreset(n=24, growth=0.3, L=100.0, margin=0.5),
+    "quick": MeshPreset(n=60, growth=0.25, L=100.0),
+    "default": MeshPreset(n=300, growth=0.1, L=200.0),
+    "fine": MeshPreset(n=600, growth=0.1, L=200.0),
+}
+
+
+def preset(name: str) -> MeshPreset:
+    """Look up a preset by name, with a ``ValueError`` listing the names."""
+    try:
+        return PRESETS[name]
+    except KeyError:
+        raise ValueError(f"`mesh` = {name!r} is not a preset; use one of {sorted(PRESETS)}, "
+                         "a MeshPreset, a SubstrateSpec or a .msh path") from None
+
+
+@dataclass(frozen=True, eq=False)
+class Substrate:
+    """A triangle mesh of the substrate with its named boundaries.
+
+    Attributes
+    ----------
+    mesh
+        Linear triangles; the FE model raises the order itself.
+    boundaries
+        Facet indices of each physical curve group (``"contact"``, ``"base"``, ...).
+    path
+        The ``.msh`` file it was read from.
+    """
+
+    mesh: MeshTri
+    boundaries: dict[str, np.ndarray]
+    path: str
+
+    @property
+    def h_contact(self) -> float:
+        """Largest facet length in the contact group."""
+        f = self.mesh.facets[:, self.boundaries["contact"]]
+        d = self.mesh.p[:, f[1]] - self.mesh.p[:, f[0]]
+        return float(np.hypot(*d).max())
+
+
+def read_substrate(path: str | Path) -> Substrate:
+    """Read a gmsh ``.msh`` through meshio; map each physical curve group to facets.
+
+    Raises
+    ------
+    ValueError
+        If the file has no triangles or no ``"contact"`` and ``"base"`` groups.
+    """
+    m = meshio.read(path)
+    cells = m.cells_dict
+    if "triangle" not in cells:
+        raise ValueError(f"`path` = {str(path)!r} holds no triangles")
+    mesh = MeshTri(np.ascontiguousarray(m.points[:, :2].T),
+                   np.ascontiguousarray(cells["triangle"].T))
+    tags = m.cell_data_dict.get("gmsh:physical", {}).get("line")
+    lines = cells.get("line")
+    names = {int(v[0]): k for k, v in m.field_data.items() if int(v[1]) == 1}
+    # facet index of each (sorted) vertex pair
+    key = mesh.facets[0].astype(np.int64) * mesh.p.shape[1] + mesh.facets[1]
+    order = np.argsort(key)
+    boundaries: dict[str, np.ndarray] = {}
+    if lines is not None and tags is not None:
+        pair = np.sort(lines, axis=1).astype(np.int64)
+        k = pair[:, 0] * mesh.p.shape[1] + pair[:, 1]
+        facet = order[np.searchsorted(key, k, sorter=order)]
+        for tag, name in names.items():
+            boundaries[name] = np.sort(facet[tags == tag])
+    missing = {"contact", "base"} - set(boundaries)
+    if missing:
+        raise ValueError(f"`path` = {str(path)!r} lacks the physical groups {sorted(missing)}")
+    return Substrate(mesh=mesh, boundaries=boundaries, path=str(path))
+
+
+def make_substrate(spec: SubstrateSpec) -> Substrate:
+    """Build the mesh of ``spec`` with gmsh in a temporary file and read it back."""
+    with tempfile.TemporaryDirectory(prefix="threepart-mesh-") as tmp:
+        path = build_substrate(spec, Path(tmp) / "substrate.msh")
+        return read_substrate(path)

@@ -1,0 +1,245 @@
+"""``solve_normal``: the FE answer to the load-controlled normal contact problem.
+
+Steps: locate the contact roughly with a trial solve on a coarse mesh (no closed
+form is used), mesh the substrate around it with :mod:`meshes`, condense the
+elastic body onto the candidate surface nodes (:mod:`fem.elasticity`), solve the
+contact (:mod:`fem.contact`), and recover the pressure ``p_i = f_i / w_i`` and the
+contact ends, found between nodes by extrapolating ``p^2`` to zero.
+"""
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Union
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from closedform.geometry import Punch, check_finite
+from closedform.results import NormalResult
+from meshes import SubstrateSpec
+
+from .contact import ContactSolution, solve_contact
+from .elasticity import SurfaceCompliance, condense, plane_strain_modulus
+from .mesh import PRESETS, MeshPreset, Substrate, make_substrate, preset, read_substrate
+
+__all__ = ["FemResult", "ContactZoneError", "solve_normal", "locate_contact", "MeshArg"]
+
+MeshArg = Union[str, Path, MeshPreset, SubstrateSpec, Substrate]
+
+#: nodes used on each side to extrapolate p^2 to zero (the edge node itself is skipped)
+_EDGE_FIT = 5
+
+
+class ContactZoneError(RuntimeError):
+    """The contact reached an end of the candidate zone, so the mesh cannot hold it."""
+
+
+@dataclass(frozen=True)
+class FemResult(NormalResult):
+    """FE solution of the normal problem, with its discretisation.
+
+    Attributes (beyond :class:`~closedform.results.NormalResult`)
+    ----------
+    h
+        Element size along the contact zone (P2 node spacing is ``h/2``).
+    dofs
+        FE degrees of freedom.
+    L
+        Block size (width and depth).
+    delta
+        Rigid indentation of the punch (depends on ``L``: half-plane displacements diverge).
+    timings
+        Wall seconds of ``mesh``, ``assemble``, ``factorise``, ``contact``, ``total``.
+    x_nodes, p_nodes
+        Candidate node positions and their pressures ``f_i / w_i``.
+    """
+
+    h: float = math.nan
+    dofs: int = 0
+    L: float = math.nan
+    delta: float = math.nan
+    timings: dict[str, float] = field(default_factory=dict, compare=False)
+    x_nodes: np.ndarray = field(default_factory=lambda: np.zeros(0), compare=False, repr=False)
+    p_nodes: np.ndarray = field(default_factory=lambda: np.zeros(0), compare=False, repr=False)
+
+    def pressure(self, x: ArrayLike) -> np.ndarray:
+        """Compressive pressure, linear between nodes, 0 at the ends and outside ``[-a, c]``."""
+        x = np.asarray(x, dtype=float)
+        inside = (self.x_nodes > -self.a) & (self.x_nodes < self.c)
+        xs = np.concatenate([[-self.a], self.x_nodes[inside], [self.c]])
+        ps = np.concatenate([[0.0], self.p_nodes[inside], [0.0]])
+        return np.interp(x, xs, ps, left=0.0, right=0.0)
+
+
+def _validate(P: float, s: float, E: float, nu: float, tilt: str, max_iter: int) -> None:
+    """Check the scalar inputs before any numerics; messages name argument and limit."""
+    check_finite(P=P, s=s, E=E, nu=nu)
+    if P <= 0:
+        raise ValueError(f"`P` = {P!r} must be > 0 (compressive load)")
+    if E <= 0:
+        raise ValueError(f"`E` = {E!r} must be > 0")
+    if not -1.0 < nu < 0.5:
+        raise ValueError(f"`nu` = {nu!r} must lie in (-1, 0.5)")
+    if tilt not in ("free", "suppressed"):
+        raise ValueError(f"`tilt` = {tilt!r} must be 'free' or 'suppressed'")
+    if not (isinstance(max_iter, (int, np.integer)) and max_iter >= 1):
+        raise ValueError(f"`max_iter` = {max_iter!r} must be an integer >= 1")
+
+
+def _edge(x: np.ndarray, p: np.ndarray, i: int, step: int) -> float:
+    """Contact end next to edge node ``i`` (``step`` points inwards), from ``p^2 -> 0``.
+
+    A quadratic in ``x`` is fitted to ``p^2`` on the nodes after the edge node;
+    its root is kept between the edge node's outer and inner neighbours.
+    """
+    j = i + step * np.arange(1, _EDGE_FIT + 1)
+    j = j[(j >= 0) & (j < len(x))]
+    outer = x[i - step] if 0 <= i - step < len(x) else x[i]
+    if len(j) < 3:
+        return float(0.5 * (x[i] + outer))
+    coef = np.polyfit(x[j] - x[i], p[j] ** 2, 2)
+    roots = np.roots(coef)
+    roots = roots[np.isreal(roots)].real + x[i]
+    lo, hi = sorted((outer, x[j[0]]))
+    ok = roots[(roots >= lo) & (roots <= hi)]
+    if len(ok) == 0:  # fall back to the linear extrapolation of the first two
+        d = (p[j[1]] ** 2 - p[j[0]] ** 2) / (x[j[1]] - x[j[0]])
+        r = x[j[0]] - p[j[0]] ** 2 / d if d != 0 else 0.5 * (x[i] + outer)
+        return float(np.clip(r, lo, hi))
+    return float(ok[np.argmin(np.abs(ok - x[i]))])
+
+
+def _ends(x: np.ndarray, p: np.ndarray, active: np.ndarray) -> tuple[float, float]:
+    """Left and right contact ends ``(-a, c)`` of the outermost active nodes."""
+    idx = np.flatnonzero(active)
+    return _edge(x, p, int(idx[0]), +1), _edge(x, p, int(idx[-1]), -1)
+
+
+def _contact(sc: SurfaceCompliance, punch: Punch, P: float, s: float, tilt: str,
+             max_iter: int) -> ContactSolution:
+    g0 = punch.profile(sc.x)
+    sol = solve_contact(sc.C, sc.x, g0, P, s, free_tilt=tilt == "free", max_iter=max_iter)
+    if sol.active[0] or sol.active[-1]:
+        raise ContactZoneError(
+            f"the contact reaches the candidate zone end [{sc.x[0]:.6g}, {sc.x[-1]:.6g}]; "
+            "use a wider zone (a larger preset `margin`)")
+    return sol
+
+
+def _guess(punch: Punch, P: float, s: float, A: float) -> tuple[float, float]:
+    """Generous Hertz-type bracket of the contact, for the first trial mesh only."""
+    a1, a2 = (math.sqrt(2 * P * A * R / math.pi) for R in (punch.R1, punch.R2))
+    return min(-punch.b, s) - 1.5 * a1, max(punch.b, s) + 1.5 * a2
+
+
+def locate_contact(punch: Punch, P: float, s: float, *, E: float, nu: float, tilt: str,
+                   max_iter: int = 100, tries: int = 6) -> tuple[float, float]:
+    """Estimate the contact ``(-a, c)`` by trial solves on the coarse ``"trial"`` mesh.
+
+    The zone is widened when the contact reaches its ends and narrowed around the
+    contact when it spans too few elements.
+    """
+    A = plane_strain_modulus(E, nu)
+    lo, hi = _guess(punch, P, s if tilt == "free" else 0.0, A)
+    trial = PRESETS["trial"]
+    for _ in range(tries):
+        sub = make_substrate(trial.spec(lo, hi, (-punch.b, punch.b)))
+        sc = condense(sub, E, nu)
+        sol = solve_contact(sc.C, sc.x, punch.profile(sc.x), P, s, free_tilt=tilt == "free",
+                            max_iter=max_iter)
+        if sol.active[0] or sol.active[-1]:
+            W = hi - lo
+            lo, hi = lo - W, hi + W
+            continue
+        p = sol.f / sc.weights
+        left, right = _ends(sc.x, p, sol.active)
+        if right - left > 0.5 * (hi - lo):
+            return left, right
+        lo, hi = left - 0.05 * (right - left) - sc.h, right + 0.05 * (right - left) + sc.h
+    raise ContactZoneError(f"no stable contact estimate after {tries} trial meshes")
+
+
+def _substrate(mesh: MeshArg, punch: Punch, P: float, s: float, E: float, nu: float,
+               tilt: str, max_iter: int) -> tuple[Substrate, float]:
+    """The substrate mesh selected by ``mesh`` and its block size ``L``."""
+    if isinstance(mesh, Substrate):
+        sub = mesh
+    elif isinstance(mesh, SubstrateSpec):
+        sub = make_substrate(mesh)
+    elif isinstance(mesh, Path) or (isinstance(mesh, str) and mesh.endswith(".msh")):
+        sub = read_substrate(mesh)
+    else:
+        pre = preset(mesh) if isinstance(mesh, str) else mesh
+        if not isinstance(pre, MeshPreset):
+            raise ValueError(f"`mesh` = {mesh!r} must be a preset name {sorted(PRESETS)}, "
+                             "a MeshPreset, a SubstrateSpec, a Substrate or a .msh path")
+        lo, hi = locate_contact(punch, P, s, E=E, nu=nu, tilt=tilt, max_iter=max_iter)
+        sub = make_substrate(pre.spec(lo, hi, (-punch.b, punch.b)))
+    L = float(np.ptp(sub.mesh.p[0]))
+    return sub, L
+
+
+def solve_normal(punch: Punch, P: float, s: float = 0.0, *, E: float, nu: float,
+                 tilt: str = "free", mesh: MeshArg = "default",
+                 max_iter: int = 100) -> FemResult:
+    """Rigid punch pressed into a plane-strain elastic block by ``P`` at lever arm ``s``.
+
+    Parameters
+    ----------
+    punch
+        Punch geometry (eq. 2).
+    P
+        Compressive load, > 0.
+    s
+        Lever arm of the load (pressure centroid), positive to the right; ignored
+        (and returned as the centroid) when ``tilt == "suppressed"``.
+    E, nu
+        Substrate's Young's modulus and Poisson's ratio (plane strain).
+    tilt
+        ``"free"``: translation and tilt unknown; ``"suppressed"``: ``alpha = 0``.
+    mesh
+        A preset name (``"quick"``, ``"default"``, ``"fine"``), a
+        :class:`~fem.mesh.MeshPreset`, a :class:`~meshes.SubstrateSpec`, a
+        :class:`~fem.mesh.Substrate` or the path of a ``.msh`` file with
+        ``"contact"`` and ``"base"`` groups.
+    max_iter
+        Cap on the active-set iterations.
+
+    Returns
+    -------
+    FemResult
+        With ``method = "fem"`` and ``A = 2 (1 - nu^2) / E``.
+
+    Raises
+    ------
+    ValueError
+        For invalid input, naming the argument and its limit.
+    NoConvergenceError
+        If the contact iteration does not converge.
+    ContactZoneError
+        If the contact reaches the end of the candidate zone.
+    """
+    if not isinstance(punch, Punch):
+        raise ValueError(f"`punch` = {punch!r} must be a closedform.Punch")
+    _validate(P, s, E, nu, tilt, max_iter)
+    t0 = time.perf_counter()
+    sub, L = _substrate(mesh, punch, P, s, E, nu, tilt, max_iter)
+    t1 = time.perf_counter()
+    sc = condense(sub, E, nu)
+    t2 = time.perf_counter()
+    sol = _contact(sc, punch, P, s, tilt, max_iter)
+    p = sol.f / sc.weights
+    left, right = _ends(sc.x, p, sol.active)
+    t3 = time.perf_counter()
+    timings = {"mesh": t1 - t0, **sc.timings, "contact": t3 - t2, "total": t3 - t0}
+    s_out = float(np.sum(sc.x * sol.f) / np.sum(sol.f))
+    info = {"dofs": sc.dofs, "h": sc.h, "L": L, "n_candidates": len(sc.x),
+            "iterations": sol.iterations, "delta": sol.delta, "timings": timings,
+            "mesh": mesh if isinstance(mesh, str) else type(mesh).__name__}
+    return FemResult(punch=punch, A=plane_strain_modulus(E, nu), a=-left, c=right,
+                     alpha=sol.alpha, P=float(np.sum(sol.f)),
+                     s=s_out, tilt=tilt, method="fem", info=info, h=sc.h, dofs=sc.dofs,
+                     L=L, delta=sol.delta, timings=timings, x_nodes=sc.x, p_nodes=p)
