@@ -1,0 +1,39 @@
+"""Material compliance ``A`` of eq. (4), plane strain."""
+from __future__ import annotations
+
+from .geometry import check_finite, check_positive
+
+__all__ = ["compliance", "rigid_punch", "similar_pair"]
+
+
+def _body(E: float, nu: float, name: str) -> float:
+    """``(kappa + 1)/(4 mu) = 2 (1 - nu^2)/E`` with ``kappa = 3 - 4 nu`` (plane strain)."""
+    check_positive(**{f"E{name}": E})
+    check_finite(**{f"nu{name}": nu})
+    if not -1.0 < nu <= 0.5:
+        raise ValueError(f"`nu{name}` = {nu!r} must lie in (-1, 0.5]")
+    kappa, mu = 3 - 4 * nu, E / (2 * (1 + nu))
+    return (kappa + 1) / (4 * mu)
+
+
+def compliance(E1: float, nu1: float, E2: float | None = None, nu2: float | None = None) -> float:
+    """Compliance ``A = (kappa1+1)/(4 mu1) + (kappa2+1)/(4 mu2)`` (eq. 4).
+
+    With only ``E1, nu1`` the two bodies are the same material
+    (``A = 4 (1 - nu^2)/E``).
+    """
+    if (E2 is None) != (nu2 is None):
+        raise ValueError("give both `E2` and `nu2`, or neither (same material)")
+    if E2 is None or nu2 is None:
+        E2, nu2 = E1, nu1
+    return _body(E1, nu1, "1") + _body(E2, nu2, "2")
+
+
+def similar_pair(E: float, nu: float) -> float:
+    """Two bodies of the same material: ``A = 4 (1 - nu^2)/E``."""
+    return compliance(E, nu)
+
+
+def rigid_punch(E: float, nu: float) -> float:
+    """Rigid punch on an elastic half-plane: ``A = 2 (1 - nu^2)/E``."""
+    return _body(E, nu, "")

@@ -1,0 +1,205 @@
+"""Safeguarded Newton iterations for the inverse problems, scalar and vectorised.
+
+The unknowns are the contact half-width ``h = (a+c)/2`` and centre ``m = (c-a)/2``;
+the admissible set is ``h - |m| >= b`` (both contact edges on the outer
+segments). The residuals use the closed forms of :mod:`closedform.formulas`
+written in the join angles, with their exact Jacobians:
+
+* ``d(AP)/dm = k2/R2 W3 - k1/R1 W1`` and
+  ``d(AP)/dh = 2AP/h + h (k1/R1 sin b1 cos b1 + k2/R2 sin b2 cos b2)``;
+* ``d alpha/dm = -F0/pi`` and ``d alpha/dh = (k1/R1 sin b1 - k2/R2 sin b2)/pi``;
+* for the moment ``T = A P s``: ``dT/dm = AP + m d(AP)/dm + h^2/2 (k1/R1 s1 c1 + k2/R2 s2 c2)``
+  and ``dT/dh = m d(AP)/dh + h^2/2 (k2/R2 sin b2 - k1/R1 sin b1)``.
+
+A single case runs on Python floats with :mod:`math` (``solve_hm_scalar``), a
+batch on arrays (``solve_hm``); both evaluate the same :class:`State`.
+"""
+from __future__ import annotations
+
+import math
+from typing import Any, Callable
+
+import numpy as np
+
+from .errors import NoConvergenceError
+from .formulas import _chi, _psi
+from .geometry import Punch
+
+__all__ = ["State", "solve_hm", "solve_hm_scalar", "newton1d", "newton1d_scalar", "SCALAR"]
+
+MAX_ITER = 60
+RTOL = 1e-14      # residuals are relative: load error / load, moment error / (load h)
+MAX_HALVINGS = 50
+
+
+class _Scalar:
+    """The few array functions :class:`State` needs, on Python floats."""
+
+    sqrt, arctan2, sin, cos = math.sqrt, math.atan2, math.sin, math.cos
+
+    @staticmethod
+    def maximum(x: float, y: float) -> float:
+        return x if x > y else y
+
+    @staticmethod
+    def minimum(x: float, y: float) -> float:
+        return x if x < y else y
+
+    @staticmethod
+    def where(cond: bool, x: float, y: float) -> float:
+        return x if cond else y
+
+
+SCALAR: Any = _Scalar
+
+
+class State:
+    """Closed forms (with ``A = 1``) and their derivatives at ``(h, m)``.
+
+    ``xp`` is :mod:`numpy` for arrays or :data:`SCALAR` for Python floats.
+    """
+
+    def __init__(self, punch: Punch, h: Any, m: Any, xp: Any = np) -> None:
+        b, k0, k1, k2 = punch.b, punch.kappa0, punch.kappa1, punch.kappa2
+        a, c = h - m, h + m
+        b1 = 2 * xp.arctan2(xp.sqrt(xp.maximum(a - b, 0.0)), xp.sqrt(c + b))
+        b2 = 2 * xp.arctan2(xp.sqrt(xp.maximum(c - b, 0.0)), xp.sqrt(a + b))
+        s1, c1, s2, c2 = xp.sin(b1), xp.cos(b1), xp.sin(b2), xp.cos(b2)
+        self.h, self.m = h, m
+        self.F0 = k1 * b1 + k2 * b2 + math.pi * k0
+        self.AP = 0.25 * h * h * (k1 * _psi(b1, xp) + k2 * _psi(b2, xp) + 2 * math.pi * k0)
+        self.T = m * self.AP + h**3 * (k2 * s2**3 - k1 * s1**3) / 6
+        self.alpha = h * (k1 * _chi(b1, xp) - k2 * _chi(b2, xp)) / math.pi - m * k0
+        sc = k1 * s1 * c1 + k2 * s2 * c2
+        self.AP_m = h * (k2 * s2 - k1 * s1)
+        self.AP_h = 2 * self.AP / h + h * sc
+        self.T_m = self.AP + m * self.AP_m + 0.5 * h * h * sc
+        self.T_h = m * self.AP_h + 0.5 * h * h * (k2 * s2 - k1 * s1)
+        self.alpha_m = -self.F0 / math.pi
+        self.alpha_h = (k1 * s1 - k2 * s2) / math.pi
+
+
+Residual = Callable[[State], tuple[Any, Any, Any, Any, Any, Any]]
+
+
+def _newton_step(r: tuple) -> tuple[Any, Any]:
+    r1, r2, j11, j12, j21, j22 = r
+    det = j11 * j22 - j12 * j21
+    return -(j22 * r1 - j12 * r2) / det, -(-j21 * r1 + j11 * r2) / det
+
+
+def solve_hm_scalar(punch: Punch, residual: Residual, h: float, m: float,
+                    max_iter: int = MAX_ITER) -> tuple[float, float, bool]:
+    """Newton on ``residual(state) -> (r1, r2, J11, J12, J21, J22)`` for one case.
+
+    Steps are halved until the point stays admissible (``h - |m| >= b``) and
+    the residual norm decreases. Returns ``(h, m, converged)``.
+    """
+    b = punch.b
+    st = State(punch, h, m, SCALAR)
+    r = residual(st)
+    norm = math.hypot(r[0], r[1])
+    for _ in range(max_iter):
+        if norm <= RTOL:
+            return h, m, True
+        try:
+            dh, dm = _newton_step(r)
+        except ZeroDivisionError:
+            return h, m, False
+        lam = 1.0
+        for _ in range(MAX_HALVINGS):
+            hn, mn = h + lam * dh, m + lam * dm
+            if hn - abs(mn) >= b and hn > 0:
+                stn = State(punch, hn, mn, SCALAR)
+                rn = residual(stn)
+                normn = math.hypot(rn[0], rn[1])
+                if normn < norm:
+                    break
+            lam *= 0.5
+        else:  # no decrease: converged to rounding, or stuck
+            return h, m, norm <= 1e3 * RTOL
+        h, m, r, norm = hn, mn, rn, normn
+    return h, m, norm <= RTOL
+
+
+def solve_hm(punch: Punch, residual: Residual, h0: np.ndarray, m0: np.ndarray,
+             max_iter: int = MAX_ITER) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Vectorised :func:`solve_hm_scalar`; returns ``(h, m, converged)`` arrays."""
+    b = punch.b
+    h, m = np.array(h0, float, copy=True), np.array(m0, float, copy=True)
+    r = residual(State(punch, h, m))
+    norm = np.hypot(r[0], r[1])
+    done = norm <= RTOL
+    for _ in range(max_iter):
+        if done.all():
+            break
+        with np.errstate(divide="ignore", invalid="ignore"):
+            dh, dm = _newton_step(r)
+        active = ~done & np.isfinite(dh) & np.isfinite(dm)
+        dh, dm = np.where(active, dh, 0.0), np.where(active, dm, 0.0)
+        lam = np.ones_like(h)
+        accept = ~active
+        for _ in range(MAX_HALVINGS):
+            hn, mn = h + lam * dh, m + lam * dm
+            ok = (hn - np.abs(mn) >= b) & (hn > 0)
+            rn = residual(State(punch, np.where(ok, hn, h), np.where(ok, mn, m)))
+            normn = np.hypot(rn[0], rn[1])
+            accept = ~active | (ok & (normn < norm))
+            if accept.all():
+                break
+            lam = np.where(accept, lam, 0.5 * lam)
+        step = active & accept
+        h, m = np.where(step, hn, h), np.where(step, mn, m)
+        r = tuple(np.where(step, x, y) for x, y in zip(rn, r))
+        # no decrease possible: converged to rounding if the residual is tiny
+        done |= (~accept & (norm <= 1e3 * RTOL)) | ~np.isfinite(dh)
+        norm = np.where(step, normn, norm)
+        done |= norm <= RTOL
+    return h, m, norm <= 1e3 * RTOL
+
+
+def newton1d_scalar(fun: Callable[[float], tuple[float, float]], x: float, lo: float,
+                    what: str, xtol: float = 1e-11) -> float:
+    """Newton for an increasing ``fun`` with ``fun(lo) < 0``, from ``x``.
+
+    ``fun(x)`` returns ``(f, f')``. Steps below ``lo`` (or not finite) are
+    replaced by bisection towards ``lo``; the bracket's upper end is the
+    lowest point seen with ``f >= 0``. Stops once the step is below ``xtol``
+    relative (the error is then of order ``xtol**2``).
+    """
+    hi = math.inf
+    for _ in range(200):
+        f, df = fun(x)
+        if f < 0:
+            lo = x
+        else:
+            hi = min(hi, x)
+        xn = x - f / df if df > 0 else math.nan
+        if not (lo < xn < hi):
+            xn = 0.5 * (lo + hi) if math.isfinite(hi) else 2 * x - lo
+        elif abs(xn - x) <= xtol * abs(x):
+            return xn
+        if hi - lo <= 4e-16 * abs(hi):
+            return xn
+        x = xn
+    raise NoConvergenceError(f"{what}: the Newton iteration did not converge in 200 steps")
+
+
+def newton1d(fun: Callable[[np.ndarray], tuple[np.ndarray, np.ndarray]], x: np.ndarray,
+             lo: np.ndarray, what: str, xtol: float = 1e-11) -> np.ndarray:
+    """Vectorised :func:`newton1d_scalar`."""
+    x, lo = np.array(x, float, copy=True), np.array(lo, float, copy=True)
+    hi = np.full_like(x, np.inf)
+    for _ in range(200):
+        f, df = fun(x)
+        lo = np.where(f < 0, x, lo)
+        hi = np.where(f >= 0, np.minimum(hi, x), hi)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            xn = np.where(df > 0, x - f / df, np.nan)
+        inside = (xn > lo) & (xn < hi)
+        small = inside & (np.abs(xn - x) <= xtol * np.abs(x))
+        xn = np.where(inside, xn, np.where(np.isfinite(hi), 0.5 * (lo + hi), 2 * x - lo))
+        if np.all(small | (hi - lo <= 4e-16 * np.abs(hi))):
+            return xn
+        x = xn
+    raise NoConvergenceError(f"{what}: the Newton iteration did not converge in 200 steps")
