@@ -1,1 +1,46 @@
-"""sie: filled by its own issue."""
+"""Independent Gauss–Chebyshev singular-integral-equation solver (normal and partial slip).
+
+Solves paper eq. (integral_equation) numerically, bounded at both ends; imports
+only the punch geometry and the shared result shape from :mod:`closedform`.
+
+Solvers
+-------
+solve_normal        -- contact [-a, c], tilt and pressure under load control ("free"/"suppressed" tilt)
+solve_partial_slip  -- stick zone (d, e) and shear q(x) by Ciavarella–Jäger, from the discretised equations
+SieNormalResult     -- NormalResult with n, scheme and the interpolating pressure
+SieSlipResult       -- SlipResult with n, scheme, corrective pressure and shear
+NoConvergenceError  -- raised when a root iteration fails (never a silent NaN)
+
+Discretisation
+--------------
+gauss_chebyshev     -- bounded–bounded Gauss–Chebyshev nodes, weights and collocation points
+cauchy_matrix       -- discrete Cauchy operator on those nodes
+slope_coefficients  -- exact, segment-wise Chebyshev projection of v'(x) (kink-aware scheme)
+SCHEMES             -- "plain" collocation and "projected" (kink-aware) schemes
+
+Convergence
+-----------
+convergence_study   -- errors against a reference over a list of n, fitted order, Richardson estimate
+observed_order      -- fitted slope of log(error) against log(n)
+richardson          -- Richardson-extrapolated value from the last two n
+pressure_by_quadrature -- independent pointwise reference (adaptive quadrature of the inversion formula)
+TOLERANCES          -- the one table of agreement tolerances, each with its reason
+"""
+from __future__ import annotations
+
+from .convergence import ConvergenceStudy, convergence_study, observed_order, richardson
+from .normal import SieNormalResult, solve_normal
+from .projection import slope_coefficients
+from .quadrature import cauchy_matrix, gauss_chebyshev
+from .reference import pressure_by_quadrature
+from .roots import NoConvergenceError
+from .schemes import SCHEMES
+from .slip import SieSlipResult, solve_partial_slip
+from .tolerances import TOLERANCES
+
+__all__ = [
+    "solve_normal", "solve_partial_slip", "SieNormalResult", "SieSlipResult", "NoConvergenceError",
+    "gauss_chebyshev", "cauchy_matrix", "slope_coefficients", "SCHEMES",
+    "ConvergenceStudy", "convergence_study", "observed_order", "richardson",
+    "pressure_by_quadrature", "TOLERANCES",
+]

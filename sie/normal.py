@@ -1,0 +1,212 @@
+"""Normal problem under load control: the contact ends found with the discretised pressure.
+
+The integral equation (paper eq. integral_equation), with compressive pressure
+``p >= 0`` on ``[-a, c]``,
+
+    -(1/π) PV ∫ p(t)/(t - x) dt = v'(x)/A,        -a < x < c,
+
+is solved bounded at both ends. On the trial contact ``x = m + h s`` a scheme
+(:mod:`sie.schemes`) gives the Chebyshev coefficients ``G_0, G_1, G_2`` of the
+geometric slope; the unknowns ``(m, h)`` then satisfy two of
+
+* consistency (the extra collocation equation): ``α + G_0 = 0``,
+* vertical equilibrium (eq. vertical): ``π h G_1/(2A) = P``,
+* rotational equilibrium (eq. rotational): ``m + π h^2 G_2/(4AP) = s``,
+
+namely load and centroid for ``tilt="free"`` (then ``α = -G_0``), and
+consistency and load with ``α = 0`` for ``tilt="suppressed"`` (then ``s`` is
+returned). A damped Newton iteration with the exact Jacobian solves them.
+"""
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass, field
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from closedform.geometry import Punch, check_finite, check_positive
+from closedform.results import NormalResult
+
+from .roots import bracket_root, newton
+from .schemes import Plain, Projected, make_scheme
+from .series import ChebyshevPressure
+
+__all__ = ["SieNormalResult", "solve_normal", "solve_ends", "DEFAULT_N", "DEFAULT_SCHEME"]
+
+DEFAULT_N = 1024
+DEFAULT_SCHEME = "projected"
+MAX_PLAIN_N = 4096
+TILTS = ("free", "suppressed")
+
+
+@dataclass(frozen=True)
+class SieNormalResult(NormalResult):
+    """Normal solution from :func:`solve_normal`, with its discretisation.
+
+    Attributes
+    ----------
+    n
+        Number of Gauss–Chebyshev nodes (``"plain"``) or sine terms (``"projected"``).
+    scheme
+        ``"plain"`` or ``"projected"``.
+    density
+        The pressure representation that :meth:`pressure` evaluates.
+    """
+
+    n: int = 0
+    scheme: str = ""
+    density: ChebyshevPressure | None = field(default=None, repr=False, compare=False)
+
+    def pressure(self, x: ArrayLike) -> np.ndarray:
+        """Compressive pressure at ``x``, interpolated between nodes; 0 outside ``[-a, c]``."""
+        assert self.density is not None
+        return self.density(x)
+
+
+def check_scheme(scheme: str, n: int) -> Plain | Projected:
+    """Validate ``scheme`` and ``n`` and build the scheme."""
+    if isinstance(n, bool) or not isinstance(n, (int, np.integer)):
+        raise ValueError(f"`n` = {n!r} must be an integer >= 2")
+    if n < 2:
+        raise ValueError(f"`n` = {n} must be >= 2 (the load and centroid need T_1 and T_2)")
+    if scheme == "plain" and n > MAX_PLAIN_N:
+        raise ValueError(f"`n` = {n} exceeds {MAX_PLAIN_N}, the largest plain collocation "
+                         "system factorised here (use scheme='projected')")
+    return make_scheme(scheme, int(n))
+
+
+def _check_normal(punch: Punch, P: float, s: float, A: float, tilt: str, n: int,
+                  scheme: str) -> Plain | Projected:
+    if not isinstance(punch, Punch):
+        raise ValueError(f"`punch` = {punch!r} must be a closedform.geometry.Punch")
+    check_positive(P=P, A=A)
+    check_finite(s=s)
+    if tilt not in TILTS:
+        raise ValueError(f"`tilt` = {tilt!r} must be one of {TILTS}")
+    if tilt == "suppressed" and s != 0:
+        raise ValueError(f"`s` = {s!r} must be 0 with tilt='suppressed': the centroid is returned")
+    return check_scheme(scheme, n)
+
+
+def solve_ends(punch: Punch, A: float, P: float, sch: Plain | Projected, *,
+               s: float | None = None, alpha: float | None = None,
+               m0: float = 0.0, h0: float | None = None) -> tuple[float, float, np.ndarray, int, float]:
+    """Find the ends ``m ± h`` of a bounded pressure of load ``P``.
+
+    Exactly one of ``s`` (centroid given, tilt free) and ``alpha`` (tilt
+    given) must be set. Used for the contact and, in :mod:`sie.slip`, for the
+    stick zone.
+
+    Returns
+    -------
+    m, h, G, iterations, residual
+        ``G`` holds ``(G_0, G_1, G_2)`` at the solution.
+
+    Raises
+    ------
+    NoConvergenceError
+        If the bracketing or the Newton iteration fails.
+    """
+    if (s is None) == (alpha is None):
+        raise ValueError("exactly one of `s` and `alpha` must be given")
+    scale_h = h0 if h0 is not None else max(punch.b, math.sqrt(2 * P * A * max(punch.R1, punch.R2) / math.pi))
+    k = math.pi / (2 * A * P)
+
+    def load(h: float) -> float:
+        return k * h * float(sch.moments(punch, m0, h)[0][1]) - 1.0
+
+    h_start = bracket_root(load, scale_h, what="sie: initial contact width")
+    slope_scale = 1.0 / (k * h_start)
+
+    def residual(z: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        m, h = z
+        G, J = sch.moments(punch, m, h)
+        r0 = k * h * G[1] - 1.0
+        j0 = [k * h * J[1, 0], k * (G[1] + h * J[1, 1])]
+        if s is not None:
+            r1 = (m + 0.5 * k * h * h * G[2] - s) / h_start
+            j1 = [(1.0 + 0.5 * k * h * h * J[2, 0]) / h_start,
+                  0.5 * k * (2 * h * G[2] + h * h * J[2, 1]) / h_start]
+        else:
+            r1 = (alpha + G[0]) / slope_scale
+            j1 = [J[0, 0] / slope_scale, J[0, 1] / slope_scale]
+        return np.array([r0, r1]), np.array([j0, j1])
+
+    z, its, res = newton(residual, np.array([m0, h_start]),
+                         what=f"sie.{sch.name}: contact ends for P = {P:g}")
+    m, h = float(z[0]), float(z[1])
+    return m, h, sch.moments(punch, m, h)[0], its, res
+
+
+def _check_positive_pressure(punch: Punch, A: float, P: float, s: float, m: float, h: float) -> None:
+    """Refuse a one-contact solution with tensile pressure (concave or flat centre lifting off)."""
+    if punch.kappa0 > 0 or punch.b == 0:
+        return  # convex everywhere: the bounded solution is non-negative
+    p, _ = Projected(256).pressure(punch, A, m, h)
+    theta = np.linspace(0, np.pi, 801)[1:-1]
+    val = p(m + h * np.cos(theta))
+    i = int(np.argmin(val))
+    if val[i] < -1e-9 * float(np.max(val)):
+        raise ValueError(
+            f"`P` = {P:g} with `s` = {s:g}: the one-contact pressure is tensile "
+            f"(min {val[i]:.3g} at x = {m + h * np.cos(theta[i]):.4g}) for R = {punch.R:g}; "
+            "the contact separates, so increase `P` or reduce |`s`|")
+
+
+def solve_normal(punch: Punch, P: float, s: float = 0.0, *, A: float, tilt: str = "free",
+                 n: int = DEFAULT_N, scheme: str = DEFAULT_SCHEME) -> SieNormalResult:
+    """Contact ``[-a, c]``, tilt ``α`` and pressure for load ``P`` at lever arm ``s``.
+
+    Parameters
+    ----------
+    punch
+        Three-part punch geometry (paper eq. 2).
+    P
+        Compressive load, > 0 (eq. vertical).
+    s
+        Lever arm of the load, positive to the right, = pressure centroid
+        (eq. rotational). Must be 0 for ``tilt="suppressed"``.
+    A
+        Compliance (eq. 4), > 0.
+    tilt
+        ``"free"``: ``α`` follows from consistency, ``s`` is imposed.
+        ``"suppressed"``: ``α = 0``, ``s`` is returned.
+    n
+        Nodes (``"plain"``) or sine terms (``"projected"``), >= 2.
+    scheme
+        ``"projected"`` (kink-aware, default) or ``"plain"`` collocation;
+        see :mod:`sie.schemes`.
+
+    Returns
+    -------
+    SieNormalResult
+        ``method="sie"``; ``info`` holds ``n``, ``scheme``, Newton
+        ``iterations`` and ``residual``, ``time_s`` and, for the projected
+        scheme, ``pressure_bound`` (bound on the pointwise truncation error).
+
+    Raises
+    ------
+    ValueError
+        For invalid input, or a load too small to close a concave centre.
+    NoConvergenceError
+        If the Newton iteration fails.
+    """
+    sch = _check_normal(punch, P, s, A, tilt, n, scheme)
+    t0 = time.perf_counter()
+    if tilt == "free":
+        m, h, G, its, res = solve_ends(punch, A, P, sch, s=s, m0=s)
+        alpha = -float(G[0])
+        s_out = float(s)
+    else:
+        m, h, G, its, res = solve_ends(punch, A, P, sch, alpha=0.0)
+        alpha = 0.0
+        s_out = m + math.pi * h * h * float(G[2]) / (4 * A * P)
+    _check_positive_pressure(punch, A, P, s_out, m, h)
+    density, extra = sch.pressure(punch, A, m, h)
+    info = {"n": sch.n, "scheme": sch.name, "iterations": its, "residual": res,
+            "time_s": time.perf_counter() - t0, **extra}
+    return SieNormalResult(punch=punch, A=float(A), a=h - m, c=h + m, alpha=alpha, P=float(P),
+                           s=s_out, tilt=tilt, method="sie", info=info, n=sch.n,
+                           scheme=sch.name, density=density)
