@@ -32,24 +32,25 @@ METHODS = ("closedform", "sie", "fem")
 class Mode:
     """Discretisation settings of one verification mode.
 
-    ``sie_n`` (None: the solver's default) and ``fem_mesh`` are used for the
-    catalogue; ``sie_study_n`` and ``fem_study_levels`` for the convergence
-    studies (an empty tuple skips the study).
+    ``sie_n`` (None: the solver's default) and ``fem_mesh`` (a preset name, or
+    any mesh argument ``fem.solve_normal`` takes) are used for the catalogue;
+    ``sie_study_n`` and ``fem_study_n`` (elements across the contact width,
+    same grading and domain) for the convergence studies (empty: skipped).
     """
 
     name: str
     sie_n: int | None
-    fem_mesh: str
+    fem_mesh: Any
     sie_study_n: tuple[int, ...]
-    fem_study_levels: tuple[str, ...]
+    fem_study_n: tuple[int, ...]
 
 
 MODES: dict[str, Mode] = {
-    "quick": Mode("quick", None, "quick", (8, 16, 32, 64, 128, 256), ()),
+    "quick": Mode("quick", None, "quick", (8, 16, 32, 64, 128, 256), (30, 60, 120)),
     "default": Mode("default", None, "default", (8, 16, 32, 64, 128, 256, 512, 1024),
-                    ("coarse", "quick", "medium", "default")),
+                    (30, 60, 120, 240, 480)),
     "full": Mode("full", None, "default", (8, 16, 32, 64, 128, 256, 512, 1024, 2048),
-                 ("coarse", "quick", "medium", "default", "fine")),
+                 (30, 60, 120, 240, 480, 960)),
 }
 
 

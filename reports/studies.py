@@ -189,11 +189,21 @@ def sie_study(case: Case, ns: Sequence[int], progress: Callable[[str], None] | N
                 "n", progress)
 
 
-def fem_study(case: Case, levels: Sequence[str],
+#: grading and domain of the FEM study meshes (only the element count across W changes)
+FEM_STUDY_GROWTH, FEM_STUDY_L = 0.1, 200.0
+
+
+def fem_study(case: Case, ns: Sequence[int],
               progress: Callable[[str], None] | None = None) -> Study:
-    """FEM errors against the closed form for each mesh level (coarse to fine)."""
+    """FEM errors against the closed form for ``n`` elements across the contact (coarse to fine).
+
+    The meshes share grading and domain size (:data:`FEM_STUDY_GROWTH`,
+    :data:`FEM_STUDY_L` contact widths), so only ``h = W/n`` changes.
+    """
+    from fem.mesh import MeshPreset
+
     def mode(lab: str) -> Mode:
-        return Mode("study", None, lab, (), ())
+        return Mode("study", None, MeshPreset(n=int(lab), growth=FEM_STUDY_GROWTH, L=FEM_STUDY_L), (), ())
 
     def h_of(res: Any, lab: str) -> float:
         h = getattr(res, "h", None)
@@ -201,4 +211,4 @@ def fem_study(case: Case, levels: Sequence[str],
             h = res.info.get("h")
         return float(h)
 
-    return _run("fem", case, list(levels), mode, h_of, "h", progress)
+    return _run("fem", case, [str(n) for n in ns], mode, h_of, "h", progress)

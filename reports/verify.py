@@ -149,10 +149,10 @@ def run(mode: Mode, cases: Sequence[Case], say: Callable[[str], None]) -> tuple[
         say(f"[study] SIE convergence in n on {study_case.name}: n = {list(mode.sie_study_n)}")
         studies.append(sie_study(study_case, mode.sie_study_n, progress=lambda m: say(f"[study]   {m}")))
         timings["sie_study_s"] = time.perf_counter() - t1
-    if study_case is not None and mode.fem_study_levels:
+    if study_case is not None and mode.fem_study_n:
         t1 = time.perf_counter()
-        say(f"[study] FEM convergence in h on {study_case.name}: meshes {list(mode.fem_study_levels)}")
-        studies.append(fem_study(study_case, mode.fem_study_levels,
+        say(f"[study] FEM convergence in h on {study_case.name}: W/h = {list(mode.fem_study_n)}")
+        studies.append(fem_study(study_case, mode.fem_study_n,
                                  progress=lambda m: say(f"[study]   {m}")))
         timings["fem_study_s"] = time.perf_counter() - t1
     return runs, studies, timings
@@ -189,9 +189,9 @@ def build_report(mode: Mode, runs: Sequence[CaseRun], studies: Sequence[Study],
         "summary": {"cases": len(runs), "checks": len(checks), "failed_checks": len(failed),
                     "errors": len(errors), "failed": failed, "error_messages": errors,
                     "by_comparison": by_comparison},
-        "settings": {"sie_n": mode.sie_n, "fem_mesh": mode.fem_mesh,
+        "settings": {"sie_n": mode.sie_n, "fem_mesh": str(mode.fem_mesh),
                      "sie_study_n": list(mode.sie_study_n),
-                     "fem_study_levels": list(mode.fem_study_levels), "study_case": STUDY_CASE},
+                     "fem_study_n": list(mode.fem_study_n), "study_case": STUDY_CASE},
         "environment": {"python": sys.version.split()[0], "platform": platform.platform(),
                         "packages": _versions(), "git": _git()},
         "timings": dict(timings),
