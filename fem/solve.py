@@ -29,8 +29,9 @@ __all__ = ["FemResult", "ContactZoneError", "solve_normal", "locate_contact", "M
 
 MeshArg = Union[str, Path, MeshPreset, SubstrateSpec, Substrate]
 
-#: nodes used on each side to extrapolate p^2 to zero (the edge node itself is skipped)
-_EDGE_FIT = 5
+#: nodes after the edge node used to extrapolate p^2 to zero (the edge node is skipped:
+#: its lumped pressure carries the square-root edge inside one element)
+_EDGE_FIT = 16
 
 
 class ContactZoneError(RuntimeError):
@@ -89,33 +90,40 @@ def _validate(P: float, s: float, E: float, nu: float, tilt: str, max_iter: int)
         raise ValueError(f"`max_iter` = {max_iter!r} must be an integer >= 1")
 
 
-def _edge(x: np.ndarray, p: np.ndarray, i: int, step: int) -> float:
+def _edge(x: np.ndarray, p: np.ndarray, i: int, step: int,
+          breaks: tuple[float, ...] = ()) -> float:
     """Contact end next to edge node ``i`` (``step`` points inwards), from ``p^2 -> 0``.
 
-    A quadratic in ``x`` is fitted to ``p^2`` on the nodes after the edge node;
-    its root is kept between the edge node's outer and inner neighbours.
+    A quadratic in ``x`` is fitted by least squares to ``p^2`` on up to
+    ``_EDGE_FIT`` nodes after the edge node, stopping at a profile breakpoint
+    (the pressure is not smooth across ``x = ±b``) and at the first node out of
+    contact. Its root is kept between the edge node's outer and inner neighbours.
     """
     j = i + step * np.arange(1, _EDGE_FIT + 1)
     j = j[(j >= 0) & (j < len(x))]
+    inside = p[j] > 0
+    j = j[: int(np.argmin(inside)) if not inside.all() else len(j)]
+    for xb in breaks:  # keep the window on the edge node's side of each breakpoint
+        j = j[(x[j] - xb) * (x[i] - xb) >= 0] if len(j) else j
     outer = x[i - step] if 0 <= i - step < len(x) else x[i]
-    if len(j) < 3:
+    lo, hi = sorted((outer, x[j[0]] if len(j) else x[i]))
+    if len(j) < 2:
         return float(0.5 * (x[i] + outer))
-    coef = np.polyfit(x[j] - x[i], p[j] ** 2, 2)
+    deg = 2 if len(j) >= 6 else 1
+    coef = np.polyfit(x[j] - x[i], p[j] ** 2, deg)
     roots = np.roots(coef)
-    roots = roots[np.isreal(roots)].real + x[i]
-    lo, hi = sorted((outer, x[j[0]]))
+    roots = roots[np.abs(roots.imag) < 1e-12 * (hi - lo)].real + x[i]
     ok = roots[(roots >= lo) & (roots <= hi)]
-    if len(ok) == 0:  # fall back to the linear extrapolation of the first two
-        d = (p[j[1]] ** 2 - p[j[0]] ** 2) / (x[j[1]] - x[j[0]])
-        r = x[j[0]] - p[j[0]] ** 2 / d if d != 0 else 0.5 * (x[i] + outer)
-        return float(np.clip(r, lo, hi))
+    if len(ok) == 0:
+        return float(0.5 * (x[i] + outer))
     return float(ok[np.argmin(np.abs(ok - x[i]))])
 
 
-def _ends(x: np.ndarray, p: np.ndarray, active: np.ndarray) -> tuple[float, float]:
+def _ends(x: np.ndarray, p: np.ndarray, active: np.ndarray,
+          breaks: tuple[float, ...] = ()) -> tuple[float, float]:
     """Left and right contact ends ``(-a, c)`` of the outermost active nodes."""
     idx = np.flatnonzero(active)
-    return _edge(x, p, int(idx[0]), +1), _edge(x, p, int(idx[-1]), -1)
+    return _edge(x, p, int(idx[0]), +1, breaks), _edge(x, p, int(idx[-1]), -1, breaks)
 
 
 def _contact(sc: SurfaceCompliance, punch: Punch, P: float, s: float, tilt: str,
@@ -155,7 +163,7 @@ def locate_contact(punch: Punch, P: float, s: float, *, E: float, nu: float, til
             lo, hi = lo - W, hi + W
             continue
         p = sol.f / sc.weights
-        left, right = _ends(sc.x, p, sol.active)
+        left, right = _ends(sc.x, p, sol.active, (-punch.b, punch.b))
         if right - left > 0.5 * (hi - lo):
             return left, right
         lo, hi = left - 0.05 * (right - left) - sc.h, right + 0.05 * (right - left) + sc.h
@@ -232,7 +240,7 @@ def solve_normal(punch: Punch, P: float, s: float = 0.0, *, E: float, nu: float,
     t2 = time.perf_counter()
     sol = _contact(sc, punch, P, s, tilt, max_iter)
     p = sol.f / sc.weights
-    left, right = _ends(sc.x, p, sol.active)
+    left, right = _ends(sc.x, p, sol.active, (-punch.b, punch.b))
     t3 = time.perf_counter()
     timings = {"mesh": t1 - t0, **sc.timings, "contact": t3 - t2, "total": t3 - t0}
     s_out = float(np.sum(sc.x * sol.f) / np.sum(sol.f))
