@@ -144,7 +144,7 @@ def sie_convergence(st: Study, path: str | Path) -> Path:
     """SIE errors against n (log-log), with fitted orders in the legend."""
     fig, axes = new_figure()
     _study_axes(st, axes[0, 0], "n (Gauss–Chebyshev nodes)", inverse=True)
-    axes[0, 0].set_title(f"SIE convergence in n, case {st.case}")
+    axes[0, 0].set_title(f"SIE ({st.scheme}) convergence in n, case {st.case}")
     return save(fig, path)
 
 

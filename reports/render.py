@@ -96,7 +96,7 @@ def markdown(doc: dict[str, Any]) -> str:
         out += [f"![{p}]({p})" for p in c["plots"]] + [""]
     out += ["## Convergence studies", ""]
     for st in doc["studies"]:
-        out += [f"### {st['method']} in {st['param']} (case {st['case']})", ""]
+        out += [f"### {st['method']} {st.get('scheme') or ''} in {st['param']} (case {st['case']})", ""]
         head = [st["param"], "label"] + list(st["errors"])
         rows = [[fmt(v), lab] + [fmt(st["errors"][q][i]) for q in st["errors"]]
                 for i, (v, lab) in enumerate(zip(st["values"], st["labels"]))]
@@ -174,7 +174,8 @@ def html(doc: dict[str, Any], root: Path) -> str:
         parts += [_img(root, p) for p in c["plots"]]
     parts.append("<h2>Convergence studies</h2>")
     for st in doc["studies"]:
-        parts.append(f"<h3>{e(st['method'])} in {e(st['param'])} (case {e(st['case'])})</h3>")
+        parts.append(f"<h3>{e(st['method'])} {e(st.get('scheme') or '')} in {e(st['param'])} "
+                     f"(case {e(st['case'])})</h3>")
         head = [st["param"], "label"] + list(st["errors"])
         rows = [[fmt(v), lab] + [fmt(st["errors"][q][i]) for q in st["errors"]]
                 for i, (v, lab) in enumerate(zip(st["values"], st["labels"]))]

@@ -48,6 +48,7 @@ class Study:
     gci: dict[str, float] = field(default_factory=dict)
     extrapolated: dict[str, float] = field(default_factory=dict)
     notes: list[str] = field(default_factory=list)
+    scheme: str = ""
 
     def as_dict(self) -> dict[str, Any]:
         def clean(v: Any) -> Any:
@@ -59,7 +60,7 @@ class Study:
                 return None
             return v
 
-        return clean({"method": self.method, "case": self.case, "param": self.param,
+        return clean({"method": self.method, "scheme": self.scheme, "case": self.case, "param": self.param,
                       "values": self.values, "labels": self.labels, "errors": self.errors,
                       "raw": self.raw, "reference": self.reference, "times": self.times,
                       "orders": self.orders, "gci": self.gci, "extrapolated": self.extrapolated,
@@ -134,11 +135,11 @@ def _figures(ref: Any, res: Any) -> tuple[dict[str, float], dict[str, float]]:
     return raw, err
 
 
-def _run(method: str, case: Case, labels: Sequence[str], make_mode: Callable[[str], Mode],
+def _run(method: str, case: Case, labels: Sequence[str], solver: Callable[[Case, str], Any],
          param_of: Callable[[Any, str], float], param: str,
          progress: Callable[[str], None] | None) -> Study:
     case = case.resolved()
-    ref = solve_normal(case, "closedform", make_mode(labels[0]))
+    ref = solve_normal(case, "closedform", Mode("study", None, "quick", (), ()))
     rl, rr = ref.peaks()
     reference = {"a": ref.a, "c": ref.c, "alpha": ref.alpha, "p_left": rl.p, "p_right": rr.p,
                  "p_interior_max": 0.0}
@@ -147,7 +148,7 @@ def _run(method: str, case: Case, labels: Sequence[str], make_mode: Callable[[st
     for lab in labels:
         t0 = time.perf_counter()
         try:
-            res = solve_normal(case, method, make_mode(lab))
+            res = solver(case, lab)
         except Exception as exc:  # noqa: BLE001 - a failed level is a note, not a crash
             st.notes.append(f"level {lab}: {type(exc).__name__}: {exc}")
             continue
@@ -179,14 +180,27 @@ def _run(method: str, case: Case, labels: Sequence[str], make_mode: Callable[[st
     return st
 
 
-def sie_study(case: Case, ns: Sequence[int], progress: Callable[[str], None] | None = None) -> Study:
-    """SIE errors against the closed form for each ``n`` in ``ns``."""
-    def mode(lab: str) -> Mode:
-        return Mode("study", int(lab), "quick", (), ())
+def sie_study(case: Case, ns: Sequence[int], scheme: str | None = None,
+              progress: Callable[[str], None] | None = None) -> Study:
+    """SIE errors against the closed form for each ``n`` in ``ns``.
 
-    return _run("sie", case, [str(n) for n in ns], mode,
-                lambda res, lab: float(getattr(res, "n", None) or res.info.get("n", int(lab))),
-                "n", progress)
+    ``scheme`` is passed to ``sie.solve_normal`` (``"plain"`` collocation or
+    the kink-aware ``"projected"``; None: the solver's default).
+    """
+    from . import catalogue
+
+    sie = catalogue._module("sie")
+
+    def solver(c: Case, lab: str) -> Any:
+        kw = {} if scheme is None else {"scheme": scheme}
+        s = 0.0 if c.tilt == "suppressed" else float(c.s or 0.0)
+        return sie.solve_normal(c.punch, c.P, s, A=c.A, tilt=c.tilt, n=int(lab), **kw)
+
+    st = _run("sie", case, [str(n) for n in ns], solver,
+              lambda res, lab: float(getattr(res, "n", None) or res.info.get("n", int(lab))),
+              "n", progress)
+    st.scheme = scheme or "default"
+    return st
 
 
 #: grading and domain of the FEM study meshes (only the element count across W changes)
@@ -202,8 +216,9 @@ def fem_study(case: Case, ns: Sequence[int],
     """
     from fem.mesh import MeshPreset
 
-    def mode(lab: str) -> Mode:
-        return Mode("study", None, MeshPreset(n=int(lab), growth=FEM_STUDY_GROWTH, L=FEM_STUDY_L), (), ())
+    def solver(c: Case, lab: str) -> Any:
+        mesh = MeshPreset(n=int(lab), growth=FEM_STUDY_GROWTH, L=FEM_STUDY_L)
+        return solve_normal(c, "fem", Mode("study", None, mesh, (), ()))
 
     def h_of(res: Any, lab: str) -> float:
         h = getattr(res, "h", None)
@@ -211,4 +226,4 @@ def fem_study(case: Case, ns: Sequence[int],
             h = res.info.get("h")
         return float(h)
 
-    return _run("fem", case, [str(n) for n in ns], mode, h_of, "h", progress)
+    return _run("fem", case, [str(n) for n in ns], solver, h_of, "h", progress)

@@ -35,6 +35,8 @@ SCHEMA_FILE = Path(__file__).with_name("report.schema.json")
 SCHEMA_VERSION = "1.0"
 #: the catalogue case on which the convergence studies are run
 STUDY_CASE = "caseA_moment"
+#: SIE schemes whose convergence in n is studied: plain collocation and the kink-aware projection
+SIE_SCHEMES = ("plain", "projected")
 PACKAGES = ("threepart", "numpy", "scipy", "matplotlib", "scikit-fem", "gmsh", "meshio",
             "threadpoolctl")
 
@@ -146,8 +148,10 @@ def run(mode: Mode, cases: Sequence[Case], say: Callable[[str], None]) -> tuple[
     study_case = next((c for c in cases if c.name == STUDY_CASE), cases[0] if cases else None)
     if study_case is not None and mode.sie_study_n:
         t1 = time.perf_counter()
-        say(f"[study] SIE convergence in n on {study_case.name}: n = {list(mode.sie_study_n)}")
-        studies.append(sie_study(study_case, mode.sie_study_n, progress=lambda m: say(f"[study]   {m}")))
+        for scheme in SIE_SCHEMES:
+            say(f"[study] SIE ({scheme}) convergence in n on {study_case.name}: n = {list(mode.sie_study_n)}")
+            studies.append(sie_study(study_case, mode.sie_study_n, scheme=scheme,
+                                     progress=lambda m: say(f"[study]   {m}")))
         timings["sie_study_s"] = time.perf_counter() - t1
     if study_case is not None and mode.fem_study_n:
         t1 = time.perf_counter()
@@ -241,7 +245,7 @@ def write_report(tmp: Path, mode: Mode, runs: Sequence[CaseRun], studies: Sequen
     for st in studies:
         if not st.values:
             continue
-        name = f"plots/{st.method}_convergence.png"
+        name = f"plots/{st.method}{'_' + st.scheme if st.scheme else ''}_convergence.png"
         (P.sie_convergence if st.method == "sie" else P.fem_convergence)(st, tmp / name)
         plots["_studies"].append(name)
     timings = dict(timings, plots_s=time.perf_counter() - t0)

@@ -83,7 +83,7 @@ def fake_module(method: str) -> SimpleNamespace:
                                  "a": r.a * (1 + 0.01 * h**2)})
         return SimpleNamespace(solve_normal=solve_normal)
     return SimpleNamespace(
-        solve_normal=lambda punch, P, s=0.0, *, A, tilt="free", n=64: _normal(
+        solve_normal=lambda punch, P, s=0.0, *, A, tilt="free", n=64, scheme=None: _normal(
             punch, P, s, A=A, tilt=tilt, method=method, n=n),
         solve_partial_slip=lambda normal, Q, f, n=64: _slip(normal, Q, f, method=method, n=n),
         lift_off=_lift_off,
