@@ -83,22 +83,28 @@ def bracket_root(f: Callable[[float], float], x0: float, *, what: str,
     NoConvergenceError
         When no sign change is found within ``maxsteps`` factors.
     """
+    def f_checked(x: float) -> float:
+        fx = f(x)
+        if not np.isfinite(fx):
+            raise NoConvergenceError(f"{what}: function is not finite at {x:.6g}")
+        return fx
+
     hi = x0
-    fhi = f(hi)
+    fhi = f_checked(hi)
     steps = 0
     while fhi <= 0:
         hi *= grow
-        fhi = f(hi)
+        fhi = f_checked(hi)
         steps += 1
-        if steps > maxsteps or not np.isfinite(fhi):
+        if steps > maxsteps:
             raise NoConvergenceError(f"{what}: no upper bracket found up to {hi:.3g}")
     lo = hi / grow
-    flo = f(lo)
+    flo = f_checked(lo)
     steps = 0
     while flo > 0:
         hi, lo = lo, lo / grow
-        flo = f(lo)
+        flo = f_checked(lo)
         steps += 1
-        if steps > maxsteps or not np.isfinite(flo):
+        if steps > maxsteps:
             raise NoConvergenceError(f"{what}: no lower bracket found down to {lo:.3g}")
-    return float(brentq(f, lo, hi, xtol=1e-12 * hi, rtol=1e-12, maxiter=200))
+    return float(brentq(f_checked, lo, hi, xtol=1e-12 * hi, rtol=1e-12, maxiter=200))
