@@ -18,15 +18,29 @@ SurfaceCompliance   -- elastic body condensed onto the candidate contact nodes
 condense            -- P2 plane-strain stiffness, condensed by one ordered factorisation
 plane_strain_modulus-- A = 2 (1 - nu^2) / E
 solve_contact       -- primal-dual active set with translation and tilt as unknowns
+
+Export
+------
+Fields              -- vertex displacement and cell stress of a solution (``solve_normal(fields=True)``)
+write_fields        -- write Fields to VTU or XDMF through meshio, 2-D vectors padded to 3
+to_meshio           -- Fields as a meshio.Mesh
+
+Studies
+-------
+convergence_study   -- >= 4 mesh levels: values, observed orders and GCI for a, c, alpha, peaks
+domain_study        -- results as the block size L grows
 """
 from __future__ import annotations
 
 from .contact import ContactSolution, NoConvergenceError, solve_contact
 from .elasticity import SurfaceCompliance, condense, plane_strain_modulus
+from .export import Fields, to_meshio, write_fields
 from .mesh import PRESETS, MeshPreset, Substrate, make_substrate, read_substrate
 from .solve import ContactZoneError, FemResult, locate_contact, solve_normal
+from .studies import StudyLevel, StudyRecord, convergence_study, domain_study
 
 __all__ = ["solve_normal", "FemResult", "NoConvergenceError", "ContactZoneError",
            "locate_contact", "MeshPreset", "PRESETS", "Substrate", "read_substrate",
            "make_substrate", "SurfaceCompliance", "condense", "plane_strain_modulus",
-           "solve_contact", "ContactSolution"]
+           "solve_contact", "ContactSolution", "Fields", "write_fields", "to_meshio",
+           "convergence_study", "domain_study", "StudyRecord", "StudyLevel"]

@@ -22,6 +22,7 @@ from closedform.results import NormalResult
 from meshes import SubstrateSpec
 
 from .contact import ContactSolution, solve_contact
+from .export import Fields, fields_of
 from .elasticity import SurfaceCompliance, condense, plane_strain_modulus
 from .mesh import PRESETS, MeshPreset, Substrate, make_substrate, preset, read_substrate
 
@@ -56,6 +57,8 @@ class FemResult(NormalResult):
         Wall seconds of ``mesh``, ``assemble``, ``factorise``, ``contact``, ``total``.
     x_nodes, p_nodes
         Candidate node positions and their pressures ``f_i / w_i``.
+    fields
+        Displacement and stress (:class:`~fem.export.Fields`) when asked for.
     """
 
     h: float = math.nan
@@ -65,6 +68,7 @@ class FemResult(NormalResult):
     timings: dict[str, float] = field(default_factory=dict, compare=False)
     x_nodes: np.ndarray = field(default_factory=lambda: np.zeros(0), compare=False, repr=False)
     p_nodes: np.ndarray = field(default_factory=lambda: np.zeros(0), compare=False, repr=False)
+    fields: Fields | None = field(default=None, compare=False, repr=False)
 
     def pressure(self, x: ArrayLike) -> np.ndarray:
         """Compressive pressure, linear between nodes, 0 at the ends and outside ``[-a, c]``."""
@@ -192,7 +196,7 @@ def _substrate(mesh: MeshArg, punch: Punch, P: float, s: float, E: float, nu: fl
 
 def solve_normal(punch: Punch, P: float, s: float = 0.0, *, E: float, nu: float,
                  tilt: str = "free", mesh: MeshArg = "default",
-                 max_iter: int = 100) -> FemResult:
+                 max_iter: int = 100, fields: bool = False) -> FemResult:
     """Rigid punch pressed into a plane-strain elastic block by ``P`` at lever arm ``s``.
 
     Parameters
@@ -215,6 +219,8 @@ def solve_normal(punch: Punch, P: float, s: float = 0.0, *, E: float, nu: float,
         ``"contact"`` and ``"base"`` groups.
     max_iter
         Cap on the active-set iterations.
+    fields
+        Also recover the displacement and stress fields (for :func:`fem.write_fields`).
 
     Returns
     -------
@@ -241,6 +247,7 @@ def solve_normal(punch: Punch, P: float, s: float = 0.0, *, E: float, nu: float,
     sol = _contact(sc, punch, P, s, tilt, max_iter)
     p = sol.f / sc.weights
     left, right = _ends(sc.x, p, sol.active, (-punch.b, punch.b))
+    flds = fields_of(*sc.displacement(sol.f), E, nu) if fields else None
     t3 = time.perf_counter()
     timings = {"mesh": t1 - t0, **sc.timings, "contact": t3 - t2, "total": t3 - t0}
     s_out = float(np.sum(sc.x * sol.f) / np.sum(sol.f))
@@ -250,4 +257,4 @@ def solve_normal(punch: Punch, P: float, s: float = 0.0, *, E: float, nu: float,
     return FemResult(punch=punch, A=plane_strain_modulus(E, nu), a=-left, c=right,
                      alpha=sol.alpha, P=float(np.sum(sol.f)),
                      s=s_out, tilt=tilt, method="fem", info=info, h=sc.h, dofs=sc.dofs,
-                     L=L, delta=sol.delta, timings=timings, x_nodes=sc.x, p_nodes=p)
+                     L=L, delta=sol.delta, timings=timings, x_nodes=sc.x, p_nodes=p, fields=flds)

@@ -1,0 +1,97 @@
+"""Displacement and stress fields of an FE solution, written for ParaView through meshio.
+
+The P2 displacement is written at the mesh vertices and the plane-strain stress
+(mean over each triangle's quadrature points) per cell. 2-D vectors and points
+are padded to three components, as VTU and XDMF readers expect.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from pathlib import Path
+
+import meshio
+import numpy as np
+from skfem import Basis
+from skfem.models.elasticity import lame_parameters
+
+__all__ = ["Fields", "fields_of", "to_meshio", "write_fields"]
+
+
+@dataclass(frozen=True, eq=False)
+class Fields:
+    """Vertex displacement and cell stress on the substrate triangles.
+
+    Attributes
+    ----------
+    points
+        Vertex coordinates, ``(n, 2)``.
+    triangles
+        Vertex indices, ``(m, 3)``.
+    displacement
+        ``(n, 2)`` at the vertices.
+    stress
+        ``(m, 4)``: ``sigma_xx, sigma_yy, sigma_xy, sigma_zz`` (plane strain).
+    """
+
+    points: np.ndarray
+    triangles: np.ndarray
+    displacement: np.ndarray
+    stress: np.ndarray
+
+
+def fields_of(basis: Basis, u: np.ndarray, E: float, nu: float) -> Fields:
+    """Vertex displacement and mean cell stress of the P2 field ``u`` on ``basis``."""
+    lam, mu = lame_parameters(E, nu)
+    grad = basis.interpolate(u).grad  # (2, 2, cells, quadrature points)
+    eps = 0.5 * (grad + grad.transpose(1, 0, 2, 3))
+    tr = eps[0, 0] + eps[1, 1]
+    sxx = lam * tr + 2 * mu * eps[0, 0]
+    syy = lam * tr + 2 * mu * eps[1, 1]
+    sxy = 2 * mu * eps[0, 1]
+    szz = lam * tr
+    stress = np.stack([s.mean(axis=1) for s in (sxx, syy, sxy, szz)], axis=1)
+    disp = u[basis.nodal_dofs].T
+    return Fields(points=basis.mesh.p.T.copy(), triangles=basis.mesh.t.T.copy(),
+                  displacement=disp, stress=stress)
+
+
+def _pad3(a: np.ndarray) -> np.ndarray:
+    return np.hstack([a, np.zeros((a.shape[0], 3 - a.shape[1]))])
+
+
+def to_meshio(fields: Fields) -> meshio.Mesh:
+    """The fields as a meshio mesh: ``displacement`` (3 components) and ``stress`` (3x3)."""
+    sxx, syy, sxy, szz = fields.stress.T
+    zero = np.zeros_like(sxx)
+    tensor = np.stack([sxx, sxy, zero, sxy, syy, zero, zero, zero, szz], axis=1)
+    return meshio.Mesh(
+        points=_pad3(fields.points),
+        cells=[("triangle", fields.triangles)],
+        point_data={"displacement": _pad3(fields.displacement)},
+        cell_data={"stress": [tensor], "sigma_yy": [syy],
+                   "von_mises": [np.sqrt(0.5 * ((sxx - syy) ** 2 + (syy - szz) ** 2
+                                                + (szz - sxx) ** 2) + 3 * sxy**2)]},
+    )
+
+
+def write_fields(fields: Fields, path: str | Path) -> Path:
+    """Write ``fields`` to ``.vtu`` or ``.xdmf``.
+
+    XDMF is written with XML data, but meshio's XDMF writer imports ``h5py``
+    all the same, so ``.xdmf`` needs h5py installed (an ``ImportError`` says so).
+    """
+    path = Path(path)
+    m = to_meshio(fields)
+    if path.suffix == ".xdmf":
+        try:
+            import h5py  # noqa: F401  (meshio's XDMF writer needs it even for XML data)
+        except ImportError as err:
+            raise ImportError("writing .xdmf needs h5py (meshio's XDMF writer imports it); "
+                              "`pip install h5py` or write .vtu") from err
+        meshio.xdmf.write(path, m, data_format="XML")
+    elif path.suffix == ".vtu":
+        meshio.write(path, m)
+    else:
+        raise ValueError(f"`path` = {str(path)!r} must end in .vtu or .xdmf")
+    return path
+

@@ -1,0 +1,96 @@
+"""Meshes: the committed reference mesh against its manifest, physical groups by name, gmsh hygiene."""
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import gmsh
+import meshio
+import numpy as np
+import pytest
+
+import meshes
+from meshes import REFERENCE_SPEC, SubstrateSpec, build_substrate, check_manifest, describe
+
+HERE = Path(meshes.__file__).parent
+
+
+def test_reference_mesh_matches_manifest():
+    assert check_manifest(HERE / "manifest.json") == ["reference.msh"]
+
+
+def test_manifest_records_gmsh_version_and_parameters():
+    entry = json.loads((HERE / "manifest.json").read_text())["meshes"][0]
+    assert entry["gmsh_version"].count(".") == 2
+    assert entry["parameters"]["h"] == REFERENCE_SPEC.h
+    assert entry["nodes"] > 0 and entry["triangles"] > 0
+
+
+def test_rebuild_reproduces_reference_checksum(tmp_path):
+    entry = json.loads((HERE / "manifest.json").read_text())["meshes"][0]
+    if entry["gmsh_version"] != gmsh.__version__:
+        pytest.skip(f"manifest made with gmsh {entry['gmsh_version']}, have {gmsh.__version__}")
+    path = build_substrate(REFERENCE_SPEC, tmp_path / "again.msh")
+    assert describe(path, REFERENCE_SPEC)["coordinate_checksum"] == entry["coordinate_checksum"]
+
+
+def test_manifest_mismatch_is_reported(tmp_path):
+    entry = json.loads((HERE / "manifest.json").read_text())["meshes"][0]
+    entry["nodes"] += 1
+    (tmp_path / "reference.msh").write_bytes((HERE / "reference.msh").read_bytes())
+    meshes.write_manifest([entry], tmp_path / "manifest.json")
+    with pytest.raises(meshes.ManifestError, match="`nodes`"):
+        check_manifest(tmp_path / "manifest.json")
+
+
+def _group(m: meshio.Mesh, name: str) -> np.ndarray:
+    """Node indices of the line cells in the physical group ``name``."""
+    tag = m.field_data[name][0]
+    lines = m.cells_dict["line"][m.cell_data_dict["gmsh:physical"]["line"] == tag]
+    return np.unique(lines)
+
+
+def test_physical_groups_by_name():
+    m = meshio.read(HERE / "reference.msh")
+    spec = REFERENCE_SPEC
+    assert set(meshes.PHYSICAL_CURVES) | {"substrate"} == set(m.field_data)
+    x, y = m.points[:, 0], m.points[:, 1]
+    contact = _group(m, "contact")
+    assert np.allclose(y[contact], 0.0)
+    assert x[contact].min() == pytest.approx(spec.x_lo) and x[contact].max() == pytest.approx(spec.x_hi)
+    for xb in spec.breakpoints:  # nodes at x = ±b
+        assert np.min(np.abs(x[contact] - xb)) < 1e-12
+    assert np.allclose(y[_group(m, "base")], -spec.L)
+    assert np.allclose(x[_group(m, "left")], -spec.L / 2)
+    assert np.allclose(x[_group(m, "right")], spec.L / 2)
+    top = _group(m, "top")
+    assert np.allclose(y[top], 0.0) and np.all((x[top] <= spec.x_lo + 1e-12) | (x[top] >= spec.x_hi - 1e-12))
+    # uniform spacing h (or less) along the contact zone
+    assert np.diff(np.sort(x[contact])).max() <= spec.h * (1 + 1e-9)
+
+
+def test_gmsh_finalized_after_error(tmp_path, monkeypatch):
+    def boom(*args, **kwargs):
+        raise RuntimeError("meshing failed on purpose")
+
+    monkeypatch.setattr(gmsh.model.mesh, "generate", boom)
+    with pytest.raises(RuntimeError, match="on purpose"):
+        build_substrate(REFERENCE_SPEC, tmp_path / "x.msh")
+    assert not gmsh.isInitialized()
+
+
+def test_gmsh_finalized_after_success(tmp_path):
+    build_substrate(REFERENCE_SPEC, tmp_path / "x.msh")
+    assert not gmsh.isInitialized()
+
+
+@pytest.mark.parametrize("kwargs, match", [
+    (dict(x_lo=1.0, x_hi=0.0, h=0.1, L=10.0), "`x_hi`"),
+    (dict(x_lo=-1.0, x_hi=1.0, h=0.0, L=10.0), "`h`"),
+    (dict(x_lo=-1.0, x_hi=1.0, h=0.1, L=1.0), "`L`"),
+    (dict(x_lo=-1.0, x_hi=1.0, h=0.1, L=10.0, growth=-1.0), "`growth`"),
+    (dict(x_lo=-1.0, x_hi=float("nan"), h=0.1, L=10.0), "`x_hi`"),
+])
+def test_spec_validation(kwargs, match):
+    with pytest.raises(ValueError, match=match):
+        SubstrateSpec(**kwargs)
