@@ -242,6 +242,7 @@ def run_case(case: Case, mode: Mode, cache: dict[Any, Any] | None = None,
         run.errors["closedform"] = f"lift-off range: {type(exc).__name__}: {exc}"
         return run
     for method in methods:
+        reused = cache is not None and (method, case.normal_key()) in cache
         try:
             res, dt = solve(case, method, mode, cache)
         except Exception as exc:  # noqa: BLE001 - recorded in the report
@@ -250,7 +251,7 @@ def run_case(case: Case, mode: Mode, cache: dict[Any, Any] | None = None,
             continue
         run.results[method] = res
         run.times[method] = dt
-        say(f"{method} {_fmt_time(dt)}")
+        say(f"{method} {_fmt_time(dt)}" + (" (normal problem shared with an earlier case)" if reused else ""))
     ref = run.results.get("closedform")
     if ref is None:
         return run

@@ -127,7 +127,7 @@ def _study_axes(st: Study, ax: Any, xlabel: str, inverse: bool) -> None:
         e = np.asarray(st.errors[q], dtype=float)
         e = np.where(e > 0, e, np.nan)
         p = st.orders.get(q, math.nan)
-        lab = f"{q}: order {p:.2f}" if math.isfinite(p) else q
+        lab = f"{q}: order {p:.2f}" if math.isfinite(p) else f"{q}: at round-off"
         g = st.gci.get(q)
         if g is not None and math.isfinite(g):
             lab += f", GCI {g:.1e}"

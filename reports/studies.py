@@ -21,6 +21,8 @@ __all__ = ["Study", "observed_order", "gci", "sie_study", "fem_study", "STUDY_QU
 
 #: figures followed through a study (errors normalised as in reports.tolerances)
 STUDY_QUANTITIES = ("a", "c", "alpha", "p_left", "p_right", "p_interior_max")
+#: normalised errors below this are round-off and carry no order
+ROUND_OFF = 1e-13
 
 
 @dataclass
@@ -70,12 +72,12 @@ class Study:
 def observed_order(param: Sequence[float], err: Sequence[float], inverse: bool = False) -> float:
     """Slope of ``log err`` against ``log param`` (negated when ``inverse``, for n).
 
-    Levels with a zero or non-finite error (round-off floor) are dropped; NaN
-    if fewer than two remain.
+    Levels with a non-finite error or one at the round-off floor
+    (:data:`ROUND_OFF`, normalised) are dropped; NaN if fewer than two remain.
     """
     x = np.asarray(param, dtype=float)
     y = np.asarray(err, dtype=float)
-    ok = np.isfinite(y) & (y > 0) & np.isfinite(x) & (x > 0)
+    ok = np.isfinite(y) & (y > ROUND_OFF) & np.isfinite(x) & (x > 0)
     if ok.sum() < 2:
         return math.nan
     slope = float(np.polyfit(np.log(x[ok]), np.log(y[ok]), 1)[0])
@@ -137,7 +139,7 @@ def _figures(ref: Any, res: Any) -> tuple[dict[str, float], dict[str, float]]:
 
 def _run(method: str, case: Case, labels: Sequence[str], solver: Callable[[Case, str], Any],
          param_of: Callable[[Any, str], float], param: str,
-         progress: Callable[[str], None] | None) -> Study:
+         progress: Callable[[str], None] | None, param_label: str = "level") -> Study:
     case = case.resolved()
     ref = solve_normal(case, "closedform", Mode("study", None, "quick", (), ()))
     rl, rr = ref.peaks()
@@ -161,7 +163,7 @@ def _run(method: str, case: Case, labels: Sequence[str], solver: Callable[[Case,
             st.errors[q].append(err[q])
             st.raw[q].append(raw[q])
         if progress:
-            progress(f"{method} {param}={st.values[-1]:.4g} ({lab}) {dt:.2f} s")
+            progress(f"{method} {param} = {st.values[-1]:.4g} ({param_label} {lab}): {dt:.2f} s")
     inverse = param == "n"
     for q in STUDY_QUANTITIES:
         st.orders[q] = observed_order(st.values, st.errors[q], inverse=inverse)
@@ -198,7 +200,7 @@ def sie_study(case: Case, ns: Sequence[int], scheme: str | None = None,
 
     st = _run("sie", case, [str(n) for n in ns], solver,
               lambda res, lab: float(getattr(res, "n", None) or res.info.get("n", int(lab))),
-              "n", progress)
+              "n", progress, "scheme " + (scheme or "default") + ", n =")
     st.scheme = scheme or "default"
     return st
 
@@ -226,4 +228,4 @@ def fem_study(case: Case, ns: Sequence[int],
             h = res.info.get("h")
         return float(h)
 
-    return _run("fem", case, [str(n) for n in ns], solver, h_of, "h", progress)
+    return _run("fem", case, [str(n) for n in ns], solver, h_of, "h", progress, "W/h =")

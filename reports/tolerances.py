@@ -52,11 +52,11 @@ _T = Tolerance
 #: the tolerance table: ``(comparison, quantity) -> Tolerance``
 TOLERANCES: dict[tuple[str, str], Tolerance] = {
     # --- closed form vs SIE (Gauss–Chebyshev; issue 3 targets) -------------------------
-    ("sie", "a"): _T(1e-9, "SIE target 1e-10 rel. (≤1e-12 W); 10x margin for the solver's stopping test"),
-    ("sie", "c"): _T(1e-9, "as a: both ends come from the same Newton solve"),
-    ("sie", "alpha"): _T(1e-9, "SIE target 1e-10 rel.; α is a by-product of the consistency row"),
-    ("sie", "P"): _T(1e-9, "load control: P is imposed, only quadrature round-off remains"),
-    ("sie", "s"): _T(1e-9, "s is imposed (free tilt) or the centroid of the quadrature (suppressed)"),
+    ("sie", "a"): _T(1e-10, "SIE target: a, c to 1e-10 (measured ~1e-15 W with the projected scheme)"),
+    ("sie", "c"): _T(1e-10, "as a: both ends come from the same Newton solve"),
+    ("sie", "alpha"): _T(1e-10, "SIE target 1e-10 rel.; α comes from the same Newton solve as a, c"),
+    ("sie", "P"): _T(1e-12, "load control: P is imposed, only quadrature round-off remains"),
+    ("sie", "s"): _T(1e-10, "SIE target: s is imposed (free tilt) or the quadrature centroid (suppressed)"),
     ("sie", "p_left"): _T(1e-6, "SIE field target: max |Δp| ≤ 1e-6 of the peak over the contact"),
     ("sie", "p_right"): _T(1e-6, "as p_left"),
     ("sie", "x_left"): _T(1e-4, "peak position: flat maximum, Δx ~ sqrt(Δp/p'') so ~1e-3·sqrt of p error"),
@@ -80,8 +80,8 @@ TOLERANCES: dict[tuple[str, str], Tolerance] = {
     ("fem-default", "p_interior_max"): _T(1e-3, "FEM target: interior pressure within 1e-3 of the peak"),
     ("fem-default", "p_L2"): _T(1e-2, "includes the sqrt edges, ~1 % at the single edge node"),
     # --- closed form vs FEM, quick (CI) mesh -------------------------------------------
-    ("fem-quick", "a"): _T(1e-3, "quick mesh is ~10x coarser at the contact: edge error ~h"),
-    ("fem-quick", "c"): _T(1e-3, "as a"),
+    ("fem-quick", "a"): _T(5e-3, "quick mesh h = W/60: end located to ~0.2 h (3e-3 W measured near lift-off)"),
+    ("fem-quick", "c"): _T(5e-3, "as a"),
     ("fem-quick", "alpha"): _T(2e-3, "small domain and coarse grading on the quick mesh: far-field error in α"),
     ("fem-quick", "P"): _T(1e-6, "load control: P is imposed"),
     ("fem-quick", "s"): _T(1e-3, "imposed (free) or centroid of a coarse pressure (suppressed)"),
