@@ -146,8 +146,9 @@ def convergence_study(punch: Punch, P: float, s: float = 0.0, *, E: float, nu: f
     if reference is not None:
         ref = reference() if callable(reference) else reference
         h = np.array([lv.h for lv in levels])
-        for q in QUANTITIES:
-            scale = abs(ref[q]) if q == "alpha" and ref[q] != 0 else 1.0
+        W = ref["a"] + ref["c"]
+        for q in QUANTITIES:  # a, c in units of W; alpha and peaks relative (alpha = 0: absolute)
+            scale = W if q in ("a", "c") else (abs(ref[q]) or 1.0)
             err = [abs(lv.values[q] - ref[q]) / scale for lv in levels]
             errors[q] = err
             e = np.array(err)
