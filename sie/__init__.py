@@ -6,6 +6,7 @@ only the punch geometry and the shared result shape from :mod:`closedform`.
 Solvers
 -------
 solve_normal        -- contact [-a, c], tilt and pressure under load control ("free"/"suppressed" tilt)
+lift_off            -- lever arms at which a contact edge reaches a join x = ±b (closed form's range)
 solve_partial_slip  -- stick zone (d, e) and shear q(x) by Ciavarella–Jäger, from the discretised equations
 SieNormalResult     -- NormalResult with n, scheme and the interpolating pressure
 SieSlipResult       -- SlipResult with n, scheme, corrective pressure and shear
@@ -29,7 +30,7 @@ TOLERANCES          -- the one table of agreement tolerances, each with its reas
 from __future__ import annotations
 
 from .convergence import ConvergenceStudy, convergence_study, observed_order, richardson
-from .normal import SieNormalResult, solve_normal
+from .normal import SieNormalResult, lift_off, solve_normal
 from .projection import slope_coefficients
 from .quadrature import cauchy_matrix, gauss_chebyshev
 from .reference import pressure_by_quadrature
@@ -39,7 +40,7 @@ from .slip import SieSlipResult, solve_partial_slip
 from .tolerances import TOLERANCES
 
 __all__ = [
-    "solve_normal", "solve_partial_slip", "SieNormalResult", "SieSlipResult", "NoConvergenceError",
+    "solve_normal", "solve_partial_slip", "lift_off", "SieNormalResult", "SieSlipResult", "NoConvergenceError",
     "gauss_chebyshev", "cauchy_matrix", "slope_coefficients", "SCHEMES",
     "ConvergenceStudy", "convergence_study", "observed_order", "richardson",
     "pressure_by_quadrature", "TOLERANCES",

@@ -33,7 +33,7 @@ from .roots import bracket_root, newton
 from .schemes import Plain, Projected, make_scheme
 from .series import ChebyshevPressure
 
-__all__ = ["SieNormalResult", "solve_normal", "solve_ends", "DEFAULT_N", "DEFAULT_SCHEME"]
+__all__ = ["SieNormalResult", "solve_normal", "solve_ends", "lift_off", "DEFAULT_N", "DEFAULT_SCHEME"]
 
 DEFAULT_N = 1024
 DEFAULT_SCHEME = "projected"
@@ -210,3 +210,30 @@ def solve_normal(punch: Punch, P: float, s: float = 0.0, *, A: float, tilt: str 
     return SieNormalResult(punch=punch, A=float(A), a=h - m, c=h + m, alpha=alpha, P=float(P),
                            s=s_out, tilt=tilt, method="sie", info=info, n=sch.n,
                            scheme=sch.name, density=density)
+
+
+def lift_off(punch: Punch, P: float, A: float) -> tuple[float, float]:
+    """Lever arms ``(s_min, s_max)`` at which a contact edge reaches a join ``x = ±b`` (tilt free).
+
+    At ``s_max`` the left edge sits at ``-b`` (``a = b``); at ``s_min`` the right
+    edge sits at ``+b`` (``c = b``). The contact width follows from the exact
+    projected load equation along that family, so the closed form's
+    admissible range (its edges on the outer segments) can be checked
+    independently. Beyond it :func:`solve_normal` still solves.
+    """
+    if not isinstance(punch, Punch):
+        raise ValueError(f"`punch` = {punch!r} must be a closedform.geometry.Punch")
+    check_positive(P=P, A=A)
+    if punch.b == 0:
+        raise ValueError("`punch`.b = 0: there is no join to lift off from (case C / Hertz)")
+    sch = Projected(2)
+    k = math.pi / (2 * A * P)
+    out = []
+    for sign in (-1.0, 1.0):  # sign = +1: left edge at -b, m = h - b
+        def load(h: float, sign: float = sign) -> float:
+            return k * h * float(sch.moments(punch, sign * (h - punch.b), h)[0][1]) - 1.0
+        h = bracket_root(load, 2 * punch.b, what="sie.lift_off: contact width")
+        m = sign * (h - punch.b)
+        G = sch.moments(punch, m, h)[0]
+        out.append(m + 0.5 * k * h * h * float(G[2]))
+    return out[0], out[1]

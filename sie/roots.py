@@ -107,4 +107,4 @@ def bracket_root(f: Callable[[float], float], x0: float, *, what: str,
         steps += 1
         if steps > maxsteps:
             raise NoConvergenceError(f"{what}: no lower bracket found down to {lo:.3g}")
-    return float(brentq(f_checked, lo, hi, xtol=1e-12 * hi, rtol=1e-12, maxiter=200))
+    return float(brentq(f_checked, lo, hi, xtol=1e-16 * hi, rtol=1e-15, maxiter=200))

@@ -224,3 +224,19 @@ def test_non_finite_residual_raises_named_exception(monkeypatch):
                         lambda self, punch, m, h: (np.full(3, np.nan), np.full((3, 2), np.nan)))
     with pytest.raises(sie.NoConvergenceError):
         sie.solve_normal(Punch(1.0, 2.0, 0.4), 1.0, A=1.0)
+
+
+@pytest.mark.parametrize("name", ["A", "B", "general"])
+def test_lift_off_lever_arms_agree_with_closed_form(name):
+    import closedform
+    k = CASES[name]
+    lo = closedform.lift_off(k.punch, k.P, k.A)
+    s_min, s_max = sie.lift_off(k.punch, k.P, k.A)
+    assert s_min == pytest.approx(lo.s_min, rel=1e-12) and s_max == pytest.approx(lo.s_max, rel=1e-12)
+    r = sie.solve_normal(k.punch, k.P, s_max, A=k.A)  # the left edge sits on the join
+    assert r.a == pytest.approx(k.punch.b, rel=1e-12)
+
+
+def test_lift_off_needs_a_join():
+    with pytest.raises(ValueError, match="b = 0"):
+        sie.lift_off(Punch(1.0, 2.0, 0.0), 1.0, 1.0)
