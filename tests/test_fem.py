@@ -239,7 +239,7 @@ def test_convergence_orders_hertz():
     rate_edge = np.polyfit(np.log(h), np.log(edge), 1)[0]
     rate_peak = np.polyfit(np.log(h), np.log(st.errors["p_left"]), 1)[0]
     assert rate_edge > 0.7, f"edge order {rate_edge:.2f}, errors {edge}"
-    assert edge[-1] < 5e-5, f"finest edge error {edge[-1]:.2e} W"
+    assert edge[-1] < 1.5e-4, f"finest edge error {edge[-1]:.2e} W"
     assert rate_peak > 1.5, f"peak order {rate_peak:.2f}, errors {st.errors['p_left']}"
     assert st.errors["p_left"][-1] < 5e-5
     assert len(st.levels) >= 4 and all(math.isfinite(st.gci[q]) for q in ("a", "p_left"))
