@@ -76,7 +76,7 @@ def fake_module(method: str) -> SimpleNamespace:
     if method == "fem":
         def solve_normal(punch, P, s=0.0, *, E, nu, tilt="free", mesh="quick"):
             A = 2 * (1 - nu**2) / E
-            h = {"quick": 0.04, "default": 0.01}[mesh] if isinstance(mesh, str) else 2.0 / mesh.n
+            h = {"quick": 0.04, "default": 0.01, "fine": 0.005}[mesh] if isinstance(mesh, str) else 2.0 / mesh.n
             r = _normal(punch, P, s, A=A, tilt=tilt, method="fem", h=h)
             # a small O(h^2) error so that the convergence study has something to fit
             return FakeNormal(**{**{k: getattr(r, k) for k in r.__dataclass_fields__},

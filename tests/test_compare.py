@@ -69,7 +69,7 @@ def _perturb(ref, quantity: str, size: float):
     return replace(ref, normal=n) if hasattr(ref, "normal") else n
 
 
-@pytest.mark.parametrize("comparison", ["sie", "fem-default", "fem-quick"])
+@pytest.mark.parametrize("comparison", COMPARISONS)
 @pytest.mark.parametrize("quantity", ["a", "c", "alpha", "P", "s", "p_right", "p_interior_max", "d", "e"])
 def test_a_perturbed_result_fails_that_tolerance_only(comparison, quantity):
     slip = quantity in ("d", "e")
