@@ -46,7 +46,7 @@ def F0(punch: Punch, a: ArrayLike, c: ArrayLike) -> np.ndarray:
 
 def _psi(x, xp=np):
     """``2x - sin 2x``, with a series for small ``x`` (no cancellation)."""
-    series = (8 / 3) * x**3 * (1 - x**2 / 5 + 2 * x**4 / 105)
+    series = (4 / 3) * x**3 * (1 - x**2 / 5 + 2 * x**4 / 105)
     return xp.where(x < 1e-2, series, 2 * x - xp.sin(2 * x))
 
 
@@ -129,7 +129,7 @@ def pressure(punch: Punch, a: ArrayLike, c: ArrayLike, A: ArrayLike, x: ArrayLik
     """
     x = np.asarray(x, float)
     a, c = np.asarray(a, float), np.asarray(c, float)
-    inside = (x >= -a) & (x <= c)
+    inside = (x > -a) & (x < c)
     xi = np.clip(x, -a, c)
     w = np.sqrt((xi + a) * (c - xi))
     b = punch.b

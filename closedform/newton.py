@@ -1,8 +1,8 @@
 """Safeguarded Newton iterations for the inverse problems, scalar and vectorised.
 
-The unknowns are the contact half-width ``h = (a+c)/2`` and centre ``m = (c-a)/2``;
-the admissible set is ``h - |m| >= b`` (both contact edges on the outer
-segments). The residuals use the closed forms of :mod:`closedform.formulas`
+The closed forms are evaluated at the contact half-width ``h = (a+c)/2`` and
+centre ``m = (c-a)/2``; the 2-D iterations run in ``u1 = sqrt(a-b)``,
+``u2 = sqrt(c-b)``, which keeps both contact edges on the outer segments. The residuals use the closed forms of :mod:`closedform.formulas`
 written in the join angles, with their exact Jacobians:
 
 * ``d(AP)/dm = k2/R2 W3 - k1/R1 W1`` and
@@ -82,43 +82,61 @@ class State:
 Residual = Callable[[State], tuple[Any, Any, Any, Any, Any, Any]]
 
 
-def _newton_step(r: tuple) -> tuple[Any, Any]:
-    r1, r2, j11, j12, j21, j22 = r
+def _to_u(h: Any, m: Any, b: float, xp: Any) -> tuple[Any, Any]:
+    """Iteration variables ``u1 = sqrt(a - b)``, ``u2 = sqrt(c - b)``."""
+    return xp.sqrt(xp.maximum(h - m - b, 0.0)), xp.sqrt(xp.maximum(h + m - b, 0.0))
+
+
+def _to_hm(u1: Any, u2: Any, b: float) -> tuple[Any, Any]:
+    return b + 0.5 * (u1 * u1 + u2 * u2), 0.5 * (u2 * u2 - u1 * u1)
+
+
+def _newton_step(r: tuple, u1: Any, u2: Any) -> tuple[Any, Any]:
+    """Newton step in ``(u1, u2)`` from residuals and their ``(h, m)`` Jacobian.
+
+    ``d/du1 = u1 (d/dh - d/dm)`` and ``d/du2 = u2 (d/dh + d/dm)``.
+    """
+    r1, r2, f1h, f1m, f2h, f2m = r
+    j11, j12 = u1 * (f1h - f1m), u2 * (f1h + f1m)
+    j21, j22 = u1 * (f2h - f2m), u2 * (f2h + f2m)
     det = j11 * j22 - j12 * j21
     return -(j22 * r1 - j12 * r2) / det, -(-j21 * r1 + j11 * r2) / det
 
 
 def solve_hm_scalar(punch: Punch, residual: Residual, h: float, m: float,
                     max_iter: int = MAX_ITER) -> tuple[float, float, bool]:
-    """Newton on ``residual(state) -> (r1, r2, J11, J12, J21, J22)`` for one case.
+    """Newton on ``residual(state) -> (r1, r2, dr1/dh, dr1/dm, dr2/dh, dr2/dm)`` for one case.
 
-    Steps are halved until the point stays admissible (``h - |m| >= b``) and
-    the residual norm decreases. Returns ``(h, m, converged)``.
+    The iteration runs in ``u1 = sqrt(a-b)``, ``u2 = sqrt(c-b)``: every iterate
+    is admissible (both edges on the outer segments) and the closed forms,
+    which behave like ``(c-b)^(3/2)`` near lift-off, are smooth in ``u``.
+    Steps are halved until the residual norm decreases. Returns
+    ``(h, m, converged)``.
     """
     b = punch.b
-    st = State(punch, h, m, SCALAR)
-    r = residual(st)
+    u1, u2 = _to_u(h, m, b, SCALAR)
+    r = residual(State(punch, h, m, SCALAR))
     norm = math.hypot(r[0], r[1])
     for _ in range(max_iter):
         if norm <= RTOL:
             return h, m, True
         try:
-            dh, dm = _newton_step(r)
+            d1, d2 = _newton_step(r, u1, u2)
         except ZeroDivisionError:
             return h, m, False
         lam = 1.0
         for _ in range(MAX_HALVINGS):
-            hn, mn = h + lam * dh, m + lam * dm
-            if hn - abs(mn) >= b and hn > 0:
-                stn = State(punch, hn, mn, SCALAR)
-                rn = residual(stn)
+            v1, v2 = u1 + lam * d1, u2 + lam * d2
+            hn, mn = _to_hm(v1, v2, b)
+            if hn > 0:
+                rn = residual(State(punch, hn, mn, SCALAR))
                 normn = math.hypot(rn[0], rn[1])
                 if normn < norm:
                     break
             lam *= 0.5
         else:  # no decrease: converged to rounding, or stuck
             return h, m, norm <= 1e3 * RTOL
-        h, m, r, norm = hn, mn, rn, normn
+        u1, u2, h, m, r, norm = v1, v2, hn, mn, rn, normn
     return h, m, norm <= RTOL
 
 
@@ -127,6 +145,7 @@ def solve_hm(punch: Punch, residual: Residual, h0: np.ndarray, m0: np.ndarray,
     """Vectorised :func:`solve_hm_scalar`; returns ``(h, m, converged)`` arrays."""
     b = punch.b
     h, m = np.array(h0, float, copy=True), np.array(m0, float, copy=True)
+    u1, u2 = _to_u(h, m, b, np)
     r = residual(State(punch, h, m))
     norm = np.hypot(r[0], r[1])
     done = norm <= RTOL
@@ -134,14 +153,15 @@ def solve_hm(punch: Punch, residual: Residual, h0: np.ndarray, m0: np.ndarray,
         if done.all():
             break
         with np.errstate(divide="ignore", invalid="ignore"):
-            dh, dm = _newton_step(r)
-        active = ~done & np.isfinite(dh) & np.isfinite(dm)
-        dh, dm = np.where(active, dh, 0.0), np.where(active, dm, 0.0)
+            d1, d2 = _newton_step(r, u1, u2)
+        active = ~done & np.isfinite(d1) & np.isfinite(d2)
+        d1, d2 = np.where(active, d1, 0.0), np.where(active, d2, 0.0)
         lam = np.ones_like(h)
         accept = ~active
         for _ in range(MAX_HALVINGS):
-            hn, mn = h + lam * dh, m + lam * dm
-            ok = (hn - np.abs(mn) >= b) & (hn > 0)
+            v1, v2 = u1 + lam * d1, u2 + lam * d2
+            hn, mn = _to_hm(v1, v2, b)
+            ok = hn > 0
             rn = residual(State(punch, np.where(ok, hn, h), np.where(ok, mn, m)))
             normn = np.hypot(rn[0], rn[1])
             accept = ~active | (ok & (normn < norm))
@@ -149,10 +169,11 @@ def solve_hm(punch: Punch, residual: Residual, h0: np.ndarray, m0: np.ndarray,
                 break
             lam = np.where(accept, lam, 0.5 * lam)
         step = active & accept
+        u1, u2 = np.where(step, v1, u1), np.where(step, v2, u2)
         h, m = np.where(step, hn, h), np.where(step, mn, m)
         r = tuple(np.where(step, x, y) for x, y in zip(rn, r))
         # no decrease possible: converged to rounding if the residual is tiny
-        done |= (~accept & (norm <= 1e3 * RTOL)) | ~np.isfinite(dh)
+        done |= (~accept & (norm <= 1e3 * RTOL)) | ~np.isfinite(d1)
         norm = np.where(step, normn, norm)
         done |= norm <= RTOL
     return h, m, norm <= 1e3 * RTOL

@@ -42,7 +42,7 @@ def case_a_pressure(a: ArrayLike, c: ArrayLike, b: float, R1: float, R2: float, 
     """Compressive pressure of case A, eq. (pressure_distribution_compact_1), 0 outside."""
     x = np.asarray(x, float)
     a, c = np.asarray(a, float), np.asarray(c, float)
-    inside = (x >= -a) & (x <= c)
+    inside = (x > -a) & (x < c)
     x = np.clip(x, -a, c)
     w = np.sqrt((a + x) * (c - x))
     t1, t2 = _arccos_pair(a, c, b)
@@ -94,7 +94,7 @@ def case_c_pressure(a: ArrayLike, c: ArrayLike, R1: float, R2: float, A: float,
     """Compressive pressure of case C, eq. (pressure_distribution_compact_2), 0 outside."""
     x = np.asarray(x, float)
     a, c = np.asarray(a, float), np.asarray(c, float)
-    inside = (x >= -a) & (x <= c)
+    inside = (x > -a) & (x < c)
     x = np.clip(x, -a, c)
     w = np.sqrt((a + x) * (c - x))
     den = 2 * a * c + (c - a) * x + 2 * np.sqrt(a * c * (c - x) * (a + x))
