@@ -98,7 +98,7 @@ def _normal_iv(punch: Punch, P: np.ndarray, A: float, tilt: str) -> None:
     bad = ~np.isfinite(P) | (P <= 0)
     if bad.any():
         i = int(np.argmax(bad))
-        raise ValueError(f"`P` = {P.flat[i]!r} must be a finite compressive load > 0")
+        raise ValueError(f"`P` = {float(P.flat[i])!r} must be a finite compressive load > 0")
     pmin = P_min(punch, A)
     low = P <= pmin
     if low.any():
@@ -285,7 +285,7 @@ def solve_normal_batch(punch: Punch, P: ArrayLike, s: ArrayLike = 0.0, *, A: flo
     _normal_iv(punch, P_arr, A, tilt)
     bad = ~np.isfinite(s_arr)
     if bad.any():
-        raise ValueError(f"`s` = {s_arr[int(np.argmax(bad))]!r} must be a finite lever arm")
+        raise ValueError(f"`s` = {float(s_arr[int(np.argmax(bad))])!r} must be a finite lever arm")
     h, m, ok = _solve_hm(punch, A * P_arr, s_arr, tilt, np)
     if not ok.all():
         _fail(punch, P_arr, s_arr, A, tilt, ok)

@@ -1,0 +1,143 @@
+"""Every class of bad input raises a ValueError (or named subclass) naming the argument and limit."""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+import closedform as cf
+from closedform import Punch
+from tests import quad_reference as ref
+
+A = 2 * (1 - 0.3**2) / 210e3
+
+
+@pytest.mark.parametrize("kwargs,match", [
+    (dict(R1=-1.0, R2=1.0, b=0.1), r"`R1` = -1.0 must be > 0"),
+    (dict(R1=1.0, R2=0.0, b=0.1), r"`R2` = 0.0 must be > 0"),
+    (dict(R1=1.0, R2=1.0, b=-0.1), r"`b` = -0.1 must be >= 0"),
+    (dict(R1=1.0, R2=1.0, b=0.1, R=0.0), r"`R` = 0 is not allowed"),
+    (dict(R1=math.nan, R2=1.0, b=0.1), r"`R1` = nan must be a finite number"),
+    (dict(R1=1.0, R2=math.inf, b=0.1), r"`R2` = inf must be a finite number"),
+    (dict(R1=1.0, R2=1.0, b=0.1, R=math.nan), r"`R` = nan"),
+])
+def test_bad_geometry(kwargs, match):
+    with pytest.raises(ValueError, match=match):
+        Punch(**kwargs)
+
+
+@pytest.mark.parametrize("P,s,Av,tilt,match", [
+    (0.0, 0.0, A, "free", r"`P` = 0.0 must be a finite compressive load > 0"),
+    (-5.0, 0.0, A, "free", r"`P` = -5.0 must be a finite compressive load > 0"),
+    (math.inf, 0.0, A, "free", r"`P` = inf must be a finite number"),
+    (400.0, math.nan, A, "free", r"`s` = nan must be a finite number"),
+    (400.0, 0.0, -1.0, "free", r"`A` = -1.0 must be > 0"),
+    (400.0, 0.0, A, "locked", r"`tilt` = 'locked' must be one of"),
+    (400.0, 0.2, A, "suppressed", r"`s` = 0.2 is an output when tilt='suppressed'"),
+])
+def test_bad_loads(P, s, Av, tilt, match):
+    with pytest.raises(ValueError, match=match):
+        cf.solve_normal(Punch(10.0, 5.0, 1.0), P, s, A=Av, tilt=tilt)
+
+
+def test_lever_arm_past_lift_off_names_the_limit():
+    punch, P = Punch(10.0, 5.0, 1.0), 400.0
+    lim = cf.lift_off(punch, P, A)
+    with pytest.raises(cf.LiftOffError, match=rf"`s` = 0.6 exceeds the lift-off lever arm "
+                                               rf"{lim.s_max:.6g} for `P` = 400 \(the left edge"):
+        cf.solve_normal(punch, P, 0.6, A=A)
+    with pytest.raises(cf.LiftOffError, match=rf"is below the lift-off lever arm {lim.s_min:.6g}"):
+        cf.solve_normal(punch, P, -0.6, A=A)
+    with pytest.raises(cf.LiftOffError, match="exceeds the lift-off lever arm"):
+        cf.solve_normal_batch(punch, [P, P], [0.0, 0.6], A=A)
+
+
+def test_lift_off_limits_are_real():
+    """Just inside the limit solves (an edge at the join); just outside is refused."""
+    punch, P = Punch(10.0, 5.0, 1.0), 400.0
+    lim = cf.lift_off(punch, P, A)
+    inside = cf.solve_normal(punch, P, lim.s_max - 1e-9, A=A)
+    assert inside.a - punch.b < 1e-6
+    with pytest.raises(cf.LiftOffError):
+        cf.solve_normal(punch, P, lim.s_max + 1e-9, A=A)
+
+
+def test_load_below_the_convex_centre_limit():
+    punch = Punch(10.0, 20.0, 1.0, R=100.0)
+    pmin = math.pi * punch.b**2 / (2 * A * punch.R)
+    with pytest.raises(cf.LiftOffError, match=rf"`P` = 400 is at or below P_min = pi b\^2/\(2AR\) = "
+                                               rf"{pmin:.6g}"):
+        cf.solve_normal(punch, 400.0, A=A)
+    # P_min is the Hertz load of the central radius with a = b (quadrature)
+    assert ref.load(punch, punch.b, punch.b, A) == pytest.approx(pmin, rel=1e-10)
+
+
+def test_concave_centre_that_separates():
+    punch = Punch(10.0, 20.0, 1.0, R=-200.0)
+    with pytest.raises(cf.SeparationError, match=r"the concave centre `R` = -200 separates for "
+                                                  r"`P` = 400.*not simply connected"):
+        cf.solve_normal(punch, 400.0, A=A)
+
+
+def test_separation_claim_is_true():
+    """The refused concave case really has tensile pressure (independent quadrature)."""
+    punch, P = Punch(10.0, 20.0, 1.0, R=-200.0), 400.0
+    # the load/consistency conditions still have a root; its pressure is negative at the centre
+    from closedform.newton import SCALAR, solve_hm_scalar
+    from closedform.normal import _along, _free_residual
+
+    h0 = _along(punch, A * P, 0.0, SCALAR)
+    h, m, ok = solve_hm_scalar(punch, _free_residual(A * P, 0.0, h0), h0, 0.0)
+    assert ok
+    assert ref.pressure(punch, h - m, h + m, A, 0.0) < 0
+
+
+def test_full_sliding():
+    sol = cf.solve_normal(Punch(10.0, 5.0, 1.0), 400.0, A=A)
+    with pytest.raises(cf.FullSlidingError, match=r"\|`Q`\| = 200 >= f P = 200 .*full sliding"):
+        cf.solve_partial_slip(sol, 200.0, 0.5)
+    with pytest.raises(cf.FullSlidingError, match="full sliding"):
+        cf.solve_partial_slip(sol, -250.0, 0.5)
+
+
+@pytest.mark.parametrize("Q,f,match", [(10.0, 0.0, r"`f` = 0.0 must be > 0"),
+                                       (10.0, -0.3, r"`f` = -0.3 must be > 0"),
+                                       (math.nan, 0.5, r"`Q` = nan must be a finite number")])
+def test_bad_friction_input(Q, f, match):
+    sol = cf.solve_normal(Punch(10.0, 5.0, 1.0), 400.0, A=A)
+    with pytest.raises(ValueError, match=match):
+        cf.solve_partial_slip(sol, Q, f)
+
+
+def test_stick_zone_inside_the_central_segment_gives_the_bound():
+    sol = cf.solve_normal(Punch(10.0, 5.0, 1.0), 400.0, 0.1, A=A)
+    from closedform.slip import stick_zone_bound
+
+    bound = stick_zone_bound(sol)
+    with pytest.raises(cf.StickZoneError, match=rf"`Q`/\(f P\) = 0.99: the stick zone would end inside "
+                                                rf"the central segment .* it holds for \|Q\|/\(f P\) < "
+                                                rf"{bound:.6g}"):
+        cf.solve_partial_slip(sol, 0.99 * 200.0, 0.5)
+    # the bound is where an end of the stick zone reaches a join
+    at = cf.solve_partial_slip(sol, (bound - 1e-10) * 200.0, 0.5)
+    lo, hi = at.stick_zone
+    assert min(-lo, hi) - sol.punch.b < 1e-6
+
+
+def test_no_nan_anywhere_on_a_sweep_to_the_limits():
+    punch, P = Punch(10.0, 5.0, 1.0, R=-3000.0), 4000.0
+    lim = cf.lift_off(punch, P, A)
+    s = np.linspace(lim.s_min, lim.s_max, 201)[1:-1]
+    b = cf.solve_normal_batch(punch, P, s, A=A)
+    assert np.all(np.isfinite(b.a)) and np.all(np.isfinite(b.alpha))
+    assert np.all(b.a >= punch.b) and np.all(b.c >= punch.b)
+
+
+def test_material_errors():
+    with pytest.raises(ValueError, match=r"`nu1` = 0.7 must lie in \(-1, 0.5\]"):
+        cf.compliance(210e3, 0.7)
+    with pytest.raises(ValueError, match=r"`E1` = -1.0 must be > 0"):
+        cf.compliance(-1.0, 0.3)
+    with pytest.raises(ValueError, match="give both `E2` and `nu2`"):
+        cf.compliance(210e3, 0.3, E2=70e3)

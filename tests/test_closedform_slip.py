@@ -1,0 +1,83 @@
+"""Partial slip (Ciavarella-Jaeger) against the defining integral equations."""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from scipy.integrate import quad
+
+import closedform as cf
+from closedform import Punch
+from tests import quad_reference as ref
+
+A = 2 * (1 - 0.3**2) / 210e3
+CASES = [(Punch(10.0, 10.0, 1.0), 400.0, 0.0), (Punch(10.0, 5.0, 1.0), 400.0, 0.1),
+         (Punch(10.0, 20.0, 1.0, R=1000.0), 4000.0, -0.1), (Punch(10.0, 5.0, 0.0), 400.0, 0.03)]
+
+
+@pytest.fixture(params=range(len(CASES)))
+def normal(request):
+    punch, P, s = CASES[request.param]
+    return cf.solve_normal(punch, P, s, A=A)
+
+
+@pytest.mark.parametrize("ratio", [0.2, 0.4, 0.7, -0.4])
+def test_stick_zone_side_conditions_by_quadrature(normal, ratio):
+    """Eq. (horizontal_equilibrium) and consistency with the normal tilt, on the stick zone."""
+    f = 0.5
+    slip = cf.solve_partial_slip(normal, ratio * f * normal.P, f)
+    a_s, c_s = slip.d + slip.e, slip.d - slip.e
+    assert ref.load(normal.punch, a_s, c_s, A) == pytest.approx(normal.P * (1 - abs(ratio)), rel=1e-10)
+    scale = normal.punch.kappa1 + normal.punch.kappa2
+    assert abs(ref.tilt(normal.punch, a_s, c_s) - normal.alpha) < 1e-11 * scale * (a_s + c_s)
+
+
+@pytest.mark.parametrize("ratio", [0.4, -0.7])
+def test_shear_integrates_to_Q_and_has_its_sign(normal, ratio):
+    f = 0.5
+    Q = ratio * f * normal.P
+    slip = cf.solve_partial_slip(normal, Q, f)
+    h, m = normal.width / 2, (normal.c - normal.a) / 2
+    g = lambda th: float(slip.shear(m + h * math.cos(th))) * h * math.sin(th)
+    ends = [math.acos((t - m) / h) for t in (*slip.stick_zone, -normal.punch.b, normal.punch.b)
+            if -normal.a < t < normal.c]
+    pts = sorted({0.0, math.pi, *ends})
+    total = sum(quad(g, lo, hi, epsabs=0, epsrel=1e-12, limit=200)[0] for lo, hi in zip(pts[:-1], pts[1:]))
+    assert total == pytest.approx(Q, rel=1e-9)
+    x = np.linspace(-normal.a, normal.c, 501)[1:-1]
+    assert np.all(np.sign(slip.shear(x)) * math.copysign(1, Q) >= 0)
+    # slip zones carry the sliding traction f p; the stick zone carries less
+    lo, hi = slip.stick_zone
+    out = (x < lo) | (x > hi)
+    assert np.allclose(np.abs(slip.shear(x[out])), f * normal.pressure(x[out]), rtol=1e-13)
+    assert np.all(np.abs(slip.shear(x[~out])) <= f * normal.pressure(x[~out]) * (1 + 1e-13))
+
+
+def test_no_relative_slip_in_the_stick_zone(normal):
+    """Eqs. (integral_equation_tangential), (stick_zone_strain): dg/dx = 0 on the stick zone."""
+    slip = cf.solve_partial_slip(normal, 0.4 * 0.5 * normal.P, 0.5)
+    lo, hi = slip.stick_zone
+    q = lambda t: float(slip.shear(t))
+    breaks = (lo, hi, -normal.punch.b, normal.punch.b)
+    qscale = 0.5 * normal.P / normal.width
+    for x in np.linspace(lo, hi, 7)[1:-1]:
+        assert abs(ref.strain_in_stick(q, normal.a, normal.c, breaks, x)) < 1e-8 * qscale
+    # ... and it does not vanish in the slip zones
+    x_slip = 0.5 * (-normal.a + lo)
+    assert abs(ref.strain_in_stick(q, normal.a, normal.c, breaks, x_slip)) > 1e-3 * qscale
+
+
+def test_zero_shear_keeps_the_whole_contact_stuck(normal):
+    slip = cf.solve_partial_slip(normal, 0.0, 0.5)
+    assert slip.d + slip.e == pytest.approx(normal.a, rel=1e-12)
+    assert slip.d - slip.e == pytest.approx(normal.c, rel=1e-12)
+    assert np.all(slip.shear(np.linspace(-normal.a, normal.c, 11)) == 0)
+
+
+def test_symmetric_hertz_stick_zone_is_mindlin():
+    """Cattaneo-Mindlin: d/a = sqrt(1 - Q/fP), e = 0."""
+    sol = cf.solve_normal(Punch(10.0, 10.0, 0.0), 400.0, A=A)
+    slip = cf.solve_partial_slip(sol, 0.36 * 0.4 * 400.0, 0.4)
+    assert slip.d == pytest.approx(sol.a * 0.8, rel=1e-12)
+    assert abs(slip.e) < 1e-14 * sol.a
