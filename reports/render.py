@@ -117,7 +117,7 @@ body{font-family:system-ui,-apple-system,'Segoe UI',sans-serif;max-width:1150px;
      padding:0 1em;color:#222}
 table{border-collapse:collapse;margin:.6em 0 1.2em;font-size:.86em}
 th,td{border:1px solid #ccc;padding:.2em .5em;text-align:right}
-th{background:#f0f0f0} td:first-child,td:nth-child(2){text-align:left}
+th{background:#f0f0f0} td.text{text-align:left}
 .pass{color:#137333;font-weight:600} .fail{color:#c5221f;font-weight:700}
 .banner{padding:.6em 1em;border-radius:6px;font-size:1.3em;font-weight:700;margin:.5em 0}
 .banner.pass{background:#e6f4ea} .banner.fail{background:#fce8e6}
@@ -125,6 +125,14 @@ img{max-width:100%;border:1px solid #eee;margin:.3em 0}
 dl{display:grid;grid-template-columns:max-content auto;gap:.2em 1em;font-size:.9em}
 dt{font-weight:600}
 """
+
+
+def _numeric(x: str) -> bool:
+    try:
+        float(x)
+    except ValueError:
+        return x in ("–", "")
+    return True
 
 
 def _img(path: Path, rel: str) -> str:
@@ -136,16 +144,20 @@ def html(doc: dict[str, Any], root: Path) -> str:
     """The report as one HTML file with the PNGs under ``root`` embedded."""
     e = _html.escape
 
-    def table(head: list[str], rows: list[list[str]], verdict_col: int | None = None) -> str:
+    def table(head: list[str], rows: list[list[str]], verdict_col: int | None = None,
+              link: bool = False) -> str:
         h = "".join(f"<th>{e(x)}</th>" for x in head)
         body = []
         for r in rows:
             cells = []
             for i, x in enumerate(r):
-                cls = ""
+                cls = "" if _numeric(x) else ' class="text"'
                 if i == verdict_col:
                     cls = ' class="pass"' if x == "pass" else ' class="fail"'
-                cells.append(f"<td{cls}>{e(x)}</td>")
+                text = e(x)
+                if i == 0 and link:
+                    text = f"<a href='#{text}'>{text}</a>"
+                cells.append(f"<td{cls}>{text}</td>")
             body.append("<tr>" + "".join(cells) + "</tr>")
         return f"<table><tr>{h}</tr>{''.join(body)}</table>"
 
@@ -161,7 +173,7 @@ def html(doc: dict[str, Any], root: Path) -> str:
                          ", ".join(f"{k['comparison']}:{k['quantity']}" for k in c["checks"]
                                    if not k["passed"])
                          + "; ".join(f"{m}: {x}" for m, x in c["errors"].items())]
-                        for c in doc["cases"]], verdict_col=2))
+                        for c in doc["cases"]], verdict_col=2, link=True))
     for c in doc["cases"]:
         parts.append(f"<h2 id='{e(c['name'])}'>{e(c['name'])}: {e(c['description'])} "
                      f"<span class='{'pass' if c['passed'] else 'fail'}'>"
