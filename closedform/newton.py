@@ -25,7 +25,7 @@ from .errors import NoConvergenceError
 from .formulas import _chi, _psi
 from .geometry import Punch
 
-__all__ = ["State", "solve_hm", "solve_hm_scalar", "newton1d", "newton1d_scalar", "SCALAR"]
+__all__ = ["State", "solve_hm", "solve_hm_scalar", "newton1d", "newton1d_scalar", "SCALAR", "pick"]
 
 MAX_ITER = 60
 RTOL = 1e-14      # residuals are relative: load error / load, moment error / (load h)
@@ -62,8 +62,9 @@ class State:
     def __init__(self, punch: Punch, h: Any, m: Any, xp: Any = np) -> None:
         b, k0, k1, k2 = punch.b, punch.kappa0, punch.kappa1, punch.kappa2
         a, c = h - m, h + m
-        b1 = 2 * xp.arctan2(xp.sqrt(xp.maximum(a - b, 0.0)), xp.sqrt(c + b))
-        b2 = 2 * xp.arctan2(xp.sqrt(xp.maximum(c - b, 0.0)), xp.sqrt(a + b))
+        # clipped at 0: on the lift-off lines c - b (or a - b) is 0 up to rounding
+        b1 = 2 * xp.arctan2(xp.sqrt(xp.maximum(a - b, 0.0)), xp.sqrt(xp.maximum(c + b, 0.0)))
+        b2 = 2 * xp.arctan2(xp.sqrt(xp.maximum(c - b, 0.0)), xp.sqrt(xp.maximum(a + b, 0.0)))
         s1, c1, s2, c2 = xp.sin(b1), xp.cos(b1), xp.sin(b2), xp.cos(b2)
         self.h, self.m = h, m
         self.F0 = k1 * b1 + k2 * b2 + math.pi * k0
@@ -79,7 +80,12 @@ class State:
         self.alpha_h = (k1 * s1 - k2 * s2) / math.pi
 
 
-Residual = Callable[[State], tuple[Any, Any, Any, Any, Any, Any]]
+Residual = Callable[[State, Any], tuple[Any, Any, Any, Any, Any, Any]]
+
+
+def pick(value: Any, idx: Any) -> Any:
+    """``value[idx]`` for per-case arrays; scalars (and ``idx=None``) pass through."""
+    return value if idx is None or np.ndim(value) == 0 else value[idx]
 
 
 def _to_u(h: Any, m: Any, b: float, xp: Any) -> tuple[Any, Any]:
@@ -115,7 +121,7 @@ def solve_hm_scalar(punch: Punch, residual: Residual, h: float, m: float,
     """
     b = punch.b
     u1, u2 = _to_u(h, m, b, SCALAR)
-    r = residual(State(punch, h, m, SCALAR))
+    r = residual(State(punch, h, m, SCALAR), None)
     norm = math.hypot(r[0], r[1])
     for _ in range(max_iter):
         if norm <= RTOL:
@@ -129,7 +135,7 @@ def solve_hm_scalar(punch: Punch, residual: Residual, h: float, m: float,
             v1, v2 = u1 + lam * d1, u2 + lam * d2
             hn, mn = _to_hm(v1, v2, b)
             if hn > 0:
-                rn = residual(State(punch, hn, mn, SCALAR))
+                rn = residual(State(punch, hn, mn, SCALAR), None)
                 normn = math.hypot(rn[0], rn[1])
                 if normn < norm:
                     break
@@ -142,39 +148,49 @@ def solve_hm_scalar(punch: Punch, residual: Residual, h: float, m: float,
 
 def solve_hm(punch: Punch, residual: Residual, h0: np.ndarray, m0: np.ndarray,
              max_iter: int = MAX_ITER) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Vectorised :func:`solve_hm_scalar`; returns ``(h, m, converged)`` arrays."""
+    """Vectorised :func:`solve_hm_scalar`; returns ``(h, m, converged)`` arrays.
+
+    Only the cases still iterating (and, in the line search, only those whose
+    step is still being halved) are evaluated; ``residual(state, idx)`` takes
+    the indices of the cases in ``state``.
+    """
     b = punch.b
     h, m = np.array(h0, float, copy=True), np.array(m0, float, copy=True)
     u1, u2 = _to_u(h, m, b, np)
-    r = residual(State(punch, h, m))
+    everything = np.arange(h.size)
+    r = [np.array(x, float) for x in residual(State(punch, h, m), everything)]
     norm = np.hypot(r[0], r[1])
     done = norm <= RTOL
     for _ in range(max_iter):
-        if done.all():
+        act = np.flatnonzero(~done)
+        if act.size == 0:
             break
         with np.errstate(divide="ignore", invalid="ignore"):
-            d1, d2 = _newton_step(r, u1, u2)
-        active = ~done & np.isfinite(d1) & np.isfinite(d2)
-        d1, d2 = np.where(active, d1, 0.0), np.where(active, d2, 0.0)
-        lam = np.ones_like(h)
-        accept = ~active
+            d1, d2 = _newton_step(tuple(x[act] for x in r), u1[act], u2[act])
+        finite = np.isfinite(d1) & np.isfinite(d2)
+        done[act[~finite]] = True
+        act, d1, d2 = act[finite], d1[finite], d2[finite]
+        lam = np.ones(act.size)
+        pending = np.arange(act.size)
         for _ in range(MAX_HALVINGS):
-            v1, v2 = u1 + lam * d1, u2 + lam * d2
+            idx = act[pending]
+            v1, v2 = u1[idx] + lam[pending] * d1[pending], u2[idx] + lam[pending] * d2[pending]
             hn, mn = _to_hm(v1, v2, b)
             ok = hn > 0
-            rn = residual(State(punch, np.where(ok, hn, h), np.where(ok, mn, m)))
+            hn, mn = np.where(ok, hn, h[idx]), np.where(ok, mn, m[idx])
+            rn = residual(State(punch, hn, mn), idx)
             normn = np.hypot(rn[0], rn[1])
-            accept = ~active | (ok & (normn < norm))
-            if accept.all():
+            acc = ok & (normn < norm[idx])
+            sel = idx[acc]
+            u1[sel], u2[sel], h[sel], m[sel], norm[sel] = v1[acc], v2[acc], hn[acc], mn[acc], normn[acc]
+            for k in range(6):
+                r[k][sel] = rn[k][acc]
+            pending = pending[~acc]
+            if pending.size == 0:
                 break
-            lam = np.where(accept, lam, 0.5 * lam)
-        step = active & accept
-        u1, u2 = np.where(step, v1, u1), np.where(step, v2, u2)
-        h, m = np.where(step, hn, h), np.where(step, mn, m)
-        r = tuple(np.where(step, x, y) for x, y in zip(rn, r))
-        # no decrease possible: converged to rounding if the residual is tiny
-        done |= (~accept & (norm <= 1e3 * RTOL)) | ~np.isfinite(d1)
-        norm = np.where(step, normn, norm)
+            lam[pending] *= 0.5
+        # no decrease possible: converged to rounding, or stuck (reported below)
+        done[act[pending]] = True
         done |= norm <= RTOL
     return h, m, norm <= 1e3 * RTOL
 
@@ -196,31 +212,35 @@ def newton1d_scalar(fun: Callable[[float], tuple[float, float]], x: float, lo: f
         else:
             hi = min(hi, x)
         xn = x - f / df if df > 0 else math.nan
+        if lo <= xn <= hi and abs(xn - x) <= xtol * abs(x):
+            return xn
         if not (lo < xn < hi):
             xn = 0.5 * (lo + hi) if math.isfinite(hi) else 2 * x - lo
-        elif abs(xn - x) <= xtol * abs(x):
-            return xn
-        if hi - lo <= 4e-16 * abs(hi):
+        if hi - lo <= 4e-16 * abs(hi) < math.inf:  # bracket collapsed
             return xn
         x = xn
     raise NoConvergenceError(f"{what}: the Newton iteration did not converge in 200 steps")
 
 
-def newton1d(fun: Callable[[np.ndarray], tuple[np.ndarray, np.ndarray]], x: np.ndarray,
+def newton1d(fun: Callable[[np.ndarray, np.ndarray], tuple[np.ndarray, np.ndarray]], x: np.ndarray,
              lo: np.ndarray, what: str, xtol: float = 1e-11) -> np.ndarray:
-    """Vectorised :func:`newton1d_scalar`."""
+    """Vectorised :func:`newton1d_scalar`; ``fun(x, idx)`` evaluates the cases ``idx``."""
     x, lo = np.array(x, float, copy=True), np.array(lo, float, copy=True)
     hi = np.full_like(x, np.inf)
+    idx = np.arange(x.size)
     for _ in range(200):
-        f, df = fun(x)
-        lo = np.where(f < 0, x, lo)
-        hi = np.where(f >= 0, np.minimum(hi, x), hi)
+        xi, loi, hii = x[idx], lo[idx], hi[idx]
+        f, df = fun(xi, idx)
+        loi = np.where(f < 0, xi, loi)
+        hii = np.where(f >= 0, np.minimum(hii, xi), hii)
         with np.errstate(divide="ignore", invalid="ignore"):
-            xn = np.where(df > 0, x - f / df, np.nan)
-        inside = (xn > lo) & (xn < hi)
-        small = inside & (np.abs(xn - x) <= xtol * np.abs(x))
-        xn = np.where(inside, xn, np.where(np.isfinite(hi), 0.5 * (lo + hi), 2 * x - lo))
-        if np.all(small | (hi - lo <= 4e-16 * np.abs(hi))):
-            return xn
-        x = xn
+            xn = np.where(df > 0, xi - f / df, np.nan)
+        inside = (xn > loi) & (xn < hii)
+        small = (xn >= loi) & (xn <= hii) & (np.abs(xn - xi) <= xtol * np.abs(xi))
+        xn = np.where(inside | small, xn, np.where(np.isfinite(hii), 0.5 * (loi + hii), 2 * xi - loi))
+        x[idx], lo[idx], hi[idx] = xn, loi, hii
+        collapsed = np.isfinite(hii) & (hii - loi <= 4e-16 * np.abs(hii))
+        idx = idx[~(small | collapsed)]
+        if idx.size == 0:
+            return x
     raise NoConvergenceError(f"{what}: the Newton iteration did not converge in 200 steps")

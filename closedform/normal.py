@@ -23,7 +23,7 @@ from scipy.optimize import minimize_scalar
 from . import formulas
 from .errors import LiftOffError, NoConvergenceError, SeparationError
 from .geometry import Punch, check_finite, check_positive
-from .newton import SCALAR, State, newton1d, newton1d_scalar, solve_hm, solve_hm_scalar
+from .newton import SCALAR, State, newton1d, newton1d_scalar, pick, solve_hm, solve_hm_scalar
 from .results import NormalResult
 
 __all__ = ["NormalSolution", "NormalBatch", "LiftOff", "solve_normal", "solve_normal_batch",
@@ -118,9 +118,10 @@ def _along(punch: Punch, AP: Any, sigma: Any, xp: Any = np) -> Any:
     """
     b = punch.b
 
-    def g(h: Any) -> tuple[Any, Any]:
-        st = State(punch, h, sigma * (h - b), xp)
-        return st.AP - AP, st.AP_h + sigma * st.AP_m
+    def g(h: Any, idx: Any = None) -> tuple[Any, Any]:
+        sg = pick(sigma, idx)
+        st = State(punch, h, sg * (h - b), xp)
+        return st.AP - pick(AP, idx), st.AP_h + sg * st.AP_m
 
     # start: a Hertz half-width on the mean curvature, beyond the central segment
     k = max(0.5 * (punch.kappa1 + punch.kappa2) + punch.kappa0,
@@ -141,19 +142,21 @@ def _lift_off_states(punch: Punch, AP: np.ndarray) -> tuple[State, State]:
 
 
 def _free_residual(AP_t: Any, Ts_t: Any, href: Any):
-    def res(st: State):
-        return (st.AP / AP_t - 1, (st.T - Ts_t) / (AP_t * href),
-                st.AP_h / AP_t, st.AP_m / AP_t, st.T_h / (AP_t * href), st.T_m / (AP_t * href))
+    def res(st: State, idx: Any):
+        P, T, hr = pick(AP_t, idx), pick(Ts_t, idx), pick(href, idx)
+        return (st.AP / P - 1, (st.T - T) / (P * hr),
+                st.AP_h / P, st.AP_m / P, st.T_h / (P * hr), st.T_m / (P * hr))
     return res
 
 
 def tilt_residual(punch: Punch, AP_t: Any, alpha_t: Any, href: Any):
     """Residual for a given load and a given tilt (suppressed tilt, stick zone)."""
-    scale = (abs(punch.kappa1) + abs(punch.kappa2) + abs(punch.kappa0)) * href
+    kscale = abs(punch.kappa1) + abs(punch.kappa2) + abs(punch.kappa0)
 
-    def res(st: State):
-        return (st.AP / AP_t - 1, (st.alpha - alpha_t) / scale,
-                st.AP_h / AP_t, st.AP_m / AP_t, st.alpha_h / scale, st.alpha_m / scale)
+    def res(st: State, idx: Any):
+        P, al, scale = pick(AP_t, idx), pick(alpha_t, idx), kscale * pick(href, idx)
+        return (st.AP / P - 1, (st.alpha - al) / scale,
+                st.AP_h / P, st.AP_m / P, st.alpha_h / scale, st.alpha_m / scale)
     return res
 
 

@@ -1,0 +1,99 @@
+"""Closed-form speed, measured side by side in one run (issue 2 targets).
+
+    python benchmarks/bench_closedform.py [--cases 10000] [--json out.json]
+
+Measures one ``solve_normal``, a batch of load cases, ``pressure`` on 10^6
+points, and a naive per-case ``scipy.optimize.fsolve`` loop on the same
+equations. Ratios are what to read: the machines are noisy.
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import time
+
+import numpy as np
+from scipy.optimize import fsolve
+
+import closedform as cf
+from closedform import formulas
+
+PUNCH = cf.Punch(R1=10.0, R2=5.0, b=1.0)          # case A, unequal radii (mm)
+A = cf.rigid_punch(210e3, 0.3)
+
+
+def best_of(fn, repeat: int = 5) -> float:
+    """Smallest wall time of ``repeat`` runs, in seconds."""
+    times = []
+    for _ in range(repeat):
+        t = time.perf_counter()
+        fn()
+        times.append(time.perf_counter() - t)
+    return min(times)
+
+
+def naive(P: np.ndarray, s: np.ndarray) -> np.ndarray:
+    """Per-case fsolve on (P(a, c), s(a, c)), started from the symmetric Hertz-like guess."""
+    out = np.empty((P.size, 2))
+    for i, (Pi, si) in enumerate(zip(P, s)):
+        a0 = PUNCH.b + math.sqrt(2 * Pi * A * PUNCH.R1 / math.pi) * 0.5
+
+        def res(ac, Pi=Pi, si=si):
+            a, c = np.maximum(ac, PUNCH.b)
+            return [formulas.load(PUNCH, a, c, A) / Pi - 1, formulas.lever_arm(PUNCH, a, c) - si]
+
+        out[i] = fsolve(res, [a0, a0], xtol=1e-13)
+    return out
+
+
+def main() -> dict:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--cases", type=int, default=10_000)
+    parser.add_argument("--naive-cases", type=int, default=200)
+    parser.add_argument("--json", help="write the figures to this file")
+    args = parser.parse_args()
+
+    rng = np.random.default_rng(0)
+    P = rng.uniform(200.0, 2000.0, args.cases)
+    s = rng.uniform(-0.3, 0.3, args.cases)
+    x = np.linspace(-1.2, 1.2, 10**6)
+    sol = cf.solve_normal(PUNCH, 400.0, 0.1, A=A)
+
+    n_single = 2000
+    t_single = best_of(lambda: [cf.solve_normal(PUNCH, 400.0, 0.1, A=A) for _ in range(n_single)]) / n_single
+    t_batch = best_of(lambda: cf.solve_normal_batch(PUNCH, P, s, A=A), repeat=3)
+    t_press = best_of(lambda: sol.pressure(x))
+    nn = args.naive_cases
+    t_naive = best_of(lambda: naive(P[:nn], s[:nn]), repeat=1) / nn
+
+    batch = cf.solve_normal_batch(PUNCH, P, s, A=A)
+    ref = naive(P[:nn], s[:nn])
+    fig = {
+        "single_solve_ms": 1e3 * t_single,
+        "batch_cases": args.cases,
+        "batch_cases_per_s": args.cases / t_batch,
+        "pressure_1e6_points_s": t_press,
+        "naive_fsolve_ms_per_case": 1e3 * t_naive,
+        "batch_speedup_over_naive": t_naive * args.cases / t_batch,
+        "single_speedup_over_naive": t_naive / t_single,
+        "naive_vs_batch_max_rel_diff_a": float(np.max(np.abs(ref[:, 0] / batch.a[:nn] - 1))),
+        "batch_max_rel_load_residual": float(np.max(np.abs(formulas.load(PUNCH, batch.a, batch.c, A) / P - 1))),
+    }
+    targets = {"single_solve_ms": ("<=", 0.5), "batch_cases_per_s": (">=", 5e4),
+               "batch_speedup_over_naive": (">=", 50.0), "pressure_1e6_points_s": ("<=", 0.3)}
+    for key, val in fig.items():
+        tgt = targets.get(key)
+        mark = ""
+        if tgt:
+            ok = val <= tgt[1] if tgt[0] == "<=" else val >= tgt[1]
+            mark = f"  target {tgt[0]} {tgt[1]:g}: {'met' if ok else 'MISSED'}"
+        print(f"{key:<34} {val:12.4g}{mark}")
+    if args.json:
+        with open(args.json, "w") as fh:
+            json.dump(fig, fh, indent=2)
+    return fig
+
+
+if __name__ == "__main__":
+    main()
