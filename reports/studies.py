@@ -163,7 +163,8 @@ def _run(method: str, case: Case, labels: Sequence[str], solver: Callable[[Case,
             st.errors[q].append(err[q])
             st.raw[q].append(raw[q])
         if progress:
-            progress(f"{method} {param} = {st.values[-1]:.4g} ({param_label} {lab}): {dt:.2f} s")
+            where = f"{param_label} {lab}" if param_label.endswith("=") else param_label
+            progress(f"{method} {param} = {st.values[-1]:.4g} ({where}): {dt:.2f} s")
     inverse = param == "n"
     for q in STUDY_QUANTITIES:
         st.orders[q] = observed_order(st.values, st.errors[q], inverse=inverse)
@@ -200,7 +201,7 @@ def sie_study(case: Case, ns: Sequence[int], scheme: str | None = None,
 
     st = _run("sie", case, [str(n) for n in ns], solver,
               lambda res, lab: float(getattr(res, "n", None) or res.info.get("n", int(lab))),
-              "n", progress, "scheme " + (scheme or "default") + ", n =")
+              "n", progress, "scheme " + (scheme or "default"))
     st.scheme = scheme or "default"
     return st
 
