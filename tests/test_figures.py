@@ -1,0 +1,36 @@
+"""``threepart figures`` writes the paper's four figures atomically and refuses to overwrite."""
+from __future__ import annotations
+
+import json
+
+import pytest
+
+from reports import figures
+from reports.verify import ReportExistsError
+
+
+def test_figures_are_written_once(tmp_path):
+    out = tmp_path / "figs"
+    assert figures.main(out=out, sie=False) == 0
+    names = sorted(p.name for p in out.iterdir())
+    assert names == ["figures.json", "pressure_a.png", "pressure_b.png", "shear_a.png", "shear_b.png"]
+    data = json.loads((out / "figures.json").read_text())
+    assert data["4PA/b"] == 1.0 and set(data["sets"]) == {"a", "b"}
+    # set (a): the right peak grows and the left one falls with the clockwise moment (paper, Results)
+    a = data["sets"]["a"]
+    assert a["p_right"] == sorted(a["p_right"]) and a["p_left"] == sorted(a["p_left"], reverse=True)
+    with pytest.raises(ReportExistsError, match="--force"):
+        figures.main(out=out, sie=False)
+    assert figures.main(out=out, force=True, sie=False) == 0
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["figs"]
+
+
+def test_set_b_matches_the_papers_reading():
+    """Smaller R2/R1 at s/R1 = 0.25: the right peak grows a lot, the left one barely moves,
+    and a/c stays almost constant (paper, Results)."""
+    b = figures.figure_data("b", sie=False)
+    assert b["p_right"] == sorted(b["p_right"])
+    assert b["p_right"][-1] / b["p_right"][0] > 1.2
+    assert max(b["p_left"]) / min(b["p_left"]) < 1.06
+    ratio = [a / c for a, c in zip(b["a/b"], b["c/b"])]
+    assert max(ratio) / min(ratio) < 1.1
