@@ -70,7 +70,7 @@ TOLERANCES: dict[tuple[str, str], Tolerance] = {
     ("sie", "q_interior_max"): _T(1e-6, "shear is f·p minus a corrective pressure: same field target as p"),
     ("sie", "q_L2"): _T(1e-6, "as q_interior_max"),
     # --- closed form vs FEM, default mesh (issue 4 targets) ----------------------------
-    ("fem-default", "a"): _T(1e-4, "FEM target a, c within 1e-4 W (prototype reached 2e-5 W)"),
+    ("fem-default", "a"): _T(1e-4, "FEM target a, c within 1e-4 W (measured up to 1.4e-4 W: suppressed tilt)"),
     ("fem-default", "c"): _T(1e-4, "as a"),
     ("fem-default", "alpha"): _T(1e-4, "FEM target 1e-4 rel.; α is the most far-field sensitive figure"),
     ("fem-default", "P"): _T(1e-6, "load control: P is imposed through the rigid-punch equilibrium"),
@@ -82,7 +82,7 @@ TOLERANCES: dict[tuple[str, str], Tolerance] = {
     ("fem-default", "p_interior_max"): _T(1e-3, "FEM target: interior pressure within 1e-3 of the peak"),
     ("fem-default", "p_L2"): _T(1e-2, "includes the sqrt edges, ~1 % at the single edge node"),
     # --- closed form vs FEM, fine mesh (the default verification run; issue 4 targets) ---
-    ("fem-fine", "a"): _T(1e-4, "FEM target a, c within 1e-4 W; the fine preset (h = W/600) reaches <= 7e-5 W"),
+    ("fem-fine", "a"): _T(1e-4, "FEM target a, c within 1e-4 W; measured <= 8.3e-5 W on the fine preset"),
     ("fem-fine", "c"): _T(1e-4, "as a"),
     ("fem-fine", "alpha"): _T(1e-4, "FEM target 1e-4 rel.; α is the most far-field sensitive figure"),
     ("fem-fine", "P"): _T(1e-6, "load control: P is imposed through the rigid-punch equilibrium"),
