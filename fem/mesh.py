@@ -62,7 +62,7 @@ class MeshPreset:
 PRESETS: dict[str, MeshPreset] = {
     "trial": MeshPreset(n=24, growth=0.3, L=100.0, margin=0.5),
     "quick": MeshPreset(n=60, growth=0.25, L=100.0),
-    "default": MeshPreset(n=450, growth=0.1, L=200.0),
+    "default": MeshPreset(n=600, growth=0.1, L=200.0),
     "fine": MeshPreset(n=900, growth=0.1, L=200.0),
 }
 

@@ -47,7 +47,7 @@ class Mode:
 
 MODES: dict[str, Mode] = {
     "quick": Mode("quick", None, "quick", (8, 16, 32, 64, 128, 256), (30, 60, 120)),
-    "default": Mode("default", None, "fine", (8, 16, 32, 64, 128, 256, 512, 1024),
+    "default": Mode("default", None, "default", (8, 16, 32, 64, 128, 256, 512, 1024),
                     (30, 60, 120, 240, 480)),
     "full": Mode("full", None, "fine", (8, 16, 32, 64, 128, 256, 512, 1024, 2048),
                  (30, 60, 120, 240, 480, 960)),
