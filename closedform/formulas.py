@@ -116,6 +116,19 @@ def _log_ratio(x: np.ndarray, a: np.ndarray, c: np.ndarray, b: float, sign: int)
     return xlogy(g, np.abs(g)) + g * np.log((a + c) / n)
 
 
+def on_contact(x: ArrayLike, a: ArrayLike, c: ArrayLike
+               ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """``(a, c, inside, x_clipped, w)`` for evaluating a pressure at ``x`` on ``[-a, c]``.
+
+    ``inside`` is the open contact (the pressure is exactly 0 at and beyond the
+    edges); ``w = sqrt((x+a)(c-x))`` at the clipped ``x``.
+    """
+    x = np.asarray(x, float)
+    a, c = np.asarray(a, float), np.asarray(c, float)
+    xi = np.clip(x, -a, c)
+    return a, c, (x > -a) & (x < c), xi, np.sqrt((xi + a) * (c - xi))
+
+
 def pressure(punch: Punch, a: ArrayLike, c: ArrayLike, A: ArrayLike, x: ArrayLike) -> np.ndarray:
     """Compressive pressure ``-p(x)`` of eq. (pressure_abbreviated); 0 outside ``[-a, c]``.
 
@@ -127,11 +140,7 @@ def pressure(punch: Punch, a: ArrayLike, c: ArrayLike, A: ArrayLike, x: ArrayLik
     where ``(x±b) ln|x±b|`` is continuous at the joins. ``a``, ``c`` broadcast
     against ``x``.
     """
-    x = np.asarray(x, float)
-    a, c = np.asarray(a, float), np.asarray(c, float)
-    inside = (x > -a) & (x < c)
-    xi = np.clip(x, -a, c)
-    w = np.sqrt((xi + a) * (c - xi))
+    a, c, inside, xi, w = on_contact(x, a, c)
     b = punch.b
     val = (w * F0(punch, a, c)
            + punch.kappa1 * _log_ratio(xi, a, c, b, +1)

@@ -20,6 +20,8 @@ import numpy as np
 from numpy.typing import ArrayLike
 from scipy.special import xlogy
 
+from .formulas import on_contact
+
 __all__ = ["case_a_pressure", "case_a_tilt", "case_a_load", "case_a_moment",
            "case_c_pressure", "case_c_tilt", "case_c_load", "case_c_moment",
            "hertz_pressure", "hertz_half_width", "P_lift_off", "s_lift_off"]
@@ -40,11 +42,7 @@ def _xlog_ratio(g: np.ndarray, ratio_rest: np.ndarray) -> np.ndarray:
 def case_a_pressure(a: ArrayLike, c: ArrayLike, b: float, R1: float, R2: float, A: float,
                     x: ArrayLike) -> np.ndarray:
     """Compressive pressure of case A, eq. (pressure_distribution_compact_1), 0 outside."""
-    x = np.asarray(x, float)
-    a, c = np.asarray(a, float), np.asarray(c, float)
-    inside = (x > -a) & (x < c)
-    x = np.clip(x, -a, c)
-    w = np.sqrt((a + x) * (c - x))
+    a, c, inside, x, w = on_contact(x, a, c)
     t1, t2 = _arccos_pair(a, c, b)
     d1 = (c - a) * (x - b) + 2 * (a * c + b * x) + 2 * np.sqrt((a - b) * (c + b) * (c - x) * (a + x))
     d2 = (c - a) * (x + b) + 2 * (a * c - b * x) + 2 * np.sqrt((a + b) * (c - b) * (c - x) * (a + x))
@@ -92,11 +90,7 @@ def case_a_moment(a: ArrayLike, c: ArrayLike, b: float, R1: float, R2: float,
 def case_c_pressure(a: ArrayLike, c: ArrayLike, R1: float, R2: float, A: float,
                     x: ArrayLike) -> np.ndarray:
     """Compressive pressure of case C, eq. (pressure_distribution_compact_2), 0 outside."""
-    x = np.asarray(x, float)
-    a, c = np.asarray(a, float), np.asarray(c, float)
-    inside = (x > -a) & (x < c)
-    x = np.clip(x, -a, c)
-    w = np.sqrt((a + x) * (c - x))
+    a, c, inside, x, w = on_contact(x, a, c)
     den = 2 * a * c + (c - a) * x + 2 * np.sqrt(a * c * (c - x) * (a + x))
     val = (w * ((1 / R1 + 1 / R2) * np.pi / 2 + (1 / R1 - 1 / R2) * np.arcsin((a - c) / (a + c)))
            + (1 / R1 - 1 / R2) * _xlog_ratio(x, (a + c) / den)) / (np.pi * A)

@@ -13,6 +13,7 @@ from typing import Any
 __all__ = ["markdown", "html", "fmt"]
 
 
+
 def fmt(v: Any) -> str:
     """Short numeric format for tables."""
     if v is None:
@@ -23,6 +24,16 @@ def fmt(v: Any) -> str:
         return f"{v:.3e}" if v != 0 and (abs(v) < 1e-3 or abs(v) >= 1e5) else f"{v:.6g}"
     return str(v)
 
+
+def _study_table(st: dict) -> tuple[list[str], list[list[str]]]:
+    """Header and rows of a convergence-study table: errors per level, then order and GCI."""
+    head = [st["param"], "label"] + list(st["errors"])
+    rows = [[fmt(v), lab] + [fmt(st["errors"][q][i]) for q in st["errors"]]
+            for i, (v, lab) in enumerate(zip(st["values"], st["labels"]))]
+    rows.append(["order", ""] + [fmt(st["orders"].get(q)) for q in st["errors"]])
+    if st["gci"]:
+        rows.append(["GCI", ""] + [fmt(st["gci"].get(q)) for q in st["errors"]])
+    return head, rows
 
 def _header(doc: dict[str, Any]) -> list[tuple[str, str]]:
     env = doc["environment"]
@@ -97,12 +108,7 @@ def markdown(doc: dict[str, Any]) -> str:
     out += ["## Convergence studies", ""]
     for st in doc["studies"]:
         out += [f"### {st['method']} {st.get('scheme') or ''} in {st['param']} (case {st['case']})", ""]
-        head = [st["param"], "label"] + list(st["errors"])
-        rows = [[fmt(v), lab] + [fmt(st["errors"][q][i]) for q in st["errors"]]
-                for i, (v, lab) in enumerate(zip(st["values"], st["labels"]))]
-        rows.append(["order", ""] + [fmt(st["orders"].get(q)) for q in st["errors"]])
-        if st["gci"]:
-            rows.append(["GCI", ""] + [fmt(st["gci"].get(q)) for q in st["errors"]])
+        head, rows = _study_table(st)
         table(head, rows)
         out += [f"- note: {n}" for n in st["notes"]]
     out += [f"![{p}]({p})" for p in doc["plots"]] + [""]
@@ -188,12 +194,7 @@ def html(doc: dict[str, Any], root: Path) -> str:
     for st in doc["studies"]:
         parts.append(f"<h3>{e(st['method'])} {e(st.get('scheme') or '')} in {e(st['param'])} "
                      f"(case {e(st['case'])})</h3>")
-        head = [st["param"], "label"] + list(st["errors"])
-        rows = [[fmt(v), lab] + [fmt(st["errors"][q][i]) for q in st["errors"]]
-                for i, (v, lab) in enumerate(zip(st["values"], st["labels"]))]
-        rows.append(["order", ""] + [fmt(st["orders"].get(q)) for q in st["errors"]])
-        if st["gci"]:
-            rows.append(["GCI", ""] + [fmt(st["gci"].get(q)) for q in st["errors"]])
+        head, rows = _study_table(st)
         parts.append(table(head, rows))
         parts += [f"<p>note: {e(n)}</p>" for n in st["notes"]]
     parts += [_img(root, p) for p in doc["plots"]]
