@@ -133,14 +133,8 @@ def field_errors(ref: Any, other: Any, field: str = "pressure", n: int = _NGRID)
 
 def _slope_scale(ref: Any) -> float:
     """``v'(c) - v'(-a)`` of the untilted punch: the slope scale over the contact."""
-    try:
-        punch = ref.punch
-        ds = float(punch.slope(ref.c) - punch.slope(-ref.a))
-        if ds > 0:
-            return ds
-    except AttributeError:
-        pass
-    return (ref.a + ref.c) * 1e-3  # pragma: no cover - results always carry their punch
+    ds = float(ref.punch.slope(ref.c) - ref.punch.slope(-ref.a))
+    return ds if ds > 0 else (ref.a + ref.c) / max(ref.punch.R1, ref.punch.R2)
 
 
 def _normal_figures(ref: Any, other: Any) -> dict[str, tuple[float, float, float]]:
