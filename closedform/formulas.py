@@ -149,29 +149,33 @@ def pressure(punch: Punch, a: ArrayLike, c: ArrayLike, A: ArrayLike, x: ArrayLik
 
 
 # -- the appendix's F-functions, as printed (for the errata checks) ------------
-def _N1(x: np.ndarray, a: ArrayLike, c: ArrayLike, b: float) -> np.ndarray:
+def _N1(x: np.ndarray, a: np.ndarray, c: np.ndarray, b: float) -> np.ndarray:
     return (2 * np.sqrt((c - x) * (a + x) * (a - b) * (c + b)) + 2 * (a * c + b * x)
-            + (np.asarray(a) - c) * (b - x))
+            + (a - c) * (b - x))
 
 
-def _N3(x: np.ndarray, a: ArrayLike, c: ArrayLike, b: float) -> np.ndarray:
+def _N3(x: np.ndarray, a: np.ndarray, c: np.ndarray, b: float) -> np.ndarray:
     return (2 * np.sqrt((c - x) * (a + x) * (a + b) * (c - b)) + 2 * (a * c - b * x)
-            - (np.asarray(a) - c) * (b + x))
+            - (a - c) * (b + x))
+
+
+def _floats(*values: ArrayLike) -> list[np.ndarray]:
+    return [np.asarray(v, dtype=float) for v in values]
 
 
 def F1(x: ArrayLike, a: ArrayLike, c: ArrayLike, b: float) -> np.ndarray:
     """``F1(x) = ln|(b+x)(c+a)/N1|`` = ``w(x) int_{-a}^{-b} dt/(w(t)(t-x))`` (appendix)."""
-    x = np.asarray(x, float)
-    return np.log(np.abs((b + x) * (np.asarray(c) + a) / _N1(x, a, c, b)))
+    x, a, c = _floats(x, a, c)
+    return np.log(np.abs((b + x) * (c + a) / _N1(x, a, c, b)))
 
 
 def F2(x: ArrayLike, a: ArrayLike, c: ArrayLike, b: float) -> np.ndarray:
     """``F2(x) = ln|N1 (b-x) / (N3 (b+x))|`` = ``w(x) int_{-b}^{b} dt/(w(t)(t-x))``."""
-    x = np.asarray(x, float)
+    x, a, c = _floats(x, a, c)
     return np.log(np.abs(_N1(x, a, c, b) * (b - x) / (_N3(x, a, c, b) * (b + x))))
 
 
 def F3(x: ArrayLike, a: ArrayLike, c: ArrayLike, b: float) -> np.ndarray:
     """``F3(x) = -ln|(b-x)(c+a)/N3|`` = ``w(x) int_{b}^{c} dt/(w(t)(t-x))``."""
-    x = np.asarray(x, float)
-    return -np.log(np.abs((b - x) * (np.asarray(c) + a) / _N3(x, a, c, b)))
+    x, a, c = _floats(x, a, c)
+    return -np.log(np.abs((b - x) * (c + a) / _N3(x, a, c, b)))

@@ -71,8 +71,9 @@ def check_manifest(manifest: str | Path) -> list[str]:
     manifest = Path(manifest)
     checked = []
     for entry in json.loads(manifest.read_text())["meshes"]:
-        spec = SubstrateSpec(**{k: tuple(v) if isinstance(v, list) else v
-                                for k, v in entry["parameters"].items()})
+        params: dict[str, Any] = {k: tuple(v) if isinstance(v, list) else v
+                                  for k, v in entry["parameters"].items()}
+        spec = SubstrateSpec(**params)
         found = describe(manifest.parent / entry["file"], spec)
         for key in ("nodes", "triangles", "physical_groups", "coordinate_checksum"):
             if found[key] != entry[key]:

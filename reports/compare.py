@@ -195,7 +195,7 @@ def compare(ref: Any, other: Any, comparison: str) -> list[Check]:
     """
     slip = is_slip(ref) and is_slip(other)
     figures = _normal_figures(normal_of(ref), normal_of(other))
-    quantities = NORMAL_QUANTITIES
+    quantities: tuple[str, ...] = NORMAL_QUANTITIES
     if slip:
         figures.update(_slip_figures(ref, other))
         quantities = NORMAL_QUANTITIES + SLIP_QUANTITIES

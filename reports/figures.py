@@ -28,6 +28,7 @@ from typing import Any
 import numpy as np
 
 from closedform.geometry import Punch
+from closedform.results import NormalResult, SlipResult
 
 __all__ = ["main", "figure_data", "curves", "check_admissible", "Curve", "GEOMETRY", "SETS",
            "Q_OVER_FP", "F", "E", "NU"]
@@ -60,14 +61,10 @@ class Curve:
     punch: Punch
     P: float
     s: float
-    cf: Any
-    sie: Any | None
-    cf_slip: Any | None
-    sie_slip: Any | None
-
-    @property
-    def label(self) -> str:
-        return f"s/R1 = {self.s_over_R1:g}, R2/R1 = {self.R2_over_R1:g}"
+    cf: NormalResult
+    sie: NormalResult | None
+    cf_slip: SlipResult
+    sie_slip: SlipResult | None
 
 
 def _case(s_over_R1: float, R2_over_R1: float) -> tuple[Punch, float, float]:
@@ -105,9 +102,9 @@ def curves(which: str, sie: bool = True, n: int | None = None) -> list[Curve]:
         if sie:
             import sie as sie_mod
 
-            kw = {} if n is None else {"n": n}
-            sn = sie_mod.solve_normal(punch, P, s, A=_A(), **kw)
-            ss = sie_mod.solve_partial_slip(sn, Q_OVER_FP * F * P, F, **kw)
+            sn = (sie_mod.solve_normal(punch, P, s, A=_A()) if n is None
+                  else sie_mod.solve_normal(punch, P, s, A=_A(), n=n))
+            ss = sie_mod.solve_partial_slip(sn, Q_OVER_FP * F * P, F, n=n)
         out.append(Curve(sr, rr, punch, P, s, cf, sn, cf_slip, ss))
     return out
 
@@ -137,7 +134,7 @@ def figure_data(which: str, sie: bool = True) -> dict[str, list[float]]:
         data["p_right"].append(right.p / p0)
         data["d/b"].append(cv.cf_slip.d / b)
         data["e/b"].append(cv.cf_slip.e / b)
-        if sie:
+        if cv.sie is not None and cv.sie_slip is not None:
             x = np.linspace(-cv.cf.a, cv.cf.c, 801)
             data["sie_p_dev"].append(float(np.max(np.abs(cv.sie.pressure(x) - cv.cf.pressure(x)))) / p0)
             data["sie_q_dev"].append(float(np.max(np.abs(cv.sie_slip.shear(x) - cv.cf_slip.shear(x))))
@@ -157,15 +154,13 @@ def _draw(cs: list[Curve], which: str, field: str, path: Path) -> None:
         x = np.linspace(-cv.cf.a, cv.cf.c, 1201)
         xm = np.linspace(-cv.cf.a, cv.cf.c, N_MARKERS + 2)[1:-1]
         if field == "pressure":
-            y, sol, ym = cv.cf.pressure(x) / p0, cv.sie, None
-            if sol is not None:
-                ym = sol.pressure(xm) / p0
+            y = cv.cf.pressure(x) / p0
+            ym = None if cv.sie is None else cv.sie.pressure(xm) / p0
         else:
-            y, sol, ym = cv.cf_slip.shear(x) / (F * p0), cv.sie_slip, None
-            if sol is not None:
-                ym = sol.shear(xm) / (F * p0)
-        ax.plot(x / b, y, color=col, lw=1.4, label=cv.label if which == "a" and False else
-                (f"s/R1 = {cv.s_over_R1:g}" if which == "a" else f"R2/R1 = {cv.R2_over_R1:g}"))
+            y = cv.cf_slip.shear(x) / (F * p0)
+            ym = None if cv.sie_slip is None else cv.sie_slip.shear(xm) / (F * p0)
+        label = f"s/R1 = {cv.s_over_R1:g}" if which == "a" else f"R2/R1 = {cv.R2_over_R1:g}"
+        ax.plot(x / b, y, color=col, lw=1.4, label=label)
         if ym is not None:
             ax.plot(xm / b, ym, ls="none", marker="o", ms=3.5, mfc="none", color=col)
     ax.plot([], [], ls="none", marker="o", mfc="none", color="0.3", label="SIE (markers)")

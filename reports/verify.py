@@ -137,7 +137,10 @@ def run(mode: Mode, cases: Sequence[Case], say: Callable[[str], None]) -> tuple[
         tag = f"[{i:>2}/{len(cases)}] {case.name:<14}"
         say(f"{tag} solving ...")
         tc = time.perf_counter()
-        r = run_case(case, mode, cache, progress=lambda m, tag=tag: say(f"{tag}   {m}"))
+        def progress(m: str, tag: str = tag) -> None:
+            say(f"{tag}   {m}")
+
+        r = run_case(case, mode, cache, progress=progress)
         failed = r.failed()
         verdict = "PASS" if r.passed else (
             "FAIL " + ", ".join(f"{c.comparison}:{c.quantity}" for c in failed) if failed else "ERROR")

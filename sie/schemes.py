@@ -99,7 +99,7 @@ class Projected:
         return ChebyshevPressure(m=m, h=h, g=g, kinks=tuple(terms)), {"pressure_bound": bound}
 
 
-SCHEMES = {"plain": Plain, "projected": Projected}
+SCHEMES: dict[str, type[Plain] | type[Projected]] = {"plain": Plain, "projected": Projected}
 
 
 def make_scheme(scheme: str, n: int) -> Plain | Projected:
