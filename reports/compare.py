@@ -137,7 +137,7 @@ def _slope_scale(ref: Any) -> float:
     return ds if ds > 0 else (ref.a + ref.c) / max(ref.punch.R1, ref.punch.R2)
 
 
-def _normal_figures(ref: Any, other: Any) -> dict[str, tuple[float, float, float]]:
+def normal_figures(ref: Any, other: Any) -> dict[str, tuple[float, float, float]]:
     """``quantity -> (reference, obtained, normalised error)`` for the normal problem."""
     W = ref.a + ref.c
     out: dict[str, tuple[float, float, float]] = {}
@@ -194,7 +194,7 @@ def compare(ref: Any, other: Any, comparison: str) -> list[Check]:
         One per quantity, in the order of :mod:`reports.tolerances`.
     """
     slip = is_slip(ref) and is_slip(other)
-    figures = _normal_figures(normal_of(ref), normal_of(other))
+    figures = normal_figures(normal_of(ref), normal_of(other))
     quantities: tuple[str, ...] = NORMAL_QUANTITIES
     if slip:
         figures.update(_slip_figures(ref, other))

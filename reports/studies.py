@@ -14,8 +14,10 @@ from typing import Any, Callable, Sequence
 
 import numpy as np
 
+from sie.convergence import richardson
+
 from .catalogue import Case, Mode, solve_normal
-from .compare import field_errors
+from .compare import normal_figures
 
 __all__ = ["Study", "observed_order", "gci", "sie_study", "fem_study", "STUDY_QUANTITIES"]
 
@@ -87,6 +89,10 @@ def observed_order(param: Sequence[float], err: Sequence[float], inverse: bool =
 def gci(f: Sequence[float], h: Sequence[float], Fs: float = 1.25) -> tuple[float, float, float]:
     """Roache's grid-convergence index of the finest of three levels.
 
+    The observed order and the GCI are :func:`fem.studies.observed_order` and
+    :func:`fem.studies.gci` (Celik et al. 2008); the extrapolation is
+    :func:`sie.convergence.richardson`.
+
     Parameters
     ----------
     f, h
@@ -101,38 +107,23 @@ def gci(f: Sequence[float], h: Sequence[float], Fs: float = 1.25) -> tuple[float
         value, and the Richardson extrapolation. NaN when the three values do
         not converge monotonically.
     """
+    from fem.studies import gci as fine_gci
+    from fem.studies import observed_order as three_level_order
+
     f3, f2, f1 = (float(v) for v in f[-3:])
     h3, h2, h1 = (float(v) for v in h[-3:])
-    r21, r32 = h2 / h1, h3 / h2
-    e21, e32 = f2 - f1, f3 - f2
-    if e21 == 0 or e32 == 0 or e21 / e32 <= 0:
+    p = three_level_order(f1, f2, f3, h2 / h1, h3 / h2)
+    if not math.isfinite(p):
         return math.nan, math.nan, math.nan
-    # fixed-point iteration for unequal refinement ratios (Celik et al. 2008)
-    p = abs(math.log(abs(e32 / e21))) / math.log(r21)
-    for _ in range(50):
-        sgn = 1.0 if e32 / e21 > 0 else -1.0
-        q = math.log((r21**p - sgn) / (r32**p - sgn))
-        p_new = abs(math.log(abs(e32 / e21)) + q) / math.log(r21)
-        if abs(p_new - p) < 1e-10:
-            p = p_new
-            break
-        p = p_new
-    f_ext = (r21**p * f1 - f2) / (r21**p - 1)
-    g = Fs * abs(e21 / f1) / (r21**p - 1) if f1 != 0 else math.nan
-    return p, g, f_ext
+    f_ext = float(richardson([1 / h2, 1 / h1], [f2, f1], p))
+    return p, fine_gci(f1, f2, h2 / h1, p, Fs), f_ext
 
 
 def _figures(ref: Any, res: Any) -> tuple[dict[str, float], dict[str, float]]:
-    W = ref.a + ref.c
-    rl, rr = ref.peaks()
-    ol, orr = res.peaks()
-    pmax = max(rl.p, rr.p)
-    slope = float(ref.punch.slope(ref.c) - ref.punch.slope(-ref.a))
-    raw = {"a": res.a, "c": res.c, "alpha": res.alpha, "p_left": ol.p, "p_right": orr.p}
-    err = {"a": abs(res.a - ref.a) / W, "c": abs(res.c - ref.c) / W,
-           "alpha": abs(res.alpha - ref.alpha) / max(abs(ref.alpha), slope),
-           "p_left": abs(ol.p - rl.p) / pmax, "p_right": abs(orr.p - rr.p) / pmax,
-           "p_interior_max": field_errors(ref, res).interior_max}
+    """Obtained values and normalised errors of :data:`STUDY_QUANTITIES` (as :func:`compare`)."""
+    figures = normal_figures(ref, res)
+    raw = {q: figures[q][1] for q in STUDY_QUANTITIES}
+    err = {q: figures[q][2] for q in STUDY_QUANTITIES}
     raw["p_interior_max"] = err["p_interior_max"]
     return raw, err
 
@@ -166,20 +157,17 @@ def _run(method: str, case: Case, labels: Sequence[str], solver: Callable[[Case,
             where = f"{param_label} {lab}" if param_label.endswith("=") else param_label
             progress(f"{method} {param} = {st.values[-1]:.4g} ({where}): {dt:.2f} s")
     inverse = param == "n"
+    v = np.asarray(st.values, dtype=float)
+    hs = 1.0 / v if inverse else v
     for q in STUDY_QUANTITIES:
         st.orders[q] = observed_order(st.values, st.errors[q], inverse=inverse)
-        if len(st.values) >= 2 and q != "p_interior_max":
-            v = np.asarray(st.values, dtype=float)
-            hs = 1.0 / v if inverse else v
-            f = st.raw[q]
-            p = st.orders[q]
-            r = hs[-2] / hs[-1]
-            if math.isfinite(p) and p > 0 and r > 1:
-                st.extrapolated[q] = (r**p * f[-1] - f[-2]) / (r**p - 1)
-        if len(st.values) >= 3 and q != "p_interior_max":
-            hs = (1.0 / np.asarray(st.values)) if inverse else np.asarray(st.values)
-            _, g, _ = gci(st.raw[q], list(hs))
-            st.gci[q] = g
+        if q == "p_interior_max":
+            continue
+        p = st.orders[q]
+        if len(hs) >= 2 and math.isfinite(p) and p > 0 and hs[-2] > hs[-1]:
+            st.extrapolated[q] = float(richardson(1 / hs[-2:], st.raw[q][-2:], p))
+        if len(hs) >= 3:
+            st.gci[q] = gci(st.raw[q], list(hs))[1]
     return st
 
 

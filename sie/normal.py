@@ -29,6 +29,7 @@ from numpy.typing import ArrayLike
 from closedform.geometry import Punch, check_finite, check_positive
 from closedform.results import NormalResult
 
+from .quadrature import check_n
 from .roots import bracket_root, newton
 from .schemes import Plain, Projected, make_scheme
 from .series import ChebyshevPressure
@@ -67,14 +68,11 @@ class SieNormalResult(NormalResult):
 
 def check_scheme(scheme: str, n: int) -> Plain | Projected:
     """Validate ``scheme`` and ``n`` and build the scheme."""
-    if isinstance(n, bool) or not isinstance(n, (int, np.integer)):
-        raise ValueError(f"`n` = {n!r} must be an integer >= 2")
-    if n < 2:
-        raise ValueError(f"`n` = {n} must be >= 2 (the load and centroid need T_1 and T_2)")
+    n = check_n(n)
     if scheme == "plain" and n > MAX_PLAIN_N:
         raise ValueError(f"`n` = {n} exceeds {MAX_PLAIN_N}, the largest plain collocation "
                          "system factorised here (use scheme='projected')")
-    return make_scheme(scheme, int(n))
+    return make_scheme(scheme, n)
 
 
 def _check_normal(punch: Punch, P: float, s: float, A: float, tilt: str, n: int,

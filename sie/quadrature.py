@@ -55,7 +55,8 @@ class GaussChebyshevRule:
         return np.arange(1, self.n + 1) * np.pi / (self.n + 1)
 
 
-def _check_n(n: int) -> int:
+def check_n(n: int) -> int:
+    """``n`` as an ``int``; ``ValueError`` unless it is an integer >= 2."""
     if isinstance(n, bool) or not isinstance(n, (int, np.integer)):
         raise ValueError(f"`n` = {n!r} must be an integer >= 2")
     if n < 2:
@@ -81,7 +82,7 @@ def gauss_chebyshev(n: int) -> GaussChebyshevRule:
     singular integral equations", in *Methods of Analysis and Solutions of
     Crack Problems*, eqs. for the case bounded at both ends.
     """
-    n = _check_n(n)
+    n = check_n(n)
     theta = np.arange(1, n + 1) * np.pi / (n + 1)
     k = np.arange(1, n + 2)
     return GaussChebyshevRule(

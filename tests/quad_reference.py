@@ -9,7 +9,8 @@ subtracting ``v'(x)``: for ``-a < x < c``, ``PV int dt/(w(t)(t-x)) = 0``, so
 
 ``PV int v'(t)/(w(t)(t-x)) dt = int (v'(t) - v'(x))/((t-x) w(t)) dt``,
 
-whose integrand is bounded.
+whose integrand is bounded (the pressure uses :func:`sie.pressure_by_quadrature`,
+which evaluates that integral in ``theta``).
 """
 from __future__ import annotations
 
@@ -20,6 +21,7 @@ import numpy as np
 from scipy.integrate import quad
 
 from closedform.geometry import Punch
+from sie.reference import pressure_by_quadrature
 
 EPS = 1e-13
 
@@ -73,16 +75,12 @@ def moment(punch: Punch, a: float, c: float, A: float) -> float:
 
 
 def pressure(punch: Punch, a: float, c: float, A: float, x: float) -> float:
-    """Compressive pressure ``(w(x)/(pi A)) PV int v'(t)/(w(t)(t-x)) dt`` (eq. inverted_IE)."""
-    vx = float(punch.slope(x, 0.0))
+    """Compressive pressure ``(w(x)/(pi A)) PV int v'(t)/(w(t)(t-x)) dt`` (eq. inverted_IE).
 
-    def diff(t: float) -> float:
-        if t == x:
-            return float(punch.curvature(t))
-        return (float(punch.slope(t, 0.0)) - vx) / (t - x)
-
-    w = math.sqrt((x + a) * (c - x))
-    return w * integrate(diff, a, c, (*_breaks(punch), x)) / (math.pi * A)
+    The principal value is removed by the same subtraction, in ``x = m + h cos(theta)``,
+    by :func:`sie.pressure_by_quadrature` (adaptive quadrature, no closed form).
+    """
+    return float(pressure_by_quadrature(punch, A, a, c, 0.0, x)[0])
 
 
 def segment_cauchy(lo: float, hi: float, a: float, c: float, x: float) -> float:

@@ -104,8 +104,8 @@ def test_pressure_integrates_to_load_and_lever_arm(pair):
     x = np.linspace(-fe.a, fe.c, 20001)
     p = fe.pressure(x)
     W = fe.a + fe.c
-    load = np.trapz(p, x) if hasattr(np, "trapz") else np.trapezoid(p, x)
-    moment = np.trapz(x * p, x) if hasattr(np, "trapz") else np.trapezoid(x * p, x)
+    load = np.trapezoid(p, x)
+    moment = np.trapezoid(x * p, x)
     assert abs(load / P - 1) < tol("integral")
     assert abs(moment / load - fe.s) / W < tol("integral")
     assert np.all(fe.pressure(np.array([-fe.a - 1e-9 * W, fe.c + 1e-9 * W])) == 0.0)
