@@ -16,8 +16,8 @@ import time
 import numpy as np
 from scipy.optimize import fsolve
 
-import closedform as cf
-from closedform import formulas
+from threepart import closedform as cf
+from threepart.closedform import formulas
 
 PUNCH = cf.Punch(R1=10.0, R2=5.0, b=1.0)          # case A, unequal radii (mm)
 A = cf.rigid_punch(210e3, 0.3)

@@ -16,9 +16,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-import closedform
-import fem
-from closedform import Punch
+from threepart import closedform
+from threepart import fem
+from threepart.closedform import Punch
 
 E, NU = 210000.0, 0.3
 A = 2 * (1 - NU**2) / E

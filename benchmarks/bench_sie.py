@@ -12,11 +12,11 @@ import time
 
 import numpy as np
 
-import closedform as cf
-import sie
-from sie.cases import CASES, SLIP_LOADS
-from sie.schemes import Plain, Projected
-from sie.tolerances import TOLERANCES as TOL
+from threepart import closedform as cf
+from threepart import sie
+from threepart.sie.cases import CASES, SLIP_LOADS
+from threepart.sie.schemes import Plain, Projected
+from threepart.sie.tolerances import TOLERANCES as TOL
 
 
 def best_time(fun, repeat: int = 5) -> tuple[float, object]:

@@ -36,13 +36,13 @@ NoConvergenceError  -- a root finder failed
 from __future__ import annotations
 
 from . import formulas, special
-from .errors import (FullSlidingError, LiftOffError, NoConvergenceError, SeparationError,
+from threepart.errors import (FullSlidingError, LiftOffError, NoConvergenceError, SeparationError,
                      StickZoneError)
-from .geometry import Punch
-from .material import compliance, rigid_punch, similar_pair
+from threepart.punch import Punch
+from threepart.material import compliance, rigid_punch, similar_pair
 from .normal import (LiftOff, NormalBatch, NormalSolution, P_min, lift_off, solve_normal,
                      solve_normal_batch)
-from .results import NormalResult, Peak, SlipResult
+from threepart.results import NormalResult, Peak, SlipResult
 from .slip import SlipSolution, solve_partial_slip
 
 __all__ = [

@@ -21,7 +21,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 from scipy.special import xlogy
 
-from .geometry import Punch
+from threepart.punch import Punch
 
 __all__ = ["beta", "F0", "load", "tilt", "moment", "lever_arm", "pressure",
            "F1", "F2", "F3"]

@@ -21,9 +21,9 @@ from typing import Any, Callable
 
 import numpy as np
 
-from .errors import NoConvergenceError
+from threepart.errors import NoConvergenceError
 from .formulas import _chi, _psi
-from .geometry import Punch
+from threepart.punch import Punch
 
 __all__ = ["State", "solve_hm", "solve_hm_scalar", "newton1d", "newton1d_scalar", "SCALAR", "pick"]
 

@@ -21,10 +21,11 @@ from numpy.typing import ArrayLike
 from scipy.optimize import minimize_scalar
 
 from . import formulas
-from .errors import LiftOffError, NoConvergenceError, SeparationError
-from .geometry import Punch, check_finite, check_positive
+from threepart.errors import LiftOffError, NoConvergenceError, SeparationError
+from threepart.punch import Punch
+from threepart.validate import check_finite, check_positive
 from .newton import SCALAR, State, newton1d, newton1d_scalar, pick, solve_hm, solve_hm_scalar
-from .results import NormalResult
+from threepart.results import NormalResult
 
 __all__ = ["NormalSolution", "NormalBatch", "LiftOff", "solve_normal", "solve_normal_batch",
            "lift_off", "P_min"]

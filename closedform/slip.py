@@ -21,11 +21,11 @@ from numpy.typing import ArrayLike
 from scipy.optimize import brentq
 
 from . import formulas
-from .errors import FullSlidingError, NoConvergenceError, StickZoneError
-from .geometry import check_finite, check_positive
+from threepart.errors import FullSlidingError, NoConvergenceError, StickZoneError
+from threepart.validate import check_finite, check_positive
 from .newton import SCALAR, State, solve_hm_scalar
 from .normal import tilt_residual
-from .results import NormalResult, SlipResult
+from threepart.results import NormalResult, SlipResult
 
 __all__ = ["SlipSolution", "solve_partial_slip", "stick_zone_bound"]
 

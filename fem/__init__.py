@@ -16,7 +16,6 @@ read_substrate      -- read a gmsh ``.msh`` through meshio
 make_substrate      -- mesh a SubstrateSpec with gmsh and read it back
 SurfaceCompliance   -- elastic body condensed onto the candidate contact nodes
 condense            -- P2 plane-strain stiffness, condensed by one ordered factorisation
-plane_strain_modulus-- A = 2 (1 - nu^2) / E
 solve_contact       -- primal-dual active set with translation and tilt as unknowns
 
 Export
@@ -32,15 +31,17 @@ domain_study        -- results as the block size L grows
 """
 from __future__ import annotations
 
-from .contact import ContactSolution, NoConvergenceError, solve_contact
-from .elasticity import SurfaceCompliance, condense, plane_strain_modulus
+from threepart.errors import ContactZoneError, NoConvergenceError
+
+from .contact import ContactSolution, solve_contact
+from .elasticity import SurfaceCompliance, condense
 from .export import Fields, to_meshio, write_fields
 from .mesh import PRESETS, MeshPreset, Substrate, make_substrate, read_substrate
-from .solve import ContactZoneError, FemResult, locate_contact, solve_normal
+from .solve import FemResult, locate_contact, solve_normal
 from .studies import StudyLevel, StudyRecord, convergence_study, domain_study
 
 __all__ = ["solve_normal", "FemResult", "NoConvergenceError", "ContactZoneError",
            "locate_contact", "MeshPreset", "PRESETS", "Substrate", "read_substrate",
-           "make_substrate", "SurfaceCompliance", "condense", "plane_strain_modulus",
+           "make_substrate", "SurfaceCompliance", "condense",
            "solve_contact", "ContactSolution", "Fields", "write_fields", "to_meshio",
            "convergence_study", "domain_study", "StudyRecord", "StudyLevel"]

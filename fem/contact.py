@@ -22,11 +22,9 @@ from dataclasses import dataclass
 import numpy as np
 from threadpoolctl import threadpool_limits
 
-__all__ = ["ContactSolution", "NoConvergenceError", "solve_contact"]
+from threepart.errors import NoConvergenceError
 
-
-class NoConvergenceError(RuntimeError):
-    """The contact iteration did not reach a consistent active set; no result is returned."""
+__all__ = ["ContactSolution", "solve_contact"]
 
 
 @dataclass(frozen=True, eq=False)

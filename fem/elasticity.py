@@ -22,14 +22,9 @@ from threadpoolctl import threadpool_limits
 
 from .mesh import Substrate
 
-__all__ = ["SurfaceCompliance", "condense", "plane_strain_modulus"]
+__all__ = ["SurfaceCompliance", "condense"]
 
 _LU_OPTIONS: dict[str, Any] = dict(diag_pivot_thresh=0.0, options=dict(SymmetricMode=True))
-
-
-def plane_strain_modulus(E: float, nu: float) -> float:
-    """Compliance ``A = 2 (1 - nu^2) / E`` of a rigid punch on an elastic half-plane."""
-    return 2.0 * (1.0 - nu**2) / E
 
 
 @dataclass(frozen=True, eq=False)

@@ -14,7 +14,7 @@ import meshio
 import numpy as np
 from skfem import MeshTri
 
-from meshes import SubstrateSpec, build_substrate
+from threepart.meshes import SubstrateSpec, build_substrate
 
 __all__ = ["MeshPreset", "PRESETS", "Substrate", "read_substrate", "make_substrate", "preset"]
 

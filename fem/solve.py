@@ -17,26 +17,26 @@ from typing import Union
 import numpy as np
 from numpy.typing import ArrayLike
 
-from closedform.geometry import Punch, check_finite
-from closedform.results import NormalResult
-from meshes import SubstrateSpec
+from threepart.punch import Punch
+
+from threepart.validate import check_finite
+from threepart.errors import ContactZoneError
+from threepart.material import rigid_punch
+from threepart.results import NormalResult
+from threepart.meshes import SubstrateSpec
 
 from .contact import ContactSolution, solve_contact
 from .export import Fields, fields_of
-from .elasticity import SurfaceCompliance, condense, plane_strain_modulus
+from .elasticity import SurfaceCompliance, condense
 from .mesh import PRESETS, MeshPreset, Substrate, make_substrate, preset, read_substrate
 
-__all__ = ["FemResult", "ContactZoneError", "solve_normal", "locate_contact", "MeshArg"]
+__all__ = ["FemResult", "solve_normal", "locate_contact", "MeshArg"]
 
 MeshArg = Union[str, Path, MeshPreset, SubstrateSpec, Substrate]
 
 #: nodes after the edge node used to extrapolate p^2 to zero (the edge node is skipped:
 #: its lumped pressure carries the square-root edge inside one element)
 _EDGE_FIT = 16
-
-
-class ContactZoneError(RuntimeError):
-    """The contact reached an end of the candidate zone, so the mesh cannot hold it."""
 
 
 @dataclass(frozen=True)
@@ -154,7 +154,7 @@ def locate_contact(punch: Punch, P: float, s: float, *, E: float, nu: float, til
     The zone is widened when the contact reaches its ends and narrowed around the
     contact when it spans too few elements.
     """
-    A = plane_strain_modulus(E, nu)
+    A = rigid_punch(E, nu)
     lo, hi = _guess(punch, P, s if tilt == "free" else 0.0, A)
     trial = PRESETS["trial"]
     for _ in range(tries):
@@ -254,7 +254,7 @@ def solve_normal(punch: Punch, P: float, s: float = 0.0, *, E: float, nu: float,
     info = {"dofs": sc.dofs, "h": sc.h, "L": L, "n_candidates": len(sc.x),
             "iterations": sol.iterations, "delta": sol.delta, "timings": timings,
             "mesh": mesh if isinstance(mesh, str) else type(mesh).__name__}
-    return FemResult(punch=punch, A=plane_strain_modulus(E, nu), a=-left, c=right,
+    return FemResult(punch=punch, A=rigid_punch(E, nu), a=-left, c=right,
                      alpha=sol.alpha, P=float(np.sum(sol.f)),
                      s=s_out, tilt=tilt, method="fem", info=info, h=sc.h, dofs=sc.dofs,
                      L=L, delta=sol.delta, timings=timings, x_nodes=sc.x, p_nodes=p, fields=flds)

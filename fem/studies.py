@@ -16,7 +16,7 @@ from typing import Any, Callable, Sequence
 
 import numpy as np
 
-from closedform.geometry import Punch
+from threepart.punch import Punch
 
 from .mesh import MeshPreset
 from .solve import FemResult, solve_normal

@@ -8,7 +8,6 @@ here: :mod:`reports.plots` draws only when a report is written.
 """
 from __future__ import annotations
 
-import importlib
 import json
 import math
 import time
@@ -16,16 +15,16 @@ from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any, Callable
 
-from closedform.geometry import Punch
+from threepart.punch import Punch
 
 from .compare import Check, compare
+from .solvers import METHODS, SOLVERS
 from .tolerances import fem_comparison
 
 __all__ = ["Case", "CaseRun", "Mode", "MODES", "CASES_FILE", "load_cases", "get_case",
-           "run_case", "solve", "METHODS"]
+           "run_case", "solve", "solve_normal", "METHODS"]
 
 CASES_FILE = Path(__file__).with_name("cases.json")
-METHODS = ("closedform", "sie", "fem")
 
 
 @dataclass(frozen=True)
@@ -43,6 +42,14 @@ class Mode:
     fem_mesh: Any
     sie_study_n: tuple[int, ...]
     fem_study_n: tuple[int, ...]
+
+    def options(self, method: str) -> dict[str, Any]:
+        """Discretisation keywords of ``method``'s adapter (:data:`reports.solvers.SOLVERS`)."""
+        if method == "sie":
+            return {} if self.sie_n is None else {"n": self.sie_n}
+        if method == "fem":
+            return {"mesh": self.fem_mesh}
+        return {}
 
 
 MODES: dict[str, Mode] = {
@@ -96,6 +103,18 @@ class Case:
         """The paper's dimensionless load ``4PA/b`` (inf for b = 0)."""
         return 4 * self.P * self.A / self.punch.b if self.punch.b > 0 else math.inf
 
+    @property
+    def shear_load(self) -> tuple[float, float]:
+        """``(Q, f)`` of a partial-slip case; ``ValueError`` for a normal case."""
+        if self.Q is None or self.f is None:
+            raise ValueError(f"case {self.name!r} has no shear load (`Q_over_fP` and `f`)")
+        return self.Q, self.f
+
+    @property
+    def s_load(self) -> float:
+        """The lever arm passed to a solver: ``s``, or 0 when the tilt is suppressed (``s*`` is returned)."""
+        return 0.0 if self.tilt == "suppressed" else float(self.s or 0.0)
+
     def normal_key(self) -> tuple[Any, ...]:
         """Cases with equal keys share one normal problem (partial slip reuses it)."""
         return (self.punch, self.E, self.nu, self.P, self.s, self.tilt)
@@ -104,7 +123,7 @@ class Case:
         """This case with ``s`` in mm (from the lift-off fraction if one is given)."""
         if self.s_lift_off_fraction is None:
             return self
-        import closedform
+        from threepart import closedform
 
         lim = closedform.lift_off(self.punch, self.P, self.A)
         frac = self.s_lift_off_fraction
@@ -150,38 +169,9 @@ def get_case(name: str, path: str | Path | None = None) -> Case:
     raise KeyError(f"no case {name!r} in the catalogue")
 
 
-# --------------------------------------------------------------------------------------
-# solver adapters: the only code in the project that imports more than one solver
-# --------------------------------------------------------------------------------------
-def _module(method: str) -> Any:
-    return importlib.import_module(method)
-
-
 def solve_normal(case: Case, method: str, mode: Mode) -> Any:
-    """Solve the normal problem of ``case`` with ``method``."""
-    s = 0.0 if case.tilt == "suppressed" else float(case.s or 0.0)
-    mod = _module(method)
-    if method == "closedform":
-        return mod.solve_normal(case.punch, case.P, s, A=case.A, tilt=case.tilt)
-    if method == "sie":
-        kw = {} if mode.sie_n is None else {"n": mode.sie_n}
-        return mod.solve_normal(case.punch, case.P, s, A=case.A, tilt=case.tilt, **kw)
-    if method == "fem":
-        res = mod.solve_normal(case.punch, case.P, s, E=case.E, nu=case.nu, tilt=case.tilt,
-                               mesh=mode.fem_mesh)
-        if not math.isclose(res.A, case.A, rel_tol=1e-12):
-            raise ValueError(f"fem result has A = {res.A}, the case needs A = {case.A}")
-        return res
-    raise ValueError(f"`method` = {method!r} must be one of {METHODS}")
-
-
-def solve_slip(case: Case, method: str, normal: Any, mode: Mode) -> Any:
-    """Partial slip of ``case`` on the normal solution ``normal`` (closedform, sie)."""
-    mod = _module(method)
-    if method == "sie":
-        kw = {} if mode.sie_n is None else {"n": mode.sie_n}
-        return mod.solve_partial_slip(normal, case.Q, case.f, **kw)
-    return mod.solve_partial_slip(normal, case.Q, case.f)
+    """Solve the normal problem of ``case`` with ``method`` at ``mode``'s discretisation."""
+    return SOLVERS[method].normal(case, **mode.options(method))
 
 
 def solve(case: Case, method: str, mode: Mode,
@@ -200,9 +190,10 @@ def solve(case: Case, method: str, mode: Mode,
         t_normal = time.perf_counter() - t0
         if cache is not None:
             cache[key] = (normal, t_normal)
-    if case.kind == "slip" and method != "fem":
+    slip = SOLVERS[method].slip
+    if case.kind == "slip" and slip is not None:
         t1 = time.perf_counter()
-        res = solve_slip(case, method, normal, mode)
+        res = slip(case, normal, **mode.options(method))
         return res, t_normal + time.perf_counter() - t1
     return normal, t_normal
 

@@ -27,8 +27,8 @@ from typing import Any
 
 import numpy as np
 
-from closedform.geometry import Punch
-from closedform.results import NormalResult, SlipResult
+from threepart.punch import Punch
+from threepart.results import NormalResult, SlipResult
 
 __all__ = ["main", "figure_data", "curves", "check_admissible", "Curve", "GEOMETRY", "SETS",
            "Q_OVER_FP", "F", "E", "NU"]
@@ -76,7 +76,7 @@ def _case(s_over_R1: float, R2_over_R1: float) -> tuple[Punch, float, float]:
 
 def check_admissible() -> list[str]:
     """Messages for every curve outside the closed form's range (empty: all admissible)."""
-    import closedform
+    from threepart import closedform
 
     problems = []
     for name, items in SETS.items():
@@ -91,7 +91,7 @@ def check_admissible() -> list[str]:
 
 def curves(which: str, sie: bool = True, n: int | None = None) -> list[Curve]:
     """Solve every curve of set ``which`` (``"a"`` or ``"b"``) with the closed form and the SIE."""
-    import closedform
+    from threepart import closedform
 
     out = []
     for sr, rr in SETS[which]:
@@ -100,7 +100,7 @@ def curves(which: str, sie: bool = True, n: int | None = None) -> list[Curve]:
         cf_slip = closedform.solve_partial_slip(cf, Q_OVER_FP * F * P, F)
         sn = ss = None
         if sie:
-            import sie as sie_mod
+            from threepart import sie as sie_mod
 
             sn = (sie_mod.solve_normal(punch, P, s, A=_A()) if n is None
                   else sie_mod.solve_normal(punch, P, s, A=_A(), n=n))

@@ -14,10 +14,11 @@ from typing import Any, Callable, Sequence
 
 import numpy as np
 
-from sie.convergence import richardson
+from threepart.sie.convergence import richardson
 
 from .catalogue import Case, Mode, solve_normal
 from .compare import normal_figures
+from .solvers import SOLVERS
 
 __all__ = ["Study", "observed_order", "gci", "sie_study", "fem_study", "STUDY_QUANTITIES"]
 
@@ -107,8 +108,8 @@ def gci(f: Sequence[float], h: Sequence[float], Fs: float = 1.25) -> tuple[float
         value, and the Richardson extrapolation. NaN when the three values do
         not converge monotonically.
     """
-    from fem.studies import gci as fine_gci
-    from fem.studies import observed_order as three_level_order
+    from threepart.fem.studies import gci as fine_gci
+    from threepart.fem.studies import observed_order as three_level_order
 
     f3, f2, f1 = (float(v) for v in f[-3:])
     h3, h2, h1 = (float(v) for v in h[-3:])
@@ -178,14 +179,10 @@ def sie_study(case: Case, ns: Sequence[int], scheme: str | None = None,
     ``scheme`` is passed to ``sie.solve_normal`` (``"plain"`` collocation or
     the kink-aware ``"projected"``; None: the solver's default).
     """
-    from . import catalogue
-
-    sie = catalogue._module("sie")
+    options = {} if scheme is None else {"scheme": scheme}
 
     def solver(c: Case, lab: str) -> Any:
-        kw = {} if scheme is None else {"scheme": scheme}
-        s = 0.0 if c.tilt == "suppressed" else float(c.s or 0.0)
-        return sie.solve_normal(c.punch, c.P, s, A=c.A, tilt=c.tilt, n=int(lab), **kw)
+        return SOLVERS["sie"].normal(c, n=int(lab), **options)
 
     st = _run("sie", case, [str(n) for n in ns], solver,
               lambda res, lab: float(getattr(res, "n", None) or res.info.get("n", int(lab))),
@@ -205,7 +202,7 @@ def fem_study(case: Case, ns: Sequence[int],
     The meshes share grading and domain size (:data:`FEM_STUDY_GROWTH`,
     :data:`FEM_STUDY_L` contact widths), so only ``h = W/n`` changes.
     """
-    from fem.mesh import MeshPreset
+    from threepart.fem.mesh import MeshPreset
 
     def solver(c: Case, lab: str) -> Any:
         mesh = MeshPreset(n=int(lab), growth=FEM_STUDY_GROWTH, L=FEM_STUDY_L)

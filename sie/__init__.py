@@ -34,7 +34,7 @@ from .normal import SieNormalResult, lift_off, solve_normal
 from .projection import slope_coefficients
 from .quadrature import cauchy_matrix, gauss_chebyshev
 from .reference import pressure_by_quadrature
-from .roots import NoConvergenceError
+from threepart.errors import NoConvergenceError
 from .schemes import SCHEMES
 from .slip import SieSlipResult, solve_partial_slip
 from .tolerances import TOLERANCES

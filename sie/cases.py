@@ -11,7 +11,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from closedform.geometry import Punch
+from threepart.punch import Punch
 
 __all__ = ["Case", "CASES", "SLIP_LOADS"]
 

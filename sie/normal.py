@@ -26,8 +26,10 @@ from dataclasses import dataclass, field
 import numpy as np
 from numpy.typing import ArrayLike
 
-from closedform.geometry import Punch, check_finite, check_positive
-from closedform.results import NormalResult
+from threepart.punch import Punch
+
+from threepart.validate import check_finite, check_positive
+from threepart.results import NormalResult
 
 from .quadrature import check_n
 from .roots import bracket_root, newton

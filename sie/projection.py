@@ -28,7 +28,7 @@ import math
 import numpy as np
 from numpy.typing import ArrayLike
 
-from closedform.geometry import Punch
+from threepart.punch import Punch
 
 __all__ = ["ramp_coefficients", "ramp_coefficients_dbeta", "slope_coefficients", "kinks"]
 

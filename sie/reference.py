@@ -20,7 +20,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 from scipy.integrate import quad
 
-from closedform.geometry import Punch
+from threepart.punch import Punch
 
 __all__ = ["pressure_by_quadrature"]
 

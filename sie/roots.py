@@ -1,4 +1,4 @@
-"""Damped Newton iteration for the two contact-end unknowns, and the solver's named exception."""
+"""Damped Newton iteration for the two contact-end unknowns, and a bracketing root finder."""
 from __future__ import annotations
 
 from collections.abc import Callable
@@ -6,11 +6,9 @@ from collections.abc import Callable
 import numpy as np
 from scipy.optimize import brentq
 
-__all__ = ["NoConvergenceError", "newton", "bracket_root"]
+from threepart.errors import NoConvergenceError
 
-
-class NoConvergenceError(RuntimeError):
-    """A root iteration of :mod:`sie` did not reach its tolerance; no result is returned."""
+__all__ = ["newton", "bracket_root"]
 
 
 Residual = Callable[[np.ndarray], tuple[np.ndarray, np.ndarray]]

@@ -30,7 +30,7 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.fft
 
-from closedform.geometry import Punch
+from threepart.punch import Punch
 
 from .projection import kinks, slope_coefficients
 from .quadrature import plain_functionals

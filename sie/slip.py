@@ -22,8 +22,8 @@ from dataclasses import dataclass, field
 import numpy as np
 from numpy.typing import ArrayLike
 
-from closedform.geometry import check_finite, check_positive
-from closedform.results import NormalResult, SlipResult
+from threepart.validate import check_finite, check_positive
+from threepart.results import NormalResult, SlipResult
 
 from .normal import DEFAULT_N, DEFAULT_SCHEME, check_scheme, solve_ends
 from .series import ChebyshevPressure

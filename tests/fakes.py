@@ -14,7 +14,8 @@ from types import SimpleNamespace
 
 import numpy as np
 
-from closedform.results import NormalResult, Peak, SlipResult
+from threepart.reports.solvers import SOLVERS, Solver
+from threepart.results import NormalResult, Peak, SlipResult
 
 
 @dataclass(frozen=True)
@@ -71,20 +72,28 @@ def _lift_off(punch, P, A):
     return SimpleNamespace(s_min=-0.5 * half, s_max=0.5 * half)
 
 
-def fake_module(method: str) -> SimpleNamespace:
-    """A module-like object with the solver API that :mod:`reports.catalogue` calls."""
+def fake_solver(method: str) -> Solver:
+    """A :class:`~threepart.reports.solvers.Solver` with the fake results, for ``method``."""
     if method == "fem":
-        def solve_normal(punch, P, s=0.0, *, E, nu, tilt="free", mesh="quick"):
-            A = 2 * (1 - nu**2) / E
+        def fem_normal(case, mesh="quick"):
+            A = 2 * (1 - case.nu**2) / case.E
             h = {"quick": 0.04, "default": 0.01, "fine": 0.005}[mesh] if isinstance(mesh, str) else 2.0 / mesh.n
-            r = _normal(punch, P, s, A=A, tilt=tilt, method="fem", h=h)
+            r = _normal(case.punch, case.P, case.s_load, A=A, tilt=case.tilt, method="fem", h=h)
             # a small O(h^2) error so that the convergence study has something to fit
             return FakeNormal(**{**{k: getattr(r, k) for k in r.__dataclass_fields__},
                                  "a": r.a * (1 + 0.01 * h**2)})
-        return SimpleNamespace(solve_normal=solve_normal)
-    return SimpleNamespace(
-        solve_normal=lambda punch, P, s=0.0, *, A, tilt="free", n=64, scheme=None: _normal(
-            punch, P, s, A=A, tilt=tilt, method=method, n=n),
-        solve_partial_slip=lambda normal, Q, f, n=64: _slip(normal, Q, f, method=method, n=n),
-        lift_off=_lift_off,
-    )
+        return Solver("fem", fem_normal, None)
+
+    def normal(case, n=64, scheme=None):
+        return _normal(case.punch, case.P, case.s_load, A=case.A, tilt=case.tilt, method=method, n=n)
+
+    def slip(case, normal, n=64):
+        return _slip(normal, *case.shear_load, method=method, n=n)
+
+    return Solver(method, normal, slip)
+
+
+def install_fakes(monkeypatch, **replacements: Solver) -> None:
+    """Replace every entry of :data:`SOLVERS` by a fake (or by the given replacement)."""
+    for method in list(SOLVERS):
+        monkeypatch.setitem(SOLVERS, method, replacements.get(method, fake_solver(method)))

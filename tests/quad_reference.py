@@ -20,8 +20,8 @@ from typing import Callable
 import numpy as np
 from scipy.integrate import quad
 
-from closedform.geometry import Punch
-from sie.reference import pressure_by_quadrature
+from threepart.punch import Punch
+from threepart.sie.reference import pressure_by_quadrature
 
 EPS = 1e-13
 

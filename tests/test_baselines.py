@@ -10,8 +10,8 @@ import math
 
 import pytest
 
-from reports import catalogue, figures
-from reports.catalogue import MODES, get_case, load_cases, run_case
+from threepart.reports import catalogue, figures
+from threepart.reports.catalogue import MODES, get_case, load_cases, run_case
 
 from .regression import check_baseline
 

@@ -6,9 +6,9 @@ import math
 import numpy as np
 import pytest
 
-import closedform
-from reports import load_cases
-from reports.studies import gci, observed_order
+from threepart import closedform
+from threepart.reports import load_cases
+from threepart.reports.studies import gci, observed_order
 
 CASES = load_cases()
 

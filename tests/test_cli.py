@@ -8,7 +8,7 @@ import sys
 
 import pytest
 
-from reports.cli import main
+from threepart.cli import main
 
 GEOM = ["--R1", "10", "--R2", "5", "--b", "1", "--E", "210000", "--nu", "0.3", "--rigid", "--P", "400"]
 
@@ -48,6 +48,6 @@ def test_bad_input_is_a_clear_error_with_exit_status_2(capsys):
 
 
 def test_console_script_runs_as_a_module():
-    out = subprocess.run([sys.executable, "-m", "reports.cli", "solve", *GEOM, "--json"],
+    out = subprocess.run([sys.executable, "-m", "threepart.cli", "solve", *GEOM, "--json"],
                          capture_output=True, text=True, check=True)
     assert json.loads(out.stdout)["tilt"] == "free"

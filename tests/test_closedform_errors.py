@@ -6,8 +6,8 @@ import math
 import numpy as np
 import pytest
 
-import closedform as cf
-from closedform import Punch
+from threepart import closedform as cf
+from threepart.closedform import Punch
 from tests import quad_reference as ref
 
 A = 2 * (1 - 0.3**2) / 210e3
@@ -84,8 +84,8 @@ def test_separation_claim_is_true():
     """The refused concave case really has tensile pressure (independent quadrature)."""
     punch, P = Punch(10.0, 20.0, 1.0, R=-200.0), 400.0
     # the load/consistency conditions still have a root; its pressure is negative at the centre
-    from closedform.newton import SCALAR, solve_hm_scalar
-    from closedform.normal import _along, _free_residual
+    from threepart.closedform.newton import SCALAR, solve_hm_scalar
+    from threepart.closedform.normal import _along, _free_residual
 
     h0 = _along(punch, A * P, 0.0, SCALAR)
     h, m, ok = solve_hm_scalar(punch, _free_residual(A * P, 0.0, h0), h0, 0.0)
@@ -112,7 +112,7 @@ def test_bad_friction_input(Q, f, match):
 
 def test_stick_zone_inside_the_central_segment_gives_the_bound():
     sol = cf.solve_normal(Punch(10.0, 5.0, 1.0), 400.0, 0.1, A=A)
-    from closedform.slip import stick_zone_bound
+    from threepart.closedform.slip import stick_zone_bound
 
     bound = stick_zone_bound(sol)
     with pytest.raises(cf.StickZoneError, match=rf"`Q`/\(f P\) = 0.99: the stick zone would end inside "

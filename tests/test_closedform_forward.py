@@ -9,7 +9,7 @@ import math
 import numpy as np
 import pytest
 
-from closedform import Punch, formulas, special
+from threepart.closedform import Punch, formulas, special
 from tests import quad_reference as ref
 
 RTOL = 1e-10  # the issue's acceptance bound for closed form vs quadrature
@@ -100,7 +100,7 @@ def test_pressure_abbreviated_as_printed_equals_reduced_form(name):
 @pytest.mark.parametrize("P,R,Av", [(1.0, 1.0, 1.0), (400.0, 10.0, 8.67e-6), (3e-3, 50.0, 2.0)])
 def test_hertz_anchor(P, R, Av):
     """Hertz: a^2 = 2PAR/pi and p0 = 2P/(pi a), to 1e-12."""
-    from closedform import solve_normal
+    from threepart.closedform import solve_normal
 
     sol = solve_normal(Punch(R, R, 0.0), P, A=Av)
     a_h = math.sqrt(2 * P * Av * R / math.pi)
@@ -112,7 +112,7 @@ def test_hertz_anchor(P, R, Av):
 @pytest.mark.parametrize("b_over_a", [0.05, 0.3, 0.7, 0.95])
 def test_flat_rounded_punch_anchor(b_over_a):
     """Ciavarella, Hills & Monno (1998): 2PAR/a^2 = pi - 2 phi0 - sin 2phi0, sin phi0 = b/a."""
-    from closedform import solve_normal
+    from threepart.closedform import solve_normal
 
     R, Av, a = 10.0, 1e-5, 1.0
     phi0 = math.asin(b_over_a)

@@ -9,8 +9,8 @@ from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
 from scipy.integrate import quad
 
-import closedform as cf
-from closedform import Punch, formulas
+from threepart import closedform as cf
+from threepart.closedform import Punch, formulas
 from tests import quad_reference as ref
 
 A = 2 * (1 - 0.3**2) / 210e3   # rigid punch, steel half-plane, N and mm

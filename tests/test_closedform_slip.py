@@ -7,8 +7,8 @@ import numpy as np
 import pytest
 from scipy.integrate import quad
 
-import closedform as cf
-from closedform import Punch
+from threepart import closedform as cf
+from threepart.closedform import Punch
 from tests import quad_reference as ref
 
 A = 2 * (1 - 0.3**2) / 210e3

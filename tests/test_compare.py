@@ -7,12 +7,12 @@ from dataclasses import replace
 
 import pytest
 
-from closedform.geometry import Punch
-from reports import catalogue, verify
-from reports.compare import compare
-from reports.tolerances import COMPARISONS, QUANTITIES, TOLERANCES, tolerance
+from threepart.punch import Punch
+from threepart.reports import catalogue, verify
+from threepart.reports.compare import compare
+from threepart.reports.tolerances import COMPARISONS, QUANTITIES, TOLERANCES, tolerance
 
-from .fakes import _normal, _slip, fake_module
+from .fakes import _normal, _slip, fake_solver, install_fakes
 
 PUNCH = Punch(R1=10.0, R2=10.0, b=1.0)
 A = 2 * (1 - 0.3**2) / 210e3
@@ -111,7 +111,7 @@ def test_fem_compares_only_the_normal_part_of_a_slip_case():
 # ---------------------------------------------------------------------------------------
 @pytest.fixture
 def fake_solvers(monkeypatch):
-    monkeypatch.setattr(catalogue, "_module", fake_module)
+    install_fakes(monkeypatch)
     cases = [c for c in catalogue.load_cases() if c.name in ("caseA_sym", "slip_Q0.4", "caseA_moment")]
     monkeypatch.setattr(verify, "STUDY_CASE", "caseA_moment")
     return cases
@@ -136,10 +136,9 @@ def test_report_json_validates_against_its_schema(tmp_path, fake_solvers):
 
 
 def test_failed_tolerance_gives_nonzero_exit(tmp_path, fake_solvers, monkeypatch):
-    fake = fake_module("sie")
-    good = fake.solve_normal
-    fake.solve_normal = lambda *a, **k: replace(good(*a, **k), alpha=1e-3)
-    monkeypatch.setattr(catalogue, "_module", lambda m: fake if m == "sie" else fake_module(m))
+    fake = fake_solver("sie")
+    fake = replace(fake, normal=lambda *a, **k: replace(fake.normal(*a, **k), alpha=1e-3))
+    install_fakes(monkeypatch, sie=fake)
     status = verify.main(mode="quick", out=tmp_path / "rep", cases=fake_solvers, quiet=True)
     doc = json.loads((tmp_path / "rep" / "report.json").read_text())
     assert status == 1 and not doc["passed"]
@@ -147,12 +146,10 @@ def test_failed_tolerance_gives_nonzero_exit(tmp_path, fake_solvers, monkeypatch
 
 
 def test_solver_error_is_reported_not_raised(tmp_path, fake_solvers, monkeypatch):
-    def broken(m):
-        if m == "fem":
-            raise ImportError("fem not built")
-        return fake_module(m)
+    def broken(case, **options):
+        raise ImportError("fem not built")
 
-    monkeypatch.setattr(catalogue, "_module", broken)
+    install_fakes(monkeypatch, fem=replace(fake_solver("fem"), normal=broken))
     status = verify.main(mode="quick", out=tmp_path / "rep", cases=fake_solvers, quiet=True)
     doc = json.loads((tmp_path / "rep" / "report.json").read_text())
     assert status == 1 and doc["summary"]["errors"] == len(fake_solvers)
@@ -186,7 +183,7 @@ def test_a_crash_leaves_no_half_written_report(tmp_path, fake_solvers, monkeypat
 
 
 def test_cli_refuses_to_overwrite(tmp_path, capsys):
-    from reports.cli import main
+    from threepart.cli import main
 
     (tmp_path / "rep").mkdir()
     assert main(["verify", "--quick", "--out", str(tmp_path / "rep")]) == 2

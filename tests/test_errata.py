@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 from scipy.integrate import quad
 
-from closedform import Punch, formulas, special
+from threepart.closedform import Punch, formulas, special
 from tests import quad_reference as ref
 
 A = 1.3
@@ -119,7 +119,7 @@ def test_E7_regular_integral_over_the_central_segment():
 
 def test_E8_horizontal_equilibrium_sliding_term_is_plus_fP():
     """Eq. (horizontal_equilibrium): int -f p dx = +f P (p < 0), not -f P."""
-    from closedform import solve_normal
+    from threepart.closedform import solve_normal
 
     sol = solve_normal(PUNCH, 2.0 * ref.load(PUNCH, a, c, A), 0.0, A=A)
     f = 0.3

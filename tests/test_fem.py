@@ -14,10 +14,10 @@ import numpy as np
 import pytest
 from scipy.optimize import brentq
 
-import closedform
-import fem
-import meshes
-from closedform import Punch
+from threepart import closedform
+from threepart import fem
+from threepart import meshes
+from threepart.closedform import Punch
 
 REFERENCE_MSH = Path(meshes.__file__).parent / "reference.msh"
 E, NU = 210000.0, 0.3

@@ -5,8 +5,8 @@ import json
 
 import pytest
 
-from reports import figures
-from reports.verify import ReportExistsError
+from threepart.reports import figures
+from threepart.reports.verify import ReportExistsError
 
 
 def test_figures_are_written_once(tmp_path):

@@ -6,8 +6,8 @@ import math
 import numpy as np
 import pytest
 
-import closedform as cf
-from closedform import Punch
+from threepart import closedform as cf
+from threepart.closedform import Punch
 
 
 @pytest.mark.parametrize("punch", [Punch(1.0, 2.0, 0.3), Punch(1.0, 2.0, 0.3, R=5.0),

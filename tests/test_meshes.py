@@ -9,8 +9,8 @@ import meshio
 import numpy as np
 import pytest
 
-import meshes
-from meshes import REFERENCE_SPEC, SubstrateSpec, build_substrate, check_manifest, describe
+from threepart import meshes
+from threepart.meshes import REFERENCE_SPEC, SubstrateSpec, build_substrate, check_manifest, describe
 
 HERE = Path(meshes.__file__).parent
 

@@ -4,10 +4,10 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-import sie
-from sie.cases import CASES
-from sie.schemes import Plain, Projected
-from sie.tolerances import TOLERANCES as TOL
+from threepart import sie
+from threepart.sie.cases import CASES
+from threepart.sie.schemes import Plain, Projected
+from threepart.sie.tolerances import TOLERANCES as TOL
 
 NS = np.unique(np.geomspace(24, 768, 14).astype(int))  # both parities, to average the wobble
 

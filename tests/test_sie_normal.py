@@ -11,11 +11,11 @@ from hypothesis import strategies as st
 from scipy.integrate import quad
 from scipy.optimize import brentq
 
-import sie
-from closedform.geometry import Punch
-from sie.cases import CASES, S_MAX_A
-from sie.roots import newton
-from sie.tolerances import TOLERANCES as TOL
+from threepart import sie
+from threepart.punch import Punch
+from threepart.sie.cases import CASES, S_MAX_A
+from threepart.sie.roots import newton
+from threepart.sie.tolerances import TOLERANCES as TOL
 
 SCHEMES = ["plain", "projected"]
 
@@ -144,7 +144,7 @@ def check_agreement(sie_r, cf_r) -> dict[str, float]:
 
 @pytest.fixture(scope="module")
 def cf():
-    import closedform
+    from threepart import closedform
 
     return closedform.solve_normal
 
@@ -166,7 +166,7 @@ def test_perturbed_right_hand_side_fails_the_agreement_check(cf, perturb):
 
 
 def test_near_lift_off_case_is_near_lift_off():
-    import closedform
+    from threepart import closedform
     lo = closedform.lift_off(CASES["A"].punch, 1.0, 1.0)
     assert S_MAX_A == pytest.approx(lo.s_max, rel=1e-12)
     r = sie.solve_normal(CASES["near_lift_off"].punch, 1.0, CASES["near_lift_off"].s, A=1.0)
@@ -221,7 +221,7 @@ def test_failed_iteration_raises_named_exception():
 
 
 def test_non_finite_residual_raises_named_exception(monkeypatch):
-    from sie import schemes
+    from threepart.sie import schemes
     monkeypatch.setattr(schemes.Projected, "moments",
                         lambda self, punch, m, h: (np.full(3, np.nan), np.full((3, 2), np.nan)))
     with pytest.raises(sie.NoConvergenceError):
@@ -230,7 +230,7 @@ def test_non_finite_residual_raises_named_exception(monkeypatch):
 
 @pytest.mark.parametrize("name", ["A", "B", "general"])
 def test_lift_off_lever_arms_agree_with_closed_form(name):
-    import closedform
+    from threepart import closedform
     k = CASES[name]
     lo = closedform.lift_off(k.punch, k.P, k.A)
     s_min, s_max = sie.lift_off(k.punch, k.P, k.A)

@@ -8,10 +8,10 @@ import pytest
 from scipy.integrate import quad
 from scipy.special import beta as beta_fn
 
-from closedform.geometry import Punch
-from sie.projection import ramp_coefficients, slope_coefficients
-from sie.quadrature import cauchy_matrix, gauss_chebyshev, plain_functionals
-from sie.series import log_kink, sine_series
+from threepart.punch import Punch
+from threepart.sie.projection import ramp_coefficients, slope_coefficients
+from threepart.sie.quadrature import cauchy_matrix, gauss_chebyshev, plain_functionals
+from threepart.sie.series import log_kink, sine_series
 
 
 def moment(j: int) -> float:

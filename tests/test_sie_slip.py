@@ -6,10 +6,10 @@ import math
 import numpy as np
 import pytest
 
-import sie
-from closedform.geometry import Punch
-from sie.cases import CASES, SLIP_LOADS
-from sie.tolerances import TOLERANCES as TOL
+from threepart import sie
+from threepart.punch import Punch
+from threepart.sie.cases import CASES, SLIP_LOADS
+from threepart.sie.tolerances import TOLERANCES as TOL
 
 
 @pytest.fixture(scope="module")
@@ -93,7 +93,7 @@ def check_slip_agreement(s_r, c_r) -> None:
 @pytest.mark.parametrize("name", [k for k in CASES if k != "near_lift_off"])
 @pytest.mark.parametrize("load", SLIP_LOADS)
 def test_agreement_with_closed_form(name, load):
-    import closedform as cf
+    from threepart import closedform as cf
     k = CASES[name]
     q, f = load
     c_n = cf.solve_normal(k.punch, k.P, k.s, A=k.A, tilt=k.tilt)
@@ -106,7 +106,7 @@ def test_agreement_with_closed_form(name, load):
 
 
 def test_near_lift_off_stick_zone_is_refused_by_both():
-    import closedform as cf
+    from threepart import closedform as cf
     k = CASES["near_lift_off"]
     s_n = sie.solve_normal(k.punch, k.P, k.s, A=k.A)
     with pytest.raises(ValueError, match="central segment"):
@@ -116,7 +116,7 @@ def test_near_lift_off_stick_zone_is_refused_by_both():
 
 
 def test_perturbed_stick_zone_fails_the_agreement_check():
-    import closedform as cf
+    from threepart import closedform as cf
     k = CASES["A"]
     c_n = cf.solve_normal(k.punch, k.P, k.s, A=k.A)
     wrong_n = sie.solve_normal(k.punch, k.P, k.s, A=k.A * (1 + 1e-7))

@@ -38,7 +38,7 @@ def _geometry_args(p: argparse.ArgumentParser) -> None:
 
 
 def _compliance(args: argparse.Namespace) -> float:
-    from closedform import compliance, rigid_punch
+    from threepart.closedform import compliance, rigid_punch
 
     if args.A is not None:
         if args.E is not None or args.nu is not None:
@@ -50,7 +50,7 @@ def _compliance(args: argparse.Namespace) -> float:
 
 
 def _normal_summary(args: argparse.Namespace) -> tuple[Any, dict[str, Any]]:
-    from closedform import Punch, lift_off, solve_normal
+    from threepart.closedform import Punch, lift_off, solve_normal
 
     punch = Punch(R1=args.R1, R2=args.R2, b=args.b, R=args.R)
     A = _compliance(args)
@@ -93,7 +93,7 @@ def _cmd_solve(args: argparse.Namespace) -> int:
 
 
 def _cmd_slip(args: argparse.Namespace) -> int:
-    from closedform import solve_partial_slip
+    from threepart.closedform import solve_partial_slip
 
     sol, out = _normal_summary(args)
     slip = solve_partial_slip(sol, args.Q, args.f)
@@ -105,14 +105,14 @@ def _cmd_slip(args: argparse.Namespace) -> int:
 
 
 def _cmd_verify(args: argparse.Namespace) -> int:
-    from reports.verify import main as verify_main
+    from threepart.reports.verify import main as verify_main
 
     mode = "quick" if args.quick else "full" if args.full else "default"
     return int(verify_main(mode=mode, out=args.out, force=args.force))
 
 
 def _cmd_figures(args: argparse.Namespace) -> int:
-    from reports.figures import main as figures_main
+    from threepart.reports.figures import main as figures_main
 
     return int(figures_main(out=args.out, force=args.force))
 

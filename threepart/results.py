@@ -1,9 +1,8 @@
 """The one result shape shared by the closed form, the SIE and the FEM solvers.
 
 Every solver returns a :class:`NormalResult` (and, for partial slip, a
-:class:`SlipResult`) subclass, so that :mod:`reports` never special-cases a
-method. Like :mod:`closedform.geometry`, this module holds no solution formula
-and may be imported by :mod:`sie` and :mod:`fem`.
+:class:`SlipResult`) subclass, so that :mod:`threepart.reports` never
+special-cases a method. It holds no solution formula.
 
 Sign conventions (see README): ``P > 0`` is compressive, ``s`` is the lever arm
 of the load, positive to the right, and equals the centroid of the pressure;
@@ -19,7 +18,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 from scipy.optimize import minimize_scalar
 
-from .geometry import Punch
+from .punch import Punch
 
 __all__ = ["NormalResult", "SlipResult", "Peak"]
 

@@ -1,7 +1,6 @@
 """Punch geometry of the three-part piecewise-quadratic indenter (paper eq. 2).
 
-This module is the only part of :mod:`closedform` that the independent solvers
-(:mod:`sie`, :mod:`fem`) may import: it holds the profile, not the solution.
+Shared by all three solvers: it holds the profile, not the solution.
 """
 from __future__ import annotations
 
@@ -11,22 +10,9 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
-__all__ = ["Punch", "check_finite", "check_positive"]
+from .validate import LENGTH_RANGE, finite, positive, real
 
-
-def check_finite(**values: float) -> None:
-    """Raise ``ValueError`` naming the first argument that is not a finite number."""
-    for name, value in values.items():
-        if not isinstance(value, (int, float, np.floating, np.integer)) or not math.isfinite(value):
-            raise ValueError(f"`{name}` = {value!r} must be a finite number")
-
-
-def check_positive(**values: float) -> None:
-    """Raise ``ValueError`` naming the first argument that is not finite and > 0."""
-    check_finite(**values)
-    for name, value in values.items():
-        if value <= 0:
-            raise ValueError(f"`{name}` = {value!r} must be > 0")
+__all__ = ["Punch"]
 
 
 @dataclass(frozen=True)
@@ -57,16 +43,25 @@ class Punch:
     R: float = math.inf
 
     def __post_init__(self) -> None:
-        check_positive(R1=self.R1, R2=self.R2)
-        check_finite(b=self.b)
-        if self.b < 0:
+        # stored as floats, so that equal punches hash equal and numpy sees no objects
+        set_ = object.__setattr__
+        set_(self, "R1", positive("R1", self.R1))
+        set_(self, "R2", positive("R2", self.R2))
+        b = finite("b", self.b)
+        if b < 0:
             raise ValueError(f"`b` = {self.b!r} must be >= 0 (half-width of the central segment)")
-        if isinstance(self.R, (int, float, np.floating)) and math.isnan(self.R):
-            raise ValueError("`R` = nan must be a number, +inf, or negative")
-        if self.R == 0:
-            raise ValueError("`R` = 0 is not allowed: use R = math.inf for a flat centre (case A)")
-        if self.R == -math.inf:
-            raise ValueError("`R` = -inf is not allowed: use R = math.inf for a flat centre")
+        if not (b == 0 or LENGTH_RANGE[0] <= b <= LENGTH_RANGE[1]):
+            raise ValueError(f"`b` = {self.b!r} must be 0 or lie in [{LENGTH_RANGE[0]:g}, "
+                             f"{LENGTH_RANGE[1]:g}] (half-width of the central segment)")
+        set_(self, "b", b)
+        R = real("R", self.R)
+        if R == -math.inf or R == 0:
+            raise ValueError(f"`R` = {R:g} is not allowed: use R = math.inf for a flat centre "
+                             "(case A), a negative radius for a concave one (case B)")
+        if math.isfinite(R) and not LENGTH_RANGE[0] <= abs(R) <= LENGTH_RANGE[1]:
+            raise ValueError(f"`R` = {self.R!r}: |R| must lie in [{LENGTH_RANGE[0]:g}, "
+                             f"{LENGTH_RANGE[1]:g}], or R = inf for a flat centre")
+        set_(self, "R", R)
 
     # -- derived constants -------------------------------------------------
     @property

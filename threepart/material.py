@@ -1,15 +1,15 @@
 """Material compliance ``A`` of eq. (4), plane strain."""
 from __future__ import annotations
 
-from .geometry import check_finite, check_positive
+from .validate import finite, positive
 
 __all__ = ["compliance", "rigid_punch", "similar_pair"]
 
 
 def _body(E: float, nu: float, name: str) -> float:
     """``(kappa + 1)/(4 mu) = 2 (1 - nu^2)/E`` with ``kappa = 3 - 4 nu`` (plane strain)."""
-    check_positive(**{f"E{name}": E})
-    check_finite(**{f"nu{name}": nu})
+    E = positive(f"E{name}", E)
+    nu = finite(f"nu{name}", nu)
     if not -1.0 < nu <= 0.5:
         raise ValueError(f"`nu{name}` = {nu!r} must lie in (-1, 0.5]")
     kappa, mu = 3 - 4 * nu, E / (2 * (1 + nu))

@@ -1,0 +1,36 @@
+"""The one error family of threepart; every solver raises from here.
+
+Bad input is a :class:`ValueError` (or one of the subclasses below) whose
+message names the argument and the limit. A contact that leaves the paper's
+framework is refused with the subclass that says why. A numerical method that
+does not reach its tolerance raises :class:`NoConvergenceError`; no function
+returns a number it does not trust, and none returns NaN.
+"""
+from __future__ import annotations
+
+__all__ = ["NoConvergenceError", "LiftOffError", "FullSlidingError", "StickZoneError",
+           "SeparationError", "ContactZoneError"]
+
+
+class NoConvergenceError(RuntimeError):
+    """An iteration (root finder, Newton, active set) did not converge; no result is returned."""
+
+
+class LiftOffError(ValueError):
+    """The lever arm ``s`` (or the load ``P``) puts a contact edge inside the central segment."""
+
+
+class FullSlidingError(ValueError):
+    """``|Q| >= f P``: the contact slides as a whole, there is no stick zone."""
+
+
+class StickZoneError(ValueError):
+    """The stick zone would end inside the central segment, where the closed form does not hold."""
+
+
+class SeparationError(ValueError):
+    """A concave centre would separate (tensile pressure): the contact is not simply connected."""
+
+
+class ContactZoneError(RuntimeError):
+    """The FE contact reached an end of the mesh's candidate zone, so the mesh cannot hold it."""
