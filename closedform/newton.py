@@ -1,41 +1,54 @@
-"""Safeguarded Newton iterations for the inverse problems, scalar and vectorised.
+"""Bracketed Newton iterations for the inverse problems, on floats and on arrays alike.
 
-The closed forms are evaluated at the contact half-width ``h = (a+c)/2`` and
-centre ``m = (c-a)/2``; the 2-D iterations run in ``u1 = sqrt(a-b)``,
-``u2 = sqrt(c-b)``, which keeps both contact edges on the outer segments. The residuals use the closed forms of :mod:`closedform.formulas`
-written in the join angles, with their exact Jacobians:
+Every inverse problem of the closed form is two nested one-dimensional roots,
+each kept inside a bracket, so that an iteration cannot leave the admissible
+set or stall:
 
-* ``d(AP)/dm = k2/R2 W3 - k1/R1 W1`` and
-  ``d(AP)/dh = 2AP/h + h (k1/R1 sin b1 cos b1 + k2/R2 sin b2 cos b2)``;
-* ``d alpha/dm = -F0/pi`` and ``d alpha/dh = (k1/R1 sin b1 - k2/R2 sin b2)/pi``;
-* for the moment ``T = A P s``: ``dT/dm = AP + m d(AP)/dm + h^2/2 (k1/R1 s1 c1 + k2/R2 s2 c2)``
-  and ``dT/dh = m d(AP)/dh + h^2/2 (k2/R2 sin b2 - k1/R1 sin b1)``.
+* the contact edges are written ``a = b + u1^2``, ``c = b + u2^2`` with
+  ``u1 = r cos(phi)``, ``u2 = r sin(phi)``: ``phi = 0`` is the lift-off line
+  ``c = b``, ``phi = pi/2`` the line ``a = b``, and every ``(r, phi)`` with
+  ``r >= 0``, ``0 <= phi <= pi/2`` is an admissible contact;
+* the **inner** root is the radius ``r`` at which the load (eq.
+  equilibrium_condition_1) takes its value, at a fixed ``phi``; its lower
+  bracket ``r = 0`` is the contact ``[-b, b]``, whose load ``A P_0 = pi b^2/(2R)``
+  lies below every admissible load;
+* the **outer** root is the angle ``phi`` at which a second equation holds at
+  that load: the lever arm (eq. equilibrium_condition_2, tilt free), the
+  tilt ``alpha = 0`` (eq. consistency_condition, tilt suppressed), or the
+  normal solution's tilt (the stick zone). Its bracket ``[0, pi/2]`` is the
+  lift-off range itself: a target outside it is refused, not iterated on.
 
-A single case runs on Python floats with :mod:`math` (``solve_hm_scalar``), a
-batch on arrays (``solve_hm``); both evaluate the same :class:`State`.
+:func:`bracketed_root` is safeguarded Newton (Newton steps inside the
+bracket, bisection otherwise), written once for Python floats
+(``xp=SCALAR``, a single case in microseconds) and numpy arrays (a batch).
+:class:`State` evaluates the closed forms in the join angles with their
+exact ``(h, m)`` derivatives, from ``u1, u2`` so that ``a - b`` and ``c - b``
+carry no cancellation near lift-off or near ``P_0``.
 """
 from __future__ import annotations
 
+import functools
 import math
 from typing import Any, Callable
 
 import numpy as np
 
-from threepart.errors import NoConvergenceError
-from .formulas import _chi, _psi
 from threepart.punch import Punch
 
-__all__ = ["State", "solve_hm", "solve_hm_scalar", "newton1d", "newton1d_scalar", "SCALAR", "pick"]
+from .formulas import _chi, _psi
 
-MAX_ITER = 60
-RTOL = 1e-14      # residuals are relative: load error / load, moment error / (load h)
-MAX_HALVINGS = 50
+__all__ = ["State", "SCALAR", "bracketed_root", "ray_state", "solve_r", "solve_phi",
+           "HALF_PI", "MAX_ITER"]
+
+HALF_PI = 0.5 * math.pi
+MAX_ITER = 200          # bisection alone needs ~60 on a double-precision bracket
+XTOL = 1e-12            # relative Newton step (error ~ its square) or bracket width at which to stop
 
 
 class _Scalar:
-    """The few array functions :class:`State` needs, on Python floats."""
+    """The few array functions the iterations need, on Python floats."""
 
-    sqrt, arctan2, sin, cos = math.sqrt, math.atan2, math.sin, math.cos
+    sqrt, arctan2, sin, cos, isfinite = math.sqrt, math.atan2, math.sin, math.cos, math.isfinite
 
     @staticmethod
     def maximum(x: float, y: float) -> float:
@@ -46,29 +59,57 @@ class _Scalar:
         return x if x < y else y
 
     @staticmethod
-    def where(cond: bool, x: float, y: float) -> float:
+    def where(cond: bool, x: Any, y: Any) -> Any:
         return x if cond else y
+
+    @staticmethod
+    def logical_not(x: bool) -> bool:
+        return not x
+
+    @staticmethod
+    def all(x: bool) -> bool:
+        return bool(x)
+
+    @staticmethod
+    def abs(x: float) -> float:
+        return abs(x)
 
 
 SCALAR: Any = _Scalar
 
 
 class State:
-    """Closed forms (with ``A = 1``) and their derivatives at ``(h, m)``.
+    """Closed forms (with ``A = 1``) and their ``(h, m)`` derivatives at ``a = b + u1^2``, ``c = b + u2^2``.
 
+    ``h = (a+c)/2`` and ``m = (c-a)/2`` are the contact's half-width and centre;
     ``xp`` is :mod:`numpy` for arrays or :data:`SCALAR` for Python floats.
+
+    Attributes
+    ----------
+    AP, dAP
+        ``A P`` (eq. equilibrium_condition_1, compressive) and ``A (P - P_0)``
+        with ``A P_0 = pi b^2/(2R)``, the latter free of cancellation.
+    T
+        ``A P s``, the moment (eq. equilibrium_condition_2, compressive).
+    alpha
+        The tilt (eq. consistency_condition).
+    AP_h, AP_m, T_h, T_m, alpha_h, alpha_m
+        Their derivatives in ``h`` and ``m``.
     """
 
-    def __init__(self, punch: Punch, h: Any, m: Any, xp: Any = np) -> None:
-        b, k0, k1, k2 = punch.b, punch.kappa0, punch.kappa1, punch.kappa2
-        a, c = h - m, h + m
-        # clipped at 0: on the lift-off lines c - b (or a - b) is 0 up to rounding
-        b1 = 2 * xp.arctan2(xp.sqrt(xp.maximum(a - b, 0.0)), xp.sqrt(xp.maximum(c + b, 0.0)))
-        b2 = 2 * xp.arctan2(xp.sqrt(xp.maximum(c - b, 0.0)), xp.sqrt(xp.maximum(a + b, 0.0)))
+    def __init__(self, punch: Punch, u1: Any, u2: Any, xp: Any = np) -> None:
+        b, k0, k1, k2 = _constants(punch)
+        ab, cb = u1 * u1, u2 * u2                     # a - b, c - b
+        rho = 0.5 * (ab + cb)                         # h - b
+        h, m = b + rho, 0.5 * (cb - ab)
+        b1 = 2 * xp.arctan2(u1, xp.sqrt(2 * b + cb))  # sqrt(c + b)
+        b2 = 2 * xp.arctan2(u2, xp.sqrt(2 * b + ab))  # sqrt(a + b)
         s1, c1, s2, c2 = xp.sin(b1), xp.cos(b1), xp.sin(b2), xp.cos(b2)
-        self.h, self.m = h, m
+        self.a, self.c, self.h, self.m = b + ab, b + cb, h, m
         self.F0 = k1 * b1 + k2 * b2 + math.pi * k0
-        self.AP = 0.25 * h * h * (k1 * _psi(b1, xp) + k2 * _psi(b2, xp) + 2 * math.pi * k0)
+        edges = 0.25 * h * h * (k1 * _psi(b1, xp) + k2 * _psi(b2, xp))
+        self.dAP = edges + 0.5 * math.pi * k0 * rho * (2 * b + rho)
+        self.AP = edges + 0.5 * math.pi * k0 * h * h
         self.T = m * self.AP + h**3 * (k2 * s2**3 - k1 * s1**3) / 6
         self.alpha = h * (k1 * _chi(b1, xp) - k2 * _chi(b2, xp)) / math.pi - m * k0
         sc = k1 * s1 * c1 + k2 * s2 * c2
@@ -80,167 +121,151 @@ class State:
         self.alpha_h = (k1 * s1 - k2 * s2) / math.pi
 
 
-Residual = Callable[[State, Any], tuple[Any, Any, Any, Any, Any, Any]]
+@functools.lru_cache(maxsize=64)
+def _constants(punch: Punch) -> tuple[float, float, float, float]:
+    """``(b, kappa0, kappa1, kappa2)`` of a punch (cached: the punch is frozen)."""
+    return punch.b, punch.kappa0, punch.kappa1, punch.kappa2
 
 
-def pick(value: Any, idx: Any) -> Any:
-    """``value[idx]`` for per-case arrays; scalars (and ``idx=None``) pass through."""
-    return value if idx is None or np.ndim(value) == 0 else value[idx]
+def ray_state(punch: Punch, r: Any, phi: Any, xp: Any = np) -> State:
+    """:class:`State` at ``u1 = r cos(phi)``, ``u2 = r sin(phi)`` (exact zeros on the lift-off lines)."""
+    c, s = xp.cos(phi), xp.sin(phi)
+    c = xp.where(phi == HALF_PI, 0.0, c)
+    return State(punch, r * c, r * s, xp)
 
 
-def _to_u(h: Any, m: Any, b: float, xp: Any) -> tuple[Any, Any]:
-    """Iteration variables ``u1 = sqrt(a - b)``, ``u2 = sqrt(c - b)``."""
-    return xp.sqrt(xp.maximum(h - m - b, 0.0)), xp.sqrt(xp.maximum(h + m - b, 0.0))
+def _guarded_ratio(num: Any, den: Any, xp: Any) -> Any:
+    """``num/den`` where ``den > 0``, NaN elsewhere (no division warnings, no ZeroDivisionError)."""
+    ok = den > 0
+    return xp.where(ok, num / xp.where(ok, den, 1.0), math.nan)
 
 
-def _to_hm(u1: Any, u2: Any, b: float) -> tuple[Any, Any]:
-    return b + 0.5 * (u1 * u1 + u2 * u2), 0.5 * (u2 * u2 - u1 * u1)
+def bracketed_root(fun: Callable[[Any], tuple[Any, Any]], x: Any, lo: Any, hi: Any, xp: Any,
+                   *, lo_known: Any = True, hi_known: Any = False,
+                   max_iter: int = MAX_ITER) -> tuple[Any, Any, Any]:
+    """Root of an increasing ``fun`` in ``[lo, hi]`` by Newton steps safeguarded by bisection.
 
+    Parameters
+    ----------
+    fun
+        ``x -> (f, df/dx)``, elementwise; ``f`` increases with ``x``.
+    x
+        Starting point, inside ``[lo, hi]``.
+    lo, hi
+        The bracket; ``hi`` may be ``inf`` (an unbounded bracket is expanded
+        by doubling).
+    lo_known, hi_known
+        Whether ``f(lo) < 0`` (``f(hi) >= 0``) is known. An unknown end is
+        evaluated when a step would leave the bracket; if its sign is wrong,
+        the root lies outside ``[lo, hi]`` and the case is flagged.
 
-def _newton_step(r: tuple, u1: Any, u2: Any) -> tuple[Any, Any]:
-    """Newton step in ``(u1, u2)`` from residuals and their ``(h, m)`` Jacobian.
+    Returns
+    -------
+    x, below, above
+        The root; and the flags ``f(lo) >= 0`` (no root in the bracket, it lies
+        below ``lo``) and ``f(hi) < 0`` (it lies above ``hi``), where ``x`` is
+        the end that was evaluated.
 
-    ``d/du1 = u1 (d/dh - d/dm)`` and ``d/du2 = u2 (d/dh + d/dm)``.
+    Raises
+    ------
+    NoConvergenceError
+        If the bracket has not closed within ``max_iter`` iterations (it
+        closes in at most about 60 bisections, so this signals a function
+        that is not continuous, or not finite).
     """
-    r1, r2, f1h, f1m, f2h, f2m = r
-    j11, j12 = u1 * (f1h - f1m), u2 * (f1h + f1m)
-    j21, j22 = u1 * (f2h - f2m), u2 * (f2h + f2m)
-    det = j11 * j22 - j12 * j21
-    return -(j22 * r1 - j12 * r2) / det, -(-j21 * r1 + j11 * r2) / det
+    from threepart.errors import NoConvergenceError
 
-
-def solve_hm_scalar(punch: Punch, residual: Residual, h: float, m: float,
-                    max_iter: int = MAX_ITER) -> tuple[float, float, bool]:
-    """Newton on ``residual(state) -> (r1, r2, dr1/dh, dr1/dm, dr2/dh, dr2/dm)`` for one case.
-
-    The iteration runs in ``u1 = sqrt(a-b)``, ``u2 = sqrt(c-b)``: every iterate
-    is admissible (both edges on the outer segments) and the closed forms,
-    which behave like ``(c-b)^(3/2)`` near lift-off, are smooth in ``u``.
-    Steps are halved until the residual norm decreases. Returns
-    ``(h, m, converged)``.
-    """
-    b = punch.b
-    u1, u2 = _to_u(h, m, b, SCALAR)
-    r = residual(State(punch, h, m, SCALAR), None)
-    norm = math.hypot(r[0], r[1])
+    lo0, hi0 = lo, hi
+    below = above = xp.where(True, False, False)
+    done = below
     for _ in range(max_iter):
-        if norm <= RTOL:
-            return h, m, True
-        try:
-            d1, d2 = _newton_step(r, u1, u2)
-        except ZeroDivisionError:
-            return h, m, False
-        lam = 1.0
-        for _ in range(MAX_HALVINGS):
-            v1, v2 = u1 + lam * d1, u2 + lam * d2
-            hn, mn = _to_hm(v1, v2, b)
-            if hn > 0:
-                rn = residual(State(punch, hn, mn, SCALAR), None)
-                normn = math.hypot(rn[0], rn[1])
-                if normn < norm:
-                    break
-            lam *= 0.5
-        else:  # no decrease: converged to rounding, or stuck
-            return h, m, norm <= 1e3 * RTOL
-        u1, u2, h, m, r, norm = v1, v2, hn, mn, rn, normn
-    return h, m, norm <= RTOL
-
-
-def solve_hm(punch: Punch, residual: Residual, h0: np.ndarray, m0: np.ndarray,
-             max_iter: int = MAX_ITER) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Vectorised :func:`solve_hm_scalar`; returns ``(h, m, converged)`` arrays.
-
-    Only the cases still iterating (and, in the line search, only those whose
-    step is still being halved) are evaluated; ``residual(state, idx)`` takes
-    the indices of the cases in ``state``.
-    """
-    b = punch.b
-    h, m = np.array(h0, float, copy=True), np.array(m0, float, copy=True)
-    u1, u2 = _to_u(h, m, b, np)
-    everything = np.arange(h.size)
-    r = [np.array(x, float) for x in residual(State(punch, h, m), everything)]
-    norm = np.hypot(r[0], r[1])
-    done = norm <= RTOL
-    for _ in range(max_iter):
-        act = np.flatnonzero(~done)
-        if act.size == 0:
-            break
-        with np.errstate(divide="ignore", invalid="ignore"):
-            d1, d2 = _newton_step(tuple(x[act] for x in r), u1[act], u2[act])
-        finite = np.isfinite(d1) & np.isfinite(d2)
-        done[act[~finite]] = True
-        act, d1, d2 = act[finite], d1[finite], d2[finite]
-        lam = np.ones(act.size)
-        pending = np.arange(act.size)
-        for _ in range(MAX_HALVINGS):
-            idx = act[pending]
-            v1, v2 = u1[idx] + lam[pending] * d1[pending], u2[idx] + lam[pending] * d2[pending]
-            hn, mn = _to_hm(v1, v2, b)
-            ok = hn > 0
-            hn, mn = np.where(ok, hn, h[idx]), np.where(ok, mn, m[idx])
-            rn = residual(State(punch, hn, mn), idx)
-            normn = np.hypot(rn[0], rn[1])
-            acc = ok & (normn < norm[idx])
-            sel = idx[acc]
-            u1[sel], u2[sel], h[sel], m[sel], norm[sel] = v1[acc], v2[acc], hn[acc], mn[acc], normn[acc]
-            for k in range(6):
-                r[k][sel] = rn[k][acc]
-            pending = pending[~acc]
-            if pending.size == 0:
-                break
-            lam[pending] *= 0.5
-        # no decrease possible: converged to rounding, or stuck (reported below)
-        done[act[pending]] = True
-        done |= norm <= RTOL
-    return h, m, norm <= 1e3 * RTOL
-
-
-def newton1d_scalar(fun: Callable[[float], tuple[float, float]], x: float, lo: float,
-                    what: str, xtol: float = 1e-11) -> float:
-    """Newton for an increasing ``fun`` with ``fun(lo) < 0``, from ``x``.
-
-    ``fun(x)`` returns ``(f, f')``. Steps below ``lo`` (or not finite) are
-    replaced by bisection towards ``lo``; the bracket's upper end is the
-    lowest point seen with ``f >= 0``. Stops once the step is below ``xtol``
-    relative (the error is then of order ``xtol**2``).
-    """
-    hi = math.inf
-    for _ in range(200):
         f, df = fun(x)
-        if f < 0:
-            lo = x
-        else:
-            hi = min(hi, x)
-        xn = x - f / df if df > 0 else math.nan
-        if lo <= xn <= hi and abs(xn - x) <= xtol * abs(x):
-            return xn
-        if not (lo < xn < hi):
-            xn = 0.5 * (lo + hi) if math.isfinite(hi) else 2 * x - lo
-        if hi - lo <= 4e-16 * abs(hi) < math.inf:  # bracket collapsed
-            return xn
-        x = xn
-    raise NoConvergenceError(f"{what}: the Newton iteration did not converge in 200 steps")
+        neg = f < 0
+        below = below | (x == lo0) & xp.logical_not(neg) & xp.logical_not(lo_known)
+        above = above | (x == hi0) & neg & xp.logical_not(hi_known)
+        lo, lo_known = xp.where(neg, x, lo), lo_known | neg
+        hi, hi_known = xp.where(neg, hi, x), hi_known | xp.logical_not(neg)
+        newton = x - _guarded_ratio(f, df, xp)
+        inside = (newton > lo) & (newton < hi)
+        # outside the bracket: bisect a closed bracket, else try the unknown end
+        fallback = xp.where(lo_known & hi_known, 0.5 * (lo + hi),
+                            xp.where(lo_known, xp.where(xp.isfinite(hi), hi, 2 * x + (x == 0)), lo))
+        tol = XTOL * xp.abs(x)
+        small = xp.abs(newton - x) <= tol          # a converged Newton step (NaN is not small)
+        xn = xp.where(inside | small, newton, fallback)
+        stop = below | above | (f == 0)
+        close = small | (lo_known & hi_known & (hi - lo <= tol))
+        x = xp.where(done | stop, x, xn)
+        done = done | stop | close
+        if xp.all(done):
+            return x, below, above
+    raise NoConvergenceError(f"bracketed Newton iteration: the bracket did not close in {max_iter} "
+                             "steps")
 
 
-def newton1d(fun: Callable[[np.ndarray, np.ndarray], tuple[np.ndarray, np.ndarray]], x: np.ndarray,
-             lo: np.ndarray, what: str, xtol: float = 1e-11) -> np.ndarray:
-    """Vectorised :func:`newton1d_scalar`; ``fun(x, idx)`` evaluates the cases ``idx``."""
-    x, lo = np.array(x, float, copy=True), np.array(lo, float, copy=True)
-    hi = np.full_like(x, np.inf)
-    idx = np.arange(x.size)
-    for _ in range(200):
-        xi, loi, hii = x[idx], lo[idx], hi[idx]
-        f, df = fun(xi, idx)
-        loi = np.where(f < 0, xi, loi)
-        hii = np.where(f >= 0, np.minimum(hii, xi), hii)
-        with np.errstate(divide="ignore", invalid="ignore"):
-            xn = np.where(df > 0, xi - f / df, np.nan)
-        inside = (xn > loi) & (xn < hii)
-        small = (xn >= loi) & (xn <= hii) & (np.abs(xn - xi) <= xtol * np.abs(xi))
-        xn = np.where(inside | small, xn, np.where(np.isfinite(hii), 0.5 * (loi + hii), 2 * xi - loi))
-        x[idx], lo[idx], hi[idx] = xn, loi, hii
-        collapsed = np.isfinite(hii) & (hii - loi <= 4e-16 * np.abs(hii))
-        idx = idx[~(small | collapsed)]
-        if idx.size == 0:
-            return x
-    raise NoConvergenceError(f"{what}: the Newton iteration did not converge in 200 steps")
+def solve_r(punch: Punch, dAP: Any, phi: Any, r0: Any, xp: Any = np) -> Any:
+    """Radius ``r`` at which ``A (P - P_0) = dAP`` along the ray ``phi`` (inner root).
+
+    ``r = 0`` is the contact ``[-b, b]`` with ``A (P - P_0) = 0 < dAP``; the load
+    grows without bound with ``r``, so the root is bracketed.
+    """
+    cos2 = xp.cos(2 * phi)
+
+    def fun(r: Any) -> tuple[Any, Any]:
+        st = ray_state(punch, r, phi, xp)
+        return st.dAP - dAP, r * (st.AP_h - cos2 * st.AP_m)
+
+    return bracketed_root(fun, r0, 0.0 * r0, math.inf + 0.0 * r0, xp)[0]
+
+
+#: the outer equations: name -> (state -> (value, d value/dh, d value/dm))
+_TARGETS: dict[str, Callable[[State], tuple[Any, Any, Any]]] = {
+    "moment": lambda st: (st.T, st.T_h, st.T_m),
+    "tilt": lambda st: (st.alpha, st.alpha_h, st.alpha_m),
+}
+
+
+def solve_phi(punch: Punch, dAP: Any, target: str, value: Any, xp: Any = np,
+              sign: float = 1.0, r0: Any = None) -> tuple[Any, Any, Any, Any]:
+    """Angle ``phi`` in ``[0, pi/2]`` at which ``target`` equals ``value`` at the load ``dAP``.
+
+    ``target`` is ``"moment"`` (``A P s``, increasing in ``phi``) or ``"tilt"``
+    (``alpha``, decreasing: pass ``sign = -1``). The radius follows ``phi``
+    through :func:`solve_r`, warm-started from the previous iterate, and the
+    derivative along the constant-load curve is exact:
+    ``dr/dphi = -(dAP/dphi)/(dAP/dr)``.
+
+    Returns
+    -------
+    r, phi, below, above
+        The solution, and the flags of :func:`bracketed_root`: ``below``
+        (the target lies below the value at ``phi = 0``, the line ``c = b``)
+        and ``above`` (beyond ``phi = pi/2``, the line ``a = b``).
+    """
+    get = _TARGETS[target]
+    if r0 is None:
+        r0 = solve_r(punch, dAP, HALF_PI / 2 + 0.0 * dAP, _r_guess(punch, dAP, xp), xp)
+    radius = [r0]
+
+    def fun(phi: Any) -> tuple[Any, Any]:
+        r = solve_r(punch, dAP, phi, radius[0], xp)
+        radius[0] = r
+        st = ray_state(punch, r, phi, xp)
+        cos2, sin2 = xp.cos(2 * phi), xp.sin(2 * phi)
+        g, g_h, g_m = get(st)
+        # along the constant-load curve: h_r = r, m_r = -r cos2, m_phi = r^2 sin2
+        ap_r = r * (st.AP_h - cos2 * st.AP_m)
+        r_phi = xp.where(ap_r > 0, -_guarded_ratio(st.AP_m * r * r * sin2, ap_r, xp), 0.0)
+        dg = g_m * r * r * sin2 + r * (g_h - cos2 * g_m) * r_phi
+        return sign * (g - value), sign * dg
+
+    phi, below, above = bracketed_root(fun, HALF_PI / 2 + 0.0 * dAP, 0.0 * dAP, HALF_PI + 0.0 * dAP,
+                                       xp, lo_known=False, hi_known=False)
+    r = solve_r(punch, dAP, phi, radius[0], xp)
+    return r, phi, below, above
+
+
+def _r_guess(punch: Punch, dAP: Any, xp: Any) -> Any:
+    """Starting radius: the Hertz half-width on the mean edge curvature, ``r^2 = 2 (h - b)``."""
+    k = 0.5 * (1.0 / punch.R1 + 1.0 / punch.R2)
+    return xp.sqrt(2 * xp.sqrt(2 * dAP / (math.pi * k)))

@@ -7,8 +7,10 @@
   (eq. Pctob and the lift-off lever arm, with the sign of ``P`` corrected).
 
 All of them solve the consistency condition (eq. consistency_condition) and the
-equilibrium conditions (eqs. equilibrium_condition_1, _2) with the vectorised
-Newton iteration of :mod:`closedform.newton`.
+equilibrium conditions (eqs. equilibrium_condition_1, _2) by the nested,
+bracketed roots of :mod:`threepart.closedform.newton`: an admissible case
+always converges, and a case outside the closed form's range is refused with
+the named error of :mod:`threepart.errors` before any iteration could stall.
 """
 from __future__ import annotations
 
@@ -21,17 +23,14 @@ from numpy.typing import ArrayLike
 from scipy.optimize import minimize_scalar
 
 from . import formulas
-from threepart.errors import LiftOffError, NoConvergenceError, SeparationError
+from threepart.errors import LiftOffError, SeparationError
 from threepart.punch import Punch
-from threepart.validate import check_finite, check_positive
-from .newton import SCALAR, State, newton1d, newton1d_scalar, pick, solve_hm, solve_hm_scalar
+from threepart.validate import LENGTH_RANGE, check_tilt, finite, positive
+from .newton import HALF_PI, SCALAR, State, _r_guess, ray_state, solve_phi, solve_r
 from threepart.results import NormalResult
 
 __all__ = ["NormalSolution", "NormalBatch", "LiftOff", "solve_normal", "solve_normal_batch",
            "lift_off", "P_min"]
-
-TILTS = ("free", "suppressed")
-
 
 @dataclass(frozen=True)
 class NormalSolution(NormalResult):
@@ -80,27 +79,58 @@ class LiftOff:
     c_max: float
 
 
-def P_min(punch: Punch, A: float) -> float:
-    """Load at which a convex centre (``R > 0``) first touches at both joins: ``pi b^2/(2AR)``.
+def P_0(punch: Punch, A: float) -> float:
+    """Load of the contact ``[-b, b]``: ``A P_0 = pi b^2/(2R)`` (negative for a concave centre)."""
+    return math.pi * punch.b**2 * punch.kappa0 / (2 * A)
 
-    Below it the contact lies inside the central segment, outside the paper's
-    solution. Zero for flat and concave centres.
+
+def P_min(punch: Punch, A: float, s: float = 0.0, tilt: str = "free") -> float:
+    """Least load of the closed form's single contact, ``[-a, c]`` with ``a, c >= b`` and ``p >= 0``.
+
+    * Convex centre (``R > 0``): ``pi b^2/(2AR)``, the load at which the contact
+      first touches both joins; ``s`` plays no part (a lever arm makes the
+      lift-off range, :func:`lift_off`, the tighter limit).
+    * Flat centre (case A) and case C: 0.
+    * Concave centre (case B): the separation load at the lever arm ``s``
+      (or with the tilt suppressed): below it the pressure at the centre is
+      tensile and the contact would split in two (:class:`SeparationError`).
+      It is the root of ``min_{|x|<=b} p(x) = 0`` in ``P``, found by bracketing.
     """
-    return max(np.pi * punch.b**2 * punch.kappa0 / (2 * A), 0.0)
+    _punch_iv(punch)
+    A = positive("A", A)
+    s = finite("s", s)
+    tilt = check_tilt(tilt)
+    if punch.kappa0 >= 0 or punch.b == 0:
+        return max(P_0(punch, A), 0.0)
+    return _separation_load(punch, A, s, tilt)
 
 
 # -- input validation ----------------------------------------------------------
-def _normal_iv(punch: Punch, P: np.ndarray, A: float, tilt: str) -> None:
+def _punch_iv(punch: Punch) -> None:
     if not isinstance(punch, Punch):
-        raise TypeError(f"`punch` must be a Punch, not {type(punch).__name__}")
-    check_positive(A=A)
-    if tilt not in TILTS:
-        raise ValueError(f"`tilt` = {tilt!r} must be one of {TILTS}")
+        raise TypeError(f"`punch` must be a threepart.Punch, not {type(punch).__name__}")
+
+
+def _normal_iv(punch: Punch, P: np.ndarray, A: float, tilt: str) -> float:
+    """Validate before any numerics; return ``A`` as a float."""
+    _punch_iv(punch)
+    A = positive("A", A)
+    check_tilt(tilt)
     bad = ~np.isfinite(P) | (P <= 0)
     if bad.any():
         i = int(np.argmax(bad))
         raise ValueError(f"`P` = {float(P.flat[i])!r} must be a finite compressive load > 0")
-    pmin = P_min(punch, A)
+    # the contact scale sqrt(2 A P R) and its cube must stay representable
+    lo, hi = LENGTH_RANGE[0] ** 2, LENGTH_RANGE[1] ** 2
+    with np.errstate(over="ignore", under="ignore"):
+        scale = A * P * max(punch.R1, punch.R2, punch.b)
+    out = (scale < lo) | (scale > hi)
+    if out.any():
+        i = int(np.argmax(out))
+        raise ValueError(
+            f"`P` = {float(P.flat[i])!r} gives A P max(R1, R2, b) = {float(scale.flat[i]):.3g}, outside "
+            f"[{lo:g}, {hi:g}] (length^2), the range this library computes in double precision")
+    pmin = P_0(punch, A)
     low = P <= pmin
     if low.any():
         i = int(np.argmax(low))
@@ -108,125 +138,107 @@ def _normal_iv(punch: Punch, P: np.ndarray, A: float, tilt: str) -> None:
             f"`P` = {P.flat[i]:.6g} is at or below P_min = pi b^2/(2AR) = {pmin:.6g}, the load at "
             f"which the convex centre (R = {punch.R:g}) first touches both joins x = ±b; below it the "
             "contact lies inside the central segment, outside the closed form")
+    return A
 
 
-# -- (h, m) helpers ----------------------------------------------------------------
-def _along(punch: Punch, AP: Any, sigma: Any, xp: Any = np) -> Any:
-    """Half-width ``h`` with ``A P(h, m) = AP`` on the line ``m = sigma (h - b)``.
+# -- the nested roots ----------------------------------------------------------------
+def _solve(punch: Punch, P: Any, s: Any, A: float, tilt: str, xp: Any) -> tuple[State, Any, Any]:
+    """State of the solution, and the flags below/above the lift-off range."""
+    dAP = A * P - 0.5 * math.pi * punch.kappa0 * punch.b**2   # A (P - P_0), > 0
+    if tilt == "free":
+        r, phi, below, above = solve_phi(punch, dAP, "moment", A * P * s, xp)
+    else:
+        r, phi, below, above = solve_phi(punch, dAP, "tilt", 0.0 * dAP, xp, sign=-1.0)
+    return ray_state(punch, r, phi, xp), below, above
 
-    ``sigma = 0`` is the centred contact, ``-1`` the lift-off line ``c = b`` and
-    ``+1`` the line ``a = b``. ``P(h)`` rises from ``P_min`` at ``h = b``.
+
+def _lift_off_states(punch: Punch, P: Any, A: float, xp: Any = np) -> tuple[State, State]:
+    """States at ``c = b`` (``phi = 0``) and ``a = b`` (``phi = pi/2``) for loads ``P``."""
+    dAP = A * P - 0.5 * math.pi * punch.kappa0 * punch.b**2
+    out = []
+    for phi in (0.0, HALF_PI):
+        ph = phi + 0.0 * dAP
+        r0 = _r_guess(punch, dAP, xp)
+        out.append(ray_state(punch, solve_r(punch, dAP, ph, r0, xp), ph, xp))
+    return out[0], out[1]
+
+
+
+
+def _refuse_lift_off(punch: Punch, P: np.ndarray, s: np.ndarray, A: float, tilt: str,
+                     below: np.ndarray, above: np.ndarray) -> None:
+    """Raise the :class:`LiftOffError` of the first case outside the lift-off range."""
+    i = int(np.argmax(below | above))
+    lo, hi = _lift_off_states(punch, P[i], A, SCALAR)
+    s_lo, s_hi = lo.T / lo.AP, hi.T / hi.AP
+    if tilt == "suppressed":
+        raise LiftOffError(
+            f"with the tilt suppressed, `P` = {P[i]:.6g} lifts an edge off the outer segments: the tilt "
+            f"at c = b is {lo.alpha:.6g} and at a = b {hi.alpha:.6g}, both of one sign")
+    word, lim, edge = (("is below", s_lo, "right edge reaches the join, c -> b") if below[i] else
+                       ("exceeds", s_hi, "left edge reaches the join, a -> b"))
+    raise LiftOffError(
+        f"`s` = {s[i]:.6g} {word} the lift-off lever arm {lim:.6g} for `P` = {P[i]:.6g} (the {edge}); "
+        f"admissible: {s_lo:.6g} < s < {s_hi:.6g}")
+
+
+def _centre_pressure_min(punch: Punch, a: float, c: float, A: float) -> tuple[float, float]:
+    """``(x, p)`` of the least pressure on the central segment ``[-b, b]``.
+
+    A 65-point grid picks the basin and a bounded Brent search refines it to
+    ``1e-12 b``; the ends ``x = ±b`` are grid points.
     """
     b = punch.b
-
-    def g(h: Any, idx: Any = None) -> tuple[Any, Any]:
-        sg = pick(sigma, idx)
-        st = State(punch, h, sg * (h - b), xp)
-        return st.AP - pick(AP, idx), st.AP_h + sg * st.AP_m
-
-    # start: a Hertz half-width on the mean curvature, beyond the central segment
-    k = max(0.5 * (punch.kappa1 + punch.kappa2) + punch.kappa0,
-            0.25 * (punch.kappa1 + punch.kappa2))
-    x0 = b + xp.sqrt(2 * AP / (math.pi * k))
-    if xp is SCALAR:
-        return newton1d_scalar(g, x0, float(b), what="contact half-width")
-    return newton1d(g, x0, np.full_like(x0, b), what="contact half-width")
-
-
-def _lift_off_states(punch: Punch, AP: np.ndarray) -> tuple[State, State]:
-    """Lift-off states for loads ``AP``: ``c = b`` (first) and ``a = b`` (second)."""
-    n = AP.size
-    sigma = np.r_[np.full(n, -1.0), np.full(n, 1.0)]
-    h = _along(punch, np.r_[AP, AP], sigma)
-    m = sigma * (h - punch.b)
-    return State(punch, h[:n], m[:n]), State(punch, h[n:], m[n:])
-
-
-def _free_residual(AP_t: Any, Ts_t: Any, href: Any):
-    def res(st: State, idx: Any):
-        P, T, hr = pick(AP_t, idx), pick(Ts_t, idx), pick(href, idx)
-        return (st.AP / P - 1, (st.T - T) / (P * hr),
-                st.AP_h / P, st.AP_m / P, st.T_h / (P * hr), st.T_m / (P * hr))
-    return res
-
-
-def tilt_residual(punch: Punch, AP_t: Any, alpha_t: Any, href: Any):
-    """Residual for a given load and a given tilt (suppressed tilt, stick zone)."""
-    kscale = abs(punch.kappa1) + abs(punch.kappa2) + abs(punch.kappa0)
-
-    def res(st: State, idx: Any):
-        P, al, scale = pick(AP_t, idx), pick(alpha_t, idx), kscale * pick(href, idx)
-        return (st.AP / P - 1, (st.alpha - al) / scale,
-                st.AP_h / P, st.AP_m / P, st.alpha_h / scale, st.alpha_m / scale)
-    return res
-
-
-def _solve_hm(punch: Punch, AP: Any, s: Any, tilt: str, xp: Any) -> tuple[Any, Any, Any]:
-    """``(h, m, converged)`` of the normal problem, on floats or arrays.
-
-    The free-tilt start shifts the centred contact by the linearised lever arm,
-    ``m0 = (s - s0)/(ds/dm)``, kept inside the admissible set.
-    """
-    h0 = _along(punch, AP, 0.0 * AP, xp)
-    if tilt == "free":
-        st0 = State(punch, h0, 0.0 * h0, xp)
-        s0 = st0.T / st0.AP
-        dsdm = (st0.T_m - s0 * st0.AP_m) / st0.AP
-        room = 0.9 * (h0 - punch.b) if punch.b > 0 else 0.9 * h0
-        m0 = xp.maximum(xp.minimum((s - s0) / dsdm, room), -room)
-        res = _free_residual(AP, AP * s, h0)
-    else:
-        m0 = 0.0 * h0
-        res = tilt_residual(punch, AP, 0.0 * AP, h0)
-    if xp is SCALAR:
-        return solve_hm_scalar(punch, res, h0, m0)
-    return solve_hm(punch, res, h0, m0)
-
-
-def _fail(punch: Punch, P: np.ndarray, s: np.ndarray, A: float, tilt: str,
-          ok: np.ndarray) -> None:
-    """Explain a failed solve: a lever arm past lift-off, or a genuine non-convergence."""
-    bad = np.flatnonzero(~ok)
-    if tilt == "free":
-        lo, hi = _lift_off_states(punch, A * P[bad])
-        _check_lever(P[bad], s[bad], lo.T / lo.AP, hi.T / hi.AP)
-    i = bad[0]
-    raise NoConvergenceError(
-        f"the normal problem did not converge for `P` = {P[i]:.6g}, `s` = {s[i]:.6g} "
-        f"(tilt {tilt}) on {punch}")
-
-
-def _check_lever(P: np.ndarray, s: np.ndarray, s_lo: np.ndarray, s_hi: np.ndarray) -> None:
-    for side, over, lim, edge in (("right", s >= s_hi, s_hi, "left edge reaches the join, a -> b"),
-                                  ("left", s <= s_lo, s_lo, "right edge reaches the join, c -> b")):
-        if over.any():
-            i = int(np.argmax(over))
-            word = "exceeds" if side == "right" else "is below"
-            raise LiftOffError(
-                f"`s` = {s.flat[i]:.6g} {word} the lift-off lever arm {lim.flat[i]:.6g} for "
-                f"`P` = {P.flat[i]:.6g} (the {edge}); admissible: "
-                f"{s_lo.flat[i]:.6g} < s < {s_hi.flat[i]:.6g}")
+    xg = np.linspace(-b, b, 65)
+    p = formulas.pressure(punch, a, c, A, xg)
+    i = int(np.argmin(p))
+    best = (float(xg[i]), float(p[i]))
+    lo, hi = xg[max(i - 1, 0)], xg[min(i + 1, xg.size - 1)]
+    r = minimize_scalar(lambda x: float(formulas.pressure(punch, a, c, A, x)), bounds=(lo, hi),
+                        method="bounded", options={"xatol": 1e-12 * b})
+    return (float(r.x), float(r.fun)) if r.fun < best[1] else best
 
 
 def _check_separation(punch: Punch, a: np.ndarray, c: np.ndarray, A: float, P: np.ndarray,
-                      s: np.ndarray) -> None:
+                      s: np.ndarray, tilt: str) -> None:
     """A concave centre must not separate: the pressure stays >= 0 on ``[-b, b]``."""
     if punch.kappa0 >= 0 or punch.b == 0:
         return
-    xg = np.linspace(-punch.b, punch.b, 129)
-    p = formulas.pressure(punch, a[:, None], c[:, None], A, xg[None, :])
-    imin = np.argmin(p, axis=1)
-    pmin = p[np.arange(a.size), imin]
-    scale = P / (a + c)
-    for i in np.flatnonzero(pmin < 0.05 * scale):
-        lo, hi = xg[max(imin[i] - 1, 0)], xg[min(imin[i] + 1, xg.size - 1)]
-        r = minimize_scalar(lambda x: float(formulas.pressure(punch, a[i], c[i], A, x)),
-                            bounds=(lo, hi), method="bounded", options={"xatol": 1e-12 * punch.b})
-        if r.fun < 0:
+    for i in range(a.size):
+        x, p = _centre_pressure_min(punch, float(a[i]), float(c[i]), A)
+        if p < 0:
+            where = f"`s` = {s[i]:.6g}" if tilt == "free" else "the tilt suppressed"
+            sep = _separation_load(punch, A, float(s[i]), tilt)
             raise SeparationError(
-                f"the concave centre `R` = {punch.R:g} separates for `P` = {P[i]:.6g}, "
-                f"`s` = {s[i]:.6g}: the pressure would be {r.fun:.4g} < 0 at x = {r.x:.6g}, so the "
-                f"contact is not simply connected; increase P or |R| (the closed form needs p >= 0)")
+                f"the concave centre `R` = {punch.R:g} separates for `P` = {P[i]:.6g} with {where}: the "
+                f"pressure would be {p:.4g} < 0 at x = {x:.6g}, so the contact is not simply connected; "
+                f"the closed form needs `P` > {sep:.6g} (the separation load)")
+
+
+def _separation_load(punch: Punch, A: float, s: float, tilt: str) -> float:
+    """Root in ``P`` of ``min_{|x|<=b} p = 0`` for a concave centre, by bracketing and Brent.
+
+    Where the lever arm ``s`` is past lift-off at a trial load, the load is too
+    small for that ``s`` anyway and counts as below the root.
+    """
+    from scipy.optimize import brentq
+
+    def margin(P: float) -> float:
+        st, below, above = _solve(punch, P, s, A, tilt, SCALAR)
+        if below or above:
+            return -1.0
+        x, p = _centre_pressure_min(punch, st.a, st.c, A)
+        return p / (P / (st.a + st.c))       # relative to the mean pressure
+
+    hi = max(-P_0(punch, A), 1e-300)
+    for _ in range(400):
+        if margin(hi) > 0:
+            break
+        hi *= 2
+    lo = hi / 2
+    while lo > 1e-300 and margin(lo) > 0:
+        hi, lo = lo, lo / 2
+    return float(brentq(margin, lo, hi, xtol=1e-300, rtol=1e-13))
 
 
 # -- public API ---------------------------------------------------------------------
@@ -255,49 +267,49 @@ def solve_normal(punch: Punch, P: float, s: float = 0.0, *, A: float,
     Raises
     ------
     ValueError
-        Non-finite or non-positive ``P``/``A``, an unknown ``tilt``.
+        Non-finite, non-positive or unrepresentably large ``P``/``A``, an unknown ``tilt``.
     LiftOffError
-        ``s`` outside the lift-off lever arms, or ``P`` below :func:`P_min`.
+        ``s`` outside the lift-off lever arms, or ``P`` at or below :func:`P_min` of a convex centre.
     SeparationError
-        A concave centre that would separate.
+        A concave centre that would separate (``P`` below its separation load).
     NoConvergenceError
-        The Newton iteration failed.
+        Never expected for admissible input: a bracketed root did not close.
     """
-    check_finite(P=P, s=s)
+    P, s = finite("P", P), finite("s", s)
     if tilt == "suppressed" and s != 0:
         raise ValueError(f"`s` = {s!r} is an output when tilt='suppressed' (the lever arm s*); pass s=0")
-    P, s = float(P), float(s)
-    _normal_iv(punch, np.array([P]), A, tilt)
-    h, m, ok = _solve_hm(punch, A * P, s, tilt, SCALAR)
-    if not ok:
-        _fail(punch, np.array([P]), np.array([s]), A, tilt, np.array([False]))
-    st = State(punch, h, m, SCALAR)
+    A = _normal_iv(punch, np.array([P]), A, tilt)
+    st, below, above = _solve(punch, P, s, A, tilt, SCALAR)
+    if below or above:
+        _refuse_lift_off(punch, np.array([P]), np.array([s]), A, tilt, np.array([below]),
+                         np.array([above]))
     alpha, s = (st.alpha, s) if tilt == "free" else (0.0, st.T / st.AP)
-    _check_separation(punch, np.array([h - m]), np.array([h + m]), A, np.array([P]), np.array([s]))
-    return NormalSolution(punch, float(A), h - m, h + m, alpha, P, s, tilt)
+    _check_separation(punch, np.array([st.a]), np.array([st.c]), A, np.array([P]), np.array([s]), tilt)
+    return NormalSolution(punch, A, st.a, st.c, alpha, P, s, tilt)
 
 
 def solve_normal_batch(punch: Punch, P: ArrayLike, s: ArrayLike = 0.0, *, A: float,
                        tilt: str = "free") -> NormalBatch:
-    """:func:`solve_normal` for many load cases at once (vectorised Newton).
+    """:func:`solve_normal` for many load cases at once (vectorised).
 
     ``P`` and ``s`` broadcast against each other; the first inadmissible case
     raises the same error :func:`solve_normal` would, with its values.
     """
     P_arr, s_arr = np.broadcast_arrays(np.asarray(P, float).ravel(), np.asarray(s, float).ravel())
     P_arr, s_arr = P_arr.copy(), s_arr.copy()
-    _normal_iv(punch, P_arr, A, tilt)
+    A = _normal_iv(punch, P_arr, A, tilt)
     bad = ~np.isfinite(s_arr)
     if bad.any():
         raise ValueError(f"`s` = {float(s_arr[int(np.argmax(bad))])!r} must be a finite lever arm")
-    h, m, ok = _solve_hm(punch, A * P_arr, s_arr, tilt, np)
-    if not ok.all():
-        _fail(punch, P_arr, s_arr, A, tilt, ok)
-    st = State(punch, h, m)
-    alpha = st.alpha if tilt == "free" else np.zeros_like(h)
+    if tilt == "suppressed" and np.any(s_arr != 0):
+        raise ValueError("`s` is an output when tilt='suppressed' (the lever arm s*); pass s=0")
+    st, below, above = _solve(punch, P_arr, s_arr, A, tilt, np)
+    if np.any(below | above):
+        _refuse_lift_off(punch, P_arr, s_arr, A, tilt, np.asarray(below), np.asarray(above))
+    alpha = st.alpha if tilt == "free" else np.zeros_like(st.h)
     s_out = s_arr if tilt == "free" else st.T / st.AP
-    _check_separation(punch, h - m, h + m, A, P_arr, s_out)
-    return NormalBatch(punch, float(A), h - m, h + m, alpha, P_arr, s_out, tilt)
+    _check_separation(punch, st.a, st.c, A, P_arr, s_out, tilt)
+    return NormalBatch(punch, A, st.a, st.c, alpha, P_arr, s_out, tilt)
 
 
 def lift_off(punch: Punch, P: float, A: float) -> LiftOff:
@@ -306,9 +318,7 @@ def lift_off(punch: Punch, P: float, A: float) -> LiftOff:
     ``s_min`` is where the right edge reaches the join (``c -> b``): ``a_min``
     solves ``P_lift-off(a) = P``. ``s_max`` is the mirror image (``a -> b``).
     """
-    check_finite(P=P)
-    P_arr = np.array([P], float)
-    _normal_iv(punch, P_arr, A, "free")
-    lo, hi = _lift_off_states(punch, A * P_arr)
-    return LiftOff(P=float(P), s_min=float(lo.T[0] / lo.AP[0]), s_max=float(hi.T[0] / hi.AP[0]),
-                   a_min=float(lo.h[0] - lo.m[0]), c_max=float(hi.h[0] + hi.m[0]))
+    P = finite("P", P)
+    A = _normal_iv(punch, np.array([P]), A, "free")
+    lo, hi = _lift_off_states(punch, P, A, SCALAR)
+    return LiftOff(P=P, s_min=lo.T / lo.AP, s_max=hi.T / hi.AP, a_min=lo.a, c_max=hi.c)

@@ -23,6 +23,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from threepart.validate import check_finite, check_positive
+from threepart.errors import FullSlidingError, StickZoneError
 from threepart.results import NormalResult, SlipResult
 
 from .normal import DEFAULT_N, DEFAULT_SCHEME, check_scheme, solve_ends
@@ -64,8 +65,8 @@ def _check_slip(normal: NormalResult, Q: float, f: float) -> None:
     check_positive(f=f)
     check_finite(Q=Q)
     if abs(Q) >= f * normal.P:
-        raise ValueError(f"`Q` = {Q:g} must satisfy |Q| < f P = {f * normal.P:g} "
-                         "(at |Q| = f P the contact slides)")
+        raise FullSlidingError(f"`Q` = {Q:g} must satisfy |Q| < f P = {f * normal.P:g} "
+                               "(at |Q| = f P the contact slides as a whole)")
 
 
 def solve_partial_slip(normal: NormalResult, Q: float, f: float, *, n: int | None = None,
@@ -119,7 +120,7 @@ def solve_partial_slip(normal: NormalResult, Q: float, f: float, *, n: int | Non
         raise ValueError(f"`Q` = {Q:g}: stick zone [{lo:.6g}, {hi:.6g}] leaves the contact "
                          f"[{-normal.a:.6g}, {normal.c:.6g}]; is `normal` consistent with its punch?")
     if outer_ends and not (lo < -punch.b and hi > punch.b):
-        raise ValueError(
+        raise StickZoneError(
             f"`Q` = {Q:g} (|Q|/fP = {abs(Q) / (f * normal.P):.4g}): stick zone [{lo:.6g}, {hi:.6g}] "
             f"does not contain the central segment [-b, b] = [{-punch.b:g}, {punch.b:g}]; "
             "reduce |Q| or pass outer_ends=False")

@@ -84,13 +84,27 @@ def test_separation_claim_is_true():
     """The refused concave case really has tensile pressure (independent quadrature)."""
     punch, P = Punch(10.0, 20.0, 1.0, R=-200.0), 400.0
     # the load/consistency conditions still have a root; its pressure is negative at the centre
-    from threepart.closedform.newton import SCALAR, solve_hm_scalar
-    from threepart.closedform.normal import _along, _free_residual
+    from threepart.closedform.newton import SCALAR
+    from threepart.closedform.normal import _solve
 
-    h0 = _along(punch, A * P, 0.0, SCALAR)
-    h, m, ok = solve_hm_scalar(punch, _free_residual(A * P, 0.0, h0), h0, 0.0)
-    assert ok
-    assert ref.pressure(punch, h - m, h + m, A, 0.0) < 0
+    st, below, above = _solve(punch, P, 0.0, A, "free", SCALAR)
+    assert not (below or above)
+    assert ref.pressure(punch, st.a, st.c, A, 0.0) < 0
+
+
+@pytest.mark.parametrize("s,tilt", [(0.0, "free"), (0.05, "free"), (0.0, "suppressed")])
+def test_separation_load_is_where_the_centre_pressure_vanishes(s, tilt):
+    """P_min of a concave centre: just above it solves, with a zero of p on [-b, b] (quadrature)."""
+    punch = Punch(10.0, 20.0, 1.0, R=-200.0)
+    P_sep = cf.P_min(punch, A, s, tilt)
+    assert P_sep > 400.0  # 400 separates (above)
+    sol = cf.solve_normal(punch, P_sep * (1 + 1e-9), s, A=A, tilt=tilt)
+    x = np.linspace(-punch.b, punch.b, 201)
+    p = np.array([ref.pressure(punch, sol.a, sol.c, A, xi) for xi in x])
+    mean = sol.P / sol.width
+    assert p.min() >= -1e-7 * mean and p.min() <= 1e-5 * mean
+    with pytest.raises(cf.SeparationError, match=rf"needs `P` > {P_sep:.6g}"):
+        cf.solve_normal(punch, P_sep * (1 - 1e-6), s, A=A, tilt=tilt)
 
 
 def test_full_sliding():

@@ -1,0 +1,153 @@
+"""The closed form never fails on admissible input: wide random cases against the SIE.
+
+Cases are drawn as a designer's sweep would be, far wider than the catalogue:
+
+* radii ``R1``, ``R2`` from ``0.03 b`` to ``1000 b``; case A (flat centre), B
+  (concave, ``|R|`` from ``b`` to ``10^4 b``), C (``b = 0``) and the general
+  convex centre (``R`` from ``0.03 b`` to ``10^4 b``);
+* loads from just above their threshold to ``10^4`` times it: ``P_min`` of a
+  convex centre, the separation load of a concave one, and for the flat
+  centre and case C the load ``P_ref`` that pushes a Hertz contact of the
+  larger radius ``1e-2`` of ``b`` (or of the smaller radius) wide;
+* lever arms across the whole lift-off range, taken from the SIE's own
+  lift-off lever arms (for ``b = 0``: within a Hertz half-width);
+* both tilt modes.
+
+The SIE (:mod:`threepart.sie`, projected scheme: its contact ends carry no
+discretisation error) is the reference. Where it finds a contact with both
+edges on the outer segments, the closed form must find the same one to
+``1e-8 W``; where the SIE's contact leaves that framework (an edge at or
+inside a join, or a one-flank contact) or separates, the closed form must
+refuse with :class:`~threepart.LiftOffError` or
+:class:`~threepart.SeparationError`. It must never raise anything else.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from hypothesis import HealthCheck, assume, given, settings
+from hypothesis import strategies as st
+
+from threepart import (LiftOffError, NoConvergenceError, Punch, SeparationError, closedform,
+                       rigid_punch, sie)
+
+A = rigid_punch(210e3, 0.3)
+B = 1.0
+AGREE = 1e-8          # |Δa|, |Δc|, |Δs| in units of W; |Δα| in units of W/min(R1, R2)
+EXAMPLES = 500
+
+
+@st.composite
+def cases(draw):
+    kind = draw(st.sampled_from(["A", "B", "C", "general"]))
+    tilt = draw(st.sampled_from(["free", "suppressed"]))
+    R1, R2 = (B * 10 ** draw(st.floats(math.log10(0.03), 3)) for _ in range(2))
+    b = 0.0 if kind == "C" else B
+    R = math.inf
+    if kind == "B":
+        R = -B * 10 ** draw(st.floats(0, 4))
+    elif kind == "general":
+        R = B * 10 ** draw(st.floats(math.log10(0.03), 4))
+    punch = Punch(R1, R2, b, R)
+    threshold = closedform.P_min(punch, A)
+    if threshold <= 0:
+        ell = b if b > 0 else min(R1, R2)
+        threshold = math.pi * (1e-2 * ell) ** 2 / (2 * A * max(R1, R2))
+    P = threshold * 10 ** draw(st.floats(1e-6, 4))
+    frac = draw(st.floats(-1 + 1e-6, 1 - 1e-6))
+    return punch, P, frac, tilt
+
+
+def _lever_arm(punch: Punch, P: float, frac: float) -> float:
+    if punch.b == 0:
+        return frac * math.sqrt(2 * P * A * min(punch.R1, punch.R2) / math.pi)
+    s_min, s_max = sie.lift_off(punch, P, A)
+    return frac * s_max if frac > 0 else -frac * s_min
+
+
+@pytest.mark.filterwarnings("ignore::RuntimeWarning")
+@settings(max_examples=EXAMPLES, deadline=None, derandomize=True,
+          suppress_health_check=[HealthCheck.too_slow, HealthCheck.filter_too_much])
+@given(cases())
+def test_closed_form_agrees_with_the_sie_or_refuses_rightly(case):
+    punch, P, frac, tilt = case
+    s = 0.0 if tilt == "suppressed" else _lever_arm(punch, P, frac)
+    try:
+        ref = sie.solve_normal(punch, P, s, A=A, tilt=tilt, n=16)
+        sie_error = None
+    except SeparationError as exc:
+        ref, sie_error = None, exc
+    except NoConvergenceError:
+        assume(False)  # the reference found nothing to compare with
+    try:
+        got = closedform.solve_normal(punch, P, s, A=A, tilt=tilt)
+        cf_error = None
+    except (LiftOffError, SeparationError) as exc:
+        got, cf_error = None, exc
+    if sie_error is not None:
+        assert cf_error is not None, f"SIE refuses ({sie_error}), the closed form solves {got}"
+        return
+    assert ref is not None
+    inside = min(ref.a, ref.c) > punch.b
+    if not inside:
+        assert cf_error is not None, f"SIE contact [{-ref.a}, {ref.c}] leaves the framework, " \
+                                     f"the closed form solves {got}"
+        return
+    if isinstance(cf_error, SeparationError):
+        # at the separation load the SIE's acceptance is within its truncation bound: judge the
+        # refusal by the inversion integral (adaptive quadrature) on the SIE's contact
+        from threepart.closedform.normal import _centre_pressure_min
+
+        x = np.r_[np.linspace(-punch.b, punch.b, 101), _centre_pressure_min(punch, ref.a, ref.c, A)[0]]
+        p = sie.pressure_by_quadrature(punch, A, ref.a, ref.c, ref.alpha, x)
+        mean = P / ref.width
+        assert p.min() < 1e-9 * mean, f"closed form refuses a contact whose pressure is >= 0: {cf_error}"
+        return
+    assert cf_error is None, f"SIE solves [{-ref.a}, {ref.c}] inside the framework; closed form: {cf_error}"
+    assert got is not None
+    W = ref.a + ref.c
+    assert abs(got.a - ref.a) <= AGREE * W and abs(got.c - ref.c) <= AGREE * W, (got, ref)
+    assert abs(got.s - ref.s) <= AGREE * W
+    assert abs(got.alpha - ref.alpha) <= AGREE * W / min(punch.R1, punch.R2)
+
+
+@pytest.mark.parametrize("P", [1.0, 3.0, 10.0, 30.0, 100.0, 1e3, 1e4])
+def test_suppressed_tilt_at_every_load(P):
+    """Light loads that used to stall the damped Newton: agreement with the SIE."""
+    punch = Punch(10.0, 5.0, 1.0)
+    got = closedform.solve_normal(punch, P, A=A, tilt="suppressed")
+    ref = sie.solve_normal(punch, P, A=A, tilt="suppressed", n=16)
+    W = ref.a + ref.c
+    assert abs(got.a - ref.a) <= AGREE * W and abs(got.c - ref.c) <= AGREE * W
+    assert abs(got.s - ref.s) <= AGREE * W
+    batch = closedform.solve_normal_batch(punch, [P, 2 * P], A=A, tilt="suppressed")
+    assert abs(batch.a[0] - ref.a) <= AGREE * W and batch.alpha[0] == 0.0
+
+
+def test_concave_centre_near_its_separation_load():
+    """Punch(10, 5, 1, R=-20) at P = 100 used to end in NoConvergenceError."""
+    punch = Punch(10.0, 5.0, 1.0, R=-20.0)
+    P_sep = closedform.P_min(punch, A)
+    for P in (100.0, 0.5 * P_sep, P_sep * (1 - 1e-6)):
+        with pytest.raises(SeparationError):
+            closedform.solve_normal(punch, P, A=A)
+    got = closedform.solve_normal(punch, P_sep * 1.01, A=A)
+    ref = sie.solve_normal(punch, P_sep * 1.01, A=A, n=16)
+    assert abs(got.a - ref.a) <= AGREE * ref.width
+    lim = closedform.lift_off(punch, P_sep * 1.01, A)
+    s_min, s_max = sie.lift_off(punch, P_sep * 1.01, A)
+    assert lim.s_min == pytest.approx(s_min, rel=1e-9) and lim.s_max == pytest.approx(s_max, rel=1e-9)
+
+
+@pytest.mark.parametrize("ratio", [1e3, 1e-3])
+def test_strongly_asymmetric_punch_inside_the_lift_off_range(ratio):
+    punch = Punch(1.0 * ratio, 1.0, 1.0) if ratio > 1 else Punch(1.0, 1.0 / ratio, 1.0)
+    P = 1e3
+    s_min, s_max = sie.lift_off(punch, P, A)
+    for frac in (-0.9, -0.5, 0.0, 0.5, 0.9):
+        s = frac * s_max if frac > 0 else -frac * s_min
+        got = closedform.solve_normal(punch, P, s, A=A)
+        ref = sie.solve_normal(punch, P, s, A=A, n=16)
+        assert abs(got.a - ref.a) <= AGREE * ref.width and abs(got.c - ref.c) <= AGREE * ref.width
