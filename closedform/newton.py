@@ -169,9 +169,9 @@ def bracketed_root(fun: Callable[[Any], tuple[Any, Any]], x: Any, lo: Any, hi: A
     Raises
     ------
     NoConvergenceError
-        If the bracket has not closed within ``max_iter`` iterations (it
-        closes in at most about 60 bisections, so this signals a function
-        that is not continuous, or not finite).
+        If ``fun`` is not finite, or the bracket has not closed within
+        ``max_iter`` iterations (it closes in at most about 60 bisections,
+        so this signals a function that is not continuous).
     """
     from threepart.errors import NoConvergenceError
 
@@ -180,6 +180,9 @@ def bracketed_root(fun: Callable[[Any], tuple[Any, Any]], x: Any, lo: Any, hi: A
     done = below
     for _ in range(max_iter):
         f, df = fun(x)
+        if not xp.all(xp.isfinite(f)):
+            raise NoConvergenceError("bracketed Newton iteration: the function is not finite at "
+                                     f"{str(x)[:80]}; no result is returned")
         neg = f < 0
         below = below | (x == lo0) & xp.logical_not(neg) & xp.logical_not(lo_known)
         above = above | (x == hi0) & neg & xp.logical_not(hi_known)

@@ -155,3 +155,65 @@ def test_material_errors():
         cf.compliance(-1.0, 0.3)
     with pytest.raises(ValueError, match="give both `E2` and `nu2`"):
         cf.compliance(210e3, 0.3, E2=70e3)
+
+
+@pytest.mark.parametrize("kwargs,match", [
+    (dict(R1="10", R2=5.0, b=1.0), r"`R1` = '10' must be a real number, not str"),
+    (dict(R1=10.0, R2=None, b=1.0), r"`R2` = None must be a real number, not NoneType"),
+    (dict(R1=True, R2=5.0, b=1.0), r"`R1` = True must be a real number, not bool"),
+    (dict(R1=10.0, R2=5.0, b=1.0, R="inf"), r"`R` = 'inf' must be a real number"),
+    (dict(R1=1e-300, R2=5.0, b=1.0), r"`R1` = 1e-300 is outside \[1e-60, 1e\+60\]"),
+])
+def test_punch_rejects_non_real_types_before_any_arithmetic(kwargs, match):
+    with pytest.raises(ValueError, match=match):
+        Punch(**kwargs)
+
+
+@pytest.mark.parametrize("P,match", [
+    (1e308, r"`P` = 1e\+308 gives A P max\(R1, R2, b\) = .* outside"),
+    (1e-320, r"`P` = 1e-320 gives A P max\(R1, R2, b\) = .* outside"),
+    (True, r"`P` = True must be a real number, not bool"),
+])
+def test_extreme_loads_are_named_value_errors_not_overflow(P, match):
+    with pytest.raises(ValueError, match=match):
+        cf.solve_normal(Punch(10.0, 5.0, 1.0), P, A=A)
+    with pytest.raises(ValueError, match=match.replace("True", "True")):
+        cf.lift_off(Punch(10.0, 5.0, 1.0), P, A)
+
+
+def test_P_min_validates_its_input():
+    with pytest.raises(ValueError, match=r"`A` = -1.0 must be > 0"):
+        cf.P_min(Punch(10.0, 5.0, 1.0), -1.0)
+    with pytest.raises(ValueError, match=r"`tilt` = 'held' must be one of"):
+        cf.P_min(Punch(10.0, 5.0, 1.0), A, tilt="held")
+    with pytest.raises(TypeError, match="`punch` must be a threepart.Punch"):
+        cf.P_min("punch", A)
+    # the convex limit is the Hertz load of the central radius with a = b (quadrature)
+    punch = Punch(10.0, 20.0, 1.0, R=100.0)
+    assert cf.P_min(punch, A) == pytest.approx(ref.load(punch, punch.b, punch.b, A), rel=1e-10)
+
+
+def test_no_nan_from_an_edge_a_rounding_error_inside_a_join():
+    """A converged edge may sit at ``b - 1e-16``: the pressure is finite and matches the edge at b."""
+    punch = Punch(10.0, 5.0, 1.0)
+    x = np.linspace(-1.1, 1.0, 301)
+    inside = cf.formulas.pressure(punch, 1.1, punch.b - 1e-16, A, x)
+    at = cf.formulas.pressure(punch, 1.1, punch.b, A, x)
+    assert np.all(np.isfinite(inside))
+    np.testing.assert_allclose(inside, at, rtol=0, atol=1e-12 * at.max())
+
+
+def test_a_failing_iteration_is_a_named_error_never_a_number(monkeypatch):
+    """If the closed forms were not finite, the bracketed root raises NoConvergenceError."""
+    from threepart.closedform import newton
+
+    real_state = newton.State
+
+    class Broken(real_state):
+        def __init__(self, *args, **kwargs):
+            super().__init__(*args, **kwargs)
+            self.dAP = self.dAP * float("nan")
+
+    monkeypatch.setattr(newton, "State", Broken)
+    with pytest.raises(cf.NoConvergenceError, match="function is not finite"):
+        cf.solve_normal(Punch(10.0, 5.0, 1.0), 400.0, A=A)
