@@ -1,16 +1,7 @@
 """Closed-form solution of the tilted three-part half-plane contact (Andresen, Hills & Vázquez).
 
-Geometry and shared result shape
---------------------------------
-Punch               -- three-part punch (R1, R2, b, R), profile v(x) and slope v'(x), eq. (2)
-NormalResult        -- result shape shared by all solvers: a, c, alpha, P, s, pressure(x)
-SlipResult          -- partial-slip result shape: adds d, e, shear(x)
-
-Material
---------
-compliance          -- A of eq. (4), plane strain, two bodies
-similar_pair        -- A = 4(1 - nu^2)/E
-rigid_punch         -- A = 2(1 - nu^2)/E
+The problem (``Punch``, the compliances), the result shape and the errors live
+in :mod:`threepart` and are re-exported here for convenience.
 
 Forward closed forms for a given contact [-a, c] (module ``formulas``)
 ----------------------------------------------------------------------
@@ -23,26 +14,27 @@ special             -- case A, case C and Hertz forms from their own equations
 Inverse problems
 ----------------
 solve_normal        -- a, c, alpha for P and s (tilt free), or a_hat, c_hat, s* (suppressed)
-solve_normal_batch  -- the same for arrays of load cases (vectorised Newton)
+solve_normal_batch  -- the same for arrays of load cases (vectorised)
 lift_off            -- admissible lever arms s_min < s < s_max for a load P
-P_min               -- load at which a convex centre first touches both joins
+P_min               -- least load: both joins touched (convex centre), separation (concave)
 solve_partial_slip  -- Ciavarella-Jaeger stick zone [-(d+e), d-e] and shear q(x)
 
-Errors
+Errors (from :mod:`threepart.errors`)
 ------
 LiftOffError, FullSlidingError, StickZoneError, SeparationError -- ValueError subclasses
-NoConvergenceError  -- a root finder failed
+NoConvergenceError  -- a root did not close (never expected on admissible input)
 """
 from __future__ import annotations
 
-from . import formulas, special
 from threepart.errors import (FullSlidingError, LiftOffError, NoConvergenceError, SeparationError,
-                     StickZoneError)
-from threepart.punch import Punch
+                              StickZoneError)
 from threepart.material import compliance, rigid_punch, similar_pair
+from threepart.punch import Punch
+from threepart.results import NormalResult, Peak, SlipResult
+
+from . import formulas, special
 from .normal import (LiftOff, NormalBatch, NormalSolution, P_min, lift_off, solve_normal,
                      solve_normal_batch)
-from threepart.results import NormalResult, Peak, SlipResult
 from .slip import SlipSolution, solve_partial_slip
 
 __all__ = [

@@ -76,7 +76,7 @@ def test_load_below_the_convex_centre_limit():
 def test_concave_centre_that_separates():
     punch = Punch(10.0, 20.0, 1.0, R=-200.0)
     with pytest.raises(cf.SeparationError, match=r"the concave centre `R` = -200 separates for "
-                                                  r"`P` = 400.*not simply connected"):
+                                                  r"`P` = 400.*splits in two or rests on one flank"):
         cf.solve_normal(punch, 400.0, A=A)
 
 

@@ -7,7 +7,6 @@ import numpy as np
 import pytest
 from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
-from scipy.integrate import quad
 
 from threepart import closedform as cf
 from threepart.closedform import Punch, formulas

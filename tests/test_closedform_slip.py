@@ -5,7 +5,6 @@ import math
 
 import numpy as np
 import pytest
-from scipy.integrate import quad
 
 from threepart import closedform as cf
 from threepart.closedform import Punch

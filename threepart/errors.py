@@ -29,7 +29,11 @@ class StickZoneError(ValueError):
 
 
 class SeparationError(ValueError):
-    """A concave centre would separate (tensile pressure): the contact is not simply connected."""
+    """A concave centre would separate: the single contact's pressure is tensile.
+
+    The true contact then splits into two zones, or the punch rests on one
+    flank alone; neither is the closed form's single contact ``[-a, c]``.
+    """
 
 
 class ContactZoneError(RuntimeError):
