@@ -97,6 +97,17 @@ class State:
         Their derivatives in ``h`` and ``m``.
     """
 
+    AP: Any
+    dAP: Any
+    T: Any
+    alpha: Any
+    AP_h: Any
+    AP_m: Any
+    T_h: Any
+    T_m: Any
+    alpha_h: Any
+    alpha_m: Any
+
     def __init__(self, punch: Punch, u1: Any, u2: Any, xp: Any = np) -> None:
         b, k0, k1, k2 = _constants(punch)
         ab, cb = u1 * u1, u2 * u2                     # a - b, c - b
@@ -128,10 +139,13 @@ def _constants(punch: Punch) -> tuple[float, float, float, float]:
 
 
 def ray_state(punch: Punch, r: Any, phi: Any, xp: Any = np) -> State:
-    """:class:`State` at ``u1 = r cos(phi)``, ``u2 = r sin(phi)`` (exact zeros on the lift-off lines)."""
-    c, s = xp.cos(phi), xp.sin(phi)
-    c = xp.where(phi == HALF_PI, 0.0, c)
-    return State(punch, r * c, r * s, xp)
+    """:class:`State` at ``u1 = r cos(phi)``, ``u2 = r sin(phi)``.
+
+    ``cos(phi)`` is evaluated as ``sin(pi/2 - phi)``: exact zeros on the
+    lift-off lines, and ``u1 == u2`` to the last bit at ``phi = pi/4``, so
+    that a symmetric case has ``alpha = 0`` exactly.
+    """
+    return State(punch, r * xp.sin(HALF_PI - phi), r * xp.sin(phi), xp)
 
 
 def _guarded_ratio(num: Any, den: Any, xp: Any) -> Any:
