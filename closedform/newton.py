@@ -82,7 +82,8 @@ class State:
     """Closed forms (with ``A = 1``) and their ``(h, m)`` derivatives at ``a = b + u1^2``, ``c = b + u2^2``.
 
     ``h = (a+c)/2`` and ``m = (c-a)/2`` are the contact's half-width and centre;
-    ``xp`` is :mod:`numpy` for arrays or :data:`SCALAR` for Python floats.
+    ``xp`` is :mod:`numpy` for arrays or :data:`SCALAR` for Python floats;
+    ``full=False`` evaluates the load and its derivatives only (the inner root).
 
     Attributes
     ----------
@@ -108,7 +109,7 @@ class State:
     alpha_h: Any
     alpha_m: Any
 
-    def __init__(self, punch: Punch, u1: Any, u2: Any, xp: Any = np) -> None:
+    def __init__(self, punch: Punch, u1: Any, u2: Any, xp: Any = np, full: bool = True) -> None:
         b, k0, k1, k2 = _constants(punch)
         ab, cb = u1 * u1, u2 * u2                     # a - b, c - b
         rho = 0.5 * (ab + cb)                         # h - b
@@ -117,15 +118,17 @@ class State:
         b2 = 2 * xp.arctan2(u2, xp.sqrt(2 * b + ab))  # sqrt(a + b)
         s1, c1, s2, c2 = xp.sin(b1), xp.cos(b1), xp.sin(b2), xp.cos(b2)
         self.a, self.c, self.h, self.m = b + ab, b + cb, h, m
-        self.F0 = k1 * b1 + k2 * b2 + math.pi * k0
         edges = 0.25 * h * h * (k1 * _psi(b1, xp) + k2 * _psi(b2, xp))
         self.dAP = edges + 0.5 * math.pi * k0 * rho * (2 * b + rho)
         self.AP = edges + 0.5 * math.pi * k0 * h * h
-        self.T = m * self.AP + h**3 * (k2 * s2**3 - k1 * s1**3) / 6
-        self.alpha = h * (k1 * _chi(b1, xp) - k2 * _chi(b2, xp)) / math.pi - m * k0
         sc = k1 * s1 * c1 + k2 * s2 * c2
         self.AP_m = h * (k2 * s2 - k1 * s1)
         self.AP_h = 2 * self.AP / h + h * sc
+        if not full:  # the load alone, for the inner root
+            return
+        self.F0 = k1 * b1 + k2 * b2 + math.pi * k0
+        self.T = m * self.AP + h**3 * (k2 * s2**3 - k1 * s1**3) / 6
+        self.alpha = h * (k1 * _chi(b1, xp) - k2 * _chi(b2, xp)) / math.pi - m * k0
         self.T_m = self.AP + m * self.AP_m + 0.5 * h * h * sc
         self.T_h = m * self.AP_h + 0.5 * h * h * (k2 * s2 - k1 * s1)
         self.alpha_m = -self.F0 / math.pi
@@ -138,14 +141,14 @@ def _constants(punch: Punch) -> tuple[float, float, float, float]:
     return punch.b, punch.kappa0, punch.kappa1, punch.kappa2
 
 
-def ray_state(punch: Punch, r: Any, phi: Any, xp: Any = np) -> State:
+def ray_state(punch: Punch, r: Any, phi: Any, xp: Any = np, full: bool = True) -> State:
     """:class:`State` at ``u1 = r cos(phi)``, ``u2 = r sin(phi)``.
 
     ``cos(phi)`` is evaluated as ``sin(pi/2 - phi)``: exact zeros on the
     lift-off lines, and ``u1 == u2`` to the last bit at ``phi = pi/4``, so
     that a symmetric case has ``alpha = 0`` exactly.
     """
-    return State(punch, r * xp.sin(HALF_PI - phi), r * xp.sin(phi), xp)
+    return State(punch, r * xp.sin(HALF_PI - phi), r * xp.sin(phi), xp, full)
 
 
 def _guarded_ratio(num: Any, den: Any, xp: Any) -> Any:
@@ -229,7 +232,7 @@ def solve_r(punch: Punch, dAP: Any, phi: Any, r0: Any, xp: Any = np) -> Any:
     cos2 = xp.cos(2 * phi)
 
     def fun(r: Any) -> tuple[Any, Any]:
-        st = ray_state(punch, r, phi, xp)
+        st = ray_state(punch, r, phi, xp, full=False)
         return st.dAP - dAP, r * (st.AP_h - cos2 * st.AP_m)
 
     return bracketed_root(fun, r0, 0.0 * r0, math.inf + 0.0 * r0, xp)[0]
