@@ -1,4 +1,4 @@
-"""Closed-form speed, measured side by side in one run (issue 2 targets).
+"""Closed-form speed, measured side by side in one run, against its speed targets.
 
     python benchmarks/bench_closedform.py [--cases 10000] [--json out.json]
 
@@ -17,10 +17,12 @@ import numpy as np
 from scipy.optimize import fsolve
 
 from threepart import closedform as cf
+from threepart.catalogue import get_case
 from threepart.closedform import formulas
 
-PUNCH = cf.Punch(R1=10.0, R2=5.0, b=1.0)          # case A, unequal radii (mm)
-A = cf.rigid_punch(210e3, 0.3)
+#: case A with unequal radii (mm) on steel, from the catalogue; the loads are this benchmark's own
+CASE = get_case("caseA_moment")
+PUNCH, A = CASE.punch, CASE.A
 
 
 def best_of(fn, repeat: int = 5) -> float:

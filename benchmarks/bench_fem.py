@@ -1,54 +1,22 @@
 """Time the FE model on the quick and default meshes, side by side with the closed form.
 
-Run ``python benchmarks/bench_fem.py [quick default ...]``. For each case of issue 4
-(Hertz; case A symmetric and with unequal radii and a moment; case B; case C; a
-general finite R; suppressed tilt; near lift-off) it prints the FE errors against
-``closedform.solve_normal`` at ``A = 2(1 - nu^2)/E``: ``a`` and ``c`` in units of the
-contact width W, ``alpha`` relative, both peak pressures and the interior pressure
-(5 % of W excluded at each edge) relative to the largest peak, with DOFs and times.
+Run ``python benchmarks/bench_fem.py [quick default ...]``. For each case of the
+catalogue's ``"fem"`` suite (Hertz; case A symmetric and with unequal radii and a
+moment; case B; case C; a general finite R; suppressed tilt; near lift-off) it
+prints the FE errors against ``closedform.solve_normal`` at the case's compliance
+``A = rigid_punch(E, nu)``: ``a`` and ``c`` in units of the contact width W,
+``alpha`` relative, both peak pressures and the interior pressure (5 % of W
+excluded at each edge) relative to the largest peak, with DOFs and times.
 """
 from __future__ import annotations
 
-import math
 import sys
 import time
-from dataclasses import dataclass
 
 import numpy as np
 
-from threepart import closedform
-from threepart import fem
-from threepart.closedform import Punch
-
-E, NU = 210000.0, 0.3
-A = 2 * (1 - NU**2) / E
-P = 28846.0
-
-
-@dataclass(frozen=True)
-class Case:
-    name: str
-    punch: Punch
-    s: float = 0.0
-    tilt: str = "free"
-    lift_off_fraction: float | None = None
-
-    def lever_arm(self) -> float:
-        if self.lift_off_fraction is None:
-            return self.s
-        return self.lift_off_fraction * closedform.lift_off(self.punch, P, A).s_max
-
-
-CASES = (
-    Case("hertz", Punch(10.0, 10.0, 0.0)),
-    Case("caseA_sym", Punch(10.0, 10.0, 1.0)),
-    Case("caseA_moment", Punch(10.0, 5.0, 1.0), s=0.2),
-    Case("caseB", Punch(10.0, 10.0, 1.0, R=-200.0), s=0.1),
-    Case("caseC", Punch(10.0, 5.0, 0.0), s=0.05),
-    Case("general", Punch(10.0, 6.0, 1.0, R=40.0), s=0.1),
-    Case("suppressed", Punch(10.0, 5.0, 1.0), tilt="suppressed"),
-    Case("near_lift_off", Punch(10.0, 10.0, 1.0), lift_off_fraction=0.95),
-)
+from threepart import closedform, fem
+from threepart.catalogue import load_cases
 
 
 def errors(fe, ref) -> dict[str, float]:
@@ -72,14 +40,15 @@ def errors(fe, ref) -> dict[str, float]:
 def main(meshes: list[str]) -> None:
     print(f"{'case':14s} {'mesh':8s} {'dofs':>7s} {'t_fem':>6s} {'t_cf':>7s} "
           + " ".join(f"{k:>9s}" for k in ("a/W", "c/W", "alpha", "s/W", "p_left", "p_right", "p_int")))
-    for case in CASES:
-        s = case.lever_arm()
+    for case in load_cases("fem"):
+        case = case.resolved()
+        s = case.s_load
         t0 = time.perf_counter()
-        ref = closedform.solve_normal(case.punch, P, s, A=A, tilt=case.tilt)
+        ref = closedform.solve_normal(case.punch, case.P, s, A=case.A, tilt=case.tilt)
         t_cf = time.perf_counter() - t0
         for mesh in meshes:
             t0 = time.perf_counter()
-            fe = fem.solve_normal(case.punch, P, s, E=E, nu=NU, tilt=case.tilt, mesh=mesh)
+            fe = fem.solve_normal(case.punch, case.P, s, E=case.E, nu=case.nu, tilt=case.tilt, mesh=mesh)
             t_fe = time.perf_counter() - t0
             err = errors(fe, ref)
             print(f"{case.name:14s} {mesh:8s} {fe.dofs:7d} {t_fe:6.2f} {t_cf:7.4f} "

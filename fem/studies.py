@@ -5,24 +5,22 @@ reports, for ``a``, ``c``, ``alpha`` and both peak pressures, the observed order
 and the grid-convergence index (Roache's GCI with safety factor 1.25, in the
 form of Celik et al. 2008 for non-constant refinement ratios) of the three finest
 levels. Errors against a reference solution, when one is given, are fitted with
-``np.polyfit(log h, log err, 1)``. No closed form is called here.
+``np.polyfit(log h, log err, 1)``. The tools are :mod:`threepart.convergence`'s.
+No closed form is called here.
 """
 from __future__ import annotations
 
-import math
 import time
 from dataclasses import asdict, dataclass, field
 from typing import Any, Callable, Sequence
 
-import numpy as np
-
+from threepart.convergence import fitted_order, gci, three_level_order
 from threepart.punch import Punch
 
 from .mesh import MeshPreset
 from .solve import FemResult, solve_normal
 
-__all__ = ["StudyLevel", "StudyRecord", "convergence_study", "domain_study",
-           "observed_order", "gci", "QUANTITIES"]
+__all__ = ["StudyLevel", "StudyRecord", "convergence_study", "domain_study", "QUANTITIES"]
 
 #: quantities followed by the studies
 QUANTITIES = ("a", "c", "alpha", "p_left", "p_right")
@@ -74,33 +72,6 @@ def _values(res: FemResult) -> dict[str, float]:
     return {"a": res.a, "c": res.c, "alpha": res.alpha, "p_left": left.p, "p_right": right.p}
 
 
-def observed_order(f1: float, f2: float, f3: float, r21: float, r32: float) -> float:
-    """Observed order from fine ``f1``, medium ``f2``, coarse ``f3`` (Celik et al. 2008).
-
-    ``r21 = h2/h1`` and ``r32 = h3/h2``; ``nan`` if the differences vanish or
-    the sequence is oscillatory.
-    """
-    e21, e32 = f2 - f1, f3 - f2
-    if e21 == 0 or e32 == 0 or e32 / e21 <= 0:
-        return math.nan
-    sgn = 1.0
-    p = abs(math.log(abs(e32 / e21))) / math.log(r21)
-    for _ in range(100):
-        q = math.log((r21**p - sgn) / (r32**p - sgn))
-        p_new = abs(math.log(abs(e32 / e21)) + q) / math.log(r21)
-        if abs(p_new - p) < 1e-10:
-            return p_new
-        p = p_new
-    return p
-
-
-def gci(f1: float, f2: float, r21: float, p: float, Fs: float = 1.25) -> float:
-    """Relative fine-grid convergence index ``Fs |(f2 - f1)/f1| / (r21^p - 1)``."""
-    if not math.isfinite(p) or p <= 0 or f1 == 0:
-        return math.nan
-    return Fs * abs((f2 - f1) / f1) / (r21**p - 1.0)
-
-
 def _solve(punch: Punch, P: float, s: float, E: float, nu: float, tilt: str,
            pre: MeshPreset) -> StudyLevel:
     t0 = time.perf_counter()
@@ -139,21 +110,17 @@ def convergence_study(punch: Punch, P: float, s: float = 0.0, *, E: float, nu: f
     order, index = {}, {}
     l3, l2, l1 = levels[-3:]
     for q in QUANTITIES:
-        p = observed_order(l1.values[q], l2.values[q], l3.values[q], l2.h / l1.h, l3.h / l2.h)
+        p = three_level_order(l3.values[q], l2.values[q], l1.values[q], l2.h / l1.h, l3.h / l2.h)
         order[q] = p
-        index[q] = gci(l1.values[q], l2.values[q], l2.h / l1.h, p)
+        index[q] = gci(l2.values[q], l1.values[q], l2.h / l1.h, p)
     errors, fitted = {}, {}
     if reference is not None:
         ref = reference() if callable(reference) else reference
-        h = np.array([lv.h for lv in levels])
         W = ref["a"] + ref["c"]
         for q in QUANTITIES:  # a, c in units of W; alpha and peaks relative (alpha = 0: absolute)
             scale = W if q in ("a", "c") else (abs(ref[q]) or 1.0)
-            err = [abs(lv.values[q] - ref[q]) / scale for lv in levels]
-            errors[q] = err
-            e = np.array(err)
-            fitted[q] = (float(np.polyfit(np.log(h), np.log(e), 1)[0])
-                         if np.all(e > 0) else math.nan)
+            errors[q] = [abs(lv.values[q] - ref[q]) / scale for lv in levels]
+            fitted[q] = fitted_order([lv.h for lv in levels], errors[q])[0]
     return StudyRecord("convergence", levels, order, index, fitted, errors)
 
 

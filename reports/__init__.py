@@ -3,18 +3,16 @@
 The only package that knows more than one solver: it runs the case catalogue
 through :mod:`closedform`, :mod:`sie` and :mod:`fem` and compares them.
 
-Catalogue and comparison
-------------------------
-Case            -- one case of ``cases.json``: punch, material, P, s, tilt, f, Q/fP
+The cases come from the one catalogue (:mod:`threepart.catalogue`) and the limits
+from the one tolerance table (:mod:`threepart.tolerances`).
+
+Runs and comparison
+-------------------
 CaseRun         -- every result, time, error and check of one case
-load_cases      -- read the case catalogue (``reports/cases.json``)
-get_case        -- one catalogue case by name
 run_case        -- solve one case with all three methods and compare
 MODES           -- discretisation settings of ``quick``, ``default`` and ``full``
 compare         -- method-agnostic comparison of two results, judged against the table
 Check           -- one compared quantity: values, normalised error, limit, reason, verdict
-TOLERANCES      -- the one tolerance table, ``(comparison, quantity) -> Tolerance``
-Tolerance       -- a limit and the reason for it
 
 Studies, report, figures
 ------------------------
@@ -25,10 +23,9 @@ figures_main    -- ``threepart figures``: the paper's pressure and shear figures
 """
 from __future__ import annotations
 
-from .catalogue import MODES, Case, CaseRun, get_case, load_cases, run_case
+from .catalogue import MODES, CaseRun, run_case
 from .compare import Check, compare
 from .studies import fem_study, sie_study
-from .tolerances import TOLERANCES, Tolerance
 
 
 def verify_main(mode: str = "default", out: str = "report", force: bool = False) -> int:
@@ -45,5 +42,5 @@ def figures_main(out: str = "figures", force: bool = False) -> int:
     return main(out=out, force=force)
 
 
-__all__ = ["Case", "CaseRun", "load_cases", "get_case", "run_case", "MODES", "compare", "Check",
-           "TOLERANCES", "Tolerance", "sie_study", "fem_study", "verify_main", "figures_main"]
+__all__ = ["CaseRun", "run_case", "MODES", "compare", "Check",
+           "sie_study", "fem_study", "verify_main", "figures_main"]

@@ -2,7 +2,7 @@
 
 :func:`compare` takes a reference (the closed form) and another solution of
 the same case (SIE or FEM) and returns one :class:`Check` per quantity of
-:mod:`reports.tolerances`, each already judged against the tolerance table.
+:mod:`threepart.tolerances`, each already judged against the tolerance table.
 It only uses the shared result attributes (``a``, ``c``, ``alpha``, ``P``,
 ``s``, ``pressure``, ``peaks`` and, for partial slip, ``d``, ``e``, ``shear``),
 so it never needs to know which solver made a result.
@@ -15,7 +15,8 @@ from typing import Any
 
 import numpy as np
 
-from .tolerances import NORMAL_QUANTITIES, SLIP_QUANTITIES, tolerance
+from threepart.output import json_safe
+from threepart.tolerances import NORMAL_QUANTITIES, SLIP_QUANTITIES, tolerance
 
 __all__ = ["Check", "FieldErrors", "compare", "field_errors", "sample_points", "is_slip", "normal_of",
            "EDGE_FRACTION"]
@@ -43,10 +44,10 @@ class Check:
         return bool(self.error <= self.limit)
 
     def as_dict(self) -> dict[str, Any]:
-        return {"comparison": self.comparison, "quantity": self.quantity,
-                "reference": _finite_or_none(self.reference), "obtained": _finite_or_none(self.obtained),
-                "error": _finite_or_none(self.error), "limit": self.limit,
-                "passed": self.passed, "reason": self.reason}
+        return json_safe({"comparison": self.comparison, "quantity": self.quantity,
+                          "reference": self.reference, "obtained": self.obtained,
+                          "error": self.error, "limit": self.limit,
+                          "passed": self.passed, "reason": self.reason})
 
 
 @dataclass(frozen=True)
@@ -79,10 +80,6 @@ class FieldErrors:
         num = np.trapezoid((self.other - self.ref) ** 2, self.x)
         den = np.trapezoid(self.ref**2, self.x)
         return float(np.sqrt(num / den))
-
-
-def _finite_or_none(v: float) -> float | None:
-    return float(v) if v is not None and math.isfinite(v) else None
 
 
 def is_slip(result: Any) -> bool:
@@ -185,13 +182,13 @@ def compare(ref: Any, other: Any, comparison: str) -> list[Check]:
         zone and the shear field are compared too; when only ``ref`` is (the
         FEM is frictionless) only its normal problem is compared.
     comparison
-        Row group of :data:`reports.tolerances.TOLERANCES`: ``"sie"``,
-        ``"fem-quick"`` or ``"fem-default"``.
+        Row group of :data:`threepart.tolerances.TOLERANCES`: ``"sie"``,
+        ``"fem-quick"``, ``"fem-default"`` or ``"fem-fine"``.
 
     Returns
     -------
     list of Check
-        One per quantity, in the order of :mod:`reports.tolerances`.
+        One per quantity, in the order of :data:`threepart.tolerances.QUANTITIES`.
     """
     slip = is_slip(ref) and is_slip(other)
     figures = normal_figures(normal_of(ref), normal_of(other))

@@ -19,8 +19,6 @@ against ``x/b``. With ``4PA/b`` fixed the normalised curves depend only on
 """
 from __future__ import annotations
 
-import json
-import math
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -186,19 +184,22 @@ def main(out: str | Path = "figures", force: bool = False, sie: bool = True) -> 
     """Draw the four figures (pressure and shear, sets a and b) and their numbers into ``out``.
 
     Writes ``pressure_a.png``, ``pressure_b.png``, ``shear_a.png``,
-    ``shear_b.png`` and ``figures.json`` atomically; refuses to replace an
-    existing ``out`` without ``force``. Returns 0, or 1 if a curve is not
-    admissible.
+    ``shear_b.png`` and ``figures.json`` atomically through
+    :func:`threepart.output.atomic_dir`: ``out`` must be missing or empty, or
+    with ``force`` figures that threepart wrote earlier; a directory holding
+    anything else is refused with ``OutputExistsError`` before any work.
+    Returns 0, or 1 if a curve is not admissible.
     """
-    from .verify import atomic_dir
+    from threepart.output import atomic_dir, check_out, strict_json
 
+    check_out(out, force)
     problems = check_admissible()
     for p in problems:
         print(f"threepart figures: {p}")
     if problems:
         return 1
     out = Path(out)
-    with atomic_dir(out, force) as tmp:
+    with atomic_dir(out, force, command="figures") as tmp:
         numbers: dict[str, Any] = {"about": __doc__.split("\n\n")[1], "geometry_mm": GEOMETRY,
                                    "E_MPa": E, "nu": NU, "4PA/b": LOAD_4PA_OVER_B,
                                    "Q/fP": Q_OVER_FP, "f": F, "sets": {}}
@@ -208,6 +209,6 @@ def main(out: str | Path = "figures", force: bool = False, sie: bool = True) -> 
             _draw(cs, which, "shear", tmp / f"shear_{which}.png")
             print(f"threepart figures: set ({which}) drawn: {len(cs)} curves")
             numbers["sets"][which] = figure_data(which, sie=sie)
-        (tmp / "figures.json").write_text(json.dumps(numbers, indent=1, allow_nan=False), encoding="utf-8")
+        (tmp / "figures.json").write_text(strict_json(numbers, indent=1), encoding="utf-8")
     print(f"threepart figures: wrote {out}/pressure_[ab].png, shear_[ab].png, figures.json")
     return 0

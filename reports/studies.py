@@ -3,7 +3,8 @@
 Both are measured against the closed form, so they live in :mod:`reports`.
 Each study returns a :class:`Study` of plain numbers: the errors per level, the
 observed orders fitted as ``np.polyfit(np.log(h), np.log(err), 1)``, and, for
-the FEM, Roache's grid-convergence index (GCI) of the three finest levels.
+the FEM, Roache's grid-convergence index (GCI) of the three finest levels; the
+tools are those of :mod:`threepart.convergence`.
 """
 from __future__ import annotations
 
@@ -14,18 +15,18 @@ from typing import Any, Callable, Sequence
 
 import numpy as np
 
-from threepart.sie.convergence import richardson
+from threepart.catalogue import Case
+from threepart.output import json_safe
+from threepart.convergence import fitted_order, gci, richardson, three_level_order
 
-from .catalogue import Case, Mode, solve_normal
+from .catalogue import Mode, solve_normal
 from .compare import normal_figures
 from .solvers import SOLVERS
 
-__all__ = ["Study", "observed_order", "gci", "sie_study", "fem_study", "STUDY_QUANTITIES"]
+__all__ = ["Study", "sie_study", "fem_study", "STUDY_QUANTITIES"]
 
-#: figures followed through a study (errors normalised as in reports.tolerances)
+#: figures followed through a study (errors normalised as in threepart.tolerances)
 STUDY_QUANTITIES = ("a", "c", "alpha", "p_left", "p_right", "p_interior_max")
-#: normalised errors below this are round-off and carry no order
-ROUND_OFF = 1e-13
 
 
 @dataclass
@@ -56,68 +57,11 @@ class Study:
     scheme: str = ""
 
     def as_dict(self) -> dict[str, Any]:
-        def clean(v: Any) -> Any:
-            if isinstance(v, dict):
-                return {k: clean(x) for k, x in v.items()}
-            if isinstance(v, (list, tuple)):
-                return [clean(x) for x in v]
-            if isinstance(v, float) and not math.isfinite(v):
-                return None
-            return v
-
-        return clean({"method": self.method, "scheme": self.scheme, "case": self.case, "param": self.param,
+        return json_safe({"method": self.method, "scheme": self.scheme, "case": self.case, "param": self.param,
                       "values": self.values, "labels": self.labels, "errors": self.errors,
                       "raw": self.raw, "reference": self.reference, "times": self.times,
                       "orders": self.orders, "gci": self.gci, "extrapolated": self.extrapolated,
                       "notes": self.notes})
-
-
-def observed_order(param: Sequence[float], err: Sequence[float], inverse: bool = False) -> float:
-    """Slope of ``log err`` against ``log param`` (negated when ``inverse``, for n).
-
-    Levels with a non-finite error or one at the round-off floor
-    (:data:`ROUND_OFF`, normalised) are dropped; NaN if fewer than two remain.
-    """
-    x = np.asarray(param, dtype=float)
-    y = np.asarray(err, dtype=float)
-    ok = np.isfinite(y) & (y > ROUND_OFF) & np.isfinite(x) & (x > 0)
-    if ok.sum() < 2:
-        return math.nan
-    slope = float(np.polyfit(np.log(x[ok]), np.log(y[ok]), 1)[0])
-    return -slope if inverse else slope
-
-
-def gci(f: Sequence[float], h: Sequence[float], Fs: float = 1.25) -> tuple[float, float, float]:
-    """Roache's grid-convergence index of the finest of three levels.
-
-    The observed order and the GCI are :func:`fem.studies.observed_order` and
-    :func:`fem.studies.gci` (Celik et al. 2008); the extrapolation is
-    :func:`sie.convergence.richardson`.
-
-    Parameters
-    ----------
-    f, h
-        Values and mesh sizes of three levels, coarse to fine.
-    Fs
-        Safety factor (1.25 for three grids).
-
-    Returns
-    -------
-    (p, gci_fine, f_extrapolated)
-        Observed order from the three values, the relative GCI of the finest
-        value, and the Richardson extrapolation. NaN when the three values do
-        not converge monotonically.
-    """
-    from threepart.fem.studies import gci as fine_gci
-    from threepart.fem.studies import observed_order as three_level_order
-
-    f3, f2, f1 = (float(v) for v in f[-3:])
-    h3, h2, h1 = (float(v) for v in h[-3:])
-    p = three_level_order(f1, f2, f3, h2 / h1, h3 / h2)
-    if not math.isfinite(p):
-        return math.nan, math.nan, math.nan
-    f_ext = float(richardson([1 / h2, 1 / h1], [f2, f1], p))
-    return p, fine_gci(f1, f2, h2 / h1, p, Fs), f_ext
 
 
 def _figures(ref: Any, res: Any) -> tuple[dict[str, float], dict[str, float]]:
@@ -157,18 +101,18 @@ def _run(method: str, case: Case, labels: Sequence[str], solver: Callable[[Case,
         if progress:
             where = f"{param_label} {lab}" if param_label.endswith("=") else param_label
             progress(f"{method} {param} = {st.values[-1]:.4g} ({where}): {dt:.2f} s")
-    inverse = param == "n"
     v = np.asarray(st.values, dtype=float)
-    hs = 1.0 / v if inverse else v
+    hs = 1.0 / v if param == "n" else v
     for q in STUDY_QUANTITIES:
-        st.orders[q] = observed_order(st.values, st.errors[q], inverse=inverse)
+        st.orders[q] = fitted_order(hs, st.errors[q])[0]
         if q == "p_interior_max":
             continue
         p = st.orders[q]
         if len(hs) >= 2 and math.isfinite(p) and p > 0 and hs[-2] > hs[-1]:
-            st.extrapolated[q] = float(richardson(1 / hs[-2:], st.raw[q][-2:], p))
+            st.extrapolated[q] = float(richardson(hs, st.raw[q], p))
         if len(hs) >= 3:
-            st.gci[q] = gci(st.raw[q], list(hs))[1]
+            (f3, f2, f1), (h3, h2, h1) = st.raw[q][-3:], hs[-3:]
+            st.gci[q] = gci(f2, f1, h2 / h1, three_level_order(f3, f2, f1, h2 / h1, h3 / h2))
     return st
 
 

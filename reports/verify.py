@@ -5,30 +5,29 @@ PNGs embedded as data URIs), ``report.json`` (valid against
 ``reports/report.schema.json``) and ``plots/*.png``. It is written into a
 temporary sibling directory and renamed into place only when complete, so a
 report is never half-written; an existing directory is replaced only with
-``force``. The exit status is 0 when every tolerance holds, 1 otherwise.
+``force``, and only if threepart wrote it (see :mod:`threepart.output`). The
+exit status is 0 when every tolerance holds, 1 otherwise.
 """
 from __future__ import annotations
 
 import datetime as _dt
 import json
-import math
-import os
 import platform
-import shutil
 import subprocess
 import sys
-import tempfile
 import time
-from contextlib import contextmanager
 from importlib import metadata
 from pathlib import Path
-from typing import Any, Callable, Iterator, Sequence
+from typing import Any, Callable, Sequence
+
+from threepart.catalogue import Case, load_cases
+from threepart.output import atomic_dir, json_safe, strict_json
 
 from . import render
-from .catalogue import MODES, Case, CaseRun, Mode, load_cases, run_case
+from .catalogue import MODES, CaseRun, Mode, run_case
 from .studies import Study, fem_study, sie_study
 
-__all__ = ["main", "run", "build_report", "write_report", "atomic_dir", "ReportExistsError",
+__all__ = ["main", "run", "build_report", "write_report",
            "SCHEMA_FILE", "load_schema", "validate", "STUDY_CASE", "SCHEMA_VERSION"]
 
 SCHEMA_FILE = Path(__file__).with_name("report.schema.json")
@@ -39,38 +38,6 @@ STUDY_CASE = "caseA_moment"
 SIE_SCHEMES = ("plain", "projected")
 PACKAGES = ("threepart", "numpy", "scipy", "matplotlib", "scikit-fem", "gmsh", "meshio",
             "threadpoolctl")
-
-
-class ReportExistsError(ValueError):
-    """The report directory exists and ``force`` was not given."""
-
-
-@contextmanager
-def atomic_dir(out: str | Path, force: bool = False) -> Iterator[Path]:
-    """Yield a temporary directory that replaces ``out`` only if the block succeeds.
-
-    Raises
-    ------
-    ReportExistsError
-        If ``out`` exists and ``force`` is false (checked before any work).
-    """
-    out = Path(out).absolute()
-    if out.exists() and not force:
-        raise ReportExistsError(f"`out` = {str(out)!r} exists; pass --force to overwrite it")
-    out.parent.mkdir(parents=True, exist_ok=True)
-    tmp = Path(tempfile.mkdtemp(prefix=f".{out.name}.", suffix=".tmp", dir=out.parent))
-    try:
-        yield tmp
-    except BaseException:
-        shutil.rmtree(tmp, ignore_errors=True)
-        raise
-    old = None
-    if out.exists():
-        old = out.parent / f".{out.name}.old-{os.getpid()}-{time.time_ns()}"
-        os.rename(out, old)
-    os.rename(tmp, out)
-    if old is not None:
-        shutil.rmtree(old, ignore_errors=True)
 
 
 def _versions() -> dict[str, str | None]:
@@ -93,24 +60,6 @@ def _git() -> dict[str, Any]:
         return {"commit": commit, "dirty": dirty}
     except (OSError, subprocess.SubprocessError):
         return {"commit": None, "dirty": None}
-
-
-def _clean(v: Any) -> Any:
-    """JSON-safe copy: non-finite floats become None, numpy scalars become Python numbers."""
-    if isinstance(v, dict):
-        return {str(k): _clean(x) for k, x in v.items()}
-    if isinstance(v, (list, tuple)):
-        return [_clean(x) for x in v]
-    if hasattr(v, "item") and not isinstance(v, (str, bytes)):
-        try:
-            v = v.item()
-        except (ValueError, AttributeError):
-            return str(v)
-    if isinstance(v, float):
-        return v if math.isfinite(v) else None
-    if v is None or isinstance(v, (bool, int, str)):
-        return v
-    return str(v)
 
 
 def _result_dict(res: Any, dt: float) -> dict[str, Any]:
@@ -168,7 +117,7 @@ def run(mode: Mode, cases: Sequence[Case], say: Callable[[str], None]) -> tuple[
 def build_report(mode: Mode, runs: Sequence[CaseRun], studies: Sequence[Study],
                  timings: dict[str, float], plots: dict[str, list[str]]) -> dict[str, Any]:
     """The ``report.json`` document (see ``reports/report.schema.json``)."""
-    from .tolerances import TOLERANCES
+    from threepart.tolerances import TOLERANCES
 
     checks = [c for r in runs for c in r.checks]
     failed = [f"{r.case.name}/{c.comparison}/{c.quantity}" for r in runs for c in r.failed()]
@@ -208,7 +157,7 @@ def build_report(mode: Mode, runs: Sequence[CaseRun], studies: Sequence[Study],
         "studies": [s.as_dict() for s in studies],
         "plots": plots.get("_studies", []),
     }
-    return _clean(doc)
+    return json_safe(doc)
 
 
 def load_schema() -> dict[str, Any]:
@@ -255,7 +204,7 @@ def write_report(tmp: Path, mode: Mode, runs: Sequence[CaseRun], studies: Sequen
     timings["total_s"] = timings.get("solve_s", 0.0) + timings["plots_s"]
     doc = build_report(mode, runs, studies, timings, plots)
     validate(doc)
-    (tmp / "report.json").write_text(json.dumps(doc, indent=1, allow_nan=False), encoding="utf-8")
+    (tmp / "report.json").write_text(strict_json(doc, indent=1), encoding="utf-8")
     (tmp / "report.md").write_text(render.markdown(doc), encoding="utf-8")
     (tmp / "report.html").write_text(render.html(doc, tmp), encoding="utf-8")
     say(f"report written ({time.perf_counter() - t0:.1f} s for plots and files)")
@@ -272,16 +221,25 @@ def main(mode: str = "default", out: str | Path = "report", force: bool = False,
         ``"quick"`` (quick FEM mesh, short studies), ``"default"`` or ``"full"``
         (adds the slow study levels).
     out
-        Report directory; must not exist unless ``force``.
+        Report directory: missing or empty, or with ``force`` a report that
+        threepart wrote earlier (see :func:`threepart.output.atomic_dir`).
     force
-        Replace an existing report directory.
+        Replace an earlier report; a directory holding anything threepart did
+        not write is never replaced.
     cases
         Cases to run (default: the whole catalogue).
+    quiet
+        Print no progress.
 
     Returns
     -------
     int
         0 when every check passed, 1 when a tolerance failed or a solver raised.
+
+    Raises
+    ------
+    threepart.output.OutputExistsError
+        If ``out`` may not be written; checked before any work.
     """
     if mode not in MODES:
         raise ValueError(f"`mode` = {mode!r} must be one of {sorted(MODES)}")
@@ -292,7 +250,7 @@ def main(mode: str = "default", out: str | Path = "report", force: bool = False,
         if not quiet:
             print(f"{time.perf_counter() - t0:7.1f}s  {msg}", flush=True)
 
-    with atomic_dir(out, force) as tmp:
+    with atomic_dir(out, force, command="verify") as tmp:
         m = MODES[mode]
         cases = list(load_cases() if cases is None else cases)
         say(f"threepart verify --{mode}: {len(cases)} cases, FEM mesh {m.fem_mesh!r}, report -> {out}")

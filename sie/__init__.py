@@ -1,7 +1,8 @@
 """Independent Gauss–Chebyshev singular-integral-equation solver (normal and partial slip).
 
 Solves paper eq. (integral_equation) numerically, bounded at both ends; imports
-only the punch geometry and the shared result shape from :mod:`closedform`.
+only the shared problem, result shape and errors from :mod:`threepart`; it never loads the
+closed form.
 
 Solvers
 -------
@@ -22,14 +23,16 @@ SCHEMES             -- "plain" collocation and "projected" (kink-aware) schemes
 Convergence
 -----------
 convergence_study   -- errors against a reference over a list of n, fitted order, Richardson estimate
-observed_order      -- fitted slope of log(error) against log(n)
-richardson          -- Richardson-extrapolated value from the last two n
+ConvergenceStudy    -- its result: n, values, errors, order, constant, extrapolated
 pressure_by_quadrature -- independent pointwise reference (adaptive quadrature of the inversion formula)
-TOLERANCES          -- the one table of agreement tolerances, each with its reason
+
+The fitted order and the Richardson step are :mod:`threepart.convergence`'s; the
+cases and tolerances of the SIE tests are :mod:`threepart.catalogue`'s (suite
+``"sie"``) and :mod:`threepart.tolerances`'.
 """
 from __future__ import annotations
 
-from .convergence import ConvergenceStudy, convergence_study, observed_order, richardson
+from .convergence import ConvergenceStudy, convergence_study
 from .normal import SieNormalResult, lift_off, solve_normal
 from .projection import slope_coefficients
 from .quadrature import cauchy_matrix, gauss_chebyshev
@@ -37,11 +40,9 @@ from .reference import pressure_by_quadrature
 from threepart.errors import NoConvergenceError
 from .schemes import SCHEMES
 from .slip import SieSlipResult, solve_partial_slip
-from .tolerances import TOLERANCES
 
 __all__ = [
     "solve_normal", "solve_partial_slip", "lift_off", "SieNormalResult", "SieSlipResult", "NoConvergenceError",
     "gauss_chebyshev", "cauchy_matrix", "slope_coefficients", "SCHEMES",
-    "ConvergenceStudy", "convergence_study", "observed_order", "richardson",
-    "pressure_by_quadrature", "TOLERANCES",
+    "ConvergenceStudy", "convergence_study", "pressure_by_quadrature",
 ]

@@ -1,4 +1,8 @@
-"""Convergence studies: errors over a list of ``n``, the fitted order and a Richardson estimate."""
+"""Convergence studies in ``n``: errors over a list of ``n``, the fitted order and a Richardson estimate.
+
+The tools themselves (fitted order, Richardson step) are those of
+:mod:`threepart.convergence`, with ``h = 1/n``.
+"""
 from __future__ import annotations
 
 from collections.abc import Callable, Sequence
@@ -7,7 +11,9 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
-__all__ = ["ConvergenceStudy", "convergence_study", "observed_order", "richardson"]
+from threepart.convergence import fitted_order, richardson
+
+__all__ = ["ConvergenceStudy", "convergence_study"]
 
 
 @dataclass(frozen=True)
@@ -23,11 +29,13 @@ class ConvergenceStudy:
     errors
         ``max |value - reference| / scale`` at each ``n``.
     order
-        Fitted order ``p`` of ``error ~ C n^-p``.
+        Fitted order ``p`` of ``error ~ C n^-p`` (NaN when fewer than two
+        errors lie above the round-off floor).
     constant
         Fitted ``C``.
     extrapolated
-        Richardson estimate from the two largest ``n`` with order ``order``.
+        Richardson estimate from the two largest ``n`` with order ``order``
+        (with order 1 when no order could be fitted).
     """
 
     n: np.ndarray
@@ -36,29 +44,6 @@ class ConvergenceStudy:
     order: float
     constant: float
     extrapolated: np.ndarray
-
-
-def observed_order(n: ArrayLike, err: ArrayLike) -> tuple[float, float]:
-    """Fit ``err = C n^-p`` by ``np.polyfit(log n, log err, 1)``; return ``(p, C)``.
-
-    Zero errors (exact results) are left out; with fewer than two left the
-    order is ``inf`` and ``C`` is 0.
-    """
-    n = np.asarray(n, dtype=float)
-    err = np.asarray(err, dtype=float)
-    keep = err > 0
-    if keep.sum() < 2:
-        return float("inf"), 0.0
-    slope, icpt = np.polyfit(np.log(n[keep]), np.log(err[keep]), 1)
-    return float(-slope), float(np.exp(icpt))
-
-
-def richardson(n: ArrayLike, values: ArrayLike, order: float) -> np.ndarray:
-    """Richardson extrapolation ``(n2^p v2 - n1^p v1)/(n2^p - n1^p)`` from the last two entries."""
-    n = np.asarray(n, dtype=float)
-    v = np.asarray(values, dtype=float)
-    w1, w2 = n[-2] ** order, n[-1] ** order
-    return (w2 * v[-1] - w1 * v[-2]) / (w2 - w1)
 
 
 def convergence_study(quantity: Callable[[int], ArrayLike], ns: Sequence[int],
@@ -81,7 +66,8 @@ def convergence_study(quantity: Callable[[int], ArrayLike], ns: Sequence[int],
     ref = np.asarray(reference, dtype=float)
     vals = np.array([np.asarray(quantity(int(n)), dtype=float) for n in ns])
     errs = np.array([np.max(np.abs(v - ref)) / scale for v in vals])
-    order, const = observed_order(ns, errs)
-    extra = richardson(ns, vals, order if np.isfinite(order) else 1.0)
+    h = 1.0 / np.asarray(ns, dtype=float)
+    order, const = fitted_order(h, errs)
+    extra = richardson(h, vals, order if np.isfinite(order) else 1.0)
     return ConvergenceStudy(n=np.asarray(ns), values=vals, errors=errs, order=order,
                             constant=const, extrapolated=extra)

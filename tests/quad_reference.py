@@ -18,7 +18,6 @@ import math
 import warnings
 from typing import Callable
 
-import numpy as np
 from scipy.integrate import IntegrationWarning, quad
 
 from threepart.punch import Punch

@@ -10,8 +10,9 @@ import math
 
 import pytest
 
-from threepart.reports import catalogue, figures
-from threepart.reports.catalogue import MODES, get_case, load_cases, run_case
+from threepart.catalogue import get_case, load_cases
+from threepart.reports import figures
+from threepart.reports.catalogue import MODES, run_case
 
 from .regression import check_baseline
 

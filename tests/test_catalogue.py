@@ -1,36 +1,83 @@
-"""The case catalogue is admissible and covers issue 5's list; the study helpers are right."""
+"""The one case catalogue: each suite holds what its readers need, and every case is admissible."""
 from __future__ import annotations
 
-import math
+import json
 
-import numpy as np
 import pytest
 
-from threepart import closedform
-from threepart.reports import load_cases
-from threepart.reports.studies import gci, observed_order
+from threepart import closedform, rigid_punch
+from threepart.catalogue import CASES_FILE, SUITES, get_case, load_cases, slip_loads
+from threepart.tolerances import tolerance
 
-CASES = load_cases()
+CASES = load_cases(None)
 
 
-def test_catalogue_covers_the_issue():
-    names = {c.name for c in CASES}
-    kinds = {c.punch.case for c in CASES}
-    assert {"general", "A", "B", "C", "Hertz"} <= kinds
-    assert any(c.tilt == "suppressed" for c in CASES)
-    assert any(c.s_lift_off_fraction and c.s_lift_off_fraction > 0.9 for c in CASES)
-    assert sorted(c.Q_over_fP for c in CASES if c.kind == "slip") == [0.2, 0.4, 0.7]
-    assert {"caseA_sym", "caseA_moment"} <= names
-    sym = next(c for c in CASES if c.name == "caseA_sym")
+def test_verification_suite_covers_every_punch_kind_and_load():
+    cases = load_cases("verify")
+    assert len(cases) == 11
+    assert {"general", "A", "B", "C", "Hertz"} <= {c.punch.case for c in cases}
+    assert any(c.tilt == "suppressed" for c in cases)
+    assert any(c.s_lift_off_fraction and c.s_lift_off_fraction > 0.9 for c in cases)
+    assert sorted(c.Q_over_fP for c in cases if c.kind == "slip") == [0.2, 0.4, 0.7]
+    sym = get_case("caseA_sym")
     assert sym.punch.R1 == sym.punch.R2 == 10.0 and sym.punch.b == 1.0
-    assert sym.load_4PA_over_b == pytest.approx(1.0, rel=1e-4)
+    assert sym.material == (210e3, 0.3) and sym.A == rigid_punch(210e3, 0.3)
+    assert sym.load_4PA_over_b == pytest.approx(1.0, rel=tolerance("catalogue", "paper_load").limit)
+
+
+def test_fem_suite_is_the_normal_part_of_the_verification():
+    fem = {c.name for c in load_cases("fem")}
+    verify_normal = {c.name for c in load_cases("verify") if c.kind == "normal"}
+    assert fem == verify_normal
+    assert all(c.material is not None for c in load_cases("fem")), "the FEM needs E and nu"
+
+
+def test_sie_suite_is_nondimensional():
+    cases = load_cases("sie")
+    assert len(cases) == 9
+    assert {"general", "A", "B", "C", "Hertz"} <= {c.punch.case for c in cases}
+    assert all(c.material is None for c in cases)
+    assert {c.A for c in cases} == {1.0, 1.5}
+    with pytest.raises(ValueError, match="nondimensional"):
+        _ = cases[0].E
+    loads = slip_loads("sie")
+    assert loads and all(0 < abs(q) < 1 and f > 0 for q, f in loads), "partial slip needs |Q| < fP"
+    assert {q > 0 for q, _ in loads} == {True, False}, "both directions of the shear load"
+
+
+def test_every_case_names_known_suites_and_names_are_unique():
+    raw = json.loads(CASES_FILE.read_text(encoding="utf-8"))["cases"]
+    assert len(CASES) == len(raw) == len({c["name"] for c in raw})
+    assert all(c.suites and set(c.suites) <= set(SUITES) for c in CASES)
+    with pytest.raises(ValueError, match="`suite`"):
+        load_cases("bench")
+
+
+def test_a_case_needs_one_of_material_and_compliance(tmp_path):
+    data = json.loads(CASES_FILE.read_text(encoding="utf-8"))
+    data["cases"] = [dict(data["cases"][-1], material={"E": 2.0, "nu": 0.0})]
+    data["cases"][0].pop("A")
+    ok = tmp_path / "ok.json"
+    ok.write_text(json.dumps(data))
+    assert load_cases(None, ok)[0].A == 1.0        # 2 (1 - 0) / 2
+    data["cases"][0]["A"] = 1.0
+    both = tmp_path / "both.json"
+    both.write_text(json.dumps(data))
+    with pytest.raises(ValueError, match="exactly one"):
+        load_cases(None, both)
+
+
+@pytest.mark.parametrize("case", [c for c in CASES if c.s_max is not None], ids=lambda c: c.name)
+def test_stored_lift_off_lever_arm_is_the_closed_forms(case):
+    lim = closedform.lift_off(case.punch, case.P, case.A)
+    assert case.s_max == pytest.approx(lim.s_max, rel=tolerance("catalogue", "stored_lift_off").limit)
 
 
 @pytest.mark.parametrize("case", CASES, ids=lambda c: c.name)
 def test_every_case_is_admissible(case):
     case = case.resolved()
     lim = closedform.lift_off(case.punch, case.P, case.A)
-    res = closedform.solve_normal(case.punch, case.P, case.s, A=case.A, tilt=case.tilt)
+    res = closedform.solve_normal(case.punch, case.P, case.s_load, A=case.A, tilt=case.tilt)
     assert lim.s_min < res.s < lim.s_max
     b = case.punch.b
     assert res.a > b and res.c > b
@@ -38,22 +85,3 @@ def test_every_case_is_admissible(case):
         slip = closedform.solve_partial_slip(res, case.Q, case.f)
         lo, hi = slip.stick_zone
         assert -res.a < lo < -b and b < hi < res.c, "stick zone must end in the outer segments"
-
-
-def test_observed_order_and_gci_on_a_manufactured_sequence():
-    h = np.array([0.4, 0.2, 0.1, 0.05])
-    f = 1.0 + 0.3 * h**2
-    assert observed_order(h, f - 1.0) == pytest.approx(2.0, abs=1e-12)
-    assert observed_order(1 / h, f - 1.0, inverse=True) == pytest.approx(2.0, abs=1e-12)
-    p, g, fext = gci(f, h)
-    assert p == pytest.approx(2.0, rel=1e-8)
-    assert fext == pytest.approx(1.0, rel=1e-12)
-    assert g == pytest.approx(1.25 * abs(f[-2] - f[-1]) / f[-1] / 3, rel=1e-8)
-    # unequal refinement ratios: the iteration still recovers p
-    h2 = np.array([0.3, 0.2, 0.07])
-    p2, _, fext2 = gci(1.0 + h2**2, h2)
-    assert p2 == pytest.approx(2.0, rel=1e-6) and fext2 == pytest.approx(1.0, rel=1e-9)
-    # oscillating sequence: no order
-    assert math.isnan(gci([1.0, 1.1, 1.05], [0.4, 0.2, 0.1])[0])
-    # errors at round-off carry no order
-    assert math.isnan(observed_order([8, 16, 32], [1e-16, 2e-16, 1e-16], inverse=True))

@@ -1,8 +1,10 @@
 """The ``threepart solve`` and ``threepart slip`` commands."""
 from __future__ import annotations
 
+import argparse
 import json
 import math
+import re
 import subprocess
 import sys
 
@@ -51,3 +53,156 @@ def test_console_script_runs_as_a_module():
     out = subprocess.run([sys.executable, "-m", "threepart.cli", "solve", *GEOM, "--json"],
                          capture_output=True, text=True, check=True)
     assert json.loads(out.stdout)["tilt"] == "free"
+
+
+# ---------------------------------------------------------------------------------------
+# a command line that keeps its promise: one-line errors, strict JSON, negative numbers, units
+# ---------------------------------------------------------------------------------------
+def _refuse(name):
+    raise ValueError(f"not strict JSON: {name}")
+
+
+def _one_line_error(capsys, command="solve"):
+    cap = capsys.readouterr()
+    assert cap.err.count("\n") == 1, cap.err
+    assert cap.err.startswith(f"threepart {command}: error: ") and "Traceback" not in cap.err
+    return cap.err
+
+
+@pytest.mark.parametrize("args,match", [
+    (["--P", "-1"], r"`P` = -1\.0 must be"),
+    (["--P", "abc"], r"argument --P: invalid float value: 'abc'"),
+    (["--P", "400", "--R1", "0"], r"`R1` = 0\.0 must be > 0"),
+    (["--P", "400", "--bogus", "1"], r"unrecognized arguments: --bogus 1"),
+    (["--P", "400", "--tilt", "sideways"], r"argument --tilt: invalid choice: 'sideways'"),
+    (["--P"], r"argument --P: expected one argument"),
+])
+def test_every_input_error_is_one_line_with_exit_status_2(capsys, args, match):
+    base = ["--R1", "10", "--R2", "5", "--b", "1", "--E", "210000", "--nu", "0.3", "--rigid"]
+    assert main(["solve", *base, *args]) == 2
+    assert re.search(match, _one_line_error(capsys))
+
+
+def test_a_missing_command_is_a_one_line_usage_error(capsys):
+    assert main([]) == 2
+    err = capsys.readouterr().err
+    assert err == ("threepart: error: the following arguments are required: command "
+                   "(see `threepart --help`)\n")
+
+
+@pytest.mark.parametrize("error", ["NoConvergenceError", "ContactZoneError"])
+def test_a_solver_that_fails_gives_one_line_and_exit_status_2(capsys, monkeypatch, error):
+    import threepart.closedform
+    from threepart import errors
+
+    def fail(*a, **k):
+        raise getattr(errors, error)("the root did not close\nafter 100 steps")
+
+    monkeypatch.setattr(threepart.closedform, "solve_normal", fail)
+    assert main(["solve", *GEOM]) == 2
+    assert "error: the root did not close after 100 steps" in _one_line_error(capsys)
+
+
+def test_an_os_error_gives_one_line_and_exit_status_2(capsys):
+    assert main(["verify", "--quick", "--out", "/proc/x"]) == 2
+    assert "cannot write `out` = '/proc/x'" in _one_line_error(capsys, "verify")
+
+
+def test_ctrl_c_prints_one_line_and_exits_130(capsys, monkeypatch):
+    import threepart.closedform
+
+    def interrupted(*a, **k):
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(threepart.closedform, "solve_normal", interrupted)
+    try:
+        status = main(["solve", *GEOM])
+    except KeyboardInterrupt:
+        pytest.fail("KeyboardInterrupt escaped main()")
+    assert status == 130
+    assert capsys.readouterr().err == "threepart solve: interrupted\n"
+
+
+def test_help_still_works_and_documents_units_and_null(capsys):
+    assert main(["solve", "--help"]) == 0
+    text = " ".join(capsys.readouterr().out.split())
+    assert "[N/mm]" in text and "[mm]" in text and "any consistent set" in text
+    assert "an infinite R (flat centre) is null" in text
+    assert main(["--help"]) == 0
+    assert "1/MPa" in capsys.readouterr().out
+
+
+def test_usage_error_of_the_console_script_is_one_line():
+    out = subprocess.run([sys.executable, "-m", "threepart", "solve", "--P", "abc"],
+                         capture_output=True, text=True)
+    assert out.returncode == 2 and out.stdout == ""
+    assert out.stderr.count("\n") == 1 and out.stderr.startswith("threepart solve: error: ")
+
+
+def test_json_is_strict_and_an_infinite_R_is_null(capsys):
+    assert main(["solve", *GEOM, "--json"]) == 0
+    out = json.loads(capsys.readouterr().out, parse_constant=_refuse)
+    assert out["punch"]["R"] is None and out["punch"]["case"] == "A"
+    assert out["units"]["a"] == "mm" and out["units"]["P"] == "N/mm" and out["units"]["alpha"] == "rad"
+    assert out["units"]["p"] == "MPa" and out["units"]["A"] == "1/MPa"
+
+
+@pytest.mark.parametrize("option,value", [("--s", "-0.1"), ("--s", "-1e-3"), ("--R", "-200"),
+                                          ("--Q", "-80"), ("--s", "-.05")])
+def test_a_negative_number_may_follow_its_option(capsys, option, value):
+    args = ["slip", "--R1", "10", "--R2", "5", "--b", "1", "--E", "210000", "--nu", "0.3", "--rigid",
+            "--P", "2000", "--Q", "80", "--f", "0.5", "--json"]
+    assert main([*args, "--s", "0.1", option, value]) == 0
+    separate = json.loads(capsys.readouterr().out)
+    assert main([*args, "--s", "0.1", f"{option}={value}"]) == 0
+    assert separate == json.loads(capsys.readouterr().out)
+    key = {"--s": "s", "--Q": "Q"}.get(option)
+    got = separate["punch"]["R"] if option == "--R" else separate[key]
+    assert got == float(value)
+
+
+def test_every_number_option_accepts_a_negative_value():
+    from threepart.cli import NUMERIC_OPTIONS, build_parser
+
+    parser = build_parser()
+    subs = next(a for a in parser._actions if isinstance(a, argparse._SubParsersAction))
+    numeric = {o for p in subs.choices.values() for a in p._actions if a.type is float
+               for o in a.option_strings}
+    assert numeric == set(NUMERIC_OPTIONS)
+
+
+UNIT_LABELS = {"mm", "N/mm", "MPa", "1/MPa", "rad", "(dimensionless)"}
+
+
+@pytest.mark.parametrize("command", ["solve", "slip"])
+def test_every_number_in_the_text_output_carries_its_unit(capsys, command):
+    extra = ["--Q", "80", "--f", "0.5"] if command == "slip" else []
+    assert main([command, *GEOM, "--s", "0.1", *extra]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    numbers = 0
+    for line in lines:
+        tokens = line.split()
+        if len(tokens) >= 2 and re.fullmatch(r"[-+]?(\d[\d.e+-]*|inf)", tokens[1]):
+            numbers += 1
+            assert len(tokens) == 3 and tokens[2] in UNIT_LABELS, line
+    assert numbers == (22 if command == "slip" else 16)
+    if command == "slip":
+        assert "f          0.5 (dimensionless)" in lines
+    assert "  R          inf mm" in lines
+
+
+def test_json_units_name_every_number(capsys):
+    from threepart.cli import UNITS
+
+    assert main(["slip", *GEOM, "--s", "0.1", "--Q", "80", "--f", "0.5", "--json"]) == 0
+    out = json.loads(capsys.readouterr().out, parse_constant=_refuse)
+    units = out.pop("units")
+
+    def keys(d):
+        for k, v in d.items():
+            if isinstance(v, dict):
+                yield from keys(v)
+            elif isinstance(v, (int, float)) and not isinstance(v, bool) or v is None:
+                yield k
+
+    assert set(keys(out)) == set(units) and all(units[k] == UNITS[k] for k in units)

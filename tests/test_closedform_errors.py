@@ -6,11 +6,12 @@ import math
 import numpy as np
 import pytest
 
+from threepart import rigid_punch
 from threepart import closedform as cf
 from threepart.closedform import Punch
 from tests import quad_reference as ref
 
-A = 2 * (1 - 0.3**2) / 210e3
+A = rigid_punch(210e3, 0.3)   # rigid punch, steel half-plane, N and mm
 
 
 @pytest.mark.parametrize("kwargs,match", [

@@ -8,11 +8,12 @@ import pytest
 from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
 
+from threepart import rigid_punch
 from threepart import closedform as cf
 from threepart.closedform import Punch, formulas
 from tests import quad_reference as ref
 
-A = 2 * (1 - 0.3**2) / 210e3   # rigid punch, steel half-plane, N and mm
+A = rigid_punch(210e3, 0.3)   # rigid punch, steel half-plane, N and mm
 
 
 def _moments(sol):

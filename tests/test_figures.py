@@ -5,21 +5,22 @@ import json
 
 import pytest
 
+from threepart.output import MARKER, OutputExistsError, read_marker
 from threepart.reports import figures
-from threepart.reports.verify import ReportExistsError
 
 
 def test_figures_are_written_once(tmp_path):
     out = tmp_path / "figs"
     assert figures.main(out=out, sie=False) == 0
-    names = sorted(p.name for p in out.iterdir())
+    names = sorted(p.name for p in out.iterdir() if p.name != MARKER)
     assert names == ["figures.json", "pressure_a.png", "pressure_b.png", "shear_a.png", "shear_b.png"]
+    assert sorted(read_marker(out)["files"]) == names    # the marker lists exactly what was written
     data = json.loads((out / "figures.json").read_text())
     assert data["4PA/b"] == 1.0 and set(data["sets"]) == {"a", "b"}
     # set (a): the right peak grows and the left one falls with the clockwise moment (paper, Results)
     a = data["sets"]["a"]
     assert a["p_right"] == sorted(a["p_right"]) and a["p_left"] == sorted(a["p_left"], reverse=True)
-    with pytest.raises(ReportExistsError, match="--force"):
+    with pytest.raises(OutputExistsError, match="--force"):
         figures.main(out=out, sie=False)
     assert figures.main(out=out, force=True, sie=False) == 0
     assert sorted(p.name for p in tmp_path.iterdir()) == ["figs"]

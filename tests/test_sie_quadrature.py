@@ -12,6 +12,11 @@ from threepart.punch import Punch
 from threepart.sie.projection import ramp_coefficients, slope_coefficients
 from threepart.sie.quadrature import cauchy_matrix, gauss_chebyshev, plain_functionals
 from threepart.sie.series import log_kink, sine_series
+from threepart.tolerances import tolerance
+
+
+def tol(quantity: str) -> float:
+    return tolerance("sie-quadrature", quantity).limit
 
 
 def moment(j: int) -> float:
@@ -22,19 +27,19 @@ def moment(j: int) -> float:
 @pytest.mark.parametrize("n", [2, 3, 10, 57, 200])
 def test_weights_sum_to_half_pi(n):
     rule = gauss_chebyshev(n)
-    assert rule.weights.sum() == pytest.approx(np.pi / 2, rel=1e-14)
+    assert rule.weights.sum() == pytest.approx(np.pi / 2, rel=tol("weights"), abs=0)
     assert np.all(rule.weights > 0)
-    np.testing.assert_allclose(np.sin((n + 1) * np.arccos(rule.nodes)), 0, atol=1e-10)  # zeros of U_n
-    np.testing.assert_allclose(np.cos((n + 1) * np.arccos(rule.collocation)), 0, atol=1e-10)  # of T_{n+1}
+    np.testing.assert_allclose(np.sin((n + 1) * np.arccos(rule.nodes)), 0, atol=tol("nodes"))  # zeros of U_n
+    np.testing.assert_allclose(np.cos((n + 1) * np.arccos(rule.collocation)), 0, atol=tol("nodes"))  # of T_{n+1}
 
 
 @pytest.mark.parametrize("n", [2, 5, 12])
 def test_exactness_degree_is_2n_minus_1(n):
     rule = gauss_chebyshev(n)
     for j in range(2 * n):
-        assert rule.weights @ rule.nodes**j == pytest.approx(moment(j), abs=1e-14), j
+        assert rule.weights @ rule.nodes**j == pytest.approx(moment(j), abs=tol("exactness")), j
     err = abs(rule.weights @ rule.nodes ** (2 * n) - moment(2 * n))
-    assert err > 1e-6 * moment(2 * n), "rule should not be exact beyond degree 2n - 1"
+    assert err > tol("beyond_degree") * moment(2 * n), "rule should not be exact beyond degree 2n - 1"
 
 
 @pytest.mark.parametrize("n", [3, 8, 20])
@@ -44,7 +49,7 @@ def test_cauchy_matrix_maps_U_to_T(n):
     K = cauchy_matrix(rule)
     th, ts = np.arccos(rule.nodes), np.arccos(rule.collocation)
     for k in range(1, n + 1):
-        np.testing.assert_allclose(K @ (np.sin(k * th) / np.sin(th)), np.cos(k * ts), atol=1e-13)
+        np.testing.assert_allclose(K @ (np.sin(k * th) / np.sin(th)), np.cos(k * ts), atol=tol("cauchy"))
 
 
 def test_cauchy_matrix_against_adaptive_principal_value():
@@ -54,7 +59,7 @@ def test_cauchy_matrix_against_adaptive_principal_value():
     got = K @ np.exp(rule.nodes)
     ref = [-quad(lambda t: math.sqrt(1 - t * t) * math.exp(t), -1, 1, weight="cauchy", wvar=s,
                  epsabs=1e-14)[0] / np.pi for s in rule.collocation]
-    np.testing.assert_allclose(got, ref, atol=1e-12)
+    np.testing.assert_allclose(got, ref, atol=tol("principal_value"))
 
 
 def test_plain_functionals_give_chebyshev_coefficients_of_a_polynomial():
@@ -63,7 +68,7 @@ def test_plain_functionals_give_chebyshev_coefficients_of_a_polynomial():
     fun = plain_functionals(n)
     coef = np.array([0.3, -1.2, 0.7, 0.25, -0.1])
     vals = np.polynomial.chebyshev.chebval(fun.rule.collocation, coef)
-    np.testing.assert_allclose(fun.rows @ vals, coef[:3], atol=1e-13)
+    np.testing.assert_allclose(fun.rows @ vals, coef[:3], atol=tol("functionals"))
 
 
 @pytest.mark.filterwarnings("ignore::scipy.integrate.IntegrationWarning")
@@ -72,14 +77,15 @@ def test_ramp_coefficients_against_quadrature(beta):
     tb = math.acos(beta)
     ref = [(1 if k == 0 else 2) / np.pi * quad(lambda t: max(math.cos(t) - beta, 0) * math.cos(k * t),
                                               0, np.pi, points=[tb], epsabs=1e-15, limit=200)[0] for k in range(12)]
-    np.testing.assert_allclose(ramp_coefficients(beta, np.arange(12)), ref, atol=1e-15)
+    np.testing.assert_allclose(ramp_coefficients(beta, np.arange(12)), ref, atol=tol("ramp"))
 
 
 def test_ramp_coefficients_outside_the_interval():
     np.testing.assert_array_equal(ramp_coefficients(1.5, np.arange(4)), 0)
     np.testing.assert_allclose(ramp_coefficients(-1.5, np.arange(4)), [1.5, 1, 0, 0])
     # continuous at β = ±1
-    np.testing.assert_allclose(ramp_coefficients(-1 + 1e-13, np.arange(6)), [1, 1, 0, 0, 0, 0], atol=1e-6)
+    np.testing.assert_allclose(ramp_coefficients(-1 + 1e-13, np.arange(6)), [1, 1, 0, 0, 0, 0],
+                               atol=tol("ramp_continuity"))
 
 
 def test_slope_coefficients_and_gradient():
@@ -89,26 +95,26 @@ def test_slope_coefficients_and_gradient():
     kinks = [math.acos((punch.b - m) / h), math.acos((-punch.b - m) / h)]
     ref = [(1 if k == 0 else 2) / np.pi * quad(lambda t: float(punch.slope(m + h * math.cos(t))) * math.cos(k * t),
                                               0, np.pi, points=kinks, epsabs=1e-15)[0] for k in range(7)]
-    np.testing.assert_allclose(G, ref, atol=1e-14)
+    np.testing.assert_allclose(G, ref, atol=tol("slope"))
     eps = 1e-6
     fd_m = (slope_coefficients(punch, m + eps, h, 6)[0] - slope_coefficients(punch, m - eps, h, 6)[0]) / (2 * eps)
     fd_h = (slope_coefficients(punch, m, h + eps, 6)[0] - slope_coefficients(punch, m, h - eps, 6)[0]) / (2 * eps)
-    np.testing.assert_allclose(dm, fd_m, atol=1e-8)
-    np.testing.assert_allclose(dh, fd_h, atol=1e-8)
+    np.testing.assert_allclose(dm, fd_m, atol=tol("slope_gradient"))
+    np.testing.assert_allclose(dh, fd_h, atol=tol("slope_gradient"))
 
 
 def test_log_kink_sums_its_series():
     phi = np.array([0.05, 1.0, 2.5, -0.7, 4.0, 0.0])
     k = np.arange(2, 400001, dtype=float)
     direct = [np.sum(np.sin(k * p) / (k**2 - 1)) for p in phi]
-    np.testing.assert_allclose(log_kink(phi), direct, atol=1e-10)
+    np.testing.assert_allclose(log_kink(phi), direct, atol=tol("log_kink"))
 
 
 def test_sine_series_matches_direct_sum():
     g = np.random.default_rng(1).normal(size=40)
     th = np.linspace(0, np.pi, 17)
     direct = np.sin(np.outer(th, np.arange(1, 41))) @ g
-    np.testing.assert_allclose(sine_series(g, th), direct, atol=1e-12)
+    np.testing.assert_allclose(sine_series(g, th), direct, atol=tol("sine_series"))
 
 
 @pytest.mark.parametrize("n", [1, 0, 2.5, True])

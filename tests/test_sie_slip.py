@@ -7,14 +7,21 @@ import numpy as np
 import pytest
 
 from threepart import sie
+from threepart.catalogue import load_cases, slip_loads
 from threepart.punch import Punch
-from threepart.sie.cases import CASES, SLIP_LOADS
-from threepart.sie.tolerances import TOLERANCES as TOL
+from threepart.reports.compare import compare
+from threepart.tolerances import tolerance
+
+CASES = {c.name: c.resolved() for c in load_cases("sie")}
+
+
+def tol(comparison: str, quantity: str) -> float:
+    return tolerance(comparison, quantity).limit
 
 
 @pytest.fixture(scope="module")
 def normal_A():
-    k = CASES["A"]
+    k = CASES["nd_A"]
     return sie.solve_normal(k.punch, k.P, k.s, A=k.A)
 
 
@@ -25,8 +32,9 @@ def test_hertz_stick_zone_is_exact(scheme):
     normal = sie.solve_normal(Punch(R, R, 0.0), P, 0.2, A=1.0, n=8, scheme=scheme)
     r = sie.solve_partial_slip(normal, Q, f)
     h = 0.5 * (normal.a + normal.c)
-    assert r.d == pytest.approx(h * math.sqrt(1 - abs(Q) / (f * P)), rel=1e-13)
-    assert r.e == pytest.approx(-0.2, rel=1e-13)
+    exact = tol("sie-exact", "hertz")
+    assert r.d == pytest.approx(h * math.sqrt(1 - abs(Q) / (f * P)), rel=exact, abs=0)
+    assert r.e == pytest.approx(-0.2, rel=exact, abs=0)
     assert r.n == 8 and r.info["scheme"] == scheme
 
 
@@ -36,26 +44,29 @@ def test_shear_integrates_to_Q_and_obeys_coulomb(normal_A, Q):
     r = sie.solve_partial_slip(normal_A, Q, f)
     x = np.linspace(-normal_A.a, normal_A.c, 20001)
     q, p = r.shear(x), normal_A.pressure(x)
-    assert np.trapezoid(q, x) == pytest.approx(Q, rel=1e-6)
+    assert np.trapezoid(q, x) == pytest.approx(Q, rel=tol("sie-identity", "shear_load"), abs=0)
     assert np.all(np.sign(q[np.abs(q) > 1e-12]) == np.sign(Q))
-    assert np.all(np.abs(q) <= f * p + 1e-9 * p.max())  # |q| <= f p everywhere
+    assert np.all(np.abs(q) <= f * p + tol("sie-identity", "coulomb") * p.max())  # |q| <= f p everywhere
     lo, hi = r.stick_zone
     slip = (x < lo) | (x > hi)
-    np.testing.assert_allclose(np.abs(q[slip]), f * p[slip], atol=1e-14)
+    np.testing.assert_allclose(np.abs(q[slip]), f * p[slip], rtol=0,
+                               atol=tol("sie-exact", "slip_zone_shear") * p.max())
     assert normal_A.a > r.d + r.e and r.d - r.e < normal_A.c
 
 
 def test_zero_shear_sticks_everywhere(normal_A):
     r = sie.solve_partial_slip(normal_A, 0.0, 0.5)
-    assert r.stick_zone == pytest.approx((-normal_A.a, normal_A.c), rel=1e-13)
+    assert r.stick_zone == pytest.approx((-normal_A.a, normal_A.c), rel=tol("sie-exact", "zero_shear"), abs=0)
     assert np.all(r.shear(np.linspace(-1, 1, 7)) == 0)
 
 
 def test_stick_zone_of_plain_scheme_converges(normal_A):
+    k = CASES["nd_A"]
     ref = sie.solve_partial_slip(normal_A, 0.3, 0.6)
-    normal = sie.solve_normal(CASES["A"].punch, 1.0, 0.1, A=1.0, n=512, scheme="plain")
+    normal = sie.solve_normal(k.punch, k.P, k.s, A=k.A, n=512, scheme="plain")
     r = sie.solve_partial_slip(normal, 0.3, 0.6)
-    assert r.d == pytest.approx(ref.d, rel=1e-5) and r.e == pytest.approx(ref.e, abs=1e-5 * ref.d)
+    plain = tol("sie-plain", "stick_zone")
+    assert r.d == pytest.approx(ref.d, rel=plain, abs=0) and r.e == pytest.approx(ref.e, abs=plain * ref.d)
 
 
 @pytest.mark.parametrize("Q, f, match", [
@@ -81,17 +92,16 @@ def test_normal_must_be_a_result():
 
 
 # -- agreement with the closed form -----------------------------------------------------
-def check_slip_agreement(s_r, c_r) -> None:
-    x = np.linspace(-c_r.a, c_r.c, 801)
-    q = c_r.shear(x)
-    err = {"stick_rel": max(abs(s_r.d - c_r.d), abs(s_r.e - c_r.e)) / c_r.d,
-           "pressure_peak": float(np.abs(s_r.shear(x) - q).max() / np.abs(q).max())}
-    bad = {k: v for k, v in err.items() if not v <= TOL[k].value}
+def check_slip_agreement(s_r, c_r) -> list:
+    """Judge the SIE slip result with the verification run's comparator and ``("sie", q)`` tolerances."""
+    checks = compare(c_r, s_r, "sie")
+    bad = {c.quantity: f"{c.error:.1e} > {c.limit:g}" for c in checks if not c.passed}
     assert not bad, f"SIE stick zone disagrees with closedform: {bad}"
+    return checks
 
 
-@pytest.mark.parametrize("name", [k for k in CASES if k != "near_lift_off"])
-@pytest.mark.parametrize("load", SLIP_LOADS)
+@pytest.mark.parametrize("name", [k for k in CASES if k != "nd_near_lift_off"])
+@pytest.mark.parametrize("load", slip_loads("sie"))
 def test_agreement_with_closed_form(name, load):
     from threepart import closedform as cf
     k = CASES[name]
@@ -107,7 +117,7 @@ def test_agreement_with_closed_form(name, load):
 
 def test_near_lift_off_stick_zone_is_refused_by_both():
     from threepart import closedform as cf
-    k = CASES["near_lift_off"]
+    k = CASES["nd_near_lift_off"]
     s_n = sie.solve_normal(k.punch, k.P, k.s, A=k.A)
     with pytest.raises(ValueError, match="central segment"):
         sie.solve_partial_slip(s_n, 0.1, 0.7)
@@ -117,8 +127,8 @@ def test_near_lift_off_stick_zone_is_refused_by_both():
 
 def test_perturbed_stick_zone_fails_the_agreement_check():
     from threepart import closedform as cf
-    k = CASES["A"]
+    k = CASES["nd_A"]
     c_n = cf.solve_normal(k.punch, k.P, k.s, A=k.A)
     wrong_n = sie.solve_normal(k.punch, k.P, k.s, A=k.A * (1 + 1e-7))
-    with pytest.raises(AssertionError, match="disagrees"):
+    with pytest.raises(AssertionError, match="disagrees.*'d'"):
         check_slip_agreement(sie.solve_partial_slip(wrong_n, 0.2, 0.7), cf.solve_partial_slip(c_n, 0.2, 0.7))

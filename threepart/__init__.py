@@ -12,6 +12,15 @@ fem                 -- independent finite-element model (scikit-fem on gmsh mesh
 meshes              -- gmsh mesh builders and the mesh manifest
 reports             -- the verification run: comparison, tolerance report, baselines
 
+Shared modules
+--------------
+catalogue           -- the one case catalogue (cases.json): verify, fem and sie suites
+tolerances          -- the one tolerance table, with a physical reason per entry
+convergence         -- fitted and three-level observed orders, GCI, Richardson step
+output              -- atomic, marked output directories; strict JSON
+validate            -- the input checks behind every entry point's ``_*_iv`` helper
+cli                 -- the ``threepart`` command line
+
 Problem
 -------
 Punch               -- three-part punch (R1, R2, b, R), profile v(x) and slope v'(x), eq. (2)

@@ -1,0 +1,188 @@
+"""The one case catalogue: ``threepart/cases.json`` read into :class:`Case` records.
+
+Every test, benchmark and the verification run take their cases from here; a
+case's ``suites`` says who uses it (``"verify"``, ``"fem"``, ``"sie"``, see the
+file's ``"about"``). Inputs only, no solution: a case exposes its numbers, and
+the solvers are called elsewhere (:mod:`threepart.reports.catalogue`).
+
+The one closed-form call is the lazy lift-off range in :meth:`Case.resolved`,
+for a case given as a fraction of its lift-off lever arm; a case that the SIE
+or the FEM reads alone stores that lever arm, so they never load the closed form.
+"""
+from __future__ import annotations
+
+import json
+import math
+from dataclasses import dataclass, replace
+from pathlib import Path
+from typing import Any
+
+from .material import rigid_punch
+from .punch import Punch
+
+__all__ = ["Case", "CASES_FILE", "SUITES", "load_cases", "get_case", "slip_loads"]
+
+CASES_FILE = Path(__file__).with_name("cases.json")
+#: who reads a case: the verification run, the FEM tests and benchmark, the SIE tests and benchmark
+SUITES = ("verify", "fem", "sie")
+
+
+@dataclass(frozen=True)
+class Case:
+    """One case of the catalogue: punch, material or compliance, loads and (for partial slip) Q and f.
+
+    Exactly one of ``material`` (``(E, nu)`` of the elastic half-plane under a
+    rigid punch) and ``compliance`` (``A`` itself, for a nondimensional case)
+    is given. ``s`` is the lever arm; when ``s_lift_off_fraction`` is set
+    instead, :meth:`resolved` computes ``s`` from the lift-off range, using the
+    stored lift-off lever arm ``s_max`` when there is one.
+    """
+
+    name: str
+    description: str
+    punch: Punch
+    P: float
+    material: tuple[float, float] | None = None
+    compliance: float | None = None
+    s: float | None = 0.0
+    tilt: str = "free"
+    s_lift_off_fraction: float | None = None
+    s_max: float | None = None
+    f: float | None = None
+    Q_over_fP: float | None = None
+    suites: tuple[str, ...] = ()
+
+    def __post_init__(self) -> None:
+        if (self.material is None) == (self.compliance is None):
+            raise ValueError(f"case {self.name!r} needs exactly one of `material` (E, nu) and `A`")
+
+    @property
+    def E(self) -> float:
+        """Young's modulus of the half-plane; ``ValueError`` for a nondimensional case."""
+        return self._material()[0]
+
+    @property
+    def nu(self) -> float:
+        """Poisson's ratio of the half-plane; ``ValueError`` for a nondimensional case."""
+        return self._material()[1]
+
+    def _material(self) -> tuple[float, float]:
+        if self.material is None:
+            raise ValueError(f"case {self.name!r} is nondimensional: it gives `A`, not a material (E, nu)")
+        return self.material
+
+    @property
+    def A(self) -> float:
+        """Compliance of eq. (4): the given ``A``, or a rigid punch on the half-plane (E, nu)."""
+        if self.compliance is not None:
+            return self.compliance
+        return rigid_punch(*self._material())
+
+    @property
+    def kind(self) -> str:
+        """``"slip"`` when a shear load is applied, else ``"normal"``."""
+        return "slip" if self.Q_over_fP is not None else "normal"
+
+    @property
+    def Q(self) -> float | None:
+        """Shear force ``Q = (Q/fP) f P``."""
+        if self.Q_over_fP is None or self.f is None:
+            return None
+        return self.Q_over_fP * self.f * self.P
+
+    @property
+    def load_4PA_over_b(self) -> float:
+        """The paper's dimensionless load ``4PA/b`` (inf for b = 0)."""
+        return 4 * self.P * self.A / self.punch.b if self.punch.b > 0 else math.inf
+
+    @property
+    def shear_load(self) -> tuple[float, float]:
+        """``(Q, f)`` of a partial-slip case; ``ValueError`` for a normal case."""
+        if self.Q is None or self.f is None:
+            raise ValueError(f"case {self.name!r} has no shear load (`Q_over_fP` and `f`)")
+        return self.Q, self.f
+
+    @property
+    def s_load(self) -> float:
+        """The lever arm passed to a solver: ``s``, or 0 when the tilt is suppressed (``s*`` is returned)."""
+        return 0.0 if self.tilt == "suppressed" else float(self.s or 0.0)
+
+    def normal_key(self) -> tuple[Any, ...]:
+        """Cases with equal keys share one normal problem (partial slip reuses it)."""
+        return (self.punch, self.material, self.compliance, self.P, self.s, self.tilt)
+
+    def resolved(self) -> Case:
+        """This case with ``s`` a number (from the lift-off fraction if one is given)."""
+        frac = self.s_lift_off_fraction
+        if frac is None:
+            return self
+        if frac >= 0 and self.s_max is not None:
+            return replace(self, s=frac * self.s_max)
+        from threepart import closedform
+
+        lim = closedform.lift_off(self.punch, self.P, self.A)
+        s = frac * (lim.s_max if frac >= 0 else -lim.s_min)
+        return replace(self, s=float(s))
+
+    def as_dict(self) -> dict[str, Any]:
+        """Plain dict of the case (JSON-ready; ``R = inf`` and ``4PA/b = inf`` as None)."""
+        p = self.punch
+        E, nu = self.material if self.material is not None else (None, None)
+        return {"name": self.name, "description": self.description, "kind": self.kind,
+                "punch": {"R1": p.R1, "R2": p.R2, "b": p.b, "R": None if math.isinf(p.R) else p.R,
+                          "case": p.case},
+                "E": E, "nu": nu, "A": self.A, "P": self.P, "s": self.s, "tilt": self.tilt,
+                "s_lift_off_fraction": self.s_lift_off_fraction, "load_4PA_over_b":
+                    None if math.isinf(self.load_4PA_over_b) else self.load_4PA_over_b,
+                "f": self.f, "Q_over_fP": self.Q_over_fP, "Q": self.Q}
+
+
+def _read(path: str | Path | None) -> dict[str, Any]:
+    data: dict[str, Any] = json.loads(Path(path or CASES_FILE).read_text(encoding="utf-8"))
+    return data
+
+
+def _case(c: dict[str, Any], default_material: dict[str, float]) -> Case:
+    pd = dict(c["punch"])
+    R = pd.pop("R", None)
+    punch = Punch(R=math.inf if R is None else float(R), **pd)
+    mat = c.get("material", None if "A" in c else default_material)
+    material = None if mat is None else (float(mat["E"]), float(mat["nu"]))
+    compliance = float(c["A"]) if "A" in c else None
+    return Case(name=c["name"], description=c.get("description", ""), punch=punch, P=float(c["P"]),
+                material=material, compliance=compliance,
+                s=c.get("s", None if "s_lift_off_fraction" in c else 0.0), tilt=c.get("tilt", "free"),
+                s_lift_off_fraction=c.get("s_lift_off_fraction"), s_max=c.get("s_max"),
+                f=c.get("f"), Q_over_fP=c.get("Q_over_fP"), suites=tuple(c["suites"]))
+
+
+def load_cases(suite: str | None = "verify", path: str | Path | None = None) -> list[Case]:
+    """The cases of ``suite`` (default: the verification run's; None: every case), in file order.
+
+    ``path`` reads another catalogue file of the same layout (default :data:`CASES_FILE`).
+    """
+    if suite is not None and suite not in SUITES:
+        raise ValueError(f"`suite` = {suite!r} is not one of {SUITES}")
+    data = _read(path)
+    cases = [_case(c, data["material"]) for c in data["cases"]]
+    names = [c.name for c in cases]
+    if len(set(names)) != len(names):
+        raise ValueError(f"case names in {path or CASES_FILE} are not unique: {names}")
+    unknown = {s for c in cases for s in c.suites} - set(SUITES)
+    if unknown:
+        raise ValueError(f"unknown suites {sorted(unknown)} in {path or CASES_FILE}")
+    return [c for c in cases if suite is None or suite in c.suites]
+
+
+def get_case(name: str, path: str | Path | None = None) -> Case:
+    """The catalogue case called ``name``, whatever its suites."""
+    for c in load_cases(None, path):
+        if c.name == name:
+            return c
+    raise KeyError(f"no case {name!r} in the catalogue")
+
+
+def slip_loads(suite: str = "sie", path: str | Path | None = None) -> tuple[tuple[float, float], ...]:
+    """The ``(Q/fP, f)`` pairs applied to every case of ``suite`` in its partial-slip comparison."""
+    loads = _read(path)["slip_loads"].get(suite, [])
+    return tuple((float(q), float(f)) for q, f in loads)

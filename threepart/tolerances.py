@@ -1,0 +1,215 @@
+"""The one tolerance table of threepart, keyed ``(comparison, quantity)``, each entry with its reason.
+
+The verification run, the tests and the benchmarks read their limits here and
+nowhere else. The reasons give the measured figure where it is known.
+
+Comparisons of the verification run
+-----------------------------------
+Every figure that :mod:`threepart.reports.compare` computes is checked against
+exactly one entry. The comparison is ``"sie"`` (closed form against the
+Gauss–Chebyshev SIE solver), ``"fem-quick"``, ``"fem-default"`` or
+``"fem-fine"`` (closed form against the finite-element model on that mesh
+preset; ``threepart verify --quick`` uses the quick mesh, the default run the
+default mesh and --full the fine one). ``tests/test_sie_*.py`` and
+``tests/test_fem.py`` judge their agreement with the closed form by the same
+entries.
+
+How each quantity is normalised (all errors are dimensionless, >= 0):
+
+==================  ===========================================================
+quantity            error
+==================  ===========================================================
+a, c                ``|Δa| / W`` with ``W = a + c`` of the closed form
+alpha               ``|Δα| / max(|α|, Δv')``, ``Δv' = v'(c) - v'(-a)`` at α = 0,
+                    the slope scale of the punch over the contact
+P                   ``|ΔP| / P``
+s                   ``|Δs| / W``
+p_left, p_right     ``|Δp_peak| / p_max`` (both peaks, left and right of x = 0)
+x_left, x_right     ``|Δx_peak| / W``
+p_interior_max      ``max |Δp| / p_max`` over the contact less 5 % of W at each end,
+                    at the FEM's nodes for the FEM, else at 4001 uniform points
+p_L2                ``||Δp||_2 / ||p||_2`` over the whole contact
+d, e                ``|Δd| / d``, ``|Δe| / d`` (stick zone, partial slip only)
+q_interior_max      ``max |Δq| / max|q|`` over the contact less 5 % of W at each end
+q_L2                ``||Δq||_2 / ||q||_2`` over the whole contact
+==================  ===========================================================
+
+Other comparisons (tests and benchmarks)
+----------------------------------------
+A quantity ending in ``_order`` is the lowest admissible fitted order and one
+ending in ``_order_max`` the highest; every other limit is an upper bound on a
+normalised error (``_level``: at the finest discretisation of a study).
+
+``sie-plain``, ``sie-projected``
+    Convergence in ``n`` of the two SIE schemes.
+``sie-reference``
+    The SIE pressure against the adaptive-quadrature inversion integral, as a
+    fraction of the peak.
+``sie-exact``, ``sie-identity``, ``sie-quadrature``
+    Limits where the SIE is exact (only rounding remains), integral identities
+    checked by quadrature, and the Gauss–Chebyshev building blocks.
+``fem-quick`` (beyond the table above), ``fem-reference``, ``fem-export``, ``fem-hertz-study``
+    FE load control and identities on the quick mesh, the committed coarse
+    reference mesh, the exported fields, and the slow h-refinement study against Hertz.
+``catalogue``
+    Numbers stored in ``threepart/cases.json`` against what they stand for.
+``convergence``
+    The convergence tools (:mod:`threepart.convergence`) on manufactured sequences.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+__all__ = ["Tolerance", "TOLERANCES", "COMPARISONS", "QUANTITIES", "NORMAL_QUANTITIES",
+           "SLIP_QUANTITIES", "tolerance", "fem_comparison"]
+
+
+@dataclass(frozen=True)
+class Tolerance:
+    """Limit of one normalised error (or bound on an observed order), with the reason for its value."""
+
+    limit: float
+    reason: str
+
+
+#: quantities compared for every normal result, in report order
+NORMAL_QUANTITIES = ("a", "c", "alpha", "P", "s", "p_left", "x_left", "p_right", "x_right",
+                     "p_interior_max", "p_L2")
+#: quantities compared in addition for a partial-slip result (SIE only: the FEM is frictionless)
+SLIP_QUANTITIES = ("d", "e", "q_interior_max", "q_L2")
+QUANTITIES = NORMAL_QUANTITIES + SLIP_QUANTITIES
+#: comparisons of the verification run (closed form against a solver)
+COMPARISONS = ("sie", "fem-quick", "fem-default", "fem-fine")
+
+_T = Tolerance
+#: the tolerance table: ``(comparison, quantity) -> Tolerance``
+TOLERANCES: dict[tuple[str, str], Tolerance] = {
+    # --- closed form vs SIE (Gauss–Chebyshev, projected scheme, default n) ----------------------
+    ("sie", "a"): _T(1e-10, "projected a, c carry no discretisation error, Newton stops at 1e-14; measured <= 1.6e-15 W"),
+    ("sie", "c"): _T(1e-10, "as a: both ends come from the same Newton solve"),
+    ("sie", "alpha"): _T(1e-10, "α comes from the same Newton solve as a, c; measured <= 3e-16"),
+    ("sie", "P"): _T(1e-12, "load control: P is imposed, only quadrature round-off remains (measured 0)"),
+    ("sie", "s"): _T(1e-10, "s is imposed (free tilt) or the quadrature centroid (suppressed); measured <= 1e-16 W"),
+    ("sie", "p_left"): _T(1e-6, "peak pressure, bounded by the field error; measured <= 5e-8"),
+    ("sie", "p_right"): _T(1e-6, "as p_left"),
+    ("sie", "x_left"): _T(1e-4, "flat maximum: Δx ~ sqrt(Δp/p''), about 1e-3 sqrt of the p error; measured <= 1.6e-7 W"),
+    ("sie", "x_right"): _T(1e-4, "as x_left"),
+    ("sie", "p_interior_max"): _T(1e-6, "projected pressure converges as n^-2 past the log kinks; measured <= 3.2e-7"),
+    ("sie", "p_L2"): _T(1e-6, "L2 is dominated by the same interior error as the max; measured <= 1.7e-8"),
+    ("sie", "d"): _T(1e-8, "d and e come from the exact normal ends through one Newton solve; measured <= 2e-15"),
+    ("sie", "e"): _T(1e-8, "as d, relative to d since e = 0 for symmetric contacts"),
+    ("sie", "q_interior_max"): _T(1e-6, "shear is f·p minus a corrective pressure: same field limit as p; measured <= 2.9e-7"),
+    ("sie", "q_L2"): _T(1e-6, "as q_interior_max; measured <= 4e-8"),
+    # --- closed form vs FEM, default mesh --------------------------------------------------------
+    ("fem-default", "a"): _T(1e-4, "default preset h = W/600 locates each end to a small fraction of h"),
+    ("fem-default", "c"): _T(1e-4, "as a"),
+    ("fem-default", "alpha"): _T(1e-4, "α is the most far-field sensitive figure (finite block L = 200 W)"),
+    ("fem-default", "P"): _T(1e-12, "load control imposes sum f_i = P in the linear solve (measured 0)"),
+    ("fem-default", "s"): _T(1e-4, "s is imposed (free) or the FEM pressure centroid (suppressed), ~a, c error"),
+    ("fem-default", "p_left"): _T(1e-3, "smooth maxima on h = W/600, ten times finer than the quick mesh (5.7e-4 there)"),
+    ("fem-default", "p_right"): _T(1e-3, "as p_left"),
+    ("fem-default", "x_left"): _T(5e-3, "peaks are flat and sampled at nodes: about one element (h = W/600)"),
+    ("fem-default", "x_right"): _T(5e-3, "as x_left"),
+    ("fem-default", "p_interior_max"): _T(1e-3, "nodal pressure; the log kinks at x = ±b are the largest error"),
+    ("fem-default", "p_L2"): _T(1e-2, "includes the sqrt edges, ~1 % at the single edge node"),
+    # --- closed form vs FEM, fine mesh -----------------------------------------------------------
+    ("fem-fine", "a"): _T(1e-4, "fine preset h = W/900; measured <= 8.3e-5 W"),
+    ("fem-fine", "c"): _T(1e-4, "as a"),
+    ("fem-fine", "alpha"): _T(1e-4, "α is the most far-field sensitive figure (finite block)"),
+    ("fem-fine", "P"): _T(1e-12, "load control imposes sum f_i = P in the linear solve"),
+    ("fem-fine", "s"): _T(1e-4, "s is imposed (free) or the FEM pressure centroid (suppressed), ~a, c error"),
+    ("fem-fine", "p_left"): _T(1e-3, "as on the default mesh, which is coarser"),
+    ("fem-fine", "p_right"): _T(1e-3, "as p_left"),
+    ("fem-fine", "x_left"): _T(5e-3, "peaks are flat and sampled at nodes: a few elements (h = W/900)"),
+    ("fem-fine", "x_right"): _T(5e-3, "as x_left"),
+    ("fem-fine", "p_interior_max"): _T(1e-3, "nodal pressure within 1e-3 of the peak, as on the default mesh"),
+    ("fem-fine", "p_L2"): _T(1e-2, "includes the sqrt edges, ~1 % at the single edge node"),
+    # --- closed form vs FEM, quick (CI) mesh -----------------------------------------------------
+    ("fem-quick", "a"): _T(5e-3, "h = W/60: measured 3.1e-3 W with the end 0.05 W from the join (fit window cut at b), else <= 4.3e-4 W"),
+    ("fem-quick", "c"): _T(5e-3, "as a"),
+    ("fem-quick", "alpha"): _T(1e-3, "quick block L = 100 W with growth 0.25: far-field error; measured <= 1e-5"),
+    ("fem-quick", "P"): _T(1e-12, "load control imposes sum f_i = P in the linear solve; measured <= 4e-16"),
+    ("fem-quick", "s"): _T(1e-3, "imposed (free, ~1e-16) or centroid of the coarse nodal forces (suppressed, 1.25e-5)"),
+    ("fem-quick", "p_left"): _T(2e-3, "smooth maxima on the quick mesh; measured <= 5.7e-4"),
+    ("fem-quick", "p_right"): _T(2e-3, "as p_left"),
+    ("fem-quick", "x_left"): _T(2e-2, "peak position to about one quick-mesh element (W/60); measured <= 6.5e-3 W"),
+    ("fem-quick", "x_right"): _T(2e-2, "as x_left"),
+    ("fem-quick", "p_interior_max"): _T(1e-2, "nodal pressure next to the log kinks at ±b; measured <= 3.1e-3"),
+    ("fem-quick", "p_L2"): _T(3e-2, "includes the poorly resolved sqrt edges; measured <= 3.4e-3"),
+    ("fem-quick", "s_imposed"): _T(1e-12, "free tilt imposes sum x_i f_i = P s in the linear solve (units of W); measured <= 1.2e-16"),
+    ("fem-quick", "load_integral"): _T(2e-3, "∫p dx of the linear interpolant misses the sqrt edges; measured <= 1.3e-3 (moment 2e-4 W)"),
+    ("fem-quick", "mirror"): _T(1e-3, "mirrored punch and load give a <-> c, α -> -α up to mesh asymmetry; measured <= 1.1e-4"),
+    # --- FEM on the committed reference mesh and the slow Hertz study ----------------------------
+    ("fem-reference", "a"): _T(2e-2, "reference.msh has 24 elements on the 1.2-wide zone (h = 0.05); measured 4.5e-3 W"),
+    ("fem-reference", "contact_law"): _T(1e-12, "brentq (xtol 2e-12) inverts the flat rounded punch's contact law to its target a"),
+    ("fem-export", "round_trip"): _T(1e-12, "meshio writes and reads float64: fields come back to rounding (measured 0)"),
+    ("fem-export", "surface"): _T(1e-9, "inside the contact u_y = profile - approach is imposed node by node (measured 2.8e-15 of it)"),
+    ("fem-hertz-study", "edge_order"): _T(0.7, "the edge fit converges about as h (measured 0.98 over W/h = 20..160)"),
+    ("fem-hertz-study", "edge_level"): _T(1.5e-4, "edge error at W/h = 160, units of W (measured 8.3e-5)"),
+    ("fem-hertz-study", "peak_order"): _T(1.5, "smooth peak converges as h^2 (measured 2.4 over W/h = 20..160)"),
+    ("fem-hertz-study", "peak_level"): _T(5e-5, "peak error at W/h = 160 relative to p0 (measured 3.2e-6)"),
+    # --- SIE convergence in n --------------------------------------------------------------------
+    ("sie-plain", "load_order"): _T(1.4, "plain load error, n = 24..768: theory 2, kink wobble gives 1.5-2.2 (measured 1.54, 2.23)"),
+    ("sie-plain", "load_order_max"): _T(3.0, "n = 50..1600: an order far above 2 would mean the reference is wrong"),
+    ("sie-plain", "load_level"): _T(4e-6, "plain relative load error for n >= 450 (measured <= 1.5e-6)"),
+    ("sie-plain", "a_order"): _T(1.8, "plain error in a, theory 2 (measured 2.0-2.3)"),
+    ("sie-plain", "a_level"): _T(1e-6, "plain relative error in a at n = 588 (measured 2.6e-7)"),
+    ("sie-plain", "pressure_order"): _T(0.9, "plain max|dp|/peak: theory 1 at the log kinks (measured 1.05-1.10)"),
+    ("sie-plain", "pressure_order_max"): _T(1.4, "n = 50..1600: the log kinks cap the plain pressure at first order"),
+    ("sie-plain", "pressure_level"): _T(2.5e-3, "plain max|dp|/peak for n >= 450 (measured <= 1.1e-3)"),
+    ("sie-plain", "pressure_level_1600"): _T(1e-3, "plain max|dp|/peak at n = 1600 (about 1.4e-4 expected at first order)"),
+    ("sie-plain", "stick_zone"): _T(1e-5, "plain stick zone at n = 512 against the projected one (measured 1.6e-6 of d)"),
+    ("sie-projected", "pressure_order"): _T(1.8, "projected max|dp|/peak, theory 2 (measured 2.0)"),
+    ("sie-projected", "pressure_level"): _T(1e-6, "projected max|dp|/peak at n = 1024 (measured 1.5e-7)"),
+    ("sie-reference", "p"): _T(1e-6, "projected pressure vs the adaptive-quadrature inversion integral (measured <= 3.7e-7)"),
+    ("sie-reference", "bound_slack"): _T(1e-12, "rounding of the quadrature reference on top of the solver's own error bound"),
+    # --- SIE: exact limits and identities --------------------------------------------------------
+    ("sie-exact", "hertz"): _T(1e-13, "Hertz slope is linear: both schemes give a, α, p and the stick zone exactly for any n"),
+    ("sie-exact", "flat_rounded"): _T(1e-13, "projected scheme reproduces the flat rounded punch's contact law exactly"),
+    ("sie-exact", "symmetry"): _T(1e-14, "symmetric punch, central load: a = c and α = 0 up to rounding"),
+    ("sie-exact", "mirror"): _T(1e-12, "mirrored punch and load solved separately at n = 64: Newton stops at 1e-14"),
+    ("sie-exact", "projected_ends"): _T(1e-14, "projected a, c, α do not depend on n: exact projection of the slope"),
+    ("sie-exact", "zero_shear"): _T(1e-13, "Q = 0 sticks everywhere: the stick zone is the contact, up to rounding"),
+    ("sie-exact", "slip_zone_shear"): _T(1e-14, "|q| = f p in the slip zones by construction, as a fraction of the peak pressure"),
+    ("sie-exact", "lift_off"): _T(1e-12, "SIE lift-off lever arms vs closedform.lift_off, both exact roots (measured <= 2.4e-15)"),
+    ("sie-identity", "load"): _T(1e-8, "∫p dx = P and ∫x p dx = P s by adaptive quadrature with sqrt ends (measured <= 5.4e-10)"),
+    ("sie-identity", "shear_load"): _T(1e-6, "∫q dx = Q by the trapezoid rule on 20001 points with sqrt ends (measured 9e-7)"),
+    ("sie-identity", "coulomb"): _T(1e-9, "|q| <= f p everywhere, as a fraction of the peak pressure (measured 0)"),
+    ("sie-identity", "near_lift_off_gap"): _T(2e-2, "at 0.999 s_max the left end sits just outside the join (measured a/b - 1 = 5.1e-3)"),
+    # --- SIE: Gauss–Chebyshev building blocks ----------------------------------------------------
+    ("sie-quadrature", "weights"): _T(1e-14, "the weights sum to π/2: only rounding of the sum"),
+    ("sie-quadrature", "nodes"): _T(1e-10, "nodes are zeros of U_n: arccos loses digits near ±1 for n = 200"),
+    ("sie-quadrature", "exactness"): _T(1e-14, "the rule is exact for degree 2n - 1: only rounding"),
+    ("sie-quadrature", "beyond_degree"): _T(1e-6, "degree 2n is not integrated exactly: relative error well above this"),
+    ("sie-quadrature", "cauchy"): _T(1e-13, "the discrete Cauchy operator maps U_{k-1} to T_k exactly for k <= n"),
+    ("sie-quadrature", "principal_value"): _T(1e-12, "smooth density, n = 24: spectral agreement with scipy's Cauchy-weight quad"),
+    ("sie-quadrature", "functionals"): _T(1e-13, "plain G_0..G_2 are exact Chebyshev coefficients for slopes of degree <= n"),
+    ("sie-quadrature", "ramp"): _T(1e-15, "closed-form ramp coefficients vs quad split at the kink (epsabs 1e-15)"),
+    ("sie-quadrature", "ramp_continuity"): _T(1e-6, "ramp coefficients at β = -1 + 1e-13 move by O(sqrt(1 + β))"),
+    ("sie-quadrature", "slope"): _T(1e-14, "segment-wise projection of v' vs quad split at both kinks"),
+    ("sie-quadrature", "slope_gradient"): _T(1e-8, "central differences with step 1e-6: truncation 1e-12, rounding 1e-10"),
+    ("sie-quadrature", "log_kink"): _T(1e-10, "direct sum truncated at k = 4e5: its tail is O(1/(k^2 phi))"),
+    ("sie-quadrature", "sine_series"): _T(1e-12, "40-term sine series vs a direct matrix product: rounding"),
+    # --- numbers stored in the case catalogue ----------------------------------------------------
+    ("catalogue", "stored_lift_off"): _T(1e-12, "a stored lift-off lever arm is closedform.lift_off to 16 digits (an exact root)"),
+    ("catalogue", "paper_load"): _T(1e-4, "P = 28846 N/mm is the paper's 4PA/b = 1 rounded to five digits"),
+    # --- the convergence tools on manufactured sequences -----------------------------------------
+    ("convergence", "exact"): _T(1e-12, "err = C h^p exactly: the fit and the extrapolation are exact up to rounding"),
+    ("convergence", "iterated"): _T(1e-8, "the three-level fixed point stops when p moves by < 1e-10"),
+}
+
+
+def tolerance(comparison: str, quantity: str) -> Tolerance:
+    """The table entry for ``(comparison, quantity)``; ``KeyError`` names both if missing."""
+    try:
+        return TOLERANCES[comparison, quantity]
+    except KeyError:
+        raise KeyError(f"no tolerance for comparison {comparison!r}, quantity {quantity!r}") from None
+
+
+def fem_comparison(mesh: object) -> str:
+    """Name of the FEM comparison for a mesh preset: ``"fem-quick"``, ``"fem-default"`` or ``"fem-fine"``.
+
+    Any other mesh argument is judged as the default preset.
+    """
+    return f"fem-{mesh}" if mesh in ("quick", "default", "fine") else "fem-default"
