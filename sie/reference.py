@@ -24,7 +24,7 @@ from scipy.integrate import IntegrationWarning, quad
 from threepart.punch import Punch
 
 
-def _quiet_quad(*args, **kwargs):
+def quiet_quad(*args, **kwargs):
     """``scipy.integrate.quad`` asked for near machine precision: its round-off warning is expected.
 
     The requested ``epsrel`` is at the level of rounding, so QUADPACK reports
@@ -35,7 +35,8 @@ def _quiet_quad(*args, **kwargs):
         warnings.simplefilter("ignore", IntegrationWarning)
         return quad(*args, **kwargs)
 
-__all__ = ["pressure_by_quadrature"]
+
+__all__ = ["pressure_by_quadrature", "quiet_quad"]
 
 
 def pressure_by_quadrature(punch: Punch, A: float, a: float, c: float, alpha: float,
@@ -61,6 +62,6 @@ def pressure_by_quadrature(punch: Punch, A: float, a: float, c: float, alpha: fl
             return 0.0 if d == 0 else (F(phi) - Fth) / d
 
         pts = sorted({th, *kinks})
-        val, _ = _quiet_quad(integrand, 0.0, math.pi, points=pts, limit=400, epsabs=1e-15, epsrel=1e-13)
+        val, _ = quiet_quad(integrand, 0.0, math.pi, points=pts, limit=400, epsabs=1e-15, epsrel=1e-13)
         out[i] = math.sin(th) / math.pi * val
     return out.reshape(np.shape(x)) if np.ndim(x) else out

@@ -15,28 +15,14 @@ which evaluates that integral in ``theta``).
 from __future__ import annotations
 
 import math
-import warnings
 from typing import Callable
 
-from scipy.integrate import IntegrationWarning, quad
-
 from threepart.punch import Punch
-from threepart.sie.reference import pressure_by_quadrature
+from threepart.sie.reference import pressure_by_quadrature, quiet_quad
 
 EPS = 1e-13
 
 
-
-def _quiet_quad(*args, **kwargs):
-    """``scipy.integrate.quad`` asked for near machine precision: its round-off warning is expected.
-
-    The requested ``epsrel`` is at the level of rounding, so QUADPACK reports
-    that round-off limits it; the value is still the best double-precision
-    estimate. Only that warning is silenced, only here.
-    """
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", IntegrationWarning)
-        return quad(*args, **kwargs)
 
 def integrate(fun: Callable[[float], float], a: float, c: float, breaks=(), power: float = -0.5,
               ) -> float:
@@ -50,7 +36,7 @@ def integrate(fun: Callable[[float], float], a: float, c: float, breaks=(), powe
             wr = 1.0 if right else (c - t) ** power
             return fun(t) * wl * wr
         wvar = (power if left else 0.0, power if right else 0.0)
-        val, _ = _quiet_quad(g, lo, hi, weight="alg", wvar=wvar, epsabs=0.0, epsrel=EPS, limit=400)
+        val, _ = quiet_quad(g, lo, hi, weight="alg", wvar=wvar, epsabs=0.0, epsrel=EPS, limit=400)
         total += val
     return total
 
@@ -105,14 +91,14 @@ def segment_cauchy(lo: float, hi: float, a: float, c: float, x: float) -> float:
     for p, q in zip(pieces[:-1], pieces[1:]):
         left, right = p == -a, q == c
         if p < x < q:  # Cauchy weight 1/(t - x) on an interior piece
-            val, _ = _quiet_quad(lambda t: 1 / math.sqrt((t + a) * (c - t)), p, q, weight="cauchy",
+            val, _ = quiet_quad(lambda t: 1 / math.sqrt((t + a) * (c - t)), p, q, weight="cauchy",
                           wvar=x, epsabs=0.0, epsrel=EPS, limit=400)
         else:
             def g(t: float, left=left, right=right) -> float:
                 wl = 1.0 if left else (t + a) ** -0.5
                 wr = 1.0 if right else (c - t) ** -0.5
                 return wl * wr / (t - x)
-            val, _ = _quiet_quad(g, p, q, weight="alg", wvar=(-0.5 if left else 0.0, -0.5 if right else 0.0),
+            val, _ = quiet_quad(g, p, q, weight="alg", wvar=(-0.5 if left else 0.0, -0.5 if right else 0.0),
                           epsabs=0.0, epsrel=EPS, limit=400)
         total += val
     return total
@@ -124,6 +110,6 @@ def strain_in_stick(q: Callable[[float], float], a: float, c: float, breaks, x: 
     pts = sorted({-a, c, x, *[t for t in breaks if -a < t < c]})
     total = 0.0
     for lo, hi in zip(pts[:-1], pts[1:]):
-        val, _ = _quiet_quad(lambda t: (q(t) - qx) / (t - x), lo, hi, epsabs=0.0, epsrel=1e-12, limit=400)
+        val, _ = quiet_quad(lambda t: (q(t) - qx) / (t - x), lo, hi, epsabs=0.0, epsrel=1e-12, limit=400)
         total += val
     return (total + qx * math.log((c - x) / (x + a))) / math.pi
