@@ -28,7 +28,7 @@ def _moments(sol):
     def integral(power):
         f = lambda th: float(sol.pressure(m + h * math.cos(th))) * (m + h * math.cos(th)) ** power \
             * h * math.sin(th)
-        return sum(ref._quiet_quad(f, lo, hi, epsabs=0, epsrel=1e-12, limit=200)[0]
+        return sum(ref.quiet_quad(f, lo, hi, epsabs=0, epsrel=1e-12, limit=200)[0]
                    for lo, hi in zip(pts[:-1], pts[1:]))
 
     return integral(0), integral(1)

@@ -43,7 +43,7 @@ def test_shear_integrates_to_Q_and_has_its_sign(normal, ratio):
     ends = [math.acos((t - m) / h) for t in (*slip.stick_zone, -normal.punch.b, normal.punch.b)
             if -normal.a < t < normal.c]
     pts = sorted({0.0, math.pi, *ends})
-    total = sum(ref._quiet_quad(g, lo, hi, epsabs=0, epsrel=1e-12, limit=200)[0] for lo, hi in zip(pts[:-1], pts[1:]))
+    total = sum(ref.quiet_quad(g, lo, hi, epsabs=0, epsrel=1e-12, limit=200)[0] for lo, hi in zip(pts[:-1], pts[1:]))
     assert total == pytest.approx(Q, rel=1e-9)
     x = np.linspace(-normal.a, normal.c, 501)[1:-1]
     assert np.all(np.sign(slip.shear(x)) * math.copysign(1, Q) >= 0)
