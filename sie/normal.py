@@ -32,6 +32,7 @@ from threepart.validate import check_finite, check_positive, check_tilt
 from threepart.errors import SeparationError
 from threepart.results import NormalResult
 
+from .projection import slope_coefficients
 from .quadrature import check_n
 from .roots import bracket_root, newton
 from .schemes import Plain, Projected, make_scheme
@@ -139,15 +140,44 @@ def solve_ends(punch: Punch, A: float, P: float, sch: Plain | Projected, *,
     return m, h, sch.moments(punch, m, h)[0], its, res
 
 
-def _check_positive_pressure(punch: Punch, A: float, P: float, s: float, m: float, h: float) -> None:
-    """Refuse a one-contact solution with tensile pressure (a concave centre lifting off).
+def _gap_slope_outside(punch: Punch, m: float, h: float, alpha: float, xi: np.ndarray,
+                       nterms: int = 2048) -> np.ndarray:
+    """Slope of the gap at ``x = m + h ξ`` outside the contact (``|ξ| > 1``).
 
-    The pressure is sampled with 2048 sine terms; it counts as tensile only
-    below minus the scheme's own pointwise truncation bound, so that a
-    contact at its separation load is not refused for the series' error.
+    With the exact slope coefficients ``G_k`` (:mod:`sie.projection`) the
+    pressure is ``Σ (G_k/A) sin kθ``, and outside the contact
+
+        (1/π) ∫ √(1-s²) U_{k-1}(s)/(ξ - s) ds = ρ^k,   ρ = ξ - sgn ξ √(ξ² - 1),
+
+    so the gap's slope is ``v'(x) - α - Σ_{k>=1} G_k ρ^k``; it vanishes at the
+    ends of a bounded solution.
+    """
+    G = slope_coefficients(punch, m, h, nterms)[0]
+    rho = xi - np.sign(xi) * np.sqrt(xi * xi - 1.0)
+    powers = rho[:, None] ** np.arange(1, nterms + 1)[None, :]
+    return punch.slope(m + h * xi, alpha) - powers @ G[1:]
+
+
+def _check_single_contact(punch: Punch, A: float, P: float, s: float, m: float, h: float,
+                          alpha: float) -> None:
+    """Refuse a one-contact solution that is not one: tensile pressure, or penetration outside.
+
+    Only a concave centre (``R < 0``) can fail; with ``v'' >= 0`` everywhere
+    the bounded solution is non-negative and the gap opens outside it. The
+    pressure is sampled with 2048 sine terms and counts as tensile only below
+    minus the scheme's own pointwise truncation bound, so that a contact at
+    its separation load is not refused for the series' error. The gap is
+    integrated outwards from each end over the punch's joins and one more
+    half-width, where the profile is convex again.
+
+    Raises
+    ------
+    SeparationError
+        If the pressure is tensile, or the punch penetrates the half-plane
+        outside the contact: the true contact has two zones.
     """
     if punch.kappa0 >= 0 or punch.b == 0:
-        return  # v' never decreases (convex or flat centre): the bounded solution is non-negative
+        return
     p, extra = Projected(2048).pressure(punch, A, m, h)
     theta = np.linspace(0, np.pi, 1601)[1:-1]
     val = p(m + h * np.cos(theta))
@@ -156,7 +186,22 @@ def _check_positive_pressure(punch: Punch, A: float, P: float, s: float, m: floa
         raise SeparationError(
             f"`P` = {P:g} with `s` = {s:g}: the one-contact pressure is tensile "
             f"(min {val[i]:.3g} at x = {m + h * np.cos(theta[i]):.4g}) for R = {punch.R:g}; "
-            "the contact separates, so increase `P` or reduce |`s`|")
+            "the contact separates into two zones")
+    t = np.linspace(0.0, 1.0, 801)[1:]
+    for side in (1.0, -1.0):
+        # out to the far join plus one half-width, points clustered at the end (√ behaviour)
+        reach = max(0.0, (punch.b - side * m) / h - 1.0) + 1.0
+        xi = side * (1.0 + reach * t * t)
+        x = np.concatenate([[m + side * h], m + h * xi])
+        slope = np.concatenate([[0.0], _gap_slope_outside(punch, m, h, alpha, xi)])
+        gap = np.concatenate([[0.0], np.cumsum(0.5 * (slope[1:] + slope[:-1]) * np.diff(x))])
+        scale = h * float(np.max(np.abs(slope)))
+        j = int(np.argmin(gap))
+        if gap[j] < -1e-6 * scale:
+            raise SeparationError(
+                f"`P` = {P:g} with `s` = {s:g}: the one-contact solution on [{m - h:.6g}, "
+                f"{m + h:.6g}] would penetrate the half-plane at x = {x[j]:.4g} (gap "
+                f"{gap[j]:.3g}) for R = {punch.R:g}; the contact separates into two zones")
 
 
 def solve_normal(punch: Punch, P: float, s: float = 0.0, *, A: float, tilt: str = "free",
@@ -207,7 +252,7 @@ def solve_normal(punch: Punch, P: float, s: float = 0.0, *, A: float, tilt: str 
         m, h, G, its, res = solve_ends(punch, A, P, sch, alpha=0.0)
         alpha = 0.0
         s_out = m + math.pi * h * h * float(G[2]) / (4 * A * P)
-    _check_positive_pressure(punch, A, P, s_out, m, h)
+    _check_single_contact(punch, A, P, s_out, m, h, alpha)
     density, extra = sch.pressure(punch, A, m, h)
     info = {"n": sch.n, "scheme": sch.name, "iterations": its, "residual": res,
             "time_s": time.perf_counter() - t0, **extra}

@@ -23,7 +23,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from threepart.validate import check_finite, check_positive
-from threepart.errors import FullSlidingError, StickZoneError
+from threepart.errors import FullSlidingError
 from threepart.results import NormalResult, SlipResult
 
 from .normal import DEFAULT_N, DEFAULT_SCHEME, check_scheme, solve_ends
@@ -70,7 +70,7 @@ def _check_slip(normal: NormalResult, Q: float, f: float) -> None:
 
 
 def solve_partial_slip(normal: NormalResult, Q: float, f: float, *, n: int | None = None,
-                       scheme: str | None = None, outer_ends: bool = True) -> SieSlipResult:
+                       scheme: str | None = None) -> SieSlipResult:
     """Stick zone ``[-(d+e), d-e]`` and shear ``q(x)`` for shear force ``Q`` and friction ``f``.
 
     Parameters
@@ -85,22 +85,21 @@ def solve_partial_slip(normal: NormalResult, Q: float, f: float, *, n: int | Non
     n, scheme
         Discretisation of ``p*``; by default those of ``normal`` when it is
         an SIE result, else ``n = 1024`` and ``"projected"``.
-    outer_ends
-        If true (default), require the stick-zone ends on the outer segments,
-        i.e. the stick zone to contain ``[-b, b]``, as the closed form does
-        (paper, end of the partial-slip section).
 
     Returns
     -------
     SieSlipResult
         ``method="sie"``; ``info`` holds ``n``, ``scheme``, ``iterations``,
-        ``residual`` and ``time_s``.
+        ``residual`` and ``time_s``. Its ``within_paper`` says whether the
+        stick zone contains the central segment, as the paper's closed form
+        requires (end of its partial-slip section); a stick zone that ends on
+        the central segment is solved all the same, as is one on a contact
+        past lift-off.
 
     Raises
     ------
     ValueError
-        For invalid input, or (with ``outer_ends``) a stick zone that does
-        not contain ``[-b, b]``.
+        For invalid input (``FullSlidingError`` for ``|Q| >= f P``).
     NoConvergenceError
         If the Newton iteration fails.
     """
@@ -119,11 +118,6 @@ def solve_partial_slip(normal: NormalResult, Q: float, f: float, *, n: int | Non
     if lo < -normal.a * (1 + 1e-12) or hi > normal.c * (1 + 1e-12):
         raise ValueError(f"`Q` = {Q:g}: stick zone [{lo:.6g}, {hi:.6g}] leaves the contact "
                          f"[{-normal.a:.6g}, {normal.c:.6g}]; is `normal` consistent with its punch?")
-    if outer_ends and not (lo < -punch.b and hi > punch.b):
-        raise StickZoneError(
-            f"`Q` = {Q:g} (|Q|/fP = {abs(Q) / (f * normal.P):.4g}): stick zone [{lo:.6g}, {hi:.6g}] "
-            f"does not contain the central segment [-b, b] = [{-punch.b:g}, {punch.b:g}]; "
-            "reduce |Q| or pass outer_ends=False")
     stick, extra = sch.pressure(punch, A, m, h)
     info = {"n": sch.n, "scheme": sch.name, "iterations": its, "residual": res,
             "time_s": time.perf_counter() - t0, "P_star": P_star, **extra}

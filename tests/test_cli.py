@@ -40,7 +40,7 @@ def test_slip_json(capsys):
 
 
 def test_bad_input_is_a_clear_error_with_exit_status_2(capsys):
-    assert main(["solve", *GEOM, "--s", "0.9"]) == 2
+    assert main(["solve", *GEOM, "--s", "0.9", "--method", "closedform"]) == 2
     err = capsys.readouterr().err
     assert "`s` = 0.9 exceeds the lift-off lever arm" in err and "Traceback" not in err
     assert main(["slip", *GEOM, "--Q", "300", "--f", "0.5"]) == 2
@@ -185,7 +185,7 @@ def test_every_number_in_the_text_output_carries_its_unit(capsys, command):
         if len(tokens) >= 2 and re.fullmatch(r"[-+]?(\d[\d.e+-]*|inf)", tokens[1]):
             numbers += 1
             assert len(tokens) == 3 and tokens[2] in UNIT_LABELS, line
-    assert numbers == (22 if command == "slip" else 16)
+    assert numbers == (24 if command == "slip" else 18)
     if command == "slip":
         assert "f          0.5 (dimensionless)" in lines
     assert "  R          inf mm" in lines
@@ -206,3 +206,67 @@ def test_json_units_name_every_number(capsys):
                 yield k
 
     assert set(keys(out)) == set(units) and all(units[k] == UNITS[k] for k in units)
+
+
+# ---------------------------------------------------------------------------------------
+# --method, and the fields at chosen points
+# ---------------------------------------------------------------------------------------
+def test_auto_says_which_method_answered(capsys):
+    assert main(["solve", *GEOM, "--s", "0.1"]) == 0
+    assert capsys.readouterr().out.splitlines()[0] == "method: closedform"
+    assert main(["solve", *GEOM, "--s", "0.9"]) == 0     # past lift-off: the SIE answers
+    first = capsys.readouterr().out.splitlines()[0]
+    assert first.startswith("method: sie (the closed form does not hold here: `s` = 0.9 exceeds")
+
+
+def _grid_integral(capsys, n: int) -> float:
+    assert main(["solve", *GEOM, "--s", "0.1", "--grid", str(n), "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    x, p = out["points"]["x"], out["points"]["p"]
+    assert x[0] == -out["a"] and x[-1] == out["c"] and len(x) == n
+    assert out["units"]["p"] == "MPa" and out["units"]["x"] == "mm"
+    return sum(0.5 * (p[i] + p[i + 1]) * (x[i + 1] - x[i]) for i in range(n - 1))
+
+
+def test_pressure_at_points_integrates_to_the_load(capsys):
+    """--grid: the trapezoidal integral of p is P, its error falling as h^1.5 (square-root edges)."""
+    e1, e2 = (abs(_grid_integral(capsys, n) - 400.0) / 400.0 for n in (2001, 8001))
+    assert e2 < 3e-5 and 4**1.3 < e1 / e2 < 4**1.7, (e1, e2)
+
+
+def test_shear_at_points_obeys_coulomb_and_the_csv_is_new(capsys, tmp_path):
+    csv = tmp_path / "fields.csv"
+    args = ["slip", *GEOM, "--s", "0.1", "--Q", "80", "--f", "0.5", "--x", "-2,-0.5,0,0.5,1.7"]
+    assert main([*args, "--csv", str(csv), "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    rows = csv.read_text().splitlines()
+    assert rows[0] == "x [mm],p [MPa],q [MPa]" and len(rows) == 6
+    for row, x, p, q in zip(rows[1:], *(out["points"][k] for k in "xpq")):
+        assert [float(v) for v in row.split(",")] == [x, p, q]
+        assert abs(q) <= 0.5 * p * (1 + 1e-12)         # |q| <= f p
+    assert out["points"]["p"][0] == 0.0                  # x = -2 lies outside the contact
+    # the file exists now: never overwritten
+    assert main([*args, "--csv", str(csv)]) == 2
+    assert "exists; threepart never overwrites a file" in _one_line_error(capsys, "slip")
+
+
+@pytest.mark.parametrize("extra,match", [
+    (["--x", "1", "--grid", "3"], "give `--x` or `--grid`, not both"),
+    (["--grid", "1"], r"`--grid` = 1 must lie in \[2, 1000000\]"),
+    (["--x", "1,a"], r"invalid list of numbers: '1,a'"),
+    (["--csv", "f.csv"], "`--csv` needs the points"),
+    (["--method", "magic"], "argument --method: invalid choice: 'magic'"),
+])
+def test_bad_point_options_are_one_line_errors(capsys, extra, match):
+    assert main(["solve", *GEOM, *extra]) == 2
+    assert re.search(match, _one_line_error(capsys))
+
+
+def test_a_negative_point_list_may_follow_x(capsys):
+    assert main(["solve", *GEOM, "--x", "-0.5,0.2", "--json"]) == 0
+    assert json.loads(capsys.readouterr().out)["points"]["x"] == [-0.5, 0.2]
+
+
+def test_fem_has_no_friction_model(capsys):
+    assert main(["slip", *GEOM, "--Q", "80", "--f", "0.5", "--method", "fem"]) == 2
+    assert "solves the frictionless normal problem only" in _one_line_error(capsys, "slip")

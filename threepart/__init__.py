@@ -29,6 +29,12 @@ similar_pair        -- A = 4(1 - nu^2)/E, two bodies of one material
 rigid_punch         -- A = 2(1 - nu^2)/E, a rigid punch on an elastic half-plane
 TILTS               -- tilt modes "free" and "suppressed"
 
+Solving
+-------
+solve               -- normal or partial-slip solution by method "auto" (closed form where it
+                       holds, else SIE), "closedform", "sie" or "fem"
+METHODS, CHOICES    -- the three methods; what `method` may be
+
 Results
 -------
 NormalResult        -- a, c, alpha, P, s, pressure(x), peaks(): the shape every solver returns
@@ -46,6 +52,7 @@ ContactZoneError    -- the FE contact reached the end of its mesh zone (RuntimeE
 """
 from __future__ import annotations
 
+from .methods import CHOICES, METHODS, solve
 from .errors import (ContactZoneError, FullSlidingError, LiftOffError, NoConvergenceError,
                      SeparationError, StickZoneError)
 from .material import compliance, rigid_punch, similar_pair
@@ -58,4 +65,5 @@ __all__ = [
     "NormalResult", "SlipResult", "Peak",
     "LiftOffError", "SeparationError", "FullSlidingError", "StickZoneError",
     "NoConvergenceError", "ContactZoneError",
+    "solve", "METHODS", "CHOICES",
 ]

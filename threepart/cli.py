@@ -2,10 +2,20 @@
 
 Sub-commands
 ------------
-solve    closed-form normal problem: a, c, alpha, peak pressures, lift-off lever arms
-slip     closed-form partial slip: adds the stick zone for a shear load Q and friction f
+solve    normal problem: a, c, alpha, peak pressures, segments in contact, lift-off lever arms
+slip     partial slip: adds the stick zone for a shear load Q and friction f
 verify   verification run: closed form against SIE and FEM, tolerance report
 figures  the paper's result figures, with the SIE solution as markers
+
+--method auto (default) uses the paper's closed form where it holds and the SIE
+where it does not (past lift-off, the punch on one corner, a stick zone that
+ends on the central segment), and says so on the first line of the output and
+as "method" in --json; closedform, sie or fem ask for one method. A contact
+that would separate into two zones is refused by every method.
+
+--x X1,X2,... or --grid N add the pressure p(x) (and the shear q(x) for slip)
+at those points, or at N points spread evenly over the contact; --csv FILE
+writes them to a new file (never over an existing one).
 
 Units: the library works in any consistent set of units. The command line
 labels lengths mm, loads per unit length N/mm, pressures and moduli MPa,
@@ -24,7 +34,10 @@ import argparse
 import sys
 from typing import Any, NoReturn, Sequence
 
-__all__ = ["main", "build_parser", "UNITS", "NUMERIC_OPTIONS", "UsageError"]
+__all__ = ["main", "build_parser", "UNITS", "NUMERIC_OPTIONS", "LIST_OPTIONS", "UsageError"]
+
+#: Poisson's ratio of the FE block when only ``--A`` is given (the answer depends on A alone)
+FEM_DEFAULT_NU = 0.3
 
 #: the unit printed with each quantity, by its key in the output ("1": dimensionless).
 #: The library is unit-agnostic; these are the labels of one consistent set.
@@ -36,12 +49,16 @@ UNITS: dict[str, str] = {
     "a": "mm", "c": "mm", "x": "mm",                  # contact edges, peak positions
     "d": "mm", "e": "mm", "left": "mm", "right": "mm",  # stick zone
     "alpha": "rad",                                   # tilt, eq. (2)
-    "p": "MPa",                                       # pressure
+    "p": "MPa", "q": "MPa",                           # pressure, shear traction
     "f": "1",                                         # coefficient of friction
 }
 #: options that take a number; ``--s -1e-3`` is read as ``--s=-1e-3`` (argparse alone
 #: would take ``-1e-3`` for an option)
 NUMERIC_OPTIONS = ("--R1", "--R2", "--b", "--R", "--A", "--E", "--nu", "--P", "--s", "--Q", "--f")
+#: options that take a comma-separated list of numbers (``--x -0.5,0.2`` is read as ``--x=-0.5,0.2``)
+LIST_OPTIONS = ("--x",)
+#: the most points ``--grid`` prints
+MAX_GRID = 1_000_000
 
 
 class UsageError(Exception):
@@ -64,6 +81,10 @@ def _is_number(token: str) -> bool:
     return True
 
 
+def _is_number_list(token: str) -> bool:
+    return all(_is_number(t) for t in token.split(","))
+
+
 def _join_negative_numbers(argv: Sequence[str]) -> list[str]:
     """Rewrite ``--opt -1e-3`` as ``--opt=-1e-3`` for the options in :data:`NUMERIC_OPTIONS`."""
     out: list[str] = []
@@ -74,7 +95,9 @@ def _join_negative_numbers(argv: Sequence[str]) -> list[str]:
             out.extend(argv[i:])
             break
         nxt = argv[i + 1] if i + 1 < len(argv) else None
-        if tok in NUMERIC_OPTIONS and nxt is not None and nxt.startswith("-") and _is_number(nxt):
+        negative = nxt is not None and nxt.startswith("-")
+        if negative and ((tok in NUMERIC_OPTIONS and _is_number(nxt))            # type: ignore[arg-type]
+                         or (tok in LIST_OPTIONS and _is_number_list(nxt))):   # type: ignore[arg-type]
             out.append(f"{tok}={nxt}")
             i += 2
         else:
@@ -108,9 +131,29 @@ def _geometry_args(p: argparse.ArgumentParser) -> None:
     ld.add_argument("--s", type=float, default=0.0,
                     help=_labelled("lever arm of P, positive to the right", "s"))
     ld.add_argument("--tilt", choices=("free", "suppressed"), default="free")
+    mt = p.add_argument_group("method")
+    mt.add_argument("--method", choices=("auto", "closedform", "sie", "fem"), default="auto",
+                    help="auto (default): the closed form where it holds, else the SIE; or one method")
+    mt.add_argument("--mesh", choices=("quick", "default", "fine"), default="default",
+                    help="FE mesh preset for --method fem (default: default)")
+    pt = p.add_argument_group("fields at points")
+    pt.add_argument("--x", type=_number_list, metavar="X1,X2,...",
+                    help=_labelled("points at which to print p(x) (and q(x) for slip)", "x"))
+    pt.add_argument("--grid", type=int, metavar="N",
+                    help="print p(x) (and q(x)) at N >= 2 points spread evenly over [-a, c]")
+    pt.add_argument("--csv", metavar="FILE",
+                    help="write those points to FILE as CSV (a new file; never overwrites)")
     p.add_argument("--json", action="store_true",
                    help='print strict JSON instead of text: plain numbers in the units of its "units" '
                         "object; an infinite R (flat centre) is null")
+
+
+def _number_list(text: str) -> list[float]:
+    """``"1,-2.5,3e-1"`` as a list of floats (the type of ``--x``)."""
+    try:
+        return [float(t) for t in text.split(",")]
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"invalid list of numbers: {text!r} (write X1,X2,...)")
 
 
 def _compliance(args: argparse.Namespace) -> float:
@@ -125,23 +168,107 @@ def _compliance(args: argparse.Namespace) -> float:
     return rigid_punch(args.E, args.nu) if args.rigid else compliance(args.E, args.nu)
 
 
-def _normal_summary(args: argparse.Namespace) -> tuple[Any, dict[str, Any]]:
-    from threepart.closedform import Punch, lift_off, solve_normal
+def _solve(args: argparse.Namespace, slip: bool) -> tuple[Any, dict[str, Any]]:
+    """Solve by ``--method`` and collect the figures to print, in print order."""
+    from threepart.methods import describe, solve
+    from threepart.punch import Punch
+    from threepart.results import SlipResult
 
     punch = Punch(R1=args.R1, R2=args.R2, b=args.b, R=args.R)
     A = _compliance(args)
-    sol = solve_normal(punch, args.P, s=args.s, A=A, tilt=args.tilt)
-    left, right = sol.peaks()
-    lim = lift_off(punch, args.P, A)
-    out = {
+    _points_iv(args)
+    options: dict[str, Any] = {}
+    if args.method == "fem":
+        nu = FEM_DEFAULT_NU if args.nu is None else args.nu
+        options = {"mesh": args.mesh, "nu": nu}   # the block's modulus: methods.fem_modulus
+    loads = {"Q": args.Q, "f": args.f} if slip else {}
+    res = solve(punch, args.P, args.s, A=A, tilt=args.tilt, method=args.method, **loads, **options)
+    normal = res.normal if isinstance(res, SlipResult) else res
+    left, right = normal.peaks()
+    out: dict[str, Any] = {
+        "method": res.method,
+        **({"method_note": res.info["auto"]} if "auto" in res.info else {}),
         "punch": {"R1": punch.R1, "R2": punch.R2, "b": punch.b, "R": punch.R, "case": punch.case},
-        "A": A, "P": sol.P, "s": sol.s, "tilt": sol.tilt,
-        "a": sol.a, "c": sol.c, "alpha": sol.alpha,
+        "A": A, "P": normal.P, "s": normal.s, "tilt": normal.tilt,
+        "a": normal.a, "c": normal.c, "alpha": normal.alpha,
+        "contact": {"left": -normal.a, "right": normal.c},
+        "segments": list(normal.segments), "within_paper": normal.within_paper,
         "peak_left": {"x": left.x, "p": left.p},
         "peak_right": {"x": right.x, "p": right.p},
-        "lift_off": {"s_min": lim.s_min, "s_max": lim.s_max},
     }
-    return sol, out
+    limits = _lift_off(punch, normal.P, A)
+    if limits is not None:
+        out["lift_off"] = limits
+    if isinstance(res, SlipResult):
+        lo, hi = res.stick_zone
+        out.update({"Q": res.Q, "f": res.f, "d": res.d, "e": res.e,
+                    "stick_zone": {"left": lo, "right": hi},
+                    "stick_segments": list(res.stick_segments), "within_paper": res.within_paper})
+    points = _points(args, res)
+    if points is not None:
+        out["points"] = points
+    out["_describe"] = describe(res)
+    return res, out
+
+
+def _lift_off(punch: Any, P: float, A: float) -> dict[str, float] | None:
+    """The closed form's admissible lever arms at ``P``, or None where it has none."""
+    from threepart import closedform
+
+    try:
+        lim = closedform.lift_off(punch, P, A)
+    except ValueError:
+        return None
+    return {"s_min": lim.s_min, "s_max": lim.s_max}
+
+
+def _points_iv(args: argparse.Namespace) -> None:
+    """Check ``--x``, ``--grid`` and ``--csv`` before any numerics."""
+    import math
+
+    if args.x is not None and args.grid is not None:
+        raise ValueError("give `--x` or `--grid`, not both")
+    if args.x is not None and not all(math.isfinite(v) for v in args.x):
+        raise ValueError(f"`--x` = {args.x} must hold finite numbers")
+    if args.grid is not None and not 2 <= args.grid <= MAX_GRID:
+        raise ValueError(f"`--grid` = {args.grid} must lie in [2, {MAX_GRID}]")
+    if args.csv is not None:
+        if args.x is None and args.grid is None:
+            raise ValueError("`--csv` needs the points: give `--x` or `--grid`")
+        import os
+
+        if os.path.lexists(args.csv):
+            raise ValueError(f"`--csv` = {args.csv!r} exists; threepart never overwrites a file: "
+                             "choose another name")
+
+
+def _points(args: argparse.Namespace, res: Any) -> dict[str, list[float]] | None:
+    """``x``, ``p`` (and ``q``) at ``--x`` or ``--grid``, or None."""
+    import numpy as np
+
+    if args.x is None and args.grid is None:
+        return None
+    x = np.asarray(args.x, float) if args.x is not None else np.linspace(-res.a, res.c, args.grid)
+    out = {"x": x.tolist(), "p": np.asarray(res.pressure(x), float).tolist()}
+    if hasattr(res, "shear"):
+        out["q"] = np.asarray(res.shear(x), float).tolist()
+    return out
+
+
+def _write_csv(path: str, points: dict[str, list[float]]) -> None:
+    """Write the points to a new file ``path`` (``O_EXCL``: never over an existing one)."""
+    import os
+
+    cols = list(points)
+    lines = [",".join(f"{k} [{UNITS[k]}]" for k in cols)]
+    lines += [",".join(f"{points[k][i]:.17g}" for k in cols) for i in range(len(points["x"]))]
+    try:
+        fd = os.open(path, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o666)
+    except FileExistsError:
+        raise ValueError(f"`--csv` = {path!r} exists; threepart never overwrites a file: "
+                         "choose another name") from None
+    with os.fdopen(fd, "w", encoding="utf-8") as fh:
+        fh.write("\n".join(lines) + "\n")
 
 
 def _quantities(d: dict[str, Any]) -> set[str]:
@@ -156,12 +283,17 @@ def _quantities(d: dict[str, Any]) -> set[str]:
 
 
 def _print(out: dict[str, Any], as_json: bool) -> None:
+    headline = out.pop("_describe", None)
+    points = out.pop("points", None)
     if as_json:
         from threepart.output import strict_json
 
-        units = {k: UNITS[k] for k in UNITS if k in _quantities(out)}
-        print(strict_json({**out, "units": units}, indent=2))
+        doc = {**out, **({"points": points} if points is not None else {})}
+        units = {k: UNITS[k] for k in UNITS if k in _quantities(doc)}
+        print(strict_json({**doc, "units": units}, indent=2))
         return
+    if headline is not None:
+        print(headline)
 
     def walk(d: dict[str, Any], indent: str = "") -> None:
         for k, v in d.items():
@@ -171,28 +303,30 @@ def _print(out: dict[str, Any], as_json: bool) -> None:
             elif isinstance(v, (int, float)) and not isinstance(v, bool):
                 unit = UNITS[k]   # every number has a unit: a missing entry is a bug
                 print(f"{indent}{k:<10} {float(v):.10g} {'(dimensionless)' if unit == '1' else unit}")
-            else:
+            elif isinstance(v, list):
+                print(f"{indent}{k:<10} {', '.join(map(str, v))}")
+            elif k != "method_note":
                 print(f"{indent}{k:<10} {v}")
 
-    walk(out)
+    walk({k: v for k, v in out.items() if k != "method"})
+    if points is not None:
+        cols = list(points)
+        print("points:")
+        print("  " + "".join(f"{f'{k} [{UNITS[k]}]':>22}" for k in cols))
+        for i in range(len(points["x"])):
+            print("  " + "".join(f"{points[k][i]:>22.12g}" for k in cols))
 
 
-def _cmd_solve(args: argparse.Namespace) -> int:
-    _, out = _normal_summary(args)
+def _cmd_solve(args: argparse.Namespace, slip: bool = False) -> int:
+    _, out = _solve(args, slip)
+    if args.csv is not None:
+        _write_csv(args.csv, out["points"])
     _print(out, args.json)
     return 0
 
 
 def _cmd_slip(args: argparse.Namespace) -> int:
-    from threepart.closedform import solve_partial_slip
-
-    sol, out = _normal_summary(args)
-    slip = solve_partial_slip(sol, args.Q, args.f)
-    lo, hi = slip.stick_zone
-    out.update({"Q": slip.Q, "f": slip.f, "d": slip.d, "e": slip.e,
-                "stick_zone": {"left": lo, "right": hi}})
-    _print(out, args.json)
-    return 0
+    return _cmd_solve(args, slip=True)
 
 
 def _cmd_verify(args: argparse.Namespace) -> int:
@@ -218,12 +352,12 @@ def build_parser() -> argparse.ArgumentParser:
                      formatter_class=argparse.RawDescriptionHelpFormatter)
     sub = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
 
-    p = sub.add_parser("solve", help="closed-form normal problem",
+    p = sub.add_parser("solve", help="normal problem (closed form where it holds, else SIE)",
                        epilog="Units: mm, N/mm, MPa, 1/MPa, rad, or any consistent set.")
     _geometry_args(p)
-    p.set_defaults(func=_cmd_solve)
+    p.set_defaults(func=_cmd_solve, Q=None, f=None)
 
-    p = sub.add_parser("slip", help="closed-form partial slip (Ciavarella-Jaeger)",
+    p = sub.add_parser("slip", help="partial slip (Ciavarella-Jaeger; closed form or SIE)",
                        epilog="Units: mm, N/mm, MPa, 1/MPa, rad, or any consistent set.")
     _geometry_args(p)
     p.add_argument("--Q", type=float, required=True, help=_labelled("shear force, |Q| < f P", "Q"))

@@ -20,7 +20,31 @@ from scipy.optimize import minimize_scalar
 
 from .punch import Punch
 
-__all__ = ["NormalResult", "SlipResult", "Peak"]
+__all__ = ["NormalResult", "SlipResult", "Peak", "SEGMENTS", "segments_in_contact"]
+
+#: the punch's segments, left to right (eq. 2)
+SEGMENTS = ("R1", "centre", "R2")
+
+
+def segments_in_contact(b: float, left: float, right: float) -> tuple[str, ...]:
+    """The segments of a punch of half-width ``b`` that the interval ``[left, right]`` covers.
+
+    Parameters
+    ----------
+    b
+        Half-width of the central segment (joins at ``x = ±b``).
+    left, right
+        Ends of the contact (or stick zone), ``left < right``.
+
+    Returns
+    -------
+    tuple of str
+        Names from :data:`SEGMENTS`, left to right; a segment counts when the
+        interval overlaps it over a non-zero length.
+    """
+    spans = ((-np.inf, -b), (-b, b), (b, np.inf))
+    return tuple(name for name, (lo, hi) in zip(SEGMENTS, spans)
+                 if min(right, hi) > max(left, lo))
 
 
 @dataclass(frozen=True)
@@ -73,14 +97,35 @@ class NormalResult:
         """Contact width ``W = a + c``."""
         return self.a + self.c
 
+    @property
+    def segments(self) -> tuple[str, ...]:
+        """The punch segments in contact, left to right: ``"R1"``, ``"centre"``, ``"R2"``.
+
+        A segment counts when the contact covers part of it of non-zero width;
+        ``b = 0`` (case C, Hertz) has no centre.
+        """
+        return segments_in_contact(self.punch.b, -self.a, self.c)
+
+    @property
+    def within_paper(self) -> bool:
+        """Whether the contact lies in the paper's framework: both edges on the outer segments.
+
+        The closed form holds for ``a >= b`` and ``c >= b`` (an edge exactly at
+        a join is the lift-off limit). Past lift-off (an edge on the central
+        segment, or the punch on one corner) only the SIE and the FEM answer.
+        """
+        return self.a >= self.punch.b and self.c >= self.punch.b
+
     def peaks(self, n: int = 2001) -> tuple[Peak, Peak]:
         """Largest pressure left and right of ``x = 0``, each refined by a bounded search.
 
         For a single-humped distribution (Hertz, case C) both may be the same
-        point or one may sit at ``x = 0``.
+        point or one may sit at ``x = 0``. A contact that does not straddle
+        ``x = 0`` (the punch on one corner) is split at its middle instead.
         """
+        mid = 0.0 if -self.a < 0.0 < self.c else 0.5 * (self.c - self.a)
         out = []
-        for lo, hi in ((-self.a, min(0.0, self.c)), (max(0.0, -self.a), self.c)):
+        for lo, hi in ((-self.a, mid), (mid, self.c)):
             x = np.linspace(lo, hi, n)
             p = self.pressure(x)
             i = int(np.argmax(p))
@@ -142,6 +187,29 @@ class SlipResult:
     def stick_zone(self) -> tuple[float, float]:
         """``(-(d+e), d-e)``."""
         return -(self.d + self.e), self.d - self.e
+
+    @property
+    def segments(self) -> tuple[str, ...]:
+        """The punch segments in contact (of the normal solution)."""
+        return self.normal.segments
+
+    @property
+    def stick_segments(self) -> tuple[str, ...]:
+        """The punch segments the stick zone covers, as :attr:`NormalResult.segments`."""
+        return segments_in_contact(self.normal.punch.b, *self.stick_zone)
+
+    @property
+    def within_paper(self) -> bool:
+        """Whether the paper's closed form covers this solution.
+
+        The normal contact must be in its framework and the stick zone must
+        contain the central segment (``d + e >= b`` and ``d - e >= b``): the
+        paper's substitution holds only for stick-zone ends on the outer
+        segments (end of its partial-slip section).
+        """
+        lo, hi = self.stick_zone
+        b = self.normal.punch.b
+        return self.normal.within_paper and lo <= -b and hi >= b
 
     def pressure(self, x: ArrayLike) -> np.ndarray:
         """Compressive pressure of the normal problem."""

@@ -171,6 +171,8 @@ TOLERANCES: dict[tuple[str, str], Tolerance] = {
     ("sie-exact", "projected_ends"): _T(1e-14, "projected a, c, α do not depend on n: exact projection of the slope"),
     ("sie-exact", "zero_shear"): _T(1e-13, "Q = 0 sticks everywhere: the stick zone is the contact, up to rounding"),
     ("sie-exact", "slip_zone_shear"): _T(1e-14, "|q| = f p in the slip zones by construction, as a fraction of the peak pressure"),
+    ("sie-exact", "beyond"): _T(1e-10, "past lift-off and stick zones on the centre, vs the shifted punch's forward formulas or Hertz: both exact (measured <= 6e-16 W); the reference's own root stops near 1e-13"),
+    ("sie-exact", "beyond_pressure"): _T(1e-10, "punch on one corner: the slope over the contact is linear, so the projected pressure is Hertz's exactly (of the peak)"),
     ("sie-exact", "lift_off"): _T(1e-12, "SIE lift-off lever arms vs closedform.lift_off, both exact roots (measured <= 2.4e-15)"),
     ("sie-identity", "load"): _T(1e-8, "∫p dx = P and ∫x p dx = P s by adaptive quadrature with sqrt ends (measured <= 5.4e-10)"),
     ("sie-identity", "shear_load"): _T(1e-6, "∫q dx = Q by the trapezoid rule on 20001 points with sqrt ends (measured 9e-7)"),
