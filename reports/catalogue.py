@@ -14,7 +14,7 @@ from dataclasses import dataclass, field
 from typing import Any, Callable
 
 from threepart.catalogue import Case
-from threepart.tolerances import fem_comparison
+from threepart.tolerances import fem_comparison, tolerance
 
 from .compare import Check, compare
 from .solvers import METHODS, SOLVERS
@@ -87,13 +87,18 @@ def solve(case: Case, method: str, mode: Mode,
 
 @dataclass
 class CaseRun:
-    """Everything one case produced: results, times, errors and checks, by method."""
+    """Everything one case produced: results, times, errors and checks, by method.
+
+    ``refusals`` holds the messages of the closed form's expected refusals
+    (a case past its framework); they are checked, not errors.
+    """
 
     case: Case
     results: dict[str, Any] = field(default_factory=dict)
     times: dict[str, float] = field(default_factory=dict)
     errors: dict[str, str] = field(default_factory=dict)
     checks: list[Check] = field(default_factory=list)
+    refusals: dict[str, str] = field(default_factory=dict)
 
     @property
     def passed(self) -> bool:
@@ -103,13 +108,29 @@ class CaseRun:
         return [c for c in self.checks if not c.passed]
 
 
+def refusal_check(case: Case, raised: BaseException | None) -> Check:
+    """The check that the closed form refused ``case`` with the error the catalogue names.
+
+    ``error`` is 0 for the named error class, 1 for an answer or another error.
+    """
+    expected = case.closedform_refuses
+    right = raised is not None and type(raised).__name__ == expected
+    got = "an answer" if raised is None else type(raised).__name__
+    tol = tolerance("refusal", "closedform")
+    return Check(comparison="refusal", quantity="closedform", reference=1.0, obtained=float(right),
+                 error=0.0 if right else 1.0, limit=tol.limit,
+                 reason=f"{tol.reason}: expected {expected}, got {got}")
+
+
 def run_case(case: Case, mode: Mode, cache: dict[Any, Any] | None = None,
              methods: tuple[str, ...] = METHODS,
              progress: Callable[[str], None] | None = None) -> CaseRun:
-    """Solve ``case`` with each method and compare sie and fem with closedform.
+    """Solve ``case`` with each method and compare the others with its reference method.
 
-    A solver that raises is recorded in ``errors`` (and fails the case) rather
-    than aborting the run.
+    The reference is the closed form; past its framework (``case.beyond``)
+    it is the SIE, and the closed form must refuse with the error the case
+    names. A solver that raises otherwise is recorded in ``errors`` (and
+    fails the case) rather than aborting the run.
     """
     say = progress or (lambda msg: None)
     run = CaseRun(case)
@@ -124,17 +145,24 @@ def run_case(case: Case, mode: Mode, cache: dict[Any, Any] | None = None,
         try:
             res, dt = solve(case, method, mode, cache)
         except Exception as exc:  # noqa: BLE001 - recorded in the report
+            if case.beyond and method == "closedform":
+                run.checks.append(refusal_check(case, exc))
+                run.refusals[method] = f"{type(exc).__name__}: {exc}"
+                say(f"{method} refuses ({type(exc).__name__})")
+                continue
             run.errors[method] = f"{type(exc).__name__}: {exc}"
             say(f"{method} FAILED ({type(exc).__name__}: {exc})")
             continue
+        if case.beyond and method == "closedform":
+            run.checks.append(refusal_check(case, None))   # it answered: a failed check
         run.results[method] = res
         run.times[method] = dt
         say(f"{method} {_fmt_time(dt)}" + (" (normal problem shared with an earlier case)" if reused else ""))
-    ref = run.results.get("closedform")
+    ref = run.results.get(case.reference)
     if ref is None:
         return run
-    for method in methods[1:]:
-        if method not in run.results:
+    for method in methods:
+        if method in (case.reference, "closedform") or method not in run.results:
             continue
         comparison = "sie" if method == "sie" else fem_comparison(mode.fem_mesh)
         try:

@@ -133,6 +133,8 @@ def build_report(mode: Mode, runs: Sequence[CaseRun], studies: Sequence[Study],
             "passed": r.passed,
             "results": {m: _result_dict(res, r.times[m]) for m, res in r.results.items()},
             "errors": dict(r.errors),
+            "reference": r.case.reference,
+            "refusals": dict(r.refusals),
             "checks": [c.as_dict() for c in r.checks],
             "plots": plots.get(r.case.name, []),
         })

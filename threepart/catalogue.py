@@ -35,7 +35,10 @@ class Case:
     rigid punch) and ``compliance`` (``A`` itself, for a nondimensional case)
     is given. ``s`` is the lever arm; when ``s_lift_off_fraction`` is set
     instead, :meth:`resolved` computes ``s`` from the lift-off range, using the
-    stored lift-off lever arm ``s_max`` when there is one.
+    stored lift-off lever arm ``s_max`` when there is one (a fraction above 1
+    is past lift-off). ``closedform_refuses`` names the error the closed form
+    must raise for a case past its framework (``"LiftOffError"``,
+    ``"StickZoneError"``); such a case is judged against the SIE.
     """
 
     name: str
@@ -51,6 +54,17 @@ class Case:
     f: float | None = None
     Q_over_fP: float | None = None
     suites: tuple[str, ...] = ()
+    closedform_refuses: str | None = None
+
+    @property
+    def beyond(self) -> bool:
+        """Whether the case lies past the paper's framework (the closed form must refuse it)."""
+        return self.closedform_refuses is not None
+
+    @property
+    def reference(self) -> str:
+        """The method the others are compared with: the closed form, or the SIE past it."""
+        return "sie" if self.beyond else "closedform"
 
     def __post_init__(self) -> None:
         if (self.material is None) == (self.compliance is None):
@@ -134,7 +148,8 @@ class Case:
                 "E": E, "nu": nu, "A": self.A, "P": self.P, "s": self.s, "tilt": self.tilt,
                 "s_lift_off_fraction": self.s_lift_off_fraction, "load_4PA_over_b":
                     None if math.isinf(self.load_4PA_over_b) else self.load_4PA_over_b,
-                "f": self.f, "Q_over_fP": self.Q_over_fP, "Q": self.Q}
+                "f": self.f, "Q_over_fP": self.Q_over_fP, "Q": self.Q,
+                "closedform_refuses": self.closedform_refuses}
 
 
 def _read(path: str | Path | None) -> dict[str, Any]:
@@ -153,7 +168,8 @@ def _case(c: dict[str, Any], default_material: dict[str, float]) -> Case:
                 material=material, compliance=compliance,
                 s=c.get("s", None if "s_lift_off_fraction" in c else 0.0), tilt=c.get("tilt", "free"),
                 s_lift_off_fraction=c.get("s_lift_off_fraction"), s_max=c.get("s_max"),
-                f=c.get("f"), Q_over_fP=c.get("Q_over_fP"), suites=tuple(c["suites"]))
+                f=c.get("f"), Q_over_fP=c.get("Q_over_fP"), suites=tuple(c["suites"]),
+                closedform_refuses=c.get("closedform_refuses"))
 
 
 def load_cases(suite: str | None = "verify", path: str | Path | None = None) -> list[Case]:

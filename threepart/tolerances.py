@@ -100,6 +100,8 @@ TOLERANCES: dict[tuple[str, str], Tolerance] = {
     ("sie", "e"): _T(1e-8, "as d, relative to d since e = 0 for symmetric contacts"),
     ("sie", "q_interior_max"): _T(1e-6, "shear is f·p minus a corrective pressure: same field limit as p; measured <= 2.9e-7"),
     ("sie", "q_L2"): _T(1e-6, "as q_interior_max; measured <= 4e-8"),
+    # --- past the paper's framework: the closed form must refuse ---------------------------------
+    ("refusal", "closedform"): _T(0.5, "past its framework the closed form must refuse with the named error (error 0), never answer or raise another (error 1)"),
     # --- closed form vs FEM, default mesh --------------------------------------------------------
     ("fem-default", "a"): _T(1e-4, "default preset h = W/600 locates each end to a small fraction of h"),
     ("fem-default", "c"): _T(1e-4, "as a"),
