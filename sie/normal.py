@@ -25,11 +25,12 @@ from dataclasses import dataclass, field
 
 import numpy as np
 from numpy.typing import ArrayLike
+from scipy.optimize import brentq
 
 from threepart.punch import Punch
 
 from threepart.validate import check_finite, check_positive, check_tilt
-from threepart.errors import SeparationError
+from threepart.errors import NoConvergenceError, SeparationError
 from threepart.results import NormalResult
 
 from .projection import slope_coefficients
@@ -154,8 +155,8 @@ def _gap_slope_outside(punch: Punch, m: float, h: float, alpha: float, xi: np.nd
     """
     G = slope_coefficients(punch, m, h, nterms)[0]
     rho = xi - np.sign(xi) * np.sqrt(xi * xi - 1.0)
-    powers = rho[:, None] ** np.arange(1, nterms + 1)[None, :]
-    return punch.slope(m + h * xi, alpha) - powers @ G[1:]
+    series = rho * np.polynomial.polynomial.polyval(rho, G[1:])    # Σ_{k>=1} G_k ρ^k, Horner
+    return punch.slope(m + h * xi, alpha) - series
 
 
 def _check_single_contact(punch: Punch, A: float, P: float, s: float, m: float, h: float,
@@ -204,6 +205,49 @@ def _check_single_contact(punch: Punch, A: float, P: float, s: float, m: float, 
                 f"{gap[j]:.3g}) for R = {punch.R:g}; the contact separates into two zones")
 
 
+def _scan_ends(punch: Punch, A: float, P: float, sch: Plain | Projected, *,
+               s: float | None = None, alpha: float | None = None,
+               points: int = 161) -> list[tuple[float, float, np.ndarray, int, float]]:
+    """Every single contact ``m ± h`` of load ``P`` with centroid ``s`` (or tilt ``α``), by a scan.
+
+    A concave centre can have several single-contact solutions of the
+    equations, or none; Newton from one start finds at most one. Here the
+    load fixes ``h(m)`` along the contact centre ``m`` (a bracketed root), and
+    the centroid (or consistency) residual is scanned over ``m`` and each sign
+    change closed by Brent's method. Each root is returned as
+    :func:`solve_ends` returns its one (``iterations`` = -1).
+    """
+    k = math.pi / (2 * A * P)
+    scale = max(punch.b, math.sqrt(2 * P * A * max(punch.R1, punch.R2) / math.pi))
+
+    def ends(m: float) -> tuple[float, np.ndarray]:
+        h = bracket_root(lambda h: k * h * float(sch.moments(punch, m, h)[0][1]) - 1.0, scale,
+                         what="sie: contact width")
+        return h, sch.moments(punch, m, h)[0]
+
+    def miss(m: float) -> float:
+        try:
+            h, G = ends(m)
+        except NoConvergenceError:
+            return math.nan
+        if s is not None:
+            return (m + 0.5 * k * h * h * float(G[2]) - s) / scale
+        return (float(alpha or 0.0) + float(G[0])) * scale * k    # over the load's slope scale
+
+    centre = 0.0 if s is None else s
+    ms = centre + scale * np.linspace(-4.0, 4.0, points)
+    vals = np.array([miss(float(m)) for m in ms])
+    found = []
+    for i in np.flatnonzero(np.isfinite(vals[:-1]) & np.isfinite(vals[1:])
+                            & (np.sign(vals[:-1]) != np.sign(vals[1:]))):
+        m = float(brentq(miss, ms[i], ms[i + 1], xtol=1e-15 * scale, rtol=1e-15))
+        res = abs(miss(m))
+        if res < 1e-10:   # a root, not a jump of the residual
+            h, G = ends(m)
+            found.append((m, h, G, -1, res))
+    return found
+
+
 def solve_normal(punch: Punch, P: float, s: float = 0.0, *, A: float, tilt: str = "free",
                  n: int = DEFAULT_N, scheme: str = DEFAULT_SCHEME) -> SieNormalResult:
     """Contact ``[-a, c]``, tilt ``α`` and pressure for load ``P`` at lever arm ``s``.
@@ -244,15 +288,33 @@ def solve_normal(punch: Punch, P: float, s: float = 0.0, *, A: float, tilt: str 
     """
     sch = _check_normal(punch, P, s, A, tilt, n, scheme)
     t0 = time.perf_counter()
-    if tilt == "free":
-        m, h, G, its, res = solve_ends(punch, A, P, sch, s=s, m0=s)
-        alpha = -float(G[0])
-        s_out = float(s)
-    else:
-        m, h, G, its, res = solve_ends(punch, A, P, sch, alpha=0.0)
-        alpha = 0.0
-        s_out = m + math.pi * h * h * float(G[2]) / (4 * A * P)
-    _check_single_contact(punch, A, P, s_out, m, h, alpha)
+    target: dict[str, float] = {"s": s} if tilt == "free" else {"alpha": 0.0}
+    try:
+        found = [solve_ends(punch, A, P, sch, m0=s, **target)]
+    except NoConvergenceError:
+        if punch.kappa0 >= 0:
+            raise   # a convex or flat centre has one single contact: Newton must find it
+        found = []
+    refusal: SeparationError | None = None
+    for attempt in range(2):
+        for m, h, G, its, res in found:
+            alpha = -float(G[0]) if tilt == "free" else 0.0
+            s_out = float(s) if tilt == "free" else m + math.pi * h * h * float(G[2]) / (4 * A * P)
+            try:
+                _check_single_contact(punch, A, P, s_out, m, h, alpha)
+            except SeparationError as exc:
+                refusal = refusal or exc
+                continue
+            break
+        else:
+            if attempt == 0 and punch.kappa0 < 0:
+                # a concave centre: look for every single contact that carries P at s
+                found = _scan_ends(punch, A, P, sch, s=target.get("s"), alpha=target.get("alpha"))
+                continue
+            raise refusal or SeparationError(
+                f"`P` = {P:g} with `s` = {s:g}: no single contact of the concave centre R = "
+                f"{punch.R:g} carries the load; the contact separates into two zones")
+        break
     density, extra = sch.pressure(punch, A, m, h)
     info = {"n": sch.n, "scheme": sch.name, "iterations": its, "residual": res,
             "time_s": time.perf_counter() - t0, **extra}

@@ -170,3 +170,42 @@ def test_the_command_line_answers_on_one_corner(capsys):
     assert out["segments"] == ["R2"]
     assert abs(out["contact"]["left"] - left) <= 1e-9 * (right - left)
     assert abs(out["contact"]["right"] - right) <= 1e-9 * (right - left)
+
+
+def test_a_concave_centre_is_answered_or_refused_never_left_unconverged():
+    """Across the separation transition every load is answered (one zone) or refused (two)."""
+    verdicts = {}
+    for P_ in (5000.0, 25000.0, 40000.0):
+        for s in np.linspace(0.2, 3.0, 8):
+            try:
+                r = sie.solve_normal(CONCAVE, P_, s, A=A)
+            except SeparationError:
+                verdicts[P_, s] = "two zones"
+                continue
+            verdicts[P_, s] = r.segments
+            if r.segments == ("R2",):      # on one flank: Hertz, independently
+                left, right, _ = ref.on_corner(CONCAVE, P_, s, A)
+                assert abs(-r.a - left) <= EXACT * r.width and abs(r.c - right) <= EXACT * r.width
+    assert {"two zones", ("R2",), ("R1", "centre", "R2")} <= set(verdicts.values()), verdicts
+
+
+@pytest.mark.parametrize("s, zones", [(1.4, 1), (1.8, 2)])
+def test_the_fem_sees_the_separation_the_sie_refuses(s, zones):
+    """P = 40000 N/mm on the concave centre: one zone at s = 1.4 mm, two at 1.8 mm (FE active set)."""
+    from threepart import fem
+
+    P_ = 40000.0
+    try:
+        r = fem.solve_normal(CONCAVE, P_, s, E=210e3, nu=0.3, mesh="quick")
+        inside = (r.x_nodes > -r.a) & (r.x_nodes < r.c)
+        fem_zones = 1 + int(np.any(inside & (r.p_nodes <= 0)))
+    except SeparationError:
+        fem_zones = 2
+    assert fem_zones == zones
+    if zones == 2:
+        with pytest.raises(SeparationError):
+            sie.solve_normal(CONCAVE, P_, s, A=A)
+    else:
+        ok = sie.solve_normal(CONCAVE, P_, s, A=A)
+        limit = tolerance("fem-quick", "a").limit
+        assert abs(ok.a - r.a) <= limit * ok.width and abs(ok.c - r.c) <= limit * ok.width
