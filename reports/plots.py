@@ -14,6 +14,8 @@ import numpy as np
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 
+from threepart.convergence import ROUND_OFF, is_monotone
+
 from .compare import field_errors, is_slip, normal_of
 from .studies import STUDY_QUANTITIES, Study
 
@@ -48,9 +50,15 @@ def _grid(res: Any, n: int = 801) -> np.ndarray:
     return np.linspace(-res.a, res.c, n)
 
 
-def overlay(results: dict[str, Any], title: str, path: str | Path) -> Path:
-    """Pressure (and, for partial slip, shear) of every method on one plot."""
-    ref = results.get("closedform") or next(iter(results.values()))
+#: how the plots name a reference method
+REFERENCE_NAME = {"closedform": "closed form", "sie": "SIE"}
+
+
+def overlay(results: dict[str, Any], title: str, path: str | Path,
+            reference: str = "closedform") -> Path:
+    """Pressure (and, for partial slip, shear) of every method on one plot, scaled by the reference."""
+    ref = results.get(reference) or next(iter(results.values()))
+    name = REFERENCE_NAME.get(reference, reference)
     nref = normal_of(ref)
     W = nref.a + nref.c
     slip = is_slip(ref)
@@ -61,15 +69,15 @@ def overlay(results: dict[str, Any], title: str, path: str | Path) -> Path:
     for method, res in results.items():
         st = dict(STYLE.get(method, {"label": method}))
         xx = x
-        if method == "sie":
+        if method == "sie":   # markers: few enough to see the other curves beneath
             xx = np.linspace(-nref.a, nref.c, 41)
         ax.plot(xx / W, normal_of(res).pressure(xx) / pscale, **st)
     b = nref.punch.b
     if b > 0:
         for xb in (-b, b):
             ax.axvline(xb / W, color="0.7", lw=0.8, ls=":")
-    ax.set_xlabel("x / W")
-    ax.set_ylabel("p / p_max (closed form)")
+    ax.set_xlabel("x / W  (W = a + c)")
+    ax.set_ylabel(f"p / p_max ({name})")
     ax.set_title(f"{title}: pressure")
     ax.legend(loc="best", fontsize=8)
     if slip:
@@ -82,25 +90,27 @@ def overlay(results: dict[str, Any], title: str, path: str | Path) -> Path:
             xx = x if method != "sie" else np.linspace(-nref.a, nref.c, 41)
             ax.plot(xx / W, res.shear(xx) / qscale, **st)
         lo, hi = ref.stick_zone
-        ax.axvspan(lo / W, hi / W, color="tab:green", alpha=0.1, label="stick zone (closed form)")
-        ax.set_xlabel("x / W")
-        ax.set_ylabel("q / max|q| (closed form)")
+        ax.axvspan(lo / W, hi / W, color="tab:green", alpha=0.1, label=f"stick zone ({name})")
+        ax.set_xlabel("x / W  (W = a + c)")
+        ax.set_ylabel(f"q / max|q| ({name})")
         ax.set_title(f"{title}: shear, Q/fP = {ref.Q / (ref.f * ref.P):.2g}")
         ax.legend(loc="best", fontsize=8)
     return save(fig, path)
 
 
-def error_curves(results: dict[str, Any], title: str, path: str | Path) -> Path:
-    """|p_method - p_closedform| / p_max against x / W (log scale), and the same for shear."""
-    ref = results["closedform"]
+def error_curves(results: dict[str, Any], title: str, path: str | Path,
+                 reference: str = "closedform") -> Path:
+    """|p_method - p_reference| / p_max against x / W (log scale), and the same for shear."""
+    ref = results[reference]
+    name = REFERENCE_NAME.get(reference, reference)
     nref = normal_of(ref)
     W = nref.a + nref.c
-    slip = is_slip(ref) and any(is_slip(r) for m, r in results.items() if m != "closedform")
+    slip = is_slip(ref) and any(is_slip(r) for m, r in results.items() if m != reference)
     fig, axes = new_figure(2 if slip else 1)
     fields = [("pressure", axes[0, 0])] + ([("shear", axes[0, 1])] if slip else [])
     for field, ax in fields:
         for method, res in results.items():
-            if method == "closedform":
+            if method == reference:
                 continue
             if field == "pressure":
                 fe = field_errors(nref, normal_of(res), "pressure")
@@ -113,12 +123,26 @@ def error_curves(results: dict[str, Any], title: str, path: str | Path) -> Path:
             color = STYLE.get(method, {}).get("color")
             ax.semilogy(fe.x / W, err, color=color, lw=1.0, label=f"{method}")
         ax.axvspan(-nref.a / W, (-nref.a + 0.05 * W) / W, color="0.9")
-        ax.axvspan((nref.c - 0.05 * W) / W, nref.c / W, color="0.9", label="edge bands (not interior)")
-        ax.set_xlabel("x / W")
-        ax.set_ylabel(f"|Δ{field[0]}| / max|{field[0]}|")
-        ax.set_title(f"{title}: {field} error against the closed form")
+        ax.axvspan((nref.c - 0.05 * W) / W, nref.c / W, color="0.9",
+                   label="within 5 % of W of an end (left out of the interior error)")
+        sym = "p" if field == "pressure" else "q"
+        ax.set_xlabel("x / W  (W = a + c, the contact width)")
+        ax.set_ylabel(f"|Δ{sym}| / max|{sym}|  ({field} error, fraction of its peak)")
+        ax.set_title(f"{title}: {field} error against the {name}")
         ax.legend(loc="best", fontsize=8)
     return save(fig, path)
+
+
+def _reference_slopes(ax: Any, x: np.ndarray, st: Study, inverse: bool) -> None:
+    """Dashed first- and second-order lines through the largest first-level error."""
+    first = [st.errors[q][0] for q in STUDY_QUANTITIES if st.errors[q] and st.errors[q][0] > ROUND_OFF]
+    if len(x) < 2 or not first:
+        return
+    e0 = max(first)
+    for order, style in ((1, ":"), (2, "--")):
+        ratio = (x[0] / x) if inverse else (x / x[0])   # n grows (SIE), h shrinks (FEM)
+        ax.loglog(x, e0 * ratio**order, color="0.45", ls=style, lw=0.9,
+                  label=f"reference slope: order {order}")
 
 
 def _study_axes(st: Study, ax: Any, xlabel: str, inverse: bool) -> None:
@@ -127,11 +151,17 @@ def _study_axes(st: Study, ax: Any, xlabel: str, inverse: bool) -> None:
         e = np.asarray(st.errors[q], dtype=float)
         e = np.where(e > 0, e, np.nan)
         p = st.orders.get(q, math.nan)
-        lab = f"{q}: order {p:.2f}" if math.isfinite(p) else f"{q}: at round-off"
+        if math.isfinite(p):
+            lab = f"{q}: order {p:.2f}"
+        elif is_monotone(e) or not np.any(e > ROUND_OFF):
+            lab = f"{q}: at round-off"
+        else:
+            lab = f"{q}: not monotone, no order"
         g = st.gci.get(q)
         if g is not None and math.isfinite(g):
             lab += f", GCI {g:.1e}"
         ax.loglog(x, e, marker="o", ms=3.5, lw=1.0, label=lab)
+    _reference_slopes(ax, x, st, inverse)
     ax.set_xlabel(xlabel)
     ax.set_ylabel("normalised error vs closed form")
     ax.grid(True, which="both", color="0.9", lw=0.6)

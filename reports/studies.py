@@ -17,7 +17,8 @@ import numpy as np
 
 from threepart.catalogue import Case
 from threepart.output import json_safe
-from threepart.convergence import fitted_order, gci, richardson, three_level_order
+from threepart.convergence import (ROUND_OFF, fitted_order, gci, is_monotone, richardson,
+                                   three_level_order)
 
 from .catalogue import Mode, solve_normal
 from .compare import normal_figures
@@ -104,6 +105,12 @@ def _run(method: str, case: Case, labels: Sequence[str], solver: Callable[[Case,
     v = np.asarray(st.values, dtype=float)
     hs = 1.0 / v if param == "n" else v
     for q in STUDY_QUANTITIES:
+        if not is_monotone(st.errors[q]):
+            # an order fitted through errors that rise again would claim a rate that is not there
+            st.orders[q] = math.nan
+            if any(e > ROUND_OFF for e in st.errors[q]):
+                st.notes.append(f"{q}: the errors are not monotone in the refinement; no order is given")
+            continue
         st.orders[q] = fitted_order(hs, st.errors[q])[0]
         if q == "p_interior_max":
             continue

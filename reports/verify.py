@@ -36,6 +36,8 @@ SCHEMA_VERSION = "1.0"
 STUDY_CASE = "caseA_moment"
 #: SIE schemes whose convergence in n is studied: plain collocation and the kink-aware projection
 SIE_SCHEMES = ("plain", "projected")
+#: how many of the tightest checks (error/limit, worst first) the report lists on top
+TIGHTEST = 10
 PACKAGES = ("threepart", "numpy", "scipy", "matplotlib", "scikit-fem", "gmsh", "meshio",
             "threadpoolctl")
 
@@ -117,7 +119,7 @@ def run(mode: Mode, cases: Sequence[Case], say: Callable[[str], None]) -> tuple[
 def build_report(mode: Mode, runs: Sequence[CaseRun], studies: Sequence[Study],
                  timings: dict[str, float], plots: dict[str, list[str]]) -> dict[str, Any]:
     """The ``report.json`` document (see ``reports/report.schema.json``)."""
-    from threepart.tolerances import TOLERANCES
+    from threepart.tolerances import ERROR_UNITS, TOLERANCES
 
     checks = [c for r in runs for c in r.checks]
     failed = [f"{r.case.name}/{c.comparison}/{c.quantity}" for r in runs for c in r.failed()]
@@ -126,14 +128,21 @@ def build_report(mode: Mode, runs: Sequence[CaseRun], studies: Sequence[Study],
     by_comparison = {cmp: {"checks": sum(c.comparison == cmp for c in checks),
                            "failed": sum(c.comparison == cmp and not c.passed for c in checks)}
                      for cmp in comparisons}
+    ranked = sorted(((c.error / c.limit if c.limit > 0 else 0.0, r.case.name, c)
+                     for r in runs for c in r.checks), key=lambda t: -t[0])
+    tightest = [{"case": name, "comparison": c.comparison, "quantity": c.quantity,
+                 "error": c.error, "limit": c.limit, "ratio": ratio,
+                 "unit": ERROR_UNITS[c.quantity]} for ratio, name, c in ranked[:TIGHTEST]]
     cases = []
     for r in runs:
+        worst = max((c.error / c.limit for c in r.checks if c.limit > 0), default=None)
         cases.append({
             **r.case.as_dict(),
             "passed": r.passed,
             "results": {m: _result_dict(res, r.times[m]) for m, res in r.results.items()},
             "errors": dict(r.errors),
             "reference": r.case.reference,
+            "worst_ratio": worst,
             "refusals": dict(r.refusals),
             "checks": [c.as_dict() for c in r.checks],
             "plots": plots.get(r.case.name, []),
@@ -146,7 +155,7 @@ def build_report(mode: Mode, runs: Sequence[CaseRun], studies: Sequence[Study],
         "passed": bool(runs) and not failed and not errors,
         "summary": {"cases": len(runs), "checks": len(checks), "failed_checks": len(failed),
                     "errors": len(errors), "failed": failed, "error_messages": errors,
-                    "by_comparison": by_comparison},
+                    "by_comparison": by_comparison, "tightest": tightest},
         "settings": {"sie_n": mode.sie_n, "fem_mesh": str(mode.fem_mesh),
                      "sie_study_n": list(mode.sie_study_n),
                      "fem_study_n": list(mode.fem_study_n), "study_case": STUDY_CASE},
@@ -185,14 +194,15 @@ def write_report(tmp: Path, mode: Mode, runs: Sequence[CaseRun], studies: Sequen
     pdir = tmp / "plots"
     plots: dict[str, list[str]] = {}
     for r in runs:
-        if "closedform" not in r.results:
+        ref = r.case.reference
+        if ref not in r.results:
             continue
         names = []
         title = r.case.name
-        P.overlay(r.results, title, pdir / f"{r.case.name}_overlay.png")
+        P.overlay(r.results, title, pdir / f"{r.case.name}_overlay.png", reference=ref)
         names.append(f"plots/{r.case.name}_overlay.png")
         if len(r.results) > 1:
-            P.error_curves(r.results, title, pdir / f"{r.case.name}_errors.png")
+            P.error_curves(r.results, title, pdir / f"{r.case.name}_errors.png", reference=ref)
             names.append(f"plots/{r.case.name}_errors.png")
         plots[r.case.name] = names
     plots["_studies"] = []

@@ -20,10 +20,36 @@ import math
 import numpy as np
 from numpy.typing import ArrayLike
 
-__all__ = ["ROUND_OFF", "fitted_order", "three_level_order", "gci", "richardson"]
+__all__ = ["ROUND_OFF", "is_monotone", "fitted_order", "three_level_order", "gci", "richardson"]
 
 #: normalised errors at or below this are round-off and carry no order
 ROUND_OFF = 1e-13
+
+
+def is_monotone(err: ArrayLike, floor: float = ROUND_OFF) -> bool:
+    """Whether the errors, ordered coarse to fine, fall at every step (those above ``floor``).
+
+    An observed order means something only for such a sequence: a fit
+    through errors that rise and fall again would print a rate the
+    discretisation does not have.
+
+    Parameters
+    ----------
+    err
+        Normalised errors, coarse to fine.
+    floor
+        Errors at or below it (round-off) end the sequence.
+
+    Returns
+    -------
+    bool
+        True when at least two errors lie above ``floor`` and each is smaller
+        than the one before.
+    """
+    y = np.asarray(err, dtype=float)
+    y = y[np.isfinite(y)]
+    above = y[: int(np.argmax(y <= floor))] if np.any(y <= floor) else y
+    return len(above) >= 2 and bool(np.all(np.diff(above) < 0))
 
 
 def fitted_order(h: ArrayLike, err: ArrayLike, floor: float = ROUND_OFF) -> tuple[float, float]:

@@ -61,7 +61,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 __all__ = ["Tolerance", "TOLERANCES", "COMPARISONS", "QUANTITIES", "NORMAL_QUANTITIES",
-           "SLIP_QUANTITIES", "tolerance", "fem_comparison"]
+           "SLIP_QUANTITIES", "tolerance", "fem_comparison", "VALUE_UNITS", "ERROR_UNITS",
+           "NORMALISATION"]
 
 
 @dataclass(frozen=True)
@@ -80,6 +81,35 @@ SLIP_QUANTITIES = ("d", "e", "q_interior_max", "q_L2")
 QUANTITIES = NORMAL_QUANTITIES + SLIP_QUANTITIES
 #: comparisons of the verification run (closed form against a solver)
 COMPARISONS = ("sie", "fem-quick", "fem-default", "fem-fine")
+
+#: the unit of each compared figure's value (the catalogue's units: mm, N/mm, MPa)
+VALUE_UNITS: dict[str, str] = {
+    "a": "mm", "c": "mm", "s": "mm", "x_left": "mm", "x_right": "mm", "d": "mm", "e": "mm",
+    "alpha": "rad", "P": "N/mm",
+    "p_left": "MPa", "p_right": "MPa", "p_interior_max": "MPa", "q_interior_max": "MPa",
+    "p_L2": "MPa·mm^½", "q_L2": "MPa·mm^½", "closedform": "1 = refused",
+}
+#: what each error is a fraction of (its unit), by quantity; see :data:`NORMALISATION`
+ERROR_UNITS: dict[str, str] = {
+    "a": "W", "c": "W", "s": "W", "x_left": "W", "x_right": "W",
+    "alpha": "slope", "P": "P",
+    "p_left": "peak", "p_right": "peak", "p_interior_max": "peak", "p_L2": "L2",
+    "d": "d", "e": "d", "q_interior_max": "max|q|", "q_L2": "L2", "closedform": "0/1",
+}
+#: the normalisations of :data:`ERROR_UNITS`, in words (stated once at the top of the report)
+NORMALISATION: dict[str, str] = {
+    "W": "contact width W = a + c of the reference solution (mm): a, c, s and the peak positions",
+    "slope": "slope range of the punch over the contact, v'(c) - v'(-a) without tilt (or |α| if "
+             "larger): the tilt α",
+    "P": "the load P itself",
+    "peak": "the larger of the reference's two peak pressures: both peaks and the largest pointwise "
+            "pressure difference more than 5 % of W inside the contact ends",
+    "L2": "the reference field's L2 norm over the contact: p_L2 and q_L2",
+    "d": "the stick-zone half-width d of the reference: d and e",
+    "max|q|": "the largest shear traction of the reference: the largest pointwise shear difference "
+              "more than 5 % of W inside the contact ends",
+    "0/1": "a refusal: 0 when the closed form raised the named error, 1 otherwise",
+}
 
 _T = Tolerance
 #: the tolerance table: ``(comparison, quantity) -> Tolerance``
