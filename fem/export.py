@@ -7,6 +7,7 @@ are padded to three components, as VTU and XDMF readers expect.
 from __future__ import annotations
 
 from dataclasses import dataclass
+import os
 from pathlib import Path
 
 import meshio
@@ -74,13 +75,18 @@ def to_meshio(fields: Fields) -> meshio.Mesh:
     )
 
 
-def write_fields(fields: Fields, path: str | Path) -> Path:
-    """Write ``fields`` to ``.vtu`` or ``.xdmf``.
+def write_fields(fields: Fields, path: str | Path, overwrite: bool = False) -> Path:
+    """Write ``fields`` to ``.vtu`` or ``.xdmf`` (open it in ParaView).
 
     XDMF is written with XML data, but meshio's XDMF writer imports ``h5py``
     all the same, so ``.xdmf`` needs h5py installed (an ``ImportError`` says so).
+    An existing ``path`` is refused with a ``ValueError`` unless ``overwrite``.
     """
     path = Path(path)
+    if path.suffix not in (".vtu", ".xdmf"):
+        raise ValueError(f"`path` = {str(path)!r} must end in .vtu or .xdmf")
+    if os.path.lexists(path) and not overwrite:
+        raise ValueError(f"`path` = {str(path)!r} exists; pass overwrite=True to replace it")
     m = to_meshio(fields)
     if path.suffix == ".xdmf":
         try:
@@ -89,9 +95,7 @@ def write_fields(fields: Fields, path: str | Path) -> Path:
             raise ImportError("writing .xdmf needs h5py (meshio's XDMF writer imports it); "
                               "`pip install h5py` or write .vtu") from err
         meshio.xdmf.write(path, m, data_format="XML")
-    elif path.suffix == ".vtu":
-        meshio.write(path, m)
     else:
-        raise ValueError(f"`path` = {str(path)!r} must end in .vtu or .xdmf")
+        meshio.write(path, m, file_format="vtu")
     return path
 

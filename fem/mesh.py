@@ -110,7 +110,9 @@ def read_substrate(path: str | Path) -> Substrate:
     ValueError
         If the file has no triangles or no ``"contact"`` and ``"base"`` groups.
     """
-    m = meshio.read(path)
+    # named: ".msh" is also ANSYS's extension, and meshio prints a blank line for every
+    # reader it tries and drops
+    m = meshio.read(path, file_format="gmsh")
     cells = m.cells_dict
     if "triangle" not in cells:
         raise ValueError(f"`path` = {str(path)!r} holds no triangles")

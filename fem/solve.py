@@ -20,7 +20,7 @@ from numpy.typing import ArrayLike
 from threepart.punch import Punch
 
 from threepart.validate import check_finite
-from threepart.errors import ContactZoneError
+from threepart.errors import ContactZoneError, SeparationError
 from threepart.material import rigid_punch
 from threepart.results import NormalResult
 from threepart.meshes import SubstrateSpec
@@ -138,7 +138,24 @@ def _contact(sc: SurfaceCompliance, punch: Punch, P: float, s: float, tilt: str,
         raise ContactZoneError(
             f"the contact reaches the candidate zone end [{sc.x[0]:.6g}, {sc.x[-1]:.6g}]; "
             "use a wider zone (a larger preset `margin`)")
+    _check_one_zone(sc.x, sol.active, P, s)
     return sol
+
+
+def _check_one_zone(x: np.ndarray, active: np.ndarray, P: float, s: float) -> None:
+    """Refuse a contact whose active nodes do not form one zone (a gap between them).
+
+    The closed form, the SIE and this model answer a single contact; a gap of
+    inactive nodes between active ones is two zones, refused like the others
+    refuse it, never returned as the outer ends with a zero-pressure gap.
+    """
+    idx = np.flatnonzero(active)
+    gaps = np.flatnonzero(np.diff(idx) > 1)
+    if len(gaps):
+        lo, hi = x[idx[gaps[0]] + 1], x[idx[gaps[0] + 1] - 1]
+        raise SeparationError(
+            f"`P` = {P:g} with `s` = {s:g}: the FE contact separates into two zones (no contact "
+            f"over [{lo:.6g}, {hi:.6g}]); the single-contact solutions do not apply")
 
 
 def _guess(punch: Punch, P: float, s: float, A: float) -> tuple[float, float]:
@@ -235,6 +252,8 @@ def solve_normal(punch: Punch, P: float, s: float = 0.0, *, E: float, nu: float,
         If the contact iteration does not converge.
     ContactZoneError
         If the contact reaches the end of the candidate zone.
+    SeparationError
+        If the contact separates into two zones (a concave centre at a light load).
     """
     if not isinstance(punch, Punch):
         raise ValueError(f"`punch` = {punch!r} must be a closedform.Punch")

@@ -209,3 +209,43 @@ def test_the_fem_sees_the_separation_the_sie_refuses(s, zones):
         ok = sie.solve_normal(CONCAVE, P_, s, A=A)
         limit = tolerance("fem-quick", "a").limit
         assert abs(ok.a - r.a) <= limit * ok.width and abs(ok.c - r.c) <= limit * ok.width
+
+
+# -- the FEM past lift-off: an independent physical model against the exact references ------
+FEM_BEYOND = ["beyond_edge_on_flat", "beyond_convex_edge", "beyond_corner"]
+
+
+def _fem_against_reference(name: str, mesh: str) -> dict[str, float]:
+    """FE errors against the exact reference of the case (shifted punch or Hertz, not the SIE)."""
+    from threepart import fem
+
+    k = get_case(name).resolved()
+    if name == "beyond_corner":
+        left, right, alpha = ref.on_corner(k.punch, k.P, k.s, k.A)
+    else:
+        left, right = ref.edge_on_centre(k.punch, k.P, k.A, s=k.s)
+        alpha = ref.forward(k.punch, left, right, k.A)[2]
+    r = fem.solve_normal(k.punch, k.P, k.s, E=k.E, nu=k.nu, mesh=mesh)
+    exact = sie.solve_normal(k.punch, k.P, k.s, A=k.A)       # its pressure: exact to 1e-10 (above)
+    W = right - left
+    x = np.linspace(left + 0.05 * W, right - 0.05 * W, 801)
+    peak = max(p.p for p in exact.peaks())
+    assert r.segments == exact.segments
+    return {"a": abs(-r.a - left) / W, "c": abs(r.c - right) / W,
+            "alpha": abs(r.alpha - alpha) / abs(alpha),
+            "p": float(np.max(np.abs(r.pressure(x) - exact.pressure(x)))) / peak}
+
+
+@pytest.mark.parametrize("name", FEM_BEYOND)
+def test_the_fem_answers_past_lift_off_on_the_quick_mesh(name):
+    err = _fem_against_reference(name, "quick")
+    assert err["a"] <= tolerance("fem-quick", "a").limit and err["c"] <= tolerance("fem-quick", "c").limit
+    assert err["p"] <= tolerance("fem-quick", "p_interior_max").limit, err
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("name", FEM_BEYOND)
+def test_the_fem_answers_past_lift_off_to_2e_4_W_on_the_default_mesh(name):
+    """The acceptance figures: a, c within 2e-4 W, the pressure within 2e-3 of the peak."""
+    err = _fem_against_reference(name, "default")
+    assert err["a"] <= 2e-4 and err["c"] <= 2e-4 and err["p"] <= 2e-3, err

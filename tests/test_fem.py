@@ -177,6 +177,16 @@ def test_export_rejects_unknown_suffix(with_fields, tmp_path):
         fem.write_fields(with_fields.fields, tmp_path / "fields.csv")
 
 
+def test_export_never_overwrites_a_file_unasked(with_fields, tmp_path):
+    mine = tmp_path / "fields.vtu"
+    mine.write_text("the user's own file")
+    with pytest.raises(ValueError, match="exists; pass overwrite=True"):
+        fem.write_fields(with_fields.fields, mine)
+    assert mine.read_text() == "the user's own file"
+    fem.write_fields(with_fields.fields, mine, overwrite=True)
+    assert meshio.read(mine).points.shape[0] == len(with_fields.fields.points)
+
+
 STUDY = "fem-hertz-study"
 
 
@@ -199,3 +209,21 @@ def test_convergence_orders_hertz():
     assert rate_peak > tol("peak_order", STUDY), f"peak order {rate_peak:.2f}, errors {st.errors['p_left']}"
     assert st.errors["p_left"][-1] < tol("peak_level", STUDY)
     assert len(st.levels) >= 4 and all(math.isfinite(st.gci[q]) for q in ("a", "p_left"))
+
+
+def test_a_solve_prints_nothing(capfd):
+    """No stray output: meshio is told the format (".msh" is ANSYS's too), gmsh is silenced."""
+    fem.solve_normal(Punch(10.0, 10.0, 1.0), 28846.0, E=210e3, nu=0.3, mesh="quick")
+    out, err = capfd.readouterr()
+    assert out == "" and err == ""
+
+
+def test_a_contact_in_two_zones_is_refused():
+    """A concave centre at a light load touches on both flanks: refused, not returned with a gap."""
+    from threepart.errors import SeparationError
+
+    punch, P = Punch(10.0, 10.0, 1.0, R=-20.0), 10000.0
+    # the independent verdict: below the closed form's exact separation load
+    assert P < closedform.P_min(punch, rigid_punch(210e3, 0.3))
+    with pytest.raises(SeparationError, match=r"separates into two zones \(no contact over \["):
+        fem.solve_normal(punch, P, E=210e3, nu=0.3, mesh="quick")
