@@ -1,12 +1,15 @@
 """Time the FE model on the quick and default meshes, side by side with the closed form.
 
-Run ``python benchmarks/bench_fem.py [quick default ...]``. For each case of the
+Run ``python benchmarks/bench_fem.py [quick default ...] [--peer]``. For each case of the
 catalogue's ``"fem"`` suite (Hertz; case A symmetric and with unequal radii and a
 moment; case B; case C; a general finite R; suppressed tilt; near lift-off) it
 prints the FE errors against ``closedform.solve_normal`` at the case's compliance
 ``A = rigid_punch(E, nu)``: ``a`` and ``c`` in units of the contact width W,
 ``alpha`` relative, both peak pressures and the interior pressure (5 % of W
-excluded at each edge) relative to the largest peak, with DOFs and times.
+excluded at each edge) relative to the largest peak, with DOFs and times. Then,
+side by side in the same run, the FFT-BEM peer tamaas (:mod:`peer_tamaas`, a
+benchmark extra) on the tilt-free cases, with the ratio of each FEM preset's time
+to tamaas' time to 4e-5 (``--peer``: that table only).
 """
 from __future__ import annotations
 
@@ -55,5 +58,59 @@ def main(meshes: list[str]) -> None:
                   + " ".join(f"{v:+9.1e}" for v in err.values()), flush=True)
 
 
+#: the tilt-free cases the FFT-BEM peer can solve (it has no rigid-body tilt unknown)
+PEER_CASES = ("caseA_sym", "suppressed")
+#: tamaas grid densities (cells per contact width), on a period of 64 W
+PEER_CELLS = (512, 1024, 2048)
+
+
+def peer(meshes: list[str]) -> None:
+    """FEM presets and tamaas on the same tilt-free cases, timed side by side in this run.
+
+    Errors are against the closed form: a, c in units of W, pressure at each
+    method's own nodes more than 5 % of W inside the ends, of the peak.
+    """
+    from peer_tamaas import available, solve_peer
+
+    if not available():
+        print("tamaas is not installed: pip install -e '.[bench]' to time the FFT-BEM peer")
+        return
+    print(f"\n{'case':12s} {'method':16s} {'time s':>7s} {'a/W':>9s} {'c/W':>9s} {'p':>9s}")
+    for name in PEER_CASES:
+        case = next(c for c in load_cases("fem") if c.name == name).resolved()
+        ref = closedform.solve_normal(case.punch, case.P, case.s_load, A=case.A, tilt=case.tilt)
+        W = ref.a + ref.c
+        peak = max(q.p for q in ref.peaks())
+
+        def row(method: str, dt: float, a: float, c: float, x: np.ndarray, p: np.ndarray) -> float:
+            inner = (x > -ref.a + 0.05 * W) & (x < ref.c - 0.05 * W)
+            perr = float(np.max(np.abs(p[inner] - ref.pressure(x[inner])))) / peak
+            worst = max(abs(a - ref.a) / W, abs(c - ref.c) / W, perr)
+            print(f"{name:12s} {method:16s} {dt:7.2f} {abs(a - ref.a) / W:9.1e} "
+                  f"{abs(c - ref.c) / W:9.1e} {perr:9.1e}", flush=True)
+            return worst
+
+        times: dict[str, tuple[float, float]] = {}
+        for mesh in meshes:
+            t0 = time.perf_counter()
+            fe = fem.solve_normal(case.punch, case.P, case.s_load, E=case.E, nu=case.nu,
+                                  tilt=case.tilt, mesh=mesh)
+            dt = time.perf_counter() - t0
+            times[f"fem {mesh}"] = (dt, row(f"fem {mesh}", dt, fe.a, fe.c, fe.x_nodes, fe.p_nodes))
+        for cells in PEER_CELLS:
+            r = solve_peer(case.punch, case.P, E=case.E, nu=case.nu, width=W, cells=cells)
+            times[f"tamaas {cells}/W"] = (r.time_s, row(f"tamaas {cells}/W", r.time_s, r.a, r.c, r.x, r.p))
+        # tamaas' time to 4e-5: its coarsest grid that gets there, else its finest (said so)
+        peers = [(key, t, e) for key, (t, e) in times.items() if key.startswith("tamaas")]
+        key_p, t_p, e_p = next(((k, t, e) for k, t, e in peers if e <= 4e-5), peers[-1])
+        for key, (t, e) in times.items():
+            if key.startswith("fem"):
+                print(f"{'':12s} {key}: time / {key_p} ({e_p:.1e}) = {t / t_p:.2f}, "
+                      f"its worst error {e:.1e}")
+
+
 if __name__ == "__main__":
-    main(sys.argv[1:] or ["quick", "default"])
+    chosen = [a for a in sys.argv[1:] if a != "--peer"] or ["quick", "default"]
+    if "--peer" not in sys.argv[1:]:
+        main(chosen)
+    peer(chosen)

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import math
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Union
 
@@ -20,7 +20,7 @@ from numpy.typing import ArrayLike
 from threepart.punch import Punch
 
 from threepart.validate import check_finite
-from threepart.errors import ContactZoneError, SeparationError
+from threepart.errors import ContactZoneError, MeshResolutionError, SeparationError
 from threepart.material import rigid_punch
 from threepart.results import NormalResult
 from threepart.meshes import SubstrateSpec
@@ -191,6 +191,26 @@ def locate_contact(punch: Punch, P: float, s: float, *, E: float, nu: float, til
     raise ContactZoneError(f"no stable contact estimate after {tries} trial meshes")
 
 
+#: elements a contact end must lie from a join (where the pressure has a kink) to be resolved
+MIN_END_ELEMENTS = 3
+#: the most a preset is refined automatically to resolve an end near a join
+MAX_REFINEMENT = 8
+
+
+def _join_distance(punch: Punch, left: float, right: float) -> float:
+    """Distance of the nearer contact end from the nearer join ``x = ±b`` (inf for ``b = 0``)."""
+    if punch.b == 0:
+        return math.inf
+    return min(abs(end - j) for end in (left, right) for j in (-punch.b, punch.b))
+
+
+def _refinement(punch: Punch, left: float, right: float, h: float) -> int:
+    """How many times finer the mesh must be for both ends to lie ``MIN_END_ELEMENTS`` from a join."""
+    d = _join_distance(punch, left, right)
+    need = MIN_END_ELEMENTS * h / d if d > 0 else math.inf
+    return 1 if need <= 1 else (int(math.ceil(need)) if math.isfinite(need) else MAX_REFINEMENT + 1)
+
+
 def _substrate(mesh: MeshArg, punch: Punch, P: float, s: float, E: float, nu: float,
                tilt: str, max_iter: int) -> tuple[Substrate, float]:
     """The substrate mesh selected by ``mesh`` and its block size ``L``."""
@@ -254,25 +274,46 @@ def solve_normal(punch: Punch, P: float, s: float = 0.0, *, E: float, nu: float,
         If the contact reaches the end of the candidate zone.
     SeparationError
         If the contact separates into two zones (a concave centre at a light load).
+    MeshResolutionError
+        If a contact end lies within ``MIN_END_ELEMENTS`` elements of a join and a
+        preset refined ``MAX_REFINEMENT`` times (or the mesh given) cannot resolve it.
+        A preset is first refined automatically (``info["refined"]`` says how much).
     """
     if not isinstance(punch, Punch):
         raise ValueError(f"`punch` = {punch!r} must be a closedform.Punch")
     _validate(P, s, E, nu, tilt, max_iter)
-    t0 = time.perf_counter()
-    sub, L = _substrate(mesh, punch, P, s, E, nu, tilt, max_iter)
-    t1 = time.perf_counter()
-    sc = condense(sub, E, nu)
-    t2 = time.perf_counter()
-    sol = _contact(sc, punch, P, s, tilt, max_iter)
-    p = sol.f / sc.weights
-    left, right = _ends(sc.x, p, sol.active, (-punch.b, punch.b))
+    t_start = time.perf_counter()
+    pre = preset(mesh) if isinstance(mesh, str) and not mesh.endswith(".msh") else mesh
+    chosen: MeshArg = mesh
+    for attempt in range(2):
+        t0 = time.perf_counter()
+        sub, L = _substrate(chosen, punch, P, s, E, nu, tilt, max_iter)
+        t1 = time.perf_counter()
+        sc = condense(sub, E, nu)
+        t2 = time.perf_counter()
+        sol = _contact(sc, punch, P, s, tilt, max_iter)
+        p = sol.f / sc.weights
+        left, right = _ends(sc.x, p, sol.active, (-punch.b, punch.b))
+        factor = _refinement(punch, left, right, sc.h)
+        if factor == 1:
+            break
+        if not isinstance(pre, MeshPreset) or attempt == 1 or factor > MAX_REFINEMENT:
+            raise MeshResolutionError(
+                f"a contact end lies {_join_distance(punch, left, right):.3g} from a join, fewer than "
+                f"{MIN_END_ELEMENTS} elements of h = {sc.h:.3g}: the mesh cannot resolve it"
+                + ("" if isinstance(pre, MeshPreset) else "; give a finer mesh")
+                + (f" (it would need {factor}x finer, more than {MAX_REFINEMENT}x)"
+                   if isinstance(pre, MeshPreset) else ""))
+        chosen = replace(pre, n=pre.n * factor)   # refine the preset and solve again
     flds = fields_of(*sc.displacement(sol.f), E, nu) if fields else None
     t3 = time.perf_counter()
-    timings = {"mesh": t1 - t0, **sc.timings, "contact": t3 - t2, "total": t3 - t0}
+    timings = {"mesh": t1 - t0, **sc.timings, "contact": t3 - t2, "total": t3 - t_start}
     s_out = float(np.sum(sc.x * sol.f) / np.sum(sol.f))
     info = {"dofs": sc.dofs, "h": sc.h, "L": L, "n_candidates": len(sc.x),
             "iterations": sol.iterations, "delta": sol.delta, "timings": timings,
-            "mesh": mesh if isinstance(mesh, str) else type(mesh).__name__}
+            "mesh": mesh if isinstance(mesh, str) else type(mesh).__name__,
+            "refined": (float(chosen.n / pre.n) if isinstance(chosen, MeshPreset)
+                        and isinstance(pre, MeshPreset) else 1.0)}
     return FemResult(punch=punch, A=rigid_punch(E, nu), a=-left, c=right,
                      alpha=sol.alpha, P=float(np.sum(sol.f)),
                      s=s_out, tilt=tilt, method="fem", info=info, h=sc.h, dofs=sc.dofs,

@@ -227,3 +227,21 @@ def test_a_contact_in_two_zones_is_refused():
     assert P < closedform.P_min(punch, rigid_punch(210e3, 0.3))
     with pytest.raises(SeparationError, match=r"separates into two zones \(no contact over \["):
         fem.solve_normal(punch, P, E=210e3, nu=0.3, mesh="quick")
+
+
+def test_an_end_too_close_to_a_join_refines_the_preset_or_is_refused():
+    """The closed form says how far each end lies from its join; the quick mesh (h = W/60) must
+    refine itself where that is under 3 elements, and refuse where 8x finer would not do."""
+    from threepart.errors import MeshResolutionError
+
+    k = get_case("near_lift_off").resolved()
+    ref = closedform.solve_normal(k.punch, k.P, k.s, A=k.A)
+    h_quick = ref.width / fem.PRESETS["quick"].n
+    assert 3 * h_quick / 8 < ref.a - k.punch.b < 3 * h_quick         # refinable
+    r = fem.solve_normal(k.punch, k.P, k.s, E=k.E, nu=k.nu, mesh="quick")
+    assert r.info["refined"] > 1 and abs(r.a - ref.a) <= 1e-3 * ref.width
+
+    light = closedform.solve_normal(Punch(10.0, 5.0, 1.0), 20.0, A=rigid_punch(210e3, 0.3))
+    assert light.c - 1.0 < 3 * (light.width / fem.PRESETS["quick"].n) / 8   # beyond 8x
+    with pytest.raises(MeshResolutionError, match="fewer than 3 elements"):
+        fem.solve_normal(Punch(10.0, 5.0, 1.0), 20.0, E=210e3, nu=0.3, mesh="quick")

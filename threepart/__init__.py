@@ -49,12 +49,13 @@ FullSlidingError    -- |Q| >= f P (ValueError)
 StickZoneError      -- the stick zone would end inside the central segment (ValueError)
 NoConvergenceError  -- an iteration did not converge (RuntimeError)
 ContactZoneError    -- the FE contact reached the end of its mesh zone (RuntimeError)
+MeshResolutionError -- a contact end too close to a join for the FE mesh (a ContactZoneError)
 """
 from __future__ import annotations
 
 from .methods import CHOICES, METHODS, solve
-from .errors import (ContactZoneError, FullSlidingError, LiftOffError, NoConvergenceError,
-                     SeparationError, StickZoneError)
+from .errors import (ContactZoneError, FullSlidingError, LiftOffError, MeshResolutionError,
+                     NoConvergenceError, SeparationError, StickZoneError)
 from .material import compliance, rigid_punch, similar_pair
 from .punch import Punch
 from .results import NormalResult, Peak, SlipResult
@@ -64,6 +65,6 @@ __all__ = [
     "Punch", "compliance", "similar_pair", "rigid_punch", "TILTS",
     "NormalResult", "SlipResult", "Peak",
     "LiftOffError", "SeparationError", "FullSlidingError", "StickZoneError",
-    "NoConvergenceError", "ContactZoneError",
+    "NoConvergenceError", "ContactZoneError", "MeshResolutionError",
     "solve", "METHODS", "CHOICES",
 ]

@@ -9,7 +9,7 @@ returns a number it does not trust, and none returns NaN.
 from __future__ import annotations
 
 __all__ = ["NoConvergenceError", "LiftOffError", "FullSlidingError", "StickZoneError",
-           "SeparationError", "ContactZoneError"]
+           "SeparationError", "ContactZoneError", "MeshResolutionError"]
 
 
 class NoConvergenceError(RuntimeError):
@@ -38,3 +38,13 @@ class SeparationError(ValueError):
 
 class ContactZoneError(RuntimeError):
     """The FE contact reached an end of the mesh's candidate zone, so the mesh cannot hold it."""
+
+
+class MeshResolutionError(ContactZoneError):
+    """A contact end lies too close to a join for the mesh to resolve (fewer than a few elements).
+
+    The pressure has a kink at each join; an end within a few elements of one
+    is located no better than an element, and the tilt with it. A preset mesh
+    is refined automatically up to a limit; past it, or on a mesh the user
+    gave, this is raised rather than a silently coarse answer returned.
+    """
