@@ -16,6 +16,7 @@ from typing import Any
 import numpy as np
 import scipy.sparse as sp
 import scipy.sparse.linalg as sla
+from scipy.linalg.lapack import dtrtri
 from skfem import Basis, ElementTriP2, ElementVector, FacetBasis, LinearForm, asm
 from skfem.models.elasticity import lame_parameters, linear_elasticity
 from threadpoolctl import threadpool_limits
@@ -72,10 +73,16 @@ class SurfaceCompliance:
 
 
 def _ordering(K: sp.csc_matrix, last: np.ndarray) -> np.ndarray:
-    """Fill-reducing order of ``K`` (minimum degree on the rest) with ``last`` at the end."""
+    """Fill-reducing order of ``K`` (minimum degree on the rest) with ``last`` at the end.
+
+    SuperLU computes its column ordering before it factorises; an incomplete
+    factorisation that drops every entry returns the same ``perm_c`` as the
+    full one (identical results) at a fraction of the cost.
+    """
     rest = np.setdiff1d(np.arange(K.shape[0]), last)
-    lu = sla.splu(K[rest][:, rest].tocsc(), permc_spec="MMD_AT_PLUS_A", **_LU_OPTIONS)
-    return np.concatenate([rest[np.argsort(lu.perm_c)], last])
+    ilu = sla.spilu(K[rest][:, rest].tocsc(), drop_tol=np.inf, fill_factor=1.0,
+                    permc_spec="MMD_AT_PLUS_A", **_LU_OPTIONS)
+    return np.concatenate([rest[np.argsort(ilu.perm_c)], last])
 
 
 def condense(substrate: Substrate, E: float, nu: float) -> SurfaceCompliance:
@@ -94,7 +101,9 @@ def condense(substrate: Substrate, E: float, nu: float) -> SurfaceCompliance:
     """
     t0 = time.perf_counter()
     mesh, groups = substrate.mesh, substrate.boundaries
-    basis = Basis(mesh, ElementVector(ElementTriP2()))
+    # intorder 2 integrates the P2 stiffness (products of linear gradients) exactly on
+    # straight-sided triangles, with half the points of the default rule
+    basis = Basis(mesh, ElementVector(ElementTriP2()), intorder=2)
     lam, mu = lame_parameters(E, nu)  # 3-D Lame constants: plane strain
     K = asm(linear_elasticity(lam, mu), basis)
     y_dofs = basis.get_dofs(facets=groups["contact"]).all(["u^2"])
@@ -116,9 +125,12 @@ def condense(substrate: Substrate, E: float, nu: float) -> SurfaceCompliance:
         if not (np.array_equal(lu.perm_c, np.arange(Kf.shape[0]))
                 and np.array_equal(lu.perm_r, np.arange(Kf.shape[0]))):
             raise RuntimeError("SuperLU reordered the stiffness; the Schur block is not trailing")
-        L = lu.L.tocsc()[-n:, -n:].toarray()
-        U = lu.U.tocsc()[-n:, -n:].toarray()
-        C = np.linalg.inv(L @ U)
+        # the trailing block of L U is the Schur complement S = L22 U22, so C = U22^-1 L22^-1
+        L_inv, info_l = dtrtri(lu.L.tocsc()[-n:, -n:].toarray(), lower=1, unitdiag=1)
+        U_inv, info_u = dtrtri(lu.U.tocsc()[-n:, -n:].toarray(), lower=0)
+        if info_l or info_u:
+            raise RuntimeError("the trailing factor of the stiffness is singular")
+        C = U_inv @ L_inv
     C = 0.5 * (C + C.T)
     t2 = time.perf_counter()
     f = mesh.facets[:, groups["contact"]]

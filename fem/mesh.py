@@ -6,6 +6,8 @@ its boundaries looked up by physical-group name.
 """
 from __future__ import annotations
 
+import math
+
 import tempfile
 from dataclasses import dataclass
 from pathlib import Path
@@ -51,11 +53,24 @@ class MeshPreset:
             raise ValueError(f"`margin` = {self.margin!r} must lie in (0, 2]")
 
     def spec(self, lo: float, hi: float, breakpoints: tuple[float, ...] = ()) -> SubstrateSpec:
-        """Substrate spec for an estimated contact ``[lo, hi]``."""
-        W = hi - lo
-        return SubstrateSpec(x_lo=lo - self.margin * W, x_hi=hi + self.margin * W,
-                             h=W / self.n, L=self.L * W, growth=self.growth,
-                             breakpoints=tuple(breakpoints))
+        """Substrate spec for an estimated contact ``[lo, hi]``.
+
+        The estimate's width and zone ends are snapped to a binary grid of
+        about W/64 (:func:`snap`), so that a change in their last digits (a
+        different BLAS, a faster solver in the trial stage) gives the same
+        mesh instead of one that gmsh builds differently.
+        """
+        W, q = snap(hi - lo)
+        x_lo = math.floor((lo - self.margin * W) / q) * q
+        x_hi = math.ceil((hi + self.margin * W) / q) * q
+        return SubstrateSpec(x_lo=x_lo, x_hi=x_hi, h=W / self.n, L=self.L * W,
+                             growth=self.growth, breakpoints=tuple(breakpoints))
+
+
+def snap(W: float) -> tuple[float, float]:
+    """``(W rounded to the grid, the grid step)``: a binary grid of step ``2^(floor(log2 W) - 6)``."""
+    q = 2.0 ** (math.floor(math.log2(W)) - 6)
+    return max(q, round(W / q) * q), q
 
 
 #: Named presets. ``trial`` only locates the contact for the others.

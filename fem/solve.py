@@ -208,7 +208,10 @@ def _refinement(punch: Punch, left: float, right: float, h: float) -> int:
     """How many times finer the mesh must be for both ends to lie ``MIN_END_ELEMENTS`` from a join."""
     d = _join_distance(punch, left, right)
     need = MIN_END_ELEMENTS * h / d if d > 0 else math.inf
-    return 1 if need <= 1 else (int(math.ceil(need)) if math.isfinite(need) else MAX_REFINEMENT + 1)
+    if need <= 1:
+        return 1
+    # a quarter more than needed: the refined mesh's h is set by a snapped width (fem.mesh.snap)
+    return int(math.ceil(1.25 * need)) if math.isfinite(need) else MAX_REFINEMENT + 1
 
 
 def _substrate(mesh: MeshArg, punch: Punch, P: float, s: float, E: float, nu: float,
