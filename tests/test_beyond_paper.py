@@ -249,3 +249,12 @@ def test_the_fem_answers_past_lift_off_to_2e_4_W_on_the_default_mesh(name):
     """The acceptance figures: a, c within 2e-4 W, the pressure within 2e-3 of the peak."""
     err = _fem_against_reference(name, "default")
     assert err["a"] <= 2e-4 and err["c"] <= 2e-4 and err["p"] <= 2e-3, err
+
+
+def test_an_option_the_method_does_not_take_is_named():
+    with pytest.raises(ValueError, match=r"`mesh` is not an option of method 'auto' \(its options: n, scheme\)"):
+        solve(Punch(10, 10, 1), P, 1.6, A=A, mesh="quick")
+    with pytest.raises(ValueError, match=r"`n` is not an option of method 'closedform' \(its options: none\)"):
+        solve(Punch(10, 10, 1), P, 0.1, A=A, method="closedform", n=64)
+    with pytest.raises(ValueError, match="`method` = 'magic' must be one of auto, closedform, sie, fem"):
+        solve(Punch(10, 10, 1), P, 0.1, A=A, method="magic")

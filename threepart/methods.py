@@ -40,6 +40,9 @@ __all__ = ["METHODS", "CHOICES", "solve", "describe", "fem_modulus"]
 METHODS = ("closedform", "sie", "fem")
 #: what ``method`` may be
 CHOICES = ("auto", *METHODS)
+#: the discretisation options each method takes (``auto`` passes them to the SIE)
+OPTIONS: dict[str, tuple[str, ...]] = {"closedform": (), "sie": ("n", "scheme"),
+                                       "fem": ("mesh", "nu"), "auto": ("n", "scheme")}
 #: Poisson's ratio the FEM is given when only the compliance is known (see :func:`fem_modulus`)
 FEM_NU = 0.3
 
@@ -140,6 +143,11 @@ def solve(punch: Punch, P: float, s: float = 0.0, *, A: float, tilt: str = "free
     """
     if method not in CHOICES:
         raise ValueError(f"`method` = {method!r} must be one of {', '.join(CHOICES)}")
+    allowed = OPTIONS[method]
+    unknown = sorted(set(options) - set(allowed))
+    if unknown:
+        raise ValueError(f"`{unknown[0]}` is not an option of method {method!r} "
+                         f"(its options: {', '.join(allowed) or 'none'})")
     if (Q is None) != (f is None):
         raise ValueError("give both `Q` and `f` for partial slip, or neither")
     check_positive(A=A)
