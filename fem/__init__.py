@@ -6,6 +6,8 @@ solve_normal        -- load-controlled normal contact (tilt "free" or "suppresse
 FemResult           -- the shared result shape plus h, dofs, L, delta, timings and nodal pressures
 NoConvergenceError  -- the contact active-set iteration did not converge
 ContactZoneError    -- the contact reached the end of the candidate zone of the mesh
+SeparationError     -- the contact separates into two zones (from threepart.errors)
+MeshResolutionError -- a contact end too close to a join for the mesh, after automatic refinement
 locate_contact      -- coarse trial solves that place the refined zone (no closed form used)
 
 Building blocks
@@ -21,7 +23,7 @@ solve_contact       -- primal-dual active set with translation and tilt as unkno
 Export
 ------
 Fields              -- vertex displacement and cell stress of a solution (``solve_normal(fields=True)``)
-write_fields        -- write Fields to VTU or XDMF through meshio, 2-D vectors padded to 3
+write_fields        -- write Fields to VTU or XDMF (ParaView) through meshio; never over a file unasked
 to_meshio           -- Fields as a meshio.Mesh
 
 Studies
@@ -31,7 +33,8 @@ domain_study        -- results as the block size L grows
 """
 from __future__ import annotations
 
-from threepart.errors import ContactZoneError, NoConvergenceError
+from threepart.errors import (ContactZoneError, MeshResolutionError, NoConvergenceError,
+                              SeparationError)
 
 from .contact import ContactSolution, solve_contact
 from .elasticity import SurfaceCompliance, condense
@@ -40,8 +43,8 @@ from .mesh import PRESETS, MeshPreset, Substrate, make_substrate, read_substrate
 from .solve import FemResult, locate_contact, solve_normal
 from .studies import StudyLevel, StudyRecord, convergence_study, domain_study
 
-__all__ = ["solve_normal", "FemResult", "NoConvergenceError", "ContactZoneError",
-           "locate_contact", "MeshPreset", "PRESETS", "Substrate", "read_substrate",
+__all__ = ["solve_normal", "FemResult", "NoConvergenceError", "ContactZoneError", "SeparationError",
+           "MeshResolutionError", "locate_contact", "MeshPreset", "PRESETS", "Substrate", "read_substrate",
            "make_substrate", "SurfaceCompliance", "condense",
            "solve_contact", "ContactSolution", "Fields", "write_fields", "to_meshio",
            "convergence_study", "domain_study", "StudyRecord", "StudyLevel"]

@@ -6,9 +6,11 @@ closed form.
 
 Solvers
 -------
-solve_normal        -- contact [-a, c], tilt and pressure under load control ("free"/"suppressed" tilt)
+solve_normal        -- contact [-a, c], tilt and pressure under load control ("free"/"suppressed" tilt),
+                       also past lift-off and on one corner; a contact in two zones: SeparationError
 lift_off            -- lever arms at which a contact edge reaches a join x = ±b (closed form's range)
-solve_partial_slip  -- stick zone (d, e) and shear q(x) by Ciavarella–Jäger, from the discretised equations
+solve_partial_slip  -- stick zone (d, e) and shear q(x) by Ciavarella–Jäger, from the discretised equations,
+                       also where the stick zone ends on the central segment
 SieNormalResult     -- NormalResult with n, scheme and the interpolating pressure
 SieSlipResult       -- SlipResult with n, scheme, corrective pressure and shear
 NoConvergenceError  -- raised when a root iteration fails (never a silent NaN)
