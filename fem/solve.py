@@ -131,9 +131,12 @@ def _ends(x: np.ndarray, p: np.ndarray, active: np.ndarray,
 
 
 def _contact(sc: SurfaceCompliance, punch: Punch, P: float, s: float, tilt: str,
-             max_iter: int) -> ContactSolution:
+             max_iter: int, guess: tuple[float, float] | None = None) -> ContactSolution:
+    """Solve the contact on ``sc``, warm-started from the trial contact ``guess`` if there is one."""
     g0 = punch.profile(sc.x)
-    sol = solve_contact(sc.C, sc.x, g0, P, s, free_tilt=tilt == "free", max_iter=max_iter)
+    active = None if guess is None else (sc.x >= guess[0]) & (sc.x <= guess[1])
+    sol = solve_contact(sc.C, sc.x, g0, P, s, free_tilt=tilt == "free", max_iter=max_iter,
+                        active=active if active is not None and active.any() else None)
     if sol.active[0] or sol.active[-1]:
         raise ContactZoneError(
             f"the contact reaches the candidate zone end [{sc.x[0]:.6g}, {sc.x[-1]:.6g}]; "
@@ -215,8 +218,9 @@ def _refinement(punch: Punch, left: float, right: float, h: float) -> int:
 
 
 def _substrate(mesh: MeshArg, punch: Punch, P: float, s: float, E: float, nu: float,
-               tilt: str, max_iter: int) -> tuple[Substrate, float]:
-    """The substrate mesh selected by ``mesh`` and its block size ``L``."""
+               tilt: str, max_iter: int) -> tuple[Substrate, float, tuple[float, float] | None]:
+    """The substrate mesh selected by ``mesh``, its block size ``L`` and the trial contact, if any."""
+    guess = None
     if isinstance(mesh, Substrate):
         sub = mesh
     elif isinstance(mesh, SubstrateSpec):
@@ -228,10 +232,10 @@ def _substrate(mesh: MeshArg, punch: Punch, P: float, s: float, E: float, nu: fl
         if not isinstance(pre, MeshPreset):
             raise ValueError(f"`mesh` = {mesh!r} must be a preset name {sorted(PRESETS)}, "
                              "a MeshPreset, a SubstrateSpec, a Substrate or a .msh path")
-        lo, hi = locate_contact(punch, P, s, E=E, nu=nu, tilt=tilt, max_iter=max_iter)
-        sub = make_substrate(pre.spec(lo, hi, (-punch.b, punch.b)))
+        guess = locate_contact(punch, P, s, E=E, nu=nu, tilt=tilt, max_iter=max_iter)
+        sub = make_substrate(pre.spec(*guess, (-punch.b, punch.b)))
     L = float(np.ptp(sub.mesh.p[0]))
-    return sub, L
+    return sub, L, guess
 
 
 def solve_normal(punch: Punch, P: float, s: float = 0.0, *, E: float, nu: float,
@@ -290,11 +294,11 @@ def solve_normal(punch: Punch, P: float, s: float = 0.0, *, E: float, nu: float,
     chosen: MeshArg = mesh
     for attempt in range(2):
         t0 = time.perf_counter()
-        sub, L = _substrate(chosen, punch, P, s, E, nu, tilt, max_iter)
+        sub, L, guess = _substrate(chosen, punch, P, s, E, nu, tilt, max_iter)
         t1 = time.perf_counter()
         sc = condense(sub, E, nu)
         t2 = time.perf_counter()
-        sol = _contact(sc, punch, P, s, tilt, max_iter)
+        sol = _contact(sc, punch, P, s, tilt, max_iter, guess)
         p = sol.f / sc.weights
         left, right = _ends(sc.x, p, sol.active, (-punch.b, punch.b))
         factor = _refinement(punch, left, right, sc.h)
