@@ -8,6 +8,7 @@ contact ends, found between nodes by extrapolating ``p^2`` to zero.
 """
 from __future__ import annotations
 
+import functools
 import math
 import time
 from dataclasses import dataclass, field, replace
@@ -169,17 +170,26 @@ def _guess(punch: Punch, P: float, s: float, A: float) -> tuple[float, float]:
 
 def locate_contact(punch: Punch, P: float, s: float, *, E: float, nu: float, tilt: str,
                    max_iter: int = 100, tries: int = 6) -> tuple[float, float]:
-    """Estimate the contact ``(-a, c)`` by trial solves on the coarse ``"trial"`` mesh.
+    """Estimate the contact ``(-a, c)`` by solves on the coarse ``"trial"`` and ``"locate"`` meshes.
 
-    The zone is widened when the contact reaches its ends and narrowed around the
-    contact when it spans too few elements.
+    The trial zone is widened when the contact reaches its ends and narrowed
+    around the contact when it spans too few elements. A solve on the
+    ``"locate"`` mesh around the trial contact then places the ends to about
+    1e-4 W, where the refined presets put mesh nodes. Estimates are cached for
+    the run: the presets of one case share them.
     """
+    return _locate(punch, float(P), float(s), float(E), float(nu), tilt, int(max_iter), int(tries))
+
+
+@functools.lru_cache(maxsize=64)
+def _locate(punch: Punch, P: float, s: float, E: float, nu: float, tilt: str,
+            max_iter: int, tries: int) -> tuple[float, float]:
     A = rigid_punch(E, nu)
     lo, hi = _guess(punch, P, s if tilt == "free" else 0.0, A)
+    breaks = (-punch.b, punch.b)
     trial = PRESETS["trial"]
     for _ in range(tries):
-        sub = make_substrate(trial.spec(lo, hi, (-punch.b, punch.b)))
-        sc = condense(sub, E, nu)
+        sc = condense(make_substrate(trial.spec(lo, hi, breaks)), E, nu)
         sol = solve_contact(sc.C, sc.x, punch.profile(sc.x), P, s, free_tilt=tilt == "free",
                             max_iter=max_iter)
         if sol.active[0] or sol.active[-1]:
@@ -187,11 +197,24 @@ def locate_contact(punch: Punch, P: float, s: float, *, E: float, nu: float, til
             lo, hi = lo - W, hi + W
             continue
         p = sol.f / sc.weights
-        left, right = _ends(sc.x, p, sol.active, (-punch.b, punch.b))
+        left, right = _ends(sc.x, p, sol.active, breaks)
         if right - left > 0.5 * (hi - lo):
-            return left, right
+            break
         lo, hi = left - 0.05 * (right - left) - sc.h, right + 0.05 * (right - left) + sc.h
-    raise ContactZoneError(f"no stable contact estimate after {tries} trial meshes")
+    else:
+        raise ContactZoneError(f"no stable contact estimate after {tries} trial meshes")
+    sc = condense(make_substrate(PRESETS["locate"].spec(left, right, breaks)), E, nu)
+    sol = solve_contact(sc.C, sc.x, punch.profile(sc.x), P, s, free_tilt=tilt == "free",
+                        max_iter=max_iter, active=(sc.x >= left) & (sc.x <= right))
+    if sol.active[0] or sol.active[-1] or _zones(sol.active) > 1:
+        return left, right   # the trial estimate; the final solve says what is wrong
+    return _ends(sc.x, sol.f / sc.weights, sol.active, breaks)
+
+
+def _zones(active: np.ndarray) -> int:
+    """Number of separate runs of active nodes."""
+    idx = np.flatnonzero(active)
+    return int(len(idx) > 0) + int(np.sum(np.diff(idx) > 1))
 
 
 #: elements a contact end must lie from a join (where the pressure has a kink) to be resolved
@@ -207,8 +230,17 @@ def _join_distance(punch: Punch, left: float, right: float) -> float:
     return min(abs(end - j) for end in (left, right) for j in (-punch.b, punch.b))
 
 
+def _end_size(x: np.ndarray, left: float, right: float) -> float:
+    """Element size at the contact ends: twice the P2 node spacing there, the larger of the two."""
+    k = np.clip(np.searchsorted(x, [left, right]), 1, len(x) - 1)
+    return float(2 * np.max(x[k] - x[k - 1]))
+
+
 def _refinement(punch: Punch, left: float, right: float, h: float) -> int:
-    """How many times finer the mesh must be for both ends to lie ``MIN_END_ELEMENTS`` from a join."""
+    """How many times finer the mesh must be for both ends to lie ``MIN_END_ELEMENTS`` from a join.
+
+    ``h`` is the element size at the ends.
+    """
     d = _join_distance(punch, left, right)
     need = MIN_END_ELEMENTS * h / d if d > 0 else math.inf
     if need <= 1:
@@ -301,25 +333,26 @@ def solve_normal(punch: Punch, P: float, s: float = 0.0, *, E: float, nu: float,
         sol = _contact(sc, punch, P, s, tilt, max_iter, guess)
         p = sol.f / sc.weights
         left, right = _ends(sc.x, p, sol.active, (-punch.b, punch.b))
-        factor = _refinement(punch, left, right, sc.h)
+        h_end = _end_size(sc.x, left, right)
+        factor = _refinement(punch, left, right, h_end)
         if factor == 1:
             break
         if not isinstance(pre, MeshPreset) or attempt == 1 or factor > MAX_REFINEMENT:
             raise MeshResolutionError(
                 f"a contact end lies {_join_distance(punch, left, right):.3g} from a join, fewer than "
-                f"{MIN_END_ELEMENTS} elements of h = {sc.h:.3g}: the mesh cannot resolve it"
+                f"{MIN_END_ELEMENTS} elements of h = {h_end:.3g}: the mesh cannot resolve it"
                 + ("" if isinstance(pre, MeshPreset) else "; give a finer mesh")
                 + (f" (it would need {factor}x finer, more than {MAX_REFINEMENT}x)"
                    if isinstance(pre, MeshPreset) else ""))
-        chosen = replace(pre, n=pre.n * factor)   # refine the preset and solve again
+        chosen = replace(pre, refine=pre.refine * factor)   # refine at the ends and joins, solve again
     flds = fields_of(*sc.displacement(sol.f), E, nu) if fields else None
     t3 = time.perf_counter()
     timings = {"mesh": t1 - t0, **sc.timings, "contact": t3 - t2, "total": t3 - t_start}
     s_out = float(np.sum(sc.x * sol.f) / np.sum(sol.f))
-    info = {"dofs": sc.dofs, "h": sc.h, "L": L, "n_candidates": len(sc.x),
+    info = {"dofs": sc.dofs, "h": sc.h, "h_end": _end_size(sc.x, left, right), "L": L, "n_candidates": len(sc.x),
             "iterations": sol.iterations, "delta": sol.delta, "timings": timings,
             "mesh": mesh if isinstance(mesh, str) else type(mesh).__name__,
-            "refined": (float(chosen.n / pre.n) if isinstance(chosen, MeshPreset)
+            "refined": (float(chosen.refine / pre.refine) if isinstance(chosen, MeshPreset)
                         and isinstance(pre, MeshPreset) else 1.0)}
     return FemResult(punch=punch, A=rigid_punch(E, nu), a=-left, c=right,
                      alpha=sol.alpha, P=float(np.sum(sol.f)),

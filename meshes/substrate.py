@@ -2,10 +2,18 @@
 
 The block occupies ``[-L/2, L/2] x [-L, 0]`` (the surface is ``y = 0``). The
 top is split into the *contact* zone ``[x_lo, x_hi]``, where the candidate
-contact nodes live and the element size is a uniform ``h``, and the free *top*
-outside it. Points are placed at the zone ends and at every breakpoint (the
-punch's ``x = ±b``), so the surface has nodes there. Away from the zone the size
-grows linearly with the distance to it, ``h + growth * d``, up to ``h_max``.
+contact nodes live and the element size is ``h``, and the free *top* outside it.
+Points are placed at the zone ends and at every breakpoint (the punch's ``x = ±b``
+and, when they are known, the contact ends), so the surface has nodes there. Away
+from the zone the size grows linearly with the distance to it, ``h + growth * d``,
+up to ``h_max``.
+
+Where the contact pressure is not smooth -- the square-root decay at a contact end,
+the logarithmic kink at a join ``x = ±b`` -- a spec may ask for finer elements:
+around each point of ``refine_at`` the size is ``h_fine + growth * r`` (``r`` the
+distance to the point), on the surface and in the body alike. The surface nodes
+of a graded zone are placed by this module (:meth:`SubstrateSpec.surface_nodes`),
+so that a spec mirrored about ``x = 0`` has mirrored surface nodes.
 
 Physical groups, looked up by name: ``"contact"``, ``"top"``, ``"base"``,
 ``"left"``, ``"right"`` (curves) and ``"substrate"`` (the surface).
@@ -19,6 +27,7 @@ from pathlib import Path
 from typing import Iterator
 
 import gmsh
+import numpy as np
 
 __all__ = ["SubstrateSpec", "build_substrate", "gmsh_session", "PHYSICAL_CURVES"]
 
@@ -44,6 +53,10 @@ class SubstrateSpec:
         Largest element size; ``0`` means ``L / 20``.
     breakpoints
         Surface points inside the zone that must be mesh nodes (``x = ±b``).
+    refine_at
+        Surface points around which the size falls to ``h_fine`` (contact ends, joins).
+    h_fine
+        Element size at the ``refine_at`` points; ``0`` means no refinement (a uniform zone).
     """
 
     x_lo: float
@@ -53,6 +66,8 @@ class SubstrateSpec:
     growth: float = 0.15
     h_max: float = 0.0
     breakpoints: tuple[float, ...] = field(default_factory=tuple)
+    refine_at: tuple[float, ...] = field(default_factory=tuple)
+    h_fine: float = 0.0
 
     def __post_init__(self) -> None:
         for name in ("x_lo", "x_hi", "h", "L", "growth", "h_max"):
@@ -71,6 +86,49 @@ class SubstrateSpec:
             raise ValueError(f"`growth` = {self.growth!r} must be > 0")
         if self.h_max < 0:
             raise ValueError(f"`h_max` = {self.h_max!r} must be >= 0 (0 means L/20)")
+        if not (isinstance(self.h_fine, (int, float)) and 0 <= self.h_fine <= self.h):
+            raise ValueError(f"`h_fine` = {self.h_fine!r} must lie in [0, h = {self.h!r}] "
+                             "(0: no refinement)")
+        for x in (*self.breakpoints, *self.refine_at):
+            if not isinstance(x, (int, float)) or not math.isfinite(x):
+                raise ValueError(f"breakpoint or `refine_at` point {x!r} must be a finite number")
+
+    @property
+    def graded(self) -> bool:
+        """Whether the zone is refined around ``refine_at`` (else uniform ``h``)."""
+        return self.h_fine > 0 and len(self.refine_at) > 0
+
+    def size(self, x: np.ndarray) -> np.ndarray:
+        """Element size along the surface inside the zone: ``h``, refined around ``refine_at``."""
+        x = np.asarray(x, dtype=float)
+        size = np.full(x.shape, float(self.h))
+        if self.graded:
+            for x0 in self.refine_at:
+                size = np.minimum(size, self.h_fine + self.growth * np.abs(x - x0))
+        return size
+
+    def surface_nodes(self) -> np.ndarray:
+        """Vertex positions along the zone: the surface points, and between them nodes of size :meth:`size`.
+
+        Each piece between consecutive surface points gets ``ceil`` of its
+        integrated ``1 / size`` elements, placed at equal steps of that integral,
+        so the nodes of a spec mirrored about ``x = 0`` are mirrored too.
+        """
+        pts = self.surface_points()
+        out = [np.array([pts[0]])]
+        for x0, x1 in zip(pts[:-1], pts[1:]):
+            if not self.graded:
+                n_el = max(1, math.ceil((x1 - x0) / self.h - 1e-9))
+                out.append(np.linspace(x0, x1, n_el + 1)[1:])
+                continue
+            xs = np.linspace(x0, x1, 4097)
+            density = 1.0 / self.size(xs)
+            cum = np.concatenate([[0.0], np.cumsum(0.5 * (density[1:] + density[:-1])
+                                                   * np.diff(xs))])
+            n_el = max(1, math.ceil(cum[-1] - 1e-9))
+            inner = np.interp(np.linspace(0.0, cum[-1], n_el + 1)[1:-1], cum, xs)
+            out.append(np.concatenate([inner, [x1]]))
+        return np.concatenate(out)
 
     @property
     def size_max(self) -> float:
@@ -82,6 +140,7 @@ class SubstrateSpec:
         tol = 1e-9 * (self.x_hi - self.x_lo)
         inner = sorted({float(x) for x in self.breakpoints
                         if self.x_lo + tol < x < self.x_hi - tol})
+        inner = [x for i, x in enumerate(inner) if i == 0 or x - inner[i - 1] > tol]
         return [self.x_lo, *inner, self.x_hi]
 
 
@@ -102,7 +161,7 @@ def _geometry(spec: SubstrateSpec) -> dict[str, list[int]]:
     """Create points and curves of the block; return curve tags per physical name."""
     geo = gmsh.model.geo
     half, depth = spec.L / 2, spec.L
-    xs = spec.surface_points()
+    xs = list(spec.surface_nodes()) if spec.graded else spec.surface_points()
     top_pts = [geo.addPoint(x, 0.0, 0.0) for x in xs]
     right_top = geo.addPoint(half, 0.0, 0.0)
     right_bot = geo.addPoint(half, -depth, 0.0)
@@ -119,9 +178,10 @@ def _geometry(spec: SubstrateSpec) -> dict[str, list[int]]:
     surface = geo.addPlaneSurface([loop])
     geo.synchronize()
 
-    # uniform spacing h on each contact sub-segment, ending exactly on the points
+    # uniform spacing h on each contact sub-segment, ending exactly on the points; a
+    # graded zone has one segment per element, placed by SubstrateSpec.surface_nodes
     for tag, (x0, x1) in zip(contact, zip(xs[:-1], xs[1:])):
-        n_el = max(1, math.ceil((x1 - x0) / spec.h - 1e-9))
+        n_el = 1 if spec.graded else max(1, math.ceil((x1 - x0) / spec.h - 1e-9))
         gmsh.model.mesh.setTransfiniteCurve(tag, n_el + 1)
 
     groups = {"contact": contact, "top": [top_left, top_right], "base": [base],
@@ -134,14 +194,22 @@ def _geometry(spec: SubstrateSpec) -> dict[str, list[int]]:
 
 
 def _size_field(spec: SubstrateSpec, contact: list[int]) -> None:
-    """Size ``h + growth * distance(contact zone)``, capped at ``size_max``."""
+    """Size ``h + growth * distance(contact zone)``, refined around ``refine_at``, capped at ``size_max``."""
     fld = gmsh.model.mesh.field
     dist = fld.add("Distance")
     fld.setNumbers(dist, "CurvesList", contact)
     n_zone = (spec.x_hi - spec.x_lo) / spec.h
-    fld.setNumber(dist, "Sampling", int(max(20, 2 * n_zone / len(contact))))
+    fld.setNumber(dist, "Sampling", 4 if spec.graded else int(max(20, 2 * n_zone / len(contact))))
     size = fld.add("MathEval")
     fld.setString(size, "F", f"{spec.h!r} + {spec.growth!r} * F{dist}")
+    if spec.graded:
+        sizes = [size]
+        for x0 in spec.refine_at:   # the exact distance to a surface point
+            sizes.append(fld.add("MathEval"))
+            fld.setString(sizes[-1], "F",
+                          f"{spec.h_fine!r} + {spec.growth!r} * Sqrt((x - ({x0!r}))^2 + y^2)")
+        size = fld.add("Min")
+        fld.setNumbers(size, "FieldsList", sizes)
     fld.setAsBackgroundMesh(size)
     opt = gmsh.option.setNumber
     # otherwise the boundary/point sizes override the field
@@ -149,7 +217,7 @@ def _size_field(spec: SubstrateSpec, contact: list[int]) -> None:
     opt("Mesh.MeshSizeFromPoints", 0)
     opt("Mesh.MeshSizeFromCurvature", 0)
     opt("Mesh.MeshSizeMax", spec.size_max)
-    opt("Mesh.MeshSizeMin", spec.h)
+    opt("Mesh.MeshSizeMin", spec.h_fine if spec.graded else spec.h)
     opt("Mesh.Algorithm", 6)  # Frontal-Delaunay: good quality, deterministic
     opt("Mesh.ElementOrder", 1)  # fem raises the order (P2 on straight edges)
     opt("Mesh.MshFileVersion", 4.1)

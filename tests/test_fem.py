@@ -230,18 +230,27 @@ def test_a_contact_in_two_zones_is_refused():
 
 
 def test_an_end_too_close_to_a_join_refines_the_preset_or_is_refused():
-    """The closed form says how far each end lies from its join; the quick mesh (h = W/60) must
-    refine itself where that is under 3 elements, and refuse where 8x finer would not do."""
+    """The closed form places the left end k elements of the quick mesh's end size
+    (h = W / (n * refine)) from its join: at k = 1.5 the preset must refine itself
+    (3 elements are needed) and still find a to 1e-4 W; at k = 0.2, where 8x finer
+    would not do, it must refuse."""
     from threepart.errors import MeshResolutionError
 
-    k = get_case("near_lift_off").resolved()
-    ref = closedform.solve_normal(k.punch, k.P, k.s, A=k.A)
-    h_quick = ref.width / fem.PRESETS["quick"].n
-    assert 3 * h_quick / 8 < ref.a - k.punch.b < 3 * h_quick         # refinable
-    r = fem.solve_normal(k.punch, k.P, k.s, E=k.E, nu=k.nu, mesh="quick")
-    assert r.info["refined"] > 1 and abs(r.a - ref.a) <= 1e-3 * ref.width
+    punch, P, E, nu = Punch(10.0, 10.0, 1.0), 28846.0, 210e3, 0.3
+    A, quick = rigid_punch(E, nu), fem.PRESETS["quick"]
+    s_max = closedform.lift_off(punch, P, A=A).s_max
 
-    light = closedform.solve_normal(Punch(10.0, 5.0, 1.0), 20.0, A=rigid_punch(210e3, 0.3))
-    assert light.c - 1.0 < 3 * (light.width / fem.PRESETS["quick"].n) / 8   # beyond 8x
+    def state(k: float):
+        def gap(s: float) -> float:
+            r = closedform.solve_normal(punch, P, s, A=A)
+            return (r.a - punch.b) - k * r.width / (quick.n * quick.refine)
+        s = brentq(gap, 0.5 * s_max, s_max * (1 - 1e-12), xtol=1e-14)
+        return s, closedform.solve_normal(punch, P, s, A=A)
+
+    s, ref = state(1.5)
+    r = fem.solve_normal(punch, P, s, E=E, nu=nu, mesh="quick")
+    assert r.info["refined"] > 1 and abs(r.a - ref.a) <= 1e-4 * ref.width
+
+    s, ref = state(0.2)
     with pytest.raises(MeshResolutionError, match="fewer than 3 elements"):
-        fem.solve_normal(Punch(10.0, 5.0, 1.0), 20.0, E=210e3, nu=0.3, mesh="quick")
+        fem.solve_normal(punch, P, s, E=E, nu=nu, mesh="quick")
