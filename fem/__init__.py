@@ -8,7 +8,7 @@ NoConvergenceError  -- the contact active-set iteration did not converge
 ContactZoneError    -- the contact reached the end of the candidate zone of the mesh
 SeparationError     -- the contact separates into two zones (from threepart.errors)
 MeshResolutionError -- a contact end too close to a join for the mesh, after automatic refinement
-locate_contact      -- coarse trial solves that place the refined zone (no closed form used)
+locate_contact      -- coarse trial and locate solves that place the zone and the ends (no closed form used)
 
 Building blocks
 ---------------

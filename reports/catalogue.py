@@ -28,8 +28,9 @@ class Mode:
 
     ``sie_n`` (None: the solver's default) and ``fem_mesh`` (a preset name, or
     any mesh argument ``fem.solve_normal`` takes) are used for the catalogue;
-    ``sie_study_n`` and ``fem_study_n`` (elements across the contact width,
-    same grading and domain) for the convergence studies (empty: skipped).
+    ``sie_study_n`` and ``fem_study_n`` (elements across the contact width of
+    the default FE mesh's self-similar family) for the convergence studies
+    (empty: skipped).
     """
 
     name: str
@@ -48,11 +49,11 @@ class Mode:
 
 
 MODES: dict[str, Mode] = {
-    "quick": Mode("quick", None, "quick", (8, 16, 32, 64, 128, 256), (30, 60, 120)),
+    "quick": Mode("quick", None, "quick", (8, 16, 32, 64, 128, 256), (38, 75, 150)),
     "default": Mode("default", None, "default", (8, 16, 32, 64, 128, 256, 512, 1024),
-                    (30, 60, 120, 240, 480)),
+                    (38, 75, 150, 300)),
     "full": Mode("full", None, "fine", (8, 16, 32, 64, 128, 256, 512, 1024, 2048),
-                 (30, 60, 120, 240, 480, 960)),
+                 (38, 75, 150, 300, 600)),
 }
 
 

@@ -63,3 +63,19 @@ def test_richardson_recovers_the_limit():
     n = np.array([10.0, 20.0, 40.0, 80.0])
     v = np.outer(n**-1.0, [1.0, -2.0]) + [5.0, 7.0]
     np.testing.assert_allclose(richardson(1 / n, v, 1.0), [5.0, 7.0], atol=EXACT)
+
+
+@pytest.mark.parametrize("values, expected", [
+    (1.0 + np.array([0.4, 0.2, 0.1]) ** 2, True),              # from one side, shrinking steps
+    (1.0 - 3.0 * np.array([0.4, 0.2, 0.1, 0.05]) ** 3, True),
+    ([1.78256, 1.78613, 1.786435, 1.786445], True),           # FEM c: the error vs a reference crosses 0
+    ([1.0, 1.1, 1.05, 1.07], False),                          # oscillating
+    ([1.0, 1.1, 1.3], False),                                 # steps that grow
+    ([1.0, 1.0, 1.0], False),                                 # no change: no order
+    ([1.0, 1.1], False),                                      # one step: no ratio
+])
+def test_monotone_convergence_is_told_from_the_values_alone(values, expected):
+    from threepart.convergence import converges_monotonically
+
+    assert converges_monotonically(values) is expected
+

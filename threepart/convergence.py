@@ -20,7 +20,7 @@ import math
 import numpy as np
 from numpy.typing import ArrayLike
 
-__all__ = ["ROUND_OFF", "is_monotone", "fitted_order", "three_level_order", "gci", "richardson"]
+__all__ = ["ROUND_OFF", "is_monotone", "converges_monotonically", "fitted_order", "three_level_order", "gci", "richardson"]
 
 #: normalised errors at or below this are round-off and carry no order
 ROUND_OFF = 1e-13
@@ -50,6 +50,21 @@ def is_monotone(err: ArrayLike, floor: float = ROUND_OFF) -> bool:
     y = y[np.isfinite(y)]
     above = y[: int(np.argmax(y <= floor))] if np.any(y <= floor) else y
     return len(above) >= 2 and bool(np.all(np.diff(above) < 0))
+
+
+def converges_monotonically(values: ArrayLike) -> bool:
+    """Whether values, ordered coarse to fine, change by steps of one sign that shrink.
+
+    This is the reference-free test of the GCI method (Celik et al. 2008,
+    ``0 < R < 1`` for the ratio of successive changes): the sequence
+    approaches its limit from one side, so the three-level order and the
+    GCI mean something even where the error against a reference, itself
+    smaller than the last change, is not monotone.
+    """
+    d = np.diff(np.asarray(values, dtype=float))
+    return (len(d) >= 2 and bool(np.all(np.isfinite(d))) and bool(np.all(d != 0))
+            and bool(np.all(np.sign(d) == np.sign(d[0])))
+            and bool(np.all(np.abs(d[1:]) < np.abs(d[:-1]))))
 
 
 def fitted_order(h: ArrayLike, err: ArrayLike, floor: float = ROUND_OFF) -> tuple[float, float]:
