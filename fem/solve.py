@@ -55,7 +55,8 @@ class FemResult(NormalResult):
     delta
         Rigid indentation of the punch (depends on ``L``: half-plane displacements diverge).
     timings
-        Wall seconds of ``mesh``, ``assemble``, ``factorise``, ``contact``, ``total``.
+        Wall seconds of ``locate`` (trial and locate solves; cached per case in a run),
+        ``mesh``, ``assemble``, ``factorise``, ``contact`` and ``total``.
     x_nodes, p_nodes
         Candidate node positions and their pressures ``f_i / w_i``.
     fields
@@ -250,9 +251,10 @@ def _refinement(punch: Punch, left: float, right: float, h: float) -> int:
 
 
 def _substrate(mesh: MeshArg, punch: Punch, P: float, s: float, E: float, nu: float,
-               tilt: str, max_iter: int) -> tuple[Substrate, float, tuple[float, float] | None]:
-    """The substrate mesh selected by ``mesh``, its block size ``L`` and the trial contact, if any."""
-    guess = None
+               tilt: str, max_iter: int
+               ) -> tuple[Substrate, float, tuple[float, float] | None, float]:
+    """The substrate selected by ``mesh``, its block size ``L``, the located contact and the seconds spent locating it."""
+    guess, t_locate = None, 0.0
     if isinstance(mesh, Substrate):
         sub = mesh
     elif isinstance(mesh, SubstrateSpec):
@@ -264,10 +266,12 @@ def _substrate(mesh: MeshArg, punch: Punch, P: float, s: float, E: float, nu: fl
         if not isinstance(pre, MeshPreset):
             raise ValueError(f"`mesh` = {mesh!r} must be a preset name {sorted(PRESETS)}, "
                              "a MeshPreset, a SubstrateSpec, a Substrate or a .msh path")
+        t0 = time.perf_counter()
         guess = locate_contact(punch, P, s, E=E, nu=nu, tilt=tilt, max_iter=max_iter)
+        t_locate = time.perf_counter() - t0
         sub = make_substrate(pre.spec(*guess, (-punch.b, punch.b)))
     L = float(np.ptp(sub.mesh.p[0]))
-    return sub, L, guess
+    return sub, L, guess, t_locate
 
 
 def solve_normal(punch: Punch, P: float, s: float = 0.0, *, E: float, nu: float,
@@ -326,7 +330,7 @@ def solve_normal(punch: Punch, P: float, s: float = 0.0, *, E: float, nu: float,
     chosen: MeshArg = mesh
     for attempt in range(2):
         t0 = time.perf_counter()
-        sub, L, guess = _substrate(chosen, punch, P, s, E, nu, tilt, max_iter)
+        sub, L, guess, t_locate = _substrate(chosen, punch, P, s, E, nu, tilt, max_iter)
         t1 = time.perf_counter()
         sc = condense(sub, E, nu)
         t2 = time.perf_counter()
@@ -347,7 +351,8 @@ def solve_normal(punch: Punch, P: float, s: float = 0.0, *, E: float, nu: float,
         chosen = replace(pre, refine=pre.refine * factor)   # refine at the ends and joins, solve again
     flds = fields_of(*sc.displacement(sol.f), E, nu) if fields else None
     t3 = time.perf_counter()
-    timings = {"mesh": t1 - t0, **sc.timings, "contact": t3 - t2, "total": t3 - t_start}
+    timings = {"locate": t_locate, "mesh": t1 - t0 - t_locate, **sc.timings, "contact": t3 - t2,
+               "total": t3 - t_start}
     s_out = float(np.sum(sc.x * sol.f) / np.sum(sol.f))
     info = {"dofs": sc.dofs, "h": sc.h, "h_end": _end_size(sc.x, left, right), "L": L, "n_candidates": len(sc.x),
             "iterations": sol.iterations, "delta": sol.delta, "timings": timings,
