@@ -154,13 +154,19 @@ def _check_one_zone(x: np.ndarray, active: np.ndarray, P: float, s: float) -> No
     inactive nodes between active ones is two zones, refused like the others
     refuse it, never returned as the outer ends with a zero-pressure gap.
     """
-    idx = np.flatnonzero(active)
-    gaps = np.flatnonzero(np.diff(idx) > 1)
-    if len(gaps):
-        lo, hi = x[idx[gaps[0]] + 1], x[idx[gaps[0] + 1] - 1]
+    gap = _first_gap(active)
+    if gap is not None:
+        lo, hi = x[gap[0]], x[gap[1]]
         raise SeparationError(
             f"`P` = {P:g} with `s` = {s:g}: the FE contact separates into two zones (no contact "
             f"over [{lo:.6g}, {hi:.6g}]); the single-contact solutions do not apply")
+
+
+def _first_gap(active: np.ndarray) -> tuple[int, int] | None:
+    """First and last inactive node of the first gap between active nodes, or None for one zone."""
+    idx = np.flatnonzero(active)
+    gaps = np.flatnonzero(np.diff(idx) > 1)
+    return (int(idx[gaps[0]] + 1), int(idx[gaps[0] + 1] - 1)) if len(gaps) else None
 
 
 def _guess(punch: Punch, P: float, s: float, A: float) -> tuple[float, float]:
@@ -205,17 +211,11 @@ def _locate(punch: Punch, P: float, s: float, E: float, nu: float, tilt: str,
     else:
         raise ContactZoneError(f"no stable contact estimate after {tries} trial meshes")
     sc = condense(make_substrate(PRESETS["locate"].spec(left, right, breaks)), E, nu)
-    sol = solve_contact(sc.C, sc.x, punch.profile(sc.x), P, s, free_tilt=tilt == "free",
-                        max_iter=max_iter, active=(sc.x >= left) & (sc.x <= right))
-    if sol.active[0] or sol.active[-1] or _zones(sol.active) > 1:
+    try:
+        sol = _contact(sc, punch, P, s, tilt, max_iter, (left, right))
+    except (ContactZoneError, SeparationError):
         return left, right   # the trial estimate; the final solve says what is wrong
     return _ends(sc.x, sol.f / sc.weights, sol.active, breaks)
-
-
-def _zones(active: np.ndarray) -> int:
-    """Number of separate runs of active nodes."""
-    idx = np.flatnonzero(active)
-    return int(len(idx) > 0) + int(np.sum(np.diff(idx) > 1))
 
 
 #: elements a contact end must lie from a join (where the pressure has a kink) to be resolved
@@ -354,7 +354,7 @@ def solve_normal(punch: Punch, P: float, s: float = 0.0, *, E: float, nu: float,
     timings = {"locate": t_locate, "mesh": t1 - t0 - t_locate, **sc.timings, "contact": t3 - t2,
                "total": t3 - t_start}
     s_out = float(np.sum(sc.x * sol.f) / np.sum(sol.f))
-    info = {"dofs": sc.dofs, "h": sc.h, "h_end": _end_size(sc.x, left, right), "L": L, "n_candidates": len(sc.x),
+    info = {"dofs": sc.dofs, "h": sc.h, "h_end": h_end, "L": L, "n_candidates": len(sc.x),
             "iterations": sol.iterations, "delta": sol.delta, "timings": timings,
             "mesh": mesh if isinstance(mesh, str) else type(mesh).__name__,
             "refined": (float(chosen.refine / pre.refine) if isinstance(chosen, MeshPreset)

@@ -117,10 +117,6 @@ class SubstrateSpec:
         pts = self.surface_points()
         out = [np.array([pts[0]])]
         for x0, x1 in zip(pts[:-1], pts[1:]):
-            if not self.graded:
-                n_el = max(1, math.ceil((x1 - x0) / self.h - 1e-9))
-                out.append(np.linspace(x0, x1, n_el + 1)[1:])
-                continue
             xs = np.linspace(x0, x1, 4097)
             density = 1.0 / self.size(xs)
             cum = np.concatenate([[0.0], np.cumsum(0.5 * (density[1:] + density[:-1])

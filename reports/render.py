@@ -15,7 +15,7 @@ from typing import Any, Callable
 
 from threepart.tolerances import ERROR_UNITS, NORMALISATION, VALUE_UNITS
 
-__all__ = ["markdown", "html", "fmt", "sections"]
+__all__ = ["markdown", "html", "fmt"]
 
 Table = tuple[list[str], list[list[str]]]
 
@@ -167,11 +167,11 @@ def _environment(doc: dict[str, Any]) -> list[tuple[str, str]]:
     ]
 
 
-def sections(doc: dict[str, Any]) -> list[tuple[str, Any]]:
-    """The report's blocks in reading order, as ``(kind, content)`` for both renderers."""
-    return [("verdict", _verdict(doc)), ("how", _how_to_read(doc)),
-            ("tightest", _tightest(doc)),
-            ("inside", _case_lines(doc, beyond=False)), ("beyond", _case_lines(doc, beyond=True))]
+def _tolerances(doc: dict[str, Any]) -> Table:
+    head = ["comparison", "quantity", "limit", "unit", "reason"]
+    rows = [[t["comparison"], t["quantity"], fmt(t["limit"]), ERROR_UNITS.get(t["quantity"], ""),
+             t["reason"]] for t in doc["tolerances"]]
+    return head, rows
 
 
 # -- Markdown --------------------------------------------------------------------------------
@@ -205,9 +205,7 @@ def markdown(doc: dict[str, Any]) -> str:
         out += [f"- note: {n}" for n in st["notes"]]
     out += [f"![{p}]({p})" for p in doc["plots"]] + [""]
     out += ["## Tolerance table", ""]
-    out += _md_table(["comparison", "quantity", "limit", "unit", "reason"],
-                     [[t["comparison"], t["quantity"], fmt(t["limit"]), ERROR_UNITS.get(t["quantity"], ""),
-                       t["reason"]] for t in doc["tolerances"]])
+    out += _md_table(*_tolerances(doc))
     out += ["## Environment", ""] + [f"- **{k}**: {v}" for k, v in _environment(doc)]
     return "\n".join(out) + "\n"
 
@@ -309,9 +307,7 @@ def html(doc: dict[str, Any], root: Path) -> str:
     studies += [_img(root, p) for p in doc["plots"]]
     parts.append(f"<h2>Convergence studies</h2><details><summary>{len(doc['studies'])} studies, "
                  f"errors per level, observed orders and plots</summary>{''.join(studies)}</details>")
-    tol = _html_table(["comparison", "quantity", "limit", "unit", "reason"],
-                      [[t["comparison"], t["quantity"], fmt(t["limit"]),
-                        ERROR_UNITS.get(t["quantity"], ""), t["reason"]] for t in doc["tolerances"]])
+    tol = _html_table(*_tolerances(doc))
     parts.append(f"<h2>Tolerance table</h2><details><summary>{len(doc['tolerances'])} entries, "
                  f"each with its reason</summary>{tol}</details>")
     env = "<dl>" + "".join(f"<dt>{e(k)}</dt><dd>{e(v)}</dd>" for k, v in _environment(doc)) + "</dl>"

@@ -74,6 +74,15 @@ def _figures(ref: Any, res: Any) -> tuple[dict[str, float], dict[str, float]]:
     return raw, err
 
 
+def _three_level(raw: Sequence[float], hs: np.ndarray) -> tuple[float, float] | None:
+    """Order and fine-grid GCI from the three finest levels (None with fewer than three)."""
+    if len(hs) < 3:
+        return None
+    (f3, f2, f1), (h3, h2, h1) = raw[-3:], hs[-3:]
+    p = three_level_order(f3, f2, f1, h2 / h1, h3 / h2)
+    return p, gci(f2, f1, h2 / h1, p)
+
+
 def _run(method: str, case: Case, labels: Sequence[str], solver: Callable[[Case, str], Any],
          param_of: Callable[[Any, str], float], param: str,
          progress: Callable[[str], None] | None, param_label: str = "level") -> Study:
@@ -105,19 +114,16 @@ def _run(method: str, case: Case, labels: Sequence[str], solver: Callable[[Case,
     v = np.asarray(st.values, dtype=float)
     hs = 1.0 / v if param == "n" else v
     for q in STUDY_QUANTITIES:
+        three = _three_level(st.raw[q], hs) if q != "p_interior_max" else None
         if not is_monotone(st.errors[q]):
             # an order fitted through errors that rise again would claim a rate that is not there
             st.orders[q] = math.nan
-            if (q != "p_interior_max" and len(hs) >= 3
-                    and converges_monotonically(st.raw[q][-3:])):
+            if three is not None and converges_monotonically(st.raw[q][-3:]):
                 # the values still converge from one side: the reference-free order and GCI hold
-                (f3, f2, f1), (h3, h2, h1) = st.raw[q][-3:], hs[-3:]
-                p = three_level_order(f3, f2, f1, h2 / h1, h3 / h2)
-                st.orders[q] = p
-                st.gci[q] = gci(f2, f1, h2 / h1, p)
-                st.notes.append(f"{q}: the values converge monotonically (order {p:.2f} from the "
-                                "three finest levels), but the error against the closed form is "
-                                "not monotone: it falls below the finest level's change")
+                st.orders[q], st.gci[q] = three
+                st.notes.append(f"{q}: the values converge monotonically (order {three[0]:.2f} "
+                                "from the three finest levels), but the error against the closed "
+                                "form is not monotone: it falls below the finest level's change")
             elif any(e > ROUND_OFF for e in st.errors[q]):
                 st.notes.append(f"{q}: the errors are not monotone in the refinement; no order is given")
             continue
@@ -127,9 +133,8 @@ def _run(method: str, case: Case, labels: Sequence[str], solver: Callable[[Case,
         p = st.orders[q]
         if len(hs) >= 2 and math.isfinite(p) and p > 0 and hs[-2] > hs[-1]:
             st.extrapolated[q] = float(richardson(hs, st.raw[q], p))
-        if len(hs) >= 3:
-            (f3, f2, f1), (h3, h2, h1) = st.raw[q][-3:], hs[-3:]
-            st.gci[q] = gci(f2, f1, h2 / h1, three_level_order(f3, f2, f1, h2 / h1, h3 / h2))
+        if three is not None:
+            st.gci[q] = three[1]
     return st
 
 

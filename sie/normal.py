@@ -295,26 +295,30 @@ def solve_normal(punch: Punch, P: float, s: float = 0.0, *, A: float, tilt: str 
         if punch.kappa0 >= 0:
             raise   # a convex or flat centre has one single contact: Newton must find it
         found = []
-    refusal: SeparationError | None = None
-    for attempt in range(2):
-        for m, h, G, its, res in found:
+    refusals: list[SeparationError] = []
+
+    def single(candidates: list[tuple[float, float, np.ndarray, int, float]]) -> tuple | None:
+        """The first candidate that is one contact, with its α and s (refusals kept)."""
+        for m, h, G, its, res in candidates:
             alpha = -float(G[0]) if tilt == "free" else 0.0
             s_out = float(s) if tilt == "free" else m + math.pi * h * h * float(G[2]) / (4 * A * P)
             try:
                 _check_single_contact(punch, A, P, s_out, m, h, alpha)
             except SeparationError as exc:
-                refusal = refusal or exc
+                refusals.append(exc)
                 continue
-            break
-        else:
-            if attempt == 0 and punch.kappa0 < 0:
-                # a concave centre: look for every single contact that carries P at s
-                found = _scan_ends(punch, A, P, sch, s=target.get("s"), alpha=target.get("alpha"))
-                continue
-            raise refusal or SeparationError(
-                f"`P` = {P:g} with `s` = {s:g}: no single contact of the concave centre R = "
-                f"{punch.R:g} carries the load; the contact separates into two zones")
-        break
+            return m, h, G, its, res, alpha, s_out
+        return None
+
+    chosen = single(found)
+    if chosen is None and punch.kappa0 < 0:
+        # a concave centre: look for every single contact that carries P at s
+        chosen = single(_scan_ends(punch, A, P, sch, s=target.get("s"), alpha=target.get("alpha")))
+    if chosen is None:
+        raise refusals[0] if refusals else SeparationError(
+            f"`P` = {P:g} with `s` = {s:g}: no single contact of the concave centre R = "
+            f"{punch.R:g} carries the load; the contact separates into two zones")
+    m, h, G, its, res, alpha, s_out = chosen
     density, extra = sch.pressure(punch, A, m, h)
     info = {"n": sch.n, "scheme": sch.name, "iterations": its, "residual": res,
             "time_s": time.perf_counter() - t0, **extra}

@@ -36,9 +36,6 @@ from typing import Any, NoReturn, Sequence
 
 __all__ = ["main", "build_parser", "UNITS", "NUMERIC_OPTIONS", "LIST_OPTIONS", "UsageError"]
 
-#: Poisson's ratio of the FE block when only ``--A`` is given (the answer depends on A alone)
-FEM_DEFAULT_NU = 0.3
-
 #: the unit printed with each quantity, by its key in the output ("1": dimensionless).
 #: The library is unit-agnostic; these are the labels of one consistent set.
 UNITS: dict[str, str] = {
@@ -178,9 +175,8 @@ def _solve(args: argparse.Namespace, slip: bool) -> tuple[Any, dict[str, Any]]:
     A = _compliance(args)
     _points_iv(args)
     options: dict[str, Any] = {}
-    if args.method == "fem":
-        nu = FEM_DEFAULT_NU if args.nu is None else args.nu
-        options = {"mesh": args.mesh, "nu": nu}   # the block's modulus: methods.fem_modulus
+    if args.method == "fem":   # the block's modulus: methods.fem_modulus (nu 0.3 unless given)
+        options = {"mesh": args.mesh, **({"nu": args.nu} if args.nu is not None else {})}
     loads = {"Q": args.Q, "f": args.f} if slip else {}
     res = solve(punch, args.P, args.s, A=A, tilt=args.tilt, method=args.method, **loads, **options)
     normal = res.normal if isinstance(res, SlipResult) else res
@@ -238,8 +234,7 @@ def _points_iv(args: argparse.Namespace) -> None:
         import os
 
         if os.path.lexists(args.csv):
-            raise ValueError(f"`--csv` = {args.csv!r} exists; threepart never overwrites a file: "
-                             "choose another name")
+            _refuse_existing(args.csv)
 
 
 def _points(args: argparse.Namespace, res: Any) -> dict[str, list[float]] | None:
@@ -255,6 +250,11 @@ def _points(args: argparse.Namespace, res: Any) -> dict[str, list[float]] | None
     return out
 
 
+def _refuse_existing(path: str) -> NoReturn:
+    raise ValueError(f"`--csv` = {path!r} exists; threepart never overwrites a file: "
+                     "choose another name")
+
+
 def _write_csv(path: str, points: dict[str, list[float]]) -> None:
     """Write the points to a new file ``path`` (``O_EXCL``: never over an existing one)."""
     import os
@@ -265,8 +265,7 @@ def _write_csv(path: str, points: dict[str, list[float]]) -> None:
     try:
         fd = os.open(path, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o666)
     except FileExistsError:
-        raise ValueError(f"`--csv` = {path!r} exists; threepart never overwrites a file: "
-                         "choose another name") from None
+        _refuse_existing(path)
     with os.fdopen(fd, "w", encoding="utf-8") as fh:
         fh.write("\n".join(lines) + "\n")
 

@@ -93,7 +93,7 @@ def _one(method: str, punch: Punch, P: float, s: float, A: float, tilt: str, Q: 
     normal = _normal(method, punch, P, s, A, tilt, dict(options))
     if Q is None or f is None:
         return normal
-    slip_options = {k: v for k, v in options.items() if k in ("n", "scheme")}
+    slip_options = {k: v for k, v in options.items() if k in OPTIONS["sie"]}
     return _slip(method, normal, Q, f, slip_options)
 
 

@@ -144,18 +144,6 @@ TOLERANCES: dict[tuple[str, str], Tolerance] = {
     ("fem-default", "x_right"): _T(5e-3, "as x_left"),
     ("fem-default", "p_interior_max"): _T(3e-4, "lumped nodal pressure f_i / w_i (vertex and midpoint nodes err by opposite signs); measured <= 9e-5"),
     ("fem-default", "p_L2"): _T(1e-3, "includes the sqrt edges; measured <= 1.3e-4"),
-    # --- closed form vs FEM, fine mesh (every size of the default mesh halved) -------------------
-    ("fem-fine", "a"): _T(1e-5, "as on the default mesh, which is coarser (measured <= 8e-6 W on the fem suite)"),
-    ("fem-fine", "c"): _T(1e-5, "as a"),
-    ("fem-fine", "alpha"): _T(1e-4, "α is the most far-field sensitive figure (finite block)"),
-    ("fem-fine", "P"): _T(1e-12, "load control imposes sum f_i = P in the linear solve"),
-    ("fem-fine", "s"): _T(1e-5, "as on the default mesh"),
-    ("fem-fine", "p_left"): _T(1e-4, "as on the default mesh, which is coarser"),
-    ("fem-fine", "p_right"): _T(1e-4, "as p_left"),
-    ("fem-fine", "x_left"): _T(5e-3, "peaks are flat and sampled at nodes"),
-    ("fem-fine", "x_right"): _T(5e-3, "as x_left"),
-    ("fem-fine", "p_interior_max"): _T(3e-4, "as on the default mesh, which is coarser"),
-    ("fem-fine", "p_L2"): _T(1e-3, "as on the default mesh"),
     # --- closed form vs FEM, quick mesh (every size of the default mesh doubled) -----------------
     ("fem-quick", "a"): _T(1e-4, "quick preset: the default mesh with every size doubled (W/150, 8x finer at the ends and joins), refined automatically until each end lies 3 elements from a join: measured <= 1.8e-5 W"),
     ("fem-quick", "c"): _T(1e-4, "as a; measured <= 2.2e-5 W"),
@@ -231,6 +219,9 @@ TOLERANCES: dict[tuple[str, str], Tolerance] = {
     ("convergence", "exact"): _T(1e-12, "err = C h^p exactly: the fit and the extrapolation are exact up to rounding"),
     ("convergence", "iterated"): _T(1e-8, "the three-level fixed point stops when p moves by < 1e-10"),
 }
+# closed form vs FEM, fine mesh: every size of the default mesh halved, so the default's limits hold
+TOLERANCES.update({("fem-fine", q): _T(t.limit, f"as on the default mesh, which is coarser: {t.reason}")
+                   for (comparison, q), t in list(TOLERANCES.items()) if comparison == "fem-default"})
 
 
 def tolerance(comparison: str, quantity: str) -> Tolerance:
