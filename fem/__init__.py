@@ -1,9 +1,12 @@
-"""Independent finite-element model: plane-strain frictionless contact of a rigid punch.
+"""Independent finite-element models: a rigid punch on a block, and two similar bodies with friction.
 
-Solver
-------
+Solvers
+-------
 solve_normal        -- load-controlled normal contact (tilt "free" or "suppressed") on a gmsh mesh
 FemResult           -- the shared result shape plus h, dofs, L, delta, timings and nodal pressures
+solve_partial_slip  -- two similar elastic bodies, P at s then Q in steps, Coulomb friction
+fretting_cycle      -- the same model through Q: 0 -> Q_max -> -Q_max -> Q_max (energy per cycle)
+FemSlipResult, FemFrettingResult -- their shared result shapes, with the per-step history
 NoConvergenceError  -- the contact active-set iteration did not converge
 ContactZoneError    -- the contact reached the end of the candidate zone of the mesh
 SeparationError     -- the contact separates into two zones (from threepart.errors)
@@ -19,6 +22,7 @@ make_substrate      -- mesh a SubstrateSpec with gmsh and read it back
 SurfaceCompliance   -- elastic body condensed onto the candidate contact nodes
 condense            -- P2 plane-strain stiffness, condensed by one ordered factorisation
 solve_contact       -- primal-dual active set with translation and tilt as unknowns
+interface, mirror   -- two bodies condensed onto matched interface nodes; a body's mirror image
 
 Export
 ------
@@ -39,11 +43,14 @@ from threepart.errors import (ContactZoneError, MeshResolutionError, NoConvergen
 from .contact import ContactSolution, solve_contact
 from .elasticity import SurfaceCompliance, condense
 from .export import Fields, to_meshio, write_fields
+from .friction import (FemFrettingResult, FemSlipResult, Interface, fretting_cycle, interface,
+                       mirror, solve_partial_slip)
 from .mesh import PRESETS, MeshPreset, Substrate, make_substrate, read_substrate
 from .solve import FemResult, locate_contact, solve_normal
 from .studies import StudyLevel, StudyRecord, convergence_study, domain_study
 
-__all__ = ["solve_normal", "FemResult", "NoConvergenceError", "ContactZoneError", "SeparationError",
+__all__ = ["solve_normal", "FemResult", "solve_partial_slip", "fretting_cycle", "FemSlipResult",
+           "FemFrettingResult", "Interface", "interface", "mirror", "NoConvergenceError", "ContactZoneError", "SeparationError",
            "MeshResolutionError", "locate_contact", "MeshPreset", "PRESETS", "Substrate", "read_substrate",
            "make_substrate", "SurfaceCompliance", "condense",
            "solve_contact", "ContactSolution", "Fields", "write_fields", "to_meshio",

@@ -1,11 +1,13 @@
 """Plane-strain elasticity on quadratic triangles, condensed onto the candidate contact nodes.
 
-The block is clamped on its ``"base"`` group. The vertical displacement DOFs on
-the ``"contact"`` group (vertices and edge midpoints of the P2 field) are the
-candidate contact nodes. One sparse factorisation of the stiffness, with those
-DOFs ordered last, yields their Schur complement ``S`` in its trailing block, and
-the surface compliance is ``C = S^{-1}``: ``u_y = -C f`` for downward nodal
-forces ``f``.
+The block is clamped on its ``"base"`` group. The displacement DOFs on the
+``"contact"`` group (vertices and edge midpoints of the P2 field) are the
+candidate contact nodes: the vertical ones for the frictionless problem, both
+components for the frictional one. One sparse factorisation of the stiffness,
+with those DOFs ordered last, yields their Schur complement ``S`` in its
+trailing block, and the surface compliance is ``C = S^{-1}``: ``u = C F`` for
+nodal forces ``F`` in the global directions, so ``u_y = -C f`` for downward
+forces ``f`` on the vertical DOFs.
 """
 from __future__ import annotations
 
@@ -39,7 +41,10 @@ class SurfaceCompliance:
     weights
         Lumped surface weights ``w_i = \\int phi_i ds`` (pressure ``p_i = f_i / w_i``).
     C
-        Dense compliance, ``u_y = -C f`` for downward nodal forces ``f``.
+        Dense compliance, ``u = C F`` for nodal forces ``F`` in the global
+        directions on the condensed DOFs: ``(n, n)`` for the vertical DOFs
+        (``u_y = -C f`` for downward forces ``f``), ``(2n, 2n)`` for both
+        components, ordered all ``u_x`` then all ``u_y``, each by ``x``.
     dofs
         Number of FE degrees of freedom (before the base is clamped).
     h
@@ -57,10 +62,15 @@ class SurfaceCompliance:
     _solver: Any = field(repr=False, default=None)
 
     def displacement(self, f: np.ndarray) -> tuple[Basis, np.ndarray]:
-        """The P2 displacement field for nodal forces ``f`` (downward) at the candidates."""
-        basis, y_dofs, free, order, lu = self._solver
+        """The P2 displacement field for nodal forces at the candidates.
+
+        ``f`` holds downward forces on the vertical DOFs, or, for a two-component
+        condensation, forces in the global directions ordered as :attr:`C`.
+        """
+        basis, dofs, free, order, lu = self._solver
         F = np.zeros(basis.N)
-        F[y_dofs] = -np.asarray(f, dtype=float)
+        f = np.asarray(f, dtype=float)
+        F[dofs] = -f if len(dofs) == len(self.x) else f
         u = np.zeros(basis.N)
         rhs = F[free][order]
         sol = np.empty_like(rhs)
@@ -85,7 +95,8 @@ def _ordering(K: sp.csc_matrix, last: np.ndarray) -> np.ndarray:
     return np.concatenate([rest[np.argsort(ilu.perm_c)], last])
 
 
-def condense(substrate: Substrate, E: float, nu: float) -> SurfaceCompliance:
+def condense(substrate: Substrate, E: float, nu: float,
+             components: tuple[str, ...] = ("u^2",)) -> SurfaceCompliance:
     """Assemble the plane-strain stiffness and condense it onto the candidate nodes.
 
     Parameters
@@ -94,6 +105,9 @@ def condense(substrate: Substrate, E: float, nu: float) -> SurfaceCompliance:
         Mesh with ``"contact"`` (candidates) and ``"base"`` (clamped) groups.
     E, nu
         Young's modulus and Poisson's ratio of the substrate.
+    components
+        ``("u^2",)``: the vertical DOFs (frictionless contact); ``("u^1", "u^2")``:
+        both, for the frictional interface.
 
     Returns
     -------
@@ -106,17 +120,27 @@ def condense(substrate: Substrate, E: float, nu: float) -> SurfaceCompliance:
     basis = Basis(mesh, ElementVector(ElementTriP2()), intorder=2)
     lam, mu = lame_parameters(E, nu)  # 3-D Lame constants: plane strain
     K = asm(linear_elasticity(lam, mu), basis)
-    y_dofs = basis.get_dofs(facets=groups["contact"]).all(["u^2"])
+    if components not in (("u^2",), ("u^1", "u^2")):
+        raise ValueError(f"`components` = {components!r} must be ('u^2',) or ('u^1', 'u^2')")
+    surface = basis.get_dofs(facets=groups["contact"])
+    y_dofs = surface.all(["u^2"])
     fb = FacetBasis(mesh, basis.elem, facets=groups["contact"])
     w_all = asm(LinearForm(lambda v, w: v[1]), fb)
     x = basis.doflocs[0, y_dofs]
     sort = np.argsort(x)
     y_dofs, x = y_dofs[sort], x[sort]
     weights = w_all[y_dofs]
+    dofs = y_dofs
+    if len(components) == 2:
+        x_dofs = surface.all(["u^1"])
+        x_dofs = x_dofs[np.argsort(basis.doflocs[0, x_dofs])]
+        if not np.array_equal(basis.doflocs[0, x_dofs], x):
+            raise RuntimeError("the u_x and u_y surface DOFs do not share their nodes")
+        dofs = np.concatenate([x_dofs, y_dofs])
     clamped = basis.get_dofs(facets=groups["base"]).all()
     free = np.setdiff1d(np.arange(basis.N), clamped)
     Kf = K[free][:, free].tocsc()
-    cand = np.searchsorted(free, y_dofs)
+    cand = np.searchsorted(free, dofs)
     t1 = time.perf_counter()
     with threadpool_limits(limits=1, user_api="blas"):
         order = _ordering(Kf, cand)
@@ -137,4 +161,4 @@ def condense(substrate: Substrate, E: float, nu: float) -> SurfaceCompliance:
     h = float(np.abs(mesh.p[0, f[1]] - mesh.p[0, f[0]]).max())
     return SurfaceCompliance(x=x, weights=weights, C=C, dofs=int(basis.N), h=h,
                              timings={"assemble": t1 - t0, "factorise": t2 - t1},
-                             _solver=(basis, y_dofs, free, order, lu))
+                             _solver=(basis, dofs, free, order, lu))

@@ -183,8 +183,8 @@ def compare(ref: Any, other: Any, comparison: str) -> list[Check]:
         The reference result (the closed form), normal or partial slip.
     other
         The result to check. When both are partial-slip results the stick
-        zone and the shear field are compared too; when only ``ref`` is (the
-        FEM is frictionless) only its normal problem is compared.
+        zone and the shear field are compared too; when only ``ref`` is, only
+        its normal problem is compared.
     comparison
         Row group of :data:`threepart.tolerances.TOLERANCES`: ``"sie"``,
         ``"fem-quick"``, ``"fem-default"`` or ``"fem-fine"``.

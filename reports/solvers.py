@@ -67,10 +67,23 @@ def _fem_normal(case: Case, mesh: Any = "default") -> NormalResult:
     return res
 
 
+def _fem_slip(case: Case, normal: NormalResult, mesh: Any = "default") -> SlipResult:
+    """Partial slip of the two-body FE model; it solves its own (two-body) normal problem."""
+    from threepart import fem
+    from threepart.methods import fem_pair_modulus
+
+    res = fem.solve_partial_slip(case.punch, case.P, case.s_load, Q=case.shear_load[0],
+                                 f=case.shear_load[1], E=fem_pair_modulus(case.A, case.nu),
+                                 nu=case.nu, tilt=case.tilt, mesh=mesh)
+    if not math.isclose(res.normal.A, case.A, rel_tol=1e-12):
+        raise ValueError(f"fem result has A = {res.normal.A}, the case needs A = {case.A}")
+    return res
+
+
 #: the three methods, in report order; the closed form is the reference of the others
 SOLVERS: dict[str, Solver] = {
     "closedform": Solver("closedform", _closedform_normal, _closedform_slip),
     "sie": Solver("sie", _sie_normal, _sie_slip),
-    "fem": Solver("fem", _fem_normal, None),
+    "fem": Solver("fem", _fem_normal, _fem_slip),
 }
 METHODS = tuple(SOLVERS)

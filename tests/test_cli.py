@@ -267,6 +267,15 @@ def test_a_negative_point_list_may_follow_x(capsys):
     assert json.loads(capsys.readouterr().out)["points"]["x"] == [-0.5, 0.2]
 
 
-def test_fem_has_no_friction_model(capsys):
-    assert main(["slip", *GEOM, "--Q", "80", "--f", "0.5", "--method", "fem"]) == 2
-    assert "solves the frictionless normal problem only" in _one_line_error(capsys, "slip")
+def test_fem_slip_is_the_two_body_friction_model_and_agrees_with_the_closed_form(capsys):
+    from threepart.tolerances import tolerance
+
+    def run(*method: str) -> dict:
+        assert main(["slip", *GEOM, "--Q", "80", "--f", "0.5", "--json", *method]) == 0
+        return json.loads(capsys.readouterr().out)
+
+    cf, fe = run("--method", "closedform"), run("--method", "fem", "--mesh", "quick")
+    assert fe["method"] == "fem"
+    for key in ("d", "e"):
+        err = abs(fe[key] - cf[key]) / cf["d"]
+        assert err < tolerance("fem-quick", key).limit, (key, fe[key], cf[key])

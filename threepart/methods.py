@@ -13,8 +13,9 @@ with ``Q`` and ``f``, the partial-slip problem, by the method asked for:
     equations, any single contact, including past lift-off, the punch on one
     corner and stick zones that end on the central segment.
 ``"fem"``
-    The finite-element model of a rigid punch on an elastic block
-    (:mod:`threepart.fem`); normal problem only (it is frictionless).
+    The finite-element models (:mod:`threepart.fem`): a rigid punch on an
+    elastic block for the normal problem; two similar elastic bodies with
+    Coulomb friction, loaded by ``P`` then ``Q``, for partial slip.
 ``"auto"`` (default)
     The closed form where it holds; where it refuses with ``LiftOffError``,
     ``StickZoneError`` or ``SeparationError``, the SIE, which either answers
@@ -34,7 +35,7 @@ from .punch import Punch
 from .results import NormalResult, SlipResult
 from .validate import check_positive
 
-__all__ = ["METHODS", "CHOICES", "solve", "describe", "fem_modulus"]
+__all__ = ["METHODS", "CHOICES", "solve", "describe", "fem_modulus", "fem_pair_modulus"]
 
 #: the three solvers, in report order
 METHODS = ("closedform", "sie", "fem")
@@ -56,6 +57,11 @@ def fem_modulus(A: float, nu: float = FEM_NU) -> float:
     field of the finite block.
     """
     return 2.0 * (1.0 - nu * nu) / A
+
+
+def fem_pair_modulus(A: float, nu: float = FEM_NU) -> float:
+    """Young's modulus of each of two similar FE bodies of composite compliance ``A``: ``4(1 - ν²)/A``."""
+    return 2.0 * fem_modulus(A, nu)
 
 
 def _normal(method: str, punch: Punch, P: float, s: float, A: float, tilt: str,
@@ -85,11 +91,20 @@ def _slip(method: str, normal: NormalResult, Q: float, f: float,
     return sie.solve_partial_slip(normal, Q, f, **options)
 
 
+def _fem_slip(punch: Punch, P: float, s: float, A: float, tilt: str, Q: float, f: float,
+              options: dict[str, Any]) -> SlipResult:
+    """Partial slip by the two-body FE model, which solves its own normal problem first."""
+    from . import fem
+
+    nu = options.pop("nu", FEM_NU)
+    return fem.solve_partial_slip(punch, P, s, Q=Q, f=f, E=fem_pair_modulus(A, nu), nu=nu,
+                                  tilt=tilt, **options)
+
+
 def _one(method: str, punch: Punch, P: float, s: float, A: float, tilt: str, Q: float | None,
          f: float | None, options: dict[str, Any]) -> NormalResult | SlipResult:
-    if Q is not None and method == "fem":
-        raise ValueError("`method` = 'fem' solves the frictionless normal problem only; "
-                         "partial slip needs 'auto', 'closedform' or 'sie'")
+    if method == "fem" and Q is not None and f is not None:
+        return _fem_slip(punch, P, s, A, tilt, Q, f, dict(options))
     normal = _normal(method, punch, P, s, A, tilt, dict(options))
     if Q is None or f is None:
         return normal

@@ -20,10 +20,13 @@ from scipy.optimize import minimize_scalar
 
 from .punch import Punch
 
-__all__ = ["NormalResult", "SlipResult", "Peak", "SEGMENTS", "segments_in_contact"]
+__all__ = ["NormalResult", "SlipResult", "FrettingResult", "Peak", "SEGMENTS", "BRANCHES",
+           "segments_in_contact"]
 
 #: the punch's segments, left to right (eq. 2)
 SEGMENTS = ("R1", "centre", "R2")
+#: the three branches of a fretting cycle: 0 -> Q_max, Q_max -> -Q_max, -Q_max -> Q_max
+BRANCHES = ("loading", "unloading", "reloading")
 
 
 def segments_in_contact(b: float, left: float, right: float) -> tuple[str, ...]:
@@ -217,4 +220,62 @@ class SlipResult:
 
     def shear(self, x: ArrayLike) -> np.ndarray:
         """Shear traction ``q(x)``, with the sign of ``Q``; integrates to ``Q``."""
+        raise NotImplementedError
+
+
+@dataclass(frozen=True)
+class FrettingResult:
+    """One fretting cycle at constant ``P`` and ``s``: ``Q`` from 0 to ``Q_max``, to ``-Q_max`` and back.
+
+    The states are recorded along the load path, branch by branch (:data:`BRANCHES`).
+
+    Attributes
+    ----------
+    normal
+        The normal solution the cycle is applied to.
+    Q_max, f
+        Amplitude of the shear force (``0 < Q_max < f P``) and coefficient of friction.
+    branch
+        Branch of each recorded state: ``"loading"``, ``"unloading"`` or ``"reloading"``.
+    Q
+        Shear force of each state.
+    stick
+        Ends ``(left, right)`` of the zone that sticks at each state, shape ``(n, 2)``.
+        On the loading branch it is the stick zone ``[-(d+e), d-e]``; on unloading
+        (reloading) it is the zone that has not slipped since ``Q_max`` (``-Q_max``).
+    delta
+        Tangential displacement of the punch relative to the substrate at each state,
+        in the direction of positive ``Q``. In half-plane theory it is defined only up
+        to a term linear in ``Q``; :meth:`loop` removes that term.
+    energy
+        Energy dissipated per cycle and unit length (the area of the ``Q``–``delta`` loop).
+    """
+
+    normal: NormalResult
+    Q_max: float
+    f: float
+    branch: np.ndarray
+    Q: np.ndarray
+    stick: np.ndarray
+    delta: np.ndarray
+    energy: float
+    method: str = ""
+    info: dict[str, Any] = field(default_factory=dict, compare=False)
+
+    def loop(self) -> tuple[np.ndarray, np.ndarray]:
+        """The hysteresis loop ``(Q, delta - Q delta(Q_max)/Q_max)``, comparable across methods.
+
+        The subtracted line joins the loop's tips ``(±Q_max, ±delta(Q_max))``,
+        so every method's loop starts and ends at zero whatever its elastic
+        (linear) part; its area is :attr:`energy`.
+        """
+        tip = self.delta[(self.branch == "loading") & (self.Q == self.Q_max)]
+        return self.Q, self.delta - self.Q * float(tip[-1]) / self.Q_max
+
+    def shear(self, x: ArrayLike, Q: float, branch: str) -> np.ndarray:
+        """Shear traction ``q(x)`` at force ``Q`` on ``branch`` (sign of the applied shear)."""
+        raise NotImplementedError
+
+    def slip_amplitude(self, x: ArrayLike) -> np.ndarray:
+        """Half the peak-to-peak relative slip at ``x`` over the cycle (0 where it never slips)."""
         raise NotImplementedError

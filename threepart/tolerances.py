@@ -76,7 +76,7 @@ class Tolerance:
 #: quantities compared for every normal result, in report order
 NORMAL_QUANTITIES = ("a", "c", "alpha", "P", "s", "p_left", "x_left", "p_right", "x_right",
                      "p_interior_max", "p_L2")
-#: quantities compared in addition for a partial-slip result (SIE only: the FEM is frictionless)
+#: quantities compared in addition for a partial-slip result (SIE and the two-body FEM)
 SLIP_QUANTITIES = ("d", "e", "q_interior_max", "q_L2")
 QUANTITIES = NORMAL_QUANTITIES + SLIP_QUANTITIES
 #: comparisons of the verification run (closed form against a solver)
@@ -144,6 +144,10 @@ TOLERANCES: dict[tuple[str, str], Tolerance] = {
     ("fem-default", "x_right"): _T(5e-3, "as x_left"),
     ("fem-default", "p_interior_max"): _T(3e-4, "lumped nodal pressure f_i / w_i (vertex and midpoint nodes err by opposite signs); measured <= 9e-5"),
     ("fem-default", "p_L2"): _T(1e-3, "includes the sqrt edges; measured <= 1.3e-4"),
+    ("fem-default", "d"): _T(2e-4, "two similar bodies with Coulomb friction, stick-zone ends located on the locate mesh and resolved like the contact ends (nodes, 8x finer): issue target 1e-3 W = 2.5e-3 d; measured <= 4.7e-5 d"),
+    ("fem-default", "e"): _T(2e-4, "as d; measured <= 3.7e-5 d"),
+    ("fem-default", "q_interior_max"): _T(1e-2, "nodal shear t_i / w_i next to the sqrt kinks of q at the stick-zone ends (issue target 1e-2); measured <= 3.6e-3"),
+    ("fem-default", "q_L2"): _T(5e-3, "includes the sqrt edges; measured <= 1.0e-3"),
     # --- closed form vs FEM, quick mesh (every size of the default mesh doubled) -----------------
     ("fem-quick", "a"): _T(1e-4, "quick preset: the default mesh with every size doubled (W/150, 8x finer at the ends and joins), refined automatically until each end lies 3 elements from a join: measured <= 1.8e-5 W"),
     ("fem-quick", "c"): _T(1e-4, "as a; measured <= 2.2e-5 W"),
@@ -156,6 +160,10 @@ TOLERANCES: dict[tuple[str, str], Tolerance] = {
     ("fem-quick", "x_right"): _T(1e-2, "as x_left"),
     ("fem-quick", "p_interior_max"): _T(1e-3, "lumped nodal pressure next to the log kinks at ±b; measured <= 3.3e-4"),
     ("fem-quick", "p_L2"): _T(2e-3, "includes the sqrt edges; measured <= 2.5e-4"),
+    ("fem-quick", "d"): _T(5e-4, "two-body friction model on the quick mesh; measured <= 1.3e-4 d"),
+    ("fem-quick", "e"): _T(5e-4, "as d; measured <= 1.0e-4 d"),
+    ("fem-quick", "q_interior_max"): _T(2e-2, "nodal shear next to the stick-zone ends on the quick mesh; measured <= 1.0e-2"),
+    ("fem-quick", "q_L2"): _T(1e-2, "includes the sqrt edges; measured <= 3.1e-3"),
     ("fem-quick", "s_imposed"): _T(1e-12, "free tilt imposes sum x_i f_i = P s in the linear solve (units of W); measured <= 1.2e-16"),
     ("fem-quick", "load_integral"): _T(2e-3, "∫p dx of the linear interpolant misses the sqrt edges; measured <= 1.3e-3 (moment 2e-4 W)"),
     ("fem-quick", "mirror"): _T(1e-3, "mirrored punch and load give a <-> c, α -> -α up to mesh asymmetry; measured <= 1.1e-4"),

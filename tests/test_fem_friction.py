@@ -1,0 +1,169 @@
+"""Two-body Coulomb-friction FE model: partial slip and the fretting cycle on the quick mesh.
+
+References: the closed form (the catalogue's partial-slip cases, judged by the
+verification run's comparator on the ``"fem-quick"`` rows), the SIE where the
+stick zone ends on the central segment (the closed form refuses), Cattaneo's
+``d = a sqrt(1 - Q/fP)`` for Hertz, the reflection symmetry of a mirrored body,
+and the exact properties of Coulomb friction under a monotone or cyclic load.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from threepart import closedform, fem, sie
+from threepart.catalogue import get_case
+from threepart.errors import FullSlidingError
+from threepart.punch import Punch
+from threepart.reports.compare import compare
+from threepart.reports.solvers import SOLVERS
+from threepart.tolerances import tolerance
+
+SLIP_CASES = ("slip_Q0.2", "slip_Q0.4", "slip_Q0.7")
+#: a small nondimensional problem for the properties (E = 1: loads of order 1e-2)
+PUNCH = Punch(R1=10.0, R2=5.0, b=1.0)
+E, NU, P, S, F = 1.0, 0.3, 0.05, 0.1, 0.5
+
+
+def tol(quantity: str, comparison: str = "fem-quick") -> float:
+    return tolerance(comparison, quantity).limit
+
+
+def fem_slip(case_name: str):
+    case = get_case(case_name).resolved()
+    return case, SOLVERS["fem"].slip(case, None, mesh="quick")
+
+
+@pytest.fixture(scope="module", params=SLIP_CASES)
+def slip_pair(request):
+    case, fe = fem_slip(request.param)
+    ref = closedform.solve_partial_slip(
+        closedform.solve_normal(case.punch, case.P, case.s_load, A=case.A), *case.shear_load)
+    return case, ref, fe
+
+
+def test_agrees_with_the_closed_form(slip_pair):
+    case, ref, fe = slip_pair
+    assert fe.method == "fem" and math.isclose(fe.normal.A, case.A, rel_tol=1e-12)
+    failed = {c.quantity: f"{c.error:.2e} > {c.limit:g}" for c in compare(ref, fe, "fem-quick")
+              if not c.passed}
+    assert not failed, f"{case.name}: two-body FEM disagrees with closedform: {failed}"
+
+
+def test_shear_balances_Q_and_never_exceeds_friction(slip_pair):
+    case, _, fe = slip_pair
+    Q, f = case.shear_load
+    last = fe.history[-1]
+    assert abs(last.t.sum() / Q - 1) < tol("P")                     # sum t_i = Q is imposed
+    assert np.all(np.abs(last.t) <= f * last.f * (1 + 1e-12) + 1e-15 * abs(Q))
+    x = np.linspace(-fe.a, fe.c, 20001)
+    assert abs(np.trapezoid(fe.shear(x), x) / Q - 1) < tol("load_integral")
+    assert np.all(fe.shear(x) * Q >= 0)                              # the shear has the sign of Q
+
+
+def test_stick_zone_on_the_central_segment_agrees_with_the_sie():
+    """Past the closed form (it raises StickZoneError): the SIE is the reference."""
+    case, fe = fem_slip("beyond_stick_centre")
+    normal = sie.solve_normal(case.punch, case.P, case.s_load, A=case.A)
+    ref = sie.solve_partial_slip(normal, *case.shear_load)
+    assert not ref.within_paper and ref.stick_zone[0] > -case.punch.b
+    failed = {c.quantity: f"{c.error:.2e} > {c.limit:g}" for c in compare(ref, fe, "fem-quick")
+              if not c.passed}
+    assert not failed, f"FEM disagrees with the SIE past the paper: {failed}"
+
+
+@pytest.mark.parametrize("ratio", [0.3, 0.8])
+def test_hertz_limit_is_cattaneo(ratio):
+    """b = 0, equal radii: the stick zone is centred, d = a sqrt(1 - Q/fP) (Cattaneo 1938)."""
+    punch = Punch(R1=10.0, R2=10.0, b=0.0)
+    fe = fem.solve_partial_slip(punch, P, 0.0, Q=ratio * F * P, f=F, E=E, nu=NU, mesh="quick")
+    ref = closedform.solve_normal(punch, P, 0.0, A=4 * (1 - NU**2) / E)
+    d = ref.a * math.sqrt(1 - ratio)
+    assert abs(fe.d - d) / d < tol("d")
+    assert abs(fe.e) / d < tol("e")
+
+
+def test_mirrored_body_by_reflection_equals_condensing_its_mesh():
+    """G' = R G R for the mirror image (R = diag(1, -1)): and the bodies uncouple (Dundurs beta = 0)."""
+    spec = fem.PRESETS["trial"].spec(-1.5, 1.5, (-1.0, 1.0))
+    lower = fem.make_substrate(spec)
+    meshed = fem.interface(lower, fem.mirror(lower), E, NU)
+    reflected = fem.interface(lower, None, E, NU)
+    scale = np.abs(meshed.C_nn).max()
+    for name in ("C_nn", "C_tt", "C_nt", "C_tn"):
+        diff = np.abs(getattr(meshed, name) - getattr(reflected, name)).max()
+        assert diff < 1e-10 * scale, (name, diff / scale)
+    assert np.abs(meshed.C_nt).max() < 1e-10 * scale     # the normal and shear problems uncouple
+    assert np.abs(meshed.C_tn).max() < 1e-10 * scale
+
+
+def test_monotone_loading_does_not_depend_on_the_steps_and_Q_reverses_the_shear():
+    """Under a monotone Q the stick zone only shrinks: one step gives the state of many (Mindlin)."""
+    Q = 0.3 * F * P
+    one = fem.solve_partial_slip(PUNCH, P, S, Q=Q, f=F, E=E, nu=NU, mesh="quick", steps=1)
+    five = fem.solve_partial_slip(PUNCH, P, S, Q=Q, f=F, E=E, nu=NU, mesh="quick", steps=5)
+    back = fem.solve_partial_slip(PUNCH, P, S, Q=-Q, f=F, E=E, nu=NU, mesh="quick", steps=1)
+    qmax = np.abs(one.q_nodes).max()
+    assert len(five.history) == 5
+    assert abs(one.d - five.d) < 1e-9 * one.d and abs(one.e - five.e) < 1e-9 * one.d
+    assert np.abs(one.q_nodes - five.q_nodes).max() < 1e-9 * qmax
+    assert np.abs(one.q_nodes + back.q_nodes).max() < 1e-12 * qmax
+    assert (back.d, back.e) == pytest.approx((one.d, one.e), rel=1e-12)
+
+
+@pytest.fixture(scope="module")
+def cycle():
+    return fem.fretting_cycle(PUNCH, P, S, Q_max=0.4 * F * P, f=F, E=E, nu=NU, mesh="quick",
+                              states=11)
+
+
+def test_fretting_energy_is_the_loop_area_and_the_cycle_closes(cycle):
+    """Energy balance: the friction work on the slip equals the work of Q on the plate (∮ Q dxi)."""
+    assert cycle.energy > 0
+    assert abs(cycle.info["loop_energy"] / cycle.energy - 1) < 1e-9
+    x = np.linspace(-cycle.normal.a, cycle.normal.c, 2001)
+    q_load = cycle.shear(x, cycle.Q_max, "loading")
+    q_back = cycle.shear(x, cycle.Q_max, "reloading")
+    # Masing: reloading to Q_max restores the loading state at Q_max
+    assert np.abs(q_back - q_load).max() < 1e-9 * np.abs(q_load).max()
+    W = cycle.normal.width
+    assert np.abs(cycle.stick[cycle.branch == "loading"][-1] - cycle.stick[-1]).max() < 1e-9 * W
+    Q, h = cycle.loop()
+    assert abs(h[-1]) < 1e-12 * abs(cycle.delta).max()
+
+
+def test_fretting_slip_amplitude_vanishes_in_the_stick_zone(cycle):
+    lo, hi = cycle.stick[cycle.branch == "loading"][-1]
+    x = np.linspace(-cycle.normal.a, cycle.normal.c, 4001)[1:-1]
+    amp = cycle.slip_amplitude(x)
+    h = 2 * cycle.normal.info["h_end"]
+    assert np.abs(amp[(x > lo + h) & (x < hi - h)]).max() < 1e-12 * amp.max()
+    assert amp[x < lo - h].min() > 0 and amp[x > hi + h].min() > 0
+
+
+def test_fretting_energy_converges_in_the_load_steps():
+    """The energy's trapezoidal error falls as the step squared (observed order near 2)."""
+    energies = [fem.fretting_cycle(PUNCH, P, S, Q_max=0.4 * F * P, f=F, E=E, nu=NU, mesh="quick",
+                                   states=k).energy for k in (6, 11, 21)]
+    ratio = (energies[1] - energies[0]) / (energies[2] - energies[1])
+    assert 1.5 < math.log2(ratio) < 2.5, energies
+
+
+@pytest.mark.parametrize("kwargs, match", [
+    (dict(Q=0.025, f=0.5), r"`Q`.*f P"),
+    (dict(Q=0.01, f=0.0), r"`f`"),
+    (dict(Q=math.nan, f=0.5), r"`Q`"),
+    (dict(Q=0.01, f=0.5, steps=0), r"`steps`"),
+])
+def test_bad_input_is_refused_before_any_meshing(kwargs, match):
+    with pytest.raises(ValueError, match=match):
+        fem.solve_partial_slip(PUNCH, P, S, E=E, nu=NU, mesh="quick", **kwargs)
+
+
+def test_full_sliding_is_the_named_error():
+    with pytest.raises(FullSlidingError, match="Q_max"):
+        fem.fretting_cycle(PUNCH, P, S, Q_max=F * P, f=F, E=E, nu=NU, mesh="quick")
+    with pytest.raises(ValueError, match="states"):
+        fem.fretting_cycle(PUNCH, P, S, Q_max=0.01, f=F, E=E, nu=NU, mesh="quick", states=1)
