@@ -19,6 +19,7 @@ from threepart.output import json_safe
 from threepart.tolerances import NORMAL_QUANTITIES, SLIP_QUANTITIES, tolerance
 
 __all__ = ["Check", "FieldErrors", "compare", "field_errors", "sample_points", "is_slip", "normal_of",
+           "normal_figures", "slip_figures",
            "EDGE_FRACTION"]
 
 #: fraction of the contact width excluded at each end for the "interior" errors
@@ -162,7 +163,7 @@ def normal_figures(ref: Any, other: Any) -> dict[str, tuple[float, float, float]
     return out
 
 
-def _slip_figures(ref: Any, other: Any) -> dict[str, tuple[float, float, float]]:
+def slip_figures(ref: Any, other: Any) -> dict[str, tuple[float, float, float]]:
     """``quantity -> (reference, obtained, normalised error)`` for the stick zone and shear."""
     out: dict[str, tuple[float, float, float]] = {}
     out["d"] = (ref.d, other.d, abs(other.d - ref.d) / abs(ref.d))
@@ -198,7 +199,7 @@ def compare(ref: Any, other: Any, comparison: str) -> list[Check]:
     figures = normal_figures(normal_of(ref), normal_of(other))
     quantities: tuple[str, ...] = NORMAL_QUANTITIES
     if slip:
-        figures.update(_slip_figures(ref, other))
+        figures.update(slip_figures(ref, other))
         quantities = NORMAL_QUANTITIES + SLIP_QUANTITIES
     checks = []
     for q in quantities:

@@ -17,7 +17,7 @@ from matplotlib.figure import Figure
 from threepart.convergence import ROUND_OFF, is_monotone
 
 from .compare import field_errors, is_slip, normal_of
-from .studies import STUDY_QUANTITIES, Study
+from .studies import Study
 
 __all__ = ["new_figure", "save", "overlay", "error_curves", "sie_convergence", "fem_convergence",
            "STYLE"]
@@ -135,7 +135,7 @@ def error_curves(results: dict[str, Any], title: str, path: str | Path,
 
 def _reference_slopes(ax: Any, x: np.ndarray, st: Study, inverse: bool) -> None:
     """Dashed first- and second-order lines through the largest first-level error."""
-    first = [st.errors[q][0] for q in STUDY_QUANTITIES if st.errors[q] and st.errors[q][0] > ROUND_OFF]
+    first = [st.errors[q][0] for q in st.quantities if st.errors[q] and st.errors[q][0] > ROUND_OFF]
     if len(x) < 2 or not first:
         return
     e0 = max(first)
@@ -147,7 +147,7 @@ def _reference_slopes(ax: Any, x: np.ndarray, st: Study, inverse: bool) -> None:
 
 def _study_axes(st: Study, ax: Any, xlabel: str, inverse: bool) -> None:
     x = np.asarray(st.values, dtype=float)
-    for q in STUDY_QUANTITIES:
+    for q in st.quantities:
         e = np.asarray(st.errors[q], dtype=float)
         e = np.where(e > 0, e, np.nan)
         p = st.orders.get(q, math.nan)
@@ -182,5 +182,6 @@ def fem_convergence(st: Study, path: str | Path) -> Path:
     """FEM errors against h (log-log, h decreasing to the right), orders and GCI in the legend."""
     fig, axes = new_figure()
     _study_axes(st, axes[0, 0], "h at the contact (mm), refining →", inverse=False)
-    axes[0, 0].set_title(f"FEM convergence in h, case {st.case}")
+    axes[0, 0].set_title(f"FEM convergence in h, case {st.case}"
+                         + (" (two bodies, Coulomb friction)" if "d" in st.quantities else ""))
     return save(fig, path)

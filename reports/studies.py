@@ -1,4 +1,4 @@
-"""Convergence studies: SIE in the number of nodes n, FEM in the mesh size h.
+"""Convergence studies: SIE in the number of nodes n, FEM in the mesh size h (normal and partial slip).
 
 Both are measured against the closed form, so they live in :mod:`reports`.
 Each study returns a :class:`Study` of plain numbers: the errors per level, the
@@ -21,13 +21,18 @@ from threepart.convergence import (ROUND_OFF, converges_monotonically, fitted_or
                                    is_monotone, richardson, three_level_order)
 
 from .catalogue import Mode, solve_normal
-from .compare import normal_figures
+from .compare import normal_figures, slip_figures
 from .solvers import SOLVERS
 
-__all__ = ["Study", "sie_study", "fem_study", "STUDY_QUANTITIES"]
+__all__ = ["Study", "sie_study", "fem_study", "fem_slip_study", "STUDY_QUANTITIES",
+           "SLIP_STUDY_QUANTITIES"]
 
 #: figures followed through a study (errors normalised as in threepart.tolerances)
 STUDY_QUANTITIES = ("a", "c", "alpha", "p_left", "p_right", "p_interior_max")
+#: figures followed through a partial-slip study
+SLIP_STUDY_QUANTITIES = ("a", "c", "alpha", "d", "e", "q_interior_max")
+#: quantities that are themselves a field error (their "value" is the error, no Richardson step)
+_FIELD_ERRORS = ("p_interior_max", "q_interior_max")
 
 
 @dataclass
@@ -57,6 +62,11 @@ class Study:
     notes: list[str] = field(default_factory=list)
     scheme: str = ""
 
+    @property
+    def quantities(self) -> tuple[str, ...]:
+        """The quantities followed, in order."""
+        return tuple(self.errors)
+
     def as_dict(self) -> dict[str, Any]:
         return json_safe({"method": self.method, "scheme": self.scheme, "case": self.case, "param": self.param,
                       "values": self.values, "labels": self.labels, "errors": self.errors,
@@ -65,12 +75,16 @@ class Study:
                       "notes": self.notes})
 
 
-def _figures(ref: Any, res: Any) -> tuple[dict[str, float], dict[str, float]]:
-    """Obtained values and normalised errors of :data:`STUDY_QUANTITIES` (as :func:`compare`)."""
-    figures = normal_figures(ref, res)
-    raw = {q: figures[q][1] for q in STUDY_QUANTITIES}
-    err = {q: figures[q][2] for q in STUDY_QUANTITIES}
-    raw["p_interior_max"] = err["p_interior_max"]
+def _figures(ref: Any, res: Any, quantities: Sequence[str]) -> tuple[dict[str, float], dict[str, float]]:
+    """Obtained values and normalised errors of ``quantities`` (as :func:`compare`)."""
+    figures = normal_figures(getattr(ref, "normal", ref), getattr(res, "normal", res))
+    if "d" in quantities:
+        figures.update(slip_figures(ref, res))
+    raw = {q: figures[q][1] for q in quantities}
+    err = {q: figures[q][2] for q in quantities}
+    for q in _FIELD_ERRORS:
+        if q in raw:
+            raw[q] = err[q]
     return raw, err
 
 
@@ -85,14 +99,15 @@ def _three_level(raw: Sequence[float], hs: np.ndarray) -> tuple[float, float] | 
 
 def _run(method: str, case: Case, labels: Sequence[str], solver: Callable[[Case, str], Any],
          param_of: Callable[[Any, str], float], param: str,
-         progress: Callable[[str], None] | None, param_label: str = "level") -> Study:
+         progress: Callable[[str], None] | None, param_label: str = "level",
+         quantities: Sequence[str] = STUDY_QUANTITIES) -> Study:
     case = case.resolved()
     ref = solve_normal(case, "closedform", Mode("study", None, "quick", (), ()))
-    rl, rr = ref.peaks()
-    reference = {"a": ref.a, "c": ref.c, "alpha": ref.alpha, "p_left": rl.p, "p_right": rr.p,
-                 "p_interior_max": 0.0}
-    st = Study(method, case.name, param, [], [], {q: [] for q in STUDY_QUANTITIES},
-               {q: [] for q in STUDY_QUANTITIES}, reference, [])
+    if "d" in quantities:
+        ref = SOLVERS["closedform"].slip(case, ref)  # type: ignore[misc]
+    reference = _figures(ref, ref, quantities)[0]
+    st = Study(method, case.name, param, [], [], {q: [] for q in quantities},
+               {q: [] for q in quantities}, reference, [])
     for lab in labels:
         t0 = time.perf_counter()
         try:
@@ -101,11 +116,11 @@ def _run(method: str, case: Case, labels: Sequence[str], solver: Callable[[Case,
             st.notes.append(f"level {lab}: {type(exc).__name__}: {exc}")
             continue
         dt = time.perf_counter() - t0
-        raw, err = _figures(ref, res)
+        raw, err = _figures(ref, res, quantities)
         st.values.append(param_of(res, lab))
         st.labels.append(str(lab))
         st.times.append(dt)
-        for q in STUDY_QUANTITIES:
+        for q in quantities:
             st.errors[q].append(err[q])
             st.raw[q].append(raw[q])
         if progress:
@@ -113,8 +128,8 @@ def _run(method: str, case: Case, labels: Sequence[str], solver: Callable[[Case,
             progress(f"{method} {param} = {st.values[-1]:.4g} ({where}): {dt:.2f} s")
     v = np.asarray(st.values, dtype=float)
     hs = 1.0 / v if param == "n" else v
-    for q in STUDY_QUANTITIES:
-        three = _three_level(st.raw[q], hs) if q != "p_interior_max" else None
+    for q in quantities:
+        three = _three_level(st.raw[q], hs) if q not in _FIELD_ERRORS else None
         if not is_monotone(st.errors[q]):
             # an order fitted through errors that rise again would claim a rate that is not there
             st.orders[q] = math.nan
@@ -128,7 +143,7 @@ def _run(method: str, case: Case, labels: Sequence[str], solver: Callable[[Case,
                 st.notes.append(f"{q}: the errors are not monotone in the refinement; no order is given")
             continue
         st.orders[q] = fitted_order(hs, st.errors[q])[0]
-        if q == "p_interior_max":
+        if q in _FIELD_ERRORS:
             continue
         p = st.orders[q]
         if len(hs) >= 2 and math.isfinite(p) and p > 0 and hs[-2] > hs[-1]:
@@ -165,16 +180,33 @@ def fem_study(case: Case, ns: Sequence[int],
     (:meth:`fem.MeshPreset.scaled`): every element size, the grading included,
     scales with ``1/n`` at fixed block size and end refinement.
     """
+    def solver(c: Case, lab: str) -> Any:
+        return solve_normal(c, "fem", Mode("study", None, _family(int(lab)), (), ()))
+
+    return _run("fem", case, [str(n) for n in ns], solver, _h_of, "h", progress, "W/h =")
+
+
+def fem_slip_study(case: Case, ns: Sequence[int],
+                   progress: Callable[[str], None] | None = None) -> Study:
+    """Two-body friction FEM errors (contact, stick zone, shear) against the closed form, by ``n``.
+
+    ``case`` is a partial-slip case; the meshes are those of :func:`fem_study`.
+    """
+    def solver(c: Case, lab: str) -> Any:
+        return SOLVERS["fem"].slip(c, None, mesh=_family(int(lab)))  # type: ignore[misc]
+
+    return _run("fem", case, [str(n) for n in ns], solver, _h_of, "h", progress, "W/h =",
+                SLIP_STUDY_QUANTITIES)
+
+
+def _family(n: int) -> Any:
+    """The member of the default mesh's self-similar family with ``n`` elements across W."""
     from threepart.fem.mesh import PRESETS
 
-    def solver(c: Case, lab: str) -> Any:
-        mesh = PRESETS["default"].scaled(int(lab) / PRESETS["default"].n)
-        return solve_normal(c, "fem", Mode("study", None, mesh, (), ()))
+    return PRESETS["default"].scaled(n / PRESETS["default"].n)
 
-    def h_of(res: Any, lab: str) -> float:
-        h = getattr(res, "h", None)
-        if h is None:
-            h = res.info.get("h")
-        return float(h)
 
-    return _run("fem", case, [str(n) for n in ns], solver, h_of, "h", progress, "W/h =")
+def _h_of(res: Any, lab: str) -> float:
+    """Element size along the contact of an FE result (normal or partial slip)."""
+    normal = getattr(res, "normal", res)
+    return float(getattr(normal, "h", None) or normal.info["h"])

@@ -25,15 +25,18 @@ from threepart.output import atomic_dir, json_safe, strict_json
 
 from . import render
 from .catalogue import MODES, CaseRun, Mode, run_case
-from .studies import Study, fem_study, sie_study
+from .studies import Study, fem_slip_study, fem_study, sie_study
 
 __all__ = ["main", "run", "build_report", "write_report",
-           "SCHEMA_FILE", "load_schema", "validate", "STUDY_CASE", "SCHEMA_VERSION"]
+           "SCHEMA_FILE", "load_schema", "validate", "STUDY_CASE", "SLIP_STUDY_CASE",
+           "SCHEMA_VERSION"]
 
 SCHEMA_FILE = Path(__file__).with_name("report.schema.json")
 SCHEMA_VERSION = "1.0"
 #: the catalogue case on which the convergence studies are run
 STUDY_CASE = "caseA_moment"
+#: the partial-slip case of the two-body friction FEM's convergence study
+SLIP_STUDY_CASE = "slip_Q0.4"
 #: SIE schemes whose convergence in n is studied: plain collocation and the kink-aware projection
 SIE_SCHEMES = ("plain", "projected")
 #: how many of the tightest checks (error/limit, worst first) the report lists on top
@@ -113,6 +116,14 @@ def run(mode: Mode, cases: Sequence[Case], say: Callable[[str], None]) -> tuple[
         studies.append(fem_study(study_case, mode.fem_study_n,
                                  progress=lambda m: say(f"[study]   {m}")))
         timings["fem_study_s"] = time.perf_counter() - t1
+    slip_case = next((c for c in cases if c.name == SLIP_STUDY_CASE), None)
+    if slip_case is not None and mode.fem_study_n:
+        t1 = time.perf_counter()
+        say(f"[study] two-body friction FEM convergence in h on {slip_case.name}: "
+            f"W/h = {list(mode.fem_study_n)}")
+        studies.append(fem_slip_study(slip_case, mode.fem_study_n,
+                                      progress=lambda m: say(f"[study]   {m}")))
+        timings["fem_slip_study_s"] = time.perf_counter() - t1
     return runs, studies, timings
 
 
@@ -209,7 +220,7 @@ def write_report(tmp: Path, mode: Mode, runs: Sequence[CaseRun], studies: Sequen
     for st in studies:
         if not st.values:
             continue
-        name = f"plots/{st.method}{'_' + st.scheme if st.scheme else ''}_convergence.png"
+        name = f"plots/{st.method}{'_' + st.scheme if st.scheme else ''}_{st.case}_convergence.png"
         (P.sie_convergence if st.method == "sie" else P.fem_convergence)(st, tmp / name)
         plots["_studies"].append(name)
     timings = dict(timings, plots_s=time.perf_counter() - t0)

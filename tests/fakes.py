@@ -82,7 +82,10 @@ def fake_solver(method: str) -> Solver:
             # a small O(h^2) error so that the convergence study has something to fit
             return FakeNormal(**{**{k: getattr(r, k) for k in r.__dataclass_fields__},
                                  "a": r.a * (1 + 0.01 * h**2)})
-        return Solver("fem", fem_normal, None)
+        def fem_slip(case, normal, mesh="quick"):
+            return _slip(fem_normal(case, mesh), *case.shear_load, method="fem", mesh=mesh)
+
+        return Solver("fem", fem_normal, fem_slip)
 
     def normal(case, n=64, scheme=None):
         return _normal(case.punch, case.P, case.s_load, A=case.A, tilt=case.tilt, method=method, n=n)

@@ -122,8 +122,8 @@ def test_report_json_validates_against_its_schema(tmp_path, fake_solvers):
     doc = json.loads((out / "report.json").read_text())
     jsonschema.validate(doc, verify.load_schema())
     assert status == 0 and doc["passed"]
-    assert {p.name for p in (out / "plots").iterdir()} >= {"caseA_sym_overlay.png", "sie_plain_convergence.png",
-                                                            "fem_convergence.png"}
+    assert {p.name for p in (out / "plots").iterdir()} >= {"caseA_sym_overlay.png", "sie_plain_caseA_moment_convergence.png",
+                                                            "fem_caseA_moment_convergence.png"}
     html = (out / "report.html").read_text()
     assert "data:image/png;base64," in html and 'src="plots/' not in html
     assert doc["environment"]["packages"]["numpy"]
