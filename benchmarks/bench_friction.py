@@ -1,0 +1,75 @@
+"""Time the two-body Coulomb-friction FE model, with its breakdown per stage, against the closed form.
+
+Run ``python benchmarks/bench_friction.py [quick default fine ...]``. For each
+partial-slip case of the catalogue (caseA_moment at Q/fP = 0.2, 0.4, 0.7, and
+0.9, where the stick zone ends on the flat centre and the SIE is the reference)
+it solves ``fem.solve_partial_slip`` cold (no cached contact estimate) and
+prints the errors in a, c (units of W), d, e (units of d) and the interior
+shear (units of max|q|), with the wall time of each stage: locating the contact
+and the stick zone, meshing, assembly, factorisation (condensation of both
+components), the normal solve and the friction iterations. Issue 11's budget is
+60 s per solve on the default mesh.
+
+Then one fretting cycle (Q/fP = 0.4, 21 states per branch) per mesh, with the
+energy dissipated per cycle, its balance check (friction work against the area
+of the Q–xi loop) and the time.
+"""
+from __future__ import annotations
+
+import sys
+import time
+
+from threepart import fem
+from threepart.catalogue import get_case
+from threepart.methods import fem_pair_modulus
+from threepart.reports.compare import compare
+from threepart.reports.solvers import SOLVERS
+
+CASES = ("slip_Q0.2", "slip_Q0.4", "slip_Q0.7", "beyond_stick_centre")
+#: the stages of one partial-slip solve, as in its ``timings``
+STAGES = ("locate", "mesh", "assemble", "factorise", "normal", "friction")
+SHOWN = ("a", "c", "d", "e", "q_interior_max")
+
+
+def reference(case):
+    """The closed form's partial-slip solution, or the SIE's where the closed form refuses."""
+    method = "sie" if case.closedform_refuses else "closedform"
+    return method, SOLVERS[method].slip(case, SOLVERS[method].normal(case))
+
+
+def cold(case, mesh: str):
+    """One partial-slip solve of ``case`` without the run's cached contact estimate, and its time."""
+    fem.solve._locate.cache_clear()
+    t0 = time.perf_counter()
+    res = SOLVERS["fem"].slip(case, None, mesh=mesh)
+    return res, time.perf_counter() - t0
+
+
+def main(meshes: list[str]) -> None:
+    print(f"{'case':<20} {'mesh':<8} {'ref':<10} " + " ".join(f"{q:>14}" for q in SHOWN)
+          + f" {'total s':>8}  " + " ".join(f"{s:>9}" for s in STAGES))
+    for name in CASES:
+        case = get_case(name).resolved()
+        method, ref = reference(case)
+        for mesh in meshes:
+            res, dt = cold(case, mesh)
+            errs = {c.quantity: c.error for c in compare(ref, res, "sie")}
+            t = res.normal.timings
+            print(f"{name:<20} {mesh:<8} {method:<10} " + " ".join(f"{errs[q]:14.2e}" for q in SHOWN)
+                  + f" {dt:8.2f}  " + " ".join(f"{t.get(s, 0.0):9.2f}" for s in STAGES))
+    case = get_case("slip_Q0.4").resolved()
+    Q, f = case.shear_load
+    print("\nfretting cycle, caseA_moment at Q_max/fP = 0.4, 21 states per branch")
+    for mesh in meshes:
+        fem.solve._locate.cache_clear()
+        t0 = time.perf_counter()
+        cyc = fem.fretting_cycle(case.punch, case.P, case.s_load, Q_max=Q, f=f,
+                                 E=fem_pair_modulus(case.A, case.nu), nu=case.nu, mesh=mesh)
+        dt = time.perf_counter() - t0
+        balance = cyc.info["loop_energy"] / cyc.energy - 1
+        print(f"  {mesh:<8} energy {cyc.energy:.6e} N mm/mm per cycle, balance {balance:.1e}, "
+              f"{dt:.2f} s (friction iterations {cyc.normal.timings['friction']:.2f} s)")
+
+
+if __name__ == "__main__":
+    main(sys.argv[1:] or ["quick", "default"])
