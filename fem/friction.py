@@ -39,7 +39,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 from skfem import MeshTri
 
-from threepart.errors import FullSlidingError, MeshResolutionError, NoConvergenceError
+from threepart.errors import FullSlidingError, NoConvergenceError
 from threepart.material import similar_pair
 from threepart.punch import Punch
 from threepart.results import BRANCHES, FrettingResult, NormalResult, SlipResult
@@ -48,8 +48,8 @@ from threepart.validate import check_finite, check_positive
 from .contact import ContactSolution, solve_contact
 from .elasticity import SurfaceCompliance, condense
 from .mesh import PRESETS, MeshPreset, Substrate, make_substrate, preset
-from .solve import (MAX_REFINEMENT, MIN_END_ELEMENTS, FemResult, MeshArg, _check_one_zone,
-                    _end_size, _ends, _join_distance, _refinement, _substrate, _validate)
+from .solve import (FemResult, MeshArg, _check_one_zone, _end_size, _ends, _substrate, _validate,
+                    refined)
 
 __all__ = ["Interface", "FemSlipResult", "FemFrettingResult", "Step", "mirror", "interface",
            "solve_partial_slip", "fretting_cycle"]
@@ -423,14 +423,10 @@ def _model(punch: Punch, P: float, s: float, E: float, nu: float, tilt: str, mes
         model = _Model(punch, P, s, E, nu, tilt, lower, L, guess, max_iter, mu)
         left, right = model.contact_ends()
         h_end = _end_size(model.itf.x, left, right)
-        factor = _refinement(punch, left, right, h_end)
-        if factor == 1:
+        finer = refined(punch, left, right, h_end, pre, attempt)
+        if finer is None:
             break
-        if not isinstance(pre, MeshPreset) or attempt == 1 or factor > MAX_REFINEMENT:
-            raise MeshResolutionError(
-                f"a contact end lies {_join_distance(punch, left, right):.3g} from a join, fewer "
-                f"than {MIN_END_ELEMENTS} elements of h = {h_end:.3g}: the mesh cannot resolve it")
-        pre = replace(pre, refine=pre.refine * factor)
+        pre = finer
     model.timings.update(locate=t_locate, mesh=t_mesh)
     model.h_end = h_end
     return model

@@ -250,6 +250,29 @@ def _refinement(punch: Punch, left: float, right: float, h: float) -> int:
     return int(math.ceil(1.25 * need)) if math.isfinite(need) else MAX_REFINEMENT + 1
 
 
+def refined(punch: Punch, left: float, right: float, h_end: float, pre: object,
+            attempt: int) -> MeshPreset | None:
+    """The preset refined to resolve contact ends ``(left, right)``, or None if ``h_end`` does.
+
+    Raises
+    ------
+    MeshResolutionError
+        If the mesh is not a preset, was refined already (``attempt`` 1), or
+        would need more than ``MAX_REFINEMENT`` times finer elements.
+    """
+    factor = _refinement(punch, left, right, h_end)
+    if factor == 1:
+        return None
+    if not isinstance(pre, MeshPreset) or attempt >= 1 or factor > MAX_REFINEMENT:
+        raise MeshResolutionError(
+            f"a contact end lies {_join_distance(punch, left, right):.3g} from a join, fewer than "
+            f"{MIN_END_ELEMENTS} elements of h = {h_end:.3g}: the mesh cannot resolve it"
+            + ("" if isinstance(pre, MeshPreset) else "; give a finer mesh")
+            + (f" (it would need {factor}x finer, more than {MAX_REFINEMENT}x)"
+               if isinstance(pre, MeshPreset) else ""))
+    return replace(pre, refine=pre.refine * factor)
+
+
 def _substrate(mesh: MeshArg, punch: Punch, P: float, s: float, E: float, nu: float,
                tilt: str, max_iter: int
                ) -> tuple[Substrate, float, tuple[float, float] | None, float]:
@@ -338,17 +361,10 @@ def solve_normal(punch: Punch, P: float, s: float = 0.0, *, E: float, nu: float,
         p = sol.f / sc.weights
         left, right = _ends(sc.x, p, sol.active, (-punch.b, punch.b))
         h_end = _end_size(sc.x, left, right)
-        factor = _refinement(punch, left, right, h_end)
-        if factor == 1:
+        finer = refined(punch, left, right, h_end, pre, attempt)
+        if finer is None:
             break
-        if not isinstance(pre, MeshPreset) or attempt == 1 or factor > MAX_REFINEMENT:
-            raise MeshResolutionError(
-                f"a contact end lies {_join_distance(punch, left, right):.3g} from a join, fewer than "
-                f"{MIN_END_ELEMENTS} elements of h = {h_end:.3g}: the mesh cannot resolve it"
-                + ("" if isinstance(pre, MeshPreset) else "; give a finer mesh")
-                + (f" (it would need {factor}x finer, more than {MAX_REFINEMENT}x)"
-                   if isinstance(pre, MeshPreset) else ""))
-        chosen = replace(pre, refine=pre.refine * factor)   # refine at the ends and joins, solve again
+        chosen = finer   # refine at the ends and joins, solve again
     flds = fields_of(*sc.displacement(sol.f), E, nu) if fields else None
     t3 = time.perf_counter()
     timings = {"locate": t_locate, "mesh": t1 - t0 - t_locate, **sc.timings, "contact": t3 - t2,
