@@ -1,26 +1,34 @@
 """Time the FE model on the quick and default meshes, side by side with the closed form.
 
-Run ``python benchmarks/bench_fem.py [quick default ...] [--peer]``. For each case of the
-catalogue's ``"fem"`` suite (Hertz; case A symmetric and with unequal radii and a
+Run ``python benchmarks/bench_fem.py [quick default ...] [--peer | --backends]``. For each
+case of the catalogue's ``"fem"`` suite (Hertz; case A symmetric and with unequal radii and a
 moment; case B; case C; a general finite R; suppressed tilt; near lift-off) it
 prints the FE errors against ``closedform.solve_normal`` at the case's compliance
 ``A = rigid_punch(E, nu)``: ``a`` and ``c`` in units of the contact width W,
 ``alpha`` relative, both peak pressures and the interior pressure (5 % of W
 excluded at each edge) relative to the largest peak, with DOFs and times. Then,
-side by side in the same run (every FE solve cold: no cached contact estimate,
-with its time per stage), the FFT-BEM peer tamaas (:mod:`peer_tamaas`, a
+side by side in the same run (every FE solve cold: no cached contact estimate or
+mesh, with its time per stage), the FFT-BEM peer tamaas (:mod:`peer_tamaas`, a
 benchmark extra) on the tilt-free cases, with the ratio of each FEM preset's time
-to tamaas' time to 4e-5 (``--peer``: that table only).
+to tamaas' time to 4e-5 (``--peer``: that table only). Last, when CHOLMOD is
+installed (the ``fast`` extra), the two condensation backends side by side on the
+same meshes: the condensation and the whole cold solve with each, their ratios,
+and how far the two answers lie apart (``--backends``: that table only).
 """
 from __future__ import annotations
 
+import contextlib
+import os
 import sys
 import time
+from dataclasses import replace
+from typing import Iterator
 
 import numpy as np
 
 from threepart import closedform, fem
 from threepart.catalogue import load_cases
+from threepart.fem import elasticity
 
 
 def errors(fe, ref) -> dict[str, float]:
@@ -46,8 +54,9 @@ STAGES = ("locate", "mesh", "assemble", "factorise", "contact")
 
 
 def cold_solve(case, mesh: str):
-    """One FE solve of ``case`` without the run's cached contact estimate, and its wall time."""
+    """One FE solve of ``case`` without the run's cached contact estimate and meshes; its wall time."""
     fem.solve._locate.cache_clear()
+    fem.mesh._meshed.cache_clear()
     t0 = time.perf_counter()
     fe = fem.solve_normal(case.punch, case.P, case.s_load, E=case.E, nu=case.nu, tilt=case.tilt,
                           mesh=mesh)
@@ -55,6 +64,8 @@ def cold_solve(case, mesh: str):
 
 
 def main(meshes: list[str]) -> None:
+    print(f"condensation backend: {elasticity.choose_backend()} (installed: "
+          f"{', '.join(elasticity.backends())})")
     print(f"{'case':14s} {'mesh':8s} {'dofs':>7s} {'t_fem':>6s} {'t_cf':>7s} "
           + " ".join(f"{k:>9s}" for k in ("a/W", "c/W", "alpha", "s/W", "p_left", "p_right", "p_int"))
           + "   seconds: " + " ".join(STAGES))
@@ -123,8 +134,103 @@ def peer(meshes: list[str]) -> None:
                           f"its worst error {e[which]:.1e}")
 
 
+@contextlib.contextmanager
+def backend(name: str) -> Iterator[None]:
+    """Make ``name`` the backend of every condensation inside the block (``$THREEPART_FEM_BACKEND``)."""
+    old = os.environ.get(elasticity.BACKEND_VARIABLE)
+    os.environ[elasticity.BACKEND_VARIABLE] = name
+    try:
+        yield
+    finally:
+        if old is None:
+            del os.environ[elasticity.BACKEND_VARIABLE]
+        else:
+            os.environ[elasticity.BACKEND_VARIABLE] = old
+
+
+def backends(meshes: list[str], repeat: int = 2) -> None:
+    """SciPy (SuperLU) and CHOLMOD condensation side by side, on the same meshes, in this run.
+
+    For each case and preset: the condensation (``factorise`` stage) of the
+    located mesh with each backend, and the whole cold solve with each (best of
+    ``repeat``, interleaved), the ratios SciPy / CHOLMOD, and the largest
+    differences between the two: ``max |ΔC| / max |C|``, ``|Δa|/W``, ``|Δc|/W``
+    and ``Δα`` scaled as in :func:`errors` (relative to the closed-form ``α``,
+    absolute where that is 0). "same" says whether both whole solves and the
+    condensations ran on one mesh (identical surface nodes). Last, the
+    two-component condensation of the frictional model, on the first case's mesh
+    of the last preset.
+    """
+    if "cholmod" not in elasticity.backends():
+        print("\nCHOLMOD is not installed: pip install -e '.[fast]' (after apt-get install "
+              "libsuitesparse-dev) to time it against SciPy")
+        return
+    names = ("scipy", "cholmod")
+    print(f"\n{'case':14s} {'mesh':8s} {'dofs':>7s} {'n':>5s} "
+          + " ".join(f"{'cond ' + b:>12s}" for b in names) + f" {'ratio':>6s} "
+          + " ".join(f"{'solve ' + b:>13s}" for b in names) + f" {'ratio':>6s} {'same':>4s} "
+          + " ".join(f"{k:>9s}" for k in ("|dC|/|C|", "|da|/W", "|dc|/W", "|dalpha|")))
+    total = {b: {"cond": 0.0, "solve": 0.0} for b in names}
+    first = None
+    for k, case in enumerate(load_cases("fem")):
+        case = case.resolved()
+        ref = closedform.solve_normal(case.punch, case.P, case.s_load, A=case.A, tilt=case.tilt)
+        alpha_scale = abs(ref.alpha) if ref.alpha != 0 else 1.0
+        for mesh in meshes:
+            solves: dict[str, list] = {b: [] for b in names}
+            for _ in range(repeat):
+                for b in names:
+                    with backend(b):
+                        solves[b].append(cold_solve(case, mesh))
+            (fs, ts), (fc, tc) = (min(solves[b], key=lambda r: r[1]) for b in names)
+            # the solves' mesh, made again (from the cache): its preset, refined as they were
+            pre = fem.mesh.preset(mesh)
+            pre = replace(pre, refine=pre.refine * fs.info["refined"])
+            guess = fem.locate_contact(case.punch, case.P, case.s_load, E=case.E, nu=case.nu,
+                                       tilt=case.tilt)
+            sub = fem.make_substrate(pre.spec(*guess, (-case.punch.b, case.punch.b)))
+            first = (case, sub) if k == 0 else first
+            cond = {b: min((elasticity.condense(sub, case.E, case.nu, backend=b)
+                            for _ in range(repeat)), key=lambda sc: sc.timings["factorise"])
+                    for b in names}
+            C_s, C_c = cond["scipy"].C, cond["cholmod"].C
+            W = fs.a + fs.c
+            da = abs(fs.alpha - fc.alpha) / alpha_scale
+            same = all(np.array_equal(fs.x_nodes, x) for x in (fc.x_nodes, cond["scipy"].x))
+            t_cond = {b: cond[b].timings["factorise"] for b in names}
+            for b, t in zip(names, (ts, tc)):
+                total[b]["cond"] += t_cond[b]
+                total[b]["solve"] += t
+            print(f"{case.name:14s} {mesh:8s} {fs.dofs:7d} {len(fs.x_nodes):5d} "
+                  + " ".join(f"{t_cond[b]:12.3f}" for b in names)
+                  + f" {t_cond['scipy'] / t_cond['cholmod']:6.2f} {ts:13.3f} {tc:13.3f} "
+                  f"{ts / tc:6.2f} {'yes' if same else 'no':>4s} "
+                  f"{np.max(np.abs(C_s - C_c)) / np.max(np.abs(C_s)):9.1e} "
+                  f"{abs(fs.a - fc.a) / W:9.1e} {abs(fs.c - fc.c) / W:9.1e} {da:9.1e}", flush=True)
+    print(f"{'all':14s} {'':8s} {'':7s} {'':5s} "
+          + " ".join(f"{total[b]['cond']:12.3f}" for b in names)
+          + f" {total['scipy']['cond'] / total['cholmod']['cond']:6.2f} "
+          + " ".join(f"{total[b]['solve']:13.3f}" for b in names)
+          + f" {total['scipy']['solve'] / total['cholmod']['solve']:6.2f}")
+    if first is not None:
+        case, sub = first
+        two = {b: min((elasticity.condense(sub, case.E, case.nu, ("u^1", "u^2"), backend=b)
+                       for _ in range(repeat)), key=lambda sc: sc.timings["factorise"])
+               for b in names}
+        t2 = {b: two[b].timings["factorise"] for b in names}
+        dC = np.max(np.abs(two["scipy"].C - two["cholmod"].C)) / np.max(np.abs(two["scipy"].C))
+        print(f"two components ({case.name}, {sub.mesh.p.shape[1]} vertices, "
+              f"{two['scipy'].C.shape[0]} condensed DOFs): scipy {t2['scipy']:.3f} s, cholmod "
+              f"{t2['cholmod']:.3f} s, ratio {t2['scipy'] / t2['cholmod']:.2f}, "
+              f"max |dC|/|C| {dC:.1e}")
+
+
 if __name__ == "__main__":
-    chosen = [a for a in sys.argv[1:] if a != "--peer"] or ["quick", "default"]
-    if "--peer" not in sys.argv[1:]:
+    flags = {"--peer", "--backends"}
+    chosen = [a for a in sys.argv[1:] if a not in flags] or ["quick", "default"]
+    if not flags & set(sys.argv[1:]):
         main(chosen)
-    peer(chosen)
+    if "--backends" not in sys.argv[1:]:
+        peer(chosen)
+    if "--peer" not in sys.argv[1:]:
+        backends(chosen)

@@ -21,6 +21,7 @@ read_substrate      -- read a gmsh ``.msh`` through meshio
 make_substrate      -- mesh a SubstrateSpec with gmsh and read it back
 SurfaceCompliance   -- elastic body condensed onto the candidate contact nodes
 condense            -- P2 plane-strain stiffness, condensed by one ordered factorisation
+choose_backend, backends -- CHOLMOD (scikit-sparse, the `fast` extra) or SciPy's SuperLU
 solve_contact       -- primal-dual active set with translation and tilt as unknowns
 interface, mirror   -- two bodies condensed onto matched interface nodes; a body's mirror image
 
@@ -41,7 +42,7 @@ from threepart.errors import (ContactZoneError, MeshResolutionError, NoConvergen
                               SeparationError)
 
 from .contact import ContactSolution, solve_contact
-from .elasticity import SurfaceCompliance, condense
+from .elasticity import SurfaceCompliance, backends, choose_backend, condense
 from .export import Fields, to_meshio, write_fields
 from .friction import (FemFrettingResult, FemSlipResult, Interface, fretting_cycle, interface,
                        mirror, solve_partial_slip)
@@ -52,6 +53,6 @@ from .studies import StudyLevel, StudyRecord, convergence_study, domain_study
 __all__ = ["solve_normal", "FemResult", "solve_partial_slip", "fretting_cycle", "FemSlipResult",
            "FemFrettingResult", "Interface", "interface", "mirror", "NoConvergenceError", "ContactZoneError", "SeparationError",
            "MeshResolutionError", "locate_contact", "MeshPreset", "PRESETS", "Substrate", "read_substrate",
-           "make_substrate", "SurfaceCompliance", "condense",
+           "make_substrate", "SurfaceCompliance", "condense", "choose_backend", "backends",
            "solve_contact", "ContactSolution", "Fields", "write_fields", "to_meshio",
            "convergence_study", "domain_study", "StudyRecord", "StudyLevel"]

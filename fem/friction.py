@@ -93,6 +93,8 @@ class Interface:
         Largest element size on the interface and DOFs of both bodies.
     timings
         Seconds spent assembling and factorising both bodies.
+    backend
+        The sparse factorisation that condensed them (:func:`fem.choose_backend`).
     """
 
     x: np.ndarray
@@ -104,6 +106,7 @@ class Interface:
     h: float
     dofs: int
     timings: dict[str, float]
+    backend: str = "scipy"
 
 
 def interface(lower: Substrate, upper: Substrate | None, E: float, nu: float) -> Interface:
@@ -135,7 +138,8 @@ def interface(lower: Substrate, upper: Substrate | None, E: float, nu: float) ->
     Bxx, Bxy, Byx, Byy = blocks(B, -1.0 if upper is None else 1.0)
     timings = {k: S.timings[k] + (0.0 if upper is None else B.timings[k]) for k in S.timings}
     return Interface(x=S.x, weights=S.weights, C_nn=Byy + Syy, C_nt=Byx + Syx, C_tn=Bxy + Sxy,
-                     C_tt=Bxx + Sxx, h=S.h, dofs=S.dofs + B.dofs, timings=timings)
+                     C_tt=Bxx + Sxx, h=S.h, dofs=S.dofs + B.dofs, timings=timings,
+                     backend=S.backend)
 
 
 @dataclass(frozen=True, eq=False)
@@ -366,7 +370,7 @@ class _Model:
         s_out = float(np.sum(itf.x * sol.f) / np.sum(sol.f))
         info = {"dofs": itf.dofs, "h": itf.h, "h_end": self.h_end, "L": self.L, "n_candidates": len(itf.x),
                 "iterations": sol.iterations, "delta": sol.delta, "timings": self.timings,
-                "model": "two similar bodies"}
+                "model": "two similar bodies", "backend": itf.backend}
         return FemResult(punch=self.punch, A=similar_pair(self.E, self.nu), a=-left, c=right,
                          alpha=sol.alpha, P=float(np.sum(sol.f)), s=s_out, tilt=self.tilt,
                          method="fem", info=info, h=itf.h, dofs=itf.dofs, L=self.L,

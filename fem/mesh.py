@@ -6,8 +6,9 @@ its boundaries looked up by physical-group name.
 """
 from __future__ import annotations
 
+import copy
+import functools
 import math
-
 import tempfile
 from dataclasses import dataclass, replace
 from pathlib import Path
@@ -185,8 +186,24 @@ def read_substrate(path: str | Path) -> Substrate:
     return Substrate(mesh=mesh, boundaries=boundaries, path=str(path))
 
 
+#: meshes kept for the run (a default mesh holds about 1 MB, a fine one about 4 MB)
+MESH_CACHE_SIZE = 32
+
+
 def make_substrate(spec: SubstrateSpec) -> Substrate:
-    """Build the mesh of ``spec`` with gmsh in a temporary file and read it back."""
+    """Build the mesh of ``spec`` with gmsh in a temporary file and read it back.
+
+    gmsh runs once per spec in a run: the spec (a frozen dataclass, the
+    parameters the manifest records) keys a cache of the last
+    ``MESH_CACHE_SIZE`` meshes, and every call returns its own copy, so a
+    caller that changes its substrate changes no later one.
+    """
+    return copy.deepcopy(_meshed(spec))
+
+
+@functools.lru_cache(maxsize=MESH_CACHE_SIZE)
+def _meshed(spec: SubstrateSpec) -> Substrate:
+    """The cached mesh of ``spec``; never handed out (:func:`make_substrate` copies it)."""
     with tempfile.TemporaryDirectory(prefix="threepart-mesh-") as tmp:
         path = build_substrate(spec, Path(tmp) / "substrate.msh")
         return read_substrate(path)

@@ -371,6 +371,7 @@ def solve_normal(punch: Punch, P: float, s: float = 0.0, *, E: float, nu: float,
                "total": t3 - t_start}
     s_out = float(np.sum(sc.x * sol.f) / np.sum(sol.f))
     info = {"dofs": sc.dofs, "h": sc.h, "h_end": h_end, "L": L, "n_candidates": len(sc.x),
+            "backend": sc.backend,
             "iterations": sol.iterations, "delta": sol.delta, "timings": timings,
             "mesh": mesh if isinstance(mesh, str) else type(mesh).__name__,
             "refined": (float(chosen.refine / pre.refine) if isinstance(chosen, MeshPreset)
