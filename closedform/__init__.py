@@ -18,6 +18,7 @@ solve_normal_batch  -- the same for arrays of load cases (vectorised)
 lift_off            -- admissible lever arms s_min < s < s_max for a load P
 P_min               -- least load: both joins touched (convex centre), separation (concave)
 solve_partial_slip  -- Ciavarella-Jaeger stick zone [-(d+e), d-e] and shear q(x)
+fretting_cycle      -- Q: 0 -> Q_max -> -Q_max -> Q_max by Masing's rule: stick zones, delta, energy per cycle
 
 Errors (from :mod:`threepart.errors`)
 ------
@@ -36,12 +37,13 @@ from . import formulas, special
 from .normal import (LiftOff, NormalBatch, NormalSolution, P_min, lift_off, solve_normal,
                      solve_normal_batch)
 from .slip import SlipSolution, solve_partial_slip
+from .fretting import FrettingSolution, fretting_cycle
 
 __all__ = [
     "Punch", "NormalResult", "SlipResult", "Peak",
     "compliance", "similar_pair", "rigid_punch",
     "formulas", "special",
-    "solve_normal", "solve_normal_batch", "lift_off", "P_min", "solve_partial_slip",
-    "NormalSolution", "NormalBatch", "LiftOff", "SlipSolution",
+    "solve_normal", "solve_normal_batch", "lift_off", "P_min", "solve_partial_slip", "fretting_cycle",
+    "NormalSolution", "NormalBatch", "LiftOff", "SlipSolution", "FrettingSolution",
     "LiftOffError", "FullSlidingError", "StickZoneError", "SeparationError", "NoConvergenceError",
 ]

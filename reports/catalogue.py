@@ -19,7 +19,11 @@ from threepart.tolerances import fem_comparison, tolerance
 from .compare import Check, compare
 from .solvers import METHODS, SOLVERS
 
-__all__ = ["CaseRun", "Mode", "MODES", "run_case", "solve", "solve_normal", "METHODS"]
+__all__ = ["CaseRun", "Mode", "MODES", "run_case", "solve", "solve_normal", "METHODS",
+           "FRETTING_STATES"]
+
+#: recorded states per branch of a fretting cycle (odd: Q = 0 is a state after each reversal)
+FRETTING_STATES = 21
 
 
 @dataclass(frozen=True)
@@ -64,7 +68,7 @@ def solve_normal(case: Case, method: str, mode: Mode) -> Any:
 
 def solve(case: Case, method: str, mode: Mode,
           cache: dict[Any, Any] | None = None) -> tuple[Any, float]:
-    """Result of ``case`` by ``method`` and its wall time (s); slip for slip cases but fem.
+    """Result of ``case`` by ``method`` and its wall time (s): normal, partial slip or a fretting cycle.
 
     ``cache`` maps ``(method, case.normal_key())`` to a normal result already
     computed, so that the partial-slip cases share their normal problem.
@@ -78,12 +82,14 @@ def solve(case: Case, method: str, mode: Mode,
         t_normal = time.perf_counter() - t0
         if cache is not None:
             cache[key] = (normal, t_normal)
-    slip = SOLVERS[method].slip
-    if case.kind == "slip" and slip is not None:
-        t1 = time.perf_counter()
-        res = slip(case, normal, **mode.options(method))
-        return res, t_normal + time.perf_counter() - t1
-    return normal, t_normal
+    solver = SOLVERS[method]
+    shear = {"slip": solver.slip, "fretting": solver.fretting}.get(case.kind)
+    if shear is None:
+        return normal, t_normal
+    t1 = time.perf_counter()
+    extra = {"states": FRETTING_STATES} if case.kind == "fretting" else {}
+    res = shear(case, normal, **extra, **mode.options(method))
+    return res, t_normal + time.perf_counter() - t1
 
 
 @dataclass

@@ -16,10 +16,10 @@ from typing import Any
 import numpy as np
 
 from threepart.output import json_safe
-from threepart.tolerances import NORMAL_QUANTITIES, SLIP_QUANTITIES, tolerance
+from threepart.tolerances import FRETTING_QUANTITIES, NORMAL_QUANTITIES, SLIP_QUANTITIES, tolerance
 
 __all__ = ["Check", "FieldErrors", "compare", "field_errors", "sample_points", "is_slip", "normal_of",
-           "normal_figures", "slip_figures",
+           "normal_figures", "slip_figures", "fretting_figures", "is_fretting", "SHEAR_STATES",
            "EDGE_FRACTION"]
 
 #: fraction of the contact width excluded at each end for the "interior" errors
@@ -92,9 +92,15 @@ def is_slip(result: Any) -> bool:
     return hasattr(result, "d") and hasattr(result, "shear")
 
 
+def is_fretting(result: Any) -> bool:
+    """True for a fretting cycle (it has an energy per cycle and a loop)."""
+    return hasattr(result, "energy") and hasattr(result, "loop")
+
+
 def normal_of(result: Any) -> Any:
-    """The normal result inside a slip result, or the result itself."""
-    return result.normal if is_slip(result) and hasattr(result, "normal") else result
+    """The normal result inside a slip result or a fretting cycle, or the result itself."""
+    return result.normal if (is_slip(result) or is_fretting(result)) and hasattr(result, "normal") \
+        else result
 
 
 def sample_points(other: Any, lo: float, hi: float, n: int = _NGRID) -> np.ndarray:
@@ -181,11 +187,12 @@ def compare(ref: Any, other: Any, comparison: str) -> list[Check]:
     Parameters
     ----------
     ref
-        The reference result (the closed form), normal or partial slip.
+        The reference result (the closed form), normal, partial slip or a fretting cycle.
     other
         The result to check. When both are partial-slip results the stick
-        zone and the shear field are compared too; when only ``ref`` is, only
-        its normal problem is compared.
+        zone and the shear field are compared too, when both are fretting
+        cycles the cycle's figures (:func:`fretting_figures`); otherwise only
+        the normal problem is compared.
     comparison
         Row group of :data:`threepart.tolerances.TOLERANCES`: ``"sie"``,
         ``"fem-quick"``, ``"fem-default"`` or ``"fem-fine"``.
@@ -195,12 +202,20 @@ def compare(ref: Any, other: Any, comparison: str) -> list[Check]:
     list of Check
         One per quantity, in the order of :data:`threepart.tolerances.QUANTITIES`.
     """
-    slip = is_slip(ref) and is_slip(other)
     figures = normal_figures(normal_of(ref), normal_of(other))
     quantities: tuple[str, ...] = NORMAL_QUANTITIES
-    if slip:
+    if is_slip(ref) and is_slip(other):
         figures.update(slip_figures(ref, other))
         quantities = NORMAL_QUANTITIES + SLIP_QUANTITIES
+    elif is_fretting(ref) and is_fretting(other):
+        figures.update(fretting_figures(ref, other))
+        quantities = NORMAL_QUANTITIES + FRETTING_QUANTITIES
+    return _judge(figures, quantities, comparison)
+
+
+def _judge(figures: dict[str, tuple[float, float, float]], quantities: tuple[str, ...],
+           comparison: str) -> list[Check]:
+    """One :class:`Check` per quantity: its figures judged against the tolerance table."""
     checks = []
     for q in quantities:
         r, o, err = figures[q]
@@ -208,3 +223,68 @@ def compare(ref: Any, other: Any, comparison: str) -> list[Check]:
         err = float(err) if math.isfinite(err) else math.inf
         checks.append(Check(comparison, q, float(r), float(o), err, tol.limit, tol.reason))
     return checks
+
+
+#: the fretting states whose shear is compared: (Q / Q_max, branch)
+SHEAR_STATES = ((1.0, "loading"), (0.0, "unloading"), (-1.0, "unloading"))
+
+
+@dataclass(frozen=True)
+class _State:
+    """One state of a fretting cycle, seen as a partial-slip result (for :func:`field_errors`)."""
+
+    cycle: Any
+    Q: float
+    branch: str
+
+    @property
+    def normal(self) -> Any:
+        return self.cycle.normal
+
+    @property
+    def a(self) -> float:
+        return float(self.cycle.normal.a)
+
+    @property
+    def c(self) -> float:
+        return float(self.cycle.normal.c)
+
+    @property
+    def d(self) -> float:
+        return math.nan
+
+    def shear(self, x: Any) -> np.ndarray:
+        return self.cycle.shear(x, self.Q, self.branch)
+
+
+def fretting_figures(ref: Any, other: Any) -> dict[str, tuple[float, float, float]]:
+    """``quantity -> (reference, obtained, normalised error)`` for two fretting cycles.
+
+    Both must record the same states (branch and ``Q``). ``stick`` is the
+    largest difference of the stick-zone ends over the states, in units of the
+    reference's ``d`` at ``Q_max``; ``loop`` that of :meth:`FrettingResult.loop`
+    in units of its largest value; ``q_states`` the largest interior shear
+    difference at :data:`SHEAR_STATES`, in units of the largest shear there.
+    """
+    if len(ref.Q) != len(other.Q) or not np.allclose(ref.Q, other.Q, rtol=0, atol=1e-12 * ref.Q_max) \
+            or not np.array_equal(ref.branch, other.branch):
+        raise ValueError("the two fretting cycles do not record the same states (branch and Q)")
+    out: dict[str, tuple[float, float, float]] = {}
+    out["energy"] = (ref.energy, other.energy, abs(other.energy - ref.energy) / abs(ref.energy))
+    at_max = int(np.flatnonzero(ref.branch == "loading")[-1])
+    d_max = 0.5 * float(ref.stick[at_max, 1] - ref.stick[at_max, 0])
+    dev = np.abs(np.asarray(other.stick) - np.asarray(ref.stick))
+    out["stick"] = (d_max, 0.5 * float(other.stick[at_max, 1] - other.stick[at_max, 0]),
+                    float(dev.max()) / d_max)
+    (_, hr), (_, ho) = ref.loop(), other.loop()
+    scale = float(np.max(np.abs(hr)))
+    out["loop"] = (scale, float(np.max(np.abs(ho))), float(np.max(np.abs(ho - hr))) / scale)
+    worst = (0.0, 0.0, 0.0)
+    for frac, branch in SHEAR_STATES:
+        fe = field_errors(_State(ref, frac * ref.Q_max, branch),
+                          _State(other, frac * other.Q_max, branch), "shear")
+        figure = (fe.interior_peak(fe.ref), fe.interior_peak(fe.other), fe.interior_max)
+        worst = max(worst, figure, key=lambda f: f[2])
+    out["q_states"] = worst
+    return out
+

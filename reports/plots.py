@@ -20,7 +20,7 @@ from .compare import field_errors, is_slip, normal_of
 from .studies import Study
 
 __all__ = ["new_figure", "save", "overlay", "error_curves", "sie_convergence", "fem_convergence",
-           "STYLE"]
+           "step_convergence", "fretting", "STYLE"]
 
 #: how each method is drawn
 STYLE = {
@@ -184,4 +184,53 @@ def fem_convergence(st: Study, path: str | Path) -> Path:
     _study_axes(st, axes[0, 0], "h at the contact (mm), refining →", inverse=False)
     axes[0, 0].set_title(f"FEM convergence in h, case {st.case}"
                          + (" (two bodies, Coulomb friction)" if "d" in st.quantities else ""))
+    return save(fig, path)
+
+
+def step_convergence(st: Study, path: str | Path) -> Path:
+    """FE fretting energy error against the load step (log-log, step shrinking to the right)."""
+    fig, axes = new_figure()
+    _study_axes(st, axes[0, 0], "load step ΔQ (N/mm), refining →", inverse=False)
+    axes[0, 0].set_title(f"FEM fretting cycle: energy in the load step, case {st.case}")
+    return save(fig, path)
+
+
+#: the states of a fretting cycle drawn by :func:`fretting`: (Q / Q_max, branch, label)
+CYCLE_STATES = ((1.0, "loading", "Q = Q_max"), (0.0, "unloading", "Q = 0 after reversal"),
+                (-1.0, "unloading", "Q = -Q_max"))
+
+
+def fretting(results: dict[str, Any], title: str, path: str | Path,
+             reference: str = "closedform") -> Path:
+    """A fretting cycle by every method: the hysteresis loop, and the shear at three states.
+
+    The loop is ``delta`` less the line through its tips (:meth:`FrettingResult.loop`),
+    whose area is the energy per cycle; shears are scaled by ``f p_max`` of the reference.
+    """
+    ref = results.get(reference) or next(iter(results.values()))
+    fig, axes = new_figure(2, 2)
+    ax = axes[0, 0]
+    for m, res in results.items():
+        Q, h = res.loop()
+        style = {k: v for k, v in STYLE[m].items() if k != "label"}
+        ax.plot(Q / ref.Q_max, h, **style,
+                label=f"{STYLE[m]['label']}: {res.energy:.5g} per cycle")
+    ax.set_xlabel("Q / Q_max")
+    ax.set_ylabel("tangential displacement less its elastic line (mm)")
+    ax.set_title(f"{title}: hysteresis loop (area = energy per cycle)")
+    ax.grid(True, color="0.9", lw=0.6)
+    ax.legend(loc="upper left", fontsize=8)
+    n = ref.normal
+    x = np.linspace(-n.a, n.c, 801)
+    scale = ref.f * max(p.p for p in n.peaks())
+    for ax, (frac, branch, label) in zip((axes[0, 1], axes[1, 0], axes[1, 1]), CYCLE_STATES):
+        for m, res in results.items():
+            style = dict(STYLE[m])
+            xm = x[::16] if m == "sie" else x
+            ax.plot(xm / n.width, res.shear(xm, frac * res.Q_max, branch) / scale, **style)
+        ax.set_xlabel("x / W")
+        ax.set_ylabel("q / (f p_max)")
+        ax.set_title(f"shear at {label} ({branch})")
+        ax.grid(True, color="0.9", lw=0.6)
+        ax.legend(loc="lower center", fontsize=8)
     return save(fig, path)

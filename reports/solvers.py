@@ -10,7 +10,7 @@ import math
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, Callable
 
-from threepart.results import NormalResult, SlipResult
+from threepart.results import FrettingResult, NormalResult, SlipResult
 
 if TYPE_CHECKING:  # pragma: no cover
     from .catalogue import Case
@@ -24,13 +24,17 @@ class Solver:
 
     ``normal(case, **options)`` solves the normal problem of a case;
     ``slip(case, normal, **options)`` the partial-slip problem on that normal
-    solution, or is ``None`` where the method has no friction model. The
-    ``options`` are the method's discretisation (``n``, ``scheme``, ``mesh``).
+    solution, or is ``None`` where the method has no friction model;
+    ``fretting(case, normal, states, **options)`` one fretting cycle of
+    amplitude ``Q`` (the case's shear load) with ``states`` recorded states per
+    branch. The ``options`` are the method's discretisation (``n``, ``scheme``,
+    ``mesh``).
     """
 
     name: str
     normal: Callable[..., NormalResult]
     slip: Callable[..., SlipResult] | None = None
+    fretting: Callable[..., FrettingResult] | None = None
 
 
 def _closedform_normal(case: Case) -> NormalResult:
@@ -45,6 +49,12 @@ def _closedform_slip(case: Case, normal: NormalResult) -> SlipResult:
     return closedform.solve_partial_slip(normal, *case.shear_load)
 
 
+def _closedform_fretting(case: Case, normal: NormalResult, states: int) -> FrettingResult:
+    from threepart import closedform
+
+    return closedform.fretting_cycle(normal, *case.shear_load, states=states)
+
+
 def _sie_normal(case: Case, **options: Any) -> NormalResult:
     from threepart import sie
 
@@ -55,6 +65,12 @@ def _sie_slip(case: Case, normal: NormalResult, **options: Any) -> SlipResult:
     from threepart import sie
 
     return sie.solve_partial_slip(normal, *case.shear_load, **options)
+
+
+def _sie_fretting(case: Case, normal: NormalResult, states: int, **options: Any) -> FrettingResult:
+    from threepart import sie
+
+    return sie.fretting_cycle(normal, *case.shear_load, states=states, **options)
 
 
 def _fem_normal(case: Case, mesh: Any = "default") -> NormalResult:
@@ -80,10 +96,22 @@ def _fem_slip(case: Case, normal: NormalResult, mesh: Any = "default") -> SlipRe
     return res
 
 
+def _fem_fretting(case: Case, normal: NormalResult, states: int,
+                  mesh: Any = "default") -> FrettingResult:
+    """The two-body FE model through the cycle; it solves its own (two-body) normal problem."""
+    from threepart import fem
+    from threepart.methods import fem_pair_modulus
+
+    Q, f = case.shear_load
+    return fem.fretting_cycle(case.punch, case.P, case.s_load, Q_max=Q, f=f,
+                              E=fem_pair_modulus(case.A, case.nu), nu=case.nu, tilt=case.tilt,
+                              mesh=mesh, states=states)
+
+
 #: the three methods, in report order; the closed form is the reference of the others
 SOLVERS: dict[str, Solver] = {
-    "closedform": Solver("closedform", _closedform_normal, _closedform_slip),
-    "sie": Solver("sie", _sie_normal, _sie_slip),
-    "fem": Solver("fem", _fem_normal, _fem_slip),
+    "closedform": Solver("closedform", _closedform_normal, _closedform_slip, _closedform_fretting),
+    "sie": Solver("sie", _sie_normal, _sie_slip, _sie_fretting),
+    "fem": Solver("fem", _fem_normal, _fem_slip, _fem_fretting),
 }
 METHODS = tuple(SOLVERS)

@@ -25,7 +25,7 @@ from threepart.output import atomic_dir, json_safe, strict_json
 
 from . import render
 from .catalogue import MODES, CaseRun, Mode, run_case
-from .studies import Study, fem_slip_study, fem_study, sie_study
+from .studies import STEP_STATES, Study, fem_slip_study, fem_step_study, fem_study, sie_study
 
 __all__ = ["main", "run", "build_report", "write_report",
            "SCHEMA_FILE", "load_schema", "validate", "STUDY_CASE", "SLIP_STUDY_CASE",
@@ -76,7 +76,11 @@ def _result_dict(res: Any, dt: float) -> dict[str, Any]:
                          "peak_right": {"x": right.x, "p": right.p},
                          "time_s": dt, "info": {k: v for k, v in dict(normal.info).items()
                                                  if isinstance(v, (int, float, str, bool))}}
-    if res is not normal:
+    if hasattr(res, "energy"):   # a fretting cycle: its stick zone at Q_max
+        left, right = res.stick[(res.branch == "loading")][-1]
+        d.update({"Q_max": res.Q_max, "f": res.f, "energy": res.energy,
+                  "d": 0.5 * (right - left), "e": -0.5 * (right + left)})
+    elif res is not normal:
         d.update({"Q": res.Q, "f": res.f, "d": res.d, "e": res.e})
     return d
 
@@ -124,6 +128,14 @@ def run(mode: Mode, cases: Sequence[Case], say: Callable[[str], None]) -> tuple[
         studies.append(fem_slip_study(slip_case, mode.fem_study_n,
                                       progress=lambda m: say(f"[study]   {m}")))
         timings["fem_slip_study_s"] = time.perf_counter() - t1
+    cycle = next((r for r in runs if r.case.kind == "fretting" and "closedform" in r.results), None)
+    if cycle is not None:
+        t1 = time.perf_counter()
+        say(f"[study] FEM fretting energy in the load step on {cycle.case.name} (quick mesh): "
+            f"states per branch = {list(STEP_STATES)}")
+        studies.append(fem_step_study(cycle.case, cycle.results["closedform"], "quick", STEP_STATES,
+                                      progress=lambda m: say(f"[study]   {m}")))
+        timings["fem_step_study_s"] = time.perf_counter() - t1
     return runs, studies, timings
 
 
@@ -210,6 +222,10 @@ def write_report(tmp: Path, mode: Mode, runs: Sequence[CaseRun], studies: Sequen
             continue
         names = []
         title = r.case.name
+        if r.case.kind == "fretting":
+            P.fretting(r.results, title, pdir / f"{r.case.name}_cycle.png", reference=ref)
+            plots[r.case.name] = [f"plots/{r.case.name}_cycle.png"]
+            continue
         P.overlay(r.results, title, pdir / f"{r.case.name}_overlay.png", reference=ref)
         names.append(f"plots/{r.case.name}_overlay.png")
         if len(r.results) > 1:
@@ -221,7 +237,8 @@ def write_report(tmp: Path, mode: Mode, runs: Sequence[CaseRun], studies: Sequen
         if not st.values:
             continue
         name = f"plots/{st.method}{'_' + st.scheme if st.scheme else ''}_{st.case}_convergence.png"
-        (P.sie_convergence if st.method == "sie" else P.fem_convergence)(st, tmp / name)
+        {"n": P.sie_convergence, "h": P.fem_convergence, "dQ": P.step_convergence}[st.param](
+            st, tmp / name)
         plots["_studies"].append(name)
     timings = dict(timings, plots_s=time.perf_counter() - t0)
     timings["total_s"] = timings.get("solve_s", 0.0) + timings["plots_s"]

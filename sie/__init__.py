@@ -11,8 +11,10 @@ solve_normal        -- contact [-a, c], tilt and pressure under load control ("f
 lift_off            -- lever arms at which a contact edge reaches a join x = ±b (closed form's range)
 solve_partial_slip  -- stick zone (d, e) and shear q(x) by Ciavarella–Jäger, from the discretised equations,
                        also where the stick zone ends on the central segment
+fretting_cycle      -- Q: 0 -> Q_max -> -Q_max -> Q_max by Masing's rule on those stick zones: delta, energy
 SieNormalResult     -- NormalResult with n, scheme and the interpolating pressure
 SieSlipResult       -- SlipResult with n, scheme, corrective pressure and shear
+SieFrettingResult   -- FrettingResult with n, scheme; shear, slip and slip amplitude at any Q of a branch
 NoConvergenceError  -- raised when a root iteration fails (never a silent NaN)
 
 Discretisation
@@ -42,9 +44,11 @@ from .reference import pressure_by_quadrature
 from threepart.errors import NoConvergenceError
 from .schemes import SCHEMES
 from .slip import SieSlipResult, solve_partial_slip
+from .fretting import SieFrettingResult, fretting_cycle
 
 __all__ = [
     "solve_normal", "solve_partial_slip", "lift_off", "SieNormalResult", "SieSlipResult", "NoConvergenceError",
+    "fretting_cycle", "SieFrettingResult",
     "gauss_chebyshev", "cauchy_matrix", "slope_coefficients", "SCHEMES",
     "ConvergenceStudy", "convergence_study", "pressure_by_quadrature",
 ]

@@ -38,7 +38,9 @@ class Case:
     stored lift-off lever arm ``s_max`` when there is one (a fraction above 1
     is past lift-off). ``closedform_refuses`` names the error the closed form
     must raise for a case past its framework (``"LiftOffError"``,
-    ``"StickZoneError"``); such a case is judged against the SIE.
+    ``"StickZoneError"``); such a case is judged against the SIE. With
+    ``cycle`` the shear load is the amplitude ``Q_max`` of a fretting cycle
+    ``0 -> Q_max -> -Q_max -> Q_max``.
     """
 
     name: str
@@ -55,6 +57,7 @@ class Case:
     Q_over_fP: float | None = None
     suites: tuple[str, ...] = ()
     closedform_refuses: str | None = None
+    cycle: bool = False
 
     @property
     def beyond(self) -> bool:
@@ -94,8 +97,10 @@ class Case:
 
     @property
     def kind(self) -> str:
-        """``"slip"`` when a shear load is applied, else ``"normal"``."""
-        return "slip" if self.Q_over_fP is not None else "normal"
+        """``"fretting"`` for a cycle, ``"slip"`` when a shear load is applied, else ``"normal"``."""
+        if self.Q_over_fP is None:
+            return "normal"
+        return "fretting" if self.cycle else "slip"
 
     @property
     def Q(self) -> float | None:
@@ -169,7 +174,7 @@ def _case(c: dict[str, Any], default_material: dict[str, float]) -> Case:
                 s=c.get("s", None if "s_lift_off_fraction" in c else 0.0), tilt=c.get("tilt", "free"),
                 s_lift_off_fraction=c.get("s_lift_off_fraction"), s_max=c.get("s_max"),
                 f=c.get("f"), Q_over_fP=c.get("Q_over_fP"), suites=tuple(c["suites"]),
-                closedform_refuses=c.get("closedform_refuses"))
+                closedform_refuses=c.get("closedform_refuses"), cycle=bool(c.get("cycle", False)))
 
 
 def load_cases(suite: str | None = "verify", path: str | Path | None = None) -> list[Case]:

@@ -1,0 +1,381 @@
+"""The fretting cycle: ``Q`` from 0 to ``Q_max``, to ``-Q_max`` and back, at constant ``P`` and ``s``.
+
+On loading the shear is the Ciavarella–Jäger traction of :mod:`closedform.slip`,
+``q_load(x; Q) = sign(Q) f [p(x) - p*_Q(x)]``, where ``p*_Q`` is the normal
+pressure of the same punch, with the same tilt ``alpha``, on the stick zone
+``[-(d+e), d-e]`` of load ``P - |Q|/f`` (eqs. integral_equation_2,
+horizontal_equilibrium). A reversal superposes the same solution, doubled
+(Mindlin–Deresiewicz, Masing's rule)::
+
+    unloading, Q_max -> Q:   q = q_load(Q_max) - 2 q_load((Q_max - Q)/2)
+    reloading, -Q_max -> Q:  q = -q_load(Q_max) + 2 q_load((Q_max + Q)/2)
+
+and so do the relative slip and the rigid tangential displacement ``delta``;
+the zone that has not slipped since the reversal is the stick zone of
+``q_load`` at ``(Q_max ∓ Q)/2``. Every stick zone of the cycle is therefore a
+loading stick zone of load ``u`` in ``[0, Q_max]``; the smallest is the one at
+``Q_max``.
+
+The loading curve ``delta = F(u)``
+---------------------------------
+Eq. (integral_equation_tangential) and eq. (integral_equation) have the same
+kernel and the same compliance ``A`` (eq. 4) for similar materials, so the
+relative tangential displacement of the surfaces is the log-potential
+``-(A/π) ∫ q(t) ln|x - t| dt`` plus a term linear in ``Q``, just as the normal
+one is that of the compressive pressure. In the stick zone it equals
+``delta``. Both log-potentials of ``q = f (p - p*)`` are evaluated inside their
+own contacts, where each is ``approach - alpha x - g(x)`` of its normal
+problem (eq. 2, ``g`` the profile), so ``alpha x`` and ``g`` cancel and
+
+    F(u) = f [D(P) - D(P - u/f)]        (factor exactly f; plus a term linear in u),
+
+with ``D`` the rigid approach of the normal problem at fixed ``alpha``
+(:func:`approach`). Averaging the log-potential against the Chebyshev weight
+``1/(π w)``, under which ``ln|x - t|`` averages to ``ln(h/2)`` for every ``t`` in
+the contact, gives it in closed form:
+
+    D(a, c) = <g>_w + alpha m - (A P/π) ln(h/2),     <g>_w = (1/π) ∫ g/w dx,
+
+``h = (a+c)/2``, ``m = (c-a)/2``, ``w = sqrt((x+a)(c-x))``. Its load derivative at
+fixed ``alpha`` is that of the flat-punch pressure ``1/(π w)``:
+``dD/dP = -(A/π) ln(h/2)``, so the tangential compliance is
+``F'(u) = -(A/π) ln(d(u)/2)``, ``d(u)`` the stick zone's half-width.
+
+Energy per cycle
+----------------
+The loop area of Masing's rule is ``4 Q_max F(Q_max) - 8 ∫_0^Q_max F(u) du``
+(positive: ``F`` is convex), i.e. ``4 ∫_0^Q_max (2u - Q_max) F'(u) du``, in
+which any part of ``F`` linear in ``u`` integrates to zero:
+
+    W = (4A/π) ∫_0^Q_max (2u - Q_max) ln(h/d(u)) du,
+
+evaluated by Gauss–Legendre quadrature in ``u`` (the stick zones at the nodes
+by the vectorised roots of :mod:`closedform.newton`), refined until it settles.
+
+Slip
+----
+The derivative of the relative slip is the Cauchy integral of ``q`` (eq.
+integral_equation_tangential); in the slip zones it is ``f`` times the gap
+slope of the stick zone's normal problem, so the slip on loading is ``f``
+times that gap (:func:`stick_gap`, closed form). The slip amplitude of the
+cycle is the slip at ``Q_max`` on loading: the state at ``-Q_max`` is its mirror.
+"""
+from __future__ import annotations
+
+import functools
+import math
+import time
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from threepart.errors import FullSlidingError, LiftOffError, NoConvergenceError, StickZoneError
+from threepart.punch import Punch
+from threepart.results import BRANCHES, FrettingResult, NormalResult
+from threepart.validate import finite, positive
+
+from . import formulas
+from .newton import ray_state, solve_phi
+from .slip import solve_partial_slip, stick_zone_bound
+
+__all__ = ["FrettingSolution", "fretting_cycle", "approach", "stick_gap", "omega",
+           "loop_energy"]
+
+#: Gauss–Legendre nodes of the first energy quadrature; doubled until it settles
+ENERGY_NODES = 16
+#: the most nodes tried before NoConvergenceError
+MAX_ENERGY_NODES = 2048
+#: relative change of the energy between two quadratures at which it has settled
+ENERGY_RTOL = 1e-13
+
+
+def omega(beta: ArrayLike) -> np.ndarray:
+    """``ω(β) = ∫_0^β (cos β - cos φ)^2 dφ = β (1 + cos 2β/2) - (3/4) sin 2β``.
+
+    The Chebyshev-weighted mean of an outer segment's quadratic: over the join
+    angle ``β`` of eq. (f0) the segment ``(x ∓ b)^2`` averages to ``h^2 ω(β)/π``.
+    A series replaces the cancelling closed form for ``β < 0.2``.
+    """
+    b = np.asarray(beta, dtype=float)
+    b2 = b * b
+    series = b2 * b2 * b * (2 / 15 - b2 * (8 / 315 - b2 * (2 / 945 - b2 * (16 / 155925
+                                                                          - b2 * 4 / 1216215))))
+    exact = b * (1 + 0.5 * np.cos(2 * b)) - 0.75 * np.sin(2 * b)
+    return np.where(b < 0.2, series, exact)
+
+
+def approach(punch: Punch, a: ArrayLike, c: ArrayLike, A: float, alpha: float) -> np.ndarray:
+    """Rigid approach ``D`` of the normal problem on ``[-a, c]`` with tilt ``alpha``.
+
+    ``D = g(x) + alpha x - (A/π) ∫ p(t) ln|x - t| dt`` for any ``x`` in the contact
+    (compressive ``p``, ``g`` the profile of eq. 2 without ``Delta`` and tilt):
+    ``-Delta`` of eq. (2) up to a term linear in ``P``, which half-plane theory
+    leaves undetermined. In closed form (module docstring)::
+
+        D = kappa0 (m^2 + h^2/2)/2 + h^2 [kappa1 ω(beta1) + kappa2 ω(beta2)]/(2π)
+            + alpha m - (A P/π) ln(h/2),
+
+    with ``beta1, beta2`` of eq. (f0) and ``P`` of eq. (equilibrium_condition_1).
+    ``a``, ``c`` broadcast; ``alpha`` must be the tilt that makes ``[-a, c]``
+    consistent (eq. consistency_condition).
+    """
+    a, c = np.asarray(a, dtype=float), np.asarray(c, dtype=float)
+    h, m = 0.5 * (a + c), 0.5 * (c - a)
+    b1, b2 = formulas.beta(a, c, punch.b)
+    AP = A * formulas.load(punch, a, c, A)
+    mean_g = (0.5 * punch.kappa0 * (m * m + 0.5 * h * h)
+              + h * h * (punch.kappa1 * omega(b1) + punch.kappa2 * omega(b2)) / (2 * math.pi))
+    return mean_g + alpha * m - AP / math.pi * np.log(0.5 * h)
+
+
+def _gap_right(xi: np.ndarray, h: float, F0: float, k_near: float, b_near: float,
+               k_far: float, b_far: float) -> np.ndarray:
+    """Gap beyond the right end of ``[m - h, m + h]`` at ``x = m + h cosh φ`` (``xi = cosh φ``).
+
+    ``near`` is the segment the end lies on (curvature jump ``kappa2``, angle
+    ``beta2``), ``far`` the other one.
+    """
+    phi = np.arccosh(xi)
+    sh, t = np.sinh(phi), np.tanh(0.5 * phi)
+    cn, cf = math.cos(b_near), math.cos(b_far)
+    v_near = np.arctan2(math.cos(0.5 * b_near) * t, math.sin(0.5 * b_near))
+    u_far = np.arctan2(math.sin(0.5 * b_far) * t, math.cos(0.5 * b_far))
+    return h * h / math.pi * (
+        0.5 * F0 * (sh * xi - phi)
+        + k_near * ((xi - cn) ** 2 * v_near - 0.5 * math.sin(b_near) * (sh - cn * phi))
+        - k_far * ((xi + cf) ** 2 * u_far - 0.5 * math.sin(b_far) * (sh + cf * phi)))
+
+
+def stick_gap(punch: Punch, a: float, c: float, x: ArrayLike) -> np.ndarray:
+    """Gap outside ``[-a, c]`` of the normal problem on it, whatever its tilt; 0 inside.
+
+    Integrating the gap slope ``v'(x) + (A/π) ∫ p(t)/(t - x) dt`` (eq.
+    integral_equation continued outside the contact) from the right end, with
+    ``x = m + h cosh φ`` and the join angles of eq. (f0)::
+
+        gap = h^2/π { F0 (sinh φ cosh φ - φ)/2
+                      + kappa2 [(cosh φ - cos beta2)^2 V2 - sin beta2 (sinh φ - φ cos beta2)/2]
+                      - kappa1 [(cosh φ + cos beta1)^2 U1 - sin beta1 (sinh φ + φ cos beta1)/2] },
+
+    ``U1 = arctan(tan(beta1/2) tanh(φ/2))``, ``V2 = arctan(cot(beta2/2) tanh(φ/2))``
+    and ``F0`` of eq. (f0); the left side is its mirror image. Hertz: ``(x sqrt(x^2 - h^2)
+    - h^2 arccosh(x/h))/(2R)``. Valid for ``a, c >= b`` (the ends on the outer segments).
+    """
+    x = np.asarray(x, dtype=float)
+    h, m = 0.5 * (a + c), 0.5 * (c - a)
+    b1, b2 = (float(v) for v in formulas.beta(a, c, punch.b))
+    F0 = float(formulas.F0(punch, a, c))
+    xi = (x - m) / h
+    right = _gap_right(np.maximum(xi, 1.0), h, F0, punch.kappa2, b2, punch.kappa1, b1)
+    left = _gap_right(np.maximum(-xi, 1.0), h, F0, punch.kappa1, b1, punch.kappa2, b2)
+    return np.where(xi > 1.0, right, np.where(xi < -1.0, left, 0.0))
+
+
+def loop_energy(h: float, d: ArrayLike, u: ArrayLike, weights: ArrayLike, A: float,
+                Q_max: float) -> float:
+    """``W = (4A/π) ∫_0^Q_max (2u - Q_max) ln(h/d(u)) du`` by the quadrature ``(u, weights)``."""
+    u, d, weights = (np.asarray(v, dtype=float) for v in (u, d, weights))
+    return float(4 * A / math.pi * np.sum(weights * (2 * u - Q_max) * np.log(h / d)))
+
+
+@dataclass(frozen=True)
+class FrettingSolution(FrettingResult):
+    """Closed-form fretting cycle from :func:`fretting_cycle`.
+
+    ``shear``, ``slip`` and ``slip_amplitude`` take any ``Q`` on a branch, not only
+    the recorded states: the stick zone of ``(Q_max ∓ Q)/2`` is solved anew
+    (:func:`closedform.solve_partial_slip`, microseconds).
+    """
+
+    method: str = "closedform"
+
+    def _q_load(self, x: np.ndarray, u: float) -> np.ndarray:
+        """Shear of the loading state at ``u >= 0``."""
+        return solve_partial_slip(self.normal, u, self.f).shear(x) if u > 0 else np.zeros(x.shape)
+
+    def _s_load(self, x: np.ndarray, u: float) -> np.ndarray:
+        """Slip of the loading state at ``u >= 0``: ``f`` times the stick zone's gap, in the contact."""
+        n = self.normal
+        if u == 0:
+            return np.zeros(x.shape)
+        sl = solve_partial_slip(n, u, self.f)
+        gap = stick_gap(n.punch, sl.d + sl.e, sl.d - sl.e, x)
+        return np.where((x > -n.a) & (x < n.c), self.f * gap, 0.0)
+
+    def shear(self, x: ArrayLike, Q: float, branch: str) -> np.ndarray:
+        """Shear ``q(x)`` at force ``Q`` on ``branch``: Masing's superposition of loading states."""
+        x = np.asarray(x, dtype=float)
+        c_max, c_u, u = _masing(self.Q_max, Q, branch)
+        return c_max * self._q_load(x, self.Q_max) + c_u * self._q_load(x, u)
+
+    def slip(self, x: ArrayLike, Q: float, branch: str) -> np.ndarray:
+        """Relative slip at ``x`` since the start of loading, positive in the direction of positive ``Q``.
+
+        On loading it is ``f`` times the gap of the stick zone's normal problem
+        (:func:`stick_gap`); reversals superpose it as the shear.
+        """
+        x = np.asarray(x, dtype=float)
+        c_max, c_u, u = _masing(self.Q_max, Q, branch)
+        return c_max * self._s_load(x, self.Q_max) + c_u * self._s_load(x, u)
+
+    def slip_amplitude(self, x: ArrayLike) -> np.ndarray:
+        """Half the peak-to-peak relative slip over the cycle: the slip at ``Q_max`` on loading."""
+        return self._s_load(np.asarray(x, dtype=float), self.Q_max)
+
+
+def _masing(Q_max: float, Q: float, branch: str) -> tuple[float, float, float]:
+    """``(c_max, c_u, u)``: the state at ``Q`` on ``branch`` is ``c_max X(Q_max) + c_u X(u)``.
+
+    ``X`` is the loading shear, slip or ``delta`` (Masing's rule).
+    """
+    if branch not in BRANCHES:
+        raise ValueError(f"`branch` = {branch!r} must be one of {BRANCHES}")
+    Q = finite("Q", Q)
+    lo = 0.0 if branch == "loading" else -Q_max
+    tol = 1e-12 * Q_max
+    if not lo - tol <= Q <= Q_max + tol:
+        raise ValueError(f"`Q` = {Q:g} lies outside [{lo:g}, {Q_max:g}], the range of the "
+                         f"{branch} branch for `Q_max` = {Q_max:g}")
+    Q = min(max(Q, lo), Q_max)
+    if branch == "loading":
+        return 0.0, 1.0, Q
+    if branch == "unloading":
+        return 1.0, -2.0, min(max(0.5 * (Q_max - Q), 0.0), Q_max)
+    return -1.0, 2.0, min(max(0.5 * (Q_max + Q), 0.0), Q_max)
+
+
+def _fretting_iv(normal: NormalResult, Q_max: float, f: float, states: int) -> tuple[float, float]:
+    if not isinstance(normal, NormalResult):
+        raise TypeError(f"`normal_solution` must be a NormalResult, not {type(normal).__name__}")
+    Q_max, f = positive("Q_max", Q_max), positive("f", f)
+    if isinstance(states, bool) or not isinstance(states, (int, np.integer)) or states < 2:
+        raise ValueError(f"`states` = {states!r} must be an integer >= 2 (both ends of each branch)")
+    if not normal.within_paper:
+        raise LiftOffError(f"`normal_solution` has its contact [{-normal.a:.6g}, {normal.c:.6g}] "
+                           f"ending on the central segment [-b, b] = [{-normal.punch.b:g}, "
+                           f"{normal.punch.b:g}], outside the closed form")
+    if Q_max >= f * normal.P:
+        raise FullSlidingError(
+            f"`Q_max` = {Q_max:.6g} >= f P = {f * normal.P:.6g} (`f` = {f:g}, `P` = {normal.P:.6g}): "
+            "the contact slides as a whole (full sliding), there is no fretting cycle")
+    return Q_max, f
+
+
+def _stick_zones(normal: NormalResult, u: np.ndarray, f: float, Q_max: float
+                 ) -> tuple[np.ndarray, np.ndarray]:
+    """Ends ``(a*, c*)`` of the loading stick zones at the forces ``u`` (vectorised), ``(a, c)`` at 0.
+
+    As :func:`closedform.solve_partial_slip`: load ``P - u/f`` (eq.
+    horizontal_equilibrium) at the normal solution's tilt (eq. consistency_condition).
+
+    Raises
+    ------
+    StickZoneError
+        A stick zone (the one at ``Q_max`` first) would end inside the central segment.
+    """
+    punch, A = normal.punch, normal.A
+    dAP = A * (normal.P - u / f) - 0.5 * math.pi * punch.kappa0 * punch.b**2
+    ok = bool(np.all(dAP > 0))
+    if ok:
+        r, phi, below, above = solve_phi(punch, dAP, "tilt", normal.alpha, np, sign=-1.0)
+        # u = 0 is the contact itself, exact below; it may sit on a join at lift-off
+        ok = not bool(np.any((below | above) & (u > 0)))
+    if not ok:
+        b = punch.b
+        raise StickZoneError(
+            f"`Q_max`/(f P) = {Q_max / (f * normal.P):.6g}: the stick zone at `Q_max` would end "
+            f"inside the central segment [-b, b] = [{-b:g}, {b:g}], where the closed form does "
+            f"not hold; it holds for `Q_max`/(f P) < {stick_zone_bound(normal):.6g}")
+    st = ray_state(punch, r, phi, np, full=False)
+    return np.where(u > 0, st.a, normal.a), np.where(u > 0, st.c, normal.c)
+
+
+@functools.lru_cache(maxsize=16)
+def _gauss_rule(n: int) -> tuple[np.ndarray, np.ndarray]:
+    """Nodes ``tau`` in ``[0, 1]`` and weights of the ``n``-point Gauss–Legendre rule."""
+    t, w = np.polynomial.legendre.leggauss(n)
+    return 0.5 * (t + 1), 0.5 * w
+
+
+def _energy(normal: NormalResult, Q_max: float, f: float) -> tuple[float, int]:
+    """The loop area ``W`` by Gauss–Legendre quadrature, doubled until it settles.
+
+    The force is ``u = Q_max (1 - tau^2)``: the stick zone's half-width has a
+    ``(u_c - u)^(3/2)`` branch point where an end would reach a join, at
+    ``u_c >= Q_max``; in ``tau`` it becomes ``(u_c - Q_max + Q_max tau^2)^(3/2)``,
+    smooth at the closed form's limit ``u_c = Q_max`` itself.
+    """
+    h = 0.5 * (normal.a + normal.c)
+    # rounding of ln(h/d) (~1e-15) bounds the attainable accuracy for small Q_max/(f P)
+    floor = 1e-14 * normal.A * Q_max**2
+    n, previous = ENERGY_NODES, math.nan
+    while n <= MAX_ENERGY_NODES:
+        tau, w = _gauss_rule(n)
+        u, weights = Q_max * (1 - tau * tau), 2 * Q_max * tau * w
+        a_s, c_s = _stick_zones(normal, u, f, Q_max)
+        W = loop_energy(h, 0.5 * (a_s + c_s), u, weights, normal.A, Q_max)
+        if abs(W - previous) <= ENERGY_RTOL * abs(W) + floor:
+            return W, n
+        previous, n = W, 2 * n
+    raise NoConvergenceError(f"fretting energy: the Gauss–Legendre quadrature did not settle with "
+                             f"{MAX_ENERGY_NODES} nodes (`Q_max` = {Q_max:g}); no result is returned")
+
+
+def fretting_cycle(normal_solution: NormalResult, Q_max: float, f: float, *,
+                   states: int = 21) -> FrettingSolution:
+    """One fretting cycle ``0 -> Q_max -> -Q_max -> Q_max`` at the normal solution's ``P``, ``s``, ``alpha``.
+
+    Parameters
+    ----------
+    normal_solution
+        The normal problem (any method) in the closed form's framework; its
+        punch, ``A``, ``a``, ``c``, ``alpha`` and ``P`` are used.
+    Q_max
+        Amplitude of the shear force, ``0 < Q_max < f P``.
+    f
+        Coefficient of friction, > 0.
+    states
+        Recorded states per branch, evenly spaced in ``Q``, both ends included (>= 2).
+
+    Returns
+    -------
+    FrettingSolution
+        ``branch``, ``Q``, ``stick`` (the zone not slipped since the last
+        reversal; the whole contact at ``Q = 0`` and at each reversal), ``delta``
+        (Masing's rule on ``F(u) = f [D(P) - D(P - u/f)]``, :func:`approach`),
+        ``energy`` (:func:`loop_energy`). ``info`` holds ``states``,
+        ``energy_nodes`` and ``time_s``.
+
+    Raises
+    ------
+    ValueError
+        ``Q_max`` or ``f`` not finite and > 0, ``states`` < 2.
+    FullSlidingError
+        ``Q_max >= f P``.
+    StickZoneError
+        The stick zone at ``Q_max`` (the smallest of the cycle) would end inside
+        the central segment; the message gives the bound on ``Q_max/(f P)``.
+    LiftOffError
+        The normal solution's contact ends on the central segment.
+    NoConvergenceError
+        The energy quadrature did not settle (not expected).
+    """
+    normal = normal_solution
+    Q_max, f = _fretting_iv(normal, Q_max, f, states)
+    t0 = time.perf_counter()
+    punch, A, alpha = normal.punch, normal.A, normal.alpha
+    u = np.linspace(0.0, Q_max, states)
+    a_s, c_s = _stick_zones(normal, u, f, Q_max)
+    F = f * (approach(punch, normal.a, normal.c, A, alpha) - approach(punch, a_s, c_s, A, alpha))
+    F[0] = 0.0
+    energy, nodes = _energy(normal, Q_max, f)
+    stick = np.column_stack([-a_s, c_s])
+    info = {"states": states, "energy_nodes": nodes, "time_s": time.perf_counter() - t0}
+    return FrettingSolution(
+        normal=normal, Q_max=Q_max, f=f,
+        branch=np.repeat(np.array(BRANCHES), states),
+        Q=np.concatenate([u, np.linspace(Q_max, -Q_max, states), np.linspace(-Q_max, Q_max, states)]),
+        stick=np.concatenate([stick, stick, stick]),
+        delta=np.concatenate([F, F[-1] - 2 * F, -F[-1] + 2 * F]),
+        energy=energy, method="closedform", info=info)

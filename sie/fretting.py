@@ -1,0 +1,325 @@
+"""The fretting cycle ``0 -> Q_max -> -Q_max -> Q_max`` from the SIE's stick zones (issue 11).
+
+Every state of the cycle is a superposition of loading states (Masing's rule,
+Ciavarella–Jäger): with ``q_load(x; u) = f [p(x) - p*_u(x)]`` of
+:func:`sie.solve_partial_slip`,
+
+    unloading:  q = q_load(Q_max) - 2 q_load((Q_max - Q)/2)
+    reloading:  q = -q_load(Q_max) + 2 q_load((Q_max + Q)/2),
+
+and the same for the relative slip and the rigid tangential displacement
+``delta``. The zone not slipped since the last reversal is the loading stick
+zone of ``(Q_max ∓ Q)/2``.
+
+Everything follows from the loading stick zones ``[m* - h*, m* + h*]`` that
+:func:`sie.normal.solve_ends` finds from the discretised load and consistency
+equations (paper eqs. horizontal_equilibrium, integral_equation_2), also where
+they end on the central segment:
+
+* ``delta``: the log-potential of eq. (integral_equation_tangential) in the
+  stick zone, ``F(u) = f [D(P) - D(P - u/f)]`` with the rigid approach
+  ``D = <g>_w + alpha m - (A P/π) ln(h/2)`` of a bounded pressure on
+  ``[m - h, m + h]`` (``<·>_w`` the mean under the Chebyshev weight, taken by
+  Gauss–Legendre quadrature in ``θ`` between the joins);
+* the energy per cycle, ``W = (4A/π) ∫_0^Q_max (2u - Q_max) ln(h/h*(u)) du``
+  (``dD/dP = -(A/π) ln(h/2)``), by composite Gauss–Legendre quadrature with a
+  panel end wherever a stick-zone end crosses a join;
+* the slip on loading, ``f`` times the gap of the stick zone's normal problem,
+  integrated term by term from the exact Chebyshev coefficients of the slope
+  (:func:`sie.projection.slope_coefficients`).
+"""
+from __future__ import annotations
+
+import functools
+import math
+import time
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import ArrayLike
+from scipy.optimize import brentq
+
+from threepart.errors import FullSlidingError, NoConvergenceError
+from threepart.punch import Punch
+from threepart.results import BRANCHES, FrettingResult, NormalResult
+from threepart.validate import check_positive, finite
+
+from .normal import DEFAULT_N, DEFAULT_SCHEME, check_scheme, solve_ends
+from .projection import slope_coefficients
+from .schemes import Plain, Projected
+from .slip import solve_partial_slip
+
+__all__ = ["SieFrettingResult", "fretting_cycle", "mean_profile", "approach", "stick_gap"]
+
+#: Chebyshev terms of the gap series (truncation error ~ GAP_TERMS^-3 of the gap)
+GAP_TERMS = 4096
+#: Gauss–Legendre nodes per panel of the first energy quadrature; doubled until it settles
+ENERGY_NODES = 16
+MAX_ENERGY_NODES = 1024
+ENERGY_RTOL = 1e-12
+
+
+@functools.lru_cache(maxsize=16)
+def _gauss(n: int) -> tuple[np.ndarray, np.ndarray]:
+    """Gauss–Legendre nodes and weights on ``[0, 1]``."""
+    t, w = np.polynomial.legendre.leggauss(n)
+    return 0.5 * (t + 1), 0.5 * w
+
+
+def mean_profile(punch: Punch, m: float, h: float) -> float:
+    """``<g>_w = (1/π) ∫_0^π g(m + h cos θ) dθ``, the profile of eq. (2) averaged with weight ``1/(π w)``.
+
+    ``g`` is a quadratic between the joins, so each piece is integrated by a
+    16-point Gauss–Legendre rule in ``θ`` (an entire integrand: exact to rounding).
+    """
+    cuts = [math.acos((j - m) / h) for j in sorted({punch.b, -punch.b}) if abs(j - m) < h]
+    edges = np.array(sorted({0.0, math.pi, *cuts}))
+    s, w = _gauss(16)
+    total = 0.0
+    for lo, hi in zip(edges[:-1], edges[1:]):
+        theta = lo + (hi - lo) * s
+        total += (hi - lo) * float(np.sum(w * punch.profile(m + h * np.cos(theta))))
+    return total / math.pi
+
+
+def approach(punch: Punch, A: float, alpha: float, P: float, m: float, h: float) -> float:
+    """Rigid approach ``D = g(x) + alpha x - (A/π) ∫ p ln|x - t| dt`` of a bounded pressure of load ``P``.
+
+    The same for every ``x`` in ``[m - h, m + h]`` (eq. integral_equation); its
+    mean under the Chebyshev weight, where ``ln|x - t|`` averages to ``ln(h/2)``,
+    gives ``<g>_w + alpha m - (A P/π) ln(h/2)``. Up to a term linear in ``P``.
+    """
+    return mean_profile(punch, m, h) + alpha * m - A * P / math.pi * math.log(0.5 * h)
+
+
+def _integrated_powers(G: np.ndarray, rho: np.ndarray) -> np.ndarray:
+    """``Σ_{k>=1} G_k I_k(ρ)`` with ``I_k = ∫_1^ξ ρ^k dξ``, ``ρ = ξ - sqrt(ξ^2 - 1)`` (``0 < ρ <= 1``).
+
+    With ``ξ = cosh φ``, ``ρ = e^-φ``: ``I_1 = [-ln ρ - (1 - ρ^2)/2]/2`` and
+    ``I_k = [(1 - ρ^(k-1))/(k-1) - (1 - ρ^(k+1))/(k+1)]/2`` for ``k >= 2``.
+    """
+    k = np.arange(2, len(G), dtype=float)
+    Gk = G[2:]
+    const = float(np.sum(Gk * (1 / (k - 1) - 1 / (k + 1))))
+    poly = np.polynomial.polynomial.polyval
+    low = poly(rho, np.concatenate([[0.0], Gk / (k - 1)]))          # Σ G_k ρ^(k-1)/(k-1)
+    high = rho * rho * poly(rho, np.concatenate([[0.0], Gk / (k + 1)]))   # Σ G_k ρ^(k+1)/(k+1)
+    first = G[1] * 0.5 * (-np.log(rho) - 0.5 * (1 - rho * rho))
+    return first + 0.5 * (const - low + high)
+
+
+def stick_gap(punch: Punch, alpha: float, m: float, h: float, x: ArrayLike,
+              terms: int = GAP_TERMS) -> np.ndarray:
+    """Gap outside ``[m - h, m + h]`` of the normal problem on it with tilt ``alpha``; 0 inside.
+
+    The gap slope outside is ``v'(x) - Σ_{k>=1} G_k ρ^k`` (eq. integral_equation
+    continued outside the contact, :func:`sie.normal._gap_slope_outside`); it is
+    integrated term by term from each end. ``ρ^k`` alternates in sign on the left.
+    """
+    x = np.asarray(x, dtype=float)
+    G = slope_coefficients(punch, m, h, terms)[0]
+    xi = (x - m) / h
+    a = np.maximum(np.abs(xi), 1.0)
+    rho = 1.0 / (a + np.sqrt(a * a - 1.0))
+    sign = (-1.0) ** np.arange(len(G))
+    v = punch.profile(x, alpha)
+    right = v - float(punch.profile(m + h, alpha)) - h * _integrated_powers(G, rho)
+    left = v - float(punch.profile(m - h, alpha)) + h * _integrated_powers(G * sign, rho)
+    return np.where(xi > 1.0, right, np.where(xi < -1.0, left, 0.0))
+
+
+@dataclass(frozen=True)
+class SieFrettingResult(FrettingResult):
+    """Fretting cycle from :func:`fretting_cycle`, with the discretisation of its stick zones.
+
+    ``shear``, ``slip`` and ``slip_amplitude`` take any ``Q`` on a branch: the
+    loading state of ``(Q_max ∓ Q)/2`` is solved anew by :func:`sie.solve_partial_slip`.
+    """
+
+    n: int = 0
+    scheme: str = ""
+
+    def _q_load(self, x: np.ndarray, u: float) -> np.ndarray:
+        if u == 0:
+            return np.zeros(x.shape)
+        return solve_partial_slip(self.normal, u, self.f, n=self.n, scheme=self.scheme).shear(x)
+
+    def _s_load(self, x: np.ndarray, u: float) -> np.ndarray:
+        nrm = self.normal
+        if u == 0:
+            return np.zeros(x.shape)
+        sl = solve_partial_slip(nrm, u, self.f, n=self.n, scheme=self.scheme)
+        gap = stick_gap(nrm.punch, nrm.alpha, -sl.e, sl.d, x)
+        return np.where((x > -nrm.a) & (x < nrm.c), self.f * gap, 0.0)
+
+    def shear(self, x: ArrayLike, Q: float, branch: str) -> np.ndarray:
+        """Shear ``q(x)`` at force ``Q`` on ``branch`` (Masing superposition of loading states)."""
+        x = np.asarray(x, dtype=float)
+        c_max, c_u, u = _masing(self.Q_max, Q, branch)
+        return c_max * self._q_load(x, self.Q_max) + c_u * self._q_load(x, u)
+
+    def slip(self, x: ArrayLike, Q: float, branch: str) -> np.ndarray:
+        """Relative slip since the start of loading, positive in the direction of positive ``Q``."""
+        x = np.asarray(x, dtype=float)
+        c_max, c_u, u = _masing(self.Q_max, Q, branch)
+        return c_max * self._s_load(x, self.Q_max) + c_u * self._s_load(x, u)
+
+    def slip_amplitude(self, x: ArrayLike) -> np.ndarray:
+        """Half the peak-to-peak relative slip over the cycle: the slip at ``Q_max`` on loading."""
+        return self._s_load(np.asarray(x, dtype=float), self.Q_max)
+
+
+def _masing(Q_max: float, Q: float, branch: str) -> tuple[float, float, float]:
+    """``(c_max, c_u, u)``: the state at ``Q`` on ``branch`` is ``c_max X(Q_max) + c_u X(u)``."""
+    if branch not in BRANCHES:
+        raise ValueError(f"`branch` = {branch!r} must be one of {BRANCHES}")
+    Q = finite("Q", Q)
+    lo = 0.0 if branch == "loading" else -Q_max
+    tol = 1e-12 * Q_max
+    if not lo - tol <= Q <= Q_max + tol:
+        raise ValueError(f"`Q` = {Q:g} lies outside [{lo:g}, {Q_max:g}], the range of the "
+                         f"{branch} branch for `Q_max` = {Q_max:g}")
+    Q = min(max(Q, lo), Q_max)
+    if branch == "loading":
+        return 0.0, 1.0, Q
+    if branch == "unloading":
+        return 1.0, -2.0, min(max(0.5 * (Q_max - Q), 0.0), Q_max)
+    return -1.0, 2.0, min(max(0.5 * (Q_max + Q), 0.0), Q_max)
+
+
+def _check_fretting(normal: NormalResult, Q_max: float, f: float, states: int) -> None:
+    if not isinstance(normal, NormalResult):
+        raise ValueError(f"`normal` = {normal!r} must be a NormalResult (from solve_normal)")
+    check_positive(Q_max=Q_max, f=f)
+    if isinstance(states, bool) or not isinstance(states, (int, np.integer)) or states < 2:
+        raise ValueError(f"`states` = {states!r} must be an integer >= 2 (both ends of each branch)")
+    if Q_max >= f * normal.P:
+        raise FullSlidingError(f"`Q_max` = {Q_max:g} must satisfy Q_max < f P = {f * normal.P:g} "
+                               f"(`f` = {f:g}; at Q_max = f P the contact slides as a whole)")
+
+
+class _Zones:
+    """Loading stick zones ``(m*, h*)`` of one normal solution, by :func:`sie.normal.solve_ends`."""
+
+    def __init__(self, normal: NormalResult, f: float, sch: Plain | Projected) -> None:
+        self.normal, self.f, self.sch = normal, f, sch
+        self.m0, self.h0 = 0.5 * (normal.c - normal.a), 0.5 * (normal.a + normal.c)
+        self.solves = 0
+
+    def __call__(self, u: float) -> tuple[float, float]:
+        nrm = self.normal
+        if u == 0:
+            return self.m0, self.h0
+        P_star = nrm.P - u / self.f
+        m, h, _, _, _ = solve_ends(nrm.punch, nrm.A, P_star, self.sch, alpha=nrm.alpha, m0=self.m0,
+                                   h0=self.h0 * math.sqrt(P_star / nrm.P))
+        self.solves += 1
+        if m - h < -nrm.a * (1 + 1e-12) or m + h > nrm.c * (1 + 1e-12):
+            raise ValueError(f"stick zone [{m - h:.6g}, {m + h:.6g}] at u = {u:g} leaves the contact "
+                             f"[{-nrm.a:.6g}, {nrm.c:.6g}]; is `normal` consistent with its punch?")
+        return m, h
+
+    def crossings(self, Q_max: float, top: tuple[float, float]) -> list[float]:
+        """Forces in ``(0, Q_max)`` at which a stick-zone end crosses a join ``x = ±b``."""
+        (m0, h0), (m1, h1) = (self.m0, self.h0), top
+        out = []
+        for j in sorted({-self.normal.punch.b, self.normal.punch.b}):
+            for side, before, after in ((-1.0, m0 - h0, m1 - h1), (1.0, m0 + h0, m1 + h1)):
+                if (before - j) * (after - j) < 0:
+                    def end(u: float, side: float = side, j: float = j) -> float:
+                        m, h = self(u)
+                        return m + side * h - j
+                    out.append(float(brentq(end, 0.0, Q_max, xtol=1e-14 * Q_max, rtol=1e-15)))
+        return sorted(out)
+
+
+def _energy(zones: _Zones, Q_max: float, top: tuple[float, float]) -> tuple[float, int, list[float]]:
+    """``W = (4A/π) ∫_0^Q_max (2u - Q_max) ln(h/h*(u)) du``, composite Gauss–Legendre doubled until it settles.
+
+    The panels end where a stick-zone end crosses a join (a ``|u - u_c|^(3/2)``
+    branch point of ``h*``); on each panel ``u = lo + (hi - lo) s^2 (3 - 2s)``
+    makes such a branch point at either end, or at the limit just beyond
+    ``Q_max``, smooth.
+    """
+    nrm = zones.normal
+    cuts = zones.crossings(Q_max, top)
+    edges = [0.0, *cuts, Q_max]
+    # the stick zones' Newton tolerance (~1e-14 of h*) bounds the accuracy of ln(h/h*)
+    floor = 1e-13 * nrm.A * Q_max**2
+    n, previous = ENERGY_NODES, math.nan
+    while n <= MAX_ENERGY_NODES:
+        s, w = _gauss(n)
+        total = 0.0
+        for lo, hi in zip(edges[:-1], edges[1:]):
+            u = lo + (hi - lo) * s * s * (3 - 2 * s)
+            weights = 6 * (hi - lo) * s * (1 - s) * w
+            h_star = np.array([zones(float(v))[1] for v in u])
+            total += float(np.sum(weights * (2 * u - Q_max) * np.log(zones.h0 / h_star)))
+        W = 4 * nrm.A / math.pi * total
+        if abs(W - previous) <= ENERGY_RTOL * abs(W) + floor:
+            return W, n, cuts
+        previous, n = W, 2 * n
+    raise NoConvergenceError(f"sie fretting energy: the quadrature did not settle with {MAX_ENERGY_NODES} "
+                             f"nodes per panel (`Q_max` = {Q_max:g}); no result is returned")
+
+
+def fretting_cycle(normal: NormalResult, Q_max: float, f: float, *, n: int | None = None,
+                   scheme: str | None = None, states: int = 21) -> SieFrettingResult:
+    """One fretting cycle ``0 -> Q_max -> -Q_max -> Q_max`` at the normal solution's ``P``, ``s``, ``alpha``.
+
+    Parameters
+    ----------
+    normal
+        A normal solution (any method): its punch, ``A``, ``a``, ``c``, ``alpha``
+        and ``P`` are used.
+    Q_max
+        Amplitude of the shear force, ``0 < Q_max < f P``.
+    f
+        Coefficient of friction, > 0.
+    n, scheme
+        Discretisation of the stick zones, as :func:`sie.solve_partial_slip`.
+    states
+        Recorded states per branch, evenly spaced in ``Q``, both ends included (>= 2).
+
+    Returns
+    -------
+    SieFrettingResult
+        ``method="sie"``; ``stick`` is the zone not slipped since the last
+        reversal (the whole contact at ``Q = 0`` and at each reversal); stick
+        zones ending on the central segment are solved as any other. ``info``
+        holds ``n``, ``scheme``, ``states``, ``energy_nodes`` (per panel),
+        ``crossings`` (forces at which a stick-zone end crosses a join),
+        ``solves`` and ``time_s``.
+
+    Raises
+    ------
+    ValueError
+        ``Q_max`` or ``f`` not finite and > 0, ``states`` < 2
+        (``FullSlidingError`` for ``Q_max >= f P``).
+    NoConvergenceError
+        A stick zone or the energy quadrature did not converge.
+    """
+    _check_fretting(normal, Q_max, f, states)
+    Q_max, f = float(Q_max), float(f)
+    n = int(normal.info.get("n", DEFAULT_N)) if n is None else n
+    scheme = str(normal.info.get("scheme", DEFAULT_SCHEME)) if scheme is None else scheme
+    sch = check_scheme(scheme, n)
+    t0 = time.perf_counter()
+    zones = _Zones(normal, f, sch)
+    u = np.linspace(0.0, Q_max, states)
+    mh = np.array([zones(float(v)) for v in u])
+    punch, A, alpha = normal.punch, normal.A, normal.alpha
+    D0 = approach(punch, A, alpha, normal.P, zones.m0, zones.h0)
+    F = np.array([f * (D0 - approach(punch, A, alpha, normal.P - v / f, m, h)) if v > 0 else 0.0
+                  for v, (m, h) in zip(u, mh)])
+    energy, nodes, cuts = _energy(zones, Q_max, (float(mh[-1, 0]), float(mh[-1, 1])))
+    stick = np.column_stack([mh[:, 0] - mh[:, 1], mh[:, 0] + mh[:, 1]])
+    info = {"n": sch.n, "scheme": sch.name, "states": states, "energy_nodes": nodes,
+            "crossings": cuts, "solves": zones.solves, "time_s": time.perf_counter() - t0}
+    return SieFrettingResult(
+        normal=normal, Q_max=Q_max, f=f,
+        branch=np.repeat(np.array(BRANCHES), states),
+        Q=np.concatenate([u, np.linspace(Q_max, -Q_max, states), np.linspace(-Q_max, Q_max, states)]),
+        stick=np.concatenate([stick, stick, stick]),
+        delta=np.concatenate([F, F[-1] - 2 * F, -F[-1] + 2 * F]),
+        energy=energy, method="sie", info=info, n=sch.n, scheme=sch.name)
