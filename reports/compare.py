@@ -178,7 +178,49 @@ def slip_figures(ref: Any, other: Any) -> dict[str, tuple[float, float, float]]:
     out["q_interior_max"] = (fe.interior_peak(fe.ref), fe.interior_peak(fe.other), fe.interior_max)
     out["q_L2"] = (float(np.sqrt(np.trapezoid(fe.ref**2, fe.x))),
                    float(np.sqrt(np.trapezoid(fe.other**2, fe.x))), fe.l2)
+    integral = _shear_integral(other)
+    out["q_integral"] = (other.Q, integral, abs(integral - other.Q) / abs(other.Q))
+    excess = _friction_excess(other)
+    out["q_bound"] = (0.0, excess, excess)
     return out
+
+
+def _shear_integral(res: Any) -> float:
+    """``∫ q dx`` of a slip result: exact on a nodal result's interpolant, else by quadrature.
+
+    The quadrature splits the contact at its ends, the stick-zone ends and the
+    joins, where ``q`` has square-root or logarithmic kinks, and maps each piece
+    by ``x = u + (v - u)(1 - cos θ)/2``, which removes the square roots at its ends,
+    before Gauss–Legendre in ``θ`` (:data:`_QUAD_NODES` points a piece).
+    """
+    n = normal_of(res)
+    nodes = getattr(n, "x_nodes", None)
+    if nodes is not None:
+        x = sample_points(n, -n.a, n.c)
+        return float(np.trapezoid(res.shear(x), x))
+    lo, hi = -n.a, n.c
+    b = n.punch.b
+    breaks = sorted({lo, hi, *(x for x in (*res.stick_zone, -b, b) if lo < x < hi)})
+    theta, w = np.polynomial.legendre.leggauss(_QUAD_NODES)
+    theta = 0.5 * np.pi * (theta + 1)
+    total = 0.0
+    for u, v in zip(breaks, breaks[1:]):
+        x = u + 0.5 * (v - u) * (1 - np.cos(theta))
+        total += 0.25 * np.pi * (v - u) * float(np.sum(w * np.sin(theta) * res.shear(x)))
+    return total
+
+
+#: Gauss–Legendre points per piece of :func:`_shear_integral`
+_QUAD_NODES = 400
+
+
+def _friction_excess(res: Any) -> float:
+    """``max(|q| - f p, 0) / (f p_max)`` over the contact: Coulomb's bound, 0 when it holds."""
+    n = normal_of(res)
+    x = sample_points(n, -n.a, n.c)
+    p = n.pressure(x)
+    excess = np.abs(res.shear(x)) - res.f * p
+    return float(max(excess.max(), 0.0) / (res.f * p.max()))
 
 
 def compare(ref: Any, other: Any, comparison: str) -> list[Check]:
