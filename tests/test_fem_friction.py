@@ -178,3 +178,16 @@ def test_fretting_cycle_agrees_with_the_closed_form():
               if not c.passed}
     assert not failed, f"FEM fretting cycle disagrees with the closed form: {failed}"
     assert abs(fe.energy / ref.energy - 1) < 2e-2        # issue 11: within 2 %
+
+
+def test_suppressed_tilt_agrees_with_the_closed_form():
+    """The loading plate held level (alpha = 0): the closed form's suppressed-tilt stick zone."""
+    A = 4 * (1 - NU**2) / E
+    ref = closedform.solve_partial_slip(closedform.solve_normal(PUNCH, P, A=A, tilt="suppressed"),
+                                        0.4 * F * P, F)
+    fe = fem.solve_partial_slip(PUNCH, P, Q=0.4 * F * P, f=F, E=E, nu=NU, tilt="suppressed",
+                                mesh="quick")
+    assert fe.alpha == 0.0 and fe.normal.tilt == "suppressed"
+    failed = {c.quantity: f"{c.error:.2e} > {c.limit:g}" for c in compare(ref, fe, "fem-quick")
+              if not c.passed}
+    assert not failed, f"suppressed tilt: {failed}"
