@@ -7,6 +7,7 @@ FemResult           -- the shared result shape plus h, dofs, L, delta, timings a
 solve_partial_slip  -- two similar elastic bodies, P at s then Q in steps, Coulomb friction
 fretting_cycle      -- the same model through Q: 0 -> Q_max -> -Q_max -> Q_max (energy per cycle)
 FemSlipResult, FemFrettingResult -- their shared result shapes, with the per-step history
+solve_finite        -- a punch of real shape (exact arcs, flanks, height H) on a finite block
 NoConvergenceError  -- the contact active-set iteration did not converge
 ContactZoneError    -- the contact reached the end of the candidate zone of the mesh
 SeparationError     -- the contact separates into two zones (from threepart.errors)
@@ -46,12 +47,13 @@ from .elasticity import SurfaceCompliance, backends, choose_backend, condense
 from .export import Fields, to_meshio, write_fields
 from .friction import (FemFrettingResult, FemSlipResult, Interface, fretting_cycle, interface,
                        mirror, solve_partial_slip)
+from .finite import solve_finite
 from .mesh import PRESETS, MeshPreset, Substrate, make_substrate, read_substrate
 from .solve import FemResult, locate_contact, solve_normal
 from .studies import StudyLevel, StudyRecord, convergence_study, domain_study
 
 __all__ = ["solve_normal", "FemResult", "solve_partial_slip", "fretting_cycle", "FemSlipResult",
-           "FemFrettingResult", "Interface", "interface", "mirror", "NoConvergenceError", "ContactZoneError", "SeparationError",
+           "FemFrettingResult", "solve_finite", "Interface", "interface", "mirror", "NoConvergenceError", "ContactZoneError", "SeparationError",
            "MeshResolutionError", "locate_contact", "MeshPreset", "PRESETS", "Substrate", "read_substrate",
            "make_substrate", "SurfaceCompliance", "condense", "choose_backend", "backends",
            "solve_contact", "ContactSolution", "Fields", "write_fields", "to_meshio",

@@ -6,6 +6,8 @@ SubstrateSpec        -- frozen parameters of the block mesh (zone, size h, block
 build_substrate      -- mesh a SubstrateSpec with gmsh and write an ``.msh`` file
 gmsh_session         -- context manager: initialize gmsh quietly, always finalize
 PHYSICAL_CURVES      -- names of the physical curve groups ("contact", "top", "base", ...)
+PunchSpec            -- a punch of real shape (flat centre, exact arcs, flanks, height H)
+build_punch          -- mesh a PunchSpec with gmsh, its face matching a substrate's zone
 
 Manifest
 --------
@@ -19,9 +21,11 @@ REFERENCE_SPEC       -- parameters of the committed ``reference.msh``
 from __future__ import annotations
 
 from .manifest import ManifestError, check_manifest, coordinate_checksum, describe, write_manifest
+from .punch import PunchSpec, build_punch
 from .substrate import PHYSICAL_CURVES, SubstrateSpec, build_substrate, gmsh_session
 
-__all__ = ["SubstrateSpec", "build_substrate", "gmsh_session", "PHYSICAL_CURVES",
+__all__ = ["SubstrateSpec", "build_substrate", "gmsh_session", "PHYSICAL_CURVES", "PunchSpec",
+           "build_punch",
            "describe", "write_manifest", "check_manifest", "coordinate_checksum",
            "ManifestError", "REFERENCE_SPEC"]
 

@@ -126,6 +126,19 @@ class SubstrateSpec:
             out.append(np.concatenate([inner, [x1]]))
         return np.concatenate(out)
 
+    def contact_vertices(self) -> np.ndarray:
+        """The mesh's vertex positions along the contact zone, as :func:`build_substrate` places them.
+
+        Graded: :meth:`surface_nodes`; uniform: each piece between surface
+        points split into ``ceil(length / h)`` equal elements.
+        """
+        if self.graded:
+            return self.surface_nodes()
+        pts = self.surface_points()
+        pieces = [np.linspace(x0, x1, max(1, math.ceil((x1 - x0) / self.h - 1e-9)) + 1)[:-1]
+                  for x0, x1 in zip(pts[:-1], pts[1:])]
+        return np.concatenate([*pieces, [pts[-1]]])
+
     @property
     def size_max(self) -> float:
         """The effective largest element size."""

@@ -202,6 +202,8 @@ TOLERANCES: dict[tuple[str, str], Tolerance] = {
     ("fem-quick", "s_imposed"): _T(1e-12, "free tilt imposes sum x_i f_i = P s in the linear solve (units of W); measured <= 1.2e-16"),
     ("fem-quick", "load_integral"): _T(2e-3, "∫p dx of the linear interpolant misses the sqrt edges; measured <= 1.3e-3 (moment 2e-4 W)"),
     ("fem-quick", "mirror"): _T(1e-3, "mirrored punch and load give a <-> c, α -> -α up to mesh asymmetry; measured <= 1.1e-4"),
+    # --- the finite-body validity map (issue 12) --------------------------------------------------
+    ("map", "control"): _T(1e-3, "issue 12 target: the paper's model (eq. 2 profile, large bodies) in the finite-body code against the closed form, peak pressure; measured 1.9e-4 (quick)"),
     # --- FEM on the committed reference mesh and the slow Hertz study ----------------------------
     ("fem-reference", "a"): _T(2e-2, "reference.msh has 24 elements on the 1.2-wide zone (h = 0.05); measured 4.5e-3 W"),
     ("fem-reference", "contact_law"): _T(1e-12, "brentq (xtol 2e-12) inverts the flat rounded punch's contact law to its target a"),

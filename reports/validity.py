@@ -1,0 +1,149 @@
+"""Where the half-plane formulas stop: one point of the validity map, and the map's grid.
+
+A point is a punch of real shape (central segment ``2b``, exact edge arcs of
+radius ``R1`` and ``R2``, straight flanks, height ``H``) pressed into a finite
+block by ``P`` at ``s = 0`` with the tilt free, solved by the finite-body FEM
+(:mod:`fem.finite`) and by the closed form at the same ``P``. The load is
+chosen so that the closed form's left overhang is ``a - b = (a_minus_b_over_R1) R1``.
+The map sweeps :class:`MapPoint` over :func:`map_points`; :func:`evaluate`
+returns the closed form's errors against the finite body, with the FEM's own
+discretisation-error estimate beside them.
+"""
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import asdict, dataclass
+from typing import Any
+
+from scipy.optimize import brentq
+
+from threepart import closedform, fem
+from threepart.fem.mesh import PRESETS
+from threepart.material import similar_pair
+from threepart.meshes import SubstrateSpec
+from threepart.meshes.punch import PunchSpec
+from threepart.punch import Punch
+
+from .compare import normal_figures
+
+__all__ = ["MapPoint", "map_points", "evaluate", "control", "feasible", "RESULT_KEYS", "GRID"]
+
+#: what :func:`evaluate` returns for a point (all floats)
+RESULT_KEYS = ("peak_rel_error", "p_left_rel_error", "p_right_rel_error", "a_rel_error",
+               "c_rel_error", "alpha_error", "fem_error_estimate", "P", "time_s")
+
+
+@dataclass(frozen=True)
+class MapPoint:
+    """One point of the validity map (all ratios dimensionless; ``R1 = 10`` sets the scale)."""
+
+    R2_over_R1: float
+    b_over_R1: float
+    a_minus_b_over_R1: float
+    H_over_b: float
+
+    def key(self) -> str:
+        """A stable identifier (for resuming an interrupted sweep)."""
+        return (f"R2R1={self.R2_over_R1:.6g}_bR1={self.b_over_R1:.6g}_"
+                f"abR1={self.a_minus_b_over_R1:.6g}_Hb={self.H_over_b:.6g}")
+
+    def as_dict(self) -> dict[str, float]:
+        return asdict(self)
+
+
+#: the scale of every point (the ratios fix the rest), the material and the flank angle
+R1, E, NU, THETA = 10.0, 1.0, 0.3, math.pi / 3
+#: the grid: quick (12 points) and full
+GRID = {
+    True: dict(R2_over_R1=(1.0,), H_over_b=(4.0,), b_over_R1=(0.1, 0.3, 1.0),
+               a_minus_b_over_R1=(0.01, 0.03, 0.1, 0.2, 0.3)),
+    False: dict(R2_over_R1=(1.0, 0.5), H_over_b=(1.0, 4.0), b_over_R1=(0.1, 0.3, 1.0, 3.0),
+                a_minus_b_over_R1=(0.01, 0.03, 0.1, 0.2, 0.35, 0.5)),
+}
+#: the FE meshes of a point, fine and coarse (their difference is the FEM's error estimate)
+MESHES = {True: ("quick", 0.5), False: ("default", 0.5)}
+
+
+def _punch(point: MapPoint) -> Punch:
+    return Punch(R1=R1, R2=point.R2_over_R1 * R1, b=point.b_over_R1 * R1)
+
+
+def _load(point: MapPoint) -> float:
+    """The load at which the closed form's left overhang is ``a - b = (a_minus_b_over_R1) R1``."""
+    punch, A = _punch(point), similar_pair(E, NU)
+    target = point.a_minus_b_over_R1 * R1
+
+    def overhang(P: float) -> float:
+        return closedform.solve_normal(punch, P, 0.0, A=A).a - punch.b - target
+
+    hi = 1e-3
+    while overhang(hi) < 0:
+        hi *= 4
+    return float(brentq(overhang, hi / 4 if hi > 1e-3 else 1e-12, hi, xtol=1e-14, rtol=1e-13))
+
+
+def feasible(point: MapPoint) -> bool:
+    """Whether the punch's lower face and height hold the contact with a margin (before any FE)."""
+    punch = _punch(point)
+    ref = closedform.solve_normal(punch, _load(point), 0.0, A=similar_pair(E, NU))
+    H = point.H_over_b * punch.b
+    margin = 0.25 * ref.width
+    try:
+        zone = SubstrateSpec(x_lo=-ref.a - margin, x_hi=ref.c + margin, h=ref.width / 10, L=1e3 * R1)
+        PunchSpec(zone=zone, b=punch.b, R1=punch.R1, R2=punch.R2, H=H, theta=THETA)
+    except ValueError:
+        return False
+    return True
+
+
+def map_points(quick: bool = False) -> list[MapPoint]:
+    """The grid of the map (:data:`GRID`) less the points whose punch cannot hold the contact."""
+    g = GRID[quick]
+    return [pt for pt in (MapPoint(r, b, ab, hb) for r in g["R2_over_R1"] for hb in g["H_over_b"]
+                          for b in g["b_over_R1"] for ab in g["a_minus_b_over_R1"])
+            if feasible(pt)]
+
+
+def _errors(fe: Any, cf: Any) -> dict[str, float]:
+    """The closed form's errors against the FEM (the reference here), as :func:`compare` measures them."""
+    fig = normal_figures(fe, cf)
+    return {"p_left_rel_error": fig["p_left"][2], "p_right_rel_error": fig["p_right"][2],
+            "peak_rel_error": max(fig["p_left"][2], fig["p_right"][2]),
+            "a_rel_error": abs(cf.a - fe.a) / fe.a, "c_rel_error": abs(cf.c - fe.c) / fe.c,
+            "alpha_error": fig["alpha"][2]}
+
+
+def evaluate(point: MapPoint, quick: bool = False) -> dict[str, Any]:
+    """The closed form's errors against the finite-body FEM at ``point`` (keys :data:`RESULT_KEYS`).
+
+    The FEM runs on two meshes of one self-similar family (:data:`MESHES`);
+    ``fem_error_estimate`` is the largest change of the compared figures from
+    the coarse to the fine one, an upper estimate of the fine mesh's error.
+    """
+    t0 = time.perf_counter()
+    punch, P = _punch(point), _load(point)
+    cf = closedform.solve_normal(punch, P, 0.0, A=similar_pair(E, NU))
+    name, coarse = MESHES[quick]
+    runs = [fem.solve_finite(punch, P, 0.0, E=E, nu=NU, H=point.H_over_b * punch.b, theta=THETA,
+                             mesh=m) for m in (PRESETS[name].scaled(coarse), name)]
+    fine, rough = _errors(runs[1], cf), _errors(runs[0], cf)
+    estimate = max(abs(fine[k] - rough[k]) for k in fine)
+    return {**fine, "fem_error_estimate": estimate, "P": P, "time_s": time.perf_counter() - t0}
+
+
+def control(quick: bool = False) -> dict[str, Any]:
+    """The map's zero line: the paper's model (eq. 2 profile, large bodies) against the closed form.
+
+    The finite-body code with ``H = None`` (:func:`fem.solve_finite`) on the
+    first point of the grid; ``control_rel_error`` is the closed form's larger
+    peak-pressure error, which must be <= 1e-3.
+    """
+    t0 = time.perf_counter()
+    point = MapPoint(1.0, 0.3, 0.1, 4.0)
+    punch, P = _punch(point), _load(point)
+    cf = closedform.solve_normal(punch, P, 0.0, A=similar_pair(E, NU))
+    fe = fem.solve_finite(punch, P, 0.0, E=E, nu=NU, H=None, mesh=MESHES[quick][0])
+    err = _errors(fe, cf)
+    return {"control_rel_error": err["peak_rel_error"], **err, "point": point.as_dict(), "P": P,
+            "time_s": time.perf_counter() - t0}

@@ -1,0 +1,100 @@
+"""Finite-body FE model (issue 12): the punch of real shape, its mesh and the validity map's points.
+
+References: the exact circle (the mesh's face), the substrate's vertices (node
+pairing), the closed form in the half-plane limits (the paper's model on large
+bodies, and a tall punch under a light load), and the map grid's own rules.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from threepart import closedform, fem
+from threepart.fem.finite import punch_body
+from threepart.fem.mesh import PRESETS
+from threepart.material import similar_pair
+from threepart.meshes.punch import PunchSpec
+from threepart.punch import Punch
+from threepart.reports import validity
+from threepart.reports.compare import normal_figures
+from threepart.tolerances import tolerance
+
+E, NU = 1.0, 0.3
+PUNCH = Punch(R1=10.0, R2=5.0, b=1.0)
+
+
+def zone():
+    return PRESETS["quick"].spec(-1.4, 1.3, (-1.0, 1.0))
+
+
+def test_the_face_follows_the_circles_and_pairs_with_the_block_node_for_node():
+    spec = PunchSpec(zone=zone(), b=1.0, R1=10.0, R2=5.0, H=4.0)
+    body = punch_body(spec)
+    m = body.mesh
+    nodes = np.unique(m.facets[:, body.boundaries["contact"]])
+    x, y = m.p[0, nodes], m.p[1, nodes]
+    order = np.argsort(x)
+    assert np.allclose(x[order], spec.zone.contact_vertices(), rtol=0, atol=1e-12)
+    # on the circles of radius R1 (left of -b) and R2 (right of b), flat between
+    over = np.maximum(np.abs(x) - 1.0, 0.0)
+    R = np.where(x < 0, 10.0, 5.0)
+    assert np.allclose((R - y) ** 2 + over**2, R**2, rtol=0, atol=1e-10)
+    assert np.all(y[np.abs(x) <= 1.0] == 0.0)
+    assert {"contact", "face", "base"} <= set(body.boundaries)
+
+
+@pytest.mark.parametrize("kwargs, match", [
+    (dict(H=0.01), "lower face"),   # a punch too low ends before the zone does
+    (dict(H=0.04), "`H`"),
+    (dict(theta=0.01), "lower face"),
+    (dict(profile="ellipse"), "`profile`"),
+])
+def test_a_punch_that_cannot_hold_the_zone_is_refused(kwargs, match):
+    args = dict(zone=zone(), b=1.0, R1=10.0, R2=5.0, H=4.0)
+    with pytest.raises(ValueError, match=match):
+        PunchSpec(**{**args, **kwargs})
+
+
+def test_control_the_papers_model_on_large_bodies_is_the_closed_form():
+    """H = None: the paper's profile on bodies as large as the block: the map's zero line."""
+    out = validity.control(quick=True)
+    assert out["control_rel_error"] < tolerance("map", "control").limit, out
+
+
+def test_a_tall_punch_under_a_light_load_tends_to_the_half_plane():
+    """Contact small against R1 and H: the finite body is a half-plane to about 1e-3."""
+    punch = Punch(R1=10.0, R2=10.0, b=1.0)
+    A = similar_pair(E, NU)
+    P = 0.0017
+    ref = closedform.solve_normal(punch, P, 0.0, A=A)
+    short = fem.solve_finite(punch, P, 0.0, E=E, nu=NU, H=4.0, mesh="quick")
+    tall = fem.solve_finite(punch, P, 0.0, E=E, nu=NU, H=40.0, mesh="quick")
+    err = {H: normal_figures(ref, r)["p_left"][2] for H, r in ((4, short), (40, tall))}
+    assert err[40] < 1e-3 < err[4], err      # a short punch (H = 4b) is visibly not a half-plane
+
+
+def test_the_finite_body_converges_under_mesh_refinement():
+    """Peak pressures on three meshes of one family, each twice as fine, agree to 5e-4."""
+    punch, P = PUNCH, 0.05
+    runs = [fem.solve_finite(punch, P, 0.0, E=E, nu=NU, H=8.0, mesh=PRESETS["quick"].scaled(k))
+            for k in (0.5, 1.0, 2.0)]
+    peaks = np.array([[pk.p for pk in r.peaks()] for r in runs])
+    changes = np.abs(np.diff(peaks, axis=0)) / peaks[-1]
+    assert changes.max() < 5e-4, changes
+
+
+def test_the_quick_map_grid_has_at_least_twelve_feasible_points():
+    pts = validity.map_points(quick=True)
+    assert len(pts) >= 12
+    assert len({p.key() for p in pts}) == len(pts)
+    assert all(validity.feasible(p) for p in pts)
+    assert min(p.a_minus_b_over_R1 for p in pts) <= 0.01
+
+
+def test_a_point_is_evaluated_at_the_overhang_it_names():
+    pt = validity.map_points(quick=True)[2]
+    P = validity._load(pt)
+    ref = closedform.solve_normal(validity._punch(pt), P, 0.0, A=similar_pair(E, NU))
+    assert math.isclose(ref.a - ref.punch.b, pt.a_minus_b_over_R1 * validity.R1, rel_tol=1e-10)
