@@ -17,6 +17,14 @@ from threepart.tolerances import ERROR_UNITS, NORMALISATION, VALUE_UNITS
 
 __all__ = ["markdown", "html", "fmt"]
 
+#: the validity map (``threepart map``): what it is, and where it is written beside the report
+MAP_TEXT = ("Every check above compares idealisations of one model: a parabolic profile on "
+            "half-planes. The validity map (`threepart map`, docs/MAP.md) solves punches of real "
+            "shape, with exact arcs, flanks and a finite height, and maps the closed form's "
+            "peak-pressure error over the overhang (a-b)/R1 and b/R1. By default it is written "
+            "beside this report:")
+MAP_LINK = "../map/map.json"
+
 Table = tuple[list[str], list[list[str]]]
 
 
@@ -204,6 +212,7 @@ def markdown(doc: dict[str, Any]) -> str:
         out += _md_table(*_study(st))
         out += [f"- note: {n}" for n in st["notes"]]
     out += [f"![{p}]({p})" for p in doc["plots"]] + [""]
+    out += ["## Where the half-plane formulas stop", "", MAP_TEXT + f" [{MAP_LINK}]({MAP_LINK})", ""]
     out += ["## Tolerance table", ""]
     out += _md_table(*_tolerances(doc))
     out += ["## Environment", ""] + [f"- **{k}**: {v}" for k, v in _environment(doc)]
@@ -307,6 +316,8 @@ def html(doc: dict[str, Any], root: Path) -> str:
     studies += [_img(root, p) for p in doc["plots"]]
     parts.append(f"<h2>Convergence studies</h2><details><summary>{len(doc['studies'])} studies, "
                  f"errors per level, observed orders and plots</summary>{''.join(studies)}</details>")
+    parts.append(f"<h2>Where the half-plane formulas stop</h2><p>{e(MAP_TEXT)} "
+                 f"<a href='{MAP_LINK}'>{MAP_LINK}</a></p>")
     tol = _html_table(*_tolerances(doc))
     parts.append(f"<h2>Tolerance table</h2><details><summary>{len(doc['tolerances'])} entries, "
                  f"each with its reason</summary>{tol}</details>")

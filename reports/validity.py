@@ -19,6 +19,7 @@ from typing import Any
 from scipy.optimize import brentq
 
 from threepart import closedform, fem
+from threepart.convergence import converges_monotonically, gci, three_level_order
 from threepart.fem.mesh import PRESETS
 from threepart.material import similar_pair
 from threepart.meshes import SubstrateSpec
@@ -27,7 +28,8 @@ from threepart.punch import Punch
 
 from .compare import normal_figures
 
-__all__ = ["MapPoint", "map_points", "evaluate", "control", "feasible", "RESULT_KEYS", "GRID"]
+__all__ = ["MapPoint", "map_points", "evaluate", "control", "feasible", "convergence", "RESULT_KEYS",
+           "GRID", "STUDY_POINTS"]
 
 #: what :func:`evaluate` returns for a point (all floats)
 RESULT_KEYS = ("peak_rel_error", "p_left_rel_error", "p_right_rel_error", "a_rel_error",
@@ -58,7 +60,7 @@ R1, E, NU, THETA = 10.0, 1.0, 0.3, math.pi / 3
 GRID = {
     True: dict(R2_over_R1=(1.0,), H_over_b=(4.0,), b_over_R1=(0.1, 0.3, 1.0),
                a_minus_b_over_R1=(0.01, 0.03, 0.1, 0.2, 0.3)),
-    False: dict(R2_over_R1=(1.0, 0.5), H_over_b=(1.0, 4.0), b_over_R1=(0.1, 0.3, 1.0, 3.0),
+    False: dict(R2_over_R1=(1.0, 0.5), H_over_b=(4.0, 16.0), b_over_R1=(0.1, 0.3, 1.0, 3.0),
                 a_minus_b_over_R1=(0.01, 0.03, 0.1, 0.2, 0.35, 0.5)),
 }
 #: the FE meshes of a point, fine and coarse (their difference is the FEM's error estimate)
@@ -135,8 +137,8 @@ def evaluate(point: MapPoint, quick: bool = False) -> dict[str, Any]:
 def control(quick: bool = False) -> dict[str, Any]:
     """The map's zero line: the paper's model (eq. 2 profile, large bodies) against the closed form.
 
-    The finite-body code with ``H = None`` (:func:`fem.solve_finite`) on the
-    first point of the grid; ``control_rel_error`` is the closed form's larger
+    The finite-body code with ``H = None`` (:func:`fem.solve_finite`) at one
+    point of the grid; ``control_rel_error`` is the closed form's larger
     peak-pressure error, which must be <= 1e-3.
     """
     t0 = time.perf_counter()
@@ -145,5 +147,41 @@ def control(quick: bool = False) -> dict[str, Any]:
     cf = closedform.solve_normal(punch, P, 0.0, A=similar_pair(E, NU))
     fe = fem.solve_finite(punch, P, 0.0, E=E, nu=NU, H=None, mesh=MESHES[quick][0])
     err = _errors(fe, cf)
+    studies = [convergence(pt, STUDY_N[:-1] if quick else STUDY_N) for pt in STUDY_POINTS]
     return {"control_rel_error": err["peak_rel_error"], **err, "point": point.as_dict(), "P": P,
-            "time_s": time.perf_counter() - t0}
+            "convergence": studies, "time_s": time.perf_counter() - t0}
+
+
+#: the two map points of the finite body's own convergence study, and its meshes (W/h)
+STUDY_POINTS = (MapPoint(1.0, 0.1, 0.1, 4.0), MapPoint(1.0, 1.0, 0.03, 4.0))
+STUDY_N = (38, 75, 150, 300)
+
+
+def convergence(point: MapPoint, ns: tuple[int, ...] = STUDY_N) -> dict[str, Any]:
+    """The finite-body FEM's own convergence at ``point``: both peaks and ``a`` over ``ns``.
+
+    ``ns`` are elements across the contact of the default mesh's self-similar
+    family (:meth:`fem.MeshPreset.scaled`); the order and the fine-grid GCI
+    come from the three finest levels (Celik et al. 2008, reference-free), and
+    only where the values converge monotonically.
+    """
+    punch, P = _punch(point), _load(point)
+    values: dict[str, list[float]] = {"p_left": [], "p_right": [], "a": []}
+    hs = []
+    for n in ns:
+        res = fem.solve_finite(punch, P, 0.0, E=E, nu=NU, H=point.H_over_b * punch.b, theta=THETA,
+                               mesh=PRESETS["default"].scaled(n / PRESETS["default"].n))
+        left, right = res.peaks()
+        values["p_left"].append(left.p)
+        values["p_right"].append(right.p)
+        values["a"].append(res.a)
+        hs.append(res.h)
+    out: dict[str, Any] = {"point": point.as_dict(), "n": list(ns), "h": hs, "values": values,
+                           "order": {}, "gci": {}}
+    for q, v in values.items():
+        if len(v) >= 3 and converges_monotonically(v[-3:]):
+            p = three_level_order(v[-3], v[-2], v[-1], hs[-2] / hs[-1], hs[-3] / hs[-2])
+            out["order"][q], out["gci"][q] = p, gci(v[-2], v[-1], hs[-2] / hs[-1], p)
+        else:
+            out["order"][q] = out["gci"][q] = math.nan
+    return out

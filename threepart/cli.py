@@ -6,6 +6,7 @@ solve    normal problem: a, c, alpha, peak pressures, segments in contact, lift-
 slip     partial slip: adds the stick zone for a shear load Q and friction f
 verify   verification run: closed form against SIE and FEM, tolerance report
 figures  the paper's result figures, with the SIE solution as markers
+map      where the half-plane formulas stop: the finite-body validity map, on dask.distributed
 
 --method auto (default) uses the paper's closed form where it holds and the SIE
 where it does not (past lift-off, the punch on one corner, a stick zone that
@@ -25,8 +26,9 @@ the labels accordingly. Negative numbers may follow their option (--s -0.1).
 --json prints strict JSON: plain numbers, a top-level "units" object, and an
 infinite R (flat centre) as null.
 
-Exit status: 0 done (verify: every tolerance holds), 1 a tolerance failed,
-2 an error (one line on stderr), 130 interrupted.
+Exit status: 0 done (verify: every tolerance holds; map: every point done and
+the control within 1e-3), 1 a tolerance or a map point failed, 2 an error (one
+line on stderr), 130 interrupted (map: run it again to resume).
 """
 from __future__ import annotations
 
@@ -341,6 +343,13 @@ def _cmd_figures(args: argparse.Namespace) -> int:
     return int(figures_main(out=args.out, force=args.force))
 
 
+def _cmd_map(args: argparse.Namespace) -> int:
+    from threepart.reports.map import main as map_main
+
+    return int(map_main(out=args.out, quick=args.quick, scheduler=args.scheduler,
+                        workers=args.workers, force=args.force))
+
+
 _FORCE_HELP = ("replace --out if threepart wrote it (it carries .threepart-output.json and nothing "
                "else); a directory holding anything else is never replaced")
 
@@ -377,6 +386,20 @@ def build_parser() -> argparse.ArgumentParser:
                    help="output directory: new or empty, or see --force (default: ./figures)")
     p.add_argument("--force", action="store_true", help=_FORCE_HELP)
     p.set_defaults(func=_cmd_figures)
+
+    p = sub.add_parser("map", help="where the half-plane formulas stop: finite-body validity map")
+    p.add_argument("--quick", action="store_true", help="the quick grid (12 points, quick meshes)")
+    p.add_argument("--out", default="map",
+                   help="output directory: new or empty, or an unfinished map to resume; see "
+                        "--force (default: ./map)")
+    p.add_argument("--scheduler", metavar="ADDRESS",
+                   help="a running dask scheduler, e.g. tcp://host:8786 (default: a local cluster)")
+    p.add_argument("--workers", type=int, metavar="N",
+                   help="worker processes of the local cluster, >= 1 (default: 2)")
+    p.add_argument("--force", action="store_true",
+                   help="replace a finished map in --out (only one threepart wrote); an unfinished "
+                        "map is resumed without it")
+    p.set_defaults(func=_cmd_map)
     return parser
 
 

@@ -28,6 +28,8 @@ atomic_dir          -- context manager: a temporary directory that replaces ``ou
 check_out           -- the check of step 2 alone
 clean_stale         -- step 1 alone; returns the leftovers it removed
 read_marker         -- the marker of a directory, or None
+write_marker        -- write a directory's marker (a resumable output keeps its own up to date)
+writer_running      -- whether the process a marker names is still running
 foreign_entries     -- the entries of a directory that its marker does not list
 json_safe           -- a JSON-safe copy: non-finite floats as None, numpy scalars as Python numbers
 strict_json         -- ``json.dumps`` that writes non-finite numbers as null, never NaN/Infinity
@@ -48,6 +50,7 @@ from pathlib import Path
 from typing import Any, Iterator, Literal
 
 __all__ = ["MARKER", "OutputExistsError", "atomic_dir", "check_out", "clean_stale", "read_marker",
+           "write_marker", "writer_running",
            "foreign_entries", "json_safe", "strict_json", "current_umask"]
 
 #: file name of the marker that every directory written by threepart carries
@@ -66,7 +69,7 @@ class OutputExistsError(ValueError):
 # ---------------------------------------------------------------------------------------
 # the marker
 # ---------------------------------------------------------------------------------------
-def _write_marker(directory: Path, doc: dict[str, Any]) -> None:
+def write_marker(directory: Path, doc: dict[str, Any]) -> None:
     """Write the marker of ``directory`` atomically (a sibling file, then a rename)."""
     part = directory / (MARKER + ".part")
     part.write_text(json.dumps(doc, indent=1, allow_nan=False) + "\n", encoding="utf-8")
@@ -224,7 +227,7 @@ def _remove_tmp(tmp: Path) -> None:
 # ---------------------------------------------------------------------------------------
 # leftovers of interrupted runs
 # ---------------------------------------------------------------------------------------
-def _running(marker: dict[str, Any]) -> bool:
+def writer_running(marker: dict[str, Any]) -> bool:
     """Whether the process that wrote ``marker`` may still be running (on this host)."""
     pid = marker.get("pid")
     if os.name != "posix" or not isinstance(pid, int) or pid <= 0:
@@ -276,7 +279,7 @@ def clean_stale(out: str | Path) -> list[Path]:
             continue
         path = Path(e.path)
         marker = read_marker(path)
-        if marker is None or _running(marker):
+        if marker is None or writer_running(marker):
             continue
         if is_tmp and marker.get("state") == "writing":
             # created by threepart for this very `out` (the marker is written right at its
@@ -374,7 +377,7 @@ def _seal(tmp: Path, marker: dict[str, Any]) -> None:
     if stale.exists():
         stale.unlink()
     files, dirs = _walk(tmp)
-    _write_marker(tmp, {**marker, "state": "complete", "files": files, "dirs": dirs})
+    write_marker(tmp, {**marker, "state": "complete", "files": files, "dirs": dirs})
     umask = current_umask()
     dmode, fmode = 0o777 & ~umask, 0o666 & ~umask
     for f in [*files, MARKER]:
@@ -441,7 +444,7 @@ def atomic_dir(out: str | Path, force: bool = False, *, command: str = "threepar
     except OSError as exc:
         raise OSError(exc.errno, f"cannot write `out` = {str(out)!r}: {exc.strerror}") from exc
     try:
-        _write_marker(tmp, marker)   # at once, so that a killed run's leftover is recognised
+        write_marker(tmp, marker)   # at once, so that a killed run's leftover is recognised
         yield tmp
         _seal(tmp, marker)
         state = check_out(out, force)   # the run may have taken long: check again

@@ -1,0 +1,464 @@
+"""The sweep engine of the validity map (:mod:`reports.map`), on fake physics.
+
+Every test injects a fake ``evaluate`` whose numbers are a known analytic
+surface of the point (:func:`expected`) and a fake control, so nothing here
+runs the finite-body FEM. The fakes run on real dask workers: most tests share
+one module-wide ``LocalCluster`` (its address passed as ``scheduler=``, as for
+an existing cluster); one starts the default local cluster itself. Worker
+processes count their calls by touching a file per call.
+"""
+from __future__ import annotations
+
+import csv
+import functools
+import json
+import os
+import signal
+import subprocess
+import sys
+import time
+import uuid
+from pathlib import Path
+
+import jsonschema
+import pytest
+
+from threepart.cli import main as cli_main
+from threepart.output import MARKER, OutputExistsError, foreign_entries, read_marker
+from threepart.reports import map as map_mod
+from threepart.reports.map import (COLUMNS, CONTROL_LIMIT, below_level, designer_sentence,
+                                   exit_status, run_map)
+from threepart.reports.validity import RESULT_KEYS, MapPoint
+
+ROOT = Path(__file__).resolve().parents[1]
+#: the fake grid: two R2/R1, one H/b, 3 x 3 in b/R1 and (a-b)/R1
+POINTS = [MapPoint(r, b, ab, 4.0) for r in (1.0, 0.5) for b in (0.1, 0.3, 1.0)
+          for ab in (0.01, 0.03, 0.1)]
+KEYS = [p.key() for p in POINTS]
+CONTROL_ERROR = 2.5e-4
+
+
+def surface(p: MapPoint) -> float:
+    """The fake peak-pressure error: 0.3 % at (a-b)/R1 = 0.01, b/R1 = 0.1, R2/R1 = 1, linear in each."""
+    return 0.003 * (p.a_minus_b_over_R1 / 0.01) * (p.b_over_R1 / 0.1) * (2.0 - p.R2_over_R1)
+
+
+def expected(p: MapPoint) -> dict[str, float]:
+    """What the fake evaluate returns at ``p`` (every key of RESULT_KEYS, distinct values)."""
+    e = surface(p)
+    return {"peak_rel_error": e, "p_left_rel_error": e, "p_right_rel_error": 0.5 * e,
+            "a_rel_error": e / 3, "c_rel_error": e / 7, "alpha_error": e / 11,
+            "fem_error_estimate": 1e-4 * p.b_over_R1, "P": 100.0 * p.a_minus_b_over_R1,
+            "time_s": 0.01 + p.b_over_R1}
+
+
+#: the largest (a-b)/R1 below 1 % for each (R2/R1, b/R1), worked out by hand from surface()
+LIMITS_1PCT = {(1.0, 0.1): 0.03, (1.0, 0.3): 0.01, (1.0, 1.0): None,
+               (0.5, 0.1): 0.01, (0.5, 0.3): None, (0.5, 1.0): None}
+
+
+class FakeEvaluate:
+    """``evaluate(point, quick)`` of :func:`expected`; touches ``calls/<key>.<id>`` per call."""
+
+    def __init__(self, calls: Path, fail: frozenset[str] = frozenset(), sleep: float = 0.0):
+        self.calls, self.fail, self.sleep = calls, fail, sleep
+
+    def __call__(self, point: MapPoint, quick: bool) -> dict[str, float]:
+        (self.calls / f"{point.key()}.{uuid.uuid4().hex}").touch()
+        time.sleep(self.sleep)
+        if point.key() in self.fail:
+            raise RuntimeError(f"mesh failed at {point.key()}")
+        return expected(point)
+
+
+def fake_control(quick: bool) -> dict[str, object]:
+    return {"control_rel_error": CONTROL_ERROR, "P": 3.0, "point": {"b_over_R1": 0.3}}
+
+
+def bad_control(quick: bool) -> dict[str, object]:
+    return {"control_rel_error": 3 * CONTROL_LIMIT}
+
+
+def calls(d: Path) -> list[str]:
+    """The keys evaluated (one entry per call)."""
+    return sorted(f.name.rsplit(".", 1)[0] for f in d.iterdir())
+
+
+def logged(out: Path) -> list[str]:
+    """The point keys in points.jsonl (without the control)."""
+    lines = (out / "points.jsonl").read_text().splitlines()
+    return [json.loads(x)["key"] for x in lines if json.loads(x)["key"] != "control"]
+
+
+def snapshot(d: Path) -> dict[str, bytes]:
+    return {str(p.relative_to(d)): p.read_bytes() for p in sorted(d.rglob("*")) if p.is_file()}
+
+
+@pytest.fixture(scope="module")
+def scheduler():
+    """A 2-worker cluster on this machine, shared by the module, as an existing scheduler."""
+    from dask.distributed import LocalCluster
+
+    with LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                      dashboard_address=":0") as cluster:
+        yield cluster.scheduler_address
+
+
+@pytest.fixture
+def counter(tmp_path):
+    d = tmp_path / "calls"
+    d.mkdir()
+    return d
+
+
+def sweep(out, scheduler, evaluate, **kw):
+    kw.setdefault("say", lambda m: None)
+    return run_map(out, scheduler=scheduler, evaluate=evaluate, points=POINTS, control=kw.pop(
+        "control", fake_control), **kw)
+
+
+@pytest.fixture(scope="module")
+def finished(tmp_path_factory, scheduler):
+    """One uninterrupted map (read only): its directory, document and calls."""
+    root = tmp_path_factory.mktemp("finished")
+    c = root / "calls"
+    c.mkdir()
+    lines: list[str] = []
+    doc = sweep(root / "map", scheduler, FakeEvaluate(c), say=lines.append)
+    return root / "map", doc, calls(c), lines
+
+
+# ---------------------------------------------------------------------------------------
+# a whole map
+# ---------------------------------------------------------------------------------------
+def test_the_map_holds_the_fake_numbers_and_validates(finished, scheduler):
+    out, doc, evaluated, lines = finished
+    schema = json.loads((ROOT / "reports" / "map.schema.json").read_text())
+    on_disk = json.loads((out / "map.json").read_text())
+    jsonschema.validate(on_disk, schema)
+    assert on_disk == doc
+    assert [p["key"] for p in doc["points"]] == KEYS            # grid order, not arrival order
+    for p, point in zip(doc["points"], POINTS):
+        assert {k: p[k] for k in RESULT_KEYS} == expected(point)
+        assert (p["R2_over_R1"], p["b_over_R1"], p["a_minus_b_over_R1"], p["H_over_b"]) == (
+            point.R2_over_R1, point.b_over_R1, point.a_minus_b_over_R1, point.H_over_b)
+        assert p["error"] is None
+    assert doc["control_rel_error"] == CONTROL_ERROR and doc["control"]["P"] == 3.0
+    assert doc["engine"] == {"kind": "dask.distributed", "scheduler": scheduler, "workers": 2,
+                             "dask_version": __import__("dask").__version__}
+    assert doc["summary"]["points"] == 18 and doc["summary"]["failed"] == 0
+    assert doc["summary"]["computed"] == 18 and doc["summary"]["resumed"] == 0
+    assert evaluated == sorted(KEYS)                            # each point exactly once
+    assert exit_status(doc) == 0
+    progress = [m for m in lines if m.startswith("[")]
+    assert len(progress) == 19 and progress[-1].startswith("[19/19]")
+    assert all("elapsed" in m and "ETA" in m for m in progress)
+
+
+def test_the_output_directory_is_threepart_s_own_and_finished(finished):
+    out, doc, _, _ = finished
+    marker = read_marker(out)
+    assert marker is not None and marker["command"] == "map" and marker["state"] == "complete"
+    assert foreign_entries(out) == []
+    names = sorted(str(p.relative_to(out)) for p in out.rglob("*") if p.is_file())
+    assert names == sorted([MARKER, "map.json", "map.csv", "points.jsonl",
+                            "plots/peak_error_R2R1_0.5_Hb_4.png", "plots/peak_error_R2R1_1_Hb_4.png"])
+    assert [p["file"] for p in doc["plots"]] == ["plots/peak_error_R2R1_1_Hb_4.png",
+                                                 "plots/peak_error_R2R1_0.5_Hb_4.png"]
+    for p in doc["plots"]:
+        assert (out / p["file"]).read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def test_the_csv_matches_the_json(finished):
+    out, doc, _, _ = finished
+    with open(out / "map.csv", newline="") as fh:
+        rows = list(csv.DictReader(fh))
+    assert list(rows[0]) == list(COLUMNS)
+    assert len(rows) == len(doc["points"])
+    for row, p in zip(rows, doc["points"]):
+        for k in COLUMNS:
+            if p[k] is None:
+                assert row[k] == ""
+            elif isinstance(p[k], str):
+                assert row[k] == p[k]
+            else:
+                assert float(row[k]) == p[k]                    # exact: written with 17 digits
+
+
+def test_the_designer_sentence_gives_the_1_percent_boundary(finished):
+    _, doc, _, _ = finished
+    for plot in doc["plots"]:
+        r = plot["R2_over_R1"]
+        got = {(r, row["b_over_R1"]): row["limit"] for row in plot["below_1_percent"]}
+        assert got == {k: v for k, v in LIMITS_1PCT.items() if k[0] == r}
+    one = next(p for p in doc["plots"] if p["R2_over_R1"] == 1.0)["sentence"]
+    assert "up to (a−b)/R1 = 0.03 at b/R1 = 0.1" in one
+    assert "up to (a−b)/R1 = 0.01 at b/R1 = 0.3" in one
+    assert "at no load swept at b/R1 = 1 (3 % already at (a−b)/R1 = 0.01)" in one
+
+
+def test_below_level_says_why_the_scan_stopped():
+    def pt(b, ab, e):
+        return {"b_over_R1": b, "a_minus_b_over_R1": ab, "peak_rel_error": e,
+                "fem_error_estimate": 0.02 if b == 3 else 1e-4}
+
+    pts = [pt(1, 0.01, 0.001), pt(1, 0.1, 0.002),                    # below all the way
+           pt(2, 0.01, 0.001), pt(2, 0.1, None), pt(2, 0.3, 0.001),  # a failed point stops it
+           pt(3, 0.01, None), pt(3, 0.1, 0.5)]                       # the first point failed
+    rows = {r["b_over_R1"]: (r["limit"], r["stop"]) for r in below_level(pts)}
+    assert rows == {1: (0.1, "end"), 2: (0.01, "failed"), 3: (None, "failed")}
+    text = designer_sentence(pts, 1.0, 4.0)
+    assert "over the whole sweep, (a−b)/R1 ≤ 0.1, at b/R1 = 1" in text
+    assert "up to (a−b)/R1 = 0.01 at b/R1 = 2 (the next point failed)" in text
+    assert "unknown at b/R1 = 3" in text
+    assert "the FEM's own error estimate reaches 2 %" in text
+    everywhere = [pt(1, 0.01, 0.02), pt(1, 0.1, 0.5), pt(2, 0.01, 0.04), pt(2, 0.1, 0.01)]
+    assert designer_sentence(everywhere, 0.5, 1.0) == (
+        "For R2/R1 = 0.5 and H/b = 1, the closed form's peak pressure is off by 2 % to 4 % already "
+        "at the lightest load swept, (a−b)/R1 = 0.01, for every b/R1: over this whole range, design "
+        "with a finite-body model.")
+
+
+def test_the_schema_rejects_what_it_should(finished):
+    schema = map_mod.load_schema()
+    doc = finished[1]
+    map_mod.validate(doc)
+    for broken in ({**doc, "points": [{k: v for k, v in doc["points"][0].items() if k != "peak_rel_error"}]},
+                   {**doc, "points": [{**doc["points"][0], "a_rel_error": -0.1}]},
+                   {**doc, "engine": {**doc["engine"], "workers": "2"}},
+                   {k: v for k, v in doc.items() if k != "control_rel_error"}):
+        with pytest.raises(jsonschema.ValidationError):
+            jsonschema.validate(broken, schema)
+    for k in COLUMNS:   # every field is documented
+        assert schema["$defs"]["point"]["properties"][k].get("description"), k
+
+
+# ---------------------------------------------------------------------------------------
+# interruption and resume
+# ---------------------------------------------------------------------------------------
+class StopAfter:
+    """A ``say`` that presses Ctrl-C after ``k`` progress lines."""
+
+    def __init__(self, k: int):
+        self.k, self.n = k, 0
+
+    def __call__(self, msg: str) -> None:
+        if msg.startswith("["):
+            self.n += 1
+            if self.n == self.k:
+                raise KeyboardInterrupt
+
+
+def test_an_interrupted_sweep_resumes_with_the_same_numbers(tmp_path, counter, scheduler, finished):
+    out = tmp_path / "map"
+    with pytest.raises(KeyboardInterrupt):
+        sweep(out, scheduler, FakeEvaluate(counter), say=StopAfter(7))
+    lines = (out / "points.jsonl").read_text().splitlines()
+    assert len(lines) == 7                                      # every finished task, on disk
+    first = logged(out)
+    assert read_marker(out)["state"] == "writing" and not (out / "map.json").exists()
+    for f in counter.iterdir():
+        f.unlink()
+    doc = sweep(out, scheduler, FakeEvaluate(counter))
+    assert calls(counter) == sorted(set(KEYS) - set(first))      # nothing finished is redone
+    assert doc["summary"]["resumed"] == len(first)
+    assert doc["points"] == finished[1]["points"]               # the uninterrupted numbers
+    assert [{k: p[k] for k in RESULT_KEYS} for p in doc["points"]] == [expected(p) for p in POINTS]
+    assert read_marker(out)["state"] == "complete" and exit_status(doc) == 0
+
+
+KILLED_RUN = """
+import sys
+from pathlib import Path
+from tests.test_map import POINTS, FakeEvaluate, fake_control
+from threepart.reports.map import run_map
+run_map(sys.argv[1], scheduler=sys.argv[2], evaluate=FakeEvaluate(Path(sys.argv[3]), sleep=0.2),
+        points=POINTS, control=fake_control, say=lambda m: print(m, flush=True))
+"""
+
+
+def test_a_killed_run_resumes(tmp_path, counter, scheduler):
+    out = tmp_path / "map"
+    proc = subprocess.Popen([sys.executable, "-c", KILLED_RUN, str(out), scheduler, str(counter)],
+                            cwd=ROOT, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+    deadline = time.monotonic() + 60
+    while time.monotonic() < deadline and proc.poll() is None:
+        if (out / "points.jsonl").exists() and len(logged(out)) >= 3:
+            break
+        time.sleep(0.05)
+    proc.send_signal(signal.SIGKILL)
+    proc.communicate()
+    done = logged(out)
+    assert 3 <= len(done) < len(KEYS), proc.stderr
+    with open(out / "points.jsonl", "a") as fh:                 # a line torn by the kill
+        fh.write('{"key": "R2R1=1_bR1=0.1_abR1=0.0')
+    time.sleep(0.5)                                             # the killed client's tasks drain
+    for f in counter.iterdir():
+        f.unlink()
+    doc = sweep(out, scheduler, FakeEvaluate(counter))
+    assert calls(counter) == sorted(set(KEYS) - set(done))
+    assert [{k: p[k] for k in RESULT_KEYS} for p in doc["points"]] == [expected(p) for p in POINTS]
+    assert all(json.loads(x) for x in (out / "points.jsonl").read_text().splitlines())
+
+
+def test_a_quick_map_is_not_resumed_as_a_full_one(tmp_path, counter, scheduler):
+    out = tmp_path / "map"
+    with pytest.raises(KeyboardInterrupt):
+        sweep(out, scheduler, FakeEvaluate(counter), quick=True, say=StopAfter(2))
+    before = snapshot(out)
+    with pytest.raises(OutputExistsError, match="unfinished quick map.*--force"):
+        sweep(out, scheduler, FakeEvaluate(counter))
+    assert snapshot(out) == before
+
+
+# ---------------------------------------------------------------------------------------
+# the output directory
+# ---------------------------------------------------------------------------------------
+def test_a_foreign_directory_is_refused_and_left_untouched(tmp_path, counter, finished):
+    plain = tmp_path / "plain"
+    plain.mkdir()
+    (plain / "notes.txt").write_text("mine")
+    report = tmp_path / "report"
+    report.mkdir()
+    (report / MARKER).write_text(json.dumps({"tool": "threepart", "command": "verify",
+                                             "state": "complete", "files": ["r.md"], "dirs": []}))
+    (report / "r.md").write_text("a report")
+    polluted = tmp_path / "polluted"
+    polluted.mkdir()
+    for f in finished[0].iterdir():
+        if f.is_file():
+            (polluted / f.name).write_bytes(f.read_bytes())
+    (polluted / "plots").mkdir()
+    for f in (finished[0] / "plots").iterdir():
+        (polluted / "plots" / f.name).write_bytes(f.read_bytes())
+    (polluted / "plots" / "my_sketch.png").write_bytes(b"not threepart's")
+    cases = [(plain, "holds 'notes.txt'"), (report, "threepart verify`, not a map"),
+             (polluted, "holds 'plots/my_sketch.png', which threepart did not write")]
+    for d, match in cases:
+        before = snapshot(d)
+        for force in (False, True):
+            with pytest.raises(OutputExistsError, match=match) as info:
+                sweep(d, "tcp://127.0.0.1:9", FakeEvaluate(counter), force=force)
+            assert "\n" not in str(info.value) and str(d) in str(info.value)
+            assert snapshot(d) == before
+    assert calls(counter) == []                                  # refused before any work
+
+
+def test_force_replaces_a_finished_map_only(tmp_path, counter, scheduler):
+    out = tmp_path / "map"
+    sweep(out, scheduler, FakeEvaluate(counter))
+    before = snapshot(out)
+    with pytest.raises(OutputExistsError, match="holds a finished map; pass --force"):
+        sweep(out, scheduler, FakeEvaluate(counter))
+    assert snapshot(out) == before
+    for f in counter.iterdir():
+        f.unlink()
+    doc = sweep(out, scheduler, FakeEvaluate(counter), force=True)
+    assert calls(counter) == sorted(KEYS)                      # recomputed from scratch
+    assert doc["summary"]["resumed"] == 0 and len(logged(out)) == len(KEYS)
+    assert foreign_entries(out) == [] and read_marker(out)["state"] == "complete"
+    # an unfinished map is resumed, even with --force: nothing finished is thrown away
+    interrupted = tmp_path / "interrupted"
+    with pytest.raises(KeyboardInterrupt):
+        sweep(interrupted, scheduler, FakeEvaluate(counter), say=StopAfter(5))
+    done = logged(interrupted)
+    for f in counter.iterdir():
+        f.unlink()
+    doc = sweep(interrupted, scheduler, FakeEvaluate(counter), force=True)
+    assert calls(counter) == sorted(set(KEYS) - set(done))
+    assert doc["summary"]["resumed"] == len(done)
+
+
+# ---------------------------------------------------------------------------------------
+# failures and the exit status
+# ---------------------------------------------------------------------------------------
+def test_a_failed_point_is_recorded_exits_1_and_is_retried(tmp_path, counter, scheduler):
+    out = tmp_path / "map"
+    bad = KEYS[4]
+    doc = sweep(out, scheduler, FakeEvaluate(counter, fail=frozenset({bad})))
+    p = doc["points"][4]
+    assert p["error"] == f"RuntimeError: mesh failed at {bad}"
+    assert all(p[k] is None for k in RESULT_KEYS)
+    assert doc["summary"]["failed"] == 1 and exit_status(doc) == 1
+    assert [q for q in doc["points"] if q["key"] != bad] == [
+        {"key": k.key(), "R2_over_R1": k.R2_over_R1, "H_over_b": k.H_over_b,
+         "b_over_R1": k.b_over_R1, "a_minus_b_over_R1": k.a_minus_b_over_R1, **expected(k),
+         "error": None} for k in POINTS if k.key() != bad]
+    with open(out / "map.csv", newline="") as fh:
+        row = list(csv.DictReader(fh))[4]
+    assert row["error"] == p["error"] and row["peak_rel_error"] == ""
+    assert read_marker(out)["state"] == "writing"             # unfinished: the next run retries
+    for f in counter.iterdir():
+        f.unlink()
+    doc = sweep(out, scheduler, FakeEvaluate(counter))
+    assert calls(counter) == [bad]
+    assert {k: doc["points"][4][k] for k in RESULT_KEYS} == expected(POINTS[4])
+    assert exit_status(doc) == 0 and read_marker(out)["state"] == "complete"
+
+
+def test_a_control_beyond_its_limit_exits_1(tmp_path, counter, scheduler):
+    doc = sweep(tmp_path / "map", scheduler, FakeEvaluate(counter), control=bad_control)
+    assert doc["summary"]["failed"] == 0 and doc["control_rel_error"] == 3 * CONTROL_LIMIT
+    assert exit_status(doc) == 1
+
+
+def test_the_command_line_exit_status(tmp_path, counter, scheduler, monkeypatch, capsys):
+    fake = functools.partial(map_mod.run_map, evaluate=FakeEvaluate(counter, fail=frozenset({KEYS[0]})),
+                             points=POINTS, control=fake_control)
+    monkeypatch.setattr(map_mod, "run_map", fake)
+    assert cli_main(["map", "--out", str(tmp_path / "a"), "--scheduler", scheduler]) == 1
+    assert f"failed: {KEYS[0]}: RuntimeError" in capsys.readouterr().out
+    fake.keywords["evaluate"] = FakeEvaluate(counter)
+    assert cli_main(["map", "--out", str(tmp_path / "a"), "--scheduler", scheduler]) == 0
+    assert "DONE: 18/18 points (1 computed now)" in capsys.readouterr().out
+
+    def interrupted(*args, **kw):
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(map_mod, "run_map", interrupted)
+    assert cli_main(["map", "--out", str(tmp_path / "b")]) == 130
+
+
+@pytest.mark.parametrize("args, match", [
+    (["--workers", "0"], r"`--workers` = 0 must be >= 1"),
+    (["--workers", "-3"], r"`--workers` = -3 must be >= 1"),
+    (["--workers", "two"], r"argument --workers: invalid int value: 'two'"),
+    (["--workers", "2", "--scheduler", "tcp://127.0.0.1:8786"], r"`--workers`.*`--scheduler`.*not both"),
+    (["--scheduler", " "], r"`--scheduler` = ' ' must be a scheduler address"),
+    (["--scheduler", "nonsense"], r"cannot reach the dask scheduler `--scheduler` = 'nonsense'"),
+    (["--scheduler", "tcp://127.0.0.1:9"], r"cannot reach the dask scheduler .*Timed out"),
+    (["--frobnicate"], r"unrecognized arguments: --frobnicate"),
+])
+def test_bad_arguments_are_one_line_with_exit_status_2(tmp_path, counter, capsys, monkeypatch,
+                                                       args, match):
+    import re
+
+    monkeypatch.setattr(map_mod, "CONNECT_TIMEOUT", 1)
+    monkeypatch.setattr(map_mod, "run_map", functools.partial(
+        map_mod.run_map, evaluate=FakeEvaluate(counter), points=POINTS, control=fake_control))
+    assert cli_main(["map", "--out", str(tmp_path / "m"), *args]) == 2
+    out, err = capsys.readouterr()
+    assert err.count("\n") == 1 and err.startswith("threepart map: error: "), err
+    assert re.search(match, err), err
+    assert "Traceback" not in out and calls(counter) == []
+
+
+def test_a_foreign_out_is_one_line_with_exit_status_2(tmp_path, capsys):
+    (tmp_path / "keep.txt").write_text("x")
+    assert cli_main(["map", "--out", str(tmp_path), "--workers", "1"]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "'keep.txt'" in err and str(tmp_path) in err
+    assert (tmp_path / "keep.txt").read_text() == "x" and sorted(os.listdir(tmp_path)) == ["keep.txt"]
+
+
+# ---------------------------------------------------------------------------------------
+# the default engine
+# ---------------------------------------------------------------------------------------
+def test_the_default_engine_is_a_local_cluster_of_its_own(tmp_path, counter):
+    lines: list[str] = []
+    doc = run_map(tmp_path / "map", workers=1, evaluate=FakeEvaluate(counter), points=POINTS[:6],
+                  control=fake_control, say=lines.append)
+    assert doc["engine"]["workers"] == 1 and doc["engine"]["scheduler"].startswith("tcp://127.0.0.1:")
+    assert [{k: p[k] for k in RESULT_KEYS} for p in doc["points"]] == [expected(p) for p in POINTS[:6]]
+    assert calls(counter) == sorted(KEYS[:6]) and exit_status(doc) == 0
+    assert doc["timings"]["startup_s"] > 0
