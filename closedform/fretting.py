@@ -72,8 +72,8 @@ from numpy.typing import ArrayLike
 
 from threepart.errors import FullSlidingError, LiftOffError, NoConvergenceError, StickZoneError
 from threepart.punch import Punch
-from threepart.results import BRANCHES, FrettingResult, NormalResult
-from threepart.validate import finite, positive
+from threepart.results import BRANCHES, FrettingResult, NormalResult, masing
+from threepart.validate import positive
 
 from . import formulas
 from .newton import ray_state, solve_phi
@@ -206,7 +206,7 @@ class FrettingSolution(FrettingResult):
     def shear(self, x: ArrayLike, Q: float, branch: str) -> np.ndarray:
         """Shear ``q(x)`` at force ``Q`` on ``branch``: Masing's superposition of loading states."""
         x = np.asarray(x, dtype=float)
-        c_max, c_u, u = _masing(self.Q_max, Q, branch)
+        c_max, c_u, u = masing(self.Q_max, Q, branch)
         return c_max * self._q_load(x, self.Q_max) + c_u * self._q_load(x, u)
 
     def slip(self, x: ArrayLike, Q: float, branch: str) -> np.ndarray:
@@ -216,33 +216,12 @@ class FrettingSolution(FrettingResult):
         (:func:`stick_gap`); reversals superpose it as the shear.
         """
         x = np.asarray(x, dtype=float)
-        c_max, c_u, u = _masing(self.Q_max, Q, branch)
+        c_max, c_u, u = masing(self.Q_max, Q, branch)
         return c_max * self._s_load(x, self.Q_max) + c_u * self._s_load(x, u)
 
     def slip_amplitude(self, x: ArrayLike) -> np.ndarray:
         """Half the peak-to-peak relative slip over the cycle: the slip at ``Q_max`` on loading."""
         return self._s_load(np.asarray(x, dtype=float), self.Q_max)
-
-
-def _masing(Q_max: float, Q: float, branch: str) -> tuple[float, float, float]:
-    """``(c_max, c_u, u)``: the state at ``Q`` on ``branch`` is ``c_max X(Q_max) + c_u X(u)``.
-
-    ``X`` is the loading shear, slip or ``delta`` (Masing's rule).
-    """
-    if branch not in BRANCHES:
-        raise ValueError(f"`branch` = {branch!r} must be one of {BRANCHES}")
-    Q = finite("Q", Q)
-    lo = 0.0 if branch == "loading" else -Q_max
-    tol = 1e-12 * Q_max
-    if not lo - tol <= Q <= Q_max + tol:
-        raise ValueError(f"`Q` = {Q:g} lies outside [{lo:g}, {Q_max:g}], the range of the "
-                         f"{branch} branch for `Q_max` = {Q_max:g}")
-    Q = min(max(Q, lo), Q_max)
-    if branch == "loading":
-        return 0.0, 1.0, Q
-    if branch == "unloading":
-        return 1.0, -2.0, min(max(0.5 * (Q_max - Q), 0.0), Q_max)
-    return -1.0, 2.0, min(max(0.5 * (Q_max + Q), 0.0), Q_max)
 
 
 def _fretting_iv(normal: NormalResult, Q_max: float, f: float, states: int) -> tuple[float, float]:

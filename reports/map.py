@@ -65,7 +65,7 @@ from dask.distributed import Client, LocalCluster, as_completed
 from threepart.output import (MARKER, MARKER_FORMAT, OutputExistsError, check_out, foreign_entries,
                               json_safe, read_marker, strict_json)
 # not public in threepart.output, but its one home: the marker's atomic write and the live-pid check
-from threepart.output import write_marker, writer_running
+from threepart.output import validate_json, write_marker, writer_running
 from threepart.tolerances import tolerance
 
 from . import validity
@@ -497,11 +497,7 @@ def load_schema() -> dict[str, Any]:
 
 def validate(doc: dict[str, Any]) -> None:
     """Validate ``doc`` against ``map.schema.json`` (needs ``jsonschema``; skipped without it)."""
-    try:
-        import jsonschema
-    except ImportError:  # pragma: no cover - jsonschema is in the test extra
-        return
-    jsonschema.validate(doc, load_schema())
+    validate_json(doc, SCHEMA_FILE)
 
 
 def _csv_text(points: Sequence[dict[str, Any]]) -> str:

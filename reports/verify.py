@@ -21,7 +21,7 @@ from pathlib import Path
 from typing import Any, Callable, Sequence
 
 from threepart.catalogue import Case, load_cases
-from threepart.output import atomic_dir, json_safe, strict_json
+from threepart.output import atomic_dir, json_safe, strict_json, validate_json
 
 from . import render
 from .catalogue import MODES, CaseRun, Mode, run_case
@@ -201,11 +201,7 @@ def load_schema() -> dict[str, Any]:
 
 def validate(doc: dict[str, Any]) -> None:
     """Validate ``doc`` against the schema (needs ``jsonschema``; skipped without it)."""
-    try:
-        import jsonschema
-    except ImportError:  # pragma: no cover - jsonschema is in the test extra
-        return
-    jsonschema.validate(doc, load_schema())
+    validate_json(doc, SCHEMA_FILE)
 
 
 def write_report(tmp: Path, mode: Mode, runs: Sequence[CaseRun], studies: Sequence[Study],

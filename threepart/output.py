@@ -33,6 +33,7 @@ writer_running      -- whether the process a marker names is still running
 foreign_entries     -- the entries of a directory that its marker does not list
 json_safe           -- a JSON-safe copy: non-finite floats as None, numpy scalars as Python numbers
 strict_json         -- ``json.dumps`` that writes non-finite numbers as null, never NaN/Infinity
+validate_json       -- check a document against a JSON schema file (jsonschema)
 """
 from __future__ import annotations
 
@@ -51,7 +52,7 @@ from typing import Any, Iterator, Literal
 
 __all__ = ["MARKER", "OutputExistsError", "atomic_dir", "check_out", "clean_stale", "read_marker",
            "write_marker", "writer_running",
-           "foreign_entries", "json_safe", "strict_json", "current_umask"]
+           "foreign_entries", "json_safe", "strict_json", "validate_json", "current_umask"]
 
 #: file name of the marker that every directory written by threepart carries
 MARKER = ".threepart-output.json"
@@ -505,3 +506,18 @@ def strict_json(doc: Any, **kwargs: Any) -> str:
         Text that any JSON parser reads; never ``NaN`` or ``Infinity``.
     """
     return json.dumps(json_safe(doc), allow_nan=False, **kwargs)
+
+
+def validate_json(doc: Any, schema_file: str | Path) -> None:
+    """Validate ``doc`` against the JSON schema in ``schema_file`` (skipped without ``jsonschema``).
+
+    Raises
+    ------
+    jsonschema.ValidationError
+        If ``doc`` does not match the schema.
+    """
+    try:
+        import jsonschema
+    except ImportError:  # pragma: no cover - jsonschema is in the test extra
+        return
+    jsonschema.validate(doc, json.loads(Path(schema_file).read_text(encoding="utf-8")))
