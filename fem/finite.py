@@ -45,7 +45,7 @@ from .mesh import PRESETS, MeshPreset, Substrate, make_substrate, preset, read_s
 from .solve import (FemResult, _check_one_zone, _end_size, _ends, _validate, locate_contact,
                     refined)
 
-__all__ = ["solve_finite", "punch_body"]
+__all__ = ["solve_finite", "punch_body", "zone_margin"]
 
 
 def punch_body(spec: PunchSpec) -> Substrate:
@@ -91,6 +91,18 @@ def _solve(punch: Punch, P: float, s: float, E: float, nu: float, tilt: str, max
     return sol, S.x, S.weights, timings, S.dofs + B.dofs
 
 
+def zone_margin(b: float, left: float, right: float, margin: float) -> float:
+    """The candidate zone's margin (a fraction of ``W``) for a contact ``[left, right]``.
+
+    ``margin`` of ``W``, but no more than the overhangs past the joins ``±b``
+    (and no less than 2 % of ``W``): a wide flat centre makes ``W`` large while
+    the ends move only with the overhang, and the zone must stay on the punch's
+    lower face, whose arcs end at the flanks.
+    """
+    W = right - left
+    return min(margin, max(0.02, (W - 2 * b) / W))
+
+
 def solve_finite(punch: Punch, P: float, s: float = 0.0, *, E: float, nu: float, H: float | None,
                  theta: float = math.pi / 3, profile: str = "arc", tilt: str = "free",
                  mesh: str | MeshPreset = "default", max_iter: int = 100) -> FemResult:
@@ -133,7 +145,7 @@ def solve_finite(punch: Punch, P: float, s: float = 0.0, *, E: float, nu: float,
     breaks = (-punch.b, punch.b)
     # half-plane estimate (the pair is a rigid punch on E/2), then the finite body's own ends
     left, right = locate_contact(punch, P, s, E=0.5 * E, nu=nu, tilt=tilt, max_iter=max_iter)
-    locate = replace(PRESETS["locate"], margin=0.15)
+    locate = replace(PRESETS["locate"], margin=zone_margin(punch.b, left, right, 0.15))
     for _ in range(4):
         try:
             sol, x, w, _, _ = _solve(punch, P, s, E, nu, tilt, max_iter,
@@ -145,6 +157,7 @@ def solve_finite(punch: Punch, P: float, s: float = 0.0, *, E: float, nu: float,
         raise ContactZoneError("the finite-body contact outgrows every candidate zone tried")
     left, right = _ends(x, sol.f / w, sol.active, breaks)
     t_locate = time.perf_counter() - t_start
+    pre = replace(pre, margin=zone_margin(punch.b, left, right, pre.margin))
     for attempt in range(2):   # an end near a join refines the mesh there, as in solve_normal
         sol, x, w, timings, dofs = _solve(punch, P, s, E, nu, tilt, max_iter,
                                           pre.spec(left, right, breaks), H, theta, profile)
