@@ -1,6 +1,6 @@
 """Time the FE model on the quick and default meshes, side by side with the closed form.
 
-Run ``python benchmarks/bench_fem.py [quick default ...] [--peer | --backends]``. For each
+Run ``python benchmarks/bench_fem.py [quick default ...] [--peer | --backends | --pressure]``. For each
 case of the catalogue's ``"fem"`` suite (Hertz; case A symmetric and with unequal radii and a
 moment; case B; case C; a general finite R; suppressed tilt; near lift-off) it
 prints the FE errors against ``closedform.solve_normal`` at the case's compliance
@@ -10,7 +10,8 @@ excluded at each edge) relative to the largest peak, with DOFs and times. Then,
 side by side in the same run (every FE solve cold: no cached contact estimate or
 mesh, with its time per stage), the FFT-BEM peer tamaas (:mod:`peer_tamaas`, a
 benchmark extra) on the tilt-free cases, with the ratio of each FEM preset's time
-to tamaas' time to 4e-5 (``--peer``: that table only). Last, when CHOLMOD is
+to tamaas' time to 4e-5 (``--peer``: that table only). ``--pressure``: only where the nodal pressure's
+error lies and how it falls with the mesh (:func:`pressure`). Last, when CHOLMOD is
 installed (the ``fast`` extra), the two condensation backends side by side on the
 same meshes: the condensation and the whole cold solve with each, their ratios,
 and how far the two answers lie apart (``--backends``: that table only).
@@ -134,6 +135,43 @@ def peer(meshes: list[str]) -> None:
                           f"its worst error {e[which]:.1e}")
 
 
+#: the default preset with the surface refined twice and the volume grading kept
+SURFACE_X2 = replace(fem.mesh.PRESETS["default"], n=2 * fem.mesh.PRESETS["default"].n)
+
+
+def pressure() -> None:
+    """Where the FE pressure's error lies, and what a finer mesh buys, on the peer's cases.
+
+    For the self-similar family (quick, default, fine) and the default with only
+    the surface refined (:data:`SURFACE_X2`), each solved cold: the time, the
+    candidate nodes, the largest nodal-pressure error (of the peak) at the
+    interior nodes 5-20 % of W from an end and beyond 20 % (the joins
+    included), at the elements' vertices and at their midside nodes
+    separately, and the peaks' error. The P2 nodal pressure ``f_i / w_i``
+    alternates between vertex and midside nodes; its error falls as ``h^2``
+    with the whole mesh, not with the surface alone.
+    """
+    print(f"\n{'case':12s} {'mesh':12s} {'time s':>7s} {'nodes':>6s} {'5-20% vtx':>10s} "
+          f"{'5-20% mid':>10s} {'>20% vtx':>9s} {'>20% mid':>9s} {'peaks':>8s}")
+    for name in PEER_CASES:
+        case = next(c for c in load_cases("fem") if c.name == name).resolved()
+        ref = closedform.solve_normal(case.punch, case.P, case.s_load, A=case.A, tilt=case.tilt)
+        W = ref.a + ref.c
+        for label, mesh in (("quick", "quick"), ("default", "default"), ("fine", "fine"),
+                            ("surface x2", SURFACE_X2)):
+            fe, dt = cold_solve(case, mesh)
+            err = errors(fe, ref)
+            x = fe.x_nodes
+            e = np.abs(fe.p_nodes - ref.pressure(x)) / max(q.p for q in ref.peaks())
+            r = np.minimum(x + ref.a, ref.c - x) / W
+            vertex = np.arange(len(x)) % 2 == 0   # the P2 surface chain starts at a vertex
+            cols = [float(np.max(e[sel], initial=0.0))
+                    for band in ((r >= 0.05) & (r < 0.2), r >= 0.2) for sel in (band & vertex, band & ~vertex)]
+            print(f"{name:12s} {label:12s} {dt:7.2f} {len(x):6d} " + " ".join(f"{v:10.1e}" for v in cols[:2])
+                  + " " + " ".join(f"{v:9.1e}" for v in cols[2:])
+                  + f" {max(abs(err['p_left']), abs(err['p_right'])):8.1e}", flush=True)
+
+
 @contextlib.contextmanager
 def backend(name: str) -> Iterator[None]:
     """Make ``name`` the backend of every condensation inside the block (``$THREEPART_FEM_BACKEND``)."""
@@ -226,8 +264,11 @@ def backends(meshes: list[str], repeat: int = 2) -> None:
 
 
 if __name__ == "__main__":
-    flags = {"--peer", "--backends"}
+    flags = {"--peer", "--backends", "--pressure"}
     chosen = [a for a in sys.argv[1:] if a not in flags] or ["quick", "default"]
+    if "--pressure" in sys.argv[1:]:
+        pressure()
+        sys.exit(0)
     if not flags & set(sys.argv[1:]):
         main(chosen)
     if "--backends" not in sys.argv[1:]:
