@@ -72,7 +72,7 @@ from numpy.typing import ArrayLike
 
 from threepart.errors import FullSlidingError, LiftOffError, NoConvergenceError, StickZoneError
 from threepart.punch import Punch
-from threepart.results import BRANCHES, FrettingResult, NormalResult, masing
+from threepart.results import MasingCycle, NormalResult
 from threepart.validate import positive
 
 from . import formulas
@@ -180,7 +180,7 @@ def loop_energy(h: float, d: ArrayLike, u: ArrayLike, weights: ArrayLike, A: flo
 
 
 @dataclass(frozen=True)
-class FrettingSolution(FrettingResult):
+class FrettingSolution(MasingCycle):
     """Closed-form fretting cycle from :func:`fretting_cycle`.
 
     ``shear``, ``slip`` and ``slip_amplitude`` take any ``Q`` on a branch, not only
@@ -202,26 +202,6 @@ class FrettingSolution(FrettingResult):
         sl = solve_partial_slip(n, u, self.f)
         gap = stick_gap(n.punch, sl.d + sl.e, sl.d - sl.e, x)
         return np.where((x > -n.a) & (x < n.c), self.f * gap, 0.0)
-
-    def shear(self, x: ArrayLike, Q: float, branch: str) -> np.ndarray:
-        """Shear ``q(x)`` at force ``Q`` on ``branch``: Masing's superposition of loading states."""
-        x = np.asarray(x, dtype=float)
-        c_max, c_u, u = masing(self.Q_max, Q, branch)
-        return c_max * self._q_load(x, self.Q_max) + c_u * self._q_load(x, u)
-
-    def slip(self, x: ArrayLike, Q: float, branch: str) -> np.ndarray:
-        """Relative slip at ``x`` since the start of loading, positive in the direction of positive ``Q``.
-
-        On loading it is ``f`` times the gap of the stick zone's normal problem
-        (:func:`stick_gap`); reversals superpose it as the shear.
-        """
-        x = np.asarray(x, dtype=float)
-        c_max, c_u, u = masing(self.Q_max, Q, branch)
-        return c_max * self._s_load(x, self.Q_max) + c_u * self._s_load(x, u)
-
-    def slip_amplitude(self, x: ArrayLike) -> np.ndarray:
-        """Half the peak-to-peak relative slip over the cycle: the slip at ``Q_max`` on loading."""
-        return self._s_load(np.asarray(x, dtype=float), self.Q_max)
 
 
 def _fretting_iv(normal: NormalResult, Q_max: float, f: float, states: int) -> tuple[float, float]:
@@ -351,10 +331,5 @@ def fretting_cycle(normal_solution: NormalResult, Q_max: float, f: float, *,
     energy, nodes = _energy(normal, Q_max, f)
     stick = np.column_stack([-a_s, c_s])
     info = {"states": states, "energy_nodes": nodes, "time_s": time.perf_counter() - t0}
-    return FrettingSolution(
-        normal=normal, Q_max=Q_max, f=f,
-        branch=np.repeat(np.array(BRANCHES), states),
-        Q=np.concatenate([u, np.linspace(Q_max, -Q_max, states), np.linspace(-Q_max, Q_max, states)]),
-        stick=np.concatenate([stick, stick, stick]),
-        delta=np.concatenate([F, F[-1] - 2 * F, -F[-1] + 2 * F]),
-        energy=energy, method="closedform", info=info)
+    return FrettingSolution.from_loading(normal, Q_max, f, u, stick, F, energy=energy,
+                                         method="closedform", info=info)

@@ -25,7 +25,7 @@ from pathlib import Path
 import gmsh
 import numpy as np
 
-from .substrate import SubstrateSpec, gmsh_session
+from .substrate import SubstrateSpec, gmsh_session, size_field
 
 __all__ = ["PunchSpec", "build_punch", "PROFILES"]
 
@@ -157,32 +157,12 @@ def _geometry(spec: PunchSpec) -> dict[str, list[int]]:
 
 
 def _size_field(spec: PunchSpec, contact: list[int]) -> None:
-    fld = gmsh.model.mesh.field
-    dist = fld.add("Distance")
-    fld.setNumbers(dist, "CurvesList", contact)
-    fld.setNumber(dist, "Sampling", 4)
+    """The zone's sizes on the punch's face, refined around its points at the face's height."""
     zone = spec.zone
-    size = fld.add("MathEval")
-    fld.setString(size, "F", f"{zone.h!r} + {spec.growth!r} * F{dist}")
-    sizes = [size]
-    if zone.graded:
-        for x0 in zone.refine_at:
-            y0 = float(spec.height(np.array([x0]))[0])
-            sizes.append(fld.add("MathEval"))
-            fld.setString(sizes[-1], "F", f"{zone.h_fine!r} + {spec.growth!r} * "
-                                          f"Sqrt((x - ({x0!r}))^2 + (y - ({y0!r}))^2)")
-    both = fld.add("Min")
-    fld.setNumbers(both, "FieldsList", sizes)
-    fld.setAsBackgroundMesh(both)
-    opt = gmsh.option.setNumber
-    opt("Mesh.MeshSizeExtendFromBoundary", 0)
-    opt("Mesh.MeshSizeFromPoints", 0)
-    opt("Mesh.MeshSizeFromCurvature", 0)
-    opt("Mesh.MeshSizeMax", max(spec.H, spec.edge_x("right") - spec.edge_x("left")) / 8)
-    opt("Mesh.MeshSizeMin", zone.h_fine if zone.graded else zone.h)
-    opt("Mesh.Algorithm", 6)
-    opt("Mesh.ElementOrder", 1)
-    opt("Mesh.MshFileVersion", 4.1)
+    points = tuple((x0, float(spec.height(np.array([x0]))[0])) for x0 in zone.refine_at)
+    size_field(contact, h=zone.h, growth=spec.growth, sampling=4,
+               refine_at=points if zone.graded else (), h_fine=zone.h_fine,
+               size_max=max(spec.H, spec.edge_x("right") - spec.edge_x("left")) / 8)
 
 
 def build_punch(spec: PunchSpec, path: str | Path) -> Path:

@@ -29,7 +29,7 @@ from typing import Iterator
 import gmsh
 import numpy as np
 
-__all__ = ["SubstrateSpec", "build_substrate", "gmsh_session", "PHYSICAL_CURVES"]
+__all__ = ["SubstrateSpec", "build_substrate", "gmsh_session", "size_field", "PHYSICAL_CURVES"]
 
 #: Names of the physical curve groups, in the order they are created.
 PHYSICAL_CURVES = ("contact", "top", "base", "left", "right")
@@ -202,21 +202,27 @@ def _geometry(spec: SubstrateSpec) -> dict[str, list[int]]:
     return groups
 
 
-def _size_field(spec: SubstrateSpec, contact: list[int]) -> None:
-    """Size ``h + growth * distance(contact zone)``, refined around ``refine_at``, capped at ``size_max``."""
+def size_field(contact: list[int], *, h: float, growth: float, sampling: int,
+               refine_at: tuple[tuple[float, float], ...] = (), h_fine: float = 0.0,
+               size_max: float) -> None:
+    """gmsh's background size: ``h + growth * distance(contact)``, refined around points.
+
+    Around each point ``(x0, y0)`` of ``refine_at`` the size is
+    ``h_fine + growth * |(x, y) - (x0, y0)|`` (the exact distance); the smallest
+    size wins, capped at ``size_max``. Shared by the substrate and the punch.
+    """
     fld = gmsh.model.mesh.field
     dist = fld.add("Distance")
     fld.setNumbers(dist, "CurvesList", contact)
-    n_zone = (spec.x_hi - spec.x_lo) / spec.h
-    fld.setNumber(dist, "Sampling", 4 if spec.graded else int(max(20, 2 * n_zone / len(contact))))
+    fld.setNumber(dist, "Sampling", sampling)
     size = fld.add("MathEval")
-    fld.setString(size, "F", f"{spec.h!r} + {spec.growth!r} * F{dist}")
-    if spec.graded:
+    fld.setString(size, "F", f"{h!r} + {growth!r} * F{dist}")
+    if refine_at:
         sizes = [size]
-        for x0 in spec.refine_at:   # the exact distance to a surface point
+        for x0, y0 in refine_at:
             sizes.append(fld.add("MathEval"))
-            fld.setString(sizes[-1], "F",
-                          f"{spec.h_fine!r} + {spec.growth!r} * Sqrt((x - ({x0!r}))^2 + y^2)")
+            fld.setString(sizes[-1], "F", f"{h_fine!r} + {growth!r} * "
+                                          f"Sqrt((x - ({x0!r}))^2 + (y - ({y0!r}))^2)")
         size = fld.add("Min")
         fld.setNumbers(size, "FieldsList", sizes)
     fld.setAsBackgroundMesh(size)
@@ -225,11 +231,20 @@ def _size_field(spec: SubstrateSpec, contact: list[int]) -> None:
     opt("Mesh.MeshSizeExtendFromBoundary", 0)
     opt("Mesh.MeshSizeFromPoints", 0)
     opt("Mesh.MeshSizeFromCurvature", 0)
-    opt("Mesh.MeshSizeMax", spec.size_max)
-    opt("Mesh.MeshSizeMin", spec.h_fine if spec.graded else spec.h)
+    opt("Mesh.MeshSizeMax", size_max)
+    opt("Mesh.MeshSizeMin", h_fine if refine_at else h)
     opt("Mesh.Algorithm", 6)  # Frontal-Delaunay: good quality, deterministic
     opt("Mesh.ElementOrder", 1)  # fem raises the order (P2 on straight edges)
     opt("Mesh.MshFileVersion", 4.1)
+
+
+def _size_field(spec: SubstrateSpec, contact: list[int]) -> None:
+    """Size ``h + growth * distance(contact zone)``, refined around ``refine_at``, capped at ``size_max``."""
+    n_zone = (spec.x_hi - spec.x_lo) / spec.h
+    size_field(contact, h=spec.h, growth=spec.growth,
+               sampling=4 if spec.graded else int(max(20, 2 * n_zone / len(contact))),
+               refine_at=tuple((x0, 0.0) for x0 in spec.refine_at) if spec.graded else (),
+               h_fine=spec.h_fine, size_max=spec.size_max)
 
 
 def build_substrate(spec: SubstrateSpec, path: str | Path) -> Path:

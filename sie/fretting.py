@@ -41,7 +41,7 @@ from scipy.optimize import brentq
 
 from threepart.errors import FullSlidingError, NoConvergenceError
 from threepart.punch import Punch
-from threepart.results import BRANCHES, FrettingResult, NormalResult, masing
+from threepart.results import MasingCycle, NormalResult
 from threepart.validate import check_positive
 
 from .normal import DEFAULT_N, DEFAULT_SCHEME, check_scheme, solve_ends
@@ -129,7 +129,7 @@ def stick_gap(punch: Punch, alpha: float, m: float, h: float, x: ArrayLike,
 
 
 @dataclass(frozen=True)
-class SieFrettingResult(FrettingResult):
+class SieFrettingResult(MasingCycle):
     """Fretting cycle from :func:`fretting_cycle`, with the discretisation of its stick zones.
 
     ``shear``, ``slip`` and ``slip_amplitude`` take any ``Q`` on a branch: the
@@ -151,22 +151,6 @@ class SieFrettingResult(FrettingResult):
         sl = solve_partial_slip(nrm, u, self.f, n=self.n, scheme=self.scheme)
         gap = stick_gap(nrm.punch, nrm.alpha, -sl.e, sl.d, x)
         return np.where((x > -nrm.a) & (x < nrm.c), self.f * gap, 0.0)
-
-    def shear(self, x: ArrayLike, Q: float, branch: str) -> np.ndarray:
-        """Shear ``q(x)`` at force ``Q`` on ``branch`` (Masing superposition of loading states)."""
-        x = np.asarray(x, dtype=float)
-        c_max, c_u, u = masing(self.Q_max, Q, branch)
-        return c_max * self._q_load(x, self.Q_max) + c_u * self._q_load(x, u)
-
-    def slip(self, x: ArrayLike, Q: float, branch: str) -> np.ndarray:
-        """Relative slip since the start of loading, positive in the direction of positive ``Q``."""
-        x = np.asarray(x, dtype=float)
-        c_max, c_u, u = masing(self.Q_max, Q, branch)
-        return c_max * self._s_load(x, self.Q_max) + c_u * self._s_load(x, u)
-
-    def slip_amplitude(self, x: ArrayLike) -> np.ndarray:
-        """Half the peak-to-peak relative slip over the cycle: the slip at ``Q_max`` on loading."""
-        return self._s_load(np.asarray(x, dtype=float), self.Q_max)
 
 
 def _check_fretting(normal: NormalResult, Q_max: float, f: float, states: int) -> None:
@@ -298,10 +282,5 @@ def fretting_cycle(normal: NormalResult, Q_max: float, f: float, *, n: int | Non
     stick = np.column_stack([mh[:, 0] - mh[:, 1], mh[:, 0] + mh[:, 1]])
     info = {"n": sch.n, "scheme": sch.name, "states": states, "energy_nodes": nodes,
             "crossings": cuts, "solves": zones.solves, "time_s": time.perf_counter() - t0}
-    return SieFrettingResult(
-        normal=normal, Q_max=Q_max, f=f,
-        branch=np.repeat(np.array(BRANCHES), states),
-        Q=np.concatenate([u, np.linspace(Q_max, -Q_max, states), np.linspace(-Q_max, Q_max, states)]),
-        stick=np.concatenate([stick, stick, stick]),
-        delta=np.concatenate([F, F[-1] - 2 * F, -F[-1] + 2 * F]),
-        energy=energy, method="sie", info=info, n=sch.n, scheme=sch.name)
+    return SieFrettingResult.from_loading(normal, Q_max, f, u, stick, F, energy=energy, method="sie",
+                                          info=info, n=sch.n, scheme=sch.name)

@@ -12,7 +12,7 @@ of the load, positive to the right, and equals the centroid of the pressure;
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, Self
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -21,7 +21,7 @@ from scipy.optimize import minimize_scalar
 from .punch import Punch
 from .validate import finite
 
-__all__ = ["NormalResult", "SlipResult", "FrettingResult", "Peak", "SEGMENTS", "BRANCHES", "masing",
+__all__ = ["NormalResult", "SlipResult", "FrettingResult", "MasingCycle", "Peak", "SEGMENTS", "BRANCHES", "masing",
            "segments_in_contact"]
 
 #: the punch's segments, left to right (eq. 2)
@@ -280,6 +280,56 @@ class FrettingResult:
     def slip_amplitude(self, x: ArrayLike) -> np.ndarray:
         """Half the peak-to-peak relative slip at ``x`` over the cycle (0 where it never slips)."""
         raise NotImplementedError
+
+
+class MasingCycle(FrettingResult):
+    """A fretting cycle built from its loading states by Masing's rule (:func:`masing`).
+
+    A subclass gives the shear ``_q_load(x, u)`` and the slip ``_s_load(x, u)``
+    of the loading state at ``0 <= u <= Q_max`` (zero at ``u = 0``); the shear,
+    slip and slip amplitude anywhere on the cycle follow. Shared by the closed
+    form and the SIE, which solve the loading states each in its own way.
+    """
+
+    @classmethod
+    def from_loading(cls, normal: NormalResult, Q_max: float, f: float, u: np.ndarray,
+                     stick: np.ndarray, delta: np.ndarray, **fields: Any) -> Self:
+        """The cycle's recorded states from its loading branch alone (Masing's rule).
+
+        ``u`` runs from 0 to ``Q_max`` in equal steps; ``stick`` (``(n, 2)``) and
+        ``delta`` are the loading states' stick zones and displacements. Unloading
+        to ``Q`` is the loading state of ``u = (Q_max - Q)/2`` superposed
+        (``delta(Q_max) - 2 delta(u)``, the same unslipped zone), and reloading
+        mirrors it; ``fields`` are the rest of the result's fields.
+        """
+        n = len(u)
+        return cls(normal=normal, Q_max=Q_max, f=f, branch=np.repeat(np.array(BRANCHES), n),
+                   Q=np.concatenate([u, np.linspace(Q_max, -Q_max, n), np.linspace(-Q_max, Q_max, n)]),
+                   stick=np.concatenate([stick, stick, stick]),
+                   delta=np.concatenate([delta, delta[-1] - 2 * delta, -delta[-1] + 2 * delta]),
+                   **fields)
+
+    def _q_load(self, x: np.ndarray, u: float) -> np.ndarray:
+        raise NotImplementedError
+
+    def _s_load(self, x: np.ndarray, u: float) -> np.ndarray:
+        raise NotImplementedError
+
+    def shear(self, x: ArrayLike, Q: float, branch: str) -> np.ndarray:
+        """Shear ``q(x)`` at force ``Q`` on ``branch``: the superposed loading states' shear."""
+        x = np.asarray(x, dtype=float)
+        c_max, c_u, u = masing(self.Q_max, Q, branch)
+        return c_max * self._q_load(x, self.Q_max) + c_u * self._q_load(x, u)
+
+    def slip(self, x: ArrayLike, Q: float, branch: str) -> np.ndarray:
+        """Relative slip at ``x`` since the start of loading, positive in the direction of positive ``Q``."""
+        x = np.asarray(x, dtype=float)
+        c_max, c_u, u = masing(self.Q_max, Q, branch)
+        return c_max * self._s_load(x, self.Q_max) + c_u * self._s_load(x, u)
+
+    def slip_amplitude(self, x: ArrayLike) -> np.ndarray:
+        """Half the peak-to-peak relative slip over the cycle: the slip at ``Q_max`` on loading."""
+        return self._s_load(np.asarray(x, dtype=float), self.Q_max)
 
 
 def masing(Q_max: float, Q: float, branch: str) -> tuple[float, float, float]:
