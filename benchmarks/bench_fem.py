@@ -264,14 +264,11 @@ def backends(meshes: list[str], repeat: int = 2) -> None:
 
 
 if __name__ == "__main__":
-    flags = {"--peer", "--backends", "--pressure"}
-    chosen = [a for a in sys.argv[1:] if a not in flags] or ["quick", "default"]
-    if "--pressure" in sys.argv[1:]:
-        pressure()
-        sys.exit(0)
-    if not flags & set(sys.argv[1:]):
+    tables = {"--peer": peer, "--backends": backends, "--pressure": lambda _: pressure()}
+    chosen = [a for a in sys.argv[1:] if a not in tables] or ["quick", "default"]
+    only = [flag for flag in tables if flag in sys.argv[1:]]
+    if not only:   # everything but the pressure study
         main(chosen)
-    if "--backends" not in sys.argv[1:]:
-        peer(chosen)
-    if "--peer" not in sys.argv[1:]:
-        backends(chosen)
+        only = ["--peer", "--backends"]
+    for flag in only:
+        tables[flag](chosen)

@@ -159,9 +159,9 @@ def _geometry(spec: PunchSpec) -> dict[str, list[int]]:
 def _size_field(spec: PunchSpec, contact: list[int]) -> None:
     """The zone's sizes on the punch's face, refined around its points at the face's height."""
     zone = spec.zone
-    points = tuple((x0, float(spec.height(np.array([x0]))[0])) for x0 in zone.refine_at)
-    size_field(contact, h=zone.h, growth=spec.growth, sampling=4,
-               refine_at=points if zone.graded else (), h_fine=zone.h_fine,
+    points = tuple((x0, float(spec.height(np.array([x0]))[0]))
+                   for x0 in (zone.refine_at if zone.graded else ()))
+    size_field(contact, h=zone.h, growth=spec.growth, sampling=4, refine_at=points, h_fine=zone.h_fine,
                size_max=max(spec.H, spec.edge_x("right") - spec.edge_x("left")) / 8)
 
 

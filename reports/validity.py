@@ -57,7 +57,7 @@ class MapPoint:
 
 #: the scale of every point (the ratios fix the rest), the material and the flank angle
 R1, E, NU, THETA = 10.0, 1.0, 0.3, math.pi / 3
-#: the grid: quick (15 points, 14 feasible) and full (96 points, 67 feasible)
+#: the grid: quick and full (:func:`map_points` drops the points the punch cannot hold)
 GRID = {
     True: dict(R2_over_R1=(1.0,), H_over_b=(4.0,), b_over_R1=(0.1, 0.3, 1.0),
                a_minus_b_over_R1=(0.01, 0.03, 0.1, 0.2, 0.3)),
