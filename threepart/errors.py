@@ -9,7 +9,8 @@ returns a number it does not trust, and none returns NaN.
 from __future__ import annotations
 
 __all__ = ["NoConvergenceError", "LiftOffError", "FullSlidingError", "StickZoneError",
-           "SeparationError", "ContactZoneError", "MeshResolutionError"]
+           "SeparationError", "ContactZoneError", "MeshResolutionError", "SlopeLimitError",
+           "ArcExtentError"]
 
 
 class NoConvergenceError(RuntimeError):
@@ -48,3 +49,15 @@ class MeshResolutionError(ContactZoneError):
     is refined automatically up to a limit; past it, or on a mesh the user
     gave, this is raised rather than a silently coarse answer returned.
     """
+
+
+class SlopeLimitError(ValueError):
+    """The contact's surface slope ``max |v'|`` exceeds the small-slope limit of half-plane theory.
+
+    Half-plane theory measures the gap vertically and applies the tractions to
+    the undeformed surface; the limit is ``threepart.validate.SLOPE_LIMIT``.
+    """
+
+
+class ArcExtentError(ValueError):
+    """A contact end runs past the geometric extent of an edge arc (``a > b + R1`` or ``c > b + R2``)."""

@@ -134,3 +134,12 @@ class Punch:
         right = (x - self.b * self.k2) / self.R2
         centre = self.kappa0 * x
         return alpha + np.where(x < -self.b, left, np.where(x > self.b, right, centre))
+
+    def max_slope(self, a: float, c: float, alpha: float = 0.0) -> float:
+        """Largest surface slope ``max |v'(x)|`` over the contact ``[-a, c]`` (eq. 2, tilt included).
+
+        ``v'`` is linear on each segment, so its extremes lie at the contact's
+        ends and at the joins ``x = ±b`` inside it.
+        """
+        x = [t for t in (-a, -self.b, self.b, c) if -a <= t <= c]
+        return float(np.max(np.abs(self.slope(x, alpha))))
