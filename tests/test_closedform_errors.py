@@ -172,7 +172,7 @@ def test_punch_rejects_non_real_types_before_any_arithmetic(kwargs, match):
 def test_punch_rejects_lengths_outside_double_range():
     with pytest.raises(ValueError, match=r"`R1` = 1e-300 is outside \[1e-60, 1e\+60\]"):
         Punch(R1=1e-300, R2=5.0, b=1.0)
-    with pytest.raises(ValueError, match=r"`R1` = 1000000000000000000\.\.\..*outside the double"):
+    with pytest.raises(ValueError, match=r"`R1` = 1000.*\(401 characters\) is outside the double"):
         Punch(R1=10**400, R2=5.0, b=1.0)
 
 
