@@ -49,7 +49,8 @@ UNITS: dict[str, str] = {
     "d": "mm", "e": "mm", "left": "mm", "right": "mm",  # stick zone
     "alpha": "rad",                                   # tilt, eq. (2)
     "p": "MPa", "q": "MPa",                           # pressure, shear traction
-    "f": "1",                                         # coefficient of friction
+    "f": "1", "nu": "1",                              # friction coefficient, Poisson's ratio
+    "slope": "rad",                                   # Punch.max_slope: tilt, profile, surface
 }
 #: options that take a number; ``--s -1e-3`` is read as ``--s=-1e-3`` (argparse alone
 #: would take ``-1e-3`` for an option)
@@ -156,11 +157,18 @@ def _number_list(text: str) -> list[float]:
 
 
 def _compliance(args: argparse.Namespace) -> float:
-    from threepart.closedform import compliance, rigid_punch
+    """The compliance A (eq. 4) from ``--A``, or from ``--E``/``--nu`` (and ``--rigid``)."""
+    from threepart.material import compliance, rigid_punch
 
     if args.A is not None:
-        if args.E is not None or args.nu is not None:
+        if args.E is not None:
             raise ValueError("give either `--A` or `--E`/`--nu`, not both")
+        if args.rigid:
+            raise ValueError("`--rigid` applies to `--E`/`--nu`; with `--A` the compliance is "
+                             "given, so drop `--rigid`")
+        if args.nu is not None and args.method != "fem":
+            raise ValueError("`--nu` with `--A` is used only by `--method fem` (the FE block's "
+                             "Poisson ratio); drop it or give `--E` and `--nu` instead of `--A`")
         return float(args.A)
     if args.E is None or args.nu is None:
         raise ValueError("the material needs `--A`, or both `--E` and `--nu`")
@@ -169,7 +177,7 @@ def _compliance(args: argparse.Namespace) -> float:
 
 def _solve(args: argparse.Namespace, slip: bool) -> tuple[Any, dict[str, Any]]:
     """Solve by ``--method`` and collect the figures to print, in print order."""
-    from threepart.methods import describe, solve
+    from threepart.methods import FEM_NU, describe, solve
     from threepart.punch import Punch
     from threepart.results import SlipResult
 
@@ -177,8 +185,13 @@ def _solve(args: argparse.Namespace, slip: bool) -> tuple[Any, dict[str, Any]]:
     A = _compliance(args)
     _points_iv(args)
     options: dict[str, Any] = {}
+    nu_note = None
     if args.method == "fem":   # the block's modulus: methods.fem_modulus (nu 0.3 unless given)
-        options = {"mesh": args.mesh, **({"nu": args.nu} if args.nu is not None else {})}
+        nu = FEM_NU if args.nu is None else args.nu
+        options = {"mesh": args.mesh, "nu": nu}
+        if args.nu is None:
+            nu_note = (f"the FE model needs Poisson's ratio; nu = {FEM_NU} assumed (give --nu "
+                       "to set it; in half-plane theory only A matters)")
     loads = {"Q": args.Q, "f": args.f} if slip else {}
     res = solve(punch, args.P, args.s, A=A, tilt=args.tilt, method=args.method, **loads, **options)
     normal = res.normal if isinstance(res, SlipResult) else res
@@ -187,12 +200,15 @@ def _solve(args: argparse.Namespace, slip: bool) -> tuple[Any, dict[str, Any]]:
         "method": res.method,
         **({"method_note": res.info["auto"]} if "auto" in res.info else {}),
         "punch": {"R1": punch.R1, "R2": punch.R2, "b": punch.b, "R": punch.R, "case": punch.case},
-        "A": A, "P": normal.P, "s": normal.s, "tilt": normal.tilt,
-        "a": normal.a, "c": normal.c, "alpha": normal.alpha,
+        "A": A, **({"nu": options["nu"]} if "nu" in options else {}),
+        **({"nu_note": nu_note} if nu_note else {}),
+        # s as given; with the tilt suppressed, the lever arm s* that holds alpha = 0
+        "P": float(args.P), "s": float(args.s) if normal.tilt == "free" else normal.s,
+        "tilt": normal.tilt,
+        "a": normal.a, "c": normal.c, "alpha": normal.alpha, "slope": normal.slope,
         "contact": {"left": -normal.a, "right": normal.c},
         "segments": list(normal.segments), "within_paper": normal.within_paper,
-        "peak_left": {"x": left.x, "p": left.p},
-        "peak_right": {"x": right.x, "p": right.p},
+        "peak_left": _peak(left, "left"), "peak_right": _peak(right, "right"),
     }
     limits = _lift_off(punch, normal.P, A)
     if limits is not None:
@@ -207,6 +223,15 @@ def _solve(args: argparse.Namespace, slip: bool) -> tuple[Any, dict[str, Any]]:
         out["points"] = points
     out["_describe"] = describe(res)
     return res, out
+
+
+def _peak(peak: Any, side: str) -> dict[str, Any]:
+    """A peak as printed: its x and p, or a note that this half has no interior peak."""
+    if peak.interior:
+        return {"x": peak.x, "p": peak.p}
+    other = "right" if side == "left" else "left"
+    return {"none": f"no interior peak: p rises monotonically from the {side} end into the "
+                    f"{other} half"}
 
 
 def _lift_off(punch: Any, P: float, A: float) -> dict[str, float] | None:
@@ -306,8 +331,10 @@ def _print(out: dict[str, Any], as_json: bool) -> None:
                 print(f"{indent}{k:<10} {float(v):.10g} {'(dimensionless)' if unit == '1' else unit}")
             elif isinstance(v, list):
                 print(f"{indent}{k:<10} {', '.join(map(str, v))}")
-            elif k != "method_note":
+            elif k not in ("method_note", "none"):
                 print(f"{indent}{k:<10} {v}")
+            elif k == "none":
+                print(f"{indent}{v}")
 
     walk({k: v for k, v in out.items() if k != "method"})
     if points is not None:
