@@ -317,3 +317,19 @@ def test_fem_states_the_poisson_ratio_it_assumed_and_echoes_s_as_given(capsys):
     assert repr(out["s"]) == "0.1"
     # the contact's slope is reported: at least the tilt, at least the profile's slope at -a
     assert out["slope"] >= max(abs(out["alpha"]), (out["a"] - 1.0) / 10.0)
+
+
+@pytest.mark.parametrize("delay", [0.15, 1.0])
+def test_ctrl_c_while_loading_or_solving_prints_exactly_one_line(delay, tmp_path):
+    """SIGINT early (numpy and scipy still loading) or late (the FEM solving): one line, exit 130."""
+    import signal
+    import time
+
+    proc = subprocess.Popen([sys.executable, "-m", "threepart", "solve", *AGEOM, "--method", "fem",
+                             "--mesh", "quick"], cwd=tmp_path, stdout=subprocess.PIPE,
+                            stderr=subprocess.PIPE, text=True)
+    time.sleep(delay)
+    proc.send_signal(signal.SIGINT)
+    out, err = proc.communicate(timeout=120)
+    assert proc.returncode == 130, err
+    assert err.strip() == "threepart solve: interrupted", err
