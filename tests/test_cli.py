@@ -93,13 +93,15 @@ def test_a_missing_command_is_a_one_line_usage_error(capsys):
 
 @pytest.mark.parametrize("error", ["NoConvergenceError", "ContactZoneError"])
 def test_a_solver_that_fails_gives_one_line_and_exit_status_2(capsys, monkeypatch, error):
-    import threepart.closedform
-    from threepart import errors
+    from dataclasses import replace
+
+    from threepart import errors, registry
 
     def fail(*a, **k):
         raise getattr(errors, error)("the root did not close\nafter 100 steps")
 
-    monkeypatch.setattr(threepart.closedform, "solve_normal", fail)
+    monkeypatch.setitem(registry._REGISTRY, "closedform", replace(registry.get("closedform"),
+                                                                  normal=fail))
     assert main(["solve", *GEOM]) == 2
     assert "error: the root did not close after 100 steps" in _one_line_error(capsys)
 
@@ -110,12 +112,15 @@ def test_an_os_error_gives_one_line_and_exit_status_2(capsys):
 
 
 def test_ctrl_c_prints_one_line_and_exits_130(capsys, monkeypatch):
-    import threepart.closedform
+    from dataclasses import replace
+
+    from threepart import registry
 
     def interrupted(*a, **k):
         raise KeyboardInterrupt
 
-    monkeypatch.setattr(threepart.closedform, "solve_normal", interrupted)
+    monkeypatch.setitem(registry._REGISTRY, "closedform", replace(registry.get("closedform"),
+                                                                  normal=interrupted))
     try:
         status = main(["solve", *GEOM])
     except KeyboardInterrupt:
@@ -287,7 +292,7 @@ AGEOM = ["--R1", "10", "--R2", "5", "--b", "1", "--A", "8.67e-6", "--P", "400"]
 
 @pytest.mark.parametrize("extra,match", [
     (["--rigid"], r"`--rigid` applies to `--E`/`--nu`"),
-    (["--nu", "0.3"], r"`--nu` with `--A` is used only by `--method fem`"),
+    (["--nu", "0.3"], r"`--nu` with `--A` is used only by a method that models a finite body"),
 ])
 def test_a_compliance_with_material_options_is_refused_not_ignored(capsys, extra, match):
     assert main(["solve", *AGEOM, *extra]) == 2

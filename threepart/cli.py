@@ -111,6 +111,8 @@ def _labelled(help_text: str, quantity: str) -> str:
 
 
 def _geometry_args(p: argparse.ArgumentParser) -> None:
+    from threepart import registry
+
     g = p.add_argument_group("punch geometry (eq. 2)")
     g.add_argument("--R1", type=float, required=True, help=_labelled("left edge radius, > 0", "R1"))
     g.add_argument("--R2", type=float, required=True, help=_labelled("right edge radius, > 0", "R2"))
@@ -132,7 +134,7 @@ def _geometry_args(p: argparse.ArgumentParser) -> None:
                     help=_labelled("lever arm of P, positive to the right", "s"))
     ld.add_argument("--tilt", choices=("free", "suppressed"), default="free")
     mt = p.add_argument_group("method")
-    mt.add_argument("--method", choices=("auto", "closedform", "sie", "fem"), default="auto",
+    mt.add_argument("--method", choices=("auto", *registry.names()), default="auto",
                     help="auto (default): the closed form where it holds, else the SIE; or one method")
     mt.add_argument("--mesh", choices=("quick", "default", "fine"), default="default",
                     help="FE mesh preset for --method fem (default: default)")
@@ -156,6 +158,16 @@ def _number_list(text: str) -> list[float]:
         raise argparse.ArgumentTypeError(f"invalid list of numbers: {text!r} (write X1,X2,...)")
 
 
+def _method(args: argparse.Namespace) -> Any:
+    """The registered method ``--method`` names if it models a finite body (takes ``nu``), else None."""
+    from threepart import registry
+
+    if args.method == "auto":
+        return None
+    m = registry.get(args.method)
+    return m if m.default_nu is not None else None
+
+
 def _compliance(args: argparse.Namespace) -> float:
     """The compliance A (eq. 4) from ``--A``, or from ``--E``/``--nu`` (and ``--rigid``)."""
     from threepart.material import compliance, rigid_punch
@@ -166,9 +178,9 @@ def _compliance(args: argparse.Namespace) -> float:
         if args.rigid:
             raise ValueError("`--rigid` applies to `--E`/`--nu`; with `--A` the compliance is "
                              "given, so drop `--rigid`")
-        if args.nu is not None and args.method != "fem":
-            raise ValueError("`--nu` with `--A` is used only by `--method fem` (the FE block's "
-                             "Poisson ratio); drop it or give `--E` and `--nu` instead of `--A`")
+        if args.nu is not None and _method(args) is None:
+            raise ValueError("`--nu` with `--A` is used only by a method that models a finite "
+                             "body (`--method fem`); drop it or give `--E` and `--nu` instead")
         return float(args.A)
     if args.E is None or args.nu is None:
         raise ValueError("the material needs `--A`, or both `--E` and `--nu`")
@@ -177,21 +189,22 @@ def _compliance(args: argparse.Namespace) -> float:
 
 def _solve(args: argparse.Namespace, slip: bool) -> tuple[Any, dict[str, Any]]:
     """Solve by ``--method`` and collect the figures to print, in print order."""
-    from threepart.methods import FEM_NU, describe, solve
+    from threepart import registry
+    from threepart.methods import describe, solve
     from threepart.punch import Punch
     from threepart.results import SlipResult
 
     punch = Punch(R1=args.R1, R2=args.R2, b=args.b, R=args.R)
     A = _compliance(args)
     _points_iv(args)
-    options: dict[str, Any] = {}
-    nu_note = None
-    if args.method == "fem":   # the block's modulus: methods.fem_modulus (nu 0.3 unless given)
-        nu = FEM_NU if args.nu is None else args.nu
-        options = {"mesh": args.mesh, "nu": nu}
+    takes = () if args.method == "auto" else registry.get(args.method).options
+    options: dict[str, Any] = {"mesh": args.mesh} if "mesh" in takes else {}
+    finite_body, nu_note = _method(args), None
+    if finite_body is not None:   # a finite body needs Poisson's ratio besides A
+        options["nu"] = finite_body.default_nu if args.nu is None else args.nu
         if args.nu is None:
-            nu_note = (f"the FE model needs Poisson's ratio; nu = {FEM_NU} assumed (give --nu "
-                       "to set it; in half-plane theory only A matters)")
+            nu_note = (f"the FE model needs Poisson's ratio; nu = {finite_body.default_nu} "
+                       "assumed (give --nu to set it; in half-plane theory only A matters)")
     loads = {"Q": args.Q, "f": args.f} if slip else {}
     res = solve(punch, args.P, args.s, A=A, tilt=args.tilt, method=args.method, **loads, **options)
     normal = res.normal if isinstance(res, SlipResult) else res
