@@ -79,3 +79,52 @@ def test_monotone_convergence_is_told_from_the_values_alone(values, expected):
 
     assert converges_monotonically(values) is expected
 
+
+
+# ---------------------------------------------------------------------------------------
+# the one study driver, on manufactured sequences
+# ---------------------------------------------------------------------------------------
+def test_the_driver_fits_order_constant_and_limit_of_known_sequences():
+    from threepart.convergence import run_study
+
+    st = run_study(lambda n: (n, {"v": 3.0 + 2.0 * n**-2.0, "field": np.array([1.0, 2.0]) + n**-1.0},
+                              {"dofs": 2 * n}),
+                   [10, 20, 40, 80], param="n", reference={"v": 3.0, "field": np.array([1.0, 2.0])},
+                   scales={"v": 3.0})
+    assert st.orders["v"] == pytest.approx(2.0, abs=EXACT)
+    assert st.constants["v"] == pytest.approx(2.0 / 3.0, rel=EXACT)     # error / scale
+    assert st.extrapolated["v"] == pytest.approx(3.0, abs=EXACT)
+    assert st.orders["field"] == pytest.approx(1.0, abs=EXACT)
+    np.testing.assert_allclose(st.extrapolated["field"], [1.0, 2.0], atol=EXACT)
+    assert st.info[-1] == {"dofs": 160} and st.h[-1] == pytest.approx(1 / 80)
+    # the fine-grid GCI of a second-order sequence: Fs |f2 - f1| / f1 / (r^2 - 1), r = 2
+    assert st.gci["v"] == pytest.approx(1.25 * (2 / 40**2 - 2 / 80**2) / (3 + 2 / 80**2) / 3,
+                                        rel=ITERATED)
+
+
+def test_the_driver_gives_no_order_for_a_non_monotone_error_and_says_so():
+    from threepart.convergence import run_study
+
+    wobble = {0.4: 1e-2, 0.2: 3e-3, 0.1: 5e-3, 0.05: 1e-3}   # the error rises at h = 0.1
+    st = run_study(lambda h: (h, {"v": 1.0 + wobble[h]}, {}), list(wobble), reference={"v": 1.0})
+    assert math.isnan(st.orders["v"]) and "not monotone" in st.notes[0]
+    # reference-free: the same values do not converge from one side either
+    free = run_study(lambda h: (h, {"v": 1.0 + wobble[h]}, {}), list(wobble))
+    assert math.isnan(free.orders["v"]) and "v" not in free.gci
+
+
+def test_the_driver_notes_a_failed_level_and_refuses_a_single_level():
+    from threepart.convergence import run_study
+    from threepart.errors import NoConvergenceError
+
+    def evaluate(n):
+        if n == 20:
+            raise NoConvergenceError("did not settle")
+        return n, {"v": 1.0 + n**-2.0}, {}
+
+    st = run_study(evaluate, [10, 20, 40, 80], param="n", reference={"v": 1.0},
+                   skip=(NoConvergenceError,))
+    assert st.labels == ["10", "40", "80"] and "level 20: NoConvergenceError" in st.notes[0]
+    assert st.orders["v"] == pytest.approx(2.0, abs=EXACT)
+    with pytest.raises(ValueError, match="`levels`"):
+        run_study(evaluate, [10])

@@ -9,6 +9,10 @@ three_level_order   -- p from three solutions, no reference needed (Celik et al.
 gci                 -- Roache's relative fine-grid convergence index (Celik et al. 2008)
 richardson          -- Richardson-extrapolated value from the two finest levels
 
+Study               -- the one result shape of every convergence study (SIE, FEM, report, map)
+run_study           -- the one driver: evaluate each level, then :func:`analyse` it
+analyse             -- orders, GCI and Richardson estimates of a study's levels, by one rule
+
 Celik, Ghia, Roache, Freitas, Coleman & Raad, "Procedure for estimation and
 reporting of uncertainty due to discretization in CFD applications",
 J. Fluids Eng. 130 (2008) 078001.
@@ -16,11 +20,15 @@ J. Fluids Eng. 130 (2008) 078001.
 from __future__ import annotations
 
 import math
+import time
+from dataclasses import dataclass, field
+from typing import Any, Callable, Mapping, Sequence
 
 import numpy as np
 from numpy.typing import ArrayLike
 
-__all__ = ["ROUND_OFF", "is_monotone", "converges_monotonically", "fitted_order", "three_level_order", "gci", "richardson"]
+__all__ = ["ROUND_OFF", "is_monotone", "converges_monotonically", "fitted_order", "three_level_order",
+           "gci", "richardson", "Study", "run_study", "analyse"]
 
 #: normalised errors at or below this are round-off and carry no order
 ROUND_OFF = 1e-13
@@ -135,3 +143,177 @@ def richardson(h: ArrayLike, values: ArrayLike, p: float) -> np.ndarray:
     v = np.asarray(values, dtype=float)
     r = hh[-2] / hh[-1]
     return np.asarray(v[-1] + (v[-1] - v[-2]) / (r**p - 1.0))
+
+
+@dataclass
+class Study:
+    """One convergence study: its levels, coarse to fine, and what they show.
+
+    Attributes
+    ----------
+    param
+        ``"n"`` (a node count, ``h = 1/n``) or ``"h"`` (a size): what ``sizes`` holds.
+    labels, sizes
+        Each level's label and its discretisation parameter.
+    values
+        Each quantity per level (scalars, or arrays of a field).
+    reference, scales
+        The reference value of each quantity and the scale its errors are
+        divided by; empty for a reference-free study.
+    errors
+        ``max |value - reference| / scale`` of each quantity per level.
+    orders, constants
+        The observed order ``p`` (``error ~ C h^p``) and ``C``; NaN where the
+        sequence gives none (see :func:`analyse`).
+    gci, extrapolated
+        The fine-grid GCI (relative) and the Richardson estimate, where defined.
+    times, info, notes
+        Seconds and metadata (dofs, block size, ...) per level; what the
+        analysis found worth saying (a failed level, a non-monotone sequence).
+    """
+
+    param: str
+    labels: list[str] = field(default_factory=list)
+    sizes: list[float] = field(default_factory=list)
+    values: dict[str, list[Any]] = field(default_factory=dict)
+    reference: dict[str, Any] = field(default_factory=dict)
+    scales: dict[str, float] = field(default_factory=dict)
+    errors: dict[str, list[float]] = field(default_factory=dict)
+    orders: dict[str, float] = field(default_factory=dict)
+    constants: dict[str, float] = field(default_factory=dict)
+    gci: dict[str, float] = field(default_factory=dict)
+    extrapolated: dict[str, Any] = field(default_factory=dict)
+    times: list[float] = field(default_factory=list)
+    info: list[dict[str, Any]] = field(default_factory=list)
+    notes: list[str] = field(default_factory=list)
+
+    @property
+    def h(self) -> np.ndarray:
+        """The sizes that fall as the study refines: ``h``, or ``1/n``."""
+        v = np.asarray(self.sizes, dtype=float)
+        return 1.0 / v if self.param == "n" else v
+
+    @property
+    def quantities(self) -> tuple[str, ...]:
+        """The quantities followed, in order."""
+        return tuple(self.values)
+
+
+def _error(value: Any, reference: Any, scale: float) -> float:
+    return float(np.max(np.abs(np.asarray(value, dtype=float) - np.asarray(reference, dtype=float)))
+                 / scale)
+
+
+def analyse(study: Study, error_only: Sequence[str] = ()) -> Study:
+    """Fill ``study``'s orders, GCI and Richardson estimates, by one rule for every study.
+
+    With a reference, the order is fitted to the errors (:func:`fitted_order`)
+    only where they fall at every level (:func:`is_monotone`); otherwise, if
+    the three finest values still converge from one side
+    (:func:`converges_monotonically`), the reference-free three-level order
+    and GCI are given and a note says why; else no order. Without a
+    reference, the three-level order and GCI are given where the values
+    converge monotonically. ``error_only`` names quantities whose values are
+    themselves errors (a field's largest deviation): they get a fitted order
+    and nothing else.
+    """
+    h = study.h
+    for q, vals in study.values.items():
+        scalar = all(np.ndim(v) == 0 for v in vals)
+        three = None
+        if scalar and q not in error_only and len(vals) >= 3 and converges_monotonically(vals[-3:]):
+            (f3, f2, f1), (h3, h2, h1) = vals[-3:], h[-3:]
+            p = three_level_order(f3, f2, f1, h2 / h1, h3 / h2)
+            three = (p, gci(f2, f1, h2 / h1, p))
+        errs = study.errors.get(q)
+        if errs is None:              # reference-free
+            study.orders[q], study.constants[q] = (three[0], math.nan) if three else (math.nan,) * 2
+            if three:
+                study.gci[q] = three[1]
+                study.extrapolated[q] = float(richardson(h, vals, three[0]))
+            continue
+        if not is_monotone(errs):
+            study.orders[q] = study.constants[q] = math.nan
+            if three is not None:
+                study.orders[q], study.gci[q] = three
+                study.notes.append(f"{q}: the values converge monotonically (order {three[0]:.2f} "
+                                   "from the three finest levels), but the error against the "
+                                   "reference is not monotone: it falls below the finest "
+                                   "level's change")
+            elif any(e > ROUND_OFF for e in errs):
+                study.notes.append(f"{q}: the errors are not monotone in the refinement; no order "
+                                   "is given")
+            continue
+        p, C = fitted_order(h, errs)
+        study.orders[q], study.constants[q] = p, C
+        if q in error_only:
+            continue
+        if len(h) >= 2 and math.isfinite(p) and p > 0 and h[-2] > h[-1]:
+            study.extrapolated[q] = richardson(h, np.asarray(vals, dtype=float), p)
+            if np.ndim(study.extrapolated[q]) == 0:
+                study.extrapolated[q] = float(study.extrapolated[q])
+        if three is not None:
+            study.gci[q] = three[1]
+    return study
+
+
+def run_study(evaluate: Callable[[Any], tuple[float, Mapping[str, Any], Mapping[str, Any]]],
+              levels: Sequence[Any], *, param: str = "h",
+              reference: Mapping[str, Any] | None = None,
+              scales: Mapping[str, float] | None = None, error_only: Sequence[str] = (),
+              skip: tuple[type[BaseException], ...] = (),
+              progress: Callable[[str], None] | None = None) -> Study:
+    """The one convergence-study driver: evaluate each level, coarse to fine, then :func:`analyse`.
+
+    Parameters
+    ----------
+    evaluate
+        Maps a level (an ``n``, a mesh, a label) to ``(size, values, info)``:
+        the level's discretisation parameter (``n`` or ``h``, as ``param``
+        says), the quantities followed (scalars or arrays), and metadata.
+    levels
+        The levels, coarse to fine.
+    param
+        ``"n"`` or ``"h"``.
+    reference, scales
+        Reference values and error scales (default 1) of the quantities; errors
+        are ``max |value - reference| / scale``. Without a reference the study
+        is reference-free.
+    error_only
+        Quantities whose values are themselves errors (see :func:`analyse`).
+    skip
+        Exception types that make a level a note instead of an error.
+    progress
+        Called with one line per level.
+
+    Returns
+    -------
+    Study
+    """
+    if param not in ("n", "h"):
+        raise ValueError(f"`param` = {param!r} must be 'n' or 'h'")
+    if len(levels) < 2:
+        raise ValueError(f"`levels` = {list(levels)!r} must hold at least two levels")
+    study = Study(param, reference=dict(reference or {}))
+    for level in levels:
+        t0 = time.perf_counter()
+        try:
+            size, values, info = evaluate(level)
+        except skip as exc:
+            study.notes.append(f"level {level}: {type(exc).__name__}: {exc}")
+            continue
+        dt = time.perf_counter() - t0
+        study.labels.append(str(level))
+        study.sizes.append(float(size))
+        study.times.append(dt)
+        study.info.append(dict(info))
+        for q, v in values.items():
+            study.values.setdefault(q, []).append(v)
+        if progress:
+            progress(f"{param} = {float(size):.4g} ({level}): {dt:.2f} s")
+    if reference is not None:
+        for q in study.values:
+            scale = float((scales or {}).get(q, 1.0))
+            study.scales[q] = scale
+            study.errors[q] = [_error(v, reference[q], scale) for v in study.values[q]]
+    return analyse(study, error_only)
