@@ -27,7 +27,7 @@ SCHEMES             -- "plain" collocation and "projected" (kink-aware) schemes
 Convergence
 -----------
 convergence_study   -- errors against a reference over a list of n, fitted order, Richardson estimate
-ConvergenceStudy    -- its result: n, values, errors, order, constant, extrapolated
+                    (the one study shape, threepart.convergence.Study)
 pressure_by_quadrature -- independent pointwise reference (adaptive quadrature of the inversion formula)
 
 The fitted order and the Richardson step are :mod:`threepart.convergence`'s; the
@@ -36,7 +36,7 @@ cases and tolerances of the SIE tests are :mod:`threepart.catalogue`'s (suite
 """
 from __future__ import annotations
 
-from .convergence import ConvergenceStudy, convergence_study
+from .convergence import convergence_study
 from .normal import SieNormalResult, lift_off, solve_normal
 from .projection import slope_coefficients
 from .quadrature import cauchy_matrix, gauss_chebyshev
@@ -50,7 +50,7 @@ __all__ = [
     "solve_normal", "solve_partial_slip", "lift_off", "SieNormalResult", "SieSlipResult", "NoConvergenceError",
     "fretting_cycle", "SieFrettingResult",
     "gauss_chebyshev", "cauchy_matrix", "slope_coefficients", "SCHEMES",
-    "ConvergenceStudy", "convergence_study", "pressure_by_quadrature",
+    "convergence_study", "pressure_by_quadrature",
 ]
 
 from . import method as _method  # registers this solver in threepart.registry

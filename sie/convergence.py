@@ -1,53 +1,22 @@
 """Convergence studies in ``n``: errors over a list of ``n``, the fitted order and a Richardson estimate.
 
-The tools themselves (fitted order, Richardson step) are those of
-:mod:`threepart.convergence`, with ``h = 1/n``.
+A thin use of the one driver, :func:`threepart.convergence.run_study`, with
+``h = 1/n``; its result is the one study shape, :class:`threepart.convergence.Study`,
+whose single quantity is named ``"value"``.
 """
 from __future__ import annotations
 
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass
 
-import numpy as np
 from numpy.typing import ArrayLike
 
-from threepart.convergence import fitted_order, richardson
+from threepart.convergence import Study, run_study
 
-__all__ = ["ConvergenceStudy", "convergence_study"]
-
-
-@dataclass(frozen=True)
-class ConvergenceStudy:
-    """Result of :func:`convergence_study`.
-
-    Attributes
-    ----------
-    n
-        The discretisation sizes.
-    values
-        The quantity at each ``n`` (scalars or arrays, stacked).
-    errors
-        ``max |value - reference| / scale`` at each ``n``.
-    order
-        Fitted order ``p`` of ``error ~ C n^-p`` (NaN when fewer than two
-        errors lie above the round-off floor).
-    constant
-        Fitted ``C``.
-    extrapolated
-        Richardson estimate from the two largest ``n`` with order ``order``
-        (with order 1 when no order could be fitted).
-    """
-
-    n: np.ndarray
-    values: np.ndarray
-    errors: np.ndarray
-    order: float
-    constant: float
-    extrapolated: np.ndarray
+__all__ = ["convergence_study"]
 
 
 def convergence_study(quantity: Callable[[int], ArrayLike], ns: Sequence[int],
-                      reference: ArrayLike, *, scale: float = 1.0) -> ConvergenceStudy:
+                      reference: ArrayLike, *, scale: float = 1.0) -> Study:
     """Evaluate ``quantity(n)`` for each ``n`` and fit the order of its error.
 
     Parameters
@@ -55,19 +24,21 @@ def convergence_study(quantity: Callable[[int], ArrayLike], ns: Sequence[int],
     quantity
         Maps ``n`` to a number or an array (e.g. pressure at fixed points).
     ns
-        Increasing discretisation sizes, at least two.
+        Increasing discretisation sizes, at least two; both parities may be
+        mixed to average an even-odd wobble (the order is fitted through it).
     reference
         Exact or converged value(s) to measure against.
     scale
         Errors are divided by it (e.g. the peak pressure, or the load).
+
+    Returns
+    -------
+    Study
+        ``orders["value"]``, ``constants["value"]``, ``errors["value"]`` (per
+        ``n``), ``extrapolated["value"]`` (Richardson, from the two largest ``n``).
     """
     if len(ns) < 2:
         raise ValueError(f"`ns` = {list(ns)!r} must hold at least two sizes")
-    ref = np.asarray(reference, dtype=float)
-    vals = np.array([np.asarray(quantity(int(n)), dtype=float) for n in ns])
-    errs = np.array([np.max(np.abs(v - ref)) / scale for v in vals])
-    h = 1.0 / np.asarray(ns, dtype=float)
-    order, const = fitted_order(h, errs)
-    extra = richardson(h, vals, order if np.isfinite(order) else 1.0)
-    return ConvergenceStudy(n=np.asarray(ns), values=vals, errors=errs, order=order,
-                            constant=const, extrapolated=extra)
+    return run_study(lambda n: (int(n), {"value": quantity(int(n))}, {}), list(ns), param="n",
+                     reference={"value": reference}, scales={"value": scale},
+                     require_monotone=False)

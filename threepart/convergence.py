@@ -204,7 +204,7 @@ def _error(value: Any, reference: Any, scale: float) -> float:
                  / scale)
 
 
-def analyse(study: Study, error_only: Sequence[str] = ()) -> Study:
+def analyse(study: Study, error_only: Sequence[str] = (), require_monotone: bool = True) -> Study:
     """Fill ``study``'s orders, GCI and Richardson estimates, by one rule for every study.
 
     With a reference, the order is fitted to the errors (:func:`fitted_order`)
@@ -215,7 +215,9 @@ def analyse(study: Study, error_only: Sequence[str] = ()) -> Study:
     reference, the three-level order and GCI are given where the values
     converge monotonically. ``error_only`` names quantities whose values are
     themselves errors (a field's largest deviation): they get a fitted order
-    and nothing else.
+    and nothing else. ``require_monotone=False`` fits the order through errors
+    that wobble (a sequence of both parities of ``n``, chosen to average an
+    even-odd wobble), as long as more than one lies above round-off.
     """
     h = study.h
     for q, vals in study.values.items():
@@ -232,7 +234,7 @@ def analyse(study: Study, error_only: Sequence[str] = ()) -> Study:
                 study.gci[q] = three[1]
                 study.extrapolated[q] = float(richardson(h, vals, three[0]))
             continue
-        if not is_monotone(errs):
+        if require_monotone and not is_monotone(errs):
             study.orders[q] = study.constants[q] = math.nan
             if three is not None:
                 study.orders[q], study.gci[q] = three
@@ -261,7 +263,7 @@ def run_study(evaluate: Callable[[Any], tuple[float, Mapping[str, Any], Mapping[
               levels: Sequence[Any], *, param: str = "h",
               reference: Mapping[str, Any] | None = None,
               scales: Mapping[str, float] | None = None, error_only: Sequence[str] = (),
-              skip: tuple[type[BaseException], ...] = (),
+              skip: tuple[type[BaseException], ...] = (), require_monotone: bool = True,
               progress: Callable[[str], None] | None = None) -> Study:
     """The one convergence-study driver: evaluate each level, coarse to fine, then :func:`analyse`.
 
@@ -279,8 +281,8 @@ def run_study(evaluate: Callable[[Any], tuple[float, Mapping[str, Any], Mapping[
         Reference values and error scales (default 1) of the quantities; errors
         are ``max |value - reference| / scale``. Without a reference the study
         is reference-free.
-    error_only
-        Quantities whose values are themselves errors (see :func:`analyse`).
+    error_only, require_monotone
+        See :func:`analyse`.
     skip
         Exception types that make a level a note instead of an error.
     progress
@@ -316,4 +318,4 @@ def run_study(evaluate: Callable[[Any], tuple[float, Mapping[str, Any], Mapping[
             scale = float((scales or {}).get(q, 1.0))
             study.scales[q] = scale
             study.errors[q] = [_error(v, reference[q], scale) for v in study.values[q]]
-    return analyse(study, error_only)
+    return analyse(study, error_only, require_monotone)
