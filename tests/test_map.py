@@ -24,7 +24,7 @@ import jsonschema
 import pytest
 
 from threepart.cli import main as cli_main
-from threepart.output import MARKER, OutputExistsError, foreign_entries, read_marker
+from threepart.output import MARKER, OutputExistsError, atomic_dir, foreign_entries, read_marker
 from threepart.reports import map as map_mod
 from threepart.reports.map import (COLUMNS, CONTROL_LIMIT, below_level, designer_sentence,
                                    exit_status, run_map)
@@ -314,26 +314,32 @@ def test_a_quick_map_is_not_resumed_as_a_full_one(tmp_path, counter, scheduler):
 # ---------------------------------------------------------------------------------------
 # the output directory
 # ---------------------------------------------------------------------------------------
-def test_a_foreign_directory_is_refused_and_left_untouched(tmp_path, counter, finished):
+def test_a_foreign_directory_is_refused_and_left_untouched(tmp_path, counter, scheduler, finished):
     plain = tmp_path / "plain"
     plain.mkdir()
     (plain / "notes.txt").write_text("mine")
-    report = tmp_path / "report"
-    report.mkdir()
-    (report / MARKER).write_text(json.dumps({"tool": "threepart", "command": "verify",
-                                             "state": "complete", "files": ["r.md"], "dirs": []}))
-    (report / "r.md").write_text("a report")
-    polluted = tmp_path / "polluted"
-    polluted.mkdir()
+    report = tmp_path / "report"                                 # threepart's own, of another command
+    with atomic_dir(report, command="verify") as tmp:
+        (tmp / "r.md").write_text("a report")
+    copied = tmp_path / "copied"                                 # a finished map, copied: not ours here
+    copied.mkdir()
     for f in finished[0].iterdir():
         if f.is_file():
-            (polluted / f.name).write_bytes(f.read_bytes())
-    (polluted / "plots").mkdir()
+            (copied / f.name).write_bytes(f.read_bytes())
+    (copied / "plots").mkdir()
     for f in (finished[0] / "plots").iterdir():
-        (polluted / "plots" / f.name).write_bytes(f.read_bytes())
+        (copied / "plots" / f.name).write_bytes(f.read_bytes())
+    polluted = tmp_path / "polluted"                             # a map of ours, with a file added
+    sweep(polluted, scheduler, FakeEvaluate(tmp_path))
     (polluted / "plots" / "my_sketch.png").write_bytes(b"not threepart's")
+    edited = tmp_path / "edited"                                 # a map of ours, one of its files edited
+    sweep(edited, scheduler, FakeEvaluate(tmp_path))
+    with open(edited / "map.csv", "a") as fh:
+        fh.write("my note\n")
     cases = [(plain, "holds 'notes.txt'"), (report, "threepart verify`, not a map"),
-             (polluted, "holds 'plots/my_sketch.png', which threepart did not write")]
+             (copied, "holds a .threepart-output.json that threepart did not write there"),
+             (polluted, "holds 'plots/my_sketch.png', which threepart did not write"),
+             (edited, "holds 'map.csv', which was changed after threepart wrote it")]
     for d, match in cases:
         before = snapshot(d)
         for force in (False, True):
