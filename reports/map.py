@@ -55,7 +55,8 @@ import os
 import textwrap
 import time
 import uuid
-from contextlib import ExitStack, contextmanager
+from asyncio import CancelledError
+from contextlib import ExitStack, contextmanager, nullcontext
 from pathlib import Path
 from typing import Any, Callable, Iterator, Sequence
 
@@ -174,27 +175,90 @@ def _control_record(result: Any, error: str | None, mode: str) -> dict[str, Any]
 # the engine
 # ---------------------------------------------------------------------------------------
 @contextmanager
+def _quiet_workers() -> Iterator[None]:
+    """Start worker processes that leave Ctrl-C to this one and log only errors.
+
+    A terminal's Ctrl-C reaches every process of the group. The workers
+    spawned here inherit an ignored SIGINT (an ignored signal survives
+    ``exec``; Python and asyncio then install no handler of their own), so
+    only this process is interrupted and closes the cluster; their
+    ``distributed`` loggers (configured from the environment at import) say
+    nothing below ERROR, such as the cancelled tasks of that close.
+    """
+    import signal
+
+    saved_env = os.environ.get(_WORKER_LOG_ENV)
+    os.environ[_WORKER_LOG_ENV] = "error"
+    saved = signal.signal(signal.SIGINT, signal.SIG_IGN) if _main_thread() else None
+    try:
+        yield
+    finally:
+        if saved is not None:
+            signal.signal(signal.SIGINT, saved)
+        if saved_env is None:
+            os.environ.pop(_WORKER_LOG_ENV, None)
+        else:
+            os.environ[_WORKER_LOG_ENV] = saved_env
+
+
+#: the dask setting (as an environment variable) of the worker processes' log level
+_WORKER_LOG_ENV = "DASK_LOGGING__DISTRIBUTED"
+
+
+def _main_thread() -> bool:
+    import threading
+
+    return threading.current_thread() is threading.main_thread()
+
+
+@contextmanager
+def _silenced(loggers: Sequence[str] = ("distributed", "dask", "tornado", "asyncio")) -> Iterator[None]:
+    """Raise the level of ``loggers`` above CRITICAL for the block (the cluster's close on Ctrl-C)."""
+    import logging
+
+    saved = {name: logging.getLogger(name).level for name in loggers}
+    for name in loggers:
+        logging.getLogger(name).setLevel(logging.CRITICAL + 1)
+    try:
+        yield
+    finally:
+        for name, level in saved.items():
+            logging.getLogger(name).setLevel(level)
+
+
+@contextmanager
 def _engine(scheduler: str | None, workers: int | None) -> Iterator[tuple[Any, dict[str, Any]]]:
-    """A dask client on a new local cluster or on ``scheduler``; closed on exit (the cluster too)."""
+    """A dask client on a new local cluster or on ``scheduler``; closed on exit (the cluster too).
+
+    On an interrupt the close is silent: the one line that says so is the
+    command line's.
+    """
     cluster = None
     if scheduler is None:
-        cluster = LocalCluster(n_workers=workers or DEFAULT_WORKERS, threads_per_worker=1,
-                               processes=True)
+        with _quiet_workers():
+            cluster = LocalCluster(n_workers=workers or DEFAULT_WORKERS, threads_per_worker=1,
+                                   processes=True)
         try:
             client = Client(cluster)
         except BaseException:
-            cluster.close()
+            with _silenced():
+                cluster.close()
             raise
     else:
         client = _connect(scheduler)
+    interrupted = False
     try:
         engine = {"kind": "dask.distributed", "scheduler": client.scheduler.address,
                   "workers": len(client.nthreads()), "dask_version": dask.__version__}
         yield client, engine
+    except BaseException:
+        interrupted = True
+        raise
     finally:
-        client.close()
-        if cluster is not None:
-            cluster.close()
+        with _silenced() if interrupted else nullcontext():
+            client.close()
+            if cluster is not None:
+                cluster.close()
 
 
 def _connect(scheduler: str) -> Any:
@@ -225,7 +289,7 @@ def _sweep(client: Any, tasks: list[tuple[str, Callable[..., Any], tuple[Any, ..
             key, point = futures[fut]
             try:
                 result, error = fut.result(), None
-            except Exception as exc:   # a failed point is recorded, never a crash
+            except (Exception, CancelledError) as exc:   # a failed point is recorded, never a crash
                 result, error = None, _one_line(exc)
             rec = (_control_record(result, error, mode) if point is None
                    else _point_record(point, result, error, mode))
