@@ -89,7 +89,7 @@ import threading
 import time
 from contextlib import contextmanager
 from pathlib import Path
-from typing import Any, Callable, Iterator, Literal
+from typing import Any, Callable, Iterator, Literal, NoReturn
 
 __all__ = ["MARKER", "LEDGER", "MARKER_FORMAT", "OutputExistsError", "atomic_dir", "check_out",
            "clean_stale", "ResumableDir", "write_file", "check_file", "scratch_dir", "read_marker",
@@ -117,11 +117,24 @@ class OutputExistsError(ValueError):
     """A path may not be written: it holds something threepart did not write, or that was changed."""
 
 
+class _WriteError(OSError):
+    """An ``OSError`` whose one-line message already names what could not be written."""
+
+
 def _os_error(exc: OSError, what: str) -> OSError:
     """A one-line ``OSError`` that names ``what`` (e.g. a path) and keeps the errno."""
-    err = OSError(f"cannot write {what}: {exc.strerror or exc}")
+    if isinstance(exc, _WriteError):
+        return exc
+    err = _WriteError(f"cannot write {what}: {exc.strerror or exc}")
     err.errno = exc.errno
     return err
+
+
+def _reraise(exc: OSError, what: str) -> NoReturn:
+    """Raise ``exc`` as a one-line error naming ``what`` (unchanged if it names a path already)."""
+    if isinstance(exc, _WriteError):
+        raise exc
+    raise _os_error(exc, what) from exc
 
 
 # ---------------------------------------------------------------------------------------
@@ -243,7 +256,7 @@ def _write_json(path: Path, doc: dict[str, Any]) -> None:
         except OSError:
             pass
         if isinstance(exc, OSError):
-            raise _os_error(exc, repr(str(path))) from exc
+            _reraise(exc, repr(str(path)))
         raise
 
 
@@ -719,7 +732,7 @@ def atomic_dir(out: str | Path, force: bool = False, *, command: str = "threepar
         out.parent.mkdir(parents=True, exist_ok=True)
         tmp = Path(tempfile.mkdtemp(prefix=f".{out.name}.", suffix=".tmp", dir=out.parent))
     except OSError as exc:
-        raise _os_error(exc, what) from exc
+        _reraise(exc, what)
     marker = _new_marker(out, command)
     try:
         _write_marker(tmp, marker)   # at once, so that a killed run's leftover is recognised
@@ -741,9 +754,7 @@ def atomic_dir(out: str | Path, force: bool = False, *, command: str = "threepar
             _remove_owned(old, out)
     except OSError as exc:
         _remove_tmp(tmp)
-        if isinstance(exc, OutputExistsError) or str(out) in str(exc) or str(tmp) in str(exc):
-            raise
-        raise _os_error(exc, f"{what} ({exc.filename or tmp})") from exc
+        _reraise(exc, f"{what} ({exc.filename or tmp})")
     except BaseException:
         _remove_tmp(tmp)   # this run's own temporary directory (gone already if renamed)
         raise
@@ -837,7 +848,7 @@ class ResumableDir:
                 marker = _new_marker(out, command, mode=mode, pending=[])
             marker = _write_marker(out, marker)
         except OSError as exc:
-            raise _os_error(exc, f"`out` = {str(out)!r}") from exc
+            _reraise(exc, f"`out` = {str(out)!r}")
         return cls(out, marker, action)
 
     def _save(self) -> None:
@@ -872,7 +883,7 @@ class ResumableDir:
         except BaseException as exc:
             part.unlink(missing_ok=True)
             if isinstance(exc, OSError):
-                raise _os_error(exc, repr(str(target))) from exc
+                _reraise(exc, repr(str(target)))
             raise
         finally:
             self.marker["pending"] = [p for p in self.marker["pending"] if p != part_rel]
@@ -929,7 +940,7 @@ class ResumableDir:
             self.marker["files"] = {**self.marker["files"], rel: {**_digest(path), "grows": True}}
             self._save()
         except OSError as exc:
-            raise _os_error(exc, repr(str(path))) from exc
+            _reraise(exc, repr(str(path)))
 
     def close(self) -> None:
         """Close the open logs."""
@@ -1092,7 +1103,7 @@ def write_file(path: str | Path, data: str | bytes | Callable[[Path], None], *, 
         _write_json(directory / LEDGER, _signed({"tool": "threepart", "format": MARKER_FORMAT,
                                                   "files": files}, directory))
     except OSError as exc:
-        raise _os_error(exc, q) from exc
+        _reraise(exc, q)
     return path
 
 
