@@ -193,7 +193,7 @@ def main(out: str | Path = "figures", force: bool = False, sie: bool = True) -> 
     """
     from threepart.output import atomic_dir, check_out, strict_json
 
-    check_out(out, force)
+    check_out(out, force, command="figures")
     problems = check_admissible()
     for p in problems:
         print(f"threepart figures: {p}")

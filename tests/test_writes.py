@@ -218,6 +218,16 @@ def test_a_copied_report_is_refused_and_the_original_reruns(tmp_path):
     assert _report(out) == out                                   # the original is still ours
 
 
+def test_another_command_s_output_is_not_replaced(tmp_path):
+    out = _report(tmp_path / "rep")                              # written by `verify`
+    before = _tree(out)
+    with pytest.raises(OutputExistsError, match=r"holds the output of `threepart verify`, not of "
+                                                r"`threepart figures`"):
+        with atomic_dir(out, command="figures") as tmp:
+            (tmp / "pressure_a.png").write_bytes(b"png")
+    assert _tree(out) == before
+
+
 def test_a_listed_file_turned_symbolic_link_is_refused(tmp_path):
     out = _report(tmp_path / "rep")
     target = tmp_path / "thesis.md"

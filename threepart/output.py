@@ -579,7 +579,7 @@ def _check_dir(out: Path, q: str) -> bool:
     return True
 
 
-def check_out(out: str | Path, force: bool = False) -> State:
+def check_out(out: str | Path, force: bool = False, *, command: str | None = None) -> State:
     """Check that ``out`` may be written, before any work.
 
     Parameters
@@ -589,6 +589,9 @@ def check_out(out: str | Path, force: bool = False) -> State:
     force
         Kept for the callers' signatures; threepart's own earlier output is
         replaced without it, and nothing else is replaced with it.
+    command
+        The command about to write ``out`` (e.g. ``"verify"``): the output of
+        another command is not its own, and is refused.
 
     Returns
     -------
@@ -613,6 +616,10 @@ def check_out(out: str | Path, force: bool = False) -> State:
     problem = _problem(out)
     if problem is not None:
         raise OutputExistsError(f"{q} {problem}")
+    other = (read_marker(out) or {}).get("command")
+    if command is not None and other != command:
+        raise OutputExistsError(f"{q} holds the output of `threepart {other}`, not of `threepart "
+                                f"{command}`; refusing to replace it, choose another --out")
     if _contains_cwd(out):
         raise OutputExistsError(f"{q} is (or holds) the current directory; run from another "
                                 "directory to replace it")
@@ -727,7 +734,7 @@ def atomic_dir(out: str | Path, force: bool = False, *, command: str = "threepar
     out = Path(os.path.abspath(out))
     what = f"`out` = {str(out)!r}"
     clean_stale(out)
-    check_out(out, force)
+    check_out(out, force, command=command)
     try:
         out.parent.mkdir(parents=True, exist_ok=True)
         tmp = Path(tempfile.mkdtemp(prefix=f".{out.name}.", suffix=".tmp", dir=out.parent))
@@ -738,7 +745,7 @@ def atomic_dir(out: str | Path, force: bool = False, *, command: str = "threepar
         _write_marker(tmp, marker)   # at once, so that a killed run's leftover is recognised
         yield tmp
         _seal(tmp, marker, out)
-        state = check_out(out, force)   # the run may have taken long: check again
+        state = check_out(out, force, command=command)   # the run may have taken long: check again
         if state == "new":
             os.rename(tmp, out)
         elif state == "empty":
