@@ -116,6 +116,25 @@ def test_a_forged_or_copied_ledger_is_not_trusted(tmp_path):
         write_file(copied / "q.csv", "new\n")
 
 
+def test_a_run_killed_right_after_the_rename_still_owns_its_file(tmp_path, monkeypatch):
+    f = tmp_path / "q.csv"
+    write_file(f, "old\n")
+    real = os.replace
+
+    def killed_after(src, dst):
+        real(src, dst)
+        if Path(dst) == f:
+            raise KeyboardInterrupt                              # before the ledger records it
+
+    monkeypatch.setattr(os, "replace", killed_after)
+    with pytest.raises(KeyboardInterrupt):
+        write_file(f, "new\n")
+    monkeypatch.undo()
+    assert f.read_text() == "new\n"
+    write_file(f, "newer\n")                                     # still threepart's own
+    assert f.read_text() == "newer\n"
+
+
 def test_a_full_disk_leaves_no_half_written_file(tmp_path, monkeypatch):
     f = tmp_path / "q.csv"
     write_file(f, "old\n", arg="--csv")

@@ -221,8 +221,12 @@ def _unchanged(path: Path, recorded: Any) -> bool:
     """Whether ``path`` is a regular file that still matches the ``recorded`` digest.
 
     A recorded digest with ``"grows": True`` (a log that is appended to) must
-    match the file's first ``size`` bytes; the file may have grown since.
+    match the file's first ``size`` bytes; the file may have grown since. One
+    with ``"was"`` (recorded just before a file is replaced) also accepts the
+    content it replaces, for a run killed between the rename and the record.
     """
+    if isinstance(recorded, dict) and "was" in recorded and _unchanged(path, recorded["was"]):
+        return True
     if not isinstance(recorded, dict) or not isinstance(recorded.get("size"), int):
         return False
     try:
@@ -885,8 +889,14 @@ class ResumableDir:
         part = self.out / part_rel
         try:
             _fill_file(part, data)
+            was = self.marker["files"].get(rel)
+            was = None if was is None else {k: v for k, v in was.items() if k != "was"}
+            new = _digest(part)
+            if was is not None:   # either content is ours until the record below
+                self.marker["files"] = {**self.marker["files"], rel: {**new, "was": was}}
+                self._save()
             os.replace(part, target)
-            self.marker["files"] = {**self.marker["files"], rel: _digest(target)}
+            self.marker["files"] = {**self.marker["files"], rel: new}
         except BaseException as exc:
             part.unlink(missing_ok=True)
             if isinstance(exc, OSError):
@@ -1097,18 +1107,25 @@ def write_file(path: str | Path, data: str | bytes | Callable[[Path], None], *, 
     directory = Path(os.path.abspath(path)).parent
     q = f"`{arg}` = {str(path)!r}"
     part = directory / f".{path.name}.{secrets.token_hex(4)}.part"
+    def record(files: dict[str, Digest]) -> None:
+        _write_json(directory / LEDGER, _signed({"tool": "threepart", "format": MARKER_FORMAT,
+                                                  "files": files}, directory))
+
     try:
+        recorded, _ = _read_ledger(directory)
+        files = {k: v for k, v in (recorded or {}).items() if os.path.lexists(directory / k)}
         try:
             _fill_file(part, data)
+            new = _digest(part)
+            was = files.get(path.name)
+            was = None if was is None else {k: v for k, v in was.items() if k != "was"}
+            if was is not None:   # either content is ours until the record below
+                record({**files, path.name: {**new, "was": was}})
             os.replace(part, path)
         finally:
             part.unlink(missing_ok=True)
         _fsync_dir(directory)
-        recorded, _ = _read_ledger(directory)
-        files = {k: v for k, v in (recorded or {}).items() if os.path.lexists(directory / k)}
-        files[path.name] = _digest(path)
-        _write_json(directory / LEDGER, _signed({"tool": "threepart", "format": MARKER_FORMAT,
-                                                  "files": files}, directory))
+        record({**files, path.name: new})
     except OSError as exc:
         _reraise(exc, q)
     return path
