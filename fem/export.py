@@ -89,7 +89,8 @@ def write_fields(fields: Fields, path: str | Path, overwrite: bool = False) -> P
     path = Path(path)
     if path.suffix not in (".vtu", ".xdmf"):
         raise ValueError(f"`path` = {str(path)!r} must end in .vtu or .xdmf")
-    check_file(path, arg="path", overwrite=overwrite)
+    how = "choose another name or pass overwrite=True to replace it"
+    check_file(path, arg="path", overwrite=overwrite, how=how)
     m = to_meshio(fields)
     if path.suffix == ".xdmf":
         try:
@@ -98,7 +99,7 @@ def write_fields(fields: Fields, path: str | Path, overwrite: bool = False) -> P
             raise ImportError("writing .xdmf needs h5py (meshio's XDMF writer imports it); "
                               "`pip install h5py` or write .vtu") from err
         return write_file(path, lambda part: meshio.xdmf.write(part, m, data_format="XML"),
-                          arg="path", overwrite=overwrite)
+                          arg="path", overwrite=overwrite, how=how)
     return write_file(path, lambda part: meshio.write(part, m, file_format="vtu"), arg="path",
-                      overwrite=overwrite)
+                      overwrite=overwrite, how=how)
 

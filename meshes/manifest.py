@@ -61,7 +61,7 @@ def write_manifest(entries: list[dict[str, Any]], path: str | Path, overwrite: b
     from threepart.output import write_file
 
     write_file(path, json.dumps({"meshes": entries}, indent=2, sort_keys=True) + "\n", arg="path",
-               overwrite=overwrite)
+               overwrite=overwrite, how="choose another name or pass overwrite=True to replace it")
 
 
 def check_manifest(manifest: str | Path) -> list[str]:

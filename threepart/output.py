@@ -1020,7 +1020,8 @@ def _read_ledger(directory: Path) -> tuple[dict[str, Digest] | None, bool]:
     return doc["files"], True
 
 
-def check_file(path: str | Path, *, arg: str = "path", overwrite: bool = False) -> bool:
+def check_file(path: str | Path, *, arg: str = "path", overwrite: bool = False,
+               how: str = "choose another name") -> bool:
     """Check that :func:`write_file` may write ``path``, changing nothing; return whether it exists.
 
     Parameters
@@ -1031,6 +1032,8 @@ def check_file(path: str | Path, *, arg: str = "path", overwrite: bool = False) 
         The name of the caller's argument, for the messages (e.g. ``"--csv"``).
     overwrite
         Replace an existing regular file even if threepart did not write it.
+    how
+        What the refusal tells the user to do instead.
 
     Raises
     ------
@@ -1065,11 +1068,11 @@ def check_file(path: str | Path, *, arg: str = "path", overwrite: bool = False) 
         return True
     why = ("was changed after threepart wrote it" if path.name in recorded
            else "was not written by threepart")
-    raise OutputExistsError(f"{q} exists and {why}; refusing to overwrite it: choose another name")
+    raise OutputExistsError(f"{q} exists and {why}; refusing to overwrite it: {how}")
 
 
 def write_file(path: str | Path, data: str | bytes | Callable[[Path], None], *, arg: str = "path",
-               overwrite: bool = False) -> Path:
+               overwrite: bool = False, how: str = "choose another name") -> Path:
     """Write one file atomically; create it, or replace threepart's own unchanged earlier file.
 
     The data go to a temporary sibling, which is fsynced and renamed over
@@ -1089,6 +1092,8 @@ def write_file(path: str | Path, data: str | bytes | Callable[[Path], None], *, 
         The name of the caller's argument, for the messages (e.g. ``"--csv"``).
     overwrite
         Replace an existing regular file even if threepart did not write it.
+    how
+        What a refusal tells the user to do instead.
 
     Returns
     -------
@@ -1103,7 +1108,7 @@ def write_file(path: str | Path, data: str | bytes | Callable[[Path], None], *, 
         The file cannot be written (one line naming the argument and ``path``).
     """
     path = Path(path)
-    check_file(path, arg=arg, overwrite=overwrite)
+    check_file(path, arg=arg, overwrite=overwrite, how=how)
     directory = Path(os.path.abspath(path)).parent
     q = f"`{arg}` = {str(path)!r}"
     part = directory / f".{path.name}.{secrets.token_hex(4)}.part"
