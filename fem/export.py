@@ -7,7 +7,6 @@ are padded to three components, as VTU and XDMF readers expect.
 from __future__ import annotations
 
 from dataclasses import dataclass
-import os
 from pathlib import Path
 
 import meshio
@@ -80,13 +79,18 @@ def write_fields(fields: Fields, path: str | Path, overwrite: bool = False) -> P
 
     XDMF is written with XML data, but meshio's XDMF writer imports ``h5py``
     all the same, so ``.xdmf`` needs h5py installed (an ``ImportError`` says so).
-    An existing ``path`` is refused with a ``ValueError`` unless ``overwrite``.
+    The file is written atomically through :func:`threepart.output.write_file`:
+    a new file, or one that threepart wrote there earlier and that is unchanged
+    (a rerun replaces it); any other existing file is refused with an
+    ``OutputExistsError`` (a ``ValueError``) unless ``overwrite``.
     """
+    from threepart.output import check_file, write_file
+
     path = Path(path)
     if path.suffix not in (".vtu", ".xdmf"):
         raise ValueError(f"`path` = {str(path)!r} must end in .vtu or .xdmf")
-    if os.path.lexists(path) and not overwrite:
-        raise ValueError(f"`path` = {str(path)!r} exists; pass overwrite=True to replace it")
+    how = "choose another name or pass overwrite=True to replace it"
+    check_file(path, arg="path", overwrite=overwrite, how=how)
     m = to_meshio(fields)
     if path.suffix == ".xdmf":
         try:
@@ -94,8 +98,8 @@ def write_fields(fields: Fields, path: str | Path, overwrite: bool = False) -> P
         except ImportError as err:
             raise ImportError("writing .xdmf needs h5py (meshio's XDMF writer imports it); "
                               "`pip install h5py` or write .vtu") from err
-        meshio.xdmf.write(path, m, data_format="XML")
-    else:
-        meshio.write(path, m, file_format="vtu")
-    return path
+        return write_file(path, lambda part: meshio.xdmf.write(part, m, data_format="XML"),
+                          arg="path", overwrite=overwrite, how=how)
+    return write_file(path, lambda part: meshio.write(part, m, file_format="vtu"), arg="path",
+                      overwrite=overwrite, how=how)
 

@@ -9,7 +9,6 @@ from __future__ import annotations
 import copy
 import functools
 import math
-import tempfile
 from dataclasses import dataclass, replace
 from pathlib import Path
 
@@ -18,6 +17,7 @@ import numpy as np
 from skfem import MeshTri
 
 from threepart.meshes import SubstrateSpec, build_substrate
+from threepart.output import scratch_dir
 
 __all__ = ["MeshPreset", "PRESETS", "Substrate", "read_substrate", "make_substrate", "preset"]
 
@@ -204,6 +204,6 @@ def make_substrate(spec: SubstrateSpec) -> Substrate:
 @functools.lru_cache(maxsize=MESH_CACHE_SIZE)
 def _meshed(spec: SubstrateSpec) -> Substrate:
     """The cached mesh of ``spec``; never handed out (:func:`make_substrate` copies it)."""
-    with tempfile.TemporaryDirectory(prefix="threepart-mesh-") as tmp:
+    with scratch_dir("threepart-mesh-") as tmp:   # marked: a killed run's is cleaned by the next
         path = build_substrate(spec, Path(tmp) / "substrate.msh")
         return read_substrate(path)

@@ -50,9 +50,18 @@ def describe(path: str | Path, spec: SubstrateSpec) -> dict[str, Any]:
     }
 
 
-def write_manifest(entries: list[dict[str, Any]], path: str | Path) -> None:
-    """Write manifest ``entries`` as JSON to ``path``."""
-    Path(path).write_text(json.dumps({"meshes": entries}, indent=2, sort_keys=True) + "\n")
+def write_manifest(entries: list[dict[str, Any]], path: str | Path, overwrite: bool = False) -> None:
+    """Write manifest ``entries`` as JSON to ``path``, atomically.
+
+    Through :func:`threepart.output.write_file`: a new file, or the manifest
+    threepart wrote there earlier if unchanged; any other existing file only
+    with ``overwrite`` (e.g. the committed manifest, when the meshes are
+    rebuilt on purpose).
+    """
+    from threepart.output import write_file
+
+    write_file(path, json.dumps({"meshes": entries}, indent=2, sort_keys=True) + "\n", arg="path",
+               overwrite=overwrite, how="choose another name or pass overwrite=True to replace it")
 
 
 def check_manifest(manifest: str | Path) -> list[str]:

@@ -186,13 +186,14 @@ def main(out: str | Path = "figures", force: bool = False, sie: bool = True) -> 
     Writes ``pressure_a.png``, ``pressure_b.png``, ``shear_a.png``,
     ``shear_b.png`` and ``figures.json`` atomically through
     :func:`threepart.output.atomic_dir`: ``out`` must be missing or empty, or
-    with ``force`` figures that threepart wrote earlier; a directory holding
-    anything else is refused with ``OutputExistsError`` before any work.
+    figures that threepart wrote earlier and that are unchanged (replaced;
+    ``force`` changes nothing); a directory holding anything else is refused
+    with ``OutputExistsError`` before any work.
     Returns 0, or 1 if a curve is not admissible.
     """
     from threepart.output import atomic_dir, check_out, strict_json
 
-    check_out(out, force)
+    check_out(out, force, command="figures")
     problems = check_admissible()
     for p in problems:
         print(f"threepart figures: {p}")

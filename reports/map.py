@@ -14,21 +14,23 @@ peak-pressure error per ``R2/R1`` and ``H/b``.
 
 The output directory
 --------------------
-``out`` is written in place (a resumable sweep cannot be one atomic rename),
-under threepart's marker (:mod:`threepart.output`) with the command ``"map"``:
+``out`` is written in place (a resumable sweep cannot be one atomic rename), as
+a :class:`threepart.output.ResumableDir` with the command ``"map"``: its
+signed marker lists every file with its checksum, updated after each file and
+each line of the log, so that the directory is threepart's own at every
+moment, even after a kill.
 
 * missing or empty: a new map is started;
 * an unfinished map (marker state ``"writing"``: interrupted, or with failed
   points) of the same mode: resumed, with or without ``force``;
 * a finished map (state ``"complete"``), or an unfinished one of the other
-  mode: refused, or with ``force`` its files (only those its marker lists) are
-  removed and a new map is started;
-* anything else (a file threepart did not write, another command's output, a
-  map still being written by a live process): refused with
-  :class:`~threepart.output.OutputExistsError` before any work.
+  mode: refused (a map is expensive), or with ``force`` its files (only those
+  its marker lists, checked unchanged) are removed and a new map is started;
+* anything else (a file threepart did not write or one edited since, another
+  command's output, a map still being written by a live process): refused
+  with :class:`~threepart.output.OutputExistsError` before any work.
 
-The marker lists every file before it is written, so that the directory is
-always threepart's own, even after a kill.
+With ``--scheduler``, the scheduler is reached before ``out`` is touched.
 
 Names
 -----
@@ -45,27 +47,23 @@ CONTROL_LIMIT     -- the control's largest admissible peak-pressure error (issue
 from __future__ import annotations
 
 import csv
-import datetime as _dt
 import gc
 import io
 import json
 import math
 import os
-import socket
 import textwrap
 import time
 import uuid
-from contextlib import contextmanager
+from asyncio import CancelledError
+from contextlib import ExitStack, contextmanager, nullcontext
 from pathlib import Path
 from typing import Any, Callable, Iterator, Sequence
 
 import dask
 from dask.distributed import Client, LocalCluster, as_completed
 
-from threepart.output import (MARKER, MARKER_FORMAT, OutputExistsError, check_out, foreign_entries,
-                              json_safe, read_marker, strict_json)
-# not public in threepart.output, but its one home: the marker's atomic write and the live-pid check
-from threepart.output import validate_json, write_marker, writer_running
+from threepart.output import ResumableDir, json_safe, strict_json, validate_json
 from threepart.tolerances import tolerance
 
 from . import validity
@@ -121,91 +119,13 @@ def check_arguments(workers: int | None, scheduler: str | None) -> None:
                          "e.g. tcp://host:8786")
 
 
-def _new_marker(out: Path, mode: str) -> dict[str, Any]:
-    """The marker of a new map: :func:`threepart.output.atomic_dir`'s, with the mode and the log listed."""
-    return {"tool": "threepart", "format": MARKER_FORMAT, "command": COMMAND, "state": "writing",
-            "target": out.name, "pid": os.getpid(), "host": socket.gethostname(),
-            "created": _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds"),
-            "mode": mode, "files": [MARKER + ".part", POINTS_FILE], "dirs": []}
-
-
-def _alive(marker: dict[str, Any]) -> bool:
-    """Whether another process, still running, may be writing the map of ``marker``."""
-    return marker.get("pid") != os.getpid() and writer_running(marker)
-
-
-def _clear(out: Path, marker: dict[str, Any]) -> None:
-    """Remove the files and directories the marker lists (a finished map replaced with force)."""
-    for f in marker["files"]:
-        p = out / f
-        if os.path.lexists(p) and (p.is_symlink() or not p.is_dir()):
-            os.unlink(p)
-    for d in sorted(marker["dirs"], key=lambda s: s.count("/"), reverse=True):
-        try:
-            os.rmdir(out / d)
-        except OSError:
-            pass
-
-
-def _open_out(out: Path, force: bool, mode: str) -> tuple[dict[str, Any], str]:
-    """Check ``out`` (before any work) and make it this run's map; return its marker and what was done.
-
-    The second value is ``"new"``, ``"resumed"`` or ``"replaced"``.
-    """
-    q = f"`out` = {str(out)!r}"
-    try:
-        check_out(out, force=False)   # missing or empty; raises for anything else
-        existing = None
-    except OutputExistsError:
-        existing = read_marker(out)
-        if existing is None or not out.is_dir() or out.is_symlink():
-            raise
-        if foreign_entries(out):
-            raise                      # check_out named the first foreign file
-    action = "new"
-    if existing is not None:
-        command, state = existing.get("command"), existing.get("state")
-        if command != COMMAND:
-            raise OutputExistsError(f"{q} holds the output of `threepart {command}`, not a map; "
-                                    "refusing to touch it, choose another --out")
-        if state != "complete" and _alive(existing):
-            raise OutputExistsError(f"{q} is being written by process {existing['pid']}; "
-                                    "wait for it or choose another --out")
-        if state != "complete" and existing.get("mode") == mode:
-            action = "resumed"
-        elif not force:
-            what = ("a finished map" if state == "complete"
-                    else f"an unfinished {existing.get('mode')} map (resume it with the same mode)")
-            raise OutputExistsError(f"{q} holds {what}; pass --force to replace it")
-        else:
-            _clear(out, existing)
-            action = "replaced"
-    try:
-        out.mkdir(parents=True, exist_ok=True)
-    except OSError as exc:
-        raise OSError(exc.errno, f"cannot write {q}: {exc.strerror}") from exc
-    if action == "resumed":
-        assert existing is not None
-        marker = {**existing, "pid": os.getpid(), "host": socket.gethostname()}
-    else:
-        marker = _new_marker(out, mode)
-    write_marker(out, marker)   # it lists points.jsonl before the log is opened
-    return marker, action
-
-
 # ---------------------------------------------------------------------------------------
 # the log of finished tasks
 # ---------------------------------------------------------------------------------------
-def _read_log(path: Path, mode: str) -> dict[str, dict[str, Any]]:
-    """The last line of every key in ``points.jsonl`` of this mode; a torn last line is cut off."""
-    if not path.exists():
-        return {}
-    data = path.read_bytes()
-    end = data.rfind(b"\n") + 1
-    if end < len(data):            # killed in the middle of a line: drop the fragment
-        os.truncate(path, end)
+def _read_log(data: bytes, mode: str) -> dict[str, dict[str, Any]]:
+    """The last line of every key of this mode in the whole lines ``data`` of ``points.jsonl``."""
     records: dict[str, dict[str, Any]] = {}
-    for line in data[:end].decode("utf-8").splitlines():
+    for line in data.decode("utf-8").splitlines():
         try:
             rec = json.loads(line)
         except ValueError:
@@ -213,21 +133,6 @@ def _read_log(path: Path, mode: str) -> dict[str, dict[str, Any]]:
         if isinstance(rec, dict) and rec.get("mode") == mode and isinstance(rec.get("key"), str):
             records[rec["key"]] = rec
     return records
-
-
-class _Log:
-    """Append-only ``points.jsonl``: one line per finished task, on disk before the next one."""
-
-    def __init__(self, path: Path) -> None:
-        self._fh = open(path, "a", encoding="utf-8")
-
-    def append(self, rec: dict[str, Any]) -> None:
-        self._fh.write(strict_json(rec) + "\n")
-        self._fh.flush()
-        os.fsync(self._fh.fileno())
-
-    def close(self) -> None:
-        self._fh.close()
 
 
 def _one_line(exc: BaseException) -> str:
@@ -270,27 +175,90 @@ def _control_record(result: Any, error: str | None, mode: str) -> dict[str, Any]
 # the engine
 # ---------------------------------------------------------------------------------------
 @contextmanager
+def _quiet_workers() -> Iterator[None]:
+    """Start worker processes that leave Ctrl-C to this one and log only errors.
+
+    A terminal's Ctrl-C reaches every process of the group. The workers
+    spawned here inherit an ignored SIGINT (an ignored signal survives
+    ``exec``; Python and asyncio then install no handler of their own), so
+    only this process is interrupted and closes the cluster; their
+    ``distributed`` loggers (configured from the environment at import) say
+    nothing below ERROR, such as the cancelled tasks of that close.
+    """
+    import signal
+
+    saved_env = os.environ.get(_WORKER_LOG_ENV)
+    os.environ[_WORKER_LOG_ENV] = "error"
+    saved = signal.signal(signal.SIGINT, signal.SIG_IGN) if _main_thread() else None
+    try:
+        yield
+    finally:
+        if saved is not None:
+            signal.signal(signal.SIGINT, saved)
+        if saved_env is None:
+            os.environ.pop(_WORKER_LOG_ENV, None)
+        else:
+            os.environ[_WORKER_LOG_ENV] = saved_env
+
+
+#: the dask setting (as an environment variable) of the worker processes' log level
+_WORKER_LOG_ENV = "DASK_LOGGING__DISTRIBUTED"
+
+
+def _main_thread() -> bool:
+    import threading
+
+    return threading.current_thread() is threading.main_thread()
+
+
+@contextmanager
+def _silenced(loggers: Sequence[str] = ("distributed", "dask", "tornado", "asyncio")) -> Iterator[None]:
+    """Raise the level of ``loggers`` above CRITICAL for the block (the cluster's close on Ctrl-C)."""
+    import logging
+
+    saved = {name: logging.getLogger(name).level for name in loggers}
+    for name in loggers:
+        logging.getLogger(name).setLevel(logging.CRITICAL + 1)
+    try:
+        yield
+    finally:
+        for name, level in saved.items():
+            logging.getLogger(name).setLevel(level)
+
+
+@contextmanager
 def _engine(scheduler: str | None, workers: int | None) -> Iterator[tuple[Any, dict[str, Any]]]:
-    """A dask client on a new local cluster or on ``scheduler``; closed on exit (the cluster too)."""
+    """A dask client on a new local cluster or on ``scheduler``; closed on exit (the cluster too).
+
+    On an interrupt the close is silent: the one line that says so is the
+    command line's.
+    """
     cluster = None
     if scheduler is None:
-        cluster = LocalCluster(n_workers=workers or DEFAULT_WORKERS, threads_per_worker=1,
-                               processes=True)
+        with _quiet_workers():
+            cluster = LocalCluster(n_workers=workers or DEFAULT_WORKERS, threads_per_worker=1,
+                                   processes=True)
         try:
             client = Client(cluster)
         except BaseException:
-            cluster.close()
+            with _silenced():
+                cluster.close()
             raise
     else:
         client = _connect(scheduler)
+    interrupted = False
     try:
         engine = {"kind": "dask.distributed", "scheduler": client.scheduler.address,
                   "workers": len(client.nthreads()), "dask_version": dask.__version__}
         yield client, engine
+    except BaseException:
+        interrupted = True
+        raise
     finally:
-        client.close()
-        if cluster is not None:
-            cluster.close()
+        with _silenced() if interrupted else nullcontext():
+            client.close()
+            if cluster is not None:
+                cluster.close()
 
 
 def _connect(scheduler: str) -> Any:
@@ -307,7 +275,8 @@ def _connect(scheduler: str) -> Any:
 
 
 def _sweep(client: Any, tasks: list[tuple[str, Callable[..., Any], tuple[Any, ...], Any]],
-           log: _Log, mode: str, done0: int, total: int, say: Say) -> list[dict[str, Any]]:
+           log: Callable[[dict[str, Any]], None], mode: str, done0: int, total: int,
+           say: Say) -> list[dict[str, Any]]:
     """Submit every task, log each result as it arrives, and report progress; return the records."""
     futures = {}
     for key, fn, args, point in tasks:
@@ -320,11 +289,11 @@ def _sweep(client: Any, tasks: list[tuple[str, Callable[..., Any], tuple[Any, ..
             key, point = futures[fut]
             try:
                 result, error = fut.result(), None
-            except Exception as exc:   # a failed point is recorded, never a crash
+            except (Exception, CancelledError) as exc:   # a failed point is recorded, never a crash
                 result, error = None, _one_line(exc)
             rec = (_control_record(result, error, mode) if point is None
                    else _point_record(point, result, error, mode))
-            log.append(rec)
+            log(rec)
             records.append(rec)
             done = done0 + len(records)
             elapsed = time.perf_counter() - t0
@@ -511,52 +480,29 @@ def _csv_text(points: Sequence[dict[str, Any]]) -> str:
     return buf.getvalue()
 
 
-def _write(out: Path, rel: str, text: str) -> None:
-    """Write ``out/rel`` through a ``.part`` file and a rename."""
-    part = out / (rel + ".part")
-    part.write_text(text, encoding="utf-8")
-    os.replace(part, out / rel)
-
-
 def _groups(points: Sequence[dict[str, Any]]) -> list[tuple[float, float]]:
     return sorted({(p["R2_over_R1"], p["H_over_b"]) for p in points}, key=lambda g: (-g[0], g[1]))
 
 
-def _plan(out: Path, marker: dict[str, Any], plots: Sequence[str]) -> None:
-    """List the final files in the marker before any is written (and drop plots of an earlier grid)."""
-    new = [rel for f in ["map.json", "map.csv", *plots] for rel in (f, f + ".part")]
-    stale = [f for f in marker["files"] if f.startswith("plots/") and f not in new]
-    marker["files"] = sorted(set(marker["files"]) | set(new))
-    marker["dirs"] = sorted(set(marker["dirs"]) | {"plots"})
-    write_marker(out, marker)
-    for f in stale:                # ours: the marker lists it
-        if os.path.lexists(out / f):
-            os.unlink(out / f)
-    (out / "plots").mkdir(exist_ok=True)
+def _plan(rd: ResumableDir, plots: Sequence[str]) -> None:
+    """Drop the plots of an earlier grid (ours and unchanged only) and make ``plots/``."""
+    for f in [f for f in rd.marker["files"] if f.startswith("plots/") and f not in plots]:
+        rd.remove(f)
+    rd.mkdir("plots")
 
 
-def _draw(out: Path, doc: dict[str, Any], say: Say) -> None:
+def _draw(rd: ResumableDir, doc: dict[str, Any], say: Say) -> None:
     """Draw one contour map per ``R2/R1`` and ``H/b`` into ``out/plots`` and list them in ``doc``."""
     points = doc["points"]
     for r, h in _groups(points):
         rel = _plot_name(r, h)
         group = [p for p in points if (p["R2_over_R1"], p["H_over_b"]) == (r, h)]
         sentence = designer_sentence(group, r, h)
-        _contour(group, r, h, sentence, out / (rel + ".part"))
-        os.replace(out / (rel + ".part"), out / rel)
+        rd.write(rel, lambda path: _contour(group, r, h, sentence, path))
         doc["plots"].append({"file": rel, "R2_over_R1": r, "H_over_b": h, "sentence": sentence,
                              "below_1_percent": [{k: row[k] for k in ("b_over_R1", "limit", "stop")}
                                                  for row in below_level(group)]})
         say(f"  {rel}: {sentence}")
-
-
-def _seal(out: Path, marker: dict[str, Any], finished: bool) -> None:
-    """Rewrite the marker with the files present; ``"complete"`` only when nothing is left to do."""
-    marker.update({"state": "complete" if finished else "writing",
-                   "files": sorted({*(f for f in marker["files"] if os.path.lexists(out / f)),
-                                    MARKER + ".part"}),
-                   "dirs": [d for d in marker["dirs"] if (out / d).is_dir()]})
-    write_marker(out, marker)
 
 
 def exit_status(doc: dict[str, Any]) -> int:
@@ -615,42 +561,45 @@ def run_map(out: str | Path, *, quick: bool = False, scheduler: str | None = Non
     t0 = time.perf_counter()
     mode = "quick" if quick else "full"
     out = Path(os.path.abspath(out))
-    marker, action = _open_out(out, force, mode)
-    log_path = out / POINTS_FILE
-    records = _read_log(log_path, mode)
+    ResumableDir.check(out, command=COMMAND, mode=mode, force=force)   # before any work
     grid = list(validity.map_points(quick) if points is None else points)
     keys = [p.key() for p in grid]
     if len(set(keys)) != len(keys) or CONTROL_KEY in keys:
         raise ValueError("`points` must have distinct keys, none of them 'control'")
-    tasks: list[tuple[str, Callable[..., Any], tuple[Any, ...], Any]] = [
-        (p.key(), evaluate, (p, quick), p) for p in grid if not _done(records.get(p.key()))]
-    if not _done(records.get(CONTROL_KEY)):
-        tasks.append((CONTROL_KEY, control, (quick,), None))
-    total = len(grid) + 1
-    say(f"threepart map --{mode}: {len(grid)} points and the control -> {out} "
-        f"({action}; {total - len(tasks)} of {total} already done)")
     engine: dict[str, Any] = {"kind": "dask.distributed", "scheduler": None, "workers": 0,
                               "dask_version": dask.__version__}
     timings: dict[str, float] = {"startup_s": 0.0, "sweep_s": 0.0}
-    log = _Log(log_path)
-    try:
-        if tasks:
+    with ExitStack() as stack:
+        client = None
+        if scheduler is not None:   # reached before `out` is touched: an unreachable one leaves nothing
             t1 = time.perf_counter()
-            with _engine(scheduler, workers) as (client, engine):
+            client, engine = stack.enter_context(_engine(scheduler, None))
+            timings["startup_s"] = time.perf_counter() - t1
+        rd = ResumableDir.open(out, command=COMMAND, mode=mode, force=force)
+        stack.callback(rd.close)
+        records = _read_log(rd.log_lines(POINTS_FILE), mode)
+        tasks: list[tuple[str, Callable[..., Any], tuple[Any, ...], Any]] = [
+            (p.key(), evaluate, (p, quick), p) for p in grid if not _done(records.get(p.key()))]
+        if not _done(records.get(CONTROL_KEY)):
+            tasks.append((CONTROL_KEY, control, (quick,), None))
+        total = len(grid) + 1
+        say(f"threepart map --{mode}: {len(grid)} points and the control -> {out} "
+            f"({rd.action}; {total - len(tasks)} of {total} already done)")
+        if tasks:
+            if client is None:
+                t1 = time.perf_counter()
+                client, engine = stack.enter_context(_engine(None, workers))
                 timings["startup_s"] = time.perf_counter() - t1
-                say(f"engine: {engine['kind']} at {engine['scheduler']}, {engine['workers']} "
-                    f"workers (ready in {timings['startup_s']:.1f} s)")
-                t2 = time.perf_counter()
-                try:
-                    for rec in _sweep(client, tasks, log, mode, total - len(tasks), total, say):
-                        records[rec["key"]] = rec
-                except KeyboardInterrupt:
-                    say(f"interrupted: every finished point is in {log_path}; run the same "
-                        "command again to resume")
-                    raise
-                timings["sweep_s"] = time.perf_counter() - t2
-    finally:
-        log.close()
+            say(f"engine: {engine['kind']} at {engine['scheduler']}, {engine['workers']} "
+                f"workers (ready in {timings['startup_s']:.1f} s)")
+            t2 = time.perf_counter()
+
+            def log(rec: dict[str, Any]) -> None:
+                rd.append(POINTS_FILE, strict_json(rec))
+
+            for rec in _sweep(client, tasks, log, mode, total - len(tasks), total, say):
+                records[rec["key"]] = rec
+            timings["sweep_s"] = time.perf_counter() - t2
     computed = [records[t[0]] for t in tasks if t[0] != CONTROL_KEY]
     ran = [records[t[0]].get("control", {}) if t[0] == CONTROL_KEY else records[t[0]] for t in tasks]
     task_s = sum(r["time_s"] for r in ran if _finite(r.get("time_s")))
@@ -670,15 +619,15 @@ def run_map(out: str | Path, *, quick: bool = False, scheduler: str | None = Non
                     "resumed": len(mapped) - len(computed), "run_time_s": 0.0},
     }
     t3 = time.perf_counter()
-    _plan(out, marker, [_plot_name(r, h) for r, h in _groups(mapped)])
-    _draw(out, doc, say)
-    _write(out, "map.csv", _csv_text(mapped))
+    _plan(rd, [_plot_name(r, h) for r, h in _groups(mapped)])
+    _draw(rd, doc, say)
+    rd.write("map.csv", _csv_text(mapped))
     timings["write_s"] = time.perf_counter() - t3
     timings["total_s"] = doc["summary"]["run_time_s"] = time.perf_counter() - t0
     doc = json_safe(doc)
     validate(doc)
-    _write(out, "map.json", strict_json(doc, indent=1) + "\n")
-    _seal(out, marker, finished=failed == 0)
+    rd.write("map.json", strict_json(doc, indent=1) + "\n")
+    rd.seal(finished=failed == 0)
     return doc
 
 

@@ -4,8 +4,8 @@ The report directory holds ``report.md``, a self-contained ``report.html`` (the
 PNGs embedded as data URIs), ``report.json`` (valid against
 ``reports/report.schema.json``) and ``plots/*.png``. It is written into a
 temporary sibling directory and renamed into place only when complete, so a
-report is never half-written; an existing directory is replaced only with
-``force``, and only if threepart wrote it (see :mod:`threepart.output`). The
+report is never half-written; an existing directory is replaced only if it is
+threepart's own unchanged earlier output (see :mod:`threepart.output`). The
 exit status is 0 when every tolerance holds, 1 otherwise.
 """
 from __future__ import annotations
@@ -257,11 +257,12 @@ def main(mode: str = "default", out: str | Path = "report", force: bool = False,
         ``"quick"`` (quick FEM mesh, short studies), ``"default"`` or ``"full"``
         (adds the slow study levels).
     out
-        Report directory: missing or empty, or with ``force`` a report that
-        threepart wrote earlier (see :func:`threepart.output.atomic_dir`).
+        Report directory: missing or empty, or a report that threepart wrote
+        earlier and that is unchanged, which is replaced (see
+        :func:`threepart.output.atomic_dir`).
     force
-        Replace an earlier report; a directory holding anything threepart did
-        not write is never replaced.
+        Kept for compatibility; it changes nothing (a directory holding
+        anything threepart did not write, or edited, is never replaced).
     cases
         Cases to run (default: the whole catalogue).
     quiet

@@ -251,9 +251,14 @@ def test_shear_at_points_obeys_coulomb_and_the_csv_is_new(capsys, tmp_path):
         assert [float(v) for v in row.split(",")] == [x, p, q]
         assert abs(q) <= 0.5 * p * (1 + 1e-12)         # |q| <= f p
     assert out["points"]["p"][0] == 0.0                  # x = -2 lies outside the contact
-    # the file exists now: never overwritten
+    # the file is threepart's own and unchanged: a rerun replaces it; once edited, it is never overwritten
+    assert main([*args, "--csv", str(csv)]) == 0
+    assert csv.read_text().splitlines() == rows
+    capsys.readouterr()
+    csv.write_text("my own notes\n")
     assert main([*args, "--csv", str(csv)]) == 2
-    assert "exists; threepart never overwrites a file" in _one_line_error(capsys, "slip")
+    assert "was changed after threepart wrote it; refusing to overwrite it" in _one_line_error(capsys, "slip")
+    assert csv.read_text() == "my own notes\n"
 
 
 @pytest.mark.parametrize("extra,match", [

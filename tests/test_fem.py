@@ -180,7 +180,8 @@ def test_export_rejects_unknown_suffix(with_fields, tmp_path):
 def test_export_never_overwrites_a_file_unasked(with_fields, tmp_path):
     mine = tmp_path / "fields.vtu"
     mine.write_text("the user's own file")
-    with pytest.raises(ValueError, match="exists; pass overwrite=True"):
+    with pytest.raises(ValueError, match="exists and was not written by threepart; refusing to "
+                                         "overwrite it: choose another name or pass overwrite=True"):
         fem.write_fields(with_fields.fields, mine)
     assert mine.read_text() == "the user's own file"
     fem.write_fields(with_fields.fields, mine, overwrite=True)

@@ -24,7 +24,7 @@ import jsonschema
 import pytest
 
 from threepart.cli import main as cli_main
-from threepart.output import MARKER, OutputExistsError, foreign_entries, read_marker
+from threepart.output import MARKER, OutputExistsError, atomic_dir, foreign_entries, read_marker
 from threepart.reports import map as map_mod
 from threepart.reports.map import (COLUMNS, CONTROL_LIMIT, below_level, designer_sentence,
                                    exit_status, run_map)
@@ -314,26 +314,32 @@ def test_a_quick_map_is_not_resumed_as_a_full_one(tmp_path, counter, scheduler):
 # ---------------------------------------------------------------------------------------
 # the output directory
 # ---------------------------------------------------------------------------------------
-def test_a_foreign_directory_is_refused_and_left_untouched(tmp_path, counter, finished):
+def test_a_foreign_directory_is_refused_and_left_untouched(tmp_path, counter, scheduler, finished):
     plain = tmp_path / "plain"
     plain.mkdir()
     (plain / "notes.txt").write_text("mine")
-    report = tmp_path / "report"
-    report.mkdir()
-    (report / MARKER).write_text(json.dumps({"tool": "threepart", "command": "verify",
-                                             "state": "complete", "files": ["r.md"], "dirs": []}))
-    (report / "r.md").write_text("a report")
-    polluted = tmp_path / "polluted"
-    polluted.mkdir()
+    report = tmp_path / "report"                                 # threepart's own, of another command
+    with atomic_dir(report, command="verify") as tmp:
+        (tmp / "r.md").write_text("a report")
+    copied = tmp_path / "copied"                                 # a finished map, copied: not ours here
+    copied.mkdir()
     for f in finished[0].iterdir():
         if f.is_file():
-            (polluted / f.name).write_bytes(f.read_bytes())
-    (polluted / "plots").mkdir()
+            (copied / f.name).write_bytes(f.read_bytes())
+    (copied / "plots").mkdir()
     for f in (finished[0] / "plots").iterdir():
-        (polluted / "plots" / f.name).write_bytes(f.read_bytes())
+        (copied / "plots" / f.name).write_bytes(f.read_bytes())
+    polluted = tmp_path / "polluted"                             # a map of ours, with a file added
+    sweep(polluted, scheduler, FakeEvaluate(tmp_path))
     (polluted / "plots" / "my_sketch.png").write_bytes(b"not threepart's")
+    edited = tmp_path / "edited"                                 # a map of ours, one of its files edited
+    sweep(edited, scheduler, FakeEvaluate(tmp_path))
+    with open(edited / "map.csv", "a") as fh:
+        fh.write("my note\n")
     cases = [(plain, "holds 'notes.txt'"), (report, "threepart verify`, not a map"),
-             (polluted, "holds 'plots/my_sketch.png', which threepart did not write")]
+             (copied, "holds a .threepart-output.json that threepart did not write there"),
+             (polluted, "holds 'plots/my_sketch.png', which threepart did not write"),
+             (edited, "holds 'map.csv', which was changed after threepart wrote it")]
     for d, match in cases:
         before = snapshot(d)
         for force in (False, True):
@@ -441,6 +447,7 @@ def test_bad_arguments_are_one_line_with_exit_status_2(tmp_path, counter, capsys
     assert err.count("\n") == 1 and err.startswith("threepart map: error: "), err
     assert re.search(match, err), err
     assert "Traceback" not in out and calls(counter) == []
+    assert not (tmp_path / "m").exists()                         # refused before `out` is made
 
 
 def test_a_foreign_out_is_one_line_with_exit_status_2(tmp_path, capsys):
@@ -462,3 +469,89 @@ def test_the_default_engine_is_a_local_cluster_of_its_own(tmp_path, counter):
     assert [{k: p[k] for k in RESULT_KEYS} for p in doc["points"]] == [expected(p) for p in POINTS[:6]]
     assert calls(counter) == sorted(KEYS[:6]) and exit_status(doc) == 0
     assert doc["timings"]["startup_s"] > 0
+
+
+# ---------------------------------------------------------------------------------------
+# Ctrl-C, a full disk, the help
+# ---------------------------------------------------------------------------------------
+CTRL_C_RUN = """
+import functools, sys
+from pathlib import Path
+from tests.test_map import POINTS, FakeEvaluate, fake_control
+from threepart.reports import map as map_mod
+from threepart.cli import main
+if __name__ == "__main__":
+    map_mod.run_map = functools.partial(map_mod.run_map, points=POINTS, control=fake_control,
+                                        evaluate=FakeEvaluate(Path(sys.argv[2]), sleep=1.0))
+    sys.exit(main(["map", "--out", sys.argv[1], "--workers", "2"]))
+"""
+
+
+def test_ctrl_c_prints_one_line_and_the_points_in_progress_are_rerun(tmp_path, counter, scheduler):
+    """A terminal's Ctrl-C (SIGINT to the whole process group, workers included) on the default cluster."""
+    out = tmp_path / "map"
+    script = tmp_path / "run.py"
+    script.write_text(CTRL_C_RUN)
+    proc = subprocess.Popen([sys.executable, str(script), str(out), str(counter)], cwd=ROOT,
+                            env={**os.environ, "PYTHONPATH": str(ROOT)}, start_new_session=True,
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    deadline = time.monotonic() + 120
+    while time.monotonic() < deadline and proc.poll() is None:
+        if (out / "points.jsonl").exists() and len(logged(out)) >= 2:
+            break
+        time.sleep(0.05)
+    time.sleep(0.5)                                             # the next points are in progress
+    os.killpg(proc.pid, signal.SIGINT)
+    stdout, stderr = proc.communicate(timeout=120)
+    assert proc.returncode == 130, stderr
+    assert stderr == "threepart map: interrupted; run it again to resume\n"
+    done = logged(out)
+    started = set(calls(counter))
+    in_progress = started - set(done)
+    assert 2 <= len(done) < len(KEYS) and in_progress, (done, started)
+    for f in counter.iterdir():
+        f.unlink()
+    doc = sweep(out, scheduler, FakeEvaluate(counter))
+    assert calls(counter) == sorted(set(KEYS) - set(done))       # nothing finished is redone ...
+    assert in_progress <= set(calls(counter)) - {"control"}     # ... and nothing in progress is lost
+    assert [{k: p[k] for k in RESULT_KEYS} for p in doc["points"]] == [expected(p) for p in POINTS]
+
+
+def test_a_full_disk_while_the_map_is_written_leaves_nothing_half_written(tmp_path, counter, scheduler,
+                                                                        monkeypatch):
+    import errno
+    import fnmatch
+
+    real = os.fsync
+
+    def fsync(fd):
+        name = os.path.basename(os.readlink(f"/proc/self/fd/{fd}"))
+        if fnmatch.fnmatch(name, ".map.json.*.part") or name == MARKER + ".part" and full[0]:
+            raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC))
+        real(fd)
+
+    out = tmp_path / "map"
+    full = [False]
+    monkeypatch.setattr(os, "fsync", fsync)
+    with pytest.raises(OSError, match=r"^cannot write '.*map\.json': No space left on device$"):
+        sweep(out, scheduler, FakeEvaluate(counter))
+    assert not (out / "map.json").exists()
+    assert [p.name for p in out.rglob("*.part")] == []
+    full[0] = True                                               # and the marker itself: the next run
+    with pytest.raises(OSError, match=r"^cannot write '.*\.threepart-output\.json': No space left"):
+        sweep(out, scheduler, FakeEvaluate(counter))
+    assert [p.name for p in out.rglob("*.part")] == []           # no .threepart-output.json.part
+    monkeypatch.undo()
+    for f in counter.iterdir():
+        f.unlink()
+    doc = sweep(out, scheduler, FakeEvaluate(counter))           # resumes: every point was logged
+    assert calls(counter) == [] and doc["summary"]["resumed"] == len(KEYS)
+    assert read_marker(out)["state"] == "complete"
+
+
+def test_the_help_counts_the_quick_grid(capsys):
+    from threepart.reports.validity import map_points
+
+    assert cli_main(["map", "--help"]) == 0
+    text = " ".join(capsys.readouterr().out.split())
+    assert f"the quick grid ({len(map_points(True))} points and the control" in text

@@ -5,6 +5,7 @@ cases, so a whole ``verify`` takes a fraction of a second.
 """
 from __future__ import annotations
 
+import hashlib
 import json
 import os
 import shutil
@@ -80,17 +81,23 @@ def test_the_marker_lists_every_file_written(tmp_path, fake_solvers, monkeypatch
     written = sorted(str(p.relative_to(out)) for p in out.rglob("*") if p.is_file() and p.name != MARKER)
     assert sorted(marker["files"]) == written and "report.json" in written
     assert marker["dirs"] == ["plots"]
+    for name in written:                                    # each with its size and SHA-256 (hashlib)
+        data = (out / name).read_bytes()
+        assert marker["files"][name] == {"sha256": hashlib.sha256(data).hexdigest(), "size": len(data)}
 
 
-def test_existing_report_is_not_overwritten_without_force(tmp_path, fake_solvers):
+def test_a_rerun_replaces_threepart_s_own_report_without_force(tmp_path, fake_solvers):
     out = tmp_path / "rep"
     assert _verify(out, fake_solvers) == 0
-    before = _tree(out)
-    with pytest.raises(OutputExistsError, match=r"rep' exists; pass --force to replace it"):
+    (out / "report.md").write_text("# stale")                 # (below: threepart's own, then edited)
+    with pytest.raises(OutputExistsError, match=r"holds 'report\.md', which was changed after threepart "
+                                                r"wrote it; refusing to replace it"):
         _verify(out, fake_solvers)
-    assert _tree(out) == before
-    assert _verify(out, fake_solvers, force=True) == 0      # threepart's own report is replaced
-    assert read_marker(out) is not None and (out / "report.json").exists()
+    assert (out / "report.md").read_text() == "# stale"       # the user's edit is kept
+    (out / "report.md").unlink()                              # a listed file the user removed: nothing lost
+    assert _verify(out, fake_solvers) == 0
+    assert _verify(out, fake_solvers) == 0                    # and again: a rerun just works
+    assert (out / "report.md").read_text() == "# report"
     assert sorted(p.name for p in tmp_path.iterdir()) == ["rep"]  # no temporary, no .old left behind
 
 
@@ -209,36 +216,79 @@ def test_ctrl_c_prints_one_line_exits_130_and_leaves_no_temporary(tmp_path, fake
     assert list(tmp_path.iterdir()) == []
 
 
-def _leftover(path: Path, target: str, state: str, pid: int, files: dict[str, str]) -> Path:
-    path.mkdir()
-    for name, text in files.items():
-        (path / name).write_text(text)
-    marker = {"tool": "threepart", "format": 1, "command": "verify", "state": state, "target": target,
-              "pid": pid, "host": output.socket.gethostname(), "created": "2026-01-01T00:00:00+00:00",
-              "files": sorted(files) if state == "complete" else [], "dirs": []}
-    (path / MARKER).write_text(json.dumps(marker))
-    return path
+KILLED_WRITER = """
+import os, sys
+from pathlib import Path
+from threepart import output
+from threepart.output import atomic_dir
+out, stage = Path(sys.argv[1]), sys.argv[2]
+output.clean_stale = lambda out: []       # keep the leftovers of the earlier killed runs here
+with atomic_dir(out, command="verify") as tmp:
+    (tmp / "plots").mkdir()
+    (tmp / "plots" / "a.png").write_bytes(b"png")
+    (tmp / "report.md").write_text("half")
+    if stage == "writing":
+        os._exit(9)                       # killed while writing
+    real = os.rename
+    os.rename = lambda a, b: os._exit(9)  # killed after the seal, before the rename
+"""
 
 
-def test_leftovers_of_a_killed_run_are_removed_only_if_marked(tmp_path, fake_solvers):
-    dead = _dead_pid()
-    stale_tmp = _leftover(tmp_path / ".rep.k1l3d.tmp", "rep", "writing", dead, {"report.md": "half"})
-    stale_old = _leftover(tmp_path / ".rep.old-1-2", "rep", "complete", dead, {"report.json": "{}"})
-    live_tmp = _leftover(tmp_path / ".rep.l1ve.tmp", "rep", "writing", os.getpid(), {})
-    other = _leftover(tmp_path / ".report.x1.tmp", "report", "writing", dead, {})   # another target
-    users = tmp_path / ".rep.mine.tmp"                                             # no marker
+def _killed_run(out: Path, stage: str) -> Path:
+    """The leftover of a real run of :func:`atomic_dir` killed at ``stage`` (``writing`` or ``sealed``)."""
+    before = set(out.parent.iterdir()) if out.parent.exists() else set()
+    proc = subprocess.run([sys.executable, "-c", KILLED_WRITER, str(out), stage], capture_output=True)
+    assert proc.returncode == 9, proc.stderr
+    (left,) = set(out.parent.iterdir()) - before
+    return left
+
+
+def test_leftovers_of_killed_runs_are_removed_only_if_provably_ours(tmp_path, fake_solvers):
+    out = tmp_path / "rep"
+    writing, sealed = _killed_run(out, "writing"), _killed_run(out, "sealed")
+    assert read_marker(writing)["state"] == "writing" and read_marker(sealed)["state"] == "complete"
+    other = _killed_run(tmp_path / "report", "writing")                 # another target: not this run's
+    users = tmp_path / ".rep.mine.tmp"                                  # no marker
     users.mkdir()
     (users / "thesis.tex").write_text("keep me")
-    assert _verify(tmp_path / "rep", fake_solvers) == 0
-    assert not stale_tmp.exists() and not stale_old.exists()
-    assert live_tmp.exists() and other.exists() and (users / "thesis.tex").read_text() == "keep me"
+    assert _verify(out, fake_solvers) == 0
+    assert not writing.exists() and not sealed.exists()
+    assert other.exists() and (users / "thesis.tex").read_text() == "keep me"
+    assert sorted(p.name for p in tmp_path.iterdir()) == sorted([".rep.mine.tmp", other.name, "rep"])
+
+
+def test_a_forged_marker_in_a_temporary_sibling_protects_nothing(tmp_path):
+    """A marker written by hand (or copied from a real leftover) does not make a directory ours."""
+    out = tmp_path / "rep"
+    real = _killed_run(out, "writing")
+    forged = tmp_path / ".rep.f0rg3d.tmp"
+    (forged / "sub").mkdir(parents=True)
+    (forged / "sub" / "thesis.tex").write_text("keep me")
+    (forged / MARKER).write_text((real / MARKER).read_text())       # a real marker, copied
+    forged2 = tmp_path / ".rep.h4nd.tmp"
+    (forged2 / "data").mkdir(parents=True)
+    (forged2 / "data" / "x.csv").write_text("1,2")
+    (forged2 / MARKER).write_text(json.dumps(
+        {"tool": "threepart", "format": output.MARKER_FORMAT, "command": "verify", "state": "writing",
+         "target": "rep", "pid": _dead_pid(), "host": output.socket.gethostname(),
+         "files": {}, "dirs": [], "path": str(forged2), "mac": "0" * 64}))
+    assert output.clean_stale(out) == [real]
+    assert (forged / "sub" / "thesis.tex").read_text() == "keep me"
+    assert (forged2 / "data" / "x.csv").read_text() == "1,2"
 
 
 def test_an_old_directory_holding_a_foreign_file_is_left(tmp_path):
-    old = _leftover(tmp_path / ".rep.old-1-2", "rep", "complete", _dead_pid(), {"report.json": "{}"})
-    (old / "mine.txt").write_text("keep me")
-    assert output.clean_stale(tmp_path / "rep") == []
-    assert (old / "mine.txt").read_text() == "keep me"
+    out = tmp_path / "rep"
+    write = "import sys; from threepart.output import atomic_dir\n" \
+            "with atomic_dir(sys.argv[1], command='verify') as tmp: (tmp / 'report.json').write_text('{}')"
+    for name, foreign in ((".rep.old-1-2", True), (".rep.old-3-4", False)):
+        subprocess.run([sys.executable, "-c", write, str(out)], check=True)   # by a process now gone
+        os.rename(out, tmp_path / name)            # as a run killed while swapping leaves it
+        if foreign:
+            (tmp_path / name / "mine.txt").write_text("keep me")
+    assert output.clean_stale(out) == [tmp_path / ".rep.old-3-4"]
+    assert (tmp_path / ".rep.old-1-2" / "mine.txt").read_text() == "keep me"
+    assert (tmp_path / ".rep.old-1-2" / "report.json").read_text() == "{}"
 
 
 # ---------------------------------------------------------------------------------------
@@ -273,21 +323,30 @@ def test_atomic_dir_on_its_own(tmp_path):
         assert tmp.parent == tmp_path and tmp.name.startswith(".figs.") and tmp.name.endswith(".tmp")
         assert read_marker(tmp)["state"] == "writing"   # marked from its creation
         (tmp / "a.txt").write_text("a")
-    assert read_marker(out)["files"] == ["a.txt"]
+    assert list(read_marker(out)["files"]) == ["a.txt"]
     assert sorted(p.name for p in tmp_path.iterdir()) == ["figs"]
 
 
 # ---------------------------------------------------------------------------------------
 # the command line
 # ---------------------------------------------------------------------------------------
-def test_cli_refuses_to_overwrite(tmp_path, fake_solvers, capsys):
+def test_cli_reruns_and_refuses_a_planted_file(tmp_path, fake_solvers, capsys, monkeypatch):
+    import functools
+
     from threepart.cli import main
 
+    monkeypatch.setattr(verify, "main", functools.partial(verify.main, cases=fake_solvers, quiet=True))
     out = tmp_path / "rep"
-    assert _verify(out, fake_solvers) == 0
-    assert main(["verify", "--quick", "--out", str(out)]) == 2
-    err = capsys.readouterr().err
-    assert err.count("\n") == 1 and "pass --force" in err and err.startswith("threepart verify: error:")
+    assert main(["verify", "--quick", "--out", str(out)]) == 0
+    assert main(["verify", "--quick", "--out", str(out)]) == 0      # the rerun replaces its own report
+    capsys.readouterr()
+    (out / "plots" / "mine.txt").write_text("keep me")
+    for force in ([], ["--force"]):
+        assert main(["verify", "--quick", "--out", str(out), *force]) == 2
+        err = capsys.readouterr().err
+        assert err.count("\n") == 1 and err.startswith("threepart verify: error:")
+        assert "holds 'plots/mine.txt', which threepart did not write" in err
+        assert (out / "plots" / "mine.txt").read_text() == "keep me"
 
 
 def test_verify_out_dot_force_in_a_user_directory_refuses_and_leaves_everything(tmp_path, monkeypatch,
@@ -323,9 +382,11 @@ def test_figures_write_the_marker(tmp_path, monkeypatch):
     assert figures.main(out=out, sie=False) == 0
     assert sorted(read_marker(out)["files"]) == ["figures.json", "pressure_a.png", "pressure_b.png",
                                                  "shear_a.png", "shear_b.png"]
-    with pytest.raises(OutputExistsError, match="pass --force"):
-        figures.main(out=out, sie=False)
-    assert figures.main(out=out, force=True, sie=False) == 0
+    assert figures.main(out=out, sie=False) == 0          # a rerun replaces its own figures
+    (out / "shear_a.png").write_bytes(b"edited")
+    with pytest.raises(OutputExistsError, match="'shear_a.png', which was changed after threepart"):
+        figures.main(out=out, force=True, sie=False)
+    assert (out / "shear_a.png").read_bytes() == b"edited"
 
 
 def test_strict_json_writes_infinity_as_null():

@@ -16,7 +16,8 @@ that would separate into two zones is refused by every method.
 
 --x X1,X2,... or --grid N add the pressure p(x) (and the shear q(x) for slip)
 at those points, or at N points spread evenly over the contact; --csv FILE
-writes them to a new file (never over an existing one).
+writes them to a new file, or over the file an earlier run wrote there if it is
+unchanged (never over anything else).
 
 Units: the library works in any consistent set of units. The command line
 labels lengths mm, loads per unit length N/mm, pressures and moduli MPa,
@@ -144,7 +145,8 @@ def _geometry_args(p: argparse.ArgumentParser) -> None:
     pt.add_argument("--grid", type=int, metavar="N",
                     help="print p(x) (and q(x)) at N >= 2 points spread evenly over [-a, c]")
     pt.add_argument("--csv", metavar="FILE",
-                    help="write those points to FILE as CSV (a new file; never overwrites)")
+                    help="write those points to FILE as CSV (a new file, or one threepart wrote "
+                         "there and that is unchanged; never over anything else)")
     p.add_argument("--json", action="store_true",
                    help='print strict JSON instead of text: plain numbers in the units of its "units" '
                         "object; an infinite R (flat centre) is null")
@@ -271,10 +273,9 @@ def _points_iv(args: argparse.Namespace) -> None:
     if args.csv is not None:
         if args.x is None and args.grid is None:
             raise ValueError("`--csv` needs the points: give `--x` or `--grid`")
-        import os
+        from threepart.output import check_file
 
-        if os.path.lexists(args.csv):
-            _refuse_existing(args.csv)
+        check_file(args.csv, arg="--csv")   # a new file, or threepart's own unchanged one
 
 
 def _points(args: argparse.Namespace, res: Any) -> dict[str, list[float]] | None:
@@ -290,24 +291,17 @@ def _points(args: argparse.Namespace, res: Any) -> dict[str, list[float]] | None
     return out
 
 
-def _refuse_existing(path: str) -> NoReturn:
-    raise ValueError(f"`--csv` = {path!r} exists; threepart never overwrites a file: "
-                     "choose another name")
-
-
 def _write_csv(path: str, points: dict[str, list[float]]) -> None:
-    """Write the points to a new file ``path`` (``O_EXCL``: never over an existing one)."""
-    import os
+    """Write the points to ``path`` atomically: a new file, or threepart's own unchanged earlier one.
+
+    Anything else is refused (:func:`threepart.output.write_file`).
+    """
+    from threepart.output import write_file
 
     cols = list(points)
     lines = [",".join(f"{k} [{UNITS[k]}]" for k in cols)]
     lines += [",".join(f"{points[k][i]:.17g}" for k in cols) for i in range(len(points["x"]))]
-    try:
-        fd = os.open(path, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o666)
-    except FileExistsError:
-        _refuse_existing(path)
-    with os.fdopen(fd, "w", encoding="utf-8") as fh:
-        fh.write("\n".join(lines) + "\n")
+    write_file(path, "\n".join(lines) + "\n", arg="--csv")
 
 
 def _quantities(d: dict[str, Any]) -> set[str]:
@@ -390,8 +384,22 @@ def _cmd_map(args: argparse.Namespace) -> int:
                         workers=args.workers, force=args.force))
 
 
-_FORCE_HELP = ("replace --out if threepart wrote it (it carries .threepart-output.json and nothing "
-               "else); a directory holding anything else is never replaced")
+_FORCE_HELP = ("no longer needed: a rerun replaces threepart's own earlier output in --out (its "
+               ".threepart-output.json lists every file with a checksum, and nothing else is there); "
+               "a directory holding anything else, or an edited file, is never replaced, with or "
+               "without --force")
+
+
+class _MapHelp(argparse.HelpFormatter):
+    """The help of ``map``: the quick grid's size counted from the grid, only when help is shown."""
+
+    def _get_help_string(self, action: argparse.Action) -> str | None:
+        text = super()._get_help_string(action)
+        if text and "{quick_points}" in text:
+            from threepart.reports.validity import map_points
+
+            text = text.replace("{quick_points}", str(len(map_points(True))))
+        return text
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -417,18 +425,22 @@ def build_parser() -> argparse.ArgumentParser:
     mode.add_argument("--quick", action="store_true", help="coarse meshes, small n (<= 2 min)")
     mode.add_argument("--full", action="store_true", help="adds the slow convergence studies")
     p.add_argument("--out", default="report",
-                   help="output directory: new or empty, or see --force (default: ./report)")
+                   help="output directory: new, empty, or threepart's own earlier report, which is "
+                        "replaced (default: ./report)")
     p.add_argument("--force", action="store_true", help=_FORCE_HELP)
     p.set_defaults(func=_cmd_verify)
 
     p = sub.add_parser("figures", help="reproduce the paper's result figures")
     p.add_argument("--out", default="figures",
-                   help="output directory: new or empty, or see --force (default: ./figures)")
+                   help="output directory: new, empty, or threepart's own earlier figures, which "
+                        "are replaced (default: ./figures)")
     p.add_argument("--force", action="store_true", help=_FORCE_HELP)
     p.set_defaults(func=_cmd_figures)
 
-    p = sub.add_parser("map", help="where the half-plane formulas stop: finite-body validity map")
-    p.add_argument("--quick", action="store_true", help="the quick grid (12 points, quick meshes)")
+    p = sub.add_parser("map", help="where the half-plane formulas stop: finite-body validity map",
+                       formatter_class=_MapHelp)
+    p.add_argument("--quick", action="store_true",
+                   help="the quick grid ({quick_points} points and the control, quick meshes)")
     p.add_argument("--out", default="map",
                    help="output directory: new or empty, or an unfinished map to resume; see "
                         "--force (default: ./map)")
@@ -437,8 +449,9 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--workers", type=int, metavar="N",
                    help="worker processes of the local cluster, >= 1 (default: 2)")
     p.add_argument("--force", action="store_true",
-                   help="replace a finished map in --out (only one threepart wrote); an unfinished "
-                        "map is resumed without it")
+                   help="replace a finished map in --out (a map is expensive: never without "
+                        "--force; only one threepart wrote, unchanged); an unfinished map of the "
+                        "same mode is resumed, with or without it")
     p.set_defaults(func=_cmd_map)
     return parser
 
@@ -482,7 +495,8 @@ def main(argv: Sequence[str] | None = None) -> int:
         print(f"{prog}: error: {_one_line(exc)}", file=sys.stderr)
         return 2
     except KeyboardInterrupt:
-        print(f"{prog}: interrupted", file=sys.stderr)
+        resume = "; run it again to resume" if prog == "threepart map" else ""
+        print(f"{prog}: interrupted{resume}", file=sys.stderr)
         return 130
 
 
