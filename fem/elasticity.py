@@ -40,6 +40,7 @@ from skfem import Basis, ElementTriP2, ElementVector, FacetBasis, LinearForm, as
 from skfem.models.elasticity import lame_parameters, linear_elasticity
 from threadpoolctl import threadpool_limits
 
+from ._iv import material
 from .mesh import Substrate
 
 __all__ = ["SurfaceCompliance", "condense", "choose_backend", "backends", "BACKEND_VARIABLE"]
@@ -223,9 +224,14 @@ def condense(substrate: Substrate, E: float, nu: float,
 
     Raises
     ------
-    ValueError
-        For unknown ``components`` or an unknown or missing ``backend``.
+    TypeError, ValueError
+        For a ``substrate`` that is not a :class:`~fem.mesh.Substrate`, ``E`` or
+        ``nu`` out of range (:func:`fem._iv.material`), unknown ``components`` or
+        an unknown or missing ``backend``.
     """
+    if not isinstance(substrate, Substrate):
+        raise TypeError(f"`substrate` must be a fem.Substrate, not {type(substrate).__name__}")
+    E, nu = material(E, nu)
     if components not in (("u^2",), ("u^1", "u^2")):
         raise ValueError(f"`components` = {components!r} must be ('u^2',) or ('u^1', 'u^2')")
     chosen = choose_backend(backend)

@@ -34,6 +34,8 @@ from __future__ import annotations
 import math
 import time
 from dataclasses import dataclass, field, replace
+from pathlib import Path
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -41,15 +43,19 @@ from skfem import MeshTri
 
 from threepart.errors import FullSlidingError, NoConvergenceError
 from threepart.material import similar_pair
+from threepart.meshes import SubstrateSpec
 from threepart.punch import Punch
 from threepart.results import BRANCHES, FrettingResult, NormalResult, SlipResult
-from threepart.validate import check_finite, check_positive
+from threepart.validate import check_contact
 
 from .contact import ContactSolution, solve_contact
 from .elasticity import SurfaceCompliance, condense
-from .mesh import PRESETS, MeshPreset, Substrate, make_substrate, preset
-from .solve import (FemResult, MeshArg, _check_one_zone, _end_size, _ends, _substrate, _validate,
-                    refined)
+from ._boundary import boundary
+from ._iv import STATES, STEPS, count, mesh_arg, normal_iv, shear_iv
+from ._progress import Progress, ProgressArg, progress_iv
+from .ends import REFINE_ATTEMPTS, check_one_zone, contact_ends, end_size, refined
+from .mesh import PRESETS, MeshPreset, Substrate, make_substrate
+from .solve import FemResult, MeshArg, place_substrate
 
 __all__ = ["Interface", "FemSlipResult", "FemFrettingResult", "Step", "mirror", "interface",
            "solve_partial_slip", "fretting_cycle"]
@@ -295,14 +301,6 @@ class FemFrettingResult(FrettingResult):
         return _interp(self.normal, self.x_nodes, 0.5 * np.ptp(w, axis=0), x)
 
 
-def _check_shear(Q: float, f: float, P: float, name: str = "Q") -> None:
-    check_finite(**{name: Q})
-    check_positive(f=f)
-    if abs(Q) >= f * P:
-        raise FullSlidingError(f"|`{name}`| = {abs(Q):.6g} >= f P = {f * P:.6g} (`f` = {f:g}, "
-                               f"`P` = {P:.6g}): the contact slides as a whole")
-
-
 class _Model:
     """The two-body interface under ``P`` at ``s``, stepped through a shear-load path."""
 
@@ -316,7 +314,7 @@ class _Model:
         self.timings = {**self.itf.timings, "normal": 0.0, "friction": 0.0}
         self.t = np.zeros(len(self.itf.x))
         self.normal = self._normal(self.t)
-        _check_one_zone(self.itf.x, self.normal.active, P, s)
+        check_one_zone(self.itf.x, self.normal.active, P, s)
         self.f = self.normal.f
         self.w0 = self.itf.C_tn @ self.f          # relative tangential displacement before Q
         self.w = self.w0.copy()
@@ -359,7 +357,7 @@ class _Model:
     def contact_ends(self) -> tuple[float, float]:
         """Contact ends ``(-a, c)`` of the normal solution, as :func:`fem.solve_normal` finds them."""
         sol = self.normal
-        return _ends(self.itf.x, sol.f / self.itf.weights, sol.active,
+        return contact_ends(self.itf.x, sol.f / self.itf.weights, sol.active,
                      (-self.punch.b, self.punch.b))
 
     def normal_result(self) -> FemResult:
@@ -381,15 +379,16 @@ class _Model:
 
         ``p* = (f f_i - direction t_i) / w_i`` vanishes where the nodes slip and
         decays as a square root at the ends of the stick zone, like the
-        pressure at the contact ends (:func:`fem.solve._ends`).
+        pressure at the contact ends (:func:`fem.ends.contact_ends`).
         """
         pstar = (self.mu * st.f - st.direction * st.t) / self.itf.weights
-        return _ends(self.itf.x, pstar, st.stick, (-self.punch.b, self.punch.b))
+        return contact_ends(self.itf.x, pstar, st.stick, (-self.punch.b, self.punch.b))
 
 
-def _model(punch: Punch, P: float, s: float, E: float, nu: float, tilt: str, mesh: MeshArg,
-           max_iter: int, mu: float, Q: float) -> _Model:
-    """The two-body model on ``mesh``; a preset is refined at the stick-zone ends of ``Q`` too.
+def _model(punch: Punch, P: float, s: float, E: float, nu: float, tilt: str,
+           mesh: MeshPreset | Path | SubstrateSpec | Substrate, max_iter: int, mu: float, Q: float,
+           say: Progress) -> _Model:
+    """The two-body model on the checked ``mesh``; a preset is refined at the stick-zone ends of ``Q`` too.
 
     The mirrored pair is a rigid punch on a block of half the modulus, so the
     contact is located as :func:`fem.solve_normal` locates it, with ``E/2``.
@@ -397,14 +396,13 @@ def _model(punch: Punch, P: float, s: float, E: float, nu: float, tilt: str, mes
     stick zone of ``Q``, whose ends then become mesh nodes with fine elements
     around them, as the contact ends are. An end within ``MIN_END_ELEMENTS``
     of a join refines the preset, or is refused, as in :func:`fem.solve_normal`.
+    The normal contact is checked against the limits of half-plane theory
+    (:func:`threepart.validate.check_contact`) before any shear is applied.
     """
-    if not isinstance(punch, Punch):
-        raise ValueError(f"`punch` = {punch!r} must be a closedform.Punch")
-    _validate(P, s, E, nu, tilt, max_iter)
     t0 = time.perf_counter()
     breaks = (-punch.b, punch.b)
-    pre = preset(mesh) if isinstance(mesh, str) and not mesh.endswith(".msh") else mesh
-    lower, L, guess, t_locate = _substrate(mesh, punch, P, s, 0.5 * E, nu, tilt, max_iter)
+    pre = mesh
+    lower, L, guess, t_locate = place_substrate(mesh, punch, P, s, 0.5 * E, nu, tilt, max_iter, say)
     ends: tuple[float, ...] = ()
     if isinstance(pre, MeshPreset) and pre.refine > 1 and Q != 0 and guess is not None:
         t1 = time.perf_counter()
@@ -412,8 +410,10 @@ def _model(punch: Punch, P: float, s: float, E: float, nu: float, tilt: str, mes
         trial = _Model(punch, P, s, E, nu, tilt, coarse, L, guess, max_iter, mu)
         ends = trial.stick_zone(trial.step(Q, "loading", 1 if Q > 0 else -1))
         t_locate += time.perf_counter() - t1
+        say(f"locate: stick zone of Q = {Q:.6g} about [{ends[0]:.6g}, {ends[1]:.6g}] "
+            f"({time.perf_counter() - t1:.1f} s)")
     t_mesh = time.perf_counter() - t0 - t_locate
-    for attempt in range(2):
+    for attempt in range(REFINE_ATTEMPTS + 1):
         t1 = time.perf_counter()
         if isinstance(pre, MeshPreset) and guess is not None:
             spec = pre.spec(*guess, breaks)
@@ -423,27 +423,41 @@ def _model(punch: Punch, P: float, s: float, E: float, nu: float, tilt: str, mes
                 spec = replace(spec, breakpoints=spec.breakpoints + nodes,
                                refine_at=spec.refine_at + nodes)
             lower = make_substrate(spec)
-        t_mesh += time.perf_counter() - t1
+        t2 = time.perf_counter()
+        t_mesh += t2 - t1
+        say(f"mesh: {lower.mesh.t.shape[1]} triangles a body ({t2 - t1:.1f} s)")
         model = _Model(punch, P, s, E, nu, tilt, lower, L, guess, max_iter, mu)
         left, right = model.contact_ends()
-        h_end = _end_size(model.itf.x, left, right)
-        finer = refined(punch, left, right, h_end, pre, attempt)
+        say(f"condense and normal contact: {model.itf.dofs} DOFs, contact [{left:.6g}, "
+            f"{right:.6g}] ({time.perf_counter() - t2:.1f} s)")
+        h_end = end_size(model.itf.x, left, right)
+        finer = refined(punch, left, right, h_end, pre, attempt, mesh)
         if finer is None:
             break
-        pre = finer
+        say(f"refine: an end lies near a join, elements {finer.refine / mesh.refine:g}x finer "
+            "there than the preset's")
+        pre, guess = finer, (left, right)   # refine at these ends and the joins
+    check_contact(punch, -left, right, model.normal.alpha)
     model.timings.update(locate=t_locate, mesh=t_mesh)
     model.h_end = h_end
     return model
 
 
-def _check_steps(steps: int, name: str = "steps") -> None:
-    if not (isinstance(steps, (int, np.integer)) and steps >= 1):
-        raise ValueError(f"`{name}` = {steps!r} must be an integer >= 1")
+def _slip_iv(punch: Any, P: Any, s: Any, Q: Any, f: Any, E: Any, nu: Any, tilt: Any, mesh: Any,
+             steps: Any, max_iter: Any, progress: Any, name: str = "Q", steps_name: str = "steps",
+             steps_range: tuple[int, int] = STEPS) -> tuple[Any, ...]:
+    """The checked input of :func:`solve_partial_slip` (and, with ``Q_max``, :func:`fretting_cycle`)."""
+    P, s, E, nu, tilt, max_iter = normal_iv(punch, P, s, E, nu, tilt, max_iter, pair=True)
+    Q, f = shear_iv(Q, f, P, name)
+    steps = count(steps_name, steps, steps_range)
+    pre = mesh_arg(mesh, (MeshPreset, SubstrateSpec, Substrate))
+    return P, s, Q, f, E, nu, tilt, pre, steps, max_iter, progress_iv(progress)
 
 
+@boundary
 def solve_partial_slip(punch: Punch, P: float, s: float = 0.0, *, Q: float, f: float, E: float,
                        nu: float, tilt: str = "free", mesh: MeshArg = "default", steps: int = 10,
-                       max_iter: int = 100) -> FemSlipResult:
+                       max_iter: int = 100, progress: ProgressArg = None) -> FemSlipResult:
     """Two similar elastic bodies pressed by ``P`` at lever arm ``s``, then sheared by ``Q`` in steps.
 
     Parameters
@@ -460,7 +474,11 @@ def solve_partial_slip(punch: Punch, P: float, s: float = 0.0, *, Q: float, f: f
     mesh
         The substrate's mesh, as in :func:`fem.solve_normal`; the punch body is its mirror image.
     steps
-        Equal increments of ``Q`` from 0.
+        Equal increments of ``Q`` from 0, in ``[1, 1000]``.
+    max_iter
+        Cap on the active-set iterations, in ``[1, 10000]``.
+    progress
+        One line per stage and per load step on stderr, as in :func:`fem.solve_normal`.
 
     Returns
     -------
@@ -471,19 +489,24 @@ def solve_partial_slip(punch: Punch, P: float, s: float = 0.0, *, Q: float, f: f
 
     Raises
     ------
-    ValueError
-        For invalid input; ``FullSlidingError`` for ``|Q| >= f P``.
-    NoConvergenceError, ContactZoneError, SeparationError, MeshResolutionError
+    TypeError, ValueError
+        For invalid input, before any numerics (as :func:`fem.solve_normal`,
+        with ``A = 4 (1 - nu^2) / E``); ``FullSlidingError`` for ``|Q| >= f P``.
+    ArcExtentError, SlopeLimitError, NoConvergenceError, ContactZoneError, SeparationError,
+    MeshResolutionError
         As :func:`fem.solve_normal`, and when the stick/slip states do not settle.
     """
-    check_finite(P=P)
-    _check_shear(Q, f, P)
-    _check_steps(steps)
+    P, s, Q, f, E, nu, tilt, pre, steps, max_iter, progress = _slip_iv(
+        punch, P, s, Q, f, E, nu, tilt, mesh, steps, max_iter, progress)
+    say = Progress(progress)
     t0 = time.perf_counter()
-    model = _model(punch, P, s, E, nu, tilt, mesh, max_iter, f, Q)
+    model = _model(punch, P, s, E, nu, tilt, pre, max_iter, f, Q, say)
     direction = 1 if Q >= 0 else -1
     for k in range(1, steps + 1):
+        t1 = time.perf_counter()
         st = model.step(Q * k / steps, "loading", direction)
+        say(f"step {k}/{steps}, Q = {st.Q:.6g}: {int(st.stick.sum())} nodes stick "
+            f"({time.perf_counter() - t1:.1f} s)")
     normal = model.normal_result()
     left, right = model.stick_zone(st)
     model.timings["total"] = time.perf_counter() - t0
@@ -494,9 +517,10 @@ def solve_partial_slip(punch: Punch, P: float, s: float = 0.0, *, Q: float, f: f
                          history=tuple(model.steps))
 
 
+@boundary
 def fretting_cycle(punch: Punch, P: float, s: float = 0.0, *, Q_max: float, f: float, E: float,
                    nu: float, tilt: str = "free", mesh: MeshArg = "default", states: int = 21,
-                   max_iter: int = 100) -> FemFrettingResult:
+                   max_iter: int = 100, progress: ProgressArg = None) -> FemFrettingResult:
     """One fretting cycle ``0 -> Q_max -> -Q_max -> Q_max`` of the two-body model, step by step.
 
     Each branch is stepped through ``states`` equally spaced values of ``Q``
@@ -506,15 +530,17 @@ def fretting_cycle(punch: Punch, P: float, s: float = 0.0, *, Q_max: float, f: f
     ``sum_i ∮ t_i dw_i`` (trapezoidal in the steps); ``info["loop_energy"]``
     holds the area of the ``Q``–``xi`` loop, the same energy by the global balance.
 
-    Parameters and errors as :func:`solve_partial_slip`, with ``Q_max > 0``.
+    Parameters and errors as :func:`solve_partial_slip`, with ``Q_max > 0`` and
+    ``states`` in ``[2, 1000]``.
     """
-    check_finite(P=P)
-    check_positive(Q_max=Q_max)
-    _check_shear(Q_max, f, P, "Q_max")
-    if not (isinstance(states, (int, np.integer)) and states >= 2):
-        raise ValueError(f"`states` = {states!r} must be an integer >= 2")
+    P, s, Q_max, f, E, nu, tilt, pre, states, max_iter, progress = _slip_iv(
+        punch, P, s, Q_max, f, E, nu, tilt, mesh, states, max_iter, progress, "Q_max", "states",
+        STATES)
+    if Q_max <= 0:
+        raise ValueError(f"`Q_max` = {Q_max!r} must be > 0")
+    say = Progress(progress)
     t0 = time.perf_counter()
-    model = _model(punch, P, s, E, nu, tilt, mesh, max_iter, f, Q_max)
+    model = _model(punch, P, s, E, nu, tilt, pre, max_iter, f, Q_max, say)
     path = [("loading", np.linspace(0.0, Q_max, states), 1),
             ("unloading", np.linspace(Q_max, -Q_max, states), -1),
             ("reloading", np.linspace(-Q_max, Q_max, states), 1)]
@@ -528,7 +554,10 @@ def fretting_cycle(punch: Punch, P: float, s: float = 0.0, *, Q_max: float, f: f
             elif k == 0:
                 recorded.append(replace_branch(recorded[-1], branch, direction))
             else:
+                t1 = time.perf_counter()
                 recorded.append(model.step(float(Q), branch, direction))
+                say(f"{branch} {k}/{states - 1}, Q = {float(Q):.6g} "
+                    f"({time.perf_counter() - t1:.1f} s)")
     normal = model.normal_result()
     cycle = [st for st in recorded if st.branch != "loading"]
     work = sum(float(np.sum(0.5 * (a.t + b.t) * (b.w - a.w))) for a, b in zip(cycle, cycle[1:]))
