@@ -2,8 +2,9 @@
 
 scikit-fem, SciPy, NumPy, meshio and gmsh raise their own exceptions
 (``LinAlgError`` of a singular system, ``ZeroDivisionError``, ``OverflowError``,
-``FloatingPointError``, ``ArpackError``, meshio's ``ReadError``, gmsh's bare
-``Exception``). At a public entry point they become :class:`NoConvergenceError`
+``FloatingPointError``, ``ArpackError``, SuperLU's ``RuntimeError`` "Factor is
+exactly singular", meshio's ``ReadError``; gmsh's bare ``Exception`` is caught
+where gmsh runs, :func:`fem.mesh.gmsh_failure`). At a public entry point they become :class:`NoConvergenceError`
 with a one-line message: by then the input has been checked, so what failed is
 the numerical method. The package's own errors (``ValueError`` and its
 subclasses, ``TypeError``, :class:`NoConvergenceError`, :class:`ContactZoneError`)
@@ -17,7 +18,7 @@ from typing import Any, Callable, TypeVar
 
 import numpy as np
 
-from threepart.errors import NoConvergenceError
+from threepart.errors import ContactZoneError, NoConvergenceError
 
 __all__ = ["boundary", "FOREIGN"]
 
@@ -41,7 +42,9 @@ def boundary(func: F) -> F:
     def wrapper(*args: Any, **kwargs: Any) -> Any:
         try:
             return func(*args, **kwargs)
-        except _foreign() as e:
+        except (NoConvergenceError, ContactZoneError):
+            raise   # the package's own (RuntimeError subclasses, like SuperLU's "singular")
+        except (*_foreign(), RuntimeError) as e:
             why = " ".join(str(e).split()[:30]) or type(e).__name__
             why = why.replace(tempfile.gettempdir(), "<tmp>")
             raise NoConvergenceError(f"{func.__name__}: the FE computation failed "

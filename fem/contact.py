@@ -18,11 +18,16 @@ small linear system on the active set.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 from threadpoolctl import threadpool_limits
 
 from threepart.errors import NoConvergenceError
+from threepart.validate import finite, integer, positive
+
+from ._boundary import boundary
+from ._iv import MAX_ITER
 
 __all__ = ["ContactSolution", "solve_contact"]
 
@@ -76,6 +81,7 @@ def _solve_active(C: np.ndarray, x: np.ndarray, g0: np.ndarray, active: np.ndarr
     return f, float(sol[m]), float(sol[m + 1]) if free_tilt else 0.0
 
 
+@boundary
 def solve_contact(C: np.ndarray, x: np.ndarray, g0: np.ndarray, P: float, s: float = 0.0, *,
                   free_tilt: bool = True, max_iter: int = 100,
                   active: np.ndarray | None = None) -> ContactSolution:
@@ -111,6 +117,7 @@ def solve_contact(C: np.ndarray, x: np.ndarray, g0: np.ndarray, P: float, s: flo
         singular system) from every start tried: the one given, all nodes, and
         the nodes the punch's shape reaches (:func:`_start`).
     """
+    P, s, max_iter, C, x, g0, active = _contact_iv(C, x, g0, P, s, max_iter, active)
     starts = ["given" if active is not None else "all", "geometric"]
     if active is not None:
         starts.insert(1, "all")
@@ -122,6 +129,27 @@ def solve_contact(C: np.ndarray, x: np.ndarray, g0: np.ndarray, P: float, s: flo
         except _Breakdown as e:
             failures.append(f"from the {start} start: {e}")
     raise NoConvergenceError("contact active set broke down " + "; ".join(failures))
+
+
+def _contact_iv(C: Any, x: Any, g0: Any, P: Any, s: Any, max_iter: Any, active: Any
+                ) -> tuple[float, float, int, np.ndarray, np.ndarray, np.ndarray, np.ndarray | None]:
+    """The checked input of :func:`solve_contact`: finite arrays of matching shapes, ``P > 0``."""
+    P, s = positive("P", P), finite("s", s)
+    max_iter = integer("max_iter", max_iter, *MAX_ITER)
+    x = np.asarray(x, dtype=float)
+    n = len(x) if x.ndim == 1 else -1
+    C, g0 = np.asarray(C, dtype=float), np.asarray(g0, dtype=float)
+    if n < 1 or C.shape != (n, n) or g0.shape != (n,):
+        raise ValueError(f"`C`, `x`, `g0` must have shapes (n, n), (n,), (n,); got {C.shape}, "
+                         f"{x.shape}, {g0.shape}")
+    for name, arr in (("C", C), ("x", x), ("g0", g0)):
+        if not np.all(np.isfinite(arr)):
+            raise ValueError(f"`{name}` holds a non-finite value")
+    if active is not None:
+        active = np.asarray(active)
+        if active.shape != (n,) or active.dtype != bool:
+            raise ValueError(f"`active` must be a bool array of shape ({n},)")
+    return P, s, max_iter, C, x, g0, active
 
 
 class _Breakdown(Exception):

@@ -8,13 +8,14 @@ initial gap ``g(x)`` of eq. (2). Both bodies have the same ``E`` and ``nu``, so
 Dundurs' ``beta = 0`` and the composite compliance is ``A = 4 (1 - nu^2) / E``.
 
 Each body is condensed onto its interface nodes, both displacement components
-(:func:`fem.elasticity.condense`); the meshes match node for node. With ``f_i``
-the normal force the punch presses onto the substrate at node ``i`` and ``t_i``
-the shear force it drags the substrate with (``sum t_i = Q``), the gap and the
-relative tangential displacement of the punch are::
+(:func:`fem.elasticity.condense`); the meshes match node for node. With ``fn_i``
+the normal force the punch presses onto the substrate at node ``i`` (``f`` is
+the coefficient of friction) and ``t_i`` the shear force it drags the substrate
+with (``sum t_i = Q``), the gap and the relative tangential displacement of the
+punch are::
 
-    gap_i = g(x_i) + alpha x_i - delta + (C_nn f)_i - (C_nt t)_i
-    w_i   = xi + (C_tn f)_i - (C_tt t)_i
+    gap_i = g(x_i) + alpha x_i - delta + (C_nn fn)_i - (C_nt t)_i
+    w_i   = xi + (C_tn fn)_i - (C_tt t)_i
 
 where ``C_nn = G^P_yy + G^S_yy``, ``C_nt = G^P_yx + G^S_yx``, ``C_tn = G^P_xy + G^S_xy``
 and ``C_tt = G^P_xx + G^S_xx`` are sums of the two bodies' flexibility blocks
@@ -25,9 +26,9 @@ solver does not rely on it (it iterates the two to a fixed point).
 The load history is ``P`` at lever arm ``s`` first (frictionless normal contact,
 :func:`fem.contact.solve_contact` on ``C_nn``), then ``Q`` in steps. In each step
 the interface nodes in contact either stick (``w_i`` keeps its value of the
-previous step) or slip (``t_i = ±f f_i`` with the sign of the slip increment),
+previous step) or slip (``t_i = ±f fn_i`` with the sign of the slip increment),
 found by a primal-dual active-set iteration on the complementarity function
-``t_i = proj_[-f f_i, f f_i](t_i + c Δw_i)`` (Hüeber, Stadler & Wohlmuth 2008).
+``t_i = proj_[-f fn_i, f fn_i](t_i + c Δw_i)`` (Hüeber, Stadler & Wohlmuth 2008).
 """
 from __future__ import annotations
 
@@ -68,6 +69,8 @@ def mirror(sub: Substrate) -> Substrate:
     are carried over by their vertex pairs, so the image's ``"contact"`` nodes
     are the original's, node for node.
     """
+    if not isinstance(sub, Substrate):
+        raise TypeError(f"`sub` must be a fem.Substrate, not {type(sub).__name__}")
     m = sub.mesh
     image = MeshTri(np.ascontiguousarray(m.p * np.array([[1.0], [-1.0]])),
                     np.ascontiguousarray(m.t[[0, 2, 1]]))
@@ -115,6 +118,7 @@ class Interface:
     backend: str = "scipy"
 
 
+@boundary
 def interface(lower: Substrate, upper: Substrate | None, E: float, nu: float) -> Interface:
     """Condense both bodies onto their interface and combine their flexibilities.
 
@@ -130,6 +134,8 @@ def interface(lower: Substrate, upper: Substrate | None, E: float, nu: float) ->
     ValueError
         If the two bodies' interface nodes do not match.
     """
+    if upper is not None and not isinstance(upper, Substrate):
+        raise TypeError(f"`upper` must be a fem.Substrate or None, not {type(upper).__name__}")
     S = condense(lower, E, nu, ("u^1", "u^2"))
     B = S if upper is None else condense(upper, E, nu, ("u^1", "u^2"))
     if len(S.x) != len(B.x) or not np.allclose(S.x, B.x, rtol=0, atol=1e-12 * np.ptp(S.x)):
@@ -156,8 +162,8 @@ class Step:
     ----------
     Q, branch
         Shear force and branch (:data:`threepart.results.BRANCHES`).
-    f, t
-        Normal and shear nodal forces.
+    fn, t
+        Normal and shear nodal forces (``fn``: ``f`` is the coefficient of friction).
     w
         Relative tangential displacement of the punch at the nodes.
     xi
@@ -172,7 +178,7 @@ class Step:
 
     Q: float
     branch: str
-    f: np.ndarray = field(repr=False)
+    fn: np.ndarray = field(repr=False)
     t: np.ndarray = field(repr=False)
     w: np.ndarray = field(repr=False)
     xi: float
@@ -181,21 +187,21 @@ class Step:
     iterations: int
 
 
-def _tangential(itf: Interface, f: np.ndarray, w_prev: np.ndarray, Q: float, mu: float,
+def _tangential(itf: Interface, fn: np.ndarray, w_prev: np.ndarray, Q: float, mu: float,
                 stick0: np.ndarray, max_iter: int) -> tuple[np.ndarray, float, np.ndarray, int]:
-    """Shear forces, plate displacement and stick set of one load step (forces ``f`` given).
+    """Shear forces, plate displacement and stick set of one load step (normal forces ``fn`` given).
 
-    Stick nodes keep ``w_prev``; slip nodes carry ``t_i = ±mu f_i``; ``sum t = Q``.
+    Stick nodes keep ``w_prev``; slip nodes carry ``t_i = ±mu fn_i``; ``sum t = Q``.
     """
-    touch = f > 0
-    bound = mu * f
+    touch = fn > 0
+    bound = mu * fn
     C = itf.C_tt
-    w0 = itf.C_tn @ f
+    w0 = itf.C_tn @ fn
     stick = stick0 & touch
-    sign = np.zeros(len(f))
+    sign = np.zeros(len(fn))
     if not stick.any():   # start from the node that carries the most force
-        stick[np.argmax(f)] = True
-    t = np.zeros(len(f))
+        stick[np.argmax(fn)] = True
+    t = np.zeros(len(fn))
     cpd = 1.0 / float(np.mean(np.diag(C)))
     for it in range(1, max_iter + 1):
         slip = touch & ~stick
@@ -315,10 +321,10 @@ class _Model:
         self.t = np.zeros(len(self.itf.x))
         self.normal = self._normal(self.t)
         check_one_zone(self.itf.x, self.normal.active, P, s)
-        self.f = self.normal.f
-        self.w0 = self.itf.C_tn @ self.f          # relative tangential displacement before Q
+        self.fn = self.normal.f
+        self.w0 = self.itf.C_tn @ self.fn          # relative tangential displacement before Q
         self.w = self.w0.copy()
-        self.stick = self.f > 0
+        self.stick = self.fn > 0
         self.steps: list[Step] = []
         self.h_end = math.nan
         self.timings["condense"] = time.perf_counter() - t0
@@ -348,7 +354,7 @@ class _Model:
             raise NoConvergenceError("normal and tangential problems did not reach a fixed point")
         self.normal, self.t, self.stick = normal, t, stick
         self.w = xi + self.itf.C_tn @ normal.f - self.itf.C_tt @ t
-        st = Step(Q=float(Q), branch=branch, f=normal.f, t=t, w=self.w.copy(), xi=xi,
+        st = Step(Q=float(Q), branch=branch, fn=normal.f, t=t, w=self.w.copy(), xi=xi,
                   stick=stick, direction=direction, iterations=its)
         self.steps.append(st)
         self.timings["friction"] += time.perf_counter() - t0
@@ -377,11 +383,11 @@ class _Model:
     def stick_zone(self, st: Step) -> tuple[float, float]:
         """Ends of the zone that has not slipped in the step's direction, from ``p*^2 -> 0``.
 
-        ``p* = (f f_i - direction t_i) / w_i`` vanishes where the nodes slip and
+        ``p* = (f fn_i - direction t_i) / w_i`` vanishes where the nodes slip and
         decays as a square root at the ends of the stick zone, like the
         pressure at the contact ends (:func:`fem.ends.contact_ends`).
         """
-        pstar = (self.mu * st.f - st.direction * st.t) / self.itf.weights
+        pstar = (self.mu * st.fn - st.direction * st.t) / self.itf.weights
         return contact_ends(self.itf.x, pstar, st.stick, (-self.punch.b, self.punch.b))
 
 
@@ -545,7 +551,7 @@ def fretting_cycle(punch: Punch, P: float, s: float = 0.0, *, Q_max: float, f: f
             ("unloading", np.linspace(Q_max, -Q_max, states), -1),
             ("reloading", np.linspace(-Q_max, Q_max, states), 1)]
     recorded: list[Step] = []
-    first = Step(Q=0.0, branch="loading", f=model.f, t=model.t, w=model.w.copy(), xi=0.0,
+    first = Step(Q=0.0, branch="loading", fn=model.fn, t=model.t, w=model.w.copy(), xi=0.0,
                  stick=model.stick, direction=1, iterations=0)
     for branch, Qs, direction in path:
         for k, Q in enumerate(Qs):
@@ -577,5 +583,5 @@ def fretting_cycle(punch: Punch, P: float, s: float = 0.0, *, Q_max: float, f: f
 
 def replace_branch(st: Step, branch: str, direction: int) -> Step:
     """The state ``st`` recorded again as the first of ``branch`` (a reversal point)."""
-    return Step(Q=st.Q, branch=branch, f=st.f, t=st.t, w=st.w, xi=st.xi, stick=st.stick,
+    return Step(Q=st.Q, branch=branch, fn=st.fn, t=st.t, w=st.w, xi=st.xi, stick=st.stick,
                 direction=direction, iterations=0)

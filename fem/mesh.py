@@ -23,6 +23,8 @@ from threepart.errors import NoConvergenceError
 from threepart.meshes import SubstrateSpec, build_substrate
 from threepart.validate import finite
 
+from ._boundary import boundary
+
 __all__ = ["MeshPreset", "PRESETS", "Substrate", "read_substrate", "make_substrate", "preset"]
 
 
@@ -161,6 +163,7 @@ class Substrate:
     path: str
 
 
+@boundary
 def read_substrate(path: str | Path) -> Substrate:
     """Read a gmsh ``.msh`` through meshio; map each physical curve group to facets.
 
@@ -205,14 +208,18 @@ def read_substrate(path: str | Path) -> Substrate:
 MESH_CACHE_SIZE = 32
 
 
+@boundary
 def make_substrate(spec: SubstrateSpec) -> Substrate:
     """Build the mesh of ``spec`` with gmsh in a temporary file and read it back.
 
     gmsh runs once per spec in a run: the spec (a frozen dataclass, the
     parameters the manifest records) keys a cache of the last
     ``MESH_CACHE_SIZE`` meshes, and every call returns its own copy, so a
-    caller that changes its substrate changes no later one.
+    caller that changes its substrate changes no later one. A failure of gmsh
+    is a :class:`NoConvergenceError` (:func:`gmsh_failure`).
     """
+    if not isinstance(spec, SubstrateSpec):
+        raise TypeError(f"`spec` must be a SubstrateSpec, not {type(spec).__name__}")
     return copy.deepcopy(_meshed(spec))
 
 

@@ -279,3 +279,27 @@ def test_the_fuzzed_singular_case_answers_as_the_sie_does():
     assert abs(fe.a - ref.a) < 1e-5 * W and abs(fe.c - ref.c) < 1e-5 * W, (fe.a, fe.c, ref.a, ref.c)
     assert abs(fe.alpha - ref.alpha) < 1e-3 * abs(ref.alpha), (fe.alpha, ref.alpha)
 
+
+
+@pytest.mark.parametrize("R, a_hertz, error", [
+    (1.0, 0.45, "SlopeLimitError"),     # slope a/R = 0.45 > SLOPE_LIMIT = 0.3
+    (0.3, 0.45, "ArcExtentError"),      # a > b + R = 0.3: past the arc's extent
+    (1.0, 0.2, None),                   # slope 0.2: answered, as Hertz says
+])
+def test_a_contact_past_half_plane_theory_is_refused(R, a_hertz, error):
+    """A cylinder (b = 0) on the reference mesh at the load Hertz gives contact
+    half-width ``a`` (plane strain, rigid punch: a^2 = 2 A P R / pi): past the
+    small-slope limit or the arc's extent the FE answer is refused, named."""
+    from threepart import errors
+    from threepart.validate import SLOPE_LIMIT
+
+    A = rigid_punch(1.0, 0.3)
+    P = math.pi * a_hertz**2 / (2 * A * R)
+    args = (Punch(R, R, 0.0), P)
+    if error is None:
+        assert a_hertz / R < SLOPE_LIMIT
+        r = fem.solve_normal(*args, E=1.0, nu=0.3, mesh=REFERENCE_MSH)
+        assert abs(r.a - a_hertz) < 0.05 * a_hertz and abs(r.c - a_hertz) < 0.05 * a_hertz
+    else:
+        with pytest.raises(getattr(errors, error)):
+            fem.solve_normal(*args, E=1.0, nu=0.3, mesh=REFERENCE_MSH)
