@@ -33,7 +33,11 @@ def _foreign() -> tuple[type[BaseException], ...]:
     import meshio
     from scipy.sparse.linalg import ArpackError
 
-    return (*FOREIGN, meshio.ReadError, ArpackError)
+    return (*FOREIGN, meshio.ReadError, ArpackError, RuntimeError)
+
+
+#: everything the boundary turns into NoConvergenceError (after the package's own errors)
+FOREIGN_ALL: tuple[type[BaseException], ...] = _foreign()
 
 
 def boundary(func: F) -> F:
@@ -44,7 +48,7 @@ def boundary(func: F) -> F:
             return func(*args, **kwargs)
         except (NoConvergenceError, ContactZoneError):
             raise   # the package's own (RuntimeError subclasses, like SuperLU's "singular")
-        except (*_foreign(), RuntimeError) as e:
+        except FOREIGN_ALL as e:
             why = " ".join(str(e).split()[:30]) or type(e).__name__
             why = why.replace(tempfile.gettempdir(), "<tmp>")
             raise NoConvergenceError(f"{func.__name__}: the FE computation failed "

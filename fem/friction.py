@@ -440,8 +440,7 @@ def _model(punch: Punch, P: float, s: float, E: float, nu: float, tilt: str,
         finer = refined(punch, left, right, h_end, pre, attempt, mesh)
         if finer is None:
             break
-        say(f"refine: an end lies near a join, elements {finer.refine / mesh.refine:g}x finer "
-            "there than the preset's")
+        say(f"refine: an end lies near a join, elements W / (n {finer.refine:g}) there")
         pre, guess = finer, (left, right)   # refine at these ends and the joins
     check_contact(punch, -left, right, model.normal.alpha)
     model.timings.update(locate=t_locate, mesh=t_mesh)

@@ -267,8 +267,7 @@ def solve_normal(punch: Punch, P: float, s: float = 0.0, *, E: float, nu: float,
         finer = refined(punch, left, right, h_end, chosen, attempt, pre)
         if finer is None:
             break
-        say(f"refine: an end lies near a join, elements {finer.refine / pre.refine:g}x finer "
-            "there than the preset's")
+        say(f"refine: an end lies near a join, elements W / (n {finer.refine:g}) there")
         chosen, found = finer, (left, right)   # refine at these ends and the joins, solve again
     check_contact(punch, -left, right, sol.alpha)
     flds = fields_of(*sc.displacement(sol.f), E, nu) if fields else None
