@@ -255,3 +255,12 @@ def test_a_contact_gmsh_cannot_mesh_faithfully_is_refused(no_numerics, scale):
     punch = Punch(R1=10.0 * scale, R2=5.0 * scale, b=scale)
     with pytest.raises(ValueError, match=r"`P` = .* length scale .* outside \[1e-06, 1e\+18\]"):
         fem.solve_normal(punch, 400.0 * scale, E=E, nu=NU, mesh="quick")
+
+
+def test_nu_minus_one_through_the_shared_entry_point_names_nu(no_numerics):
+    """threepart.solve derives the FE modulus 2 (1 - nu^2) / A = 0 from nu = -1: the
+    refusal must name `nu` and its range, not the derived `E`."""
+    from threepart import solve
+
+    with pytest.raises(ValueError, match=r"`nu` = -1.0 must lie in \(-1, 0.5\)"):
+        solve(PUNCH, 400.0, A=8.67e-6, method="fem", nu=-1.0, mesh="quick")
