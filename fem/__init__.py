@@ -14,6 +14,12 @@ SeparationError     -- the contact separates into two zones (from threepart.erro
 MeshResolutionError -- a contact end too close to a join for the mesh, after automatic refinement
 locate_contact      -- coarse trial and locate solves that place the zone and the ends (no closed form used)
 
+Every solver checks all of its input before any meshing or numerics (a wrong type is a
+``TypeError``, a value out of range a ``ValueError`` naming the argument and the limit),
+raises only threepart's errors (a foreign numerical failure becomes ``NoConvergenceError``),
+checks its contact against ``threepart.validate.check_contact``, and with ``progress=True``
+(default: when stderr is a terminal) prints one line per stage to stderr.
+
 Building blocks
 ---------------
 MeshPreset, PRESETS -- mesh density relative to the contact width ("quick", "default", "fine")

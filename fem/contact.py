@@ -18,11 +18,16 @@ small linear system on the active set.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 from threadpoolctl import threadpool_limits
 
 from threepart.errors import NoConvergenceError
+from threepart.validate import finite, integer, positive
+
+from ._boundary import boundary
+from ._iv import MAX_ITER
 
 __all__ = ["ContactSolution", "solve_contact"]
 
@@ -76,6 +81,7 @@ def _solve_active(C: np.ndarray, x: np.ndarray, g0: np.ndarray, active: np.ndarr
     return f, float(sol[m]), float(sol[m + 1]) if free_tilt else 0.0
 
 
+@boundary
 def solve_contact(C: np.ndarray, x: np.ndarray, g0: np.ndarray, P: float, s: float = 0.0, *,
                   free_tilt: bool = True, max_iter: int = 100,
                   active: np.ndarray | None = None) -> ContactSolution:
@@ -106,16 +112,96 @@ def solve_contact(C: np.ndarray, x: np.ndarray, g0: np.ndarray, P: float, s: flo
     ------
     NoConvergenceError
         If the active set does not settle within ``max_iter`` iterations, or the
-        settled set leaves a tensile force or a penetration above round-off.
+        settled set leaves a tensile force or a penetration above round-off, or
+        the iteration breaks down (an active set that cannot carry the load, a
+        singular system) from every start tried: the one given, all nodes, and
+        the nodes the punch's shape reaches (:func:`_start`).
     """
+    P, s, max_iter, C, x, g0, active = _contact_iv(C, x, g0, P, s, max_iter, active)
+    starts = ["given" if active is not None else "all", "geometric"]
+    if active is not None:
+        starts.insert(1, "all")
+    failures = []
+    for start in starts:
+        act = _start(start, C, x, g0, P, active)
+        try:
+            return _iterate(C, x, g0, P, s, free_tilt, max_iter, act)
+        except _Breakdown as e:
+            failures.append(f"from the {start} start: {e}")
+    raise NoConvergenceError("contact active set broke down " + "; ".join(failures))
+
+
+def _contact_iv(C: Any, x: Any, g0: Any, P: Any, s: Any, max_iter: Any, active: Any
+                ) -> tuple[float, float, int, np.ndarray, np.ndarray, np.ndarray, np.ndarray | None]:
+    """The checked input of :func:`solve_contact`: finite arrays of matching shapes, ``P > 0``."""
+    P, s = positive("P", P), finite("s", s)
+    max_iter = integer("max_iter", max_iter, *MAX_ITER)
+    x = np.asarray(x, dtype=float)
+    n = len(x) if x.ndim == 1 else -1
+    C, g0 = np.asarray(C, dtype=float), np.asarray(g0, dtype=float)
+    if n < 1 or C.shape != (n, n) or g0.shape != (n,):
+        raise ValueError(f"`C`, `x`, `g0` must have shapes (n, n), (n,), (n,); got {C.shape}, "
+                         f"{x.shape}, {g0.shape}")
+    for name, arr in (("C", C), ("x", x), ("g0", g0)):
+        if not np.all(np.isfinite(arr)):
+            raise ValueError(f"`{name}` holds a non-finite value")
+    if active is not None:
+        active = np.asarray(active)
+        if active.shape != (n,) or active.dtype != bool:
+            raise ValueError(f"`active` must be a bool array of shape ({n},)")
+    return P, s, max_iter, C, x, g0, active
+
+
+class _Breakdown(Exception):
+    """The active-set iteration left the admissible sets (it is not globally convergent)."""
+
+
+def _start(start: str, C: np.ndarray, x: np.ndarray, g0: np.ndarray, P: float,
+           active: np.ndarray | None) -> np.ndarray:
+    """An initial active set: the one given, every node, or the nodes the punch's shape reaches.
+
+    ``"geometric"``: the nodes whose initial gap lies within the largest
+    surface displacement of the load spread over all nodes, ``max C (P/n)``,
+    of its lowest point: a set about the size of the contact.
+    """
+    if start == "given":
+        return np.asarray(active, bool).copy()
+    if start == "all":
+        return np.ones(len(x), bool)
+    d = float(np.max(np.abs(C @ np.full(len(x), P / len(x)))))
+    return g0 - g0.min() <= max(d, 0.0)
+
+
+def _admissible(act: np.ndarray, x: np.ndarray, s: float, free_tilt: bool) -> str | None:
+    """Why the active-set system of ``act`` is singular, or None.
+
+    With a free tilt the forces must balance the moment ``P s`` too: one
+    active node makes the force and moment rows dependent.
+    """
+    m = int(act.sum())
+    if free_tilt and m < 2:
+        return (f"{m} active node at x = {x[act][0]:.6g} cannot balance the moment of the "
+                f"load at s = {s:.6g}")
+    return None
+
+
+def _iterate(C: np.ndarray, x: np.ndarray, g0: np.ndarray, P: float, s: float, free_tilt: bool,
+             max_iter: int, act: np.ndarray) -> ContactSolution:
+    """The primal-dual active-set iteration from ``act``; :class:`_Breakdown` if it leaves the admissible sets."""
     n = len(x)
-    act = np.ones(n, bool) if active is None else np.asarray(active, bool).copy()
     cpd = 1.0 / float(np.mean(np.diag(C)))  # force per unit gap: balances the two terms
     with threadpool_limits(limits=1, user_api="blas"):
         for it in range(1, max_iter + 1):
             if not act.any():
                 act[np.argmin(g0)] = True
-            f, delta, alpha = _solve_active(C, x, g0, act, P, s, free_tilt)
+            why = _admissible(act, x, s, free_tilt)
+            if why is not None:
+                raise _Breakdown(f"at iteration {it}: {why}")
+            try:
+                f, delta, alpha = _solve_active(C, x, g0, act, P, s, free_tilt)
+            except np.linalg.LinAlgError:
+                raise _Breakdown(f"at iteration {it}: a singular active-set system "
+                                 f"({int(act.sum())} active nodes)") from None
             gap = g0 + alpha * x - delta + C @ f
             gap[act] = 0.0
             new = f - cpd * gap > 0
@@ -126,6 +212,8 @@ def solve_contact(C: np.ndarray, x: np.ndarray, g0: np.ndarray, P: float, s: flo
             raise NoConvergenceError(
                 f"contact active set did not settle within `max_iter` = {max_iter} iterations "
                 f"({int(np.sum(new != act))} nodes still changing)")
+    if not (np.all(np.isfinite(f)) and np.isfinite(delta) and np.isfinite(alpha)):
+        raise _Breakdown(f"at iteration {it}: non-finite forces")
     scale_f, scale_g = P / n, float(np.ptp(g0)) + 1e-300
     if f.min() < -1e-9 * scale_f * n or gap.min() < -1e-9 * scale_g:
         raise NoConvergenceError(

@@ -40,6 +40,10 @@ from skfem import Basis, ElementTriP2, ElementVector, FacetBasis, LinearForm, as
 from skfem.models.elasticity import lame_parameters, linear_elasticity
 from threadpoolctl import threadpool_limits
 
+from threepart.errors import NoConvergenceError
+
+from ._boundary import boundary
+from ._iv import material
 from .mesh import Substrate
 
 __all__ = ["SurfaceCompliance", "condense", "choose_backend", "backends", "BACKEND_VARIABLE"]
@@ -164,11 +168,11 @@ def _superlu(K: sp.csc_matrix, last: np.ndarray) -> _Factorised:
     n = len(last)
     if not (np.array_equal(lu.perm_c, np.arange(K.shape[0]))
             and np.array_equal(lu.perm_r, np.arange(K.shape[0]))):
-        raise RuntimeError("SuperLU reordered the stiffness; the Schur block is not trailing")
+        raise NoConvergenceError("SuperLU reordered the stiffness; the Schur block is not trailing")
     L_inv, info_l = dtrtri(lu.L.tocsc()[-n:, -n:].toarray(), lower=1, unitdiag=1)
     U_inv, info_u = dtrtri(lu.U.tocsc()[-n:, -n:].toarray(), lower=0)
     if info_l or info_u:
-        raise RuntimeError("the trailing factor of the stiffness is singular")
+        raise NoConvergenceError("the trailing factor of the stiffness is singular")
     return U_inv @ L_inv, order, lu.solve
 
 
@@ -188,11 +192,11 @@ def _cholmod_llt(K: sp.csc_matrix, last: np.ndarray) -> _Factorised:
     factor = cholmod.cholesky(sp.csc_matrix(K[order][:, order]), mode="supernodal",
                               ordering_method="natural")
     if not np.array_equal(factor.P(), np.arange(K.shape[0])):
-        raise RuntimeError("CHOLMOD reordered the stiffness; the Schur block is not trailing")
+        raise NoConvergenceError("CHOLMOD reordered the stiffness; the Schur block is not trailing")
     n = len(last)
     S_inv, info = dpotri(factor.L()[-n:, -n:].toarray(), lower=1)
     if info:
-        raise RuntimeError("the trailing factor of the stiffness is singular")
+        raise NoConvergenceError("the trailing factor of the stiffness is singular")
     return np.tril(S_inv) + np.tril(S_inv, -1).T, order, factor.solve_A
 
 
@@ -200,6 +204,7 @@ _FACTORISE: dict[str, Callable[[sp.csc_matrix, np.ndarray], _Factorised]] = {
     "cholmod": _cholmod_llt, "scipy": _superlu}
 
 
+@boundary
 def condense(substrate: Substrate, E: float, nu: float,
              components: tuple[str, ...] = ("u^2",), backend: str | None = None
              ) -> SurfaceCompliance:
@@ -223,9 +228,14 @@ def condense(substrate: Substrate, E: float, nu: float,
 
     Raises
     ------
-    ValueError
-        For unknown ``components`` or an unknown or missing ``backend``.
+    TypeError, ValueError
+        For a ``substrate`` that is not a :class:`~fem.mesh.Substrate`, ``E`` or
+        ``nu`` out of range (:func:`fem._iv.material`), unknown ``components`` or
+        an unknown or missing ``backend``.
     """
+    if not isinstance(substrate, Substrate):
+        raise TypeError(f"`substrate` must be a fem.Substrate, not {type(substrate).__name__}")
+    E, nu = material(E, nu)
     if components not in (("u^2",), ("u^1", "u^2")):
         raise ValueError(f"`components` = {components!r} must be ('u^2',) or ('u^1', 'u^2')")
     chosen = choose_backend(backend)
@@ -249,7 +259,7 @@ def condense(substrate: Substrate, E: float, nu: float,
         x_dofs = surface.all(["u^1"])
         x_dofs = x_dofs[np.argsort(basis.doflocs[0, x_dofs])]
         if not np.array_equal(basis.doflocs[0, x_dofs], x):
-            raise RuntimeError("the u_x and u_y surface DOFs do not share their nodes")
+            raise NoConvergenceError("the u_x and u_y surface DOFs do not share their nodes")
         dofs = np.concatenate([x_dofs, y_dofs])
     clamped = basis.get_dofs(facets=groups["base"]).all()
     free = np.setdiff1d(np.arange(basis.N), clamped)

@@ -25,10 +25,10 @@ and of the finite bodies is exact (to the chords of the mesh).
 from __future__ import annotations
 
 import math
-import tempfile
 import time
 from dataclasses import replace
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
@@ -37,21 +37,28 @@ from threepart.material import similar_pair
 from threepart.meshes import SubstrateSpec
 from threepart.meshes.punch import PunchSpec, build_punch
 from threepart.punch import Punch
+from threepart.validate import check_contact, check_punch
 
 from .contact import ContactSolution, solve_contact
 from .elasticity import condense
 from .friction import mirror
-from .mesh import PRESETS, MeshPreset, Substrate, make_substrate, preset, read_substrate
-from .solve import (FemResult, _check_one_zone, _end_size, _ends, _validate, locate_contact,
-                    refined)
+from ._boundary import boundary
+from ._iv import height_iv, mesh_arg, normal_iv
+from ._progress import Progress, ProgressArg, progress_iv
+from .ends import REFINE_ATTEMPTS, check_one_zone, contact_ends, end_size, refined
+from threepart.output import scratch_dir
+
+from .mesh import PRESETS, MeshPreset, Substrate, gmsh_failure, make_substrate, read_substrate
+from .solve import FemResult, TRIES_DEFAULT, _locate
 
 __all__ = ["solve_finite", "punch_body", "zone_margin"]
 
 
 def punch_body(spec: PunchSpec) -> Substrate:
     """The punch of ``spec`` meshed with gmsh, its top (``"base"``) to be clamped."""
-    with tempfile.TemporaryDirectory(prefix="threepart-punch-") as tmp:
-        return read_substrate(build_punch(spec, Path(tmp) / "punch.msh"))
+    with scratch_dir("threepart-punch-") as tmp:   # marked: a killed run's is cleaned by the next
+        with gmsh_failure("the punch"):
+            return read_substrate(build_punch(spec, Path(tmp) / "punch.msh"))
 
 
 def _solve(punch: Punch, P: float, s: float, E: float, nu: float, tilt: str, max_iter: int,
@@ -74,7 +81,7 @@ def _solve(punch: Punch, P: float, s: float, E: float, nu: float, tilt: str, max
     t1 = time.perf_counter()
     S, B = condense(block, E, nu), condense(body, E, nu)
     if len(S.x) != len(B.x) or not np.allclose(S.x, B.x, rtol=0, atol=1e-9 * np.ptp(S.x)):
-        raise RuntimeError("the punch's and the block's interface nodes do not match")
+        raise ValueError("the punch's and the block's interface nodes do not match")
     t2 = time.perf_counter()
     if H is None:
         g0 = punch.profile(S.x)
@@ -86,7 +93,7 @@ def _solve(punch: Punch, P: float, s: float, E: float, nu: float, tilt: str, max
     if sol.active[0] or sol.active[-1]:
         raise ContactZoneError(
             f"the contact reaches the candidate zone end [{S.x[0]:.6g}, {S.x[-1]:.6g}]")
-    _check_one_zone(S.x, sol.active, P, s)
+    check_one_zone(S.x, sol.active, P, s)
     timings = {"mesh": t1 - t0, "condense": t2 - t1, "contact": time.perf_counter() - t2}
     return sol, S.x, S.weights, timings, S.dofs + B.dofs
 
@@ -103,9 +110,23 @@ def zone_margin(b: float, left: float, right: float, margin: float) -> float:
     return min(margin, max(0.02, (W - 2 * b) / W))
 
 
+def _finite_iv(punch: Any, P: Any, s: Any, E: Any, nu: Any, H: Any, theta: Any, profile: Any,
+               tilt: Any, mesh: Any, max_iter: Any, progress: Any) -> tuple[Any, ...]:
+    """The checked input of :func:`solve_finite`, before any numerics."""
+    check_punch(punch)
+    if not math.isinf(punch.R):
+        raise ValueError(f"`punch` has R = {punch.R!r}: the finite punch has a flat centre (R = inf)")
+    P, s, E, nu, tilt, max_iter = normal_iv(punch, P, s, E, nu, tilt, max_iter, pair=True)
+    H, theta, profile = height_iv(punch, H, theta, profile)
+    pre = mesh_arg(mesh, (MeshPreset,), allow_path=False)
+    return P, s, E, nu, H, theta, profile, tilt, pre, max_iter, progress_iv(progress)
+
+
+@boundary
 def solve_finite(punch: Punch, P: float, s: float = 0.0, *, E: float, nu: float, H: float | None,
                  theta: float = math.pi / 3, profile: str = "arc", tilt: str = "free",
-                 mesh: str | MeshPreset = "default", max_iter: int = 100) -> FemResult:
+                 mesh: str | MeshPreset = "default", max_iter: int = 100,
+                 progress: ProgressArg = None) -> FemResult:
     """A punch of real shape and height ``H`` pressed into a finite block by ``P`` at ``s``.
 
     Parameters
@@ -120,8 +141,13 @@ def solve_finite(punch: Punch, P: float, s: float = 0.0, *, E: float, nu: float,
         The punch's height, flank angle and edge shape (``"arc"`` or ``"parabola"``).
         ``H = None``: the paper's model (the map's control), a punch body as large
         as the block, its lower face flat with the profile of eq. (2) as the gap.
+        ``H`` is at most ``1000 (b + max(R1, R2))``, ``theta`` in ``(0, pi/2)``.
     mesh
         A preset (its size relative to the contact width, its grading).
+    max_iter
+        Cap on the active-set iterations, in ``[1, 10000]``.
+    progress
+        One line per stage on stderr, as in :func:`fem.solve_normal`.
 
     Returns
     -------
@@ -130,21 +156,30 @@ def solve_finite(punch: Punch, P: float, s: float = 0.0, *, E: float, nu: float,
 
     Raises
     ------
-    ValueError
-        For invalid input, or a punch whose lower face or height cannot hold the contact.
+    TypeError, ValueError
+        For invalid input (before any numerics, as :func:`fem.solve_normal`), or a
+        punch whose lower face or height cannot hold the contact.
+    ArcExtentError, SlopeLimitError
+        With ``H = None`` (the paper's model): if the contact runs past an arc's
+        extent or its surface slope exceeds the small-slope limit
+        (:func:`threepart.validate.check_contact`), as :func:`fem.solve_normal`.
+        With a finite ``H`` the punch's exact face bounds the contact (it ends at
+        the flank angle, ``b + R sin theta < b + R``: a zone past it is a
+        ``ValueError``), and the slope limit is not applied: this model measures
+        where the small-slope idealisation stops (the validity map's points reach
+        ``(a - b)/R1 = 0.5``).
     ContactZoneError, SeparationError, NoConvergenceError
         As :func:`fem.solve_normal`.
     """
-    if not isinstance(punch, Punch) or not math.isinf(punch.R):
-        raise ValueError(f"`punch` = {punch!r} must be a Punch with a flat centre (R = inf)")
-    _validate(P, s, E, nu, tilt, max_iter)
-    pre = preset(mesh) if isinstance(mesh, str) else mesh
-    if not isinstance(pre, MeshPreset):
-        raise ValueError(f"`mesh` = {mesh!r} must be a preset name {sorted(PRESETS)} or a MeshPreset")
+    P, s, E, nu, H, theta, profile, tilt, pre, max_iter, progress = _finite_iv(
+        punch, P, s, E, nu, H, theta, profile, tilt, mesh, max_iter, progress)
+    say = Progress(progress)
     t_start = time.perf_counter()
     breaks = (-punch.b, punch.b)
     # half-plane estimate (the pair is a rigid punch on E/2), then the finite body's own ends
-    left, right = locate_contact(punch, P, s, E=0.5 * E, nu=nu, tilt=tilt, max_iter=max_iter)
+    left, right = _locate(punch, P, s, 0.5 * E, nu, tilt, max_iter, TRIES_DEFAULT)
+    say(f"locate: half-plane contact about [{left:.6g}, {right:.6g}] "
+        f"({time.perf_counter() - t_start:.1f} s)")
     locate = replace(PRESETS["locate"], margin=zone_margin(punch.b, left, right, 0.15))
     for _ in range(4):
         try:
@@ -155,18 +190,22 @@ def solve_finite(punch: Punch, P: float, s: float = 0.0, *, E: float, nu: float,
             locate = replace(locate, margin=min(2.0, 2 * locate.margin))
     else:
         raise ContactZoneError("the finite-body contact outgrows every candidate zone tried")
-    left, right = _ends(x, sol.f / w, sol.active, breaks)
+    left, right = contact_ends(x, sol.f / w, sol.active, breaks)
     t_locate = time.perf_counter() - t_start
     pre = replace(pre, margin=zone_margin(punch.b, left, right, pre.margin))
-    for attempt in range(2):   # an end near a join refines the mesh there, as in solve_normal
+    base = pre
+    for attempt in range(REFINE_ATTEMPTS + 1):   # an end near a join refines the mesh there, as in solve_normal
         sol, x, w, timings, dofs = _solve(punch, P, s, E, nu, tilt, max_iter,
                                           pre.spec(left, right, breaks), H, theta, profile)
         p = sol.f / w
-        a_end, c_end = _ends(x, p, sol.active, breaks)
-        finer = refined(punch, a_end, c_end, _end_size(x, a_end, c_end), pre, attempt)
+        a_end, c_end = contact_ends(x, p, sol.active, breaks)
+        finer = refined(punch, a_end, c_end, end_size(x, a_end, c_end), pre, attempt, base)
         if finer is None:
             break
         pre, left, right = finer, a_end, c_end
+    say(f"contact: [{a_end:.6g}, {c_end:.6g}], {dofs} DOFs ({time.perf_counter() - t_start:.1f} s)")
+    if H is None:
+        check_contact(punch, -a_end, c_end, sol.alpha)
     timings = {"locate": t_locate, **timings, "total": time.perf_counter() - t_start}
     h = float(np.max(np.diff(x)) * 2)
     info = {"dofs": dofs, "h": h, "H": H, "theta": theta, "profile": "eq. 2" if H is None else profile,

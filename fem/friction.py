@@ -8,13 +8,14 @@ initial gap ``g(x)`` of eq. (2). Both bodies have the same ``E`` and ``nu``, so
 Dundurs' ``beta = 0`` and the composite compliance is ``A = 4 (1 - nu^2) / E``.
 
 Each body is condensed onto its interface nodes, both displacement components
-(:func:`fem.elasticity.condense`); the meshes match node for node. With ``f_i``
-the normal force the punch presses onto the substrate at node ``i`` and ``t_i``
-the shear force it drags the substrate with (``sum t_i = Q``), the gap and the
-relative tangential displacement of the punch are::
+(:func:`fem.elasticity.condense`); the meshes match node for node. With ``fn_i``
+the normal force the punch presses onto the substrate at node ``i`` (``f`` is
+the coefficient of friction) and ``t_i`` the shear force it drags the substrate
+with (``sum t_i = Q``), the gap and the relative tangential displacement of the
+punch are::
 
-    gap_i = g(x_i) + alpha x_i - delta + (C_nn f)_i - (C_nt t)_i
-    w_i   = xi + (C_tn f)_i - (C_tt t)_i
+    gap_i = g(x_i) + alpha x_i - delta + (C_nn fn)_i - (C_nt t)_i
+    w_i   = xi + (C_tn fn)_i - (C_tt t)_i
 
 where ``C_nn = G^P_yy + G^S_yy``, ``C_nt = G^P_yx + G^S_yx``, ``C_tn = G^P_xy + G^S_xy``
 and ``C_tt = G^P_xx + G^S_xx`` are sums of the two bodies' flexibility blocks
@@ -25,15 +26,17 @@ solver does not rely on it (it iterates the two to a fixed point).
 The load history is ``P`` at lever arm ``s`` first (frictionless normal contact,
 :func:`fem.contact.solve_contact` on ``C_nn``), then ``Q`` in steps. In each step
 the interface nodes in contact either stick (``w_i`` keeps its value of the
-previous step) or slip (``t_i = ±f f_i`` with the sign of the slip increment),
+previous step) or slip (``t_i = ±f fn_i`` with the sign of the slip increment),
 found by a primal-dual active-set iteration on the complementarity function
-``t_i = proj_[-f f_i, f f_i](t_i + c Δw_i)`` (Hüeber, Stadler & Wohlmuth 2008).
+``t_i = proj_[-f fn_i, f fn_i](t_i + c Δw_i)`` (Hüeber, Stadler & Wohlmuth 2008).
 """
 from __future__ import annotations
 
 import math
 import time
 from dataclasses import dataclass, field, replace
+from pathlib import Path
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -41,15 +44,19 @@ from skfem import MeshTri
 
 from threepart.errors import FullSlidingError, NoConvergenceError
 from threepart.material import similar_pair
+from threepart.meshes import SubstrateSpec
 from threepart.punch import Punch
 from threepart.results import BRANCHES, FrettingResult, NormalResult, SlipResult
-from threepart.validate import check_finite, check_positive
+from threepart.validate import check_contact
 
 from .contact import ContactSolution, solve_contact
 from .elasticity import SurfaceCompliance, condense
-from .mesh import PRESETS, MeshPreset, Substrate, make_substrate, preset
-from .solve import (FemResult, MeshArg, _check_one_zone, _end_size, _ends, _substrate, _validate,
-                    refined)
+from ._boundary import boundary
+from ._iv import STATES, STEPS, count, mesh_arg, normal_iv, shear_iv
+from ._progress import Progress, ProgressArg, progress_iv
+from .ends import REFINE_ATTEMPTS, check_one_zone, contact_ends, end_size, refined
+from .mesh import PRESETS, MeshPreset, Substrate, make_substrate
+from .solve import FemResult, MeshArg, place_substrate
 
 __all__ = ["Interface", "FemSlipResult", "FemFrettingResult", "Step", "mirror", "interface",
            "solve_partial_slip", "fretting_cycle"]
@@ -62,6 +69,8 @@ def mirror(sub: Substrate) -> Substrate:
     are carried over by their vertex pairs, so the image's ``"contact"`` nodes
     are the original's, node for node.
     """
+    if not isinstance(sub, Substrate):
+        raise TypeError(f"`sub` must be a fem.Substrate, not {type(sub).__name__}")
     m = sub.mesh
     image = MeshTri(np.ascontiguousarray(m.p * np.array([[1.0], [-1.0]])),
                     np.ascontiguousarray(m.t[[0, 2, 1]]))
@@ -109,6 +118,7 @@ class Interface:
     backend: str = "scipy"
 
 
+@boundary
 def interface(lower: Substrate, upper: Substrate | None, E: float, nu: float) -> Interface:
     """Condense both bodies onto their interface and combine their flexibilities.
 
@@ -124,6 +134,8 @@ def interface(lower: Substrate, upper: Substrate | None, E: float, nu: float) ->
     ValueError
         If the two bodies' interface nodes do not match.
     """
+    if upper is not None and not isinstance(upper, Substrate):
+        raise TypeError(f"`upper` must be a fem.Substrate or None, not {type(upper).__name__}")
     S = condense(lower, E, nu, ("u^1", "u^2"))
     B = S if upper is None else condense(upper, E, nu, ("u^1", "u^2"))
     if len(S.x) != len(B.x) or not np.allclose(S.x, B.x, rtol=0, atol=1e-12 * np.ptp(S.x)):
@@ -150,8 +162,8 @@ class Step:
     ----------
     Q, branch
         Shear force and branch (:data:`threepart.results.BRANCHES`).
-    f, t
-        Normal and shear nodal forces.
+    fn, t
+        Normal and shear nodal forces (``fn``: ``f`` is the coefficient of friction).
     w
         Relative tangential displacement of the punch at the nodes.
     xi
@@ -166,7 +178,7 @@ class Step:
 
     Q: float
     branch: str
-    f: np.ndarray = field(repr=False)
+    fn: np.ndarray = field(repr=False)
     t: np.ndarray = field(repr=False)
     w: np.ndarray = field(repr=False)
     xi: float
@@ -175,21 +187,21 @@ class Step:
     iterations: int
 
 
-def _tangential(itf: Interface, f: np.ndarray, w_prev: np.ndarray, Q: float, mu: float,
+def _tangential(itf: Interface, fn: np.ndarray, w_prev: np.ndarray, Q: float, mu: float,
                 stick0: np.ndarray, max_iter: int) -> tuple[np.ndarray, float, np.ndarray, int]:
-    """Shear forces, plate displacement and stick set of one load step (forces ``f`` given).
+    """Shear forces, plate displacement and stick set of one load step (normal forces ``fn`` given).
 
-    Stick nodes keep ``w_prev``; slip nodes carry ``t_i = ±mu f_i``; ``sum t = Q``.
+    Stick nodes keep ``w_prev``; slip nodes carry ``t_i = ±mu fn_i``; ``sum t = Q``.
     """
-    touch = f > 0
-    bound = mu * f
+    touch = fn > 0
+    bound = mu * fn
     C = itf.C_tt
-    w0 = itf.C_tn @ f
+    w0 = itf.C_tn @ fn
     stick = stick0 & touch
-    sign = np.zeros(len(f))
+    sign = np.zeros(len(fn))
     if not stick.any():   # start from the node that carries the most force
-        stick[np.argmax(f)] = True
-    t = np.zeros(len(f))
+        stick[np.argmax(fn)] = True
+    t = np.zeros(len(fn))
     cpd = 1.0 / float(np.mean(np.diag(C)))
     for it in range(1, max_iter + 1):
         slip = touch & ~stick
@@ -295,14 +307,6 @@ class FemFrettingResult(FrettingResult):
         return _interp(self.normal, self.x_nodes, 0.5 * np.ptp(w, axis=0), x)
 
 
-def _check_shear(Q: float, f: float, P: float, name: str = "Q") -> None:
-    check_finite(**{name: Q})
-    check_positive(f=f)
-    if abs(Q) >= f * P:
-        raise FullSlidingError(f"|`{name}`| = {abs(Q):.6g} >= f P = {f * P:.6g} (`f` = {f:g}, "
-                               f"`P` = {P:.6g}): the contact slides as a whole")
-
-
 class _Model:
     """The two-body interface under ``P`` at ``s``, stepped through a shear-load path."""
 
@@ -316,11 +320,11 @@ class _Model:
         self.timings = {**self.itf.timings, "normal": 0.0, "friction": 0.0}
         self.t = np.zeros(len(self.itf.x))
         self.normal = self._normal(self.t)
-        _check_one_zone(self.itf.x, self.normal.active, P, s)
-        self.f = self.normal.f
-        self.w0 = self.itf.C_tn @ self.f          # relative tangential displacement before Q
+        check_one_zone(self.itf.x, self.normal.active, P, s)
+        self.fn = self.normal.f
+        self.w0 = self.itf.C_tn @ self.fn          # relative tangential displacement before Q
         self.w = self.w0.copy()
-        self.stick = self.f > 0
+        self.stick = self.fn > 0
         self.steps: list[Step] = []
         self.h_end = math.nan
         self.timings["condense"] = time.perf_counter() - t0
@@ -350,7 +354,7 @@ class _Model:
             raise NoConvergenceError("normal and tangential problems did not reach a fixed point")
         self.normal, self.t, self.stick = normal, t, stick
         self.w = xi + self.itf.C_tn @ normal.f - self.itf.C_tt @ t
-        st = Step(Q=float(Q), branch=branch, f=normal.f, t=t, w=self.w.copy(), xi=xi,
+        st = Step(Q=float(Q), branch=branch, fn=normal.f, t=t, w=self.w.copy(), xi=xi,
                   stick=stick, direction=direction, iterations=its)
         self.steps.append(st)
         self.timings["friction"] += time.perf_counter() - t0
@@ -359,7 +363,7 @@ class _Model:
     def contact_ends(self) -> tuple[float, float]:
         """Contact ends ``(-a, c)`` of the normal solution, as :func:`fem.solve_normal` finds them."""
         sol = self.normal
-        return _ends(self.itf.x, sol.f / self.itf.weights, sol.active,
+        return contact_ends(self.itf.x, sol.f / self.itf.weights, sol.active,
                      (-self.punch.b, self.punch.b))
 
     def normal_result(self) -> FemResult:
@@ -379,17 +383,18 @@ class _Model:
     def stick_zone(self, st: Step) -> tuple[float, float]:
         """Ends of the zone that has not slipped in the step's direction, from ``p*^2 -> 0``.
 
-        ``p* = (f f_i - direction t_i) / w_i`` vanishes where the nodes slip and
+        ``p* = (f fn_i - direction t_i) / w_i`` vanishes where the nodes slip and
         decays as a square root at the ends of the stick zone, like the
-        pressure at the contact ends (:func:`fem.solve._ends`).
+        pressure at the contact ends (:func:`fem.ends.contact_ends`).
         """
-        pstar = (self.mu * st.f - st.direction * st.t) / self.itf.weights
-        return _ends(self.itf.x, pstar, st.stick, (-self.punch.b, self.punch.b))
+        pstar = (self.mu * st.fn - st.direction * st.t) / self.itf.weights
+        return contact_ends(self.itf.x, pstar, st.stick, (-self.punch.b, self.punch.b))
 
 
-def _model(punch: Punch, P: float, s: float, E: float, nu: float, tilt: str, mesh: MeshArg,
-           max_iter: int, mu: float, Q: float) -> _Model:
-    """The two-body model on ``mesh``; a preset is refined at the stick-zone ends of ``Q`` too.
+def _model(punch: Punch, P: float, s: float, E: float, nu: float, tilt: str,
+           mesh: MeshPreset | Path | SubstrateSpec | Substrate, max_iter: int, mu: float, Q: float,
+           say: Progress) -> _Model:
+    """The two-body model on the checked ``mesh``; a preset is refined at the stick-zone ends of ``Q`` too.
 
     The mirrored pair is a rigid punch on a block of half the modulus, so the
     contact is located as :func:`fem.solve_normal` locates it, with ``E/2``.
@@ -397,14 +402,13 @@ def _model(punch: Punch, P: float, s: float, E: float, nu: float, tilt: str, mes
     stick zone of ``Q``, whose ends then become mesh nodes with fine elements
     around them, as the contact ends are. An end within ``MIN_END_ELEMENTS``
     of a join refines the preset, or is refused, as in :func:`fem.solve_normal`.
+    The normal contact is checked against the limits of half-plane theory
+    (:func:`threepart.validate.check_contact`) before any shear is applied.
     """
-    if not isinstance(punch, Punch):
-        raise ValueError(f"`punch` = {punch!r} must be a closedform.Punch")
-    _validate(P, s, E, nu, tilt, max_iter)
     t0 = time.perf_counter()
     breaks = (-punch.b, punch.b)
-    pre = preset(mesh) if isinstance(mesh, str) and not mesh.endswith(".msh") else mesh
-    lower, L, guess, t_locate = _substrate(mesh, punch, P, s, 0.5 * E, nu, tilt, max_iter)
+    pre = mesh
+    lower, L, guess, t_locate = place_substrate(mesh, punch, P, s, 0.5 * E, nu, tilt, max_iter, say)
     ends: tuple[float, ...] = ()
     if isinstance(pre, MeshPreset) and pre.refine > 1 and Q != 0 and guess is not None:
         t1 = time.perf_counter()
@@ -412,8 +416,10 @@ def _model(punch: Punch, P: float, s: float, E: float, nu: float, tilt: str, mes
         trial = _Model(punch, P, s, E, nu, tilt, coarse, L, guess, max_iter, mu)
         ends = trial.stick_zone(trial.step(Q, "loading", 1 if Q > 0 else -1))
         t_locate += time.perf_counter() - t1
+        say(f"locate: stick zone of Q = {Q:.6g} about [{ends[0]:.6g}, {ends[1]:.6g}] "
+            f"({time.perf_counter() - t1:.1f} s)")
     t_mesh = time.perf_counter() - t0 - t_locate
-    for attempt in range(2):
+    for attempt in range(REFINE_ATTEMPTS + 1):
         t1 = time.perf_counter()
         if isinstance(pre, MeshPreset) and guess is not None:
             spec = pre.spec(*guess, breaks)
@@ -423,27 +429,40 @@ def _model(punch: Punch, P: float, s: float, E: float, nu: float, tilt: str, mes
                 spec = replace(spec, breakpoints=spec.breakpoints + nodes,
                                refine_at=spec.refine_at + nodes)
             lower = make_substrate(spec)
-        t_mesh += time.perf_counter() - t1
+        t2 = time.perf_counter()
+        t_mesh += t2 - t1
+        say(f"mesh: {lower.mesh.t.shape[1]} triangles a body ({t2 - t1:.1f} s)")
         model = _Model(punch, P, s, E, nu, tilt, lower, L, guess, max_iter, mu)
         left, right = model.contact_ends()
-        h_end = _end_size(model.itf.x, left, right)
-        finer = refined(punch, left, right, h_end, pre, attempt)
+        say(f"condense and normal contact: {model.itf.dofs} DOFs, contact [{left:.6g}, "
+            f"{right:.6g}] ({time.perf_counter() - t2:.1f} s)")
+        h_end = end_size(model.itf.x, left, right)
+        finer = refined(punch, left, right, h_end, pre, attempt, mesh)
         if finer is None:
             break
-        pre = finer
+        say(f"refine: an end lies near a join, elements W / (n {finer.refine:g}) there")
+        pre, guess = finer, (left, right)   # refine at these ends and the joins
+    check_contact(punch, -left, right, model.normal.alpha)
     model.timings.update(locate=t_locate, mesh=t_mesh)
     model.h_end = h_end
     return model
 
 
-def _check_steps(steps: int, name: str = "steps") -> None:
-    if not (isinstance(steps, (int, np.integer)) and steps >= 1):
-        raise ValueError(f"`{name}` = {steps!r} must be an integer >= 1")
+def _slip_iv(punch: Any, P: Any, s: Any, Q: Any, f: Any, E: Any, nu: Any, tilt: Any, mesh: Any,
+             steps: Any, max_iter: Any, progress: Any, name: str = "Q", steps_name: str = "steps",
+             steps_range: tuple[int, int] = STEPS) -> tuple[Any, ...]:
+    """The checked input of :func:`solve_partial_slip` (and, with ``Q_max``, :func:`fretting_cycle`)."""
+    P, s, E, nu, tilt, max_iter = normal_iv(punch, P, s, E, nu, tilt, max_iter, pair=True)
+    Q, f = shear_iv(Q, f, P, name)
+    steps = count(steps_name, steps, steps_range)
+    pre = mesh_arg(mesh, (MeshPreset, SubstrateSpec, Substrate))
+    return P, s, Q, f, E, nu, tilt, pre, steps, max_iter, progress_iv(progress)
 
 
+@boundary
 def solve_partial_slip(punch: Punch, P: float, s: float = 0.0, *, Q: float, f: float, E: float,
                        nu: float, tilt: str = "free", mesh: MeshArg = "default", steps: int = 10,
-                       max_iter: int = 100) -> FemSlipResult:
+                       max_iter: int = 100, progress: ProgressArg = None) -> FemSlipResult:
     """Two similar elastic bodies pressed by ``P`` at lever arm ``s``, then sheared by ``Q`` in steps.
 
     Parameters
@@ -460,7 +479,11 @@ def solve_partial_slip(punch: Punch, P: float, s: float = 0.0, *, Q: float, f: f
     mesh
         The substrate's mesh, as in :func:`fem.solve_normal`; the punch body is its mirror image.
     steps
-        Equal increments of ``Q`` from 0.
+        Equal increments of ``Q`` from 0, in ``[1, 1000]``.
+    max_iter
+        Cap on the active-set iterations, in ``[1, 10000]``.
+    progress
+        One line per stage and per load step on stderr, as in :func:`fem.solve_normal`.
 
     Returns
     -------
@@ -471,19 +494,24 @@ def solve_partial_slip(punch: Punch, P: float, s: float = 0.0, *, Q: float, f: f
 
     Raises
     ------
-    ValueError
-        For invalid input; ``FullSlidingError`` for ``|Q| >= f P``.
-    NoConvergenceError, ContactZoneError, SeparationError, MeshResolutionError
+    TypeError, ValueError
+        For invalid input, before any numerics (as :func:`fem.solve_normal`,
+        with ``A = 4 (1 - nu^2) / E``); ``FullSlidingError`` for ``|Q| >= f P``.
+    ArcExtentError, SlopeLimitError, NoConvergenceError, ContactZoneError, SeparationError,
+    MeshResolutionError
         As :func:`fem.solve_normal`, and when the stick/slip states do not settle.
     """
-    check_finite(P=P)
-    _check_shear(Q, f, P)
-    _check_steps(steps)
+    P, s, Q, f, E, nu, tilt, pre, steps, max_iter, progress = _slip_iv(
+        punch, P, s, Q, f, E, nu, tilt, mesh, steps, max_iter, progress)
+    say = Progress(progress)
     t0 = time.perf_counter()
-    model = _model(punch, P, s, E, nu, tilt, mesh, max_iter, f, Q)
+    model = _model(punch, P, s, E, nu, tilt, pre, max_iter, f, Q, say)
     direction = 1 if Q >= 0 else -1
     for k in range(1, steps + 1):
+        t1 = time.perf_counter()
         st = model.step(Q * k / steps, "loading", direction)
+        say(f"step {k}/{steps}, Q = {st.Q:.6g}: {int(st.stick.sum())} nodes stick "
+            f"({time.perf_counter() - t1:.1f} s)")
     normal = model.normal_result()
     left, right = model.stick_zone(st)
     model.timings["total"] = time.perf_counter() - t0
@@ -494,9 +522,10 @@ def solve_partial_slip(punch: Punch, P: float, s: float = 0.0, *, Q: float, f: f
                          history=tuple(model.steps))
 
 
+@boundary
 def fretting_cycle(punch: Punch, P: float, s: float = 0.0, *, Q_max: float, f: float, E: float,
                    nu: float, tilt: str = "free", mesh: MeshArg = "default", states: int = 21,
-                   max_iter: int = 100) -> FemFrettingResult:
+                   max_iter: int = 100, progress: ProgressArg = None) -> FemFrettingResult:
     """One fretting cycle ``0 -> Q_max -> -Q_max -> Q_max`` of the two-body model, step by step.
 
     Each branch is stepped through ``states`` equally spaced values of ``Q``
@@ -506,20 +535,22 @@ def fretting_cycle(punch: Punch, P: float, s: float = 0.0, *, Q_max: float, f: f
     ``sum_i ∮ t_i dw_i`` (trapezoidal in the steps); ``info["loop_energy"]``
     holds the area of the ``Q``–``xi`` loop, the same energy by the global balance.
 
-    Parameters and errors as :func:`solve_partial_slip`, with ``Q_max > 0``.
+    Parameters and errors as :func:`solve_partial_slip`, with ``Q_max > 0`` and
+    ``states`` in ``[2, 1000]``.
     """
-    check_finite(P=P)
-    check_positive(Q_max=Q_max)
-    _check_shear(Q_max, f, P, "Q_max")
-    if not (isinstance(states, (int, np.integer)) and states >= 2):
-        raise ValueError(f"`states` = {states!r} must be an integer >= 2")
+    P, s, Q_max, f, E, nu, tilt, pre, states, max_iter, progress = _slip_iv(
+        punch, P, s, Q_max, f, E, nu, tilt, mesh, states, max_iter, progress, "Q_max", "states",
+        STATES)
+    if Q_max <= 0:
+        raise ValueError(f"`Q_max` = {Q_max!r} must be > 0")
+    say = Progress(progress)
     t0 = time.perf_counter()
-    model = _model(punch, P, s, E, nu, tilt, mesh, max_iter, f, Q_max)
+    model = _model(punch, P, s, E, nu, tilt, pre, max_iter, f, Q_max, say)
     path = [("loading", np.linspace(0.0, Q_max, states), 1),
             ("unloading", np.linspace(Q_max, -Q_max, states), -1),
             ("reloading", np.linspace(-Q_max, Q_max, states), 1)]
     recorded: list[Step] = []
-    first = Step(Q=0.0, branch="loading", f=model.f, t=model.t, w=model.w.copy(), xi=0.0,
+    first = Step(Q=0.0, branch="loading", fn=model.fn, t=model.t, w=model.w.copy(), xi=0.0,
                  stick=model.stick, direction=1, iterations=0)
     for branch, Qs, direction in path:
         for k, Q in enumerate(Qs):
@@ -528,7 +559,10 @@ def fretting_cycle(punch: Punch, P: float, s: float = 0.0, *, Q_max: float, f: f
             elif k == 0:
                 recorded.append(replace_branch(recorded[-1], branch, direction))
             else:
+                t1 = time.perf_counter()
                 recorded.append(model.step(float(Q), branch, direction))
+                say(f"{branch} {k}/{states - 1}, Q = {float(Q):.6g} "
+                    f"({time.perf_counter() - t1:.1f} s)")
     normal = model.normal_result()
     cycle = [st for st in recorded if st.branch != "loading"]
     work = sum(float(np.sum(0.5 * (a.t + b.t) * (b.w - a.w))) for a, b in zip(cycle, cycle[1:]))
@@ -548,5 +582,5 @@ def fretting_cycle(punch: Punch, P: float, s: float = 0.0, *, Q_max: float, f: f
 
 def replace_branch(st: Step, branch: str, direction: int) -> Step:
     """The state ``st`` recorded again as the first of ``branch`` (a reversal point)."""
-    return Step(Q=st.Q, branch=branch, f=st.f, t=st.t, w=st.w, xi=st.xi, stick=st.stick,
+    return Step(Q=st.Q, branch=branch, fn=st.fn, t=st.t, w=st.w, xi=st.xi, stick=st.stick,
                 direction=direction, iterations=0)

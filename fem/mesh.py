@@ -6,20 +6,39 @@ its boundaries looked up by physical-group name.
 """
 from __future__ import annotations
 
+import contextlib
 import copy
 import functools
 import math
+import tempfile
 from dataclasses import dataclass, replace
 from pathlib import Path
+from typing import Iterator
 
 import meshio
 import numpy as np
 from skfem import MeshTri
 
+from threepart.errors import NoConvergenceError
 from threepart.meshes import SubstrateSpec, build_substrate
 from threepart.output import scratch_dir
+from threepart.validate import finite
+
+from ._boundary import boundary
 
 __all__ = ["MeshPreset", "PRESETS", "Substrate", "read_substrate", "make_substrate", "preset"]
+
+
+#: Bounds of a preset's parameters. The upper bound of ``n`` and the lower bound of
+#: ``growth`` keep a solve within this machine's memory and time: 8x the default's
+#: elements across ``W`` (the default has ``n = 300``, ``growth = 0.1``), about 8^2 x its DOFs.
+PRESET_BOUNDS: dict[str, tuple[float, float]] = {
+    "n": (4.0, 2400.0), "growth": (0.0125, 1.0), "L": (4.0, 1e4), "margin": (0.0, 2.0),
+    "refine": (1.0, 1024.0)}
+PRESET_MEANING = {"n": "elements across the contact width", "growth": "the size growth rate",
+                  "L": "the block size in contact widths",
+                  "margin": "the zone's margin in contact widths",
+                  "refine": "how much finer the elements are at the ends and joins"}
 
 
 @dataclass(frozen=True)
@@ -42,6 +61,10 @@ class MeshPreset:
         the rate ``growth``; ``1`` keeps the zone uniform. With ``refine > 1`` the
         estimated contact ends are also mesh nodes.
 
+    Each parameter is bounded (:data:`PRESET_BOUNDS`): ``n`` in ``[4, 2400]``,
+    ``growth`` in ``[0.0125, 1]``, ``L`` in ``[4, 1e4]``, ``margin`` in
+    ``(0, 2]``, ``refine`` in ``[1, 1024]``; a bool or a string is a ``TypeError``.
+
     Scaling ``n`` by ``k`` and ``growth`` by ``1/k`` at fixed ``refine`` and ``L``
     scales every element size by ``1/k``: a self-similar refinement family.
     """
@@ -53,16 +76,13 @@ class MeshPreset:
     refine: float = 1.0
 
     def __post_init__(self) -> None:
-        if not self.n >= 4:
-            raise ValueError(f"`n` = {self.n!r} must be >= 4 elements across the contact")
-        if not 0 < self.growth <= 1:
-            raise ValueError(f"`growth` = {self.growth!r} must lie in (0, 1]")
-        if not self.L >= 4:
-            raise ValueError(f"`L` = {self.L!r} must be >= 4 contact widths")
-        if not 0 < self.margin <= 2:
-            raise ValueError(f"`margin` = {self.margin!r} must lie in (0, 2]")
-        if not 1 <= self.refine <= 64:
-            raise ValueError(f"`refine` = {self.refine!r} must lie in [1, 64]")
+        for name, (lo, hi) in PRESET_BOUNDS.items():
+            v = finite(name, getattr(self, name))   # a bool or a string is a TypeError
+            object.__setattr__(self, name, v)
+            lo_open = name in ("margin",)
+            if not (lo < v if lo_open else lo <= v) or not v <= hi:
+                raise ValueError(f"`{name}` = {v!r} must lie in {'(' if lo_open else '['}{lo:g}, "
+                                 f"{hi:g}]: {PRESET_MEANING[name]}")
 
     def scaled(self, k: float) -> "MeshPreset":
         """The member of this preset's self-similar family with every size divided by ``k``."""
@@ -143,14 +163,8 @@ class Substrate:
     boundaries: dict[str, np.ndarray]
     path: str
 
-    @property
-    def h_contact(self) -> float:
-        """Largest facet length in the contact group."""
-        f = self.mesh.facets[:, self.boundaries["contact"]]
-        d = self.mesh.p[:, f[1]] - self.mesh.p[:, f[0]]
-        return float(np.hypot(*d).max())
 
-
+@boundary
 def read_substrate(path: str | Path) -> Substrate:
     """Read a gmsh ``.msh`` through meshio; map each physical curve group to facets.
 
@@ -159,9 +173,14 @@ def read_substrate(path: str | Path) -> Substrate:
     ValueError
         If the file has no triangles or no ``"contact"`` and ``"base"`` groups.
     """
-    # named: ".msh" is also ANSYS's extension, and meshio prints a blank line for every
-    # reader it tries and drops
-    m = meshio.read(path, file_format="gmsh")
+    # gmsh's reader itself: ".msh" is also ANSYS's extension, and meshio.read prints a
+    # line for every reader it tries and exits the process (sys.exit) when none reads it
+    try:
+        m = meshio.gmsh.read(str(path))
+    except (meshio.ReadError, ValueError, KeyError, IndexError, EOFError, UnicodeDecodeError,
+            AttributeError, TypeError) as e:
+        why = " ".join(str(e).split()) or f"{type(e).__name__}, not an MSH file"
+        raise ValueError(f"`path` = {str(path)!r} is not a gmsh mesh meshio can read: {why}") from None
     cells = m.cells_dict
     if "triangle" not in cells:
         raise ValueError(f"`path` = {str(path)!r} holds no triangles")
@@ -190,14 +209,18 @@ def read_substrate(path: str | Path) -> Substrate:
 MESH_CACHE_SIZE = 32
 
 
+@boundary
 def make_substrate(spec: SubstrateSpec) -> Substrate:
     """Build the mesh of ``spec`` with gmsh in a temporary file and read it back.
 
     gmsh runs once per spec in a run: the spec (a frozen dataclass, the
     parameters the manifest records) keys a cache of the last
     ``MESH_CACHE_SIZE`` meshes, and every call returns its own copy, so a
-    caller that changes its substrate changes no later one.
+    caller that changes its substrate changes no later one. A failure of gmsh
+    is a :class:`NoConvergenceError` (:func:`gmsh_failure`).
     """
+    if not isinstance(spec, SubstrateSpec):
+        raise TypeError(f"`spec` must be a SubstrateSpec, not {type(spec).__name__}")
     return copy.deepcopy(_meshed(spec))
 
 
@@ -205,5 +228,24 @@ def make_substrate(spec: SubstrateSpec) -> Substrate:
 def _meshed(spec: SubstrateSpec) -> Substrate:
     """The cached mesh of ``spec``; never handed out (:func:`make_substrate` copies it)."""
     with scratch_dir("threepart-mesh-") as tmp:   # marked: a killed run's is cleaned by the next
-        path = build_substrate(spec, Path(tmp) / "substrate.msh")
-        return read_substrate(path)
+        with gmsh_failure("the substrate"):
+            path = build_substrate(spec, Path(tmp) / "substrate.msh")
+            return read_substrate(path)
+
+
+@contextlib.contextmanager
+def gmsh_failure(what: str) -> Iterator[None]:
+    """Turn a failure of gmsh, or of reading back what it wrote, into :class:`NoConvergenceError`.
+
+    gmsh raises a bare ``Exception``; a mesh it wrote but could not finish
+    fails to read back. Either way the mesh generator, not the input, failed
+    (the input was checked before), and no temporary path is named.
+    """
+    try:
+        yield
+    except (TypeError, NoConvergenceError):
+        raise
+    except Exception as e:   # noqa: BLE001 -- gmsh's own exceptions are bare Exceptions
+        why = " ".join(str(e).split()[:30]) or type(e).__name__
+        why = why.replace(tempfile.gettempdir(), "<tmp>")
+        raise NoConvergenceError(f"gmsh could not mesh {what}: {why}") from None

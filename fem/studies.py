@@ -17,6 +17,7 @@ from typing import Any, Callable, Sequence
 from threepart.convergence import fitted_order, gci, three_level_order
 from threepart.punch import Punch
 
+from ._boundary import boundary
 from .mesh import MeshPreset
 from .solve import FemResult, solve_normal
 
@@ -80,6 +81,7 @@ def _solve(punch: Punch, P: float, s: float, E: float, nu: float, tilt: str,
                       seconds=time.perf_counter() - t0, values=_values(res))
 
 
+@boundary
 def convergence_study(punch: Punch, P: float, s: float = 0.0, *, E: float, nu: float,
                       tilt: str = "free", ns: Sequence[float] = (30, 60, 120, 240),
                       growth: float = 0.1, L: float = 200.0,
@@ -124,6 +126,7 @@ def convergence_study(punch: Punch, P: float, s: float = 0.0, *, E: float, nu: f
     return StudyRecord("convergence", levels, order, index, fitted, errors)
 
 
+@boundary
 def domain_study(punch: Punch, P: float, s: float = 0.0, *, E: float, nu: float,
                  tilt: str = "free", Ls: Sequence[float] = (12.5, 25, 50, 100, 200, 400),
                  n: float = 120, growth: float = 0.1) -> StudyRecord:

@@ -65,6 +65,8 @@ class PunchSpec:
     def __post_init__(self) -> None:
         for name in ("b", "R1", "R2", "H", "theta", "growth"):
             value = getattr(self, name)
+            if isinstance(value, bool):
+                raise TypeError(f"`{name}` = {value!r} must be a real number, not bool")
             if not isinstance(value, (int, float)) or not math.isfinite(value) or value < 0:
                 raise ValueError(f"`{name}` = {value!r} must be a finite number >= 0")
         if self.R1 <= 0 or self.R2 <= 0 or self.H <= 0:

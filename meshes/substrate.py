@@ -22,6 +22,7 @@ from __future__ import annotations
 
 import contextlib
 import math
+import numbers
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Iterator
@@ -30,6 +31,14 @@ import gmsh
 import numpy as np
 
 __all__ = ["SubstrateSpec", "build_substrate", "gmsh_session", "size_field", "PHYSICAL_CURVES"]
+
+#: Bounds that keep a mesh within this machine's memory and time: the size growth rate
+#: away from the zone, the zone's elements, the block in elements of the zone, and
+#: the end refinement. The FE presets (``fem.mesh.PRESET_BOUNDS``) stay inside them.
+GROWTH_RANGE = (0.01, 10.0)
+MAX_ZONE_ELEMENTS = 20_000
+MAX_BLOCK_RATIO = 1e8
+MAX_FINE_RATIO = 1e4
 
 #: Names of the physical curve groups, in the order they are created.
 PHYSICAL_CURVES = ("contact", "top", "base", "left", "right")
@@ -57,6 +66,10 @@ class SubstrateSpec:
         Surface points around which the size falls to ``h_fine`` (contact ends, joins).
     h_fine
         Element size at the ``refine_at`` points; ``0`` means no refinement (a uniform zone).
+
+    Bounds: ``growth`` in :data:`GROWTH_RANGE`, at most :data:`MAX_ZONE_ELEMENTS`
+    along the zone, ``L / h`` at most :data:`MAX_BLOCK_RATIO`, ``h / h_fine`` at
+    most :data:`MAX_FINE_RATIO`. A bool or a non-number is a ``TypeError``.
     """
 
     x_lo: float
@@ -70,9 +83,12 @@ class SubstrateSpec:
     h_fine: float = 0.0
 
     def __post_init__(self) -> None:
-        for name in ("x_lo", "x_hi", "h", "L", "growth", "h_max"):
+        for name in ("x_lo", "x_hi", "h", "L", "growth", "h_max", "h_fine"):
             value = getattr(self, name)
-            if not isinstance(value, (int, float)) or not math.isfinite(value):
+            if isinstance(value, bool) or not isinstance(value, numbers.Real):
+                raise TypeError(f"`{name}` = {value!r} must be a real number, not "
+                                f"{type(value).__name__}")
+            if not math.isfinite(value):
                 raise ValueError(f"`{name}` = {value!r} must be a finite number")
         if not self.x_hi > self.x_lo:
             raise ValueError(f"`x_hi` = {self.x_hi!r} must exceed `x_lo` = {self.x_lo!r}")
@@ -82,8 +98,10 @@ class SubstrateSpec:
         if not (-self.L / 2 < self.x_lo and self.x_hi < self.L / 2):
             raise ValueError(f"`L` = {self.L!r} is too small: the zone [{self.x_lo}, {self.x_hi}] "
                              f"must lie inside (-L/2, L/2)")
-        if self.growth <= 0:
-            raise ValueError(f"`growth` = {self.growth!r} must be > 0")
+        lo, hi = GROWTH_RANGE
+        if not lo <= self.growth <= hi:
+            raise ValueError(f"`growth` = {self.growth!r} must lie in [{lo:g}, {hi:g}]: a slower "
+                             "growth away from the zone fills the block with elements")
         if self.h_max < 0:
             raise ValueError(f"`h_max` = {self.h_max!r} must be >= 0 (0 means L/20)")
         if not (isinstance(self.h_fine, (int, float)) and 0 <= self.h_fine <= self.h):
@@ -92,6 +110,16 @@ class SubstrateSpec:
         for x in (*self.breakpoints, *self.refine_at):
             if not isinstance(x, (int, float)) or not math.isfinite(x):
                 raise ValueError(f"breakpoint or `refine_at` point {x!r} must be a finite number")
+        zone = (self.x_hi - self.x_lo) / self.h
+        if zone > MAX_ZONE_ELEMENTS:
+            raise ValueError(f"`h` = {self.h!r} puts {zone:.3g} elements along the zone "
+                             f"[{self.x_lo!r}, {self.x_hi!r}], more than {MAX_ZONE_ELEMENTS}")
+        if self.L / self.h > MAX_BLOCK_RATIO:
+            raise ValueError(f"`L` = {self.L!r} is {self.L / self.h:.3g} elements `h`, more than "
+                             f"{MAX_BLOCK_RATIO:g}: the block's coordinates would swamp the zone's")
+        if self.h_fine > 0 and self.h / self.h_fine > MAX_FINE_RATIO:
+            raise ValueError(f"`h_fine` = {self.h_fine!r} is {self.h / self.h_fine:.3g} times "
+                             f"finer than `h`, more than {MAX_FINE_RATIO:g}")
 
     @property
     def graded(self) -> bool:

@@ -232,10 +232,12 @@ def test_a_contact_in_two_zones_is_refused():
 
 def test_an_end_too_close_to_a_join_refines_the_preset_or_is_refused():
     """The closed form places the left end k elements of the quick mesh's end size
-    (h = W / (n * refine)) from its join: at k = 1.5 the preset must refine itself
-    (3 elements are needed) and still find a to 1e-4 W; at k = 0.2, where 8x finer
-    would not do, it must refuse."""
+    (h = W / (n * refine)) from its join: at k = 1.5 and at k = 0.2 the preset must
+    refine itself (3 elements are needed; fem.ends.MAX_REFINEMENT = 128 allows it)
+    and still find a to 1e-4 W; at k = 0.01, where 128x finer would not do, it
+    must refuse."""
     from threepart.errors import MeshResolutionError
+    from threepart.fem.ends import MAX_REFINEMENT, MIN_END_ELEMENTS
 
     punch, P, E, nu = Punch(10.0, 10.0, 1.0), 28846.0, 210e3, 0.3
     A, quick = rigid_punch(E, nu), fem.PRESETS["quick"]
@@ -248,10 +250,57 @@ def test_an_end_too_close_to_a_join_refines_the_preset_or_is_refused():
         s = brentq(gap, 0.5 * s_max, s_max * (1 - 1e-12), xtol=1e-14)
         return s, closedform.solve_normal(punch, P, s, A=A)
 
-    s, ref = state(1.5)
-    r = fem.solve_normal(punch, P, s, E=E, nu=nu, mesh="quick")
-    assert r.info["refined"] > 1 and abs(r.a - ref.a) <= 1e-4 * ref.width
+    for k in (1.5, 0.2):
+        s, ref = state(k)
+        r = fem.solve_normal(punch, P, s, E=E, nu=nu, mesh="quick")
+        assert r.info["refined"] > 1 and abs(r.a - ref.a) <= 1e-4 * ref.width, (k, r.a, ref.a)
 
-    s, ref = state(0.2)
+    k = 0.01
+    assert MIN_END_ELEMENTS / k > MAX_REFINEMENT   # the refusal below is the limit's, not luck
+    s, ref = state(k)
     with pytest.raises(MeshResolutionError, match="fewer than 3 elements"):
         fem.solve_normal(punch, P, s, E=E, nu=nu, mesh="quick")
+
+
+def test_the_fuzzed_singular_case_answers_as_the_sie_does():
+    """A sharp left edge (R1 = 0.045 b) and a load to the right: the active-set
+    iteration on the trial mesh, started from every node, used to collapse to a
+    single node and stop with ``LinAlgError: Singular matrix``; the left end then
+    lies 2e-4 b from its join, a tenth of the quick mesh's end element. The FE
+    model must answer, refining itself, and agree with the SIE (n = 1024)."""
+    from threepart import solve
+
+    punch = Punch(0.04545372783994876, 3.5968200425898584, 1)
+    args = (punch, 60.42078971943214, 0.3914265351172893)
+    A = rigid_punch(210e3, 0.3)
+    ref = solve(*args, A=A, method="sie")
+    fe = solve(*args, A=A, method="fem", mesh="quick")
+    W = ref.a + ref.c
+    assert fe.info["refined"] > 1
+    assert abs(fe.a - ref.a) < 1e-5 * W and abs(fe.c - ref.c) < 1e-5 * W, (fe.a, fe.c, ref.a, ref.c)
+    assert abs(fe.alpha - ref.alpha) < 1e-3 * abs(ref.alpha), (fe.alpha, ref.alpha)
+
+
+
+@pytest.mark.parametrize("R, a_hertz, error", [
+    (1.0, 0.45, "SlopeLimitError"),     # slope a/R = 0.45 > SLOPE_LIMIT = 0.3
+    (0.3, 0.45, "ArcExtentError"),      # a > b + R = 0.3: past the arc's extent
+    (1.0, 0.2, None),                   # slope 0.2: answered, as Hertz says
+])
+def test_a_contact_past_half_plane_theory_is_refused(R, a_hertz, error):
+    """A cylinder (b = 0) on the reference mesh at the load Hertz gives contact
+    half-width ``a`` (plane strain, rigid punch: a^2 = 2 A P R / pi): past the
+    small-slope limit or the arc's extent the FE answer is refused, named."""
+    from threepart import errors
+    from threepart.validate import SLOPE_LIMIT
+
+    A = rigid_punch(1.0, 0.3)
+    P = math.pi * a_hertz**2 / (2 * A * R)
+    args = (Punch(R, R, 0.0), P)
+    if error is None:
+        assert a_hertz / R < SLOPE_LIMIT
+        r = fem.solve_normal(*args, E=1.0, nu=0.3, mesh=REFERENCE_MSH)
+        assert abs(r.a - a_hertz) < 0.05 * a_hertz and abs(r.c - a_hertz) < 0.05 * a_hertz
+    else:
+        with pytest.raises(getattr(errors, error)):
+            fem.solve_normal(*args, E=1.0, nu=0.3, mesh=REFERENCE_MSH)

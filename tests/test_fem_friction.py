@@ -57,7 +57,7 @@ def test_shear_balances_Q_and_never_exceeds_friction(slip_pair):
     Q, f = case.shear_load
     last = fe.history[-1]
     assert abs(last.t.sum() / Q - 1) < tol("P")                     # sum t_i = Q is imposed
-    assert np.all(np.abs(last.t) <= f * last.f * (1 + 1e-12) + 1e-15 * abs(Q))
+    assert np.all(np.abs(last.t) <= f * last.fn * (1 + 1e-12) + 1e-15 * abs(Q))
     x = np.linspace(-fe.a, fe.c, 20001)
     assert abs(np.trapezoid(fe.shear(x), x) / Q - 1) < tol("load_integral")
     assert np.all(fe.shear(x) * Q >= 0)                              # the shear has the sign of Q
@@ -191,3 +191,20 @@ def test_suppressed_tilt_agrees_with_the_closed_form():
     failed = {c.quantity: f"{c.error:.2e} > {c.limit:g}" for c in compare(ref, fe, "fem-quick")
               if not c.passed}
     assert not failed, f"suppressed tilt: {failed}"
+
+
+def test_a_two_body_contact_past_the_slope_limit_is_refused_before_any_shear():
+    """Two similar cylinders (b = 0) at the load Hertz gives a = 0.45 R (A = 4 (1 - nu^2) / E,
+    a^2 = 2 A P R / pi): the surface slope a/R passes SLOPE_LIMIT = 0.3, so the
+    normal contact is refused before Q is applied."""
+    from pathlib import Path
+
+    from threepart import meshes
+    from threepart.errors import SlopeLimitError
+
+    A = 4 * (1 - NU**2) / E
+    R, a = 1.0, 0.45
+    P_ = math.pi * a**2 / (2 * A * R)
+    with pytest.raises(SlopeLimitError, match="small-slope limit"):
+        fem.solve_partial_slip(Punch(R, R, 0.0), P_, Q=0.1 * P_, f=0.5, E=E, nu=NU,
+                               mesh=Path(meshes.__file__).parent / "reference.msh", steps=2)

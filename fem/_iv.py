@@ -1,0 +1,154 @@
+"""Input checks of the FE entry points, built from :mod:`threepart.validate`.
+
+Each public FE call validates all of its input here, before any numerics or
+meshing, in the style of SciPy's ``_*_iv`` helpers: a wrong type is a
+``TypeError``, a value out of range a ``ValueError`` whose message names the
+argument and the limit. What is FE-specific lives here (the material, the
+physical load scale, the mesh argument and the bounds on counts and sizes);
+the rest is :mod:`threepart.validate`'s.
+
+Bounds
+------
+NU_RANGE        -- Poisson's ratio, open interval ``(-1, 0.5)``
+MAX_ITER        -- active-set iterations, ``[1, 10000]``
+STEPS, STATES   -- load steps of a partial-slip solve, states per fretting branch
+H_FACTOR        -- a finite punch's height ``H`` is at most this many footprints ``b + max(R1, R2)``
+"""
+from __future__ import annotations
+
+import math
+from pathlib import Path
+from typing import Any
+
+from threepart.punch import Punch
+from threepart.validate import (LENGTH_RANGE, check_punch, check_tilt, finite, integer,
+                                lever_arm, positive)
+
+__all__ = ["NU_RANGE", "FE_LENGTH_RANGE", "MAX_ITER", "STEPS", "STATES", "H_FACTOR", "material", "load", "count",
+           "mesh_arg", "normal_iv", "shear_iv", "height_iv"]
+
+#: Poisson's ratio: the elastic energy is positive definite only inside this open interval
+NU_RANGE = (-1.0, 0.5)
+#: active-set iterations (each is one dense solve on the active set)
+MAX_ITER = (1, 10_000)
+#: equal load steps of ``Q`` in :func:`fem.solve_partial_slip` (each costs one contact solve)
+STEPS = (1, 1000)
+#: states per branch of :func:`fem.fretting_cycle` (both ends included)
+STATES = (2, 1000)
+#: The contact's length scale ``b + sqrt(A P max(R1, R2))`` that gmsh meshes faithfully:
+#: gmsh's absolute tolerances move the answer (by 6e-4 in ``c`` at 1e-10, measured with the
+#: same problem scaled by powers of ten) or fail it (1e-20), and past 1e20 it answers wrongly
+#: (3 % off at 1e30). The FE answer is scale-free in between (1e-6 relative at 1e-8).
+FE_LENGTH_RANGE = (1e-6, 1e18)
+#: ``H`` at most ``H_FACTOR (b + max(R1, R2))``: taller punches mesh ever larger bodies
+#: for no change in the contact, and gmsh loses its coordinates past double precision
+H_FACTOR = 1000.0
+
+
+def material(E: Any, nu: Any) -> tuple[float, float]:
+    """``(E, nu)`` as floats; ``nu`` is checked first (``E`` is often derived from it)."""
+    nu = finite("nu", nu)
+    lo, hi = NU_RANGE
+    if not lo < nu < hi:
+        raise ValueError(f"`nu` = {nu!r} must lie in ({lo:g}, {hi:g}), Poisson's ratio of a "
+                         "stable isotropic solid")
+    return positive("E", E), nu
+
+
+def load(punch: Punch, P: Any, A: float) -> float:
+    """``P`` as a float, > 0, with the contact scale ``A P max(R1, R2, b)`` representable.
+
+    The same check as the closed form's (``closedform/normal.py``): the
+    contact's length scale ``sqrt(2 A P R)`` and its powers must stay finite
+    and nonzero in double precision. The mesh then needs the length scale
+    ``b + sqrt(A P max(R1, R2))`` inside :data:`FE_LENGTH_RANGE`.
+    """
+    P = positive("P", P)
+    lo, hi = LENGTH_RANGE[0] ** 2, LENGTH_RANGE[1] ** 2
+    scale = A * P * max(punch.R1, punch.R2, punch.b)
+    if not lo <= scale <= hi:
+        raise ValueError(f"`P` = {P!r} gives A P max(R1, R2, b) = {scale:.3g}, outside "
+                         f"[{lo:g}, {hi:g}] (length^2), the range this library computes in "
+                         "double precision")
+    ell = punch.b + math.sqrt(scale)
+    lo, hi = FE_LENGTH_RANGE
+    if not lo <= ell <= hi:
+        raise ValueError(f"`P` = {P!r} gives the contact's length scale b + sqrt(A P max(R1, R2)) "
+                         f"= {ell:.3g}, outside [{lo:g}, {hi:g}], where gmsh meshes it faithfully; "
+                         "give the lengths in other units")
+    return P
+
+
+def count(name: str, value: Any, limits: tuple[int, int]) -> int:
+    """A count (iterations, steps, states) inside ``limits``; a bool is a ``TypeError``."""
+    return integer(name, value, *limits)
+
+
+def mesh_arg(mesh: Any, kinds: tuple[type, ...], allow_path: bool = True) -> Any:
+    """The ``mesh`` argument, checked: a preset name, a ``.msh`` path or one of ``kinds``.
+
+    A preset name becomes its :class:`~fem.mesh.MeshPreset`; a path must be an
+    existing file. Anything else is a ``TypeError`` (wrong kind) or a
+    ``ValueError`` (an unknown name, a missing file).
+    """
+    from .mesh import PRESETS, preset
+
+    if isinstance(mesh, str) and not (allow_path and mesh.endswith(".msh")):
+        return preset(mesh)
+    if allow_path and isinstance(mesh, (str, Path)):
+        if not Path(mesh).is_file():
+            raise ValueError(f"`mesh` = {str(mesh)!r} is not a file")
+        return Path(mesh)
+    if isinstance(mesh, kinds):
+        return mesh
+    names = ", ".join(k.__name__ for k in kinds)
+    raise TypeError(f"`mesh` must be a preset name {sorted(PRESETS)}"
+                    + (", a .msh path" if allow_path else "") + f" or a {names}, "
+                    f"not {type(mesh).__name__}")
+
+
+def normal_iv(punch: Any, P: Any, s: Any, E: Any, nu: Any, tilt: Any, max_iter: Any,
+              pair: bool) -> tuple[float, float, float, float, str, int]:
+    """The checked ``(P, s, E, nu, tilt, max_iter)`` of a normal FE problem.
+
+    ``pair``: two similar bodies (``A = 4 (1 - nu^2) / E``), else a rigid punch
+    (``A = 2 (1 - nu^2) / E``).
+    """
+    check_punch(punch)
+    E, nu = material(E, nu)
+    A = (4.0 if pair else 2.0) * (1.0 - nu * nu) / E
+    P = load(punch, P, A)
+    s = lever_arm(punch, s)
+    tilt = check_tilt(tilt)
+    max_iter = count("max_iter", max_iter, MAX_ITER)
+    return P, s, E, nu, tilt, max_iter
+
+
+def shear_iv(Q: Any, f: Any, P: float, name: str = "Q") -> tuple[float, float]:
+    """``(Q, f)`` as floats, ``f > 0`` and ``|Q| < f P`` (else ``FullSlidingError``)."""
+    from threepart.errors import FullSlidingError
+
+    Q = finite(name, Q)
+    f = positive("f", f)
+    if abs(Q) >= f * P:
+        raise FullSlidingError(f"|`{name}`| = {abs(Q):.6g} >= f P = {f * P:.6g} (`f` = {f:g}, "
+                               f"`P` = {P:.6g}): the contact slides as a whole")
+    return Q, f
+
+
+def height_iv(punch: Punch, H: Any, theta: Any, profile: Any) -> tuple[float | None, float, str]:
+    """``(H, theta, profile)`` of :func:`fem.solve_finite`, checked."""
+    from threepart.meshes.punch import PROFILES
+
+    if H is not None:
+        H = positive("H", H)
+        top = H_FACTOR * (punch.b + max(punch.R1, punch.R2))
+        if H > top:   # bounded: a finite mesh in a finite time
+            raise ValueError(f"`H` = {H!r} exceeds {H_FACTOR:g} (b + max(R1, R2)) = {top:g}: a "
+                             "taller punch changes nothing in the contact but grows the mesh")
+    theta = finite("theta", theta)
+    if not 0 < theta < math.pi / 2:
+        raise ValueError(f"`theta` = {theta!r} must lie in (0, pi/2)")
+    if not isinstance(profile, str) or profile not in PROFILES:
+        raise ValueError(f"`profile` = {profile!r} must be one of {PROFILES}")
+    return H, theta, profile
