@@ -35,6 +35,7 @@ import numpy as np
 from threepart.errors import ContactZoneError
 from threepart.material import similar_pair
 from threepart.meshes import SubstrateSpec
+from threepart.output import scratch_dir
 from threepart.meshes.punch import PunchSpec, build_punch
 from threepart.punch import Punch
 from threepart.validate import check_contact, check_punch
@@ -46,10 +47,8 @@ from ._boundary import boundary
 from ._iv import height_iv, mesh_arg, normal_iv
 from ._progress import Progress, ProgressArg, progress_iv
 from .ends import REFINE_ATTEMPTS, check_one_zone, contact_ends, end_size, refined
-from threepart.output import scratch_dir
-
 from .mesh import PRESETS, MeshPreset, Substrate, gmsh_failure, make_substrate, read_substrate
-from .solve import FemResult, TRIES_DEFAULT, _locate
+from .solve import FemResult, TRIES_DEFAULT, locate_ends
 
 __all__ = ["solve_finite", "punch_body", "zone_margin"]
 
@@ -177,7 +176,7 @@ def solve_finite(punch: Punch, P: float, s: float = 0.0, *, E: float, nu: float,
     t_start = time.perf_counter()
     breaks = (-punch.b, punch.b)
     # half-plane estimate (the pair is a rigid punch on E/2), then the finite body's own ends
-    left, right = _locate(punch, P, s, 0.5 * E, nu, tilt, max_iter, TRIES_DEFAULT)
+    left, right = locate_ends(punch, P, s, 0.5 * E, nu, tilt, max_iter, TRIES_DEFAULT)
     say(f"locate: half-plane contact about [{left:.6g}, {right:.6g}] "
         f"({time.perf_counter() - t_start:.1f} s)")
     locate = replace(PRESETS["locate"], margin=zone_margin(punch.b, left, right, 0.15))

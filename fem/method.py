@@ -67,4 +67,5 @@ def _fretting(punch: Punch, P: float, s: float, *, A: float, tilt: str = "free",
                           tilt=tilt, **extra, **options)
 
 
-METHOD = register(Method("fem", _normal, _slip, _fretting, options=("mesh",), default_nu=NU))
+METHOD = register(Method("fem", _normal, _slip, _fretting, options=("mesh", "progress"),
+                         default_nu=NU))

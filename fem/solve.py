@@ -120,12 +120,16 @@ def locate_contact(punch: Punch, P: float, s: float, *, E: float, nu: float, til
     """
     P, s, E, nu, tilt, max_iter = normal_iv(punch, P, s, E, nu, tilt, max_iter, pair=False)
     tries = count("tries", tries, TRIES)
-    return _locate(punch, P, s, E, nu, tilt, max_iter, tries)
+    return locate_ends(punch, P, s, E, nu, tilt, max_iter, tries)
 
 
 @functools.lru_cache(maxsize=64)
-def _locate(punch: Punch, P: float, s: float, E: float, nu: float, tilt: str,
-            max_iter: int, tries: int) -> tuple[float, float]:
+def locate_ends(punch: Punch, P: float, s: float, E: float, nu: float, tilt: str,
+                max_iter: int, tries: int) -> tuple[float, float]:
+    """The contact ends by the trial and locate solves (:func:`locate_contact` without its checks).
+
+    For callers in :mod:`threepart.fem` whose input is already checked.
+    """
     A = rigid_punch(E, nu)
     lo, hi = _guess(punch, P, s if tilt == "free" else 0.0, A)
     breaks = (-punch.b, punch.b)
@@ -173,7 +177,7 @@ def place_substrate(mesh: MeshPreset | Path | SubstrateSpec | Substrate, punch: 
     else:
         if guess is None:
             t0 = time.perf_counter()
-            guess = _locate(punch, P, s, E, nu, tilt, max_iter, TRIES_DEFAULT)
+            guess = locate_ends(punch, P, s, E, nu, tilt, max_iter, TRIES_DEFAULT)
             t_locate = time.perf_counter() - t0
             say(f"locate: contact about [{guess[0]:.6g}, {guess[1]:.6g}] ({t_locate:.1f} s)")
         sub = make_substrate(mesh.spec(*guess, (-punch.b, punch.b)))

@@ -43,9 +43,9 @@ def no_numerics(monkeypatch):
         raise AssertionError("numerics ran before the input was checked")
 
     from threepart.fem import finite, friction, solve
-    for module, names in ((solve, ("_locate", "make_substrate", "read_substrate", "condense")),
+    for module, names in ((solve, ("locate_ends", "make_substrate", "read_substrate", "condense")),
                           (friction, ("place_substrate", "make_substrate", "interface")),
-                          (finite, ("_locate", "make_substrate", "condense"))):
+                          (finite, ("locate_ends", "make_substrate", "condense"))):
         for name in names:
             monkeypatch.setattr(module, name, boom)
     monkeypatch.setattr(gmsh, "initialize", boom)
