@@ -1,22 +1,26 @@
 """PNG plots of the verification report (matplotlib, Agg canvas, no pyplot state).
 
 Each function takes numbers or results, draws one figure and writes it to
-``path``; nothing here solves anything. Pressures are normalised by the
-closed-form peak, positions by the closed-form contact width.
+``path``; nothing here solves anything. A case with a material is drawn in
+its units (:data:`threepart.cli.UNITS`: x in mm, p in MPa); a nondimensional
+one as p over the reference's peak against x over its contact width. Every
+title names the case, the methods and the reference; every axis its unit.
 """
 from __future__ import annotations
 
 import math
 from pathlib import Path
-from typing import Any
+from typing import Any, Iterable
 
 import numpy as np
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 
-from threepart.convergence import ROUND_OFF, is_monotone
+from threepart.cli import UNITS
+from threepart.convergence import ROUND_OFF
 
-from .compare import field_errors, is_slip, normal_of
+from .compare import EDGE_FRACTION, field_errors, is_slip, normal_of
+from .sections import ENERGY_UNIT, order_text
 from .studies import Study
 
 __all__ = ["new_figure", "save", "overlay", "error_curves", "sie_convergence", "fem_convergence",
@@ -46,65 +50,113 @@ def save(fig: Figure, path: str | Path, dpi: int = 110) -> Path:
     return path
 
 
-def _grid(res: Any, n: int = 801) -> np.ndarray:
-    return np.linspace(-res.a, res.c, n)
-
-
 #: how the plots name a reference method
 REFERENCE_NAME = {"closedform": "closed form", "sie": "SIE"}
+#: the methods' names in titles
+METHOD_NAME = {"closedform": "closed form", "sie": "SIE", "fem": "FEM"}
+#: markers of the SIE along its contact
+N_MARKERS = 41
+
+
+def _axis(nref: Any, physical: bool) -> tuple[float, str]:
+    """Scale and label of the x axis: mm for a case with a material, else x / W."""
+    if physical:
+        return 1.0, f"x ({UNITS['x']})"
+    return nref.width, "x / W  (W = a + c, the contact width; nondimensional)"
+
+
+def _joins(ax: Any, b: float, xscale: float) -> None:
+    """The joins x = ±b of the flat or curved centre and the edge radii, in the legend."""
+    if b > 0:
+        for i, xb in enumerate((-b, b)):
+            ax.axvline(xb / xscale, color="0.6", lw=0.9, ls=":",
+                       label="joins x = ±b (centre to edge radii)" if i == 0 else None)
+
+
+def _field(res: Any, method: str, field: str) -> tuple[np.ndarray, np.ndarray]:
+    """``field`` of one result over its own contact ``[-a, c]``, drawn to its ends where it is 0.
+
+    Lines sample the whole contact and add the end points with zero traction;
+    the SIE, drawn as markers, is sampled at :data:`N_MARKERS` points.
+    """
+    n = normal_of(res)
+    f = n.pressure if field == "pressure" else res.shear
+    if method == "sie":
+        x = np.linspace(-n.a, n.c, N_MARKERS)
+        return x, np.asarray(f(x), dtype=float)
+    x = np.linspace(-n.a, n.c, 1201)[1:-1]
+    return (np.concatenate(([-n.a], x, [n.c])),
+            np.concatenate(([0.0], np.asarray(f(x), dtype=float), [0.0])))
+
+
+def _methods(methods: Iterable[str]) -> str:
+    return " vs ".join(METHOD_NAME.get(m, m) for m in methods)
 
 
 def overlay(results: dict[str, Any], title: str, path: str | Path,
-            reference: str = "closedform") -> Path:
-    """Pressure (and, for partial slip, shear) of every method on one plot, scaled by the reference."""
+            reference: str = "closedform", physical: bool = False) -> Path:
+    """Pressure (and, for partial slip, shear) of every method on one plot.
+
+    A case with a material (``physical``) is drawn in its units, p in MPa
+    against x in mm, with p over the reference's peak on the right axis; a
+    nondimensional one as p / p_max against x / W. Every curve runs over its
+    own contact to the ends, where the traction is zero.
+    """
     ref = results.get(reference) or next(iter(results.values()))
     name = REFERENCE_NAME.get(reference, reference)
     nref = normal_of(ref)
-    W = nref.a + nref.c
+    xscale, xlabel = _axis(nref, physical)
     slip = is_slip(ref)
     fig, axes = new_figure(2 if slip else 1)
     ax = axes[0, 0]
-    x = np.linspace(-1.05 * nref.a, 1.05 * nref.c, 1201)
-    pscale = max(p.p for p in nref.peaks())
+    pmax = max(p.p for p in nref.peaks())
+    pscale = 1.0 if physical else pmax
     for method, res in results.items():
-        st = dict(STYLE.get(method, {"label": method}))
-        xx = x
-        if method == "sie":   # markers: few enough to see the other curves beneath
-            xx = np.linspace(-nref.a, nref.c, 41)
-        ax.plot(xx / W, normal_of(res).pressure(xx) / pscale, **st)
-    b = nref.punch.b
-    if b > 0:
-        for xb in (-b, b):
-            ax.axvline(xb / W, color="0.7", lw=0.8, ls=":")
-    ax.set_xlabel("x / W  (W = a + c)")
-    ax.set_ylabel(f"p / p_max ({name})")
-    ax.set_title(f"{title}: pressure")
-    ax.legend(loc="best", fontsize=8)
+        x, p = _field(res, method, "pressure")
+        ax.plot(x / xscale, p / pscale, **STYLE.get(method, {"label": method}))
+    _joins(ax, nref.punch.b, xscale)
+    ax.axhline(0.0, color="0.85", lw=0.8)
+    ax.set_xlabel(xlabel)
+    if physical:
+        ax.set_ylabel(f"contact pressure p ({UNITS['p']})")
+        right = ax.secondary_yaxis("right", functions=(lambda p: p / pmax, lambda r: r * pmax))
+        right.set_ylabel(f"p / p_max  (peak of the {name})")
+    else:
+        ax.set_ylabel(f"p / p_max  (peak of the {name})")
+    ax.set_title(f"{title}: contact pressure, {_methods(results)}\n"
+                 f"(reference: the {name})", fontsize=10)
+    ax.legend(loc="best", fontsize=7)
     if slip:
         ax = axes[0, 1]
-        qscale = float(np.max(np.abs(ref.shear(x))))
+        qmax = float(np.max(np.abs(ref.shear(np.linspace(-nref.a, nref.c, 2001)))))
+        qscale = 1.0 if physical else qmax
         for method, res in results.items():
             if not is_slip(res):
                 continue
-            st = dict(STYLE.get(method, {"label": method}))
-            xx = x if method != "sie" else np.linspace(-nref.a, nref.c, 41)
-            ax.plot(xx / W, res.shear(xx) / qscale, **st)
+            x, q = _field(res, method, "shear")
+            ax.plot(x / xscale, q / qscale, **STYLE.get(method, {"label": method}))
         lo, hi = ref.stick_zone
-        ax.axvspan(lo / W, hi / W, color="tab:green", alpha=0.1, label=f"stick zone ({name})")
-        ax.set_xlabel("x / W  (W = a + c)")
-        ax.set_ylabel(f"q / max|q| ({name})")
-        ax.set_title(f"{title}: shear, Q/fP = {ref.Q / (ref.f * ref.P):.2g}")
-        ax.legend(loc="best", fontsize=8)
+        ax.axvspan(lo / xscale, hi / xscale, color="tab:green", alpha=0.1,
+                   label=f"stick zone ({name})")
+        _joins(ax, nref.punch.b, xscale)
+        ax.axhline(0.0, color="0.85", lw=0.8)
+        ax.set_xlabel(xlabel)
+        ax.set_ylabel(f"shear traction q ({UNITS['q']})" if physical
+                      else f"q / max|q|  (of the {name})")
+        ax.set_title(f"{title}: shear traction in partial slip, Q/fP = {ref.Q / (ref.f * ref.P):.2g}\n"
+                     f"{_methods(r for r in results if is_slip(results[r]))}", fontsize=10)
+        ax.legend(loc="best", fontsize=7)
     return save(fig, path)
 
 
 def error_curves(results: dict[str, Any], title: str, path: str | Path,
-                 reference: str = "closedform") -> Path:
-    """|p_method - p_reference| / p_max against x / W (log scale), and the same for shear."""
+                 reference: str = "closedform", physical: bool = False) -> Path:
+    """|p_method - p_reference| / p_max against x (log scale), and the same for shear."""
     ref = results[reference]
     name = REFERENCE_NAME.get(reference, reference)
     nref = normal_of(ref)
-    W = nref.a + nref.c
+    W = nref.width
+    xscale, xlabel = _axis(nref, physical)
     slip = is_slip(ref) and any(is_slip(r) for m, r in results.items() if m != reference)
     fig, axes = new_figure(2 if slip else 1)
     fields = [("pressure", axes[0, 0])] + ([("shear", axes[0, 1])] if slip else [])
@@ -121,15 +173,16 @@ def error_curves(results: dict[str, Any], title: str, path: str | Path,
             err = np.abs(fe.error)
             err = np.where(err > 0, err, np.nan)
             color = STYLE.get(method, {}).get("color")
-            ax.semilogy(fe.x / W, err, color=color, lw=1.0, label=f"{method}")
-        ax.axvspan(-nref.a / W, (-nref.a + 0.05 * W) / W, color="0.9")
-        ax.axvspan((nref.c - 0.05 * W) / W, nref.c / W, color="0.9",
-                   label="within 5 % of W of an end (left out of the interior error)")
+            ax.semilogy(fe.x / xscale, err, color=color, lw=1.0, label=METHOD_NAME.get(method, method))
+        ax.axvspan(-nref.a / xscale, (-nref.a + EDGE_FRACTION * W) / xscale, color="0.9")
+        ax.axvspan((nref.c - EDGE_FRACTION * W) / xscale, nref.c / xscale, color="0.9",
+                   label=f"within {EDGE_FRACTION:.0%} of W of an end (left out of the interior error)")
+        _joins(ax, nref.punch.b, xscale)
         sym = "p" if field == "pressure" else "q"
-        ax.set_xlabel("x / W  (W = a + c, the contact width)")
+        ax.set_xlabel(xlabel)
         ax.set_ylabel(f"|Δ{sym}| / max|{sym}|  ({field} error, fraction of its peak)")
-        ax.set_title(f"{title}: {field} error against the {name}")
-        ax.legend(loc="best", fontsize=8)
+        ax.set_title(f"{title}: {field} error of each method against the {name}", fontsize=10)
+        ax.legend(loc="best", fontsize=7)
     return save(fig, path)
 
 
@@ -146,24 +199,18 @@ def _reference_slopes(ax: Any, x: np.ndarray, st: Study, inverse: bool) -> None:
 
 
 def _study_axes(st: Study, ax: Any, xlabel: str, inverse: bool) -> None:
+    """Errors per level; the legend gives an order only for errors that fall at every level."""
     x = np.asarray(st.values, dtype=float)
     for q in st.quantities:
         e = np.asarray(st.errors[q], dtype=float)
-        e = np.where(e > 0, e, np.nan)
-        p = st.orders.get(q, math.nan)
-        if math.isfinite(p):
-            lab = f"{q}: order {p:.2f}"
-        elif is_monotone(e) or not np.any(e > ROUND_OFF):
-            lab = f"{q}: at round-off"
-        else:
-            lab = f"{q}: not monotone, no order"
+        lab = f"{q}: {order_text(st.errors[q], st.orders.get(q))}"
         g = st.gci.get(q)
         if g is not None and math.isfinite(g):
             lab += f", GCI {g:.1e}"
-        ax.loglog(x, e, marker="o", ms=3.5, lw=1.0, label=lab)
+        ax.loglog(x, np.where(e > 0, e, np.nan), marker="o", ms=3.5, lw=1.0, label=lab)
     _reference_slopes(ax, x, st, inverse)
     ax.set_xlabel(xlabel)
-    ax.set_ylabel("normalised error vs closed form")
+    ax.set_ylabel("error against the closed form\n(normalised as in the tolerance table)")
     ax.grid(True, which="both", color="0.9", lw=0.6)
     ax.legend(loc="best", fontsize=7)
     if not inverse:
@@ -174,24 +221,28 @@ def sie_convergence(st: Study, path: str | Path) -> Path:
     """SIE errors against n (log-log), with fitted orders in the legend."""
     fig, axes = new_figure()
     _study_axes(st, axes[0, 0], "n (Gauss–Chebyshev nodes)", inverse=True)
-    axes[0, 0].set_title(f"SIE ({st.scheme}) convergence in n, case {st.case}")
+    axes[0, 0].set_title(f"SIE ({st.scheme}) convergence in n, case {st.case}:\n"
+                         "errors of the SIE against the closed form", fontsize=10)
     return save(fig, path)
 
 
 def fem_convergence(st: Study, path: str | Path) -> Path:
     """FEM errors against h (log-log, h decreasing to the right), orders and GCI in the legend."""
     fig, axes = new_figure()
-    _study_axes(st, axes[0, 0], "h at the contact (mm), refining →", inverse=False)
+    _study_axes(st, axes[0, 0], f"element size h at the contact ({UNITS['x']}), refining →",
+                inverse=False)
     axes[0, 0].set_title(f"FEM convergence in h, case {st.case}"
-                         + (" (two bodies, Coulomb friction)" if "d" in st.quantities else ""))
+                         + (" (two bodies, Coulomb friction)" if "d" in st.quantities else "")
+                         + ":\nerrors of the FEM against the closed form", fontsize=10)
     return save(fig, path)
 
 
 def step_convergence(st: Study, path: str | Path) -> Path:
     """FE fretting energy error against the load step (log-log, step shrinking to the right)."""
     fig, axes = new_figure()
-    _study_axes(st, axes[0, 0], "load step ΔQ (N/mm), refining →", inverse=False)
-    axes[0, 0].set_title(f"FEM fretting cycle: energy in the load step, case {st.case}")
+    _study_axes(st, axes[0, 0], f"load step ΔQ ({UNITS['Q']}), refining →", inverse=False)
+    axes[0, 0].set_title(f"FEM fretting cycle, case {st.case}: energy per cycle in the load step\n"
+                         "relative error of the FEM's energy against the closed form", fontsize=10)
     return save(fig, path)
 
 
@@ -201,36 +252,43 @@ CYCLE_STATES = ((1.0, "loading", "Q = Q_max"), (0.0, "unloading", "Q = 0 after r
 
 
 def fretting(results: dict[str, Any], title: str, path: str | Path,
-             reference: str = "closedform") -> Path:
+             reference: str = "closedform", physical: bool = False) -> Path:
     """A fretting cycle by every method: the hysteresis loop, and the shear at three states.
 
     The loop is ``delta`` less the line through its tips (:meth:`FrettingResult.loop`),
-    whose area is the energy per cycle; shears are scaled by ``f p_max`` of the reference.
+    whose area is the energy per cycle (in N·mm per mm of contact length for a
+    case with a material); shears are scaled by ``f p_max`` of the reference.
     """
     ref = results.get(reference) or next(iter(results.values()))
+    name = REFERENCE_NAME.get(reference, reference)
+    unit = ENERGY_UNIT if physical else "(nondimensional)"
     fig, axes = new_figure(2, 2)
     ax = axes[0, 0]
     for m, res in results.items():
         Q, h = res.loop()
         style = {k: v for k, v in STYLE[m].items() if k != "label"}
         ax.plot(Q / ref.Q_max, h, **style,
-                label=f"{STYLE[m]['label']}: {res.energy:.5g} per cycle")
+                label=f"{STYLE[m]['label']}: {res.energy:.5g} {unit} per cycle")
     ax.set_xlabel("Q / Q_max")
-    ax.set_ylabel("tangential displacement less its elastic line (mm)")
-    ax.set_title(f"{title}: hysteresis loop (area = energy per cycle)")
+    ax.set_ylabel("tangential displacement δ less its elastic line"
+                  + (f" ({UNITS['d']})" if physical else ""))
+    ax.set_title(f"{title}: hysteresis loop, {_methods(results)}\n"
+                 f"area = energy dissipated per cycle" + (f" ({unit})" if physical else ""),
+                 fontsize=10)
     ax.grid(True, color="0.9", lw=0.6)
-    ax.legend(loc="upper left", fontsize=8)
+    ax.legend(loc="upper left", fontsize=7)
     n = ref.normal
+    xscale, xlabel = _axis(n, physical)
     x = np.linspace(-n.a, n.c, 801)
     scale = ref.f * max(p.p for p in n.peaks())
     for ax, (frac, branch, label) in zip((axes[0, 1], axes[1, 0], axes[1, 1]), CYCLE_STATES):
         for m, res in results.items():
-            style = dict(STYLE[m])
             xm = x[::16] if m == "sie" else x
-            ax.plot(xm / n.width, res.shear(xm, frac * res.Q_max, branch) / scale, **style)
-        ax.set_xlabel("x / W")
-        ax.set_ylabel("q / (f p_max)")
-        ax.set_title(f"shear at {label} ({branch})")
+            ax.plot(xm / xscale, res.shear(xm, frac * res.Q_max, branch) / scale, **STYLE[m])
+        _joins(ax, n.punch.b, xscale)
+        ax.set_xlabel(xlabel)
+        ax.set_ylabel(f"q / (f p_max)  (p_max of the {name})")
+        ax.set_title(f"{title}: shear traction at {label} ({branch})", fontsize=10)
         ax.grid(True, color="0.9", lw=0.6)
-        ax.legend(loc="lower center", fontsize=8)
+        ax.legend(loc="lower center", fontsize=7)
     return save(fig, path)

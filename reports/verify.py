@@ -15,16 +15,20 @@ import json
 import platform
 import subprocess
 import sys
+import threading
 import time
+from contextlib import contextmanager
 from importlib import metadata
 from pathlib import Path
-from typing import Any, Callable, Sequence
+from typing import Any, Callable, Iterator, Sequence
 
 from threepart.catalogue import Case, load_cases
 from threepart.output import atomic_dir, json_safe, strict_json, validate_json
 
 from . import render
-from .catalogue import MODES, CaseRun, Mode, run_case
+from .catalogue import FRETTING_STATES, MODES, CaseRun, Mode, run_case
+from .sections import MAP_JSON, plot_path, study_plot_path
+from .solvers import METHODS
 from .studies import STEP_STATES, Study, fem_slip_study, fem_step_study, fem_study, sie_study
 
 __all__ = ["main", "run", "build_report", "write_report",
@@ -41,6 +45,8 @@ SLIP_STUDY_CASE = "slip_Q0.4"
 SIE_SCHEMES = ("plain", "projected")
 #: how many of the tightest checks (error/limit, worst first) the report lists on top
 TIGHTEST = 10
+#: seconds between the lines that say a long stage is still running
+HEARTBEAT_S = 15.0
 PACKAGES = ("threepart", "numpy", "scipy", "matplotlib", "scikit-fem", "gmsh", "meshio",
             "threadpoolctl")
 
@@ -85,6 +91,32 @@ def _result_dict(res: Any, dt: float) -> dict[str, Any]:
     return d
 
 
+@contextmanager
+def _heartbeat(say: Callable[[str], None], stage: Callable[[], str],
+               every: float | None = None) -> Iterator[None]:
+    """Say ``"<stage> still running (N s)"`` every ``every`` seconds until the block ends.
+
+    A stage such as the FE fretting cycle (over a minute on the default mesh)
+    reports nothing of its own until it is done; these lines, in the run's
+    one-line-per-stage style, show that it is still working.
+    """
+    stop = threading.Event()
+    t0 = time.perf_counter()
+    period = HEARTBEAT_S if every is None else every
+
+    def beat() -> None:
+        while not stop.wait(period):
+            say(f"{stage()} still running ({time.perf_counter() - t0:.0f} s)")
+
+    thread = threading.Thread(target=beat, name="threepart-progress", daemon=True)
+    thread.start()
+    try:
+        yield
+    finally:
+        stop.set()
+        thread.join()
+
+
 def run(mode: Mode, cases: Sequence[Case], say: Callable[[str], None]) -> tuple[list[CaseRun], list[Study], dict[str, float]]:
     """Solve and compare every case, then the convergence studies; return the numbers."""
     runs: list[CaseRun] = []
@@ -93,12 +125,22 @@ def run(mode: Mode, cases: Sequence[Case], say: Callable[[str], None]) -> tuple[
     t0 = time.perf_counter()
     for i, case in enumerate(cases, 1):
         tag = f"[{i:>2}/{len(cases)}] {case.name:<14}"
-        say(f"{tag} solving ...")
+        note = (f" (a fretting cycle: 3 branches of {FRETTING_STATES} load states by each method)"
+                if case.kind == "fretting" else "")
+        say(f"{tag} solving ...{note}")
         tc = time.perf_counter()
-        def progress(m: str, tag: str = tag) -> None:
+        pending = list(METHODS)   # the methods not yet reported: the first one is running
+
+        def progress(m: str, tag: str = tag, pending: list[str] = pending) -> None:
+            if m.split(" ", 1)[0] in pending:
+                pending.remove(m.split(" ", 1)[0])
             say(f"{tag}   {m}")
 
-        r = run_case(case, mode, cache, progress=progress)
+        def running(tag: str = tag, pending: list[str] = pending) -> str:
+            return f"{tag}   {pending[0] if pending else 'comparison'}"
+
+        with _heartbeat(say, running):
+            r = run_case(case, mode, cache, progress=progress)
         failed = r.failed()
         verdict = "PASS" if r.passed else (
             "FAIL " + ", ".join(f"{c.comparison}:{c.quantity}" for c in failed) if failed else "ERROR")
@@ -111,30 +153,34 @@ def run(mode: Mode, cases: Sequence[Case], say: Callable[[str], None]) -> tuple[
         t1 = time.perf_counter()
         for scheme in SIE_SCHEMES:
             say(f"[study] SIE ({scheme}) convergence in n on {study_case.name}: n = {list(mode.sie_study_n)}")
-            studies.append(sie_study(study_case, mode.sie_study_n, scheme=scheme,
-                                     progress=lambda m: say(f"[study]   {m}")))
+            with _heartbeat(say, lambda: f"[study]   SIE ({scheme})"):
+                studies.append(sie_study(study_case, mode.sie_study_n, scheme=scheme,
+                                         progress=lambda m: say(f"[study]   {m}")))
         timings["sie_study_s"] = time.perf_counter() - t1
     if study_case is not None and mode.fem_study_n:
         t1 = time.perf_counter()
         say(f"[study] FEM convergence in h on {study_case.name}: W/h = {list(mode.fem_study_n)}")
-        studies.append(fem_study(study_case, mode.fem_study_n,
-                                 progress=lambda m: say(f"[study]   {m}")))
+        with _heartbeat(say, lambda: "[study]   FEM"):
+            studies.append(fem_study(study_case, mode.fem_study_n,
+                                     progress=lambda m: say(f"[study]   {m}")))
         timings["fem_study_s"] = time.perf_counter() - t1
     slip_case = next((c for c in cases if c.name == SLIP_STUDY_CASE), None)
     if slip_case is not None and mode.fem_study_n:
         t1 = time.perf_counter()
         say(f"[study] two-body friction FEM convergence in h on {slip_case.name}: "
             f"W/h = {list(mode.fem_study_n)}")
-        studies.append(fem_slip_study(slip_case, mode.fem_study_n,
-                                      progress=lambda m: say(f"[study]   {m}")))
+        with _heartbeat(say, lambda: "[study]   two-body friction FEM"):
+            studies.append(fem_slip_study(slip_case, mode.fem_study_n,
+                                          progress=lambda m: say(f"[study]   {m}")))
         timings["fem_slip_study_s"] = time.perf_counter() - t1
     cycle = next((r for r in runs if r.case.kind == "fretting" and "closedform" in r.results), None)
     if cycle is not None:
         t1 = time.perf_counter()
         say(f"[study] FEM fretting energy in the load step on {cycle.case.name} (quick mesh): "
             f"states per branch = {list(STEP_STATES)}")
-        studies.append(fem_step_study(cycle.case, cycle.results["closedform"], "quick", STEP_STATES,
-                                      progress=lambda m: say(f"[study]   {m}")))
+        with _heartbeat(say, lambda: "[study]   FEM fretting cycle"):
+            studies.append(fem_step_study(cycle.case, cycle.results["closedform"], "quick",
+                                          STEP_STATES, progress=lambda m: say(f"[study]   {m}")))
         timings["fem_step_study_s"] = time.perf_counter() - t1
     return runs, studies, timings
 
@@ -206,43 +252,48 @@ def validate(doc: dict[str, Any]) -> None:
 
 def write_report(tmp: Path, mode: Mode, runs: Sequence[CaseRun], studies: Sequence[Study],
                  timings: dict[str, float], say: Callable[[str], None]) -> dict[str, Any]:
-    """Draw the plots and write md, html and json into the directory ``tmp``."""
-    from . import plots as P
+    """Draw the plots and write md, html and json into the directory ``tmp``.
+
+    The validity map is linked only when ``threepart map`` has written one
+    beside the report (``tmp`` is a sibling of the report directory).
+    """
+    from . import plots
 
     t0 = time.perf_counter()
-    pdir = tmp / "plots"
-    plots: dict[str, list[str]] = {}
-    for r in runs:
-        ref = r.case.reference
-        if ref not in r.results:
-            continue
-        names = []
-        title = r.case.name
-        if r.case.kind == "fretting":
-            P.fretting(r.results, title, pdir / f"{r.case.name}_cycle.png", reference=ref)
-            plots[r.case.name] = [f"plots/{r.case.name}_cycle.png"]
-            continue
-        P.overlay(r.results, title, pdir / f"{r.case.name}_overlay.png", reference=ref)
-        names.append(f"plots/{r.case.name}_overlay.png")
-        if len(r.results) > 1:
-            P.error_curves(r.results, title, pdir / f"{r.case.name}_errors.png", reference=ref)
-            names.append(f"plots/{r.case.name}_errors.png")
-        plots[r.case.name] = names
-    plots["_studies"] = []
-    for st in studies:
-        if not st.values:
-            continue
-        name = f"plots/{st.method}{'_' + st.scheme if st.scheme else ''}_{st.case}_convergence.png"
-        {"n": P.sie_convergence, "h": P.fem_convergence, "dQ": P.step_convergence}[st.param](
-            st, tmp / name)
-        plots["_studies"].append(name)
+    drawn: dict[str, list[str]] = {}
+    todo = [r for r in runs if r.case.reference in r.results]
+    say(f"[report] drawing the plots of {len(todo)} cases and {len(studies)} studies ...")
+    with _heartbeat(say, lambda: "[report] drawing the plots"):
+        for r in todo:
+            name, ref, physical = r.case.name, r.case.reference, r.case.material is not None
+            if r.case.kind == "fretting":
+                plots.fretting(r.results, name, tmp / plot_path(name, "cycle"), reference=ref,
+                               physical=physical)
+                drawn[name] = [plot_path(name, "cycle")]
+                continue
+            plots.overlay(r.results, name, tmp / plot_path(name, "overlay"), reference=ref,
+                          physical=physical)
+            drawn[name] = [plot_path(name, "overlay")]
+            if len(r.results) > 1:
+                plots.error_curves(r.results, name, tmp / plot_path(name, "errors"), reference=ref,
+                                   physical=physical)
+                drawn[name].append(plot_path(name, "errors"))
+        drawn["_studies"] = []
+        for st in studies:
+            if not st.values:
+                continue
+            name = study_plot_path(st.method, st.scheme, st.case)
+            {"n": plots.sie_convergence, "h": plots.fem_convergence,
+             "dQ": plots.step_convergence}[st.param](st, tmp / name)
+            drawn["_studies"].append(name)
     timings = dict(timings, plots_s=time.perf_counter() - t0)
     timings["total_s"] = timings.get("solve_s", 0.0) + timings["plots_s"]
-    doc = build_report(mode, runs, studies, timings, plots)
+    doc = build_report(mode, runs, studies, timings, drawn)
     validate(doc)
+    map_link = MAP_JSON if (tmp / MAP_JSON).is_file() else None
     (tmp / "report.json").write_text(strict_json(doc, indent=1), encoding="utf-8")
-    (tmp / "report.md").write_text(render.markdown(doc), encoding="utf-8")
-    (tmp / "report.html").write_text(render.html(doc, tmp), encoding="utf-8")
+    (tmp / "report.md").write_text(render.markdown(doc, map_link), encoding="utf-8")
+    (tmp / "report.html").write_text(render.html(doc, tmp, map_link), encoding="utf-8")
     say(f"report written ({time.perf_counter() - t0:.1f} s for plots and files)")
     return doc
 

@@ -4,21 +4,90 @@ Fast: every solver is a fake (tests/fakes.py), so only the report's own logic ru
 """
 from __future__ import annotations
 
+import copy
 import json
 import re
+import time
 from dataclasses import replace
+from html.parser import HTMLParser
+from pathlib import Path
 
 import pytest
 
 from threepart import catalogue
 from threepart.convergence import is_monotone
 from threepart.errors import LiftOffError
-from threepart.reports import render, verify
+from threepart.reports import render, sections, verify
+from threepart.reports.sections import Link, Status, Verdict
 from threepart.tolerances import ERROR_UNITS, NORMALISATION
+
+from threepart.cli import UNITS
 
 from .fakes import fake_solver, install_fakes
 
 NAMES = ("caseA_sym", "slip_Q0.4", "caseA_moment", "beyond_edge_on_flat")
+
+
+def _text(blocks) -> str:
+    """The words of intro blocks (paragraphs and bullets), one line each."""
+    lines = []
+    for b in blocks:
+        if isinstance(b, sections.Bullets):
+            for item in b.items:
+                lines.append("".join(getattr(p, "text", p) for p in item.text))
+                lines += ["".join(getattr(p, "text", p) for p in sub) for sub in item.sub]
+        else:
+            lines.append("".join(getattr(p, "text", p) for p in b))
+    return "\n".join(lines)
+
+
+class _Page(HTMLParser):
+    """The visible text of an HTML page, its h2 titles, and each image with the <details> it sits in."""
+
+    def __init__(self) -> None:
+        super().__init__()
+        self.text: list[str] = []
+        self.h2: list[str] = []
+        self.images: list[tuple[str, int]] = []     # (alt, depth of <details> around it)
+        self.tables: list[tuple[int, int]] = []     # (rows, depth of <details> around it)
+        self.open_details: list[str] = []           # ids of the <details open> elements
+        self._depth = 0
+        self._in: list[str] = []
+
+    def handle_starttag(self, tag, attrs):
+        a = dict(attrs)
+        if tag == "details":
+            self._depth += 1
+            if "open" in a:
+                self.open_details.append(a.get("id") or "")
+        if tag == "img":
+            self.images.append((a["alt"], self._depth))
+        if tag == "table":
+            self.tables.append((0, self._depth))
+        if tag == "tr" and self.tables:
+            self.tables[-1] = (self.tables[-1][0] + 1, self.tables[-1][1])
+        self._in.append(tag)
+
+    def handle_endtag(self, tag):
+        if tag == "details":
+            self._depth -= 1
+        while self._in and self._in.pop() != tag:
+            pass
+
+    def handle_data(self, data):
+        if "style" in self._in or "title" in self._in:
+            return
+        self.text.append(data)
+        if self._in and self._in[-1] == "h2":
+            self.h2.append(data)
+        elif "h2" in self._in and self.h2:
+            self.h2[-1] += data
+
+
+def _page(html: str) -> _Page:
+    page = _Page()
+    page.feed(html)
+    return page
 
 
 @pytest.fixture(scope="module")
@@ -68,17 +137,17 @@ def test_the_first_screen_holds_the_verdict_and_the_margins(report):
 def test_every_error_and_limit_carries_its_unit_and_every_unit_is_defined(report):
     doc, _ = report
     for case in doc["cases"]:
-        head, rows = render._checks(case)
-        i_err, i_lim = head.index("error"), head.index("limit")
-        for row, check in zip(rows, case["checks"]):
+        table = sections._checks(case)
+        i_err, i_lim = table.head.index("error"), table.head.index("limit")
+        for row, check in zip(table.rows, case["checks"]):
             unit = ERROR_UNITS[check["quantity"]]
             assert row[i_err].endswith(f" {unit}") and row[i_lim].endswith(f" {unit}"), row
-    text = "\n".join(render._how_to_read(doc))
+    text = _text(sections._how_to_read(doc))
     used = {ERROR_UNITS[c["quantity"]] for case in doc["cases"] for c in case["checks"]}
     for unit in used:
         assert f"{unit}: {NORMALISATION[unit]}" in text
     assert "4PA/b = 1" in text
-    head, _ = render._results(doc["cases"][0])
+    head = sections._results(doc["cases"][0]).head
     assert all(re.search(r"\[.+\]$", h) for h in head[1:]), head
 
 
@@ -87,9 +156,10 @@ def test_the_case_past_lift_off_is_refused_correctly_and_judged_against_the_sie(
     case = next(c for c in doc["cases"] if c["name"] == "beyond_edge_on_flat")
     assert case["reference"] == "sie" and "closedform" not in case["results"]
     assert [c["comparison"] for c in case["checks"]][0] == "refusal"
-    _, rows = render._case_lines(doc, beyond=True)
-    assert rows == [[case["name"], case["description"], "refuses, correctly (LiftOffError)", "pass",
-                     render._used(case["worst_ratio"])]]
+    rows = sections._case_lines(doc, beyond=True).rows
+    assert rows == ((Link(case["name"], f"#{case['name']}"), case["description"],
+                     Verdict(Status.PASS, "refuses, correctly (LiftOffError)"), Verdict(Status.PASS),
+                     sections._used(case["worst_ratio"])),)
     assert "Beyond the closed form" in (out / "report.md").read_text()
 
 
@@ -115,5 +185,205 @@ def test_an_order_needs_a_monotone_sequence(errors, monotone):
 def test_a_study_prints_no_order_for_a_sequence_that_is_not_monotone():
     st = {"param": "h", "values": [0.1, 0.05, 0.025], "labels": ["30", "60", "120"],
           "errors": {"a": [3.6e-3, 2.5e-4, 3.3e-4]}, "orders": {"a": None}, "gci": {}, "notes": []}
-    head, rows = render._study(st)
-    assert rows[-1] == ["observed order", "", "not monotone"]
+    assert sections._study(st).rows[-1] == ("observed order", "", "not monotone")
+
+
+# -- the report as one list of sections ---------------------------------------------------------
+def _md_h2(md: str) -> list[str]:
+    return [line[3:] for line in md.splitlines() if line.startswith("## ")]
+
+
+def test_markdown_and_html_render_the_same_sections_in_the_same_order(report):
+    doc, out = report
+    titles = [s.title + (f" {s.status.value}" if s.status else "") for s in sections.build(doc).sections]
+    page = _page((out / "report.html").read_text())
+    assert [t.strip() for t in page.h2] == titles
+    md = [t.replace(" — ", " ") for t in _md_h2((out / "report.md").read_text())]
+    assert md == titles
+    # every case has its details section in both
+    for c in doc["cases"]:
+        assert f"id='{c['name']}'" in (out / "report.html").read_text()
+        assert f"### {c['name']}: " in (out / "report.md").read_text()
+
+
+def test_the_html_shows_no_literal_markup(report):
+    _, out = report
+    html = (out / "report.html").read_text()
+    text = "".join(_page(html).text)
+    for mark in ("`", "**", "](", "<code>", "&lt;"):
+        assert mark not in text, mark
+    assert "<code>threepart map</code>" in html      # inline code is rendered as code
+
+
+def test_an_overlay_plot_is_visible_near_the_top_and_the_raw_tables_fold_away(report):
+    doc, out = report
+    page = _page((out / "report.html").read_text())
+    visible = [alt for alt, depth in page.images if depth == 0]
+    # every case's pressure plot is on the page without unfolding anything ...
+    for c in doc["cases"]:
+        assert sections.plot_path(c["name"], "overlay") in visible, c["name"]
+    # ... and the first image on the page is one, after no more than the margins' table rows
+    assert page.images[0] == (sections.plot_path(doc["cases"][0]["name"], "overlay"), 0)
+    html = (out / "report.html").read_text()
+    rows_before = html[:html.index("<img")].count("<tr>")
+    assert rows_before <= verify.TIGHTEST + 1
+    # the case tables (results, checks) and the long tables are folded
+    long_visible = [rows for rows, depth in page.tables if depth == 0 and rows > verify.TIGHTEST + 1]
+    assert not long_visible
+    assert sum(depth > 0 for _, depth in page.tables) >= 2 * len(doc["cases"])
+
+
+def test_the_map_is_linked_only_when_it_exists(report, tmp_path, monkeypatch):
+    doc, out = report
+    html = (out / "report.html").read_text()
+    assert "map.json" not in html and sections.MAP_COMMAND in html
+    assert sections.MAP_COMMAND in (out / "report.md").read_text()
+    # with a map beside the report directory, the link is there and resolves
+    install_fakes(monkeypatch)
+    (tmp_path / "map").mkdir()
+    (tmp_path / "map" / "map.json").write_text("{}")
+    case = catalogue.get_case("caseA_sym")
+    assert verify.main(mode="quick", out=tmp_path / "rep", cases=[case], quiet=True) == 0
+    html = (tmp_path / "rep" / "report.html").read_text()
+    href = re.search(r"href='([^']*map\.json)'", html).group(1)
+    assert (tmp_path / "rep" / href).resolve() == (tmp_path / "map" / "map.json").resolve()
+    assert f"]({href})" in (tmp_path / "rep" / "report.md").read_text()
+
+
+def test_pass_and_fail_are_styled_from_the_status_not_from_the_words(report):
+    doc, out = report
+    doc = copy.deepcopy(doc)
+    failed, worded = doc["cases"][0], doc["cases"][1]
+    failed["passed"] = False
+    failed["checks"][0]["passed"] = False
+    worded["description"] = "FAIL"            # a word is not a verdict
+    html = render.html(doc, out)
+    page = _page(html)
+    assert page.open_details == [failed["name"]]       # a failed case opens itself
+    summary = re.search(rf"<details id='{failed['name']}' open><summary>(.*?)</summary>", html).group(1)
+    assert "<span class='fail'>FAIL</span>" in summary
+    assert "<td class='fail'>FAIL</td>" in html          # the failed check
+    assert "<td class='text'>FAIL</td>" in html          # the description reading "FAIL", unstyled
+    assert f"<span class='pass'>pass</span>" in html
+
+
+def test_the_renderer_holds_no_catalogue_fact(report):
+    doc, _ = report
+    root = Path(sections.__file__).parent
+    source = (root / "render.py").read_text() + (root / "sections.py").read_text()
+    for case in catalogue.load_cases(None):
+        if "_" in case.name:
+            assert case.name not in source, case.name
+    assert "28846" not in source and "fan_blade" not in source
+    # the loads paragraph follows the document: a case moved to another load is named with it
+    doc = copy.deepcopy(doc)
+    moved = doc["cases"][0]
+    moved["P"], moved["load_4PA_over_b"] = 2 * moved["P"], 2 * moved["load_4PA_over_b"]
+    text = _text(sections._how_to_read(doc))
+    paper = sum(abs(c["load_4PA_over_b"] - 1.0) < 1e-3 for c in doc["cases"])
+    assert f"Loads: {paper} cases are at the paper's dimensionless load 4PA/b = 1" in text
+    assert f"At another load: {moved['name']}" in text
+    assert f"4PA/b = {moved['load_4PA_over_b']:.3g};" in text
+
+
+def test_the_energy_per_cycle_carries_its_unit():
+    # energy per cycle and unit length = (force per length) x (slip length): N/mm x mm
+    force, length = UNITS["Q"].split("/")
+    assert sections.ENERGY_UNIT == f"{force}·{UNITS['d']}/{length}"
+    result = {"a": 1.0, "c": 1.0, "alpha": 0.0, "s": 0.0, "peak_left": {"p": 1.0},
+              "peak_right": {"p": 1.0}, "time_s": 0.1, "energy": 8.37}
+    physical = {"E": 210000.0, "results": {"closedform": result, "fem": dict(result, energy=8.35)}}
+    table = sections._results(physical)
+    assert f"energy per cycle [{sections.ENERGY_UNIT}]" in table.head
+    assert table.rows[1][table.head.index(f"energy per cycle [{sections.ENERGY_UNIT}]")] == "8.35"
+    words = "".join(sections._energy(physical))
+    assert f"FEM 8.35 {sections.ENERGY_UNIT}" in words and "per mm of contact length" in words
+    nondimensional = dict(physical, E=None)
+    assert "energy per cycle" in sections._results(nondimensional).head
+    assert "nondimensional" in "".join(sections._energy(nondimensional))
+
+
+# -- the plots ----------------------------------------------------------------------------------
+@pytest.fixture
+def drawn(monkeypatch):
+    """The figures the plot functions draw, kept instead of written."""
+    from threepart.reports import plots
+
+    figs = []
+    monkeypatch.setattr(plots, "save", lambda fig, path, dpi=110: figs.append(fig) or Path(path))
+    return figs
+
+
+def test_every_curve_is_drawn_over_its_own_contact_to_its_ends_with_zero_pressure(drawn):
+    """The punch on one corner: the contact [-a, c] lies right of x = 0 (a < 0)."""
+    from threepart.punch import Punch
+    from threepart.reports import plots
+
+    from .fakes import _normal
+
+    punch = Punch(R1=10.0, R2=10.0, b=1.0)
+    sie = _normal(punch, 100.0, 2.5, A=1e-3, method="sie")
+    fem = replace(sie, half=1.01 * sie.half, a=1.01 * sie.half - 2.5, c=1.01 * sie.half + 2.5,
+                  method="fem")
+    assert sie.a < 0
+    plots.overlay({"sie": sie, "fem": fem}, "corner", "x.png", reference="sie", physical=True)
+    ax = drawn[0].axes[0]
+    line = next(l for l in ax.get_lines() if l.get_label() == "FEM")
+    x, p = line.get_xdata(), line.get_ydata()
+    assert (x[0], x[-1]) == pytest.approx((-fem.a, fem.c), rel=1e-12)
+    assert p[0] == p[-1] == 0.0 and max(p) == pytest.approx(max(q.p for q in fem.peaks()), rel=1e-3)
+    labels = [t.get_text() for t in ax.get_legend().get_texts()]
+    assert any("x = ±b" in t for t in labels), labels
+    assert UNITS["p"] in ax.get_ylabel() and UNITS["x"] in ax.get_xlabel()
+    assert "corner" in ax.get_title() and "SIE" in ax.get_title() and "FEM" in ax.get_title()
+
+
+def test_a_nondimensional_overlay_is_scaled_by_the_peak_and_the_width(drawn):
+    from threepart.punch import Punch
+    from threepart.reports import plots
+
+    from .fakes import _normal
+
+    cf = _normal(Punch(R1=1.0, R2=1.0, b=0.3), 1.0, 0.1, A=1.0, method="closedform")
+    plots.overlay({"closedform": cf}, "nd", "x.png", physical=False)
+    ax = drawn[0].axes[0]
+    x, p = ax.get_lines()[0].get_xdata(), ax.get_lines()[0].get_ydata()
+    assert max(p) == pytest.approx(1.0, rel=1e-4)
+    assert x[-1] - x[0] == pytest.approx(1.0, rel=1e-12)     # x / W over the contact
+    assert "nondimensional" in ax.get_xlabel()
+
+
+def test_a_convergence_legend_gives_an_order_only_for_a_monotone_curve(drawn):
+    from threepart.reports import plots
+    from threepart.reports.studies import Study
+
+    # c as in fem_caseA_moment_convergence (default run): falls, then rises again
+    errors = {"a": [1.5e-3, 7.4e-5, 8.1e-6, 2.0e-6], "c": [1.1e-3, 8.5e-5, 2.8e-9, 1.1e-6]}
+    st = Study("fem", "caseA_moment", "h", [0.09, 0.045, 0.023, 0.011], ["38", "75", "150", "300"],
+               errors, errors, {}, [], orders={"a": 2.9, "c": 4.88})
+    plots.fem_convergence(st, "x.png")
+    labels = [t.get_text() for t in drawn[0].axes[0].get_legend().get_texts()]
+    assert "a: order 2.90" in labels and "c: not monotone" in labels, labels
+    assert not any("4.88" in t for t in labels)
+    assert sections.order_text(errors["c"], 4.88) == "not monotone"
+
+
+def test_a_long_stage_says_it_is_still_running(tmp_path, monkeypatch, capsys):
+    """A solver that reports nothing for a while: the run prints a line per period meanwhile."""
+    slow = fake_solver("fem")
+
+    def sleepy(case, **options):
+        time.sleep(0.5)
+        return slow.normal(case, **options)
+
+    install_fakes(monkeypatch, fem=replace(slow, normal=sleepy))
+    monkeypatch.setattr(verify, "HEARTBEAT_S", 0.1)
+    monkeypatch.setattr(verify, "write_report", lambda tmp, *a: verify.build_report(
+        a[0], a[1], a[2], a[3], {}))
+    case = catalogue.get_case("caseA_sym")
+    verify.main(mode="quick", out=tmp_path / "rep", cases=[case])
+    lines = capsys.readouterr().out.splitlines()
+    beats = [line for line in lines if "caseA_sym" in line and "fem still running" in line]
+    assert len(beats) >= 2, lines
+    done = next(i for i, line in enumerate(lines) if re.search(r"caseA_sym\s+fem \d", line))
+    assert lines.index(beats[-1]) < done
