@@ -372,9 +372,9 @@ def test_a_long_stage_says_it_is_still_running(tmp_path, monkeypatch, capsys):
     """A solver that reports nothing for a while: the run prints a line per period meanwhile."""
     slow = fake_solver("fem")
 
-    def sleepy(case, **options):
+    def sleepy(*args, **options):
         time.sleep(0.5)
-        return slow.normal(case, **options)
+        return slow.normal(*args, **options)
 
     install_fakes(monkeypatch, fem=replace(slow, normal=sleepy))
     monkeypatch.setattr(verify, "HEARTBEAT_S", 0.1)
