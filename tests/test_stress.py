@@ -99,6 +99,18 @@ def test_mcewen_everywhere():
     assert worst(S, mcewen(x[:, None], z[None, :])) <= TARGET * P0
 
 
+def test_mcewen_random_points():
+    """2000 seeded random points: 20 % on the surface, depths 1e-9 to 10 a, and 10 % within
+    1e-10 to 0.1 a of a contact end, where the grading must go deepest."""
+    rng = np.random.default_rng(2)
+    N = 2000
+    x = rng.uniform(-3, 3, N) * A_H
+    z = np.where(rng.random(N) < 0.2, 0.0, 10 ** rng.uniform(-9, 1, N)) * A_H
+    x[:200] = rng.choice([-1, 1], 200) * A_H * (1 + rng.choice([-1, 1], 200) * 10 ** rng.uniform(-10, -1, 200))
+    S = stress(x, z, pressure=p_hertz, shear=q_hertz, ends=(-A_H, A_H))
+    assert worst(S, mcewen(x, z)) <= TARGET * P0
+
+
 def test_mcewen_at_the_surface():
     """z = 0: McEwen's surface values, in and outside the contact (σxx = -p - 2 q0 x/a inside)."""
     x = np.array([-3.0, -1.2, -0.9, -0.3, 0.0, 0.5, 0.99, 1.0001, 2.0])
@@ -222,8 +234,8 @@ def test_case_a_pressure_satisfies_the_integral_equation(case_a):
 
 
 def test_case_a_surface_stress_against_quadpack(case_a):
-    """Partial slip of caseA_moment (Q = 0.2 f P... here 0.4 f P, f = 0.5): the surface σxx from the
-    Hilbert transform of q against QUADPACK's Cauchy principal value, to 1e-8 p0."""
+    """Partial slip of caseA_moment at Q = 0.4 f P (f = 0.5): the surface σxx from the Hilbert
+    transform of q, and σzz = -p, σxz = -q, against QUADPACK's Cauchy principal value, to 1e-8 p0."""
     case, n, slip = case_a
     b = case.punch.b
     lo, hi = slip.stick_zone
@@ -237,9 +249,11 @@ def test_case_a_surface_stress_against_quadpack(case_a):
 
 
 def test_case_a_subsurface_converges(case_a):
-    """No closed form below case A: the stress at shallow and deep points agrees with a rule of
-    twice the nodes per panel and finer grading, to 1e-8 p0 (a self-consistency bound; the
-    references above fix the rule's accuracy)."""
+    """No closed form below case A: the stress at shallow and deep points, on and next to the
+    ends, joins and stick-zone ends, agrees with a rule of twice the nodes per panel graded
+    to the full depth everywhere, to 1e-8 p0 (a self-consistency bound: the independent
+    references above fix the rule's accuracy; this one checks the grading depth chosen per
+    point where p and q have kinks)."""
     import threepart.stress as st
 
     case, n, slip = case_a
@@ -251,7 +265,7 @@ def test_case_a_subsurface_converges(case_a):
     S = stress(x[:, None], z, **kw)
     saved = dict(st.RULE)
     try:
-        st.RULE.update(n=24, ratio=0.5, levels=30)
+        st.RULE.update(n=24, ratio=0.5, levels=30, min_levels=30)
         fine = stress(x[:, None], z, **kw)
     finally:
         st.RULE.update(saved)

@@ -62,11 +62,12 @@ __all__ = ["Stress", "stress", "hilbert", "flamant_normal", "flamant_tangential"
 
 Traction = Callable[[np.ndarray], Any]
 
-#: the composite rule, per half of each interval between break points: ``levels + 1``
-#: panels in ``u`` (``t = E + h u²``) with ends ``0, ratio**levels, ..., ratio, 1``, each
-#: with ``n`` Gauss–Legendre nodes. Measured: 1e-10 of p0 at z/W from 1e-7 to 10
-#: (Hertz, McEwen, caseA_moment; tests/test_stress.py asserts 1e-8 of p0).
-RULE = {"n": 12, "ratio": 0.35, "levels": 11}
+#: the composite rule, per half of each interval between break points: ``L + 1`` panels
+#: in ``u`` (``t = E + h u²``) with ends ``0, ratio**L, ..., ratio, 1``, each with ``n``
+#: Gauss–Legendre nodes. ``L`` is chosen per point between ``min_levels`` and ``levels``
+#: (:func:`_depth`): deep for shallow points and points near a contact end or kink.
+#: Measured: see docs/STRESS.md; tests/test_stress.py asserts 1e-8 of p0.
+RULE = {"n": 12, "ratio": 0.35, "levels": 11, "min_levels": 3}
 #: points per block of the vectorised quadrature (memory: blocks of about 2e6 nodes)
 _NODES_PER_BLOCK = 2_000_000
 
@@ -250,13 +251,50 @@ def _reference_rule(n: int, ratio: float, levels: int) -> tuple[np.ndarray, np.n
     return (0.5 * (hi - lo) * g + 0.5 * (hi + lo)).ravel(), (0.5 * (hi - lo) * w).ravel()
 
 
+def _depth(x: np.ndarray, z: np.ndarray, lo: float, hi: float, kinks: np.ndarray,
+           rule: dict[str, Any]) -> np.ndarray:
+    """Grading levels each point needs: ``ratio**levels <= sqrt(ζ/W)/2``, within the rule's bounds.
+
+    ``ζ`` is the distance from the point ``x + i z`` to the nearest pole of its kernels
+    seen from a break point: ``z`` itself (the point's own break point ``x``) and
+    ``|x - B + i z|`` for the contact ends and kinks ``B``. After ``t = B + h u²`` the
+    pole lies at ``|u| = sqrt(ζ/|h|) >= sqrt(ζ/W)``; the innermost panel must be
+    shorter than half that. A surface point on a kink (``ζ = 0``) gets the deepest
+    grading: there the remainder ``(w(t) - w(x))/(x - t)`` is log-singular.
+    """
+    W = hi - lo
+    dist = np.abs((x[:, None] - np.concatenate([[lo, hi], kinks])[None, :]) + 1j * z[:, None])
+    zeta = np.minimum(np.where(z > 0, z, np.inf), dist.min(axis=1))
+    with np.errstate(divide="ignore"):
+        need = np.ceil(np.log(0.5 * np.sqrt(zeta / W)) / math.log(rule["ratio"]))
+    # zeta = 0: a surface point on an end or a kink, where the remainder has a weak singularity
+    return np.clip(np.nan_to_num(need, posinf=rule["levels"]), rule["min_levels"],
+                   rule["levels"]).astype(int)
+
+
 def _integrals(x: np.ndarray, z: np.ndarray, funcs: dict[str, Traction], lo: float, hi: float,
                kinks: np.ndarray, rule: dict[str, Any]) -> dict[str, tuple[np.ndarray, ...]]:
     """For each traction ``w``: ``∫ w(t) K(x - t, z) dt`` over ``[lo, hi]`` for the four kernels.
 
     The kernels are ``z s²/r⁴, z³/r⁴, z² s/r⁴, s³/r⁴`` (those of
-    :func:`kernel_primitives`). ``x`` and ``z`` are 1-d of one length.
+    :func:`kernel_primitives`). ``x`` and ``z`` are 1-d of one length. The points
+    are grouped by the grading depth they need (:func:`_depth`).
     """
+    levels = _depth(x, z, lo, hi, kinks, rule)
+    out = {name: tuple(np.empty(x.size) for _ in range(4)) for name in funcs}
+    for L in np.unique(levels):
+        sel = np.flatnonzero(levels == L)
+        part = _integrals_at_depth(x[sel], z[sel], funcs, lo, hi, kinks, {**rule, "levels": int(L)})
+        for name in funcs:
+            for k in range(4):
+                out[name][k][sel] = part[name][k]
+    return out
+
+
+def _integrals_at_depth(x: np.ndarray, z: np.ndarray, funcs: dict[str, Traction], lo: float,
+                        hi: float, kinks: np.ndarray,
+                        rule: dict[str, Any]) -> dict[str, tuple[np.ndarray, ...]]:
+    """:func:`_integrals` with one grading depth ``rule["levels"]`` for all the points."""
     U, Wu = _reference_rule(rule["n"], rule["ratio"], rule["levels"])
     U2 = U * U
     out: dict[str, list[list[np.ndarray]]] = {name: [[], [], [], []] for name in funcs}
