@@ -130,12 +130,12 @@ def surface_reference(x, p, q, lo, hi, breaks):
             pts = sorted({lo, *[b for b in breaks if lo < b < hi], hi})
             for u, v in zip(pts[:-1], pts[1:]):
                 if u < x < v:
-                    pv += quad(f, u, v, weight="cauchy", wvar=x, epsabs=1e-13, epsrel=1e-13, limit=200)[0]
+                    pv += quad(f, u, v, weight="cauchy", wvar=x, epsabs=1e-11, epsrel=1e-11, limit=200)[0]
                 else:
-                    pv += quad(lambda t: f(t) / (t - x), u, v, epsabs=1e-13, epsrel=1e-13, limit=200)[0]
+                    pv += quad(lambda t: f(t) / (t - x), u, v, epsabs=1e-11, epsrel=1e-11, limit=200)[0]
         else:
-            pv = quad(lambda t: f(t) / (t - x), lo, hi, points=list(breaks), epsabs=1e-13,
-                      epsrel=1e-13, limit=200)[0]
+            pv = quad(lambda t: f(t) / (t - x), lo, hi, points=list(breaks), epsabs=1e-11,
+                      epsrel=1e-11, limit=200)[0]
     pz = float(p(np.array(x))) if inside else 0.0
     qz = float(q(np.array(x))) if (inside and q is not None) else 0.0
     return -pz + 2 / math.pi * pv, -pz, -qz

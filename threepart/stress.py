@@ -67,7 +67,7 @@ Traction = Callable[[np.ndarray], Any]
 #: Gauss–Legendre nodes. ``L`` is chosen per point between ``min_levels`` and ``levels``
 #: (:func:`_depth`): deep for shallow points and points near a contact end or kink.
 #: Measured: see docs/STRESS.md; tests/test_stress.py asserts 1e-8 of p0.
-RULE = {"n": 12, "ratio": 0.35, "levels": 11, "min_levels": 3}
+RULE = {"n": 12, "ratio": 0.35, "levels": 11, "min_levels": 2}
 #: points per block of the vectorised quadrature (memory: blocks of about 2e6 nodes)
 _NODES_PER_BLOCK = 2_000_000
 
@@ -257,14 +257,20 @@ def _depth(x: np.ndarray, z: np.ndarray, lo: float, hi: float, kinks: np.ndarray
 
     ``ζ`` is the distance from the point ``x + i z`` to the nearest pole of its kernels
     seen from a break point: ``z`` itself (the point's own break point ``x``) and
-    ``|x - B + i z|`` for the contact ends and kinks ``B``. After ``t = B + h u²`` the
+    ``|x - B + i z|`` for the contact ends and kinks ``B``, and the tractions' own
+    square-root or kink singularities at the distance ``|x_c - B| > 0`` of ``B`` from the
+    break point ``x_c`` (``x`` clipped into the contact). After ``t = B + h u²`` the
     pole lies at ``|u| = sqrt(ζ/|h|) >= sqrt(ζ/W)``; the innermost panel must be
     shorter than half that. A surface point on a kink (``ζ = 0``) gets the deepest
     grading: there the remainder ``(w(t) - w(x))/(x - t)`` is log-singular.
     """
     W = hi - lo
-    dist = np.abs((x[:, None] - np.concatenate([[lo, hi], kinks])[None, :]) + 1j * z[:, None])
-    zeta = np.minimum(np.where(z > 0, z, np.inf), dist.min(axis=1))
+    B = np.concatenate([[lo, hi], kinks])[None, :]
+    dist = np.abs((x[:, None] - B) + 1j * z[:, None])
+    # the tractions' own singularities at the other break points, seen from the clipped x
+    apart = np.abs(np.clip(x, lo, hi)[:, None] - B)
+    apart = np.where(apart > 0, apart, np.inf).min(axis=1)
+    zeta = np.minimum(np.minimum(np.where(z > 0, z, np.inf), dist.min(axis=1)), apart)
     with np.errstate(divide="ignore"):
         need = np.ceil(np.log(0.5 * np.sqrt(zeta / W)) / math.log(rule["ratio"]))
     # zeta = 0: a surface point on an end or a kink, where the remainder has a weak singularity
