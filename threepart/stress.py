@@ -297,48 +297,79 @@ def _integrals(x: np.ndarray, z: np.ndarray, funcs: dict[str, Traction], lo: flo
     return out
 
 
+def _halves(left: np.ndarray, right: np.ndarray, U: np.ndarray,
+            Wu: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Each interval ``[left, right]`` halved, each half mapped by ``t = E + h u²`` from its end ``E``.
+
+    Returns ``E`` and ``h u²`` at the nodes (so that ``x - t`` can be formed as
+    ``(x - E) - h u²``, exact near ``x``) and the weights, each of shape
+    ``left.shape[:-1] + (2 * intervals * U.size,)``.
+    """
+    mid = 0.5 * (left + right)
+    E = np.concatenate([left, right], axis=-1)               # the end each half is graded toward
+    h = np.concatenate([mid - left, mid - right], axis=-1)   # signed: t = E + h u^2
+    shape = E.shape[:-1] + (-1,)
+    En = np.broadcast_to(E[..., None], E.shape + U.shape).reshape(shape)
+    hu2 = (h[..., None] * (U * U)).reshape(shape)
+    wt = (2.0 * np.abs(h)[..., None] * U * Wu).reshape(shape)
+    return En, hu2, wt
+
+
 def _integrals_at_depth(x: np.ndarray, z: np.ndarray, funcs: dict[str, Traction], lo: float,
                         hi: float, kinks: np.ndarray,
                         rule: dict[str, Any]) -> dict[str, tuple[np.ndarray, ...]]:
-    """:func:`_integrals` with one grading depth ``rule["levels"]`` for all the points."""
+    """:func:`_integrals` with one grading depth ``rule["levels"]`` for all the points.
+
+    The intervals between the fixed break points (ends and kinks) carry one shared rule,
+    whose tractions are evaluated once; the interval holding ``x`` is replaced, for each
+    point, by its two parts on either side of ``x`` (clipped into the contact).
+    """
     U, Wu = _reference_rule(rule["n"], rule["ratio"], rule["levels"])
-    U2 = U * U
+    F = np.concatenate([[lo], kinks, [hi]])
+    nint = F.size - 1
+    sE, s_hu2, s_wt = _halves(F[:-1], F[1:], U, Wu)
+    s_t = sE + s_hu2
+    s_id = np.tile(np.repeat(np.arange(nint), U.size), 2)   # the interval of each shared node
+    shared = {name: _evaluate(name, func, s_t) for name, func in funcs.items()}
     out: dict[str, list[list[np.ndarray]]] = {name: [[], [], [], []] for name in funcs}
-    m = U.size
-    halves = 2 * (kinks.size + 2)
-    block = max(1, _NODES_PER_BLOCK // (m * halves))
+    block = max(1, _NODES_PER_BLOCK // (U.size * 4 + s_t.size))
     for start in range(0, x.size, block):
         xb, zb = x[start:start + block], z[start:start + block]
         xc = np.clip(xb, lo, hi)
-        bp = np.sort(np.column_stack([np.full_like(xb, lo), np.broadcast_to(kinks, (xb.size, kinks.size)),
-                                      np.full_like(xb, hi), xc]), axis=1)
-        left, right = bp[:, :-1], bp[:, 1:]
-        mid = 0.5 * (left + right)
-        E = np.concatenate([left, right], axis=1)             # the end each half is graded toward
-        h = np.concatenate([mid - left, mid - right], axis=1)  # signed: t = E + h u^2
-        t = E[:, :, None] + h[:, :, None] * U2
-        wt = (2.0 * np.abs(h)[:, :, None] * U * Wu).reshape(xb.size, -1)
-        t = t.reshape(xb.size, -1)
-        # s = x - t from its parts: near x, E + h u^2 rounds to x, and s must not become 0
-        s = ((xb[:, None] - E)[:, :, None] - h[:, :, None] * U2).reshape(xb.size, -1)
-        zz = zb[:, None]
-        r2 = s * s + zz * zz
-        r2[r2 == 0] = np.inf             # only the nodes of a zero-length interval (weight 0)
-        inv = 1.0 / (r2 * r2)
-        kernels = (zz * s * s * inv, zz ** 3 * inv, zz * zz * s * inv, s ** 3 * inv)
+        j = np.clip(np.searchsorted(F, xc, side="right") - 1, 0, nint - 1)
+        own = np.column_stack([F[j], xc]), np.column_stack([xc, F[j + 1]])
+        pE, p_hu2, p_wt = _halves(own[0], own[1], U, Wu)
+        p_t = pE + p_hu2
+        keep = s_id[None, :] != j[:, None]                      # drop the shared interval of x
+        cols = keep.any(axis=0)                                 # shared nodes some point uses
+        keep = keep[:, cols]
+        s_own = (xb[:, None] - pE) - p_hu2
+        s_sh = (xb[:, None] - sE[None, cols]) - s_hu2[None, cols]
         prim_hi = kernel_primitives(xb - lo, zb)   # s = x - t at t = lo (upper limit in s)
         prim_lo = kernel_primitives(xb - hi, zb)
         inside = (xb >= lo) & (xb <= hi)
+        w0 = {}
         for name, func in funcs.items():
-            w = _evaluate(name, func, t)
-            w0 = np.zeros_like(xb)
+            w0[name] = np.zeros_like(xb)
             if inside.any():
-                w0[inside] = _evaluate(name, func, xb[inside])
-            dw = (w - w0[:, None]) * wt
+                w0[name][inside] = _evaluate(name, func, xb[inside])
+        acc = {name: [np.zeros_like(xb) for _ in range(4)] for name in funcs}
+        for s, wt, values in ((s_own, p_wt, {n: _evaluate(n, f, p_t) for n, f in funcs.items()}),
+                              (s_sh, s_wt[None, cols] * keep, {n: v[None, cols] for n, v in shared.items()})):
+            zz = zb[:, None]
+            r2 = s * s + zz * zz
+            r2[r2 == 0] = np.inf         # only the nodes of a zero-length interval (weight 0)
+            inv = 1.0 / (r2 * r2)
+            kernels = (zz * s * s * inv, zz ** 3 * inv, zz * zz * s * inv, s ** 3 * inv)
+            for name in funcs:
+                dw = (values[name] - w0[name][:, None]) * wt
+                for k in range(4):
+                    acc[name][k] += np.einsum("ij,ij->i", dw, kernels[k])
+        for name in funcs:
             for k in range(4):
                 with np.errstate(invalid="ignore"):
-                    analytic = np.where(w0 != 0, w0 * (prim_hi[k] - prim_lo[k]), 0.0)
-                out[name][k].append(np.einsum("ij,ij->i", dw, kernels[k]) + analytic)
+                    analytic = np.where(w0[name] != 0, w0[name] * (prim_hi[k] - prim_lo[k]), 0.0)
+                out[name][k].append(acc[name][k] + analytic)
     return {name: tuple(np.concatenate(parts) for parts in lists) for name, lists in out.items()}
 
 
