@@ -285,6 +285,8 @@ def test_case_a_subsurface_converges(case_a):
     ({"ends": 1.0}, TypeError, "`ends`"),
     ({"kinks": (2.0,)}, ValueError, "`kinks` holds x = 2"),
     ({"nu": 0.7}, ValueError, "`nu` = 0.7 must lie in"),
+    ({"x": np.zeros(3), "z": np.ones(2)}, ValueError, "`x` of shape \\(3,\\) and `z` of shape \\(2,\\)"),
+    ({"nu": True}, TypeError, "`nu`"),
     ({"sigma_bulk": math.inf}, ValueError, "`sigma_bulk`"),
     ({"pressure": lambda t: np.full(np.shape(t), np.nan)}, ValueError, "`pressure` is not finite"),
     ({"pressure": lambda t: 1.0}, ValueError, "`pressure` returned shape"),

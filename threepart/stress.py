@@ -423,7 +423,11 @@ def stress(x: ArrayLike, z: ArrayLike, *, pressure: Traction, shear: Traction | 
     poisson = finite("nu", nu)
     if not -1.0 < poisson <= 0.5:
         raise ValueError(f"`nu` = {nu!r} must lie in (-1, 0.5]")
-    xb, zb = np.broadcast_arrays(xa, za)
+    try:
+        xb, zb = np.broadcast_arrays(xa, za)
+    except ValueError:
+        raise ValueError(f"`x` of shape {xa.shape} and `z` of shape {za.shape} do not broadcast "
+                         "against each other") from None
     funcs = {"pressure": p_fn} if q_fn is None else {"pressure": p_fn, "shear": q_fn}
     I = _integrals(xb.ravel(), zb.ravel(), funcs, lo, hi, k, RULE)
     c = -2.0 / math.pi
