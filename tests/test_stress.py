@@ -154,6 +154,19 @@ def test_subsurface_tends_to_surface(x):
 
 # --- equilibrium ------------------------------------------------------------------------------
 
+def line_rule(z: float, L: float, X: float) -> tuple[np.ndarray, np.ndarray]:
+    """Gauss–Legendre nodes and weights on the line [-L, L] at depth z: panels of width 0.05
+    on |x| <= X (the stress varies on the scale z), and x = z tan θ beyond (smooth there)."""
+    g, w = np.polynomial.legendre.leggauss(20)
+    edges = np.linspace(-X, X, int(round(2 * X / 0.05)) + 1)
+    xs = (0.5 * np.diff(edges)[:, None] * g + 0.5 * (edges[1:] + edges[:-1])[:, None]).ravel()
+    ws = (0.5 * np.diff(edges)[:, None] * w).ravel()
+    th = np.linspace(math.atan(X / z), math.atan(L / z), 9)
+    tt = (0.5 * np.diff(th)[:, None] * g + 0.5 * (th[1:] + th[:-1])[:, None]).ravel()
+    wt = (0.5 * np.diff(th)[:, None] * w).ravel() * z / np.cos(tt) ** 2
+    return np.concatenate([-z * np.tan(tt)[::-1], xs, z * np.tan(tt)]), np.concatenate([wt[::-1], ws, wt])
+
+
 @pytest.mark.parametrize("z", [0.05, 0.7])
 def test_equilibrium_at_depth(z):
     """∫σzz dx = -P and ∫σxz dx = -Q across a line at depth z, truncated at |x| <= L.
@@ -166,17 +179,8 @@ def test_equilibrium_at_depth(z):
     and O(a² z³/L⁵) for σzz at L = 2000, z <= 0.7 (at L = 200 the σxz check fails by 1.3e-8).
     """
     P, Q = math.pi / 2 * P0 * A_H, math.pi / 2 * F * P0 * A_H
-    L, X = 2000.0, 3.0
-    g, w = np.polynomial.legendre.leggauss(20)
-    # |x| <= X: panels of width 0.05 (the stress varies on the scale z); |x| > X: x = z tan θ
-    edges = np.linspace(-X, X, 121)
-    xs = (0.5 * np.diff(edges)[:, None] * g + 0.5 * (edges[1:] + edges[:-1])[:, None]).ravel()
-    ws = (0.5 * np.diff(edges)[:, None] * w).ravel()
-    th = np.linspace(math.atan(X / z), math.atan(L / z), 9)
-    tt = (0.5 * np.diff(th)[:, None] * g + 0.5 * (th[1:] + th[:-1])[:, None]).ravel()
-    wt = (0.5 * np.diff(th)[:, None] * w).ravel() * z / np.cos(tt) ** 2
-    x = np.concatenate([-z * np.tan(tt)[::-1], xs, z * np.tan(tt)])
-    wx = np.concatenate([wt[::-1], ws, wt])
+    L = 2000.0
+    x, wx = line_rule(z, L, 3.0)
     S = stress(x, z, pressure=p_hertz, shear=q_hertz, ends=(-A_H, A_H))
     at, frac = math.atan(L / z), z * L / (L * L + z * z)
     assert abs(np.sum(S.szz * wx) + P * 2 / math.pi * (at + frac)) <= 1e-9 * P
@@ -302,3 +306,18 @@ def test_surface_point_at_a_traction_jump_is_refused():
     one = lambda t: np.ones(np.shape(t))                     # noqa: E731
     with pytest.raises(ValueError, match="infinite at the surface point x = 1"):
         stress(1.0, 0.0, pressure=one, shear=one, ends=(-1.0, 1.0))
+
+
+def test_case_a_slip_result_carries_q_and_Q_as_this_module_means_them(case_a):
+    """A threepart SlipResult's shear(x) and Q go in unconverted: ∫σxz dx = -Q (and ∫σzz = -P)
+    at depth 0.5 under partial slip of caseA_moment. Truncation at L = 2000 as in
+    test_equilibrium_at_depth; the load's centroid (|s| <= W) adds at most (2/π) Q W z/L² ≈ 1e-7 Q."""
+    case, n, slip = case_a
+    b = case.punch.b
+    z, L = 0.5, 2000.0
+    x, wx = line_rule(z, L, 4.0)
+    S = stress(x, z, pressure=n.pressure, shear=slip.shear, ends=(-n.a, n.c),
+               kinks=(-b, b, *slip.stick_zone))
+    at, frac = math.atan(L / z), z * L / (L * L + z * z)
+    assert abs(np.sum(S.sxz * wx) + slip.Q * 2 / math.pi * (at - frac)) <= 2e-7 * abs(slip.Q)
+    assert abs(np.sum(S.szz * wx) + n.P * 2 / math.pi * (at + frac)) <= 2e-7 * n.P
