@@ -16,7 +16,7 @@ from scipy.integrate import quad
 
 from threepart import closedform as cf
 from threepart.catalogue import get_case
-from threepart.stress import Stress, hilbert, stress
+from threepart.stress import Stress, flamant_normal, flamant_tangential, hilbert, stress
 
 #: the accuracy the module promises, as a fraction of p0 = max p, at every depth
 TARGET = 1e-8
@@ -76,6 +76,19 @@ def test_narrow_strip_is_flamant_point_load(load):
     ref = (sr * np.sin(theta) ** 2, sr * np.cos(theta) ** 2, sr * np.sin(theta) * np.cos(theta))
     scale = 2 * P / (math.pi * r)
     assert worst(S, ref) <= 3 * (eps / r) ** 2 * scale, worst(S, ref) / scale
+
+
+def test_flamant_kernels_are_radial():
+    """The Cartesian kernels against the polar σr = -(2/π) cos θ/r (normal) and -(2/π) sin θ/r
+    (tangential along +x), σθ = τrθ = 0, rotated with the radial direction (sin θ, cos θ)."""
+    theta = np.linspace(-1.5, 1.5, 31)
+    r = np.array([[0.01], [1.0], [50.0]])
+    s, z = r * np.sin(theta), r * np.cos(theta)
+    for kernel, trig in ((flamant_normal, np.cos(theta)), (flamant_tangential, np.sin(theta))):
+        sr = -2 / math.pi * trig / r
+        ref = (sr * np.sin(theta) ** 2, sr * np.cos(theta) ** 2, sr * np.sin(theta) * np.cos(theta))
+        for got, want in zip(kernel(s, z), ref):
+            assert np.allclose(got, want, rtol=1e-13, atol=1e-13 * np.abs(sr).max())
 
 
 # --- Hertz and McEwen -------------------------------------------------------------------------

@@ -72,6 +72,16 @@ RULE = {"n": 12, "ratio": 0.35, "levels": 11, "min_levels": 2}
 _NODES_PER_BLOCK = 2_000_000
 
 
+def _kernels(s: np.ndarray, z: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """The four Flamant kernels ``z s²/r⁴, z³/r⁴, z² s/r⁴, s³/r⁴`` without their ``-2/π``.
+
+    ``r = 0`` (only at the nodes of an empty interval, weight 0) gives 0.
+    """
+    r2 = s * s + z * z
+    inv = 1.0 / np.where(r2 > 0, r2 * r2, np.inf)
+    return z * s * s * inv, z ** 3 * inv, z * z * s * inv, s ** 3 * inv
+
+
 def flamant_normal(s: ArrayLike, z: ArrayLike) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Stresses ``(σxx, σzz, σxz)`` at ``(s, z)`` of a unit compressive line load at ``s = 0``.
 
@@ -80,9 +90,8 @@ def flamant_normal(s: ArrayLike, z: ArrayLike) -> tuple[np.ndarray, np.ndarray, 
     polar form the purely radial ``σr = -(2/π) cos θ / r``. ``s`` is the horizontal
     distance of the point from the load, ``z > 0`` its depth.
     """
-    s, z = np.asarray(s, float), np.asarray(z, float)
-    c = -2.0 / (math.pi * (s * s + z * z) ** 2)
-    return c * s * s * z, c * z ** 3, c * s * z * z
+    k = _kernels(np.asarray(s, float), np.asarray(z, float))
+    return -2 / math.pi * k[0], -2 / math.pi * k[1], -2 / math.pi * k[2]
 
 
 def flamant_tangential(s: ArrayLike, z: ArrayLike) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -92,9 +101,8 @@ def flamant_tangential(s: ArrayLike, z: ArrayLike) -> tuple[np.ndarray, np.ndarr
     ``σzz = -(2/π) s z² / r⁴``, ``σxz = -(2/π) s² z / r⁴``; in polar form
     ``σr = -(2/π) sin θ / r`` (compressive ahead of the load, ``s > 0``).
     """
-    s, z = np.asarray(s, float), np.asarray(z, float)
-    c = -2.0 / (math.pi * (s * s + z * z) ** 2)
-    return c * s ** 3, c * s * z * z, c * s * s * z
+    k = _kernels(np.asarray(s, float), np.asarray(z, float))
+    return -2 / math.pi * k[3], -2 / math.pi * k[2], -2 / math.pi * k[0]
 
 
 def kernel_primitives(s: ArrayLike, z: ArrayLike) -> tuple[np.ndarray, ...]:
@@ -282,8 +290,8 @@ def _integrals(x: np.ndarray, z: np.ndarray, funcs: dict[str, Traction], lo: flo
                kinks: np.ndarray, rule: dict[str, Any]) -> dict[str, tuple[np.ndarray, ...]]:
     """For each traction ``w``: ``∫ w(t) K(x - t, z) dt`` over ``[lo, hi]`` for the four kernels.
 
-    The kernels are ``z s²/r⁴, z³/r⁴, z² s/r⁴, s³/r⁴`` (those of
-    :func:`kernel_primitives`). ``x`` and ``z`` are 1-d of one length. The points
+    The kernels are ``z s²/r⁴, z³/r⁴, z² s/r⁴, s³/r⁴`` (:func:`_kernels`, whose
+    primitives are :func:`kernel_primitives`). ``x`` and ``z`` are 1-d of one length. The points
     are grouped by the grading depth they need (:func:`_depth`).
     """
     levels = _depth(x, z, lo, hi, kinks, rule)
@@ -356,11 +364,7 @@ def _integrals_at_depth(x: np.ndarray, z: np.ndarray, funcs: dict[str, Traction]
         acc = {name: [np.zeros_like(xb) for _ in range(4)] for name in funcs}
         for s, wt, values in ((s_own, p_wt, {n: _evaluate(n, f, p_t) for n, f in funcs.items()}),
                               (s_sh, s_wt[None, cols] * keep, {n: v[None, cols] for n, v in shared.items()})):
-            zz = zb[:, None]
-            r2 = s * s + zz * zz
-            r2[r2 == 0] = np.inf         # only the nodes of a zero-length interval (weight 0)
-            inv = 1.0 / (r2 * r2)
-            kernels = (zz * s * s * inv, zz ** 3 * inv, zz * zz * s * inv, s ** 3 * inv)
+            kernels = _kernels(s, zb[:, None])
             for name in funcs:
                 dw = (values[name] - w0[name][:, None]) * wt
                 for k in range(4):
