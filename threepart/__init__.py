@@ -69,6 +69,8 @@ _HOMES = {
     "StickZoneError": "errors", "NoConvergenceError": "errors", "ContactZoneError": "errors",
     "MeshResolutionError": "errors", "SlopeLimitError": "errors", "ArcExtentError": "errors",
     "solve": "methods", "METHODS": "methods", "CHOICES": "methods",
+    "Stress": "stress",
+    "hilbert": "stress",
 }
 _SUBPACKAGES = ("closedform", "sie", "fem", "meshes", "reports")
 
