@@ -329,7 +329,7 @@ def test_fem_states_the_poisson_ratio_it_assumed_and_echoes_s_as_given(capsys):
     assert out["slope"] >= max(abs(out["alpha"]), (out["a"] - 1.0) / 10.0)
 
 
-@pytest.mark.parametrize("delay", [0.15, 1.0])
+@pytest.mark.parametrize("delay", [0.5, 1.5])
 def test_ctrl_c_while_loading_or_solving_prints_exactly_one_line(delay, tmp_path):
     """SIGINT early (numpy and scipy still loading) or late (the FEM solving): one line, exit 130."""
     import signal
@@ -343,3 +343,10 @@ def test_ctrl_c_while_loading_or_solving_prints_exactly_one_line(delay, tmp_path
     out, err = proc.communicate(timeout=120)
     assert proc.returncode == 130, err
     assert err.strip() == "threepart solve: interrupted", err
+
+
+def test_the_command_list_names_every_sub_command():
+    from threepart.cli import COMMANDS, build_parser
+
+    sub = next(a for a in build_parser()._actions if isinstance(a, argparse._SubParsersAction))
+    assert set(sub.choices) == set(COMMANDS)

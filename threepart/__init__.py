@@ -41,6 +41,11 @@ NormalResult        -- a, c, alpha, P, s, pressure(x), peaks(): the shape every 
 SlipResult          -- adds Q, f, d, e, stick_zone and shear(x)
 Peak                -- a pressure maximum p at x
 
+Stresses (threepart.stress)
+--------
+Stress              -- sxx, szz, sxz in the substrate, principal, von Mises, Tresca (tension > 0)
+hilbert             -- (1/pi) PV int f(t)/(t - x) dt over the contact, kinks respected
+
 Errors (one family, raised by every solver)
 ------
 LiftOffError        -- s (or P) puts a contact edge inside the central segment (ValueError)
@@ -84,6 +89,7 @@ if TYPE_CHECKING:   # pragma: no cover - for type checkers and IDEs only
     from .methods import CHOICES, METHODS, solve
     from .punch import Punch
     from .results import NormalResult, Peak, SlipResult
+    from .stress import Stress, hilbert
     from .validate import TILTS
 
 

@@ -62,6 +62,10 @@ LIST_OPTIONS = ("--x",)
 MAX_GRID = 1_000_000
 
 
+#: the sub-commands (kept in step with :func:`build_parser` by tests/test_cli.py)
+COMMANDS = ("solve", "slip", "verify", "figures", "map")
+
+
 class UsageError(Exception):
     """A command-line usage error, already formatted as one line."""
 
@@ -477,7 +481,8 @@ def main(argv: Sequence[str] | None = None) -> int:
     from threepart.errors import ContactZoneError, NoConvergenceError
 
     argv = list(sys.argv[1:] if argv is None else argv)
-    prog = "threepart"
+    # named before parsing, so that Ctrl-C while the parser is built names the command too
+    prog = f"threepart {argv[0]}" if argv and argv[0] in COMMANDS else "threepart"
     try:
         try:
             args, extra = build_parser().parse_known_args(_join_negative_numbers(argv))
