@@ -322,27 +322,31 @@ def boundary_text(fixed: list[tuple[str, int]]) -> str:
     return "*BOUNDARY\n" + "\n".join(f"{s}, {d}, {d}" for s, d in fixed) + "\n"
 
 
-def step_text(*, nlgeom: bool, ref: int, F: float, increments: int = 1) -> str:
-    """One static step: the vertical force ``-F`` at node ``ref``, applied in ``increments``.
+def step_text(*, nlgeom: bool, ref: int, F: float | None = None, delta: float | None = None,
+              increments: int = 1) -> str:
+    """One static step at node ``ref``: the vertical force ``-F``, or the descent ``delta``.
 
-    Writes the displacements and stresses of the block's surface (set
-    ``NSURF``) and the punch's contact nodes (``NPUNCH``) to the ``.frd``
-    file, and the reaction of the block's base (``NBOTTOM``) to the ``.dat``.
+    The step is applied in ``increments`` fixed increments. It writes the
+    displacements and stresses of the output set ``NOUT`` to the ``.frd``
+    file, and the base's total reaction and the displacement of ``ref`` to
+    the ``.dat``.
     """
     dt = 1.0 / increments
     head = "*STEP, NLGEOM, INC=1000" if nlgeom else "*STEP, INC=1000"
     # fixed increments (DIRECT), and room for the contact's Newton iterations in each
     controls = "*CONTROLS, PARAMETERS=TIME INCREMENTATION\n40, 60, 9, 200, 10, 4, 12, 40\n"
-    return (f"{head}\n{controls}*STATIC, DIRECT\n{dt:.15g}, 1.\n"
-            f"*CLOAD\n{ref}, 2, {-F:.15g}\n"
+    load = f"*CLOAD\n{ref}, 2, {-F:.15g}\n" if F is not None else f"*BOUNDARY\n{ref}, 2, 2, {-delta:.15g}\n"
+    return (f"{head}\n{controls}*STATIC, DIRECT\n{dt:.15g}, 1.\n{load}"
             "*NODE FILE, NSET=NOUT\nU, S\n"
             "*NODE PRINT, NSET=NBOTTOM, TOTALS=ONLY\nRF\n"
+            "*NODE PRINT, NSET=NREF\nU\n"
             "*END STEP\n")
 
 
-def write_deck(mesh: Mesh, mat: Material, *, F: float, K: float, sigma_inf: float,
-               nlgeom: bool, increments: int = 1) -> str:
-    """The whole CalculiX deck for the half model under the half load ``F`` (per unit thickness)."""
+def write_deck(mesh: Mesh, mat: Material, *, K: float, sigma_inf: float, nlgeom: bool,
+               F: float | None = None, delta: float | None = None, increments: int = 1) -> str:
+    """The whole CalculiX deck for the half model: the half load ``F`` (per unit thickness),
+    or the punch's descent ``delta``."""
     ref = int(mesh.nsets["punch_top"][0])
     parts = ["*HEADING\nthreepart small-slope benchmark (half model, plane strain)\n",
              nodes_text(mesh.xy),
@@ -358,7 +362,7 @@ def write_deck(mesh: Mesh, mat: Material, *, F: float, K: float, sigma_inf: floa
               contact_text("SSLAVE", "SMASTER", K, sigma_inf)]
     parts += [equation_text(mesh.nsets["punch_top"], ref, 2),
               boundary_text([("NSYM", 1), ("NBOTTOM", 2)])]
-    parts += [step_text(nlgeom=nlgeom, ref=ref, F=F, increments=increments)]
+    parts += [step_text(nlgeom=nlgeom, ref=ref, F=F, delta=delta, increments=increments)]
     return "".join(parts)
 
 
@@ -408,6 +412,13 @@ def read_frd(stem: Path) -> dict[str, dict[int, np.ndarray]]:
     return out
 
 
+def read_descent(stem: Path) -> float:
+    """The punch's descent: minus the last printed ``u_y`` of the reference node."""
+    lines = Path(f"{stem}.dat").read_text().splitlines()
+    i = max(k for k, ln in enumerate(lines) if ln.strip().startswith("displacements"))
+    return -float(lines[i + 2].split()[2])
+
+
 def read_reaction(stem: Path) -> np.ndarray:
     """The last printed total reaction ``(RFx, RFy)`` of the block's base."""
     lines = Path(f"{stem}.dat").read_text().splitlines()
@@ -418,18 +429,18 @@ def read_reaction(stem: Path) -> np.ndarray:
 # --------------------------------------------------------------------------- analysis
 @dataclass(frozen=True)
 class ContactProfile:
-    """The block's surface after one CalculiX run.
+    """The contact after one CalculiX run.
 
-    ``x`` is the surface node's position (deformed, ``X + u_x``, with
-    ``NLGEOM``; the undeformed ``X`` of half-plane theory without), ``p`` the
-    normal stress ``-sigma_yy`` there, ``gap`` the distance up to the
-    deformed punch, ``P`` the whole load (twice the half model's base
-    reaction), ``peak`` the pressure at ``x = 0`` and ``a`` the contact's
-    half-width.
+    ``x`` are the punch's surface nodes (deformed positions) and ``p`` the
+    normal stress ``-sigma_yy`` there; ``x_gap`` the block's surface nodes
+    and ``gap`` their distance up to the deformed punch; ``P`` the whole
+    load (twice the half model's base reaction); ``peak`` the pressure at
+    ``x = 0`` and ``a`` the contact's half-width.
     """
 
     x: np.ndarray
     p: np.ndarray
+    x_gap: np.ndarray
     gap: np.ndarray
     P: float
     peak: float
@@ -450,56 +461,87 @@ def contact_edge(x: np.ndarray, gap: np.ndarray, k: int = 8) -> float:
 
 
 def centre_pressure(x: np.ndarray, p: np.ndarray, a: float) -> float:
-    """``p(0)`` of a symmetric pressure: ``p = c0 + c1 x^2 + c2 x^4`` fitted over ``|x| < 0.3 a``."""
+    """``p(0)`` of a symmetric pressure: ``p = c0 + c1 x^2 + c2 x^4`` fitted over ``|x| < 0.3 a``.
+
+    The fit smooths the nodal stresses' scatter; a Hertz pressure departs from
+    the quartic by ``(x/a)^6/16 < 5e-5`` of its peak there.
+    """
     m = np.abs(x) < 0.3 * a
     return float(np.polyfit(x[m] ** 2, p[m], 2)[-1])
 
 
-def profile(mesh: Mesh, stem: Path, *, nlgeom: bool) -> ContactProfile:
-    """Read one run: the surface pressure, the gap to the punch, the load, peak and half-width."""
+def profile(mesh: Mesh, stem: Path) -> ContactProfile:
+    """Read one run: the surface pressure, the gap to the punch, the load, peak and half-width.
+
+    Positions are deformed (``X + u``) in both runs: CalculiX pairs the
+    contact on the current surfaces even in a geometrically linear step.
+    The pressure is the punch's ``-sigma_yy`` at its surface nodes: the
+    block's surface stresses alternate between vertex and midside nodes by
+    about 5 % (the node-to-surface penalty's nodal forces on quadratic
+    faces), the punch's, away from the slave nodes, scatter without bias.
+    """
     frd = read_frd(stem)
     U, S = frd["DISP"], frd["STRESS"]
     nb, npu = mesh.nsets["block_fine"], mesh.nsets["punch_fine"]
     ub = np.array([U[n][:2] for n in nb])
     up = np.array([U[n][:2] for n in npu])
-    Xb, Xp = mesh.xy[nb - 1], mesh.xy[npu - 1]
-    shift = 1.0                                         # CalculiX pairs on the deformed surface in both runs
-    xb, yb = Xb[:, 0] + shift * ub[:, 0], Xb[:, 1] + ub[:, 1]
-    xp, yp = Xp[:, 0] + shift * up[:, 0], Xp[:, 1] + up[:, 1]
+    xb, yb = (mesh.xy[nb - 1] + ub).T
+    xp, yp = (mesh.xy[npu - 1] + up).T
     order = np.argsort(xp)
-    gap = np.interp(xb, xp[order], yp[order]) - yb
-    p = -np.array([S[n][1] for n in nb])
+    xp, yp = xp[order], yp[order]
+    p = -np.array([S[n][1] for n in npu])[order]
+    gap = np.interp(xb, xp, yp) - yb
     order = np.argsort(xb)
-    x, p, gap = xb[order], p[order], gap[order]
-    a = contact_edge(x, gap)
+    xb, gap = xb[order], gap[order]
+    a = contact_edge(xb, gap)
     P = 2 * float(read_reaction(stem)[1])
-    return ContactProfile(x, p, gap, P, centre_pressure(x, p, a), a)
+    return ContactProfile(xp, p, xb, gap, P, centre_pressure(xp, p, a), a)
 
 
 # --------------------------------------------------------------------------- the study
 @dataclass(frozen=True)
 class Row:
-    """One load: the closed form, the linear run, the finite-deformation run."""
+    """One load: the closed form, the linear run and the finite-deformation run.
+
+    The linear run carries the load ``P``; the finite-deformation run is
+    driven by the linear run's descent (displacement control converges in one
+    increment, force control does not), so it carries a slightly different
+    load ``nl.P``. Its peak and half-width are brought back to ``P`` with the
+    closed form's local exponents ``s_p = dln p(0)/dln P`` and
+    ``s_a = dln a/dln P`` (1/2 and 1/2 for Hertz).
+    """
 
     slope: float
     P: float
     load: float                 # 4PA/b (case A) or P (Hertz)
     a_cf: float
     p_cf: float
+    s_p: float
+    s_a: float
     lin: ContactProfile
     nl: ContactProfile
     seconds: float
     nodes: int
 
     @property
+    def nl_peak(self) -> float:
+        """The finite-deformation peak at the load ``P``."""
+        return self.nl.peak * (self.P / self.nl.P) ** self.s_p
+
+    @property
+    def nl_a(self) -> float:
+        """The finite-deformation half-width at the load ``P``."""
+        return self.nl.a * (self.P / self.nl.P) ** self.s_a
+
+    @property
     def d_peak(self) -> float:
-        """Small-slope error of the peak: NLGEOM over linear, minus 1."""
-        return self.nl.peak / self.lin.peak - 1
+        """Small-slope error of the peak: NLGEOM over linear, minus 1, at the load ``P``."""
+        return self.nl_peak / self.lin.peak - 1
 
     @property
     def d_a(self) -> float:
-        """Small-slope error of the half-width: NLGEOM over linear, minus 1."""
-        return self.nl.a / self.lin.a - 1
+        """Small-slope error of the half-width: NLGEOM over linear, minus 1, at the load ``P``."""
+        return self.nl_a / self.lin.a - 1
 
     @property
     def lin_peak(self) -> float:
@@ -511,9 +553,19 @@ class Row:
         """The linear run's half-width against the closed form."""
         return self.lin.a / self.a_cf - 1
 
+    @property
+    def nl_peak_cf(self) -> float:
+        """The finite-deformation peak against the closed form: half-plane theory's whole error."""
+        return self.nl_peak / self.p_cf - 1
 
-def load_for_slope(punch: Punch, slope: float, A: float) -> tuple[float, float]:
-    """Load ``P`` whose symmetric contact reaches the edge slope ``slope``, and its half-width.
+    @property
+    def nl_a_cf(self) -> float:
+        """The finite-deformation half-width against the closed form."""
+        return self.nl_a / self.a_cf - 1
+
+
+def load_for_slope(punch: Punch, slope: float, A: float) -> float:
+    """Load ``P`` whose symmetric contact reaches the edge slope ``slope``.
 
     On the arcs ``|v'(a)| = (a - b)/R2`` (eq. 2), so ``a = b + slope R2``,
     and ``P`` is eq. (equilibrium_condition_1) at ``a = c``.
@@ -521,24 +573,102 @@ def load_for_slope(punch: Punch, slope: float, A: float) -> tuple[float, float]:
     from threepart.closedform import formulas
 
     a = punch.b + slope * punch.R2
-    return float(formulas.load(punch, a, a, A)), a
+    return float(formulas.load(punch, a, a, A))
+
+
+def _closed_form(punch: Punch, P: float, A: float) -> tuple[float, float]:
+    """Closed-form half-width and centre pressure at ``P``."""
+    cf = solve_normal(punch, P, 0.0, A=A)
+    return cf.a, float(cf.pressure(np.array([0.0]))[0])
 
 
 def run_case(punch: Punch, slope: float, mat: Material, workdir: Path, *, n_fine: int = 300,
-             penalty: float = 20.0, increments: int = 1) -> Row:
+             penalty: float = 20.0, increments: int = 5) -> Row:
     """Both runs at the load of edge slope ``slope``; ``h0 = a/n_fine``, ``K = penalty E/h0``."""
-    P, a = load_for_slope(punch, slope, mat.A)
-    cf = solve_normal(punch, P, 0.0, A=mat.A)
-    h0 = cf.a / n_fine
+    P = load_for_slope(punch, slope, mat.A)
+    a_cf, p_cf = _closed_form(punch, P, mat.A)
+    (a_m, p_m), (a_p, p_p) = (_closed_form(punch, P * f, mat.A) for f in (1 - 1e-4, 1 + 1e-4))
+    d = math.log((1 + 1e-4) / (1 - 1e-4))
+    s_p, s_a = math.log(p_p / p_m) / d, math.log(a_p / a_m) / d
+    h0 = a_cf / n_fine
     t0 = time.perf_counter()
-    mesh = build_mesh(punch, cf.a, h0=h0, x_fine=1.3 * cf.a)
-    p_cf = float(cf.pressure(np.array([0.0]))[0])
-    runs = {}
-    for nl in (False, True):
-        deck = write_deck(mesh, mat, F=P / 2, K=penalty * mat.E / h0, sigma_inf=1e-6 * p_cf,
-                          nlgeom=nl, increments=increments)
-        stem = run_ccx(deck, workdir, f"s{slope:g}_{'nl' if nl else 'lin'}")
-        runs[nl] = profile(mesh, stem, nlgeom=nl)
+    mesh = build_mesh(punch, a_cf, h0=h0, x_fine=1.3 * a_cf)
+    common = dict(K=penalty * mat.E / h0, sigma_inf=1e-6 * p_cf)
+    stem = run_ccx(write_deck(mesh, mat, nlgeom=False, F=P / 2, **common), workdir,
+                   f"s{slope:g}_lin")
+    lin = profile(mesh, stem)
+    stem = run_ccx(write_deck(mesh, mat, nlgeom=True, delta=read_descent(stem),
+                              increments=increments, **common),
+                   workdir, f"s{slope:g}_nl")
+    nl = profile(mesh, stem)
     load = 4 * P * mat.A / punch.b if punch.b > 0 else P
-    return Row(slope, P, load, cf.a, p_cf, runs[False], runs[True], time.perf_counter() - t0,
-               len(mesh.xy))
+    return Row(slope, P, load, a_cf, p_cf, s_p, s_a, lin, nl, time.perf_counter() - t0, len(mesh.xy))
+
+
+def fit_law(slopes: np.ndarray, errors: np.ndarray) -> tuple[float, float]:
+    """``|error| = k slope^m`` fitted on logs (``np.polyfit``); returns ``(k, m)``."""
+    m, logk = np.polyfit(np.log(slopes), np.log(np.abs(errors)), 1)
+    return float(np.exp(logk)), float(m)
+
+
+def slope_at(k: float, m: float, error: float) -> float:
+    """The slope at which the fitted law ``k slope^m`` reaches ``error``."""
+    return float((error / k) ** (1 / m))
+
+
+def table(rows: list[Row]) -> str:
+    """The results as a Markdown table (relative changes in per cent)."""
+    head = ("| slope a/R or (a-b)/R2 | P (N/mm) | 4PA/b | peak NLGEOM/lin - 1 | a NLGEOM/lin - 1 "
+            "| peak NLGEOM/closed form - 1 | a NLGEOM/closed form - 1 | peak lin/closed form - 1 "
+            "| a lin/closed form - 1 | P_nl/P | nodes | s |\n" + "|---" * 12 + "|\n")
+    out = []
+    for r in rows:
+        pct = [f"{100 * v:+.2f} %" for v in (r.d_peak, r.d_a, r.nl_peak_cf, r.nl_a_cf, r.lin_peak, r.lin_a)]
+        load = f"{r.load:.4g}" if r.load != r.P else "-"
+        out.append(f"| {r.slope:g} | {r.P:.5g} | {load} | " + " | ".join(pct)
+                   + f" | {r.nl.P / r.P:.4f} | {r.nodes} | {r.seconds:.0f} |")
+    return head + "\n".join(out) + "\n"
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--case", default="hertz", choices=["hertz", "caseA_sym"],
+                        help="Hertz (R1 = R2 = 10 mm, b = 0) or case A (R1 = R2 = 10, b = 1)")
+    parser.add_argument("--slopes", type=float, nargs="+", default=[0.02, 0.05, 0.1, 0.2, 0.3, 0.5],
+                        help="edge slopes |v'(a)| to run")
+    parser.add_argument("--n-fine", type=int, default=100, help="elements per half-width a at the contact")
+    parser.add_argument("--penalty", type=float, default=20.0, help="penalty stiffness K in E/h0")
+    parser.add_argument("--increments", type=int, default=5, help="increments of the NLGEOM step")
+    parser.add_argument("--keep", type=Path, default=None, help="keep the decks and results here")
+    args = parser.parse_args(argv)
+    if shutil.which("ccx") is None:
+        print("small_slope_calculix: `ccx` (CalculiX) is not on the PATH; "
+              "install it with `apt-get install calculix-ccx`", file=sys.stderr)
+        return 2
+    punch = Punch(10.0, 10.0, 0.0) if args.case == "hertz" else Punch(10.0, 10.0, 1.0)
+    mat = Material()
+    rows = []
+    with tempfile.TemporaryDirectory(prefix="small_slope_") as tmp:
+        workdir = args.keep or Path(tmp)
+        workdir.mkdir(parents=True, exist_ok=True)
+        for slope in args.slopes:
+            row = run_case(punch, slope, mat, workdir, n_fine=args.n_fine, penalty=args.penalty,
+                           increments=args.increments)
+            rows.append(row)
+            print(f"slope {slope:g}: peak {100 * row.d_peak:+.3f} %, a {100 * row.d_a:+.3f} % "
+                  f"({row.seconds:.0f} s)", file=sys.stderr, flush=True)
+    print(f"case {args.case}, n_fine = {args.n_fine}, K = {args.penalty:g} E/h0, "
+          f"{args.increments} NLGEOM increments\n")
+    print(table(rows))
+    if len(rows) >= 2:
+        s = np.array([r.slope for r in rows])
+        for name, err in (("peak", [r.d_peak for r in rows]), ("a", [r.d_a for r in rows]),
+                          ("peak vs closed form", [r.nl_peak_cf for r in rows])):
+            k, m = fit_law(s, np.array(err))
+            print(f"|{name}| ~ {k:.3g} slope^{m:.2f}: 1 % at slope {slope_at(k, m, 0.01):.3g}, "
+                  f"5 % at slope {slope_at(k, m, 0.05):.3g}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
