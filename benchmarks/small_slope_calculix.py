@@ -431,16 +431,15 @@ def read_reaction(stem: Path) -> np.ndarray:
 class ContactProfile:
     """The contact after one CalculiX run.
 
-    ``x`` are the punch's surface nodes (deformed positions) and ``p`` the
-    normal stress ``-sigma_yy`` there; ``x_gap`` the block's surface nodes
-    and ``gap`` their distance up to the deformed punch; ``P`` the whole
+    ``x`` are the block's surface nodes (deformed positions), ``p`` the
+    normal stress ``-sigma_yy`` there and ``gap`` their distance up to the
+    deformed punch; ``P`` the whole
     load (twice the half model's base reaction); ``peak`` the pressure at
     ``x = 0`` and ``a`` the contact's half-width.
     """
 
     x: np.ndarray
     p: np.ndarray
-    x_gap: np.ndarray
     gap: np.ndarray
     P: float
     peak: float
@@ -475,10 +474,11 @@ def profile(mesh: Mesh, stem: Path) -> ContactProfile:
 
     Positions are deformed (``X + u``) in both runs: CalculiX pairs the
     contact on the current surfaces even in a geometrically linear step.
-    The pressure is the punch's ``-sigma_yy`` at its surface nodes: the
-    block's surface stresses alternate between vertex and midside nodes by
-    about 5 % (the node-to-surface penalty's nodal forces on quadratic
-    faces), the punch's, away from the slave nodes, scatter without bias.
+    The pressure is the block's ``-sigma_yy`` at its surface nodes (Cauchy
+    stress with ``NLGEOM``; at ``x = 0`` the surface normal stays vertical by
+    symmetry, so it is the contact pressure there). The node-to-surface
+    penalty on quadratic faces leaves the vertex nodes about 5 % above the
+    midside nodes, so the peak is the mean of two fits, one over each kind.
     """
     frd = read_frd(stem)
     U, S = frd["DISP"], frd["STRESS"]
@@ -488,14 +488,18 @@ def profile(mesh: Mesh, stem: Path) -> ContactProfile:
     xb, yb = (mesh.xy[nb - 1] + ub).T
     xp, yp = (mesh.xy[npu - 1] + up).T
     order = np.argsort(xp)
-    xp, yp = xp[order], yp[order]
-    p = -np.array([S[n][1] for n in npu])[order]
-    gap = np.interp(xb, xp, yp) - yb
+    gap = np.interp(xb, xp[order], yp[order]) - yb
+    p = -np.array([S[n][1] for n in nb])
+    vertex = np.zeros(len(mesh.xy) + 1, bool)
+    for kind, conn in mesh.elements["block"]:
+        vertex[conn[:4 if kind == "CPE8" else 3]] = True
+    vertex = vertex[nb]
     order = np.argsort(xb)
-    xb, gap = xb[order], gap[order]
-    a = contact_edge(xb, gap)
+    x, p, gap, vertex = xb[order], p[order], gap[order], vertex[order]
+    a = contact_edge(x, gap)
+    peak = 0.5 * (centre_pressure(x[vertex], p[vertex], a) + centre_pressure(x[~vertex], p[~vertex], a))
     P = 2 * float(read_reaction(stem)[1])
-    return ContactProfile(xp, p, xb, gap, P, centre_pressure(xp, p, a), a)
+    return ContactProfile(x, p, gap, P, peak, a)
 
 
 # --------------------------------------------------------------------------- the study
@@ -583,8 +587,16 @@ def _closed_form(punch: Punch, P: float, A: float) -> tuple[float, float]:
 
 
 def run_case(punch: Punch, slope: float, mat: Material, workdir: Path, *, n_fine: int = 300,
-             penalty: float = 20.0, increments: int = 5) -> Row:
-    """Both runs at the load of edge slope ``slope``; ``h0 = a/n_fine``, ``K = penalty E/h0``."""
+             penalty: float = 20.0, increments: int | None = None) -> Row:
+    """Both runs at the load of edge slope ``slope``; ``h0 = a/n_fine``, ``K = penalty E/h0``.
+
+    The NLGEOM step takes ``increments`` fixed increments, by default
+    ``max(5, 40 slope)``: the surface slides along the punch by about a
+    mesh cell per increment at most, which keeps its Newton iteration
+    converging.
+    """
+    if increments is None:
+        increments = max(5, round(40 * slope))
     P = load_for_slope(punch, slope, mat.A)
     a_cf, p_cf = _closed_form(punch, P, mat.A)
     (a_m, p_m), (a_p, p_p) = (_closed_form(punch, P * f, mat.A) for f in (1 - 1e-4, 1 + 1e-4))
@@ -638,7 +650,8 @@ def main(argv: list[str] | None = None) -> int:
                         help="edge slopes |v'(a)| to run")
     parser.add_argument("--n-fine", type=int, default=100, help="elements per half-width a at the contact")
     parser.add_argument("--penalty", type=float, default=20.0, help="penalty stiffness K in E/h0")
-    parser.add_argument("--increments", type=int, default=5, help="increments of the NLGEOM step")
+    parser.add_argument("--increments", type=int, default=None,
+                        help="increments of the NLGEOM step (default max(5, 40 slope))")
     parser.add_argument("--keep", type=Path, default=None, help="keep the decks and results here")
     args = parser.parse_args(argv)
     if shutil.which("ccx") is None:
@@ -658,7 +671,7 @@ def main(argv: list[str] | None = None) -> int:
             print(f"slope {slope:g}: peak {100 * row.d_peak:+.3f} %, a {100 * row.d_a:+.3f} % "
                   f"({row.seconds:.0f} s)", file=sys.stderr, flush=True)
     print(f"case {args.case}, n_fine = {args.n_fine}, K = {args.penalty:g} E/h0, "
-          f"{args.increments} NLGEOM increments\n")
+          f"NLGEOM increments {args.increments or 'max(5, 40 slope)'}\n")
     print(table(rows))
     if len(rows) >= 2:
         s = np.array([r.slope for r in rows])
