@@ -29,6 +29,7 @@ Usage::
 
 It needs ``ccx`` (Debian: ``apt-get install calculix-ccx``) and exits with
 status 2 and one line when ``ccx`` is missing. It is not part of the test run.
+The method, the deck settings and the measured table: ``docs/SMALL_SLOPE.md``.
 """
 from __future__ import annotations
 
@@ -651,7 +652,7 @@ def table(rows: list[Row]) -> str:
 
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("--slopes", type=float, nargs="+", default=[0.02, 0.05, 0.1, 0.2, 0.3, 0.5],
+    parser.add_argument("--slopes", type=float, nargs="+", default=[0.02, 0.05, 0.1, 0.2, 0.3],
                         help="edge slopes |v'(a)| to run")
     parser.add_argument("--n-fine", type=int, default=100, help="elements per half-width a at the contact")
     parser.add_argument("--penalty", type=float, default=20.0, help="penalty stiffness K in E/h0")
