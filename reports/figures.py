@@ -89,20 +89,21 @@ def check_admissible() -> list[str]:
 
 def curves(which: str, sie: bool = True, n: int | None = None) -> list[Curve]:
     """Solve every curve of set ``which`` (``"a"`` or ``"b"``) with the closed form and the SIE."""
-    from threepart import closedform
+    from threepart import registry
 
+    cf_method, sie_method = registry.get("closedform"), registry.get("sie")
+    options = {} if n is None else {"n": n}
     out = []
     for sr, rr in SETS[which]:
         punch, P, s = _case(sr, rr)
-        cf = closedform.solve_normal(punch, P, s, A=_A())
-        cf_slip = closedform.solve_partial_slip(cf, Q_OVER_FP * F * P, F)
+        Q = Q_OVER_FP * F * P
+        cf = cf_method.normal(punch, P, s, A=_A())
+        cf_slip = cf_method.slip(punch, P, s, A=_A(), Q=Q, f=F, normal=cf)  # type: ignore[misc]
         sn = ss = None
         if sie:
-            from threepart import sie as sie_mod
-
-            sn = (sie_mod.solve_normal(punch, P, s, A=_A()) if n is None
-                  else sie_mod.solve_normal(punch, P, s, A=_A(), n=n))
-            ss = sie_mod.solve_partial_slip(sn, Q_OVER_FP * F * P, F, n=n)
+            sn = sie_method.normal(punch, P, s, A=_A(), **options)
+            ss = sie_method.slip(punch, P, s, A=_A(), Q=Q, f=F, normal=sn,  # type: ignore[misc]
+                                 **options)
         out.append(Curve(sr, rr, punch, P, s, cf, sn, cf_slip, ss))
     return out
 

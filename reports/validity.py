@@ -19,7 +19,7 @@ from typing import Any
 from scipy.optimize import brentq
 
 from threepart import fem, registry
-from threepart.convergence import converges_monotonically, gci, three_level_order
+from threepart.convergence import run_study
 from threepart.fem.finite import zone_margin
 from threepart.fem.mesh import PRESETS
 from threepart.material import similar_pair
@@ -165,25 +165,19 @@ def convergence(point: MapPoint, ns: tuple[int, ...] = STUDY_N) -> dict[str, Any
     ``ns`` are elements across the contact of the default mesh's self-similar
     family (:meth:`fem.MeshPreset.scaled`); the order and the fine-grid GCI
     come from the three finest levels (Celik et al. 2008, reference-free), and
-    only where the values converge monotonically.
+    only where the values converge monotonically (the one driver,
+    :func:`threepart.convergence.run_study`).
     """
     punch, P = _punch(point), _load(point)
-    values: dict[str, list[float]] = {"p_left": [], "p_right": [], "a": []}
-    hs = []
-    for n in ns:
+
+    def level(n: int) -> tuple[float, dict[str, float], dict[str, Any]]:
         res = fem.solve_finite(punch, P, 0.0, E=E, nu=NU, H=point.H_over_b * punch.b, theta=THETA,
                                mesh=PRESETS["default"].scaled(n / PRESETS["default"].n))
         left, right = res.peaks()
-        values["p_left"].append(left.p)
-        values["p_right"].append(right.p)
-        values["a"].append(res.a)
-        hs.append(res.h)
-    out: dict[str, Any] = {"point": point.as_dict(), "n": list(ns), "h": hs, "values": values,
-                           "order": {}, "gci": {}}
-    for q, v in values.items():
-        if len(v) >= 3 and converges_monotonically(v[-3:]):
-            p = three_level_order(v[-3], v[-2], v[-1], hs[-2] / hs[-1], hs[-3] / hs[-2])
-            out["order"][q], out["gci"][q] = p, gci(v[-2], v[-1], hs[-2] / hs[-1], p)
-        else:
-            out["order"][q] = out["gci"][q] = math.nan
-    return out
+        return res.h, {"p_left": left.p, "p_right": right.p, "a": res.a}, {}
+
+    st = run_study(level, list(ns), param="h")
+    nan = math.nan
+    return {"point": point.as_dict(), "n": list(ns), "h": st.sizes, "values": st.values,
+            "order": {q: st.orders.get(q, nan) for q in st.values},
+            "gci": {q: st.gci.get(q, nan) for q in st.values}}
