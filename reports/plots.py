@@ -188,7 +188,7 @@ def error_curves(results: dict[str, Any], title: str, path: str | Path,
 
 def _reference_slopes(ax: Any, x: np.ndarray, st: Study, inverse: bool) -> None:
     """Dashed first- and second-order lines through the largest first-level error."""
-    first = [st.errors[q][0] for q in st.quantities if st.errors[q] and st.errors[q][0] > ROUND_OFF]
+    first = [st.errors[q][0] for q in st.errors if st.errors[q] and st.errors[q][0] > ROUND_OFF]
     if len(x) < 2 or not first:
         return
     e0 = max(first)
@@ -200,8 +200,8 @@ def _reference_slopes(ax: Any, x: np.ndarray, st: Study, inverse: bool) -> None:
 
 def _study_axes(st: Study, ax: Any, xlabel: str, inverse: bool) -> None:
     """Errors per level; the legend gives an order only for errors that fall at every level."""
-    x = np.asarray(st.values, dtype=float)
-    for q in st.quantities:
+    x = np.asarray(st.sizes, dtype=float)
+    for q in st.errors:
         e = np.asarray(st.errors[q], dtype=float)
         lab = f"{q}: {order_text(st.errors[q], st.orders.get(q))}"
         g = st.gci.get(q)

@@ -428,7 +428,7 @@ def _study(st: dict[str, Any]) -> Table:
     head = (st["param"], "label", *(f"{q} error" for q in st["errors"]))
     rows: list[tuple[Cell, ...]] = [
         (fmt(v), lab, *(fmt(st["errors"][q][i]) for q in st["errors"]))
-        for i, (v, lab) in enumerate(zip(st["values"], st["labels"]))]
+        for i, (v, lab) in enumerate(zip(st["sizes"], st["labels"]))]
     rows.append(("observed order", "", *(_order_cell(st, q) for q in st["errors"])))
     if st["gci"]:
         rows.append(("GCI", "", *(fmt(st["gci"].get(q)) for q in st["errors"])))

@@ -9,16 +9,10 @@ tools are those of :mod:`threepart.convergence`.
 from __future__ import annotations
 
 import math
-import time
-from dataclasses import dataclass, field
 from typing import Any, Callable, Sequence
 
-import numpy as np
-
 from threepart.catalogue import Case
-from threepart.output import json_safe
-from threepart.convergence import (ROUND_OFF, converges_monotonically, fitted_order, gci,
-                                   is_monotone, richardson, three_level_order)
+from threepart.convergence import Study, fitted_order, run_study
 
 from .catalogue import Mode, solve_normal
 from .compare import normal_figures, slip_figures
@@ -37,46 +31,6 @@ STEP_STATES = (6, 11, 21, 41)
 _FIELD_ERRORS = ("p_interior_max", "q_interior_max")
 
 
-@dataclass
-class Study:
-    """Errors of one method against the closed form over a sequence of discretisations.
-
-    ``param`` is ``"n"`` (SIE) or ``"h"`` (FEM); ``values`` the parameter per
-    level; ``errors[q]`` the normalised error of quantity ``q`` per level;
-    ``raw[q]`` the quantity itself per level; ``orders[q]`` the fitted
-    observed order (error ~ n^-p or h^p, so p > 0 means convergence);
-    ``gci[q]`` the fine-grid GCI (FEM only); ``extrapolated[q]`` the
-    Richardson estimate of ``q`` from the two finest levels.
-    """
-
-    method: str
-    case: str
-    param: str
-    values: list[float]
-    labels: list[str]
-    errors: dict[str, list[float]]
-    raw: dict[str, list[float]]
-    reference: dict[str, float]
-    times: list[float]
-    orders: dict[str, float] = field(default_factory=dict)
-    gci: dict[str, float] = field(default_factory=dict)
-    extrapolated: dict[str, float] = field(default_factory=dict)
-    notes: list[str] = field(default_factory=list)
-    scheme: str = ""
-
-    @property
-    def quantities(self) -> tuple[str, ...]:
-        """The quantities followed, in order."""
-        return tuple(self.errors)
-
-    def as_dict(self) -> dict[str, Any]:
-        return json_safe({"method": self.method, "scheme": self.scheme, "case": self.case, "param": self.param,
-                      "values": self.values, "labels": self.labels, "errors": self.errors,
-                      "raw": self.raw, "reference": self.reference, "times": self.times,
-                      "orders": self.orders, "gci": self.gci, "extrapolated": self.extrapolated,
-                      "notes": self.notes})
-
-
 def _figures(ref: Any, res: Any, quantities: Sequence[str]) -> tuple[dict[str, float], dict[str, float]]:
     """Obtained values and normalised errors of ``quantities`` (as :func:`compare`)."""
     figures = normal_figures(getattr(ref, "normal", ref), getattr(res, "normal", res))
@@ -90,69 +44,42 @@ def _figures(ref: Any, res: Any, quantities: Sequence[str]) -> tuple[dict[str, f
     return raw, err
 
 
-def _three_level(raw: Sequence[float], hs: np.ndarray) -> tuple[float, float] | None:
-    """Order and fine-grid GCI from the three finest levels (None with fewer than three)."""
-    if len(hs) < 3:
+def _say(progress: Callable[[str], None] | None, method: str, param: str,
+         where: str) -> Callable[[float, Any, float], None] | None:
+    """The driver's per-level callback as one progress line of the verification run."""
+    if progress is None:
         return None
-    (f3, f2, f1), (h3, h2, h1) = raw[-3:], hs[-3:]
-    p = three_level_order(f3, f2, f1, h2 / h1, h3 / h2)
-    return p, gci(f2, f1, h2 / h1, p)
+
+    def line(size: float, level: Any, seconds: float) -> None:
+        at = f"{where} {level}" if where.endswith("=") else where
+        progress(f"{method} {param} = {size:.4g} ({at}): {seconds:.2f} s")
+
+    return line
 
 
 def _run(method: str, case: Case, labels: Sequence[str], solver: Callable[[Case, str], Any],
          param_of: Callable[[Any, str], float], param: str,
          progress: Callable[[str], None] | None, param_label: str = "level",
-         quantities: Sequence[str] = STUDY_QUANTITIES) -> Study:
+         quantities: Sequence[str] = STUDY_QUANTITIES, scheme: str = "") -> Study:
+    """A study of ``method`` against the closed form on the one driver (:func:`run_study`).
+
+    The errors are normalised by the tolerance table's units (:func:`compare`'s
+    figures); a level that fails is a note, not a crash.
+    """
     case = case.resolved()
     ref = solve_normal(case, "closedform", Mode("study", None, "quick", (), ()))
     if "d" in quantities:
         ref = solvers.slip("closedform", case, ref)
-    reference = _figures(ref, ref, quantities)[0]
-    st = Study(method, case.name, param, [], [], {q: [] for q in quantities},
-               {q: [] for q in quantities}, reference, [])
-    for lab in labels:
-        t0 = time.perf_counter()
-        try:
-            res = solver(case, lab)
-        except Exception as exc:  # noqa: BLE001 - a failed level is a note, not a crash
-            st.notes.append(f"level {lab}: {type(exc).__name__}: {exc}")
-            continue
-        dt = time.perf_counter() - t0
+
+    def level(lab: str) -> tuple[float, dict[str, float], dict[str, Any], dict[str, float]]:
+        res = solver(case, lab)
         raw, err = _figures(ref, res, quantities)
-        st.values.append(param_of(res, lab))
-        st.labels.append(str(lab))
-        st.times.append(dt)
-        for q in quantities:
-            st.errors[q].append(err[q])
-            st.raw[q].append(raw[q])
-        if progress:
-            where = f"{param_label} {lab}" if param_label.endswith("=") else param_label
-            progress(f"{method} {param} = {st.values[-1]:.4g} ({where}): {dt:.2f} s")
-    v = np.asarray(st.values, dtype=float)
-    hs = 1.0 / v if param == "n" else v
-    for q in quantities:
-        three = _three_level(st.raw[q], hs) if q not in _FIELD_ERRORS else None
-        if not is_monotone(st.errors[q]):
-            # an order fitted through errors that rise again would claim a rate that is not there
-            st.orders[q] = math.nan
-            if three is not None and converges_monotonically(st.raw[q][-3:]):
-                # the values still converge from one side: the reference-free order and GCI hold
-                st.orders[q], st.gci[q] = three
-                st.notes.append(f"{q}: the values converge monotonically (order {three[0]:.2f} "
-                                "from the three finest levels), but the error against the closed "
-                                "form is not monotone: it falls below the finest level's change")
-            elif any(e > ROUND_OFF for e in st.errors[q]):
-                st.notes.append(f"{q}: the errors are not monotone in the refinement; no order is given")
-            continue
-        st.orders[q] = fitted_order(hs, st.errors[q])[0]
-        if q in _FIELD_ERRORS:
-            continue
-        p = st.orders[q]
-        if len(hs) >= 2 and math.isfinite(p) and p > 0 and hs[-2] > hs[-1]:
-            st.extrapolated[q] = float(richardson(hs, st.raw[q], p))
-        if three is not None:
-            st.gci[q] = three[1]
-    return st
+        return param_of(res, lab), raw, {}, err
+
+    return run_study(level, list(labels), param=param, reference=_figures(ref, ref, quantities)[0],
+                     error_only=_FIELD_ERRORS, skip=(Exception,),
+                     progress=_say(progress, method, param, param_label),
+                     method=method, case=case.name, scheme=scheme)
 
 
 def sie_study(case: Case, ns: Sequence[int], scheme: str | None = None,
@@ -167,11 +94,9 @@ def sie_study(case: Case, ns: Sequence[int], scheme: str | None = None,
     def solver(c: Case, lab: str) -> Any:
         return solvers.normal("sie", c, n=int(lab), **options)
 
-    st = _run("sie", case, [str(n) for n in ns], solver,
-              lambda res, lab: float(getattr(res, "n", None) or res.info.get("n", int(lab))),
-              "n", progress, "scheme " + (scheme or "default"))
-    st.scheme = scheme or "default"
-    return st
+    return _run("sie", case, [str(n) for n in ns], solver,
+                lambda res, lab: float(getattr(res, "n", None) or res.info.get("n", int(lab))),
+                "n", progress, "scheme " + (scheme or "default"), scheme=scheme or "default")
 
 
 def fem_study(case: Case, ns: Sequence[int],
@@ -226,29 +151,24 @@ def fem_step_study(case: Case, reference: Any, mesh: Any = "quick",
     """
     case = case.resolved()
     Q = case.shear_load[0]
-    st = Study("fem", case.name, "dQ", [], [], {"energy": []}, {"energy": []},
-               {"energy": float(reference.energy)}, [])
-    for k in states:
-        t0 = time.perf_counter()
+    E_ref = float(reference.energy)
+
+    def level(k: int) -> tuple[float, dict[str, float], dict[str, Any], dict[str, float]]:
         res = solvers.fretting("fem", case, None, k, mesh=mesh)
-        st.times.append(time.perf_counter() - t0)
-        st.values.append(2 * Q / (k - 1))
-        st.labels.append(str(k))
-        st.raw["energy"].append(res.energy)
-        st.errors["energy"].append(abs(res.energy / reference.energy - 1))
         if progress:
-            progress(f"fem {k} states per branch: energy {res.energy:.8g} ({st.times[-1]:.2f} s)")
-    E, dQ = st.raw["energy"], np.asarray(st.values)
-    three = _three_level(E, dQ)
-    if three is not None and converges_monotonically(E[-3:]):
-        st.orders["energy"], st.gci["energy"] = three
-        st.extrapolated["energy"] = float(richardson(dQ, E, three[0]))
-        fit = fitted_order(dQ, st.errors["energy"])[0]
-        st.notes.append(f"energy: order {three[0]:.2f} from the three finest steps (reference-free); "
-                        f"against the closed form the error includes the mesh's and fits order "
-                        f"{fit:.2f}")
+            progress(f"fem {k} states per branch: energy {res.energy:.8g}")
+        return 2 * Q / (k - 1), {"energy": res.energy}, {}, {}
+
+    # reference-free: the energies' own three-level order, where they converge from one side
+    st = run_study(level, list(states), param="dQ", method="fem", case=case.name)
+    st.reference = {"energy": E_ref}
+    st.errors = {"energy": [abs(e / E_ref - 1) for e in st.values["energy"]]}
+    if math.isfinite(st.orders["energy"]):
+        fit = fitted_order(st.h, st.errors["energy"])[0]
+        st.notes.append(f"energy: order {st.orders['energy']:.2f} from the three finest steps "
+                        "(reference-free); against the closed form the error includes the mesh's "
+                        f"and fits order {fit:.2f}")
     else:
-        st.orders["energy"] = math.nan
         st.notes.append("energy: the energies do not converge monotonically in the load step; "
                         "no order is given")
     return st

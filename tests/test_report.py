@@ -183,7 +183,7 @@ def test_an_order_needs_a_monotone_sequence(errors, monotone):
 
 
 def test_a_study_prints_no_order_for_a_sequence_that_is_not_monotone():
-    st = {"param": "h", "values": [0.1, 0.05, 0.025], "labels": ["30", "60", "120"],
+    st = {"param": "h", "sizes": [0.1, 0.05, 0.025], "labels": ["30", "60", "120"],
           "errors": {"a": [3.6e-3, 2.5e-4, 3.3e-4]}, "orders": {"a": None}, "gci": {}, "notes": []}
     assert sections._study(st).rows[-1] == ("observed order", "", "not monotone")
 
@@ -359,8 +359,9 @@ def test_a_convergence_legend_gives_an_order_only_for_a_monotone_curve(drawn):
 
     # c as in fem_caseA_moment_convergence (default run): falls, then rises again
     errors = {"a": [1.5e-3, 7.4e-5, 8.1e-6, 2.0e-6], "c": [1.1e-3, 8.5e-5, 2.8e-9, 1.1e-6]}
-    st = Study("fem", "caseA_moment", "h", [0.09, 0.045, 0.023, 0.011], ["38", "75", "150", "300"],
-               errors, errors, {}, [], orders={"a": 2.9, "c": 4.88})
+    st = Study("h", labels=["38", "75", "150", "300"], sizes=[0.09, 0.045, 0.023, 0.011],
+               values=errors, errors=errors, orders={"a": 2.9, "c": 4.88}, method="fem",
+               case="caseA_moment")
     plots.fem_convergence(st, "x.png")
     labels = [t.get_text() for t in drawn[0].axes[0].get_legend().get_texts()]
     assert "a: order 2.90" in labels and "c: not monotone" in labels, labels

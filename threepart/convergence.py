@@ -152,7 +152,8 @@ class Study:
     Attributes
     ----------
     param
-        ``"n"`` (a node count, ``h = 1/n``) or ``"h"`` (a size): what ``sizes`` holds.
+        What ``sizes`` holds: ``"n"`` (a node count; ``h = 1/n``), or a size
+        that falls as the study refines (``"h"``, a load step ``"dQ"``).
     labels, sizes
         Each level's label and its discretisation parameter.
     values
@@ -170,6 +171,8 @@ class Study:
     times, info, notes
         Seconds and metadata (dofs, block size, ...) per level; what the
         analysis found worth saying (a failed level, a non-monotone sequence).
+    method, case, scheme
+        What was studied, where the caller says (the verification run does).
     """
 
     param: str
@@ -186,6 +189,17 @@ class Study:
     times: list[float] = field(default_factory=list)
     info: list[dict[str, Any]] = field(default_factory=list)
     notes: list[str] = field(default_factory=list)
+    method: str = ""
+    case: str = ""
+    scheme: str = ""
+
+    def as_dict(self) -> dict[str, Any]:
+        """A JSON-safe dict of the study (non-finite numbers as None; no per-level ``info``)."""
+        from .output import json_safe
+
+        return json_safe({k: getattr(self, k) for k in (
+            "method", "scheme", "case", "param", "labels", "sizes", "values", "reference",
+            "errors", "orders", "constants", "gci", "extrapolated", "times", "notes")})
 
     @property
     def h(self) -> np.ndarray:
@@ -223,25 +237,26 @@ def analyse(study: Study, error_only: Sequence[str] = (), require_monotone: bool
     for q, vals in study.values.items():
         scalar = all(np.ndim(v) == 0 for v in vals)
         three = None
-        if scalar and q not in error_only and len(vals) >= 3 and converges_monotonically(vals[-3:]):
+        if scalar and q not in error_only and len(vals) >= 3:
             (f3, f2, f1), (h3, h2, h1) = vals[-3:], h[-3:]
             p = three_level_order(f3, f2, f1, h2 / h1, h3 / h2)
             three = (p, gci(f2, f1, h2 / h1, p))
+        one_sided = three is not None and converges_monotonically(vals[-3:])
         errs = study.errors.get(q)
-        if errs is None:              # reference-free
-            study.orders[q], study.constants[q] = (three[0], math.nan) if three else (math.nan,) * 2
-            if three:
-                study.gci[q] = three[1]
-                study.extrapolated[q] = float(richardson(h, vals, three[0]))
+        if errs is None:              # reference-free: only a one-sided approach has an order
+            study.orders[q] = study.constants[q] = math.nan
+            if one_sided:
+                study.orders[q], study.gci[q] = three   # type: ignore[misc]
+                study.extrapolated[q] = float(richardson(h, vals, study.orders[q]))
             continue
         if require_monotone and not is_monotone(errs):
             study.orders[q] = study.constants[q] = math.nan
-            if three is not None:
-                study.orders[q], study.gci[q] = three
-                study.notes.append(f"{q}: the values converge monotonically (order {three[0]:.2f} "
-                                   "from the three finest levels), but the error against the "
-                                   "reference is not monotone: it falls below the finest "
-                                   "level's change")
+            if one_sided:
+                study.orders[q], study.gci[q] = three   # type: ignore[misc]
+                study.notes.append(f"{q}: the values converge monotonically (order "
+                                   f"{study.orders[q]:.2f} from the three finest levels), but the "
+                                   "error against the reference is not monotone: it falls below "
+                                   "the finest level's change")
             elif any(e > ROUND_OFF for e in errs):
                 study.notes.append(f"{q}: the errors are not monotone in the refinement; no order "
                                    "is given")
@@ -259,12 +274,13 @@ def analyse(study: Study, error_only: Sequence[str] = (), require_monotone: bool
     return study
 
 
-def run_study(evaluate: Callable[[Any], tuple[float, Mapping[str, Any], Mapping[str, Any]]],
+def run_study(evaluate: Callable[[Any], tuple[Any, ...]],
               levels: Sequence[Any], *, param: str = "h",
               reference: Mapping[str, Any] | None = None,
               scales: Mapping[str, float] | None = None, error_only: Sequence[str] = (),
               skip: tuple[type[BaseException], ...] = (), require_monotone: bool = True,
-              progress: Callable[[str], None] | None = None) -> Study:
+              progress: Callable[[float, Any, float], None] | None = None,
+              method: str = "", case: str = "", scheme: str = "") -> Study:
     """The one convergence-study driver: evaluate each level, coarse to fine, then :func:`analyse`.
 
     Parameters
@@ -272,11 +288,14 @@ def run_study(evaluate: Callable[[Any], tuple[float, Mapping[str, Any], Mapping[
     evaluate
         Maps a level (an ``n``, a mesh, a label) to ``(size, values, info)``:
         the level's discretisation parameter (``n`` or ``h``, as ``param``
-        says), the quantities followed (scalars or arrays), and metadata.
+        says), the quantities followed (scalars or arrays), and metadata; or
+        to ``(size, values, info, errors)`` when the caller normalises the
+        errors itself (as the verification run does, by its tolerance table's
+        units).
     levels
         The levels, coarse to fine.
     param
-        ``"n"`` or ``"h"``.
+        ``"n"`` (sizes are node counts) or the name of a size that falls (``"h"``).
     reference, scales
         Reference values and error scales (default 1) of the quantities; errors
         are ``max |value - reference| / scale``. Without a reference the study
@@ -286,21 +305,23 @@ def run_study(evaluate: Callable[[Any], tuple[float, Mapping[str, Any], Mapping[
     skip
         Exception types that make a level a note instead of an error.
     progress
-        Called with one line per level.
+        Called after each level with its size, the level and its seconds.
+    method, case, scheme
+        What was studied, recorded as they are.
 
     Returns
     -------
     Study
     """
-    if param not in ("n", "h"):
-        raise ValueError(f"`param` = {param!r} must be 'n' or 'h'")
+    if not isinstance(param, str) or not param:
+        raise ValueError(f"`param` = {param!r} must name the discretisation parameter")
     if len(levels) < 2:
         raise ValueError(f"`levels` = {list(levels)!r} must hold at least two levels")
-    study = Study(param, reference=dict(reference or {}))
+    study = Study(param, reference=dict(reference or {}), method=method, case=case, scheme=scheme)
     for level in levels:
         t0 = time.perf_counter()
         try:
-            size, values, info = evaluate(level)
+            size, values, info, *own = evaluate(level)
         except skip as exc:
             study.notes.append(f"level {level}: {type(exc).__name__}: {exc}")
             continue
@@ -311,9 +332,11 @@ def run_study(evaluate: Callable[[Any], tuple[float, Mapping[str, Any], Mapping[
         study.info.append(dict(info))
         for q, v in values.items():
             study.values.setdefault(q, []).append(v)
+        for q, e in (own[0] if own else {}).items():
+            study.errors.setdefault(q, []).append(float(e))
         if progress:
-            progress(f"{param} = {float(size):.4g} ({level}): {dt:.2f} s")
-    if reference is not None:
+            progress(float(size), level, dt)
+    if reference is not None and not study.errors:
         for q in study.values:
             scale = float((scales or {}).get(q, 1.0))
             study.scales[q] = scale
