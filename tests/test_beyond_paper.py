@@ -36,7 +36,7 @@ EDGE_ON_CENTRE = {                    # (punch, s): the left edge lies on the ce
 }
 ON_CORNER = {                         # (punch, s): the punch rests on its R2 corner alone
     "flat": (Punch(10, 10, 1), 2.5),
-    "convex centre, R2/R1 = 0.5": (Punch(10, 5, 1, R=30), 6.0),
+    "convex centre, R2/R1 = 0.5": (Punch(10, 5, 1, R=30), 4.0),   # inside the footprint (-11, 6)
 }
 
 

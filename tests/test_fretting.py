@@ -389,7 +389,7 @@ def test_energy_grows_as_the_cube_of_the_amplitude(normals, name):
 @given(R1=st.floats(2.0, 20.0), R2=st.floats(2.0, 20.0), b=st.floats(0.05, 2.0),
        s_frac=st.floats(-0.9, 0.9), ratio=st.floats(0.02, 0.9))
 def test_methods_agree_on_random_punches(R1, R2, b, s_frac, ratio):
-    punch, P = Punch(R1, R2, b), 1.0
+    punch, P = Punch(R1, R2, b), 0.2      # slopes <= 0.25: inside the small-slope limit
     lim = cf.lift_off(punch, P, 1.0)
     s = s_frac * (lim.s_max if s_frac > 0 else -lim.s_min)
     nc = cf.solve_normal(punch, P, s, A=1.0)

@@ -38,7 +38,7 @@ def interior(r, k: int = 41) -> np.ndarray:
 @pytest.mark.parametrize("scheme", SCHEMES)
 @pytest.mark.parametrize("n", [2, 3, 8, 101])
 def test_hertz_is_exact_for_any_n(scheme, n):
-    R, P, A = 2.0, 3.0, 1.5
+    R, P, A = 2.0, 0.15, 1.5        # slope a/R = 0.27, inside the small-slope limit
     r = sie.solve_normal(Punch(R, R, 0.0), P, A=A, n=n, scheme=scheme)
     a = math.sqrt(2 * P * A * R / math.pi)
     exact_tol = tol("sie-exact", "hertz")
@@ -54,7 +54,7 @@ def test_hertz_is_exact_for_any_n(scheme, n):
 @pytest.mark.parametrize("scheme", SCHEMES)
 def test_tilted_hertz_centre_and_tilt(scheme):
     """Hertz cylinder with a load at s: contact centred at m = s = -alpha R, alpha < 0 for s > 0."""
-    R, P, s = 2.0, 1.0, 0.3
+    R, P, s = 2.0, 0.1, 0.3
     r = sie.solve_normal(Punch(R, R, 0.0), P, s, A=1.0, n=16, scheme=scheme)
     assert 0.5 * (r.c - r.a) == pytest.approx(s, rel=tol("sie-exact", "hertz"), abs=0)
     assert r.alpha == pytest.approx(-s / R, rel=tol("sie-exact", "hertz"), abs=0)
@@ -70,7 +70,7 @@ def flat_rounded_a(P: float, A: float, R1: float, b: float) -> float:
 
 def test_flat_rounded_contact_law_projected_is_exact():
     exact = tol("sie-exact", "flat_rounded")
-    for P, b in [(1.0, 0.5), (0.2, 1.0), (5.0, 0.1)]:
+    for P, b in [(0.1, 0.5), (0.05, 1.0), (0.2, 0.1)]:     # slopes (a - b)/R1 <= 0.5
         r = sie.solve_normal(Punch(1.0, 1.0, b), P, A=1.0, n=8)
         a = flat_rounded_a(P, 1.0, 1.0, b)
         assert r.a == pytest.approx(a, rel=exact, abs=0) and r.c == pytest.approx(a, rel=exact, abs=0)
@@ -95,7 +95,7 @@ def test_load_and_centroid_identities(name):
 
 
 def test_symmetric_punch_centred_load_has_no_tilt():
-    r = sie.solve_normal(Punch(1.5, 1.5, 0.4, R=-6.0), 2.0, A=1.0)
+    r = sie.solve_normal(Punch(1.5, 1.5, 0.4, R=-6.0), 0.5, A=1.0)
     assert r.a == pytest.approx(r.c, rel=tol("sie-exact", "symmetry"), abs=0)
     assert abs(r.alpha) < tol("sie-exact", "symmetry") * 2 * (r.a - 0.4) / 1.5   # slope scale v'(c) - v'(-a)
 
@@ -113,7 +113,7 @@ def test_pressure_against_independent_quadrature(name):
 
 @settings(max_examples=40, deadline=None)
 @given(R1=st.floats(0.3, 5.0), R2=st.floats(0.3, 5.0), b=st.just(0.0) | st.floats(1e-6, 1.0),
-       P=st.floats(0.05, 10.0), s_frac=st.floats(-0.4, 0.4),
+       P=st.floats(0.005, 0.05), s_frac=st.floats(-0.4, 0.4),
        invR=st.sampled_from([0.0, 0.1, -0.1]))
 def test_mirror_symmetry_and_finiteness(R1, R2, b, P, s_frac, invR):
     """Mirroring the punch and the load swaps a and c and flips alpha; nothing is NaN."""
@@ -201,8 +201,8 @@ def test_solver_goes_beyond_lift_off():
     (dict(s=math.inf), "`s`"),
     (dict(tilt="fixed"), "`tilt` = 'fixed'"),
     (dict(tilt="suppressed", s=0.1), "`s` = 0.1 must be 0"),
-    (dict(n=1), "`n` = 1 must be >= 2"),
-    (dict(n=10.0), "`n` = 10.0 must be an integer"),
+    (dict(n=1), r"`n` = 1 must lie in \[2, 65536\]"),
+    (dict(n=2**30), r"`n` = 1073741824 must lie in \[2, 65536\]"),
     (dict(scheme="gauss"), "`scheme` = 'gauss'"),
     (dict(scheme="plain", n=5000), "`n` = 5000 exceeds 4096"),
 ])
@@ -213,8 +213,10 @@ def test_bad_input_is_refused(kwargs, match):
 
 
 def test_bad_punch_is_refused():
-    with pytest.raises(ValueError, match="`punch`"):
+    with pytest.raises(TypeError, match="`punch` must be a threepart.Punch, not tuple"):
         sie.solve_normal((1.0, 2.0, 0.4), 1.0, A=1.0)
+    with pytest.raises(TypeError, match="`n` = 10.0 must be an integer, not float"):
+        sie.solve_normal(Punch(1.0, 2.0, 0.4), 0.1, A=1.0, n=10.0)
 
 
 def test_separating_concave_centre_is_refused():
