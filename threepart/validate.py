@@ -58,7 +58,7 @@ def _number(name: str, value: Any) -> float:
         v = float(value)      # float64, whatever the width or kind of the real number given
     except OverflowError:
         raise ValueError(f"`{name}` = {_show(value)} is outside the double-precision range") from None
-    if math.isinf(v) and not (isinstance(value, (float, np.floating)) and math.isinf(value)):
+    if math.isinf(v) and not (isinstance(value, (float, np.floating)) and np.isinf(value)):
         # e.g. np.longdouble(1e4000): finite as given, infinite in float64
         raise ValueError(f"`{name}` = {_show(value)} is outside the double-precision range")
     return v
@@ -223,10 +223,25 @@ def reals(name: str, value: Any) -> np.ndarray:
     """
     if isinstance(value, (str, bytes)) or value is None:
         raise TypeError(f"`{name}` = {_show(value)} must be real numbers, not {type(value).__name__}")
-    arr = np.asarray(value)
+    try:
+        # a list is checked element by element: numpy would turn True into 1.0
+        arr = np.asarray(value, dtype=object if isinstance(value, (list, tuple)) else None)
+    except ValueError:
+        raise TypeError(f"`{name}` = {_show(value)} must be a flat array of real numbers") from None
     kind = arr.dtype.kind
     if kind == "O":
-        return np.array([_number(name, v) for v in arr.ravel()], dtype=float)
+        out = np.empty(arr.size)
+        for i, v in enumerate(arr.ravel()):
+            try:
+                out[i] = _number(name, v)
+            except (TypeError, ValueError) as exc:
+                raise type(exc)(f"{exc} (element {i})") from None
+            if math.isinf(out[i]) and not math.isinf(v):
+                raise ValueError(f"`{name}` = {_show(v)} is outside the double-precision range "
+                                 f"(element {i})")
+            if math.isnan(out[i]):
+                raise ValueError(f"`{name}` = nan is not a number (element {i})")
+        return out
     if kind not in "iuf":
         raise TypeError(f"`{name}` must be real numbers, not an array of {arr.dtype} "
                         f"(first value {_show(arr.ravel()[0] if arr.size else arr)})")
@@ -235,9 +250,10 @@ def reals(name: str, value: Any) -> np.ndarray:
     bad = np.isinf(out) & ~np.isinf(arr.ravel()) if kind == "f" else np.isinf(out)
     if bad.any():
         i = int(np.argmax(bad))
-        raise ValueError(f"`{name}`[{i}] = {_show(arr.ravel()[i])} is outside the double-precision range")
+        raise ValueError(f"`{name}` = {_show(arr.ravel()[i])} is outside the double-precision range "
+                         f"(element {i})")
     if np.isnan(out).any():
-        raise ValueError(f"`{name}`[{int(np.argmax(np.isnan(out)))}] = nan is not a number")
+        raise ValueError(f"`{name}` = nan is not a number (element {int(np.argmax(np.isnan(out)))})")
     return out
 
 
