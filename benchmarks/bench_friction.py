@@ -21,9 +21,9 @@ import time
 
 from threepart import fem
 from threepart.catalogue import get_case
-from threepart.methods import fem_pair_modulus
+from threepart.fem.method import pair_modulus
 from threepart.reports.compare import compare
-from threepart.reports.solvers import SOLVERS
+from threepart.reports import solvers
 
 CASES = ("slip_Q0.2", "slip_Q0.4", "slip_Q0.7", "beyond_stick_centre")
 #: the stages of one partial-slip solve, as in its ``timings``
@@ -34,14 +34,14 @@ SHOWN = ("a", "c", "d", "e", "q_interior_max")
 def reference(case):
     """The closed form's partial-slip solution, or the SIE's where the closed form refuses."""
     method = "sie" if case.closedform_refuses else "closedform"
-    return method, SOLVERS[method].slip(case, SOLVERS[method].normal(case))
+    return method, solvers.slip(method, case, solvers.normal(method, case))
 
 
 def cold(case, mesh: str):
     """One partial-slip solve of ``case`` without the run's cached contact estimate, and its time."""
     fem.solve._locate.cache_clear()
     t0 = time.perf_counter()
-    res = SOLVERS["fem"].slip(case, None, mesh=mesh)
+    res = solvers.slip("fem", case, None, mesh=mesh)
     return res, time.perf_counter() - t0
 
 
@@ -64,7 +64,7 @@ def main(meshes: list[str]) -> None:
         fem.solve._locate.cache_clear()
         t0 = time.perf_counter()
         cyc = fem.fretting_cycle(case.punch, case.P, case.s_load, Q_max=Q, f=f,
-                                 E=fem_pair_modulus(case.A, case.nu), nu=case.nu, mesh=mesh)
+                                 E=pair_modulus(case.A, case.nu), nu=case.nu, mesh=mesh)
         dt = time.perf_counter() - t0
         balance = cyc.info["loop_energy"] / cyc.energy - 1
         print(f"  {mesh:<8} energy {cyc.energy:.6e} N mm/mm per cycle, balance {balance:.1e}, "

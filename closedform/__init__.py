@@ -47,3 +47,5 @@ __all__ = [
     "NormalSolution", "NormalBatch", "LiftOff", "SlipSolution", "FrettingSolution",
     "LiftOffError", "FullSlidingError", "StickZoneError", "SeparationError", "NoConvergenceError",
 ]
+
+from . import method as _method  # registers this solver in threepart.registry

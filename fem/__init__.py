@@ -58,3 +58,5 @@ __all__ = ["solve_normal", "FemResult", "solve_partial_slip", "fretting_cycle", 
            "make_substrate", "SurfaceCompliance", "condense", "choose_backend", "backends",
            "solve_contact", "ContactSolution", "Fields", "write_fields", "to_meshio",
            "convergence_study", "domain_study", "StudyRecord", "StudyLevel"]
+
+from . import method as _method  # registers this solver in threepart.registry

@@ -17,7 +17,8 @@ from threepart.catalogue import Case
 from threepart.tolerances import fem_comparison, tolerance
 
 from .compare import Check, compare
-from .solvers import METHODS, SOLVERS
+from . import solvers
+from .solvers import METHODS
 
 __all__ = ["CaseRun", "Mode", "MODES", "run_case", "solve", "solve_normal", "METHODS",
            "FRETTING_STATES"]
@@ -44,7 +45,7 @@ class Mode:
     fem_study_n: tuple[int, ...]
 
     def options(self, method: str) -> dict[str, Any]:
-        """Discretisation keywords of ``method``'s adapter (:data:`reports.solvers.SOLVERS`)."""
+        """Discretisation keywords of ``method``'s adapter (:mod:`threepart.registry`)."""
         if method == "sie":
             return {} if self.sie_n is None else {"n": self.sie_n}
         if method == "fem":
@@ -63,7 +64,7 @@ MODES: dict[str, Mode] = {
 
 def solve_normal(case: Case, method: str, mode: Mode) -> Any:
     """Solve the normal problem of ``case`` with ``method`` at ``mode``'s discretisation."""
-    return SOLVERS[method].normal(case, **mode.options(method))
+    return solvers.normal(method, case, **mode.options(method))
 
 
 def solve(case: Case, method: str, mode: Mode,
@@ -82,13 +83,14 @@ def solve(case: Case, method: str, mode: Mode,
         t_normal = time.perf_counter() - t0
         if cache is not None:
             cache[key] = (normal, t_normal)
-    solver = SOLVERS[method]
-    shear = {"slip": solver.slip, "fretting": solver.fretting}.get(case.kind)
-    if shear is None:
+    if case.kind == "normal":
         return normal, t_normal
     t1 = time.perf_counter()
-    extra = {"states": FRETTING_STATES} if case.kind == "fretting" else {}
-    res = shear(case, normal, **extra, **mode.options(method))
+    res: Any
+    if case.kind == "fretting":
+        res = solvers.fretting(method, case, normal, FRETTING_STATES, **mode.options(method))
+    else:
+        res = solvers.slip(method, case, normal, **mode.options(method))
     return res, t_normal + time.perf_counter() - t1
 
 

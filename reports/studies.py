@@ -22,7 +22,7 @@ from threepart.convergence import (ROUND_OFF, converges_monotonically, fitted_or
 
 from .catalogue import Mode, solve_normal
 from .compare import normal_figures, slip_figures
-from .solvers import SOLVERS
+from . import solvers
 
 __all__ = ["Study", "sie_study", "fem_study", "fem_slip_study", "fem_step_study",
            "STUDY_QUANTITIES", "SLIP_STUDY_QUANTITIES", "STEP_STATES"]
@@ -106,7 +106,7 @@ def _run(method: str, case: Case, labels: Sequence[str], solver: Callable[[Case,
     case = case.resolved()
     ref = solve_normal(case, "closedform", Mode("study", None, "quick", (), ()))
     if "d" in quantities:
-        ref = SOLVERS["closedform"].slip(case, ref)  # type: ignore[misc]
+        ref = solvers.slip("closedform", case, ref)
     reference = _figures(ref, ref, quantities)[0]
     st = Study(method, case.name, param, [], [], {q: [] for q in quantities},
                {q: [] for q in quantities}, reference, [])
@@ -165,7 +165,7 @@ def sie_study(case: Case, ns: Sequence[int], scheme: str | None = None,
     options = {} if scheme is None else {"scheme": scheme}
 
     def solver(c: Case, lab: str) -> Any:
-        return SOLVERS["sie"].normal(c, n=int(lab), **options)
+        return solvers.normal("sie", c, n=int(lab), **options)
 
     st = _run("sie", case, [str(n) for n in ns], solver,
               lambda res, lab: float(getattr(res, "n", None) or res.info.get("n", int(lab))),
@@ -195,7 +195,7 @@ def fem_slip_study(case: Case, ns: Sequence[int],
     ``case`` is a partial-slip case; the meshes are those of :func:`fem_study`.
     """
     def solver(c: Case, lab: str) -> Any:
-        return SOLVERS["fem"].slip(c, None, mesh=_family(int(lab)))  # type: ignore[misc]
+        return solvers.slip("fem", c, None, mesh=_family(int(lab)))
 
     return _run("fem", case, [str(n) for n in ns], solver, _h_of, "h", progress, "W/h =",
                 SLIP_STUDY_QUANTITIES)
@@ -230,7 +230,7 @@ def fem_step_study(case: Case, reference: Any, mesh: Any = "quick",
                {"energy": float(reference.energy)}, [])
     for k in states:
         t0 = time.perf_counter()
-        res = SOLVERS["fem"].fretting(case, None, k, mesh=mesh)  # type: ignore[misc]
+        res = solvers.fretting("fem", case, None, k, mesh=mesh)
         st.times.append(time.perf_counter() - t0)
         st.values.append(2 * Q / (k - 1))
         st.labels.append(str(k))

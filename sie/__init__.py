@@ -52,3 +52,5 @@ __all__ = [
     "gauss_chebyshev", "cauchy_matrix", "slope_coefficients", "SCHEMES",
     "ConvergenceStudy", "convergence_study", "pressure_by_quadrature",
 ]
+
+from . import method as _method  # registers this solver in threepart.registry

@@ -14,7 +14,8 @@ from types import SimpleNamespace
 
 import numpy as np
 
-from threepart.reports.solvers import SOLVERS, Solver
+from threepart import registry
+from threepart.registry import Method
 from threepart.results import NormalResult, Peak, SlipResult
 
 
@@ -72,31 +73,32 @@ def _lift_off(punch, P, A):
     return SimpleNamespace(s_min=-0.5 * half, s_max=0.5 * half)
 
 
-def fake_solver(method: str) -> Solver:
-    """A :class:`~threepart.reports.solvers.Solver` with the fake results, for ``method``."""
+def fake_solver(method: str) -> Method:
+    """A :class:`threepart.registry.Method` named ``method`` with the fake results."""
     if method == "fem":
-        def fem_normal(case, mesh="quick"):
-            A = case.A
+        def fem_normal(punch, P, s, *, A, tilt="free", nu=None, mesh="quick"):
             h = {"quick": 0.04, "default": 0.01, "fine": 0.005}[mesh] if isinstance(mesh, str) else 2.0 / mesh.n
-            r = _normal(case.punch, case.P, case.s_load, A=A, tilt=case.tilt, method="fem", h=h)
+            r = _normal(punch, P, s, A=A, tilt=tilt, method="fem", h=h)
             # a small O(h^2) error so that the convergence study has something to fit
             return FakeNormal(**{**{k: getattr(r, k) for k in r.__dataclass_fields__},
                                  "a": r.a * (1 + 0.01 * h**2)})
-        def fem_slip(case, normal, mesh="quick"):
-            return _slip(fem_normal(case, mesh), *case.shear_load, method="fem", mesh=mesh)
 
-        return Solver("fem", fem_normal, fem_slip)
+        def fem_slip(punch, P, s, *, A, tilt="free", nu=None, Q, f, normal=None, mesh="quick"):
+            return _slip(fem_normal(punch, P, s, A=A, tilt=tilt, mesh=mesh), Q, f, method="fem",
+                         mesh=mesh)
 
-    def normal(case, n=64, scheme=None):
-        return _normal(case.punch, case.P, case.s_load, A=case.A, tilt=case.tilt, method=method, n=n)
+        return Method("fem", fem_normal, fem_slip, options=("mesh",), default_nu=0.3)
 
-    def slip(case, normal, n=64):
-        return _slip(normal, *case.shear_load, method=method, n=n)
+    def normal(punch, P, s, *, A, tilt="free", nu=None, n=64, scheme=None):
+        return _normal(punch, P, s, A=A, tilt=tilt, method=method, n=n)
 
-    return Solver(method, normal, slip)
+    def slip(punch, P, s, *, A, tilt="free", nu=None, Q, f, normal=None, n=64):
+        return _slip(normal, Q, f, method=method, n=n)
+
+    return Method(method, normal, slip, options=("n", "scheme"))
 
 
-def install_fakes(monkeypatch, **replacements: Solver) -> None:
-    """Replace every entry of :data:`SOLVERS` by a fake (or by the given replacement)."""
-    for method in list(SOLVERS):
-        monkeypatch.setitem(SOLVERS, method, replacements.get(method, fake_solver(method)))
+def install_fakes(monkeypatch, **replacements: Method) -> None:
+    """Register a fake for every built-in method (or the given replacement), undone after the test."""
+    for method in registry.BUILTIN:
+        monkeypatch.setitem(registry._REGISTRY, method, replacements.get(method, fake_solver(method)))

@@ -8,6 +8,7 @@ import re
 import subprocess
 import sys
 
+import numpy as np
 import pytest
 
 from threepart.cli import main
@@ -92,13 +93,15 @@ def test_a_missing_command_is_a_one_line_usage_error(capsys):
 
 @pytest.mark.parametrize("error", ["NoConvergenceError", "ContactZoneError"])
 def test_a_solver_that_fails_gives_one_line_and_exit_status_2(capsys, monkeypatch, error):
-    import threepart.closedform
-    from threepart import errors
+    from dataclasses import replace
+
+    from threepart import errors, registry
 
     def fail(*a, **k):
         raise getattr(errors, error)("the root did not close\nafter 100 steps")
 
-    monkeypatch.setattr(threepart.closedform, "solve_normal", fail)
+    monkeypatch.setitem(registry._REGISTRY, "closedform", replace(registry.get("closedform"),
+                                                                  normal=fail))
     assert main(["solve", *GEOM]) == 2
     assert "error: the root did not close after 100 steps" in _one_line_error(capsys)
 
@@ -109,12 +112,15 @@ def test_an_os_error_gives_one_line_and_exit_status_2(capsys):
 
 
 def test_ctrl_c_prints_one_line_and_exits_130(capsys, monkeypatch):
-    import threepart.closedform
+    from dataclasses import replace
+
+    from threepart import registry
 
     def interrupted(*a, **k):
         raise KeyboardInterrupt
 
-    monkeypatch.setattr(threepart.closedform, "solve_normal", interrupted)
+    monkeypatch.setitem(registry._REGISTRY, "closedform", replace(registry.get("closedform"),
+                                                                  normal=interrupted))
     try:
         status = main(["solve", *GEOM])
     except KeyboardInterrupt:
@@ -185,7 +191,7 @@ def test_every_number_in_the_text_output_carries_its_unit(capsys, command):
         if len(tokens) >= 2 and re.fullmatch(r"[-+]?(\d[\d.e+-]*|inf)", tokens[1]):
             numbers += 1
             assert len(tokens) == 3 and tokens[2] in UNIT_LABELS, line
-    assert numbers == (24 if command == "slip" else 18)
+    assert numbers == (25 if command == "slip" else 19)   # slope included
     if command == "slip":
         assert "f          0.5 (dimensionless)" in lines
     assert "  R          inf mm" in lines
@@ -279,3 +285,56 @@ def test_fem_slip_is_the_two_body_friction_model_and_agrees_with_the_closed_form
     for key in ("d", "e"):
         err = abs(fe[key] - cf[key]) / cf["d"]
         assert err < tolerance("fem-quick", key).limit, (key, fe[key], cf[key])
+
+
+AGEOM = ["--R1", "10", "--R2", "5", "--b", "1", "--A", "8.67e-6", "--P", "400"]
+
+
+@pytest.mark.parametrize("extra,match", [
+    (["--rigid"], r"`--rigid` applies to `--E`/`--nu`"),
+    (["--nu", "0.3"], r"`--nu` with `--A` is used only by a method that models a finite body"),
+])
+def test_a_compliance_with_material_options_is_refused_not_ignored(capsys, extra, match):
+    assert main(["solve", *AGEOM, *extra]) == 2
+    err = capsys.readouterr().err
+    assert len(err.strip().splitlines()) == 1 and re.search(match, err), err
+
+
+def test_past_lift_off_the_monotone_half_has_no_interior_peak(capsys):
+    """At s = 0.6 > s_max the left edge sits on the flat centre: p rises from -a to the right peak."""
+    assert main(["solve", *AGEOM, "--s", "0.6", "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["peak_left"] == {"none": "no interior peak: p rises monotonically from the left "
+                                        "end into the right half"}
+    from threepart import Punch, sie
+    r = sie.solve_normal(Punch(10.0, 5.0, 1.0), 400.0, 0.6, A=8.67e-6)
+    x = np.linspace(-r.a, r.c, 4001)
+    p = r.pressure(x)
+    rising = x < out["peak_right"]["x"]   # sampled independently of peaks(): monotone to the peak
+    assert np.all(np.diff(p[rising]) > 0)
+    assert out["peak_right"]["p"] >= p.max()
+
+
+def test_fem_states_the_poisson_ratio_it_assumed_and_echoes_s_as_given(capsys):
+    assert main(["solve", *AGEOM, "--s", "0.1", "--method", "fem", "--mesh", "quick", "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["nu"] == 0.3 and "nu = 0.3 assumed" in out["nu_note"]
+    assert repr(out["s"]) == "0.1"
+    # the contact's slope is reported: at least the tilt, at least the profile's slope at -a
+    assert out["slope"] >= max(abs(out["alpha"]), (out["a"] - 1.0) / 10.0)
+
+
+@pytest.mark.parametrize("delay", [0.15, 1.0])
+def test_ctrl_c_while_loading_or_solving_prints_exactly_one_line(delay, tmp_path):
+    """SIGINT early (numpy and scipy still loading) or late (the FEM solving): one line, exit 130."""
+    import signal
+    import time
+
+    proc = subprocess.Popen([sys.executable, "-m", "threepart", "solve", *AGEOM, "--method", "fem",
+                             "--mesh", "quick"], cwd=tmp_path, stdout=subprocess.PIPE,
+                            stderr=subprocess.PIPE, text=True)
+    time.sleep(delay)
+    proc.send_signal(signal.SIGINT)
+    out, err = proc.communicate(timeout=120)
+    assert proc.returncode == 130, err
+    assert err.strip() == "threepart solve: interrupted", err

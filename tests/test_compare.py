@@ -148,7 +148,7 @@ def test_failed_tolerance_gives_nonzero_exit(tmp_path, fake_solvers, monkeypatch
 
 
 def test_solver_error_is_reported_not_raised(tmp_path, fake_solvers, monkeypatch):
-    def broken(case, **options):
+    def broken(*args, **options):
         raise ImportError("fem not built")
 
     install_fakes(monkeypatch, fem=replace(fake_solver("fem"), normal=broken))

@@ -18,7 +18,7 @@ from threepart.catalogue import get_case
 from threepart.errors import FullSlidingError
 from threepart.punch import Punch
 from threepart.reports.compare import compare
-from threepart.reports.solvers import SOLVERS
+from threepart.reports import solvers
 from threepart.tolerances import tolerance
 
 SLIP_CASES = ("slip_Q0.2", "slip_Q0.4", "slip_Q0.7")
@@ -33,7 +33,7 @@ def tol(quantity: str, comparison: str = "fem-quick") -> float:
 
 def fem_slip(case_name: str):
     case = get_case(case_name).resolved()
-    return case, SOLVERS["fem"].slip(case, None, mesh="quick")
+    return case, solvers.slip("fem", case, None, mesh="quick")
 
 
 @pytest.fixture(scope="module", params=SLIP_CASES)
@@ -172,8 +172,8 @@ def test_full_sliding_is_the_named_error():
 def test_fretting_cycle_agrees_with_the_closed_form():
     """Energy, stick zones, loop and shear of the catalogue's cycle against the closed form's."""
     case = get_case("fretting_Q0.4").resolved()
-    ref = SOLVERS["closedform"].fretting(case, SOLVERS["closedform"].normal(case), 21)
-    fe = SOLVERS["fem"].fretting(case, None, 21, mesh="quick")
+    ref = solvers.fretting("closedform", case, solvers.normal("closedform", case), 21)
+    fe = solvers.fretting("fem", case, None, 21, mesh="quick")
     failed = {c.quantity: f"{c.error:.2e} > {c.limit:g}" for c in compare(ref, fe, "fem-quick")
               if not c.passed}
     assert not failed, f"FEM fretting cycle disagrees with the closed form: {failed}"

@@ -2,8 +2,11 @@
 
 Three of those names belong to unrelated projects on the package index; a
 package that installed them would shadow, or be deleted by, those. The wheel
-is built from this checkout and installed into a fresh virtual environment
-(which sees this environment's numpy, scipy, gmsh ... but not the checkout).
+is built from this checkout and installed, with its own dependencies as pip
+resolves them from the wheel's metadata, into an isolated virtual
+environment: one that sees neither this environment's packages nor the base
+interpreter's, whatever environment the tests run in (a venv, or the system
+interpreter). So a dependency missing from ``pyproject.toml`` fails here.
 """
 from __future__ import annotations
 
@@ -28,6 +31,17 @@ def wheel(tmp_path_factory) -> Path:
     return path
 
 
+@pytest.fixture(scope="module")
+def isolated(wheel, tmp_path_factory) -> Path:
+    """An isolated venv holding the wheel and the dependencies its metadata names."""
+    env = tmp_path_factory.mktemp("isolated") / "venv"
+    venv.EnvBuilder(system_site_packages=False, with_pip=False).create(env)
+    done = subprocess.run([sys.executable, "-m", "pip", "--python", str(env / "bin" / "python"),
+                           "install", "-q", "--no-compile", str(wheel)], capture_output=True, text=True)
+    assert done.returncode == 0, done.stderr[-2000:]
+    return env
+
+
 def test_wheel_holds_only_the_threepart_package(wheel):
     names = zipfile.ZipFile(wheel).namelist()
     top = {n.split("/")[0] for n in names}
@@ -38,12 +52,16 @@ def test_wheel_holds_only_the_threepart_package(wheel):
     assert "threepart/meshes/reference.msh" in names and "threepart/meshes/manifest.json" in names
 
 
-def test_fresh_environment_imports_threepart_fem_but_not_fem(wheel, tmp_path):
-    env = tmp_path / "venv"
-    venv.EnvBuilder(system_site_packages=True, with_pip=False).create(env)
-    python = env / "bin" / "python"
-    subprocess.run([sys.executable, "-m", "pip", "--python", str(python), "install", "--no-deps", "-q",
-                    str(wheel)], check=True, capture_output=True, text=True)
+def test_isolated_environment_sees_nothing_of_this_one(isolated, tmp_path):
+    python = isolated / "bin" / "python"
+    paths = subprocess.run([str(python), "-c", "import sys; print('\\n'.join(sys.path))"],
+                           capture_output=True, text=True, check=True).stdout.split()
+    here = {p for p in sys.path if p.endswith("site-packages")}
+    assert not here & set(paths), "the isolated venv sees this environment's site-packages"
+
+
+def test_fresh_environment_imports_threepart_fem_but_not_fem(isolated, tmp_path):
+    python = isolated / "bin" / "python"
 
     def run(code: str) -> subprocess.CompletedProcess[str]:
         return subprocess.run([str(python), "-c", code], cwd=tmp_path, capture_output=True, text=True)
@@ -51,11 +69,15 @@ def test_fresh_environment_imports_threepart_fem_but_not_fem(wheel, tmp_path):
     ok = run("import threepart.fem, threepart.closedform, threepart.sie, threepart.reports; "
              "print(threepart.fem.__file__)")
     assert ok.returncode == 0, ok.stderr
-    assert str(env) in ok.stdout  # the installed copy, not the checkout
+    assert str(isolated) in ok.stdout  # the installed copy, not the checkout
     for name in FOREIGN:
         bad = run(f"import {name}")
         assert bad.returncode != 0 and "ModuleNotFoundError" in bad.stderr, name
-    script = subprocess.run([str(env / "bin" / "threepart"), "solve", "--R1", "10", "--R2", "5", "--b",
-                             "1", "--A", "8.67e-6", "--P", "400"], capture_output=True, text=True,
-                            cwd=tmp_path)
+    script = subprocess.run([str(isolated / "bin" / "threepart"), "solve", "--R1", "10", "--R2", "5",
+                             "--b", "1", "--A", "8.67e-6", "--P", "400"], capture_output=True,
+                            text=True, cwd=tmp_path)
     assert script.returncode == 0, script.stderr
+    # the half-width of this symmetric-load solve, against Hertz-like bounds: b < a < b + R1
+    a = float(next(line.split()[1] for line in script.stdout.splitlines()
+                   if line.startswith("a ")))
+    assert 1.0 < a < 11.0

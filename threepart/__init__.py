@@ -50,21 +50,50 @@ StickZoneError      -- the stick zone would end inside the central segment (Valu
 NoConvergenceError  -- an iteration did not converge (RuntimeError)
 ContactZoneError    -- the FE contact reached the end of its mesh zone (RuntimeError)
 MeshResolutionError -- a contact end too close to a join for the FE mesh (a ContactZoneError)
+SlopeLimitError     -- the contact's slope is past half-plane theory's small-slope limit (ValueError)
+ArcExtentError      -- a contact end runs past an edge arc's extent (ValueError)
 """
 from __future__ import annotations
 
-from .methods import CHOICES, METHODS, solve
-from .errors import (ContactZoneError, FullSlidingError, LiftOffError, MeshResolutionError,
-                     NoConvergenceError, SeparationError, StickZoneError)
-from .material import compliance, rigid_punch, similar_pair
-from .punch import Punch
-from .results import NormalResult, Peak, SlipResult
-from .validate import TILTS
+import importlib
+from typing import TYPE_CHECKING, Any
 
-__all__ = [
-    "Punch", "compliance", "similar_pair", "rigid_punch", "TILTS",
-    "NormalResult", "SlipResult", "Peak",
-    "LiftOffError", "SeparationError", "FullSlidingError", "StickZoneError",
-    "NoConvergenceError", "ContactZoneError", "MeshResolutionError",
-    "solve", "METHODS", "CHOICES",
-]
+#: each public name and the module that defines it; loaded on first use (PEP 562), so that
+#: ``import threepart`` (and the console script, before it parses its arguments) loads
+#: neither numpy nor scipy, and Ctrl-C during those imports is the command line's to handle
+_HOMES = {
+    "Punch": "punch", "compliance": "material", "similar_pair": "material",
+    "rigid_punch": "material", "TILTS": "validate",
+    "NormalResult": "results", "SlipResult": "results", "Peak": "results",
+    "LiftOffError": "errors", "SeparationError": "errors", "FullSlidingError": "errors",
+    "StickZoneError": "errors", "NoConvergenceError": "errors", "ContactZoneError": "errors",
+    "MeshResolutionError": "errors", "SlopeLimitError": "errors", "ArcExtentError": "errors",
+    "solve": "methods", "METHODS": "methods", "CHOICES": "methods",
+}
+_SUBPACKAGES = ("closedform", "sie", "fem", "meshes", "reports")
+
+__all__ = list(_HOMES)
+
+if TYPE_CHECKING:   # pragma: no cover - for type checkers and IDEs only
+    from .errors import (ArcExtentError, ContactZoneError, FullSlidingError, LiftOffError,
+                         MeshResolutionError, NoConvergenceError, SeparationError,
+                         SlopeLimitError, StickZoneError)
+    from .material import compliance, rigid_punch, similar_pair
+    from .methods import CHOICES, METHODS, solve
+    from .punch import Punch
+    from .results import NormalResult, Peak, SlipResult
+    from .validate import TILTS
+
+
+def __getattr__(name: str) -> Any:
+    if name in _HOMES:
+        value = getattr(importlib.import_module(f".{_HOMES[name]}", __name__), name)
+        globals()[name] = value
+        return value
+    if name in _SUBPACKAGES:
+        return importlib.import_module(f".{name}", __name__)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
+
+def __dir__() -> list[str]:
+    return sorted({*globals(), *_HOMES, *_SUBPACKAGES})

@@ -49,7 +49,8 @@ UNITS: dict[str, str] = {
     "d": "mm", "e": "mm", "left": "mm", "right": "mm",  # stick zone
     "alpha": "rad",                                   # tilt, eq. (2)
     "p": "MPa", "q": "MPa",                           # pressure, shear traction
-    "f": "1",                                         # coefficient of friction
+    "f": "1", "nu": "1",                              # friction coefficient, Poisson's ratio
+    "slope": "rad",                                   # Punch.max_slope: tilt, profile, surface
 }
 #: options that take a number; ``--s -1e-3`` is read as ``--s=-1e-3`` (argparse alone
 #: would take ``-1e-3`` for an option)
@@ -110,6 +111,8 @@ def _labelled(help_text: str, quantity: str) -> str:
 
 
 def _geometry_args(p: argparse.ArgumentParser) -> None:
+    from threepart import registry
+
     g = p.add_argument_group("punch geometry (eq. 2)")
     g.add_argument("--R1", type=float, required=True, help=_labelled("left edge radius, > 0", "R1"))
     g.add_argument("--R2", type=float, required=True, help=_labelled("right edge radius, > 0", "R2"))
@@ -131,7 +134,7 @@ def _geometry_args(p: argparse.ArgumentParser) -> None:
                     help=_labelled("lever arm of P, positive to the right", "s"))
     ld.add_argument("--tilt", choices=("free", "suppressed"), default="free")
     mt = p.add_argument_group("method")
-    mt.add_argument("--method", choices=("auto", "closedform", "sie", "fem"), default="auto",
+    mt.add_argument("--method", choices=("auto", *registry.names()), default="auto",
                     help="auto (default): the closed form where it holds, else the SIE; or one method")
     mt.add_argument("--mesh", choices=("quick", "default", "fine"), default="default",
                     help="FE mesh preset for --method fem (default: default)")
@@ -155,12 +158,29 @@ def _number_list(text: str) -> list[float]:
         raise argparse.ArgumentTypeError(f"invalid list of numbers: {text!r} (write X1,X2,...)")
 
 
+def _method(args: argparse.Namespace) -> Any:
+    """The registered method ``--method`` names if it models a finite body (takes ``nu``), else None."""
+    from threepart import registry
+
+    if args.method == "auto":
+        return None
+    m = registry.get(args.method)
+    return m if m.default_nu is not None else None
+
+
 def _compliance(args: argparse.Namespace) -> float:
-    from threepart.closedform import compliance, rigid_punch
+    """The compliance A (eq. 4) from ``--A``, or from ``--E``/``--nu`` (and ``--rigid``)."""
+    from threepart.material import compliance, rigid_punch
 
     if args.A is not None:
-        if args.E is not None or args.nu is not None:
+        if args.E is not None:
             raise ValueError("give either `--A` or `--E`/`--nu`, not both")
+        if args.rigid:
+            raise ValueError("`--rigid` applies to `--E`/`--nu`; with `--A` the compliance is "
+                             "given, so drop `--rigid`")
+        if args.nu is not None and _method(args) is None:
+            raise ValueError("`--nu` with `--A` is used only by a method that models a finite "
+                             "body (`--method fem`); drop it or give `--E` and `--nu` instead")
         return float(args.A)
     if args.E is None or args.nu is None:
         raise ValueError("the material needs `--A`, or both `--E` and `--nu`")
@@ -169,6 +189,7 @@ def _compliance(args: argparse.Namespace) -> float:
 
 def _solve(args: argparse.Namespace, slip: bool) -> tuple[Any, dict[str, Any]]:
     """Solve by ``--method`` and collect the figures to print, in print order."""
+    from threepart import registry
     from threepart.methods import describe, solve
     from threepart.punch import Punch
     from threepart.results import SlipResult
@@ -176,9 +197,14 @@ def _solve(args: argparse.Namespace, slip: bool) -> tuple[Any, dict[str, Any]]:
     punch = Punch(R1=args.R1, R2=args.R2, b=args.b, R=args.R)
     A = _compliance(args)
     _points_iv(args)
-    options: dict[str, Any] = {}
-    if args.method == "fem":   # the block's modulus: methods.fem_modulus (nu 0.3 unless given)
-        options = {"mesh": args.mesh, **({"nu": args.nu} if args.nu is not None else {})}
+    takes = () if args.method == "auto" else registry.get(args.method).options
+    options: dict[str, Any] = {"mesh": args.mesh} if "mesh" in takes else {}
+    finite_body, nu_note = _method(args), None
+    if finite_body is not None:   # a finite body needs Poisson's ratio besides A
+        options["nu"] = finite_body.default_nu if args.nu is None else args.nu
+        if args.nu is None:
+            nu_note = (f"the FE model needs Poisson's ratio; nu = {finite_body.default_nu} "
+                       "assumed (give --nu to set it; in half-plane theory only A matters)")
     loads = {"Q": args.Q, "f": args.f} if slip else {}
     res = solve(punch, args.P, args.s, A=A, tilt=args.tilt, method=args.method, **loads, **options)
     normal = res.normal if isinstance(res, SlipResult) else res
@@ -187,12 +213,15 @@ def _solve(args: argparse.Namespace, slip: bool) -> tuple[Any, dict[str, Any]]:
         "method": res.method,
         **({"method_note": res.info["auto"]} if "auto" in res.info else {}),
         "punch": {"R1": punch.R1, "R2": punch.R2, "b": punch.b, "R": punch.R, "case": punch.case},
-        "A": A, "P": normal.P, "s": normal.s, "tilt": normal.tilt,
-        "a": normal.a, "c": normal.c, "alpha": normal.alpha,
+        "A": A, **({"nu": options["nu"]} if "nu" in options else {}),
+        **({"nu_note": nu_note} if nu_note else {}),
+        # s as given; with the tilt suppressed, the lever arm s* that holds alpha = 0
+        "P": float(args.P), "s": float(args.s) if normal.tilt == "free" else normal.s,
+        "tilt": normal.tilt,
+        "a": normal.a, "c": normal.c, "alpha": normal.alpha, "slope": normal.slope,
         "contact": {"left": -normal.a, "right": normal.c},
         "segments": list(normal.segments), "within_paper": normal.within_paper,
-        "peak_left": {"x": left.x, "p": left.p},
-        "peak_right": {"x": right.x, "p": right.p},
+        "peak_left": _peak(left, "left"), "peak_right": _peak(right, "right"),
     }
     limits = _lift_off(punch, normal.P, A)
     if limits is not None:
@@ -207,6 +236,15 @@ def _solve(args: argparse.Namespace, slip: bool) -> tuple[Any, dict[str, Any]]:
         out["points"] = points
     out["_describe"] = describe(res)
     return res, out
+
+
+def _peak(peak: Any, side: str) -> dict[str, Any]:
+    """A peak as printed: its x and p, or a note that this half has no interior peak."""
+    if peak.interior:
+        return {"x": peak.x, "p": peak.p}
+    other = "right" if side == "left" else "left"
+    return {"none": f"no interior peak: p rises monotonically from the {side} end into the "
+                    f"{other} half"}
 
 
 def _lift_off(punch: Any, P: float, A: float) -> dict[str, float] | None:
@@ -306,8 +344,10 @@ def _print(out: dict[str, Any], as_json: bool) -> None:
                 print(f"{indent}{k:<10} {float(v):.10g} {'(dimensionless)' if unit == '1' else unit}")
             elif isinstance(v, list):
                 print(f"{indent}{k:<10} {', '.join(map(str, v))}")
-            elif k != "method_note":
+            elif k not in ("method_note", "none"):
                 print(f"{indent}{k:<10} {v}")
+            elif k == "none":
+                print(f"{indent}{v}")
 
     walk({k: v for k, v in out.items() if k != "method"})
     if points is not None:

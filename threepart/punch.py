@@ -136,10 +136,15 @@ class Punch:
         return alpha + np.where(x < -self.b, left, np.where(x > self.b, right, centre))
 
     def max_slope(self, a: float, c: float, alpha: float = 0.0) -> float:
-        """Largest surface slope ``max |v'(x)|`` over the contact ``[-a, c]`` (eq. 2, tilt included).
+        """The largest slope of the contact ``[-a, c]``, the measure of half-plane theory's small slopes.
 
-        ``v'`` is linear on each segment, so its extremes lie at the contact's
-        ends and at the joins ``x = ±b`` inside it.
+        It is the largest of three angles (rad): the tilt ``|alpha|``, the
+        profile's own slope ``|g'(x)|`` over the contact (where the parabola of
+        eq. 2 stands for an arc, it is accurate only while this is small) and
+        the surface slope ``|v'(x)| = |alpha + g'(x)|`` under the punch. Each
+        is linear on each segment, so its extremes lie at the contact's ends
+        and at the joins ``x = ±b`` inside it.
         """
         x = [t for t in (-a, -self.b, self.b, c) if -a <= t <= c]
-        return float(np.max(np.abs(self.slope(x, alpha))))
+        shape = self.slope(x)
+        return float(max(abs(alpha), np.max(np.abs(shape)), np.max(np.abs(shape + alpha))))

@@ -16,7 +16,7 @@ Range checks
 ------------
 LENGTH_RANGE        -- magnitudes of lengths and loads, ``[1e-60, 1e60]``
 lever_arm           -- ``s`` inside the punch's footprint ``(-(b + R1), b + R2)``
-SLOPE_LIMIT         -- the small-slope limit of half-plane theory on ``max |v'|``
+SLOPE_LIMIT         -- the small-slope limit of half-plane theory (tilt and profile slopes)
 check_contact       -- a solved contact: inside the arcs' extents and within SLOPE_LIMIT
 integer             -- a discretisation count (``n``, ``steps``) between bounds
 MAX_STATES          -- the most recorded states per fretting branch (``check_states``)
@@ -152,8 +152,9 @@ def lever_arm(punch: Any, s: Any) -> float:
     return v
 
 
-#: The small-slope limit of half-plane theory: the largest ``max |v'(x)|`` over the
-#: contact (the surface slope under the punch, tilt included) that any solver answers.
+#: The small-slope limit of half-plane theory: the largest slope of a contact that any solver
+#: answers, the largest of the tilt, the profile's slope and the surface slope over the
+#: contact (:meth:`threepart.Punch.max_slope`).
 #: Half-plane theory measures the gap vertically and the tractions on the undeformed
 #: surface; its error grows in proportion to the slope (about 1 % in the peak pressure at
 #: a slope of 0.1, measured with a finite-deformation model: see docs/SMALL_SLOPE.md).
@@ -170,8 +171,7 @@ def check_contact(punch: Any, a: float, c: float, alpha: float) -> float:
     Returns
     -------
     float
-        The largest surface slope ``max |v'(x)|`` over the contact (eq. 2,
-        tilt included).
+        The contact's slope, :meth:`threepart.Punch.max_slope`.
 
     Raises
     ------
@@ -193,7 +193,7 @@ def check_contact(punch: Any, a: float, c: float, alpha: float) -> float:
                              "half-plane theory has no answer")
     slope = punch.max_slope(a, c, alpha)
     if not slope <= SLOPE_LIMIT:
-        raise SlopeLimitError(f"the surface slope under the punch reaches {slope:.3g} (tilt "
+        raise SlopeLimitError(f"the contact's slope (tilt, profile or surface) reaches {slope:.3g} (tilt "
                               f"alpha = {alpha:.3g} rad), past the small-slope limit "
                               f"{SLOPE_LIMIT:g} of half-plane theory; reduce the load or the "
                               "lever arm `s`")

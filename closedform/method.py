@@ -1,0 +1,41 @@
+"""The closed form's adapter in :mod:`threepart.registry` (registered on import as ``"closedform"``).
+
+It holds only inside the paper's framework (``framework_only``): past it, it
+refuses with a named error and ``method="auto"`` falls back to the SIE.
+"""
+from __future__ import annotations
+
+from typing import Any
+
+from threepart.punch import Punch
+from threepart.registry import Method, register
+from threepart.results import FrettingResult, NormalResult, SlipResult
+
+from .fretting import fretting_cycle
+from .normal import solve_normal
+from .slip import solve_partial_slip
+
+__all__ = ["METHOD"]
+
+
+def _normal(punch: Punch, P: float, s: float, *, A: float, tilt: str = "free",
+            nu: float | None = None) -> NormalResult:
+    return solve_normal(punch, P, s, A=A, tilt=tilt)
+
+
+def _slip(punch: Punch, P: float, s: float, *, A: float, tilt: str = "free",
+          nu: float | None = None, Q: float, f: float,
+          normal: NormalResult | None = None) -> SlipResult:
+    base = normal if normal is not None else _normal(punch, P, s, A=A, tilt=tilt)
+    return solve_partial_slip(base, Q, f)
+
+
+def _fretting(punch: Punch, P: float, s: float, *, A: float, tilt: str = "free",
+              nu: float | None = None, Q_max: float, f: float, states: int | None = None,
+              normal: NormalResult | None = None) -> FrettingResult:
+    base = normal if normal is not None else _normal(punch, P, s, A=A, tilt=tilt)
+    extra: dict[str, Any] = {} if states is None else {"states": states}
+    return fretting_cycle(base, Q_max, f, **extra)
+
+
+METHOD = register(Method("closedform", _normal, _slip, _fretting, framework_only=True))

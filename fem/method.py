@@ -1,0 +1,70 @@
+"""The FEM's adapter in :mod:`threepart.registry` (registered on import as ``"fem"``).
+
+The FE models are bodies of finite size and need Young's modulus and Poisson's
+ratio; the adapter converts the compliance ``A`` (eq. 4) at ``nu`` (default
+:data:`NU`): the normal problem is a rigid punch on a block of modulus
+``2(1 - nu^2)/A``; partial slip and the fretting cycle are two similar bodies,
+each of modulus ``4(1 - nu^2)/A``, which solve their own normal problem with
+the shear. In half-plane theory the solution depends on the material only
+through ``A``; ``nu`` affects only the finite block's far field.
+
+Option: ``mesh`` (a preset, see :func:`threepart.fem.solve_normal`).
+"""
+from __future__ import annotations
+
+from typing import Any
+
+from threepart.punch import Punch
+from threepart.registry import Method, register
+from threepart.results import FrettingResult, NormalResult, SlipResult
+from threepart.validate import positive, real
+
+from .friction import fretting_cycle, solve_partial_slip
+from .solve import solve_normal
+
+__all__ = ["METHOD", "NU", "rigid_punch_modulus", "pair_modulus"]
+
+#: Poisson's ratio the FE models take when only the compliance is given
+NU = 0.3
+
+
+def _nu(nu: float | None) -> float:
+    v = NU if nu is None else real("nu", nu)
+    if not -1.0 < v < 0.5:
+        raise ValueError(f"`nu` = {nu!r} must lie in (-1, 0.5)")
+    return v
+
+
+def rigid_punch_modulus(A: float, nu: float | None = None) -> float:
+    """Young's modulus of the block on which a rigid punch has compliance ``A``: ``2(1 - nu^2)/A``."""
+    v = _nu(nu)
+    return 2.0 * (1.0 - v * v) / positive("A", A)
+
+
+def pair_modulus(A: float, nu: float | None = None) -> float:
+    """Young's modulus of each of two similar bodies of composite compliance ``A``: ``4(1 - nu^2)/A``."""
+    return 2.0 * rigid_punch_modulus(A, nu)
+
+
+def _normal(punch: Punch, P: float, s: float, *, A: float, tilt: str = "free",
+            nu: float | None = None, **options: Any) -> NormalResult:
+    return solve_normal(punch, P, s, E=rigid_punch_modulus(A, nu), nu=_nu(nu), tilt=tilt,
+                        **options)
+
+
+def _slip(punch: Punch, P: float, s: float, *, A: float, tilt: str = "free",
+          nu: float | None = None, Q: float, f: float, normal: NormalResult | None = None,
+          **options: Any) -> SlipResult:
+    return solve_partial_slip(punch, P, s, Q=Q, f=f, E=pair_modulus(A, nu), nu=_nu(nu), tilt=tilt,
+                              **options)
+
+
+def _fretting(punch: Punch, P: float, s: float, *, A: float, tilt: str = "free",
+              nu: float | None = None, Q_max: float, f: float, states: int | None = None,
+              normal: NormalResult | None = None, **options: Any) -> FrettingResult:
+    extra: dict[str, Any] = {} if states is None else {"states": states}
+    return fretting_cycle(punch, P, s, Q_max=Q_max, f=f, E=pair_modulus(A, nu), nu=_nu(nu),
+                          tilt=tilt, **extra, **options)
+
+
+METHOD = register(Method("fem", _normal, _slip, _fretting, options=("mesh",), default_nu=NU))

@@ -1,0 +1,40 @@
+"""The SIE's adapter in :mod:`threepart.registry` (registered on import as ``"sie"``).
+
+Options: ``n`` (Gauss–Chebyshev nodes) and ``scheme`` (see :func:`threepart.sie.solve_normal`).
+"""
+from __future__ import annotations
+
+from typing import Any
+
+from threepart.punch import Punch
+from threepart.registry import Method, register
+from threepart.results import FrettingResult, NormalResult, SlipResult
+
+from .fretting import fretting_cycle
+from .normal import solve_normal
+from .slip import solve_partial_slip
+
+__all__ = ["METHOD"]
+
+
+def _normal(punch: Punch, P: float, s: float, *, A: float, tilt: str = "free",
+            nu: float | None = None, **options: Any) -> NormalResult:
+    return solve_normal(punch, P, s, A=A, tilt=tilt, **options)
+
+
+def _slip(punch: Punch, P: float, s: float, *, A: float, tilt: str = "free",
+          nu: float | None = None, Q: float, f: float, normal: NormalResult | None = None,
+          **options: Any) -> SlipResult:
+    base = normal if normal is not None else _normal(punch, P, s, A=A, tilt=tilt, **options)
+    return solve_partial_slip(base, Q, f, **options)
+
+
+def _fretting(punch: Punch, P: float, s: float, *, A: float, tilt: str = "free",
+              nu: float | None = None, Q_max: float, f: float, states: int | None = None,
+              normal: NormalResult | None = None, **options: Any) -> FrettingResult:
+    base = normal if normal is not None else _normal(punch, P, s, A=A, tilt=tilt, **options)
+    extra: dict[str, Any] = {} if states is None else {"states": states}
+    return fretting_cycle(base, Q_max, f, **extra, **options)
+
+
+METHOD = register(Method("sie", _normal, _slip, _fretting, options=("n", "scheme")))

@@ -1,0 +1,70 @@
+"""The one registry of methods: every caller dispatches through it, and a new method is one module."""
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pytest
+
+import threepart
+from threepart import Punch, registry, rigid_punch
+from threepart.cli import main
+
+A = rigid_punch(210e3, 0.3)
+HERTZ = Punch(10.0, 10.0, 0.0)
+
+
+@pytest.fixture
+def toy(monkeypatch):
+    """The toy method of tests/toy_method.py, registered for one test only."""
+    monkeypatch.setattr(registry, "_REGISTRY", dict(registry._REGISTRY))
+    from . import toy_method
+    return registry.register(toy_method.METHOD)
+
+
+def test_the_built_in_methods_come_from_the_registry():
+    assert registry.names()[:3] == ("closedform", "sie", "fem")
+    for name in registry.BUILTIN:
+        m = registry.get(name)
+        assert m.name == name and callable(m.normal)
+    with pytest.raises(ValueError, match=r"`method` = 'nope' must be one of closedform, sie, fem"):
+        registry.get("nope")
+
+
+def test_a_toy_method_is_one_module_and_every_caller_finds_it(toy, capsys):
+    # threepart.solve: the toy's Hertz against the closed form's Hertz (eq. 2 with b = 0)
+    r = threepart.solve(HERTZ, 400.0, 0.0, A=A, method="toy")
+    ref = threepart.solve(HERTZ, 400.0, 0.0, A=A, method="closedform")
+    assert r.method == "toy"
+    assert abs(r.a - ref.a) <= 1e-12 * ref.width and abs(r.c - ref.c) <= 1e-12 * ref.width
+    x = np.linspace(-ref.a, ref.c, 101)
+    assert np.max(np.abs(r.pressure(x) - ref.pressure(x))) <= 1e-10 * ref.pressure(0.0)
+    # its options are checked like any method's
+    with pytest.raises(ValueError, match=r"`n` is not an option of method 'toy' \(its options: terms\)"):
+        threepart.solve(HERTZ, 400.0, 0.0, A=A, method="toy", n=8)
+    with pytest.raises(ValueError, match="has no partial-slip model"):
+        threepart.solve(HERTZ, 400.0, 0.0, A=A, method="toy", Q=10.0, f=0.5)
+    # the verification run's adapter: a catalogue case in, the shared result out
+    from threepart import catalogue
+    from threepart.reports import solvers
+    from threepart.reports.compare import normal_figures
+    case = next(c for c in catalogue.load_cases() if c.name == "hertz")
+    got, want = solvers.normal("toy", case), solvers.normal("closedform", case)
+    figures = normal_figures(want, got)
+    assert figures["a"][2] <= 1e-12 and figures["c"][2] <= 1e-12 and figures["p_L2"][2] <= 1e-10
+    # the command line
+    assert main(["solve", "--R1", "10", "--R2", "10", "--b", "0", "--A", str(A), "--P", "400",
+                 "--method", "toy", "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["method"] == "toy" and abs(out["a"] - ref.a) <= 1e-12 * ref.width
+
+
+def test_nu_is_refused_by_a_half_plane_method_and_used_by_the_fem():
+    with pytest.raises(ValueError, match="`nu` is not used by method 'closedform'"):
+        threepart.solve(HERTZ, 400.0, 0.0, A=A, method="closedform", nu=0.3)
+    from threepart.fem.method import pair_modulus, rigid_punch_modulus
+    # the FE moduli invert eq. (4): a rigid punch on E, and two similar bodies of 2E
+    assert rigid_punch_modulus(A, 0.3) == pytest.approx(210e3, rel=1e-14)
+    assert pair_modulus(A, 0.3) == pytest.approx(420e3, rel=1e-14)
+    with pytest.raises(ValueError, match=r"`nu` = 0.5 must lie in \(-1, 0.5\)"):
+        rigid_punch_modulus(A, 0.5)

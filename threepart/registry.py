@@ -1,0 +1,135 @@
+"""One registry of methods: a name and a small adapter for every solver.
+
+Every caller that picks a method by name (:func:`threepart.solve`, the command
+line, the verification run, the figures, the map) dispatches through
+:func:`get`; none of them branches on a method's name. A method registers
+itself, as meshio's file formats do: the module that defines its adapter calls
+:func:`register` when it is imported. The built-in methods live in the solver
+packages (``threepart.closedform``, ``threepart.sie``, ``threepart.fem``),
+which are imported only when their name is first asked for, so that importing
+:mod:`threepart` loads no solver.
+
+Adding a method
+---------------
+Write one module that builds a :class:`Method` from three functions and calls
+``register`` on it; import that module, and ``threepart.solve(...,
+method="yours")`` and :func:`get` find it. ``tests/test_registry.py`` does this
+with a toy method.
+
+The adapter's calls
+-------------------
+Every call takes the problem in the shared terms: the punch, ``P``, ``s``, the
+compliance ``A`` (eq. 4) and ``tilt``; ``nu`` is Poisson's ratio where a
+method models a body of finite size (the FEM; half-plane methods depend on the
+material only through ``A`` and ignore it); then the method's own
+discretisation options, named in :attr:`Method.options`.
+
+``normal(punch, P, s, *, A, tilt, nu, **options)``
+    The normal problem: a :class:`~threepart.results.NormalResult`.
+``slip(punch, P, s, *, A, tilt, nu, Q, f, normal, **options)``
+    Partial slip: a :class:`~threepart.results.SlipResult`. ``normal`` is a
+    normal result of this method for the same problem, or None; a method that
+    solves its own normal problem with the shear (the FEM) ignores it.
+``fretting(punch, P, s, *, A, tilt, nu, Q_max, f, states, normal, **options)``
+    One fretting cycle: a :class:`~threepart.results.FrettingResult`.
+
+Names
+-----
+Method      -- a method's adapter: name, calls, options, capabilities
+register    -- add (or replace) a method in the registry
+get         -- the method of a name, importing a built-in solver on first use
+names       -- every method's name: the built-in ones first, in report order
+BUILTIN     -- the built-in methods and the packages that register them
+"""
+from __future__ import annotations
+
+import importlib
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any, Callable
+
+if TYPE_CHECKING:  # pragma: no cover
+    from .results import FrettingResult, NormalResult, SlipResult
+
+__all__ = ["Method", "register", "get", "names", "BUILTIN"]
+
+#: the built-in methods, in report order (the closed form is the reference of the others),
+#: and the package whose import registers each
+BUILTIN: dict[str, str] = {"closedform": "threepart.closedform", "sie": "threepart.sie",
+                           "fem": "threepart.fem"}
+
+
+@dataclass(frozen=True)
+class Method:
+    """A method behind three calls (see the module docstring for their signatures).
+
+    Attributes
+    ----------
+    name
+        What ``method=`` names it by.
+    normal, slip, fretting
+        The calls; ``slip`` and ``fretting`` are None where the method has no
+        friction model.
+    options
+        The discretisation options its calls take (e.g. ``("n", "scheme")``).
+    framework_only
+        True if the method holds only inside the paper's framework and refuses
+        the rest (the closed form); ``method="auto"`` then falls back.
+    default_nu
+        Poisson's ratio the method assumes when none is given, for a method
+        that models bodies of finite size (the FEM); None for a half-plane
+        method, which depends on the material only through ``A``.
+    """
+
+    name: str
+    normal: Callable[..., NormalResult]
+    slip: Callable[..., SlipResult] | None = None
+    fretting: Callable[..., FrettingResult] | None = None
+    options: tuple[str, ...] = ()
+    framework_only: bool = False
+    default_nu: float | None = None
+
+    def check_options(self, options: dict[str, Any], called: str | None = None) -> None:
+        """``ValueError`` naming the first option this method does not take.
+
+        ``called`` is the name the user gave, when it differs (``"auto"``).
+        """
+        unknown = sorted(set(options) - set(self.options))
+        if unknown:
+            raise ValueError(f"`{unknown[0]}` is not an option of method {called or repr(self.name)} "
+                             f"(its options: {', '.join(self.options) or 'none'})")
+
+
+_REGISTRY: dict[str, Method] = {}
+
+
+def register(method: Method) -> Method:
+    """Add ``method`` to the registry (replacing one of the same name) and return it."""
+    if not isinstance(method, Method):
+        raise TypeError(f"`method` must be a threepart.registry.Method, not {type(method).__name__}")
+    _REGISTRY[method.name] = method
+    return method
+
+
+def names() -> tuple[str, ...]:
+    """Every method's name: the built-in ones in report order, then those registered since."""
+    return (*BUILTIN, *(n for n in _REGISTRY if n not in BUILTIN))
+
+
+def get(name: Any, also: tuple[str, ...] = ()) -> Method:
+    """The method called ``name``; a built-in solver package is imported on first use.
+
+    Raises
+    ------
+    ValueError
+        If no method of that name is registered; the message lists them, after
+        the names in ``also`` that the caller accepts besides (``"auto"``).
+    """
+    if isinstance(name, str) and name not in _REGISTRY and name in BUILTIN:
+        # the package registers itself on import; read its adapter again in case the
+        # package was imported earlier and its entry has been replaced since
+        register(importlib.import_module(f"{BUILTIN[name]}.method").METHOD)
+    try:
+        return _REGISTRY[name]
+    except (KeyError, TypeError):
+        raise ValueError(f"`method` = {name!r} must be one of "
+                         f"{', '.join((*also, *names()))}") from None
