@@ -42,7 +42,7 @@ from scipy.optimize import brentq
 from threepart.errors import NoConvergenceError, StickSeparationError
 from threepart.punch import Punch
 from threepart.results import MasingCycle, NormalResult
-from threepart.validate import check_shear, check_states
+from threepart.validate import SLIP_RATIO_LIMIT, check_shear, check_states
 
 from .normal import DEFAULT_N, DEFAULT_SCHEME, check_scheme, solve_ends
 from .projection import slope_coefficients
@@ -155,7 +155,8 @@ class SieFrettingResult(MasingCycle):
 
 def _check_fretting(normal: NormalResult, Q_max: float, f: float, states: int
                     ) -> tuple[float, float, int]:
-    Q_max, f = check_shear(normal, Q_max, f, "Q_max", "there is no fretting cycle")
+    Q_max, f = check_shear(normal, Q_max, f, "Q_max", "there is no fretting cycle",
+                           limit=SLIP_RATIO_LIMIT)
     return Q_max, f, check_states(states)
 
 

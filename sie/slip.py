@@ -22,7 +22,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from numpy.typing import ArrayLike
 
-from threepart.validate import check_shear
+from threepart.validate import SLIP_RATIO_LIMIT, check_shear
 from threepart.errors import NoConvergenceError, SeparationError, StickSeparationError
 from threepart.results import NormalResult, SlipResult
 
@@ -87,8 +87,11 @@ def _coulomb(normal: NormalResult, P_star: float, m: float, h: float) -> str | N
     return None
 
 
-#: load steps of the continuation from the contact (P* = P) to the stick zone's P*
+#: the least number of load steps of the continuation from the contact (P* = P) to P*
 CONTINUATION_STEPS = 16
+#: the largest ratio between the loads of two continuation steps (near full sliding
+#: P*/P is tiny, and the steps are geometric)
+CONTINUATION_RATIO = 2.0
 
 
 def _continuation(normal: NormalResult, P_star: float, sch: Plain | Projected
@@ -98,17 +101,29 @@ def _continuation(normal: NormalResult, P_star: float, sch: Plain | Projected
     Newton from the scaled contact can fall into a minimum of the residual
     that is not a root (a sharp corner arc next to the stick zone's end makes
     the tilt equation stiff); stepping ``P*`` down from ``P`` in
-    :data:`CONTINUATION_STEPS` equal steps, each started from the last, keeps
-    every start in its root's basin.
+    geometric steps (at least :data:`CONTINUATION_STEPS`, each at most a factor
+    :data:`CONTINUATION_RATIO`), each started from the last, keeps every start
+    in its root's basin.
     """
     m, h = 0.5 * (normal.c - normal.a), 0.5 * (normal.a + normal.c)
     its = 0
     res = 0.0
-    for k in range(1, CONTINUATION_STEPS + 1):
-        load = normal.P + (P_star - normal.P) * k / CONTINUATION_STEPS
-        m, h, _, it, res = solve_ends(normal.punch, normal.A, load, sch, alpha=normal.alpha,
-                                      m0=m, h0=h)
-        its += it
+    total = math.log(normal.P / P_star)          # the path in ln P*, from 0 to `total`
+    step = min(total / CONTINUATION_STEPS, math.log(CONTINUATION_RATIO))
+    done = 0.0
+    while done < total:
+        # a failed step is halved (a stick-zone end crossing a join makes the equations kink)
+        t = min(done + step, total)
+        load = P_star if t == total else normal.P * math.exp(-t)
+        try:
+            m1, h1, _, it, res = solve_ends(normal.punch, normal.A, load, sch, alpha=normal.alpha,
+                                            m0=m, h0=h)
+        except NoConvergenceError:
+            step *= 0.5
+            if step < 1e-6 * total:
+                raise
+            continue
+        m, h, done, its = m1, h1, t, its + it
     return m, h, its, res
 
 
@@ -195,14 +210,15 @@ def solve_partial_slip(normal: NormalResult, Q: float, f: float, *, n: int | Non
     TypeError
         ``normal`` not a NormalResult, a number of the wrong type.
     ValueError
-        For invalid input (``FullSlidingError`` for ``|Q| >= f P``).
+        For invalid input (``FullSlidingError`` for ``|Q| >= f P``, and for
+        ``|Q|/(fP)`` past ``threepart.validate.SLIP_RATIO_LIMIT = 1 - 1e-6``).
     StickSeparationError
         On a concave centre, when no single stick zone obeys Coulomb's law
         ``|q| <= f p`` (the true one splits in two).
     NoConvergenceError
         If the Newton iteration fails.
     """
-    Q, f = check_shear(normal, Q, f)
+    Q, f = check_shear(normal, Q, f, limit=SLIP_RATIO_LIMIT)
     n = int(normal.info.get("n", DEFAULT_N)) if n is None else n
     scheme = str(normal.info.get("scheme", DEFAULT_SCHEME)) if scheme is None else scheme
     sch = check_scheme(scheme, n)

@@ -7,6 +7,8 @@ import math
 import numpy as np
 import pytest
 
+from threepart.errors import SlopeLimitError
+
 from threepart.errors import SeparationError
 from hypothesis import given, settings
 from hypothesis import strategies as st
@@ -248,6 +250,11 @@ def test_lift_off_lever_arms_agree_with_closed_form(name):
     s_min, s_max = sie.lift_off(k.punch, k.P, k.A)
     rel = tol("sie-exact", "lift_off")
     assert s_min == pytest.approx(lo.s_min, rel=rel, abs=0) and s_max == pytest.approx(lo.s_max, rel=rel, abs=0)
+    if name == "nd_B":      # at its lift-off lever arm the tilt is past the small-slope limit
+        for solver in (sie, closedform):
+            with pytest.raises(SlopeLimitError, match="tilt alpha = -0.2"):
+                solver.solve_normal(k.punch, k.P, s_max * (1 - 1e-9), A=k.A)
+        return
     r = sie.solve_normal(k.punch, k.P, s_max, A=k.A)  # the left edge sits on the join
     assert r.a == pytest.approx(k.punch.b, rel=rel, abs=0)
 
@@ -255,3 +262,76 @@ def test_lift_off_lever_arms_agree_with_closed_form(name):
 def test_lift_off_needs_a_join():
     with pytest.raises(ValueError, match="b = 0"):
         sie.lift_off(Punch(1.0, 2.0, 0.0), 1.0, 1.0)
+
+
+# -- the fuzz's findings ------------------------------------------------------------------
+def test_a_tilt_past_the_small_slope_limit_is_refused():
+    """Punch(10, 5, 1) at s = 5: the SIE's answer was a tilt of -0.8 rad (46 degrees)."""
+    from threepart import solve
+
+    for method in ("sie", "auto"):
+        with pytest.raises(SlopeLimitError, match=r"tilt alpha = -0.8 rad\), past the small-slope"):
+            solve(Punch(10.0, 5.0, 1.0), 400.0, 5.0, A=8.67e-6, method=method)
+
+
+@pytest.mark.parametrize("s", [1e14, 1e16, 1e300, -6.0])
+def test_a_lever_arm_off_the_footprint_is_refused_before_any_numerics(s):
+    """At s = 1e14 the contact width was 4 % off, at 1e16 zero (a = -1e300) with exit status 0."""
+    from threepart import closedform
+
+    punch = Punch(5.0, 10.0, 1.0)
+    for solve_normal in (sie.solve_normal, closedform.solve_normal):
+        with pytest.raises(ValueError, match=r"`s` = .* lies outside the punch's footprint "
+                           r"\(-6, 11\) = \(-\(b \+ R1\), b \+ R2\)"):
+            solve_normal(punch, 400.0, s, A=8.67e-6)
+    with pytest.raises(ValueError, match="footprint"):
+        closedform.P_min(Punch(5.0, 10.0, 1.0, R=-20.0), 8.67e-6, s=s)
+
+
+def test_a_sharp_edge_arc_converges_and_agrees_with_the_closed_form():
+    """R1 = 0.0314 next to a flat centre: the residual's rounding floor is 5.9e-10 (was refused)."""
+    from threepart import closedform, rigid_punch
+
+    A = rigid_punch(210e3, 0.3)
+    punch, P, s = Punch(0.03140302943810751, 84.39590767832716, 1), 0.2933372464340942, -0.37321612887217803
+    r = sie.solve_normal(punch, P, s, A=A)
+    ref = closedform.solve_normal(punch, P, s, A=A)
+    assert abs(r.a - ref.a) <= 1e-8 * ref.width and abs(r.c - ref.c) <= 1e-8 * ref.width
+
+
+def test_the_pressure_is_zero_at_the_ends_past_lift_off():
+    """Past lift-off the pressure at x = c was 7.9e-5 (the end's rounding in (x - m)/h)."""
+    from threepart import closedform, rigid_punch
+
+    A = rigid_punch(210e3, 0.3)
+    punch = Punch(10.0, 10.0, 1.0)
+    s = 1.25 * closedform.lift_off(punch, 28846.0, A).s_max
+    r = sie.solve_normal(punch, 28846.0, s, A=A)
+    assert not r.within_paper
+    ends = np.array([-r.a, r.c, np.nextafter(r.c, np.inf), np.nextafter(-r.a, -np.inf), -1e3, 1e3])
+    assert np.all(r.pressure(ends) == 0.0)
+    assert float(r.pressure(np.nextafter(r.c, -np.inf))) >= 0.0
+
+
+@pytest.mark.parametrize("ratio", [1 - 1e-3, 1 - 1e-6])
+def test_partial_slip_next_to_full_sliding_converges(ratio):
+    """|Q|/(fP) >= 1 - 1e-6 failed to converge; Hertz's stick zone is d = a sqrt(1 - |Q|/fP)."""
+    from threepart import rigid_punch
+
+    A = rigid_punch(210e3, 0.3)
+    normal = sie.solve_normal(Punch(10.0, 10.0, 0.0), 1000.0, 0.2, A=A)
+    r = sie.solve_partial_slip(normal, ratio * 0.3 * 1000.0, 0.3)
+    h = 0.5 * normal.width
+    assert r.d == pytest.approx(h * math.sqrt(1 - ratio), rel=1e-6, abs=0)
+    assert abs(r.e + 0.2) <= 1e-8 * normal.width
+
+
+def test_partial_slip_closer_to_full_sliding_is_refused_by_name():
+    """Past 1 - 1e-6 (SLIP_RATIO_LIMIT) the SIE refuses: the stick zone is not resolved there."""
+    from threepart import rigid_punch
+    from threepart.errors import FullSlidingError
+
+    normal = sie.solve_normal(Punch(10.0, 10.0, 0.0), 1000.0, 0.2, A=rigid_punch(210e3, 0.3))
+    with pytest.raises(FullSlidingError, match=r"\|`Q`\|/\(f P\) = 0.999999.* is within 1e-06 of "
+                       r"full sliding, past 0.999999 \(threepart.validate.SLIP_RATIO_LIMIT\)"):
+        sie.solve_partial_slip(normal, (1 - 1e-8) * 0.3 * 1000.0, 0.3)

@@ -109,11 +109,6 @@ class NormalResult:
         return self.a + self.c
 
     @property
-    def slope(self) -> float:
-        """Largest surface slope ``max |v'(x)|`` over the contact, tilt included (eq. 2)."""
-        return self.punch.max_slope(self.a, self.c, self.alpha)
-
-    @property
     def segments(self) -> tuple[str, ...]:
         """The punch segments in contact, left to right: ``"R1"``, ``"centre"``, ``"R2"``.
 
