@@ -17,7 +17,7 @@ __all__ = ["newton", "bracket_root", "STEP_FLOOR"]
 STEP_FLOOR = 1e-10
 #: ... or if the residual (dimensionless: relative load error, tilt error over the load's
 #: slope scale) is below this, where the rounding of the moments' sums leaves it
-RESIDUAL_FLOOR = 1e-9
+RESIDUAL_FLOOR = 1e-8
 
 
 Residual = Callable[[np.ndarray], tuple[np.ndarray, np.ndarray]]
