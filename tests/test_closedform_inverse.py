@@ -158,6 +158,8 @@ def check_solve_then_forward_and_pressure(case):
         sol = cf.solve_normal(punch, P, s, A=Av)
     except cf.SeparationError:
         assume(False)  # concave centre that separates: inadmissible, tested separately
+    except (cf.SlopeLimitError, cf.ArcExtentError):
+        assume(False)  # past half-plane theory's limits: refused by name, tested in test_hostile
     # forward evaluation gives P and s back
     assert formulas.load(punch, sol.a, sol.c, Av) == pytest.approx(P, rel=1e-10)
     assert formulas.lever_arm(punch, sol.a, sol.c) == pytest.approx(s, rel=1e-10, abs=1e-10 * sol.width)
