@@ -23,12 +23,14 @@ fretting_cycle      -- Q: 0 -> Q_max -> -Q_max -> Q_max by Masing's rule: stick 
 Errors (from :mod:`threepart.errors`)
 ------
 LiftOffError, FullSlidingError, StickZoneError, SeparationError -- ValueError subclasses
+StickSeparationError -- a StickZoneError: a stick zone on a concave centre would break |q| <= f p
+ArcExtentError, SlopeLimitError -- a solved contact past an arc or past validate.SLOPE_LIMIT
 NoConvergenceError  -- a root did not close (never expected on admissible input)
 """
 from __future__ import annotations
 
-from threepart.errors import (FullSlidingError, LiftOffError, NoConvergenceError, SeparationError,
-                              StickZoneError)
+from threepart.errors import (ArcExtentError, FullSlidingError, LiftOffError, NoConvergenceError,
+                              SeparationError, SlopeLimitError, StickSeparationError, StickZoneError)
 from threepart.material import compliance, rigid_punch, similar_pair
 from threepart.punch import Punch
 from threepart.results import NormalResult, Peak, SlipResult
@@ -46,6 +48,7 @@ __all__ = [
     "solve_normal", "solve_normal_batch", "lift_off", "P_min", "solve_partial_slip", "fretting_cycle",
     "NormalSolution", "NormalBatch", "LiftOff", "SlipSolution", "FrettingSolution",
     "LiftOffError", "FullSlidingError", "StickZoneError", "SeparationError", "NoConvergenceError",
+    "StickSeparationError", "ArcExtentError", "SlopeLimitError",
 ]
 
 from . import method as _method  # registers this solver in threepart.registry

@@ -70,14 +70,14 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
-from threepart.errors import FullSlidingError, LiftOffError, NoConvergenceError, StickZoneError
+from threepart.errors import LiftOffError, NoConvergenceError, StickZoneError
 from threepart.punch import Punch
 from threepart.results import MasingCycle, NormalResult
-from threepart.validate import positive
+from threepart.validate import check_shear, check_states
 
 from . import formulas
 from .newton import ray_state, solve_phi
-from .slip import solve_partial_slip, stick_zone_bound
+from .slip import _leave, check_coulomb, solve_partial_slip, stick_zone_bound
 
 __all__ = ["FrettingSolution", "fretting_cycle", "approach", "stick_gap", "omega",
            "loop_energy"]
@@ -204,21 +204,15 @@ class FrettingSolution(MasingCycle):
         return np.where((x > -n.a) & (x < n.c), self.f * gap, 0.0)
 
 
-def _fretting_iv(normal: NormalResult, Q_max: float, f: float, states: int) -> tuple[float, float]:
-    if not isinstance(normal, NormalResult):
-        raise TypeError(f"`normal_solution` must be a NormalResult, not {type(normal).__name__}")
-    Q_max, f = positive("Q_max", Q_max), positive("f", f)
-    if isinstance(states, bool) or not isinstance(states, (int, np.integer)) or states < 2:
-        raise ValueError(f"`states` = {states!r} must be an integer >= 2 (both ends of each branch)")
+def _fretting_iv(normal: NormalResult, Q_max: float, f: float, states: int
+                 ) -> tuple[float, float, int]:
+    Q_max, f = check_shear(normal, Q_max, f, "Q_max", "there is no fretting cycle")
+    states = check_states(states)
     if not normal.within_paper:
         raise LiftOffError(f"`normal_solution` has its contact [{-normal.a:.6g}, {normal.c:.6g}] "
                            f"ending on the central segment [-b, b] = [{-normal.punch.b:g}, "
                            f"{normal.punch.b:g}], outside the closed form")
-    if Q_max >= f * normal.P:
-        raise FullSlidingError(
-            f"`Q_max` = {Q_max:.6g} >= f P = {f * normal.P:.6g} (`f` = {f:g}, `P` = {normal.P:.6g}): "
-            "the contact slides as a whole (full sliding), there is no fretting cycle")
-    return Q_max, f
+    return Q_max, f, states
 
 
 def _stick_zones(normal: NormalResult, u: np.ndarray, f: float, Q_max: float
@@ -241,11 +235,10 @@ def _stick_zones(normal: NormalResult, u: np.ndarray, f: float, Q_max: float
         # u = 0 is the contact itself, exact below; it may sit on a join at lift-off
         ok = not bool(np.any((below | above) & (u > 0)))
     if not ok:
-        b = punch.b
         raise StickZoneError(
-            f"`Q_max`/(f P) = {Q_max / (f * normal.P):.6g}: the stick zone at `Q_max` would end "
-            f"inside the central segment [-b, b] = [{-b:g}, {b:g}], where the closed form does "
-            f"not hold; it holds for `Q_max`/(f P) < {stick_zone_bound(normal):.6g}")
+            f"`Q_max`/(f P) = {Q_max / (f * normal.P):.6g}: the stick zone at `Q_max` would "
+            f"{_leave(punch.b)}, where the closed form does not hold; it holds for "
+            f"`Q_max`/(f P) < {stick_zone_bound(normal):.6g}")
     st = ray_state(punch, r, phi, np, full=False)
     return np.where(u > 0, st.a, normal.a), np.where(u > 0, st.c, normal.c)
 
@@ -315,17 +308,23 @@ def fretting_cycle(normal_solution: NormalResult, Q_max: float, f: float, *,
     StickZoneError
         The stick zone at ``Q_max`` (the smallest of the cycle) would end inside
         the central segment; the message gives the bound on ``Q_max/(f P)``.
+        ``StickSeparationError`` (a subclass): a recorded stick zone on a
+        concave centre breaks Coulomb's law (:func:`closedform.slip.check_coulomb`).
+    TypeError
+        ``normal_solution`` not a NormalResult, ``states`` not an integer.
     LiftOffError
         The normal solution's contact ends on the central segment.
     NoConvergenceError
         The energy quadrature did not settle (not expected).
     """
     normal = normal_solution
-    Q_max, f = _fretting_iv(normal, Q_max, f, states)
+    Q_max, f, states = _fretting_iv(normal, Q_max, f, states)
     t0 = time.perf_counter()
     punch, A, alpha = normal.punch, normal.A, normal.alpha
     u = np.linspace(0.0, Q_max, states)
     a_s, c_s = _stick_zones(normal, u, f, Q_max)
+    for i in range(1, states):      # Coulomb's law in every recorded loading state (concave centre)
+        check_coulomb(normal, float(a_s[i]), float(c_s[i]), float(u[i]) / (f * normal.P))
     F = f * (approach(punch, normal.a, normal.c, A, alpha) - approach(punch, a_s, c_s, A, alpha))
     F[0] = 0.0
     energy, nodes = _energy(normal, Q_max, f)

@@ -25,7 +25,8 @@ from scipy.optimize import minimize_scalar
 from threepart.errors import LiftOffError, SeparationError
 from threepart.punch import Punch
 from threepart.results import NormalResult
-from threepart.validate import LENGTH_RANGE, check_tilt, finite, positive
+from threepart.validate import (LENGTH_RANGE, check_contact, check_punch, check_tilt, lever_arm, load_scale, positive,
+                                reals)
 
 from . import formulas
 from .newton import HALF_PI, SCALAR, State, _r_guess, ray_state, solve_phi, solve_r
@@ -97,9 +98,9 @@ def P_min(punch: Punch, A: float, s: float = 0.0, tilt: str = "free") -> float:
       tensile and the contact would split in two (:class:`SeparationError`).
       It is the root of ``min_{|x|<=b} p(x) = 0`` in ``P``, found by bracketing.
     """
-    _punch_iv(punch)
+    check_punch(punch)
     A = positive("A", A)
-    s = finite("s", s)
+    s = lever_arm(punch, s)
     tilt = check_tilt(tilt)
     if punch.kappa0 >= 0 or punch.b == 0:
         return max(P_0(punch, A), 0.0)
@@ -107,30 +108,20 @@ def P_min(punch: Punch, A: float, s: float = 0.0, tilt: str = "free") -> float:
 
 
 # -- input validation ----------------------------------------------------------
-def _punch_iv(punch: Punch) -> None:
-    if not isinstance(punch, Punch):
-        raise TypeError(f"`punch` must be a threepart.Punch, not {type(punch).__name__}")
-
-
 def _normal_iv(punch: Punch, P: np.ndarray, A: float, tilt: str) -> float:
-    """Validate before any numerics; return ``A`` as a float."""
-    _punch_iv(punch)
+    """Validate before any numerics (``P`` already float64); return ``A`` as a float."""
+    check_punch(punch)
     A = positive("A", A)
     check_tilt(tilt)
     bad = ~np.isfinite(P) | (P <= 0)
     if bad.any():
         i = int(np.argmax(bad))
         raise ValueError(f"`P` = {float(P.flat[i])!r} must be a finite compressive load > 0")
-    # the contact scale sqrt(2 A P R) and its cube must stay representable
-    lo, hi = LENGTH_RANGE[0] ** 2, LENGTH_RANGE[1] ** 2
-    with np.errstate(over="ignore", under="ignore"):
-        scale = A * P * max(punch.R1, punch.R2, punch.b)
-    out = (scale < lo) | (scale > hi)
+    out = (P < LENGTH_RANGE[0]) | (P > LENGTH_RANGE[1])
     if out.any():
-        i = int(np.argmax(out))
-        raise ValueError(
-            f"`P` = {float(P.flat[i])!r} gives A P max(R1, R2, b) = {float(scale.flat[i]):.3g}, outside "
-            f"[{lo:g}, {hi:g}] (length^2), the range this library computes in double precision")
+        positive("P", float(P.flat[int(np.argmax(out))]))     # raises, naming the range
+    # the contact scale sqrt(2 A P R) and its cube must stay representable
+    load_scale(punch, P, A)
     pmin = P_0(punch, A)
     low = P <= pmin
     if low.any():
@@ -279,7 +270,14 @@ def solve_normal(punch: Punch, P: float, s: float = 0.0, *, A: float,
     Raises
     ------
     ValueError
-        Non-finite, non-positive or unrepresentably large ``P``/``A``, an unknown ``tilt``.
+        Non-finite, non-positive or unrepresentably large ``P``/``A`` (outside
+        ``LENGTH_RANGE``), an unknown ``tilt``, ``s`` outside the punch's
+        footprint ``(-(b + R1), b + R2)`` (:func:`threepart.validate.lever_arm`).
+    TypeError
+        A ``punch`` that is not a :class:`Punch`, a number of the wrong type.
+    ArcExtentError, SlopeLimitError
+        The solved contact runs past an arc's extent or past the small-slope
+        limit (:func:`threepart.validate.check_contact`).
     LiftOffError
         ``s`` outside the lift-off lever arms, or ``P`` at or below :func:`P_min` of a convex centre.
     SeparationError
@@ -287,7 +285,8 @@ def solve_normal(punch: Punch, P: float, s: float = 0.0, *, A: float,
     NoConvergenceError
         Never expected for admissible input: a bracketed root did not close.
     """
-    P, s = finite("P", P), finite("s", s)
+    check_punch(punch)
+    P, s = positive("P", P), lever_arm(punch, s)
     if tilt == "suppressed" and s != 0:
         raise ValueError(f"`s` = {s!r} is an output when tilt='suppressed' (the lever arm s*); pass s=0")
     A = _normal_iv(punch, np.array([P]), A, tilt)
@@ -297,6 +296,7 @@ def solve_normal(punch: Punch, P: float, s: float = 0.0, *, A: float,
                          np.array([above]))
     alpha, s = (st.alpha, s) if tilt == "free" else (0.0, st.T / st.AP)
     _check_separation(punch, np.array([st.a]), np.array([st.c]), A, np.array([P]), np.array([s]), tilt)
+    check_contact(punch, st.a, st.c, alpha)
     return NormalSolution(punch, A, st.a, st.c, alpha, P, s, tilt)
 
 
@@ -307,12 +307,17 @@ def solve_normal_batch(punch: Punch, P: ArrayLike, s: ArrayLike = 0.0, *, A: flo
     ``P`` and ``s`` broadcast against each other; the first inadmissible case
     raises the same error :func:`solve_normal` would, with its values.
     """
-    P_arr, s_arr = np.broadcast_arrays(np.asarray(P, float).ravel(), np.asarray(s, float).ravel())
+    check_punch(punch)
+    P_arr, s_arr = np.broadcast_arrays(reals("P", P), reals("s", s))
     P_arr, s_arr = P_arr.copy(), s_arr.copy()
     A = _normal_iv(punch, P_arr, A, tilt)
-    bad = ~np.isfinite(s_arr)
+    bad = ~((s_arr > -(punch.b + punch.R1)) & (s_arr < punch.b + punch.R2))
     if bad.any():
-        raise ValueError(f"`s` = {float(s_arr[int(np.argmax(bad))])!r} must be a finite lever arm")
+        i = int(np.argmax(bad))
+        try:
+            lever_arm(punch, s_arr[i])
+        except ValueError as exc:
+            raise type(exc)(f"case {i}: {exc}") from None
     if tilt == "suppressed" and np.any(s_arr != 0):
         raise ValueError("`s` is an output when tilt='suppressed' (the lever arm s*); pass s=0")
     st, below, above = _solve(punch, P_arr, s_arr, A, tilt, np)
@@ -321,6 +326,11 @@ def solve_normal_batch(punch: Punch, P: ArrayLike, s: ArrayLike = 0.0, *, A: flo
     alpha = st.alpha if tilt == "free" else np.zeros_like(st.h)
     s_out = s_arr if tilt == "free" else st.T / st.AP
     _check_separation(punch, st.a, st.c, A, P_arr, s_out, tilt)
+    for i in range(P_arr.size):      # the first case past the arcs or the slope limit is named
+        try:
+            check_contact(punch, float(st.a[i]), float(st.c[i]), float(alpha[i]))
+        except ValueError as exc:
+            raise type(exc)(f"case {i} (`P` = {P_arr[i]:.6g}, `s` = {s_out[i]:.6g}): {exc}") from None
     return NormalBatch(punch, A, st.a, st.c, alpha, P_arr, s_out, tilt)
 
 
@@ -330,7 +340,8 @@ def lift_off(punch: Punch, P: float, A: float) -> LiftOff:
     ``s_min`` is where the right edge reaches the join (``c -> b``): ``a_min``
     solves ``P_lift-off(a) = P``. ``s_max`` is the mirror image (``a -> b``).
     """
-    P = finite("P", P)
+    check_punch(punch)
+    P = positive("P", P)
     A = _normal_iv(punch, np.array([P]), A, "free")
     lo, hi = _lift_off_states(punch, P, A, SCALAR)
     return LiftOff(P=P, s_min=lo.T / lo.AP, s_max=hi.T / hi.AP, a_min=lo.a, c_max=hi.c)

@@ -19,13 +19,22 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
+from scipy.optimize import minimize_scalar
+
 from . import formulas
-from threepart.errors import FullSlidingError, StickZoneError
-from threepart.validate import finite, positive
+from threepart.errors import StickSeparationError, StickZoneError
+from threepart.validate import check_shear
 from .newton import HALF_PI, SCALAR, bracketed_root, ray_state, solve_phi
 from threepart.results import NormalResult, SlipResult
 
-__all__ = ["SlipSolution", "solve_partial_slip", "stick_zone_bound"]
+__all__ = ["SlipSolution", "solve_partial_slip", "stick_zone_bound", "coulomb_margin",
+           "check_coulomb", "COULOMB_RTOL"]
+
+#: ``p*`` may dip below 0 (or above ``p``) by this fraction of the mean pressure ``P/(a+c)``
+#: before the stick zone is refused: the closed forms' rounding, with a wide margin
+COULOMB_RTOL = 1e-9
+#: grid points per segment piece on which a minimum is bracketed before Brent refines it
+_GRID = 65
 
 
 @dataclass(frozen=True)
@@ -41,15 +50,85 @@ class SlipSolution(SlipResult):
             np.zeros(np.shape(x))
 
 
-def _slip_iv(normal: NormalResult, Q: float, f: float) -> tuple[float, float]:
-    if not isinstance(normal, NormalResult):
-        raise TypeError(f"`normal_solution` must be a NormalResult, not {type(normal).__name__}")
-    Q, f = finite("Q", Q), positive("f", f)
-    if abs(Q) >= f * normal.P:
-        raise FullSlidingError(
-            f"|`Q`| = {abs(Q):.6g} >= f P = {f * normal.P:.6g} (`f` = {f:g}, `P` = {normal.P:.6g}): "
-            "the contact slides as a whole (full sliding), there is no stick zone")
-    return Q, f
+def _least(fun, lo: float, hi: float) -> tuple[float, float]:
+    """``(x, fun(x))`` at the least value of ``fun`` on ``[lo, hi]``: a grid brackets it, Brent refines.
+
+    ``fun`` is smooth on ``[lo, hi]`` (one segment of the punch), so the least
+    grid point's neighbours bracket the minimum, found to ``1e-12 (hi - lo)``.
+    """
+    xg = np.linspace(lo, hi, _GRID)
+    v = fun(xg)
+    i = int(np.argmin(v))
+    best = (float(xg[i]), float(v[i]))
+    left, right = xg[max(i - 1, 0)], xg[min(i + 1, xg.size - 1)]
+    if right > left:
+        r = minimize_scalar(lambda t: float(fun(np.array([t]))[0]), bounds=(left, right),
+                            method="bounded", options={"xatol": 1e-12 * (hi - lo)})
+        if r.fun < best[1]:
+            best = (float(r.x), float(r.fun))
+    return best
+
+
+def coulomb_margin(normal: NormalResult, a_star: float, c_star: float
+                   ) -> tuple[tuple[float, float], tuple[float, float]]:
+    """Least ``p*`` and least ``p - p*`` on the stick zone ``[-a*, c*]``, with their positions.
+
+    ``|q| = f |p - p*| <= f p`` on the stick zone holds exactly when both are
+    ``>= 0``. ``p*`` is eq. (pressure_abbreviated) on ``[-a*, c*]`` and ``p``
+    the normal solution's pressure; both are smooth on each segment, so each
+    piece of the stick zone between the joins ``x = ±b`` (ends and joins
+    included) is searched by :func:`_least`.
+
+    Returns
+    -------
+    (x, p*_min), (x, (p - p*)_min)
+    """
+    punch, A = normal.punch, normal.A
+    cuts = sorted({-a_star, c_star, *(t for t in (-punch.b, punch.b) if -a_star < t < c_star)})
+
+    def p_star(x: np.ndarray) -> np.ndarray:
+        return formulas.pressure(punch, a_star, c_star, A, x)
+
+    def excess(x: np.ndarray) -> np.ndarray:
+        return normal.pressure(x) - p_star(x)
+
+    out = []
+    for fun in (p_star, excess):
+        out.append(min((_least(fun, lo, hi) for lo, hi in zip(cuts[:-1], cuts[1:])),
+                       key=lambda t: t[1]))
+    return out[0], out[1]
+
+
+def check_coulomb(normal: NormalResult, a_star: float, c_star: float, ratio: float) -> None:
+    """Refuse a stick zone ``[-a*, c*]`` whose shear would break Coulomb's law.
+
+    The Ciavarella–Jäger shear ``q = f (p - p*)`` obeys ``|q| <= f p`` only if
+    ``0 <= p* <= p`` on the stick zone. A convex or flat centre (``R > 0``)
+    satisfies it by construction: its corrective pressure is a contact
+    pressure of a convex profile, positive, and grows with the load. A
+    concave centre can fail, so there it is checked at the exact minima
+    (:func:`coulomb_margin`); ``ratio`` is ``|Q|/(fP)``, for the message.
+
+    Raises
+    ------
+    StickSeparationError
+        If ``p* < 0`` or ``p* > p`` somewhere on the stick zone (beyond
+        :data:`COULOMB_RTOL` of the mean pressure).
+    """
+    if normal.punch.kappa0 >= 0 or normal.punch.b == 0:
+        return
+    (x1, pmin), (x2, emin) = coulomb_margin(normal, a_star, c_star)
+    tol = COULOMB_RTOL * normal.P / (normal.a + normal.c)
+    if pmin >= -tol and emin >= -tol:
+        return
+    why = (f"its corrective pressure p* = {pmin:.4g} < 0 at x = {x1:.6g}, so |q| > f p there"
+           if pmin < -tol else
+           f"its corrective pressure exceeds p by {-emin:.4g} at x = {x2:.6g}, so q changes sign there")
+    raise StickSeparationError(
+        f"`Q`/(f P) = {ratio:.6g}: the single stick zone [{-a_star:.6g}, {c_star:.6g}] of the "
+        f"Ciavarella–Jäger superposition on the concave centre R = {normal.punch.R:g} breaks "
+        f"Coulomb's law: {why}; the true stick zone is not this single interval (it splits in "
+        "two or rests on one flank)")
 
 
 def stick_zone_bound(normal: NormalResult) -> float:
@@ -65,8 +144,6 @@ def stick_zone_bound(normal: NormalResult) -> float:
     """
     punch, A, alpha = normal.punch, normal.A, normal.alpha
     P0 = 0.5 * math.pi * punch.kappa0 * punch.b**2 / A
-    if punch.b == 0:
-        return 1.0
     if alpha == 0:
         return max(1.0 - P0 / normal.P, 0.0) if P0 > 0 else 1.0
     phi, sign = (0.0, 1.0) if alpha > 0 else (HALF_PI, -1.0)
@@ -100,7 +177,7 @@ def solve_partial_slip(normal_solution: NormalResult, Q: float, f: float) -> Sli
         the ``|Q|/(fP)`` bound of the closed form.
     """
     normal = normal_solution
-    Q, f = _slip_iv(normal, Q, f)
+    Q, f = check_shear(normal, Q, f)
     punch, A = normal.punch, normal.A
     ratio = abs(Q) / (f * normal.P)
     dAP = A * (normal.P - abs(Q) / f) - 0.5 * math.pi * punch.kappa0 * punch.b**2
@@ -109,10 +186,16 @@ def solve_partial_slip(normal_solution: NormalResult, Q: float, f: float) -> Sli
         r, phi, below, above = solve_phi(punch, dAP, "tilt", normal.alpha, SCALAR, sign=-1.0)
         inside = not (below or above)
     if not inside:
-        b = punch.b
         raise StickZoneError(
-            f"`Q`/(f P) = {ratio:.6g}: the stick zone would end inside the central segment "
-            f"[-b, b] = [{-b:g}, {b:g}], where the closed form does not hold; it holds for "
-            f"|Q|/(f P) < {stick_zone_bound(normal):.6g}")
+            f"`Q`/(f P) = {ratio:.6g}: the stick zone would {_leave(punch.b)}, where the closed "
+            f"form does not hold; it holds for |Q|/(f P) < {stick_zone_bound(normal):.6g}")
     st = ray_state(punch, r, phi, SCALAR)
+    check_coulomb(normal, st.a, st.c, ratio)
     return SlipSolution(normal=normal, Q=Q, f=f, d=st.h, e=-st.m)
+
+
+def _leave(b: float) -> str:
+    """Where a stick zone outside the closed form ends: on the centre, or short of the join (b = 0)."""
+    if b == 0:
+        return "not contain the join x = 0 of the two arcs (it lies on one arc)"
+    return f"end inside the central segment [-b, b] = [{-b:g}, {b:g}]"

@@ -39,15 +39,15 @@ import numpy as np
 from numpy.typing import ArrayLike
 from scipy.optimize import brentq
 
-from threepart.errors import FullSlidingError, NoConvergenceError
+from threepart.errors import NoConvergenceError, StickSeparationError
 from threepart.punch import Punch
 from threepart.results import MasingCycle, NormalResult
-from threepart.validate import check_positive
+from threepart.validate import SLIP_RATIO_LIMIT, check_shear, check_states
 
 from .normal import DEFAULT_N, DEFAULT_SCHEME, check_scheme, solve_ends
 from .projection import slope_coefficients
 from .schemes import Plain, Projected
-from .slip import solve_partial_slip
+from .slip import _continuation, _coulomb, solve_partial_slip
 
 __all__ = ["SieFrettingResult", "fretting_cycle", "mean_profile", "approach", "stick_gap"]
 
@@ -153,15 +153,11 @@ class SieFrettingResult(MasingCycle):
         return np.where((x > -nrm.a) & (x < nrm.c), self.f * gap, 0.0)
 
 
-def _check_fretting(normal: NormalResult, Q_max: float, f: float, states: int) -> None:
-    if not isinstance(normal, NormalResult):
-        raise ValueError(f"`normal` = {normal!r} must be a NormalResult (from solve_normal)")
-    check_positive(Q_max=Q_max, f=f)
-    if isinstance(states, bool) or not isinstance(states, (int, np.integer)) or states < 2:
-        raise ValueError(f"`states` = {states!r} must be an integer >= 2 (both ends of each branch)")
-    if Q_max >= f * normal.P:
-        raise FullSlidingError(f"`Q_max` = {Q_max:g} must satisfy Q_max < f P = {f * normal.P:g} "
-                               f"(`f` = {f:g}; at Q_max = f P the contact slides as a whole)")
+def _check_fretting(normal: NormalResult, Q_max: float, f: float, states: int
+                    ) -> tuple[float, float, int]:
+    Q_max, f = check_shear(normal, Q_max, f, "Q_max", "there is no fretting cycle",
+                           limit=SLIP_RATIO_LIMIT)
+    return Q_max, f, check_states(states)
 
 
 class _Zones:
@@ -177,8 +173,11 @@ class _Zones:
         if u == 0:
             return self.m0, self.h0
         P_star = nrm.P - u / self.f
-        m, h, _, _, _ = solve_ends(nrm.punch, nrm.A, P_star, self.sch, alpha=nrm.alpha, m0=self.m0,
-                                   h0=self.h0 * math.sqrt(P_star / nrm.P))
+        try:
+            m, h, _, _, _ = solve_ends(nrm.punch, nrm.A, P_star, self.sch, alpha=nrm.alpha,
+                                       m0=self.m0, h0=self.h0 * math.sqrt(P_star / nrm.P))
+        except NoConvergenceError:
+            m, h, _, _ = _continuation(nrm, P_star, self.sch)
         self.solves += 1
         if m - h < -nrm.a * (1 + 1e-12) or m + h > nrm.c * (1 + 1e-12):
             raise ValueError(f"stick zone [{m - h:.6g}, {m + h:.6g}] at u = {u:g} leaves the contact "
@@ -259,14 +258,17 @@ def fretting_cycle(normal: NormalResult, Q_max: float, f: float, *, n: int | Non
 
     Raises
     ------
+    TypeError
+        ``normal`` not a NormalResult, ``states`` not an integer.
     ValueError
-        ``Q_max`` or ``f`` not finite and > 0, ``states`` < 2
+        ``Q_max`` or ``f`` not finite and > 0, ``states`` outside ``[2, MAX_STATES]``
         (``FullSlidingError`` for ``Q_max >= f P``).
+    StickSeparationError
+        A recorded stick zone on a concave centre breaks Coulomb's law.
     NoConvergenceError
         A stick zone or the energy quadrature did not converge.
     """
-    _check_fretting(normal, Q_max, f, states)
-    Q_max, f = float(Q_max), float(f)
+    Q_max, f, states = _check_fretting(normal, Q_max, f, states)
     n = int(normal.info.get("n", DEFAULT_N)) if n is None else n
     scheme = str(normal.info.get("scheme", DEFAULT_SCHEME)) if scheme is None else scheme
     sch = check_scheme(scheme, n)
@@ -274,6 +276,13 @@ def fretting_cycle(normal: NormalResult, Q_max: float, f: float, *, n: int | Non
     zones = _Zones(normal, f, sch)
     u = np.linspace(0.0, Q_max, states)
     mh = np.array([zones(float(v)) for v in u])
+    for v, (m, h) in zip(u[1:], mh[1:]):    # Coulomb's law in every recorded loading state
+        why = _coulomb(normal, normal.P - v / f, m, h)
+        if why is not None:
+            raise StickSeparationError(
+                f"`Q`/(f P) = {v / (f * normal.P):.6g} of the cycle's loading branch: the stick zone "
+                f"[{m - h:.6g}, {m + h:.6g}] on the concave centre R = {normal.punch.R:g} breaks "
+                f"Coulomb's law: {why}")
     punch, A, alpha = normal.punch, normal.A, normal.alpha
     D0 = approach(punch, A, alpha, normal.P, zones.m0, zones.h0)
     F = np.array([f * (D0 - approach(punch, A, alpha, normal.P - v / f, m, h)) if v > 0 else 0.0

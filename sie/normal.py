@@ -29,7 +29,8 @@ from scipy.optimize import brentq
 
 from threepart.punch import Punch
 
-from threepart.validate import check_finite, check_positive, check_tilt
+from threepart.validate import (check_contact, check_punch, check_tilt, lever_arm, load_scale,
+                                positive)
 from threepart.errors import NoConvergenceError, SeparationError
 from threepart.results import NormalResult
 
@@ -80,15 +81,16 @@ def check_scheme(scheme: str, n: int) -> Plain | Projected:
 
 
 def _check_normal(punch: Punch, P: float, s: float, A: float, tilt: str, n: int,
-                  scheme: str) -> Plain | Projected:
-    if not isinstance(punch, Punch):
-        raise ValueError(f"`punch` = {punch!r} must be a threepart.Punch")
-    check_positive(P=P, A=A)
-    check_finite(s=s)
+                  scheme: str) -> tuple[float, float, float, Plain | Projected]:
+    """Validate before any numerics; return ``P``, ``s``, ``A`` as float64 and the scheme."""
+    check_punch(punch)
+    P, A = positive("P", P), positive("A", A)
+    s = lever_arm(punch, s)
     check_tilt(tilt)
     if tilt == "suppressed" and s != 0:
         raise ValueError(f"`s` = {s!r} must be 0 with tilt='suppressed': the centroid is returned")
-    return check_scheme(scheme, n)
+    load_scale(punch, P, A)
+    return P, s, A, check_scheme(scheme, n)
 
 
 def solve_ends(punch: Punch, A: float, P: float, sch: Plain | Projected, *,
@@ -281,12 +283,21 @@ def solve_normal(punch: Punch, P: float, s: float = 0.0, *, A: float, tilt: str 
 
     Raises
     ------
+    TypeError
+        A ``punch`` that is not a :class:`Punch`, a number or ``n`` of the wrong type.
     ValueError
-        For invalid input, or a load too small to close a concave centre.
+        For invalid input: ``P``, ``A`` outside ``LENGTH_RANGE``, ``s`` outside
+        the punch's footprint (:func:`threepart.validate.lever_arm`), ``n``
+        outside ``[2, MAX_N]``.
+    SeparationError
+        A concave centre whose single contact would be tensile or penetrate.
+    ArcExtentError, SlopeLimitError
+        The solved contact runs past an arc or past the small-slope limit
+        (:func:`threepart.validate.check_contact`).
     NoConvergenceError
         If the Newton iteration fails.
     """
-    sch = _check_normal(punch, P, s, A, tilt, n, scheme)
+    P, s, A, sch = _check_normal(punch, P, s, A, tilt, n, scheme)
     t0 = time.perf_counter()
     target: dict[str, float] = {"s": s} if tilt == "free" else {"alpha": 0.0}
     try:
@@ -319,6 +330,7 @@ def solve_normal(punch: Punch, P: float, s: float = 0.0, *, A: float, tilt: str 
             f"`P` = {P:g} with `s` = {s:g}: no single contact of the concave centre R = "
             f"{punch.R:g} carries the load; the contact separates into two zones")
     m, h, G, its, res, alpha, s_out = chosen
+    check_contact(punch, h - m, h + m, alpha)
     density, extra = sch.pressure(punch, A, m, h)
     info = {"n": sch.n, "scheme": sch.name, "iterations": its, "residual": res,
             "time_s": time.perf_counter() - t0, **extra}
@@ -336,9 +348,9 @@ def lift_off(punch: Punch, P: float, A: float) -> tuple[float, float]:
     admissible range (its edges on the outer segments) can be checked
     independently. Beyond it :func:`solve_normal` still solves.
     """
-    if not isinstance(punch, Punch):
-        raise ValueError(f"`punch` = {punch!r} must be a closedform.geometry.Punch")
-    check_positive(P=P, A=A)
+    check_punch(punch)
+    P, A = positive("P", P), positive("A", A)
+    load_scale(punch, P, A)
     if punch.b == 0:
         raise ValueError("`punch`.b = 0: there is no join to lift off from (case C / Hertz)")
     sch = Projected(2)

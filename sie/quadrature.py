@@ -26,6 +26,8 @@ from functools import lru_cache
 import numpy as np
 import scipy.linalg
 
+from threepart.validate import integer
+
 __all__ = ["GaussChebyshevRule", "gauss_chebyshev", "cauchy_matrix", "PlainFunctionals",
            "plain_functionals"]
 
@@ -55,13 +57,19 @@ class GaussChebyshevRule:
         return np.arange(1, self.n + 1) * np.pi / (self.n + 1)
 
 
+#: the largest ``n`` (nodes or sine terms) a solve accepts: the projected scheme's cost and
+#: memory grow with ``n`` (2**16 terms: ~0.01 s and a few MB per normal solve), the plain
+#: scheme is capped lower (``sie.normal.MAX_PLAIN_N``); ``n = 10**9`` would not return
+MAX_N = 2**16
+
+
 def check_n(n: int) -> int:
-    """``n`` as an ``int``; ``ValueError`` unless it is an integer >= 2."""
-    if isinstance(n, bool) or not isinstance(n, (int, np.integer)):
-        raise ValueError(f"`n` = {n!r} must be an integer >= 2")
-    if n < 2:
-        raise ValueError(f"`n` = {n!r} must be >= 2 (the load and centroid need T_1 and T_2)")
-    return int(n)
+    """``n`` as an ``int`` in ``[2, MAX_N]`` (:func:`threepart.validate.integer`).
+
+    A bool or a non-integer is a ``TypeError``; at least 2 terms carry the
+    load and the centroid (``T_1``, ``T_2``).
+    """
+    return integer("n", n, 2, MAX_N)
 
 
 def gauss_chebyshev(n: int) -> GaussChebyshevRule:

@@ -8,7 +8,16 @@ from scipy.optimize import brentq
 
 from threepart.errors import NoConvergenceError
 
-__all__ = ["newton", "bracket_root"]
+__all__ = ["newton", "bracket_root", "STEP_FLOOR"]
+
+#: A Newton step below this fraction of ``h`` is at the rounding floor: where the line
+#: search cannot lower the residual any further (a sharp edge arc makes the residual's
+#: rounding level ~1e-9, far above ``tol``), the iterate is accepted if the full step
+#: would move the ends by less than this (they are then known to ~1e-10 of the width).
+STEP_FLOOR = 1e-10
+#: ... or if the residual (dimensionless: relative load error, tilt error over the load's
+#: slope scale) is below this, where the rounding of the moments' sums leaves it
+RESIDUAL_FLOOR = 1e-8
 
 
 Residual = Callable[[np.ndarray], tuple[np.ndarray, np.ndarray]]
@@ -60,7 +69,9 @@ def newton(fun: Residual, z0: np.ndarray, *, what: str, tol: float = 1e-14,
                     break
             lam *= 0.5
             if lam < 1e-10:
-                if norm <= 1e3 * tol:  # at rounding level: accept
+                # at rounding level: accept (the residual, or the full step, is at its floor)
+                if (norm <= max(1e3 * tol, RESIDUAL_FLOOR)
+                        or float(np.linalg.norm(dz)) <= STEP_FLOOR * z[1]):
                     return z, it, norm
                 raise NoConvergenceError(
                     f"{what}: line search failed at (m, h) = {tuple(z)}, residual {norm:.3g}")

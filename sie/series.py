@@ -75,7 +75,9 @@ class ChebyshevPressure:
     def __call__(self, x: ArrayLike) -> np.ndarray:
         x = np.asarray(x, dtype=float)
         s = (x - self.m) / self.h
-        inside = np.abs(s) < 1.0
+        # the open interval by its ends, as the result reports them (a = h - m, c = h + m):
+        # exactly 0 at and beyond them, whatever the rounding of (x - m)/h
+        inside = (x > self.m - self.h) & (x < self.m + self.h) & (np.abs(s) < 1.0)
         theta = np.arccos(np.clip(s, -1.0, 1.0))
         p = sine_series(self.g, theta)
         for w, tb in self.kinks:

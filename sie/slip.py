@@ -22,14 +22,16 @@ from dataclasses import dataclass, field
 import numpy as np
 from numpy.typing import ArrayLike
 
-from threepart.validate import check_finite, check_positive
-from threepart.errors import FullSlidingError
+from threepart.validate import SLIP_RATIO_LIMIT, check_shear
+from threepart.errors import NoConvergenceError, SeparationError, StickSeparationError
 from threepart.results import NormalResult, SlipResult
 
-from .normal import DEFAULT_N, DEFAULT_SCHEME, check_scheme, solve_ends
+from .normal import (DEFAULT_N, DEFAULT_SCHEME, _check_single_contact, _scan_ends, check_scheme,
+                     solve_ends)
+from .schemes import Plain, Projected
 from .series import ChebyshevPressure
 
-__all__ = ["SieSlipResult", "solve_partial_slip"]
+__all__ = ["SieSlipResult", "solve_partial_slip", "stick_zone"]
 
 
 @dataclass(frozen=True)
@@ -59,14 +61,121 @@ class SieSlipResult(SlipResult):
             if self.Q != 0 else np.zeros(np.shape(x))
 
 
-def _check_slip(normal: NormalResult, Q: float, f: float) -> None:
-    if not isinstance(normal, NormalResult):
-        raise ValueError(f"`normal` = {normal!r} must be a NormalResult (from solve_normal)")
-    check_positive(f=f)
-    check_finite(Q=Q)
-    if abs(Q) >= f * normal.P:
-        raise FullSlidingError(f"`Q` = {Q:g} must satisfy |Q| < f P = {f * normal.P:g} "
-                               "(at |Q| = f P the contact slides as a whole)")
+def _coulomb(normal: NormalResult, P_star: float, m: float, h: float) -> str | None:
+    """Why the stick zone ``m ± h`` (load ``P_star``) breaks Coulomb's law, or None if it does not.
+
+    ``|q| <= f p`` needs ``0 <= p* <= p`` on the stick zone; the slip in the
+    slip zones opposes the shear only if the corrective contact's gap stays
+    open outside the stick zone. Only a concave centre can fail: then ``p*``
+    and its gap are checked as a normal contact's (:func:`sie.normal._check_single_contact`),
+    and ``p - p*`` at 1599 points clustered at the stick zone's ends.
+    """
+    punch, A = normal.punch, normal.A
+    if punch.kappa0 >= 0 or punch.b == 0:
+        return None
+    try:
+        _check_single_contact(punch, A, P_star, normal.s, m, h, normal.alpha)
+    except SeparationError as exc:
+        return f"its corrective contact (load P* = {P_star:.6g}) separates: {exc}"
+    p_star, extra = Projected(2048).pressure(punch, A, m, h)
+    x = m + h * np.cos(np.linspace(0, np.pi, 1601)[1:-1])
+    excess = normal.pressure(x) - p_star(x)
+    i = int(np.argmin(excess))
+    tol = extra["pressure_bound"] + 1e-9 * normal.P / (normal.a + normal.c)
+    if excess[i] < -tol:
+        return f"its corrective pressure exceeds p by {-excess[i]:.4g} at x = {x[i]:.6g}"
+    return None
+
+
+#: the least number of load steps of the continuation from the contact (P* = P) to P*
+CONTINUATION_STEPS = 16
+#: the largest ratio between the loads of two continuation steps (near full sliding
+#: P*/P is tiny, and the steps are geometric)
+CONTINUATION_RATIO = 2.0
+
+
+def _continuation(normal: NormalResult, P_star: float, sch: Plain | Projected
+                  ) -> tuple[float, float, int, float]:
+    """The stick zone at ``P_star`` by continuation in the load from the contact itself.
+
+    Newton from the scaled contact can fall into a minimum of the residual
+    that is not a root (a sharp corner arc next to the stick zone's end makes
+    the tilt equation stiff); stepping ``P*`` down from ``P`` in
+    geometric steps (at least :data:`CONTINUATION_STEPS`, each at most a factor
+    :data:`CONTINUATION_RATIO`), each started from the last, keeps every start
+    in its root's basin.
+    """
+    m, h = 0.5 * (normal.c - normal.a), 0.5 * (normal.a + normal.c)
+    its = 0
+    res = 0.0
+    total = math.log(normal.P / P_star)          # the path in ln P*, from 0 to `total`
+    step = min(total / CONTINUATION_STEPS, math.log(CONTINUATION_RATIO))
+    done = 0.0
+    while done < total:
+        # a failed step is halved (a stick-zone end crossing a join makes the equations kink)
+        t = min(done + step, total)
+        load = P_star if t == total else normal.P * math.exp(-t)
+        try:
+            m1, h1, _, it, res = solve_ends(normal.punch, normal.A, load, sch, alpha=normal.alpha,
+                                            m0=m, h0=h)
+        except NoConvergenceError:
+            step *= 0.5
+            if step < 1e-6 * total:
+                raise
+            continue
+        m, h, done, its = m1, h1, t, its + it
+    return m, h, its, res
+
+
+def stick_zone(normal: NormalResult, Q: float, f: float, sch: Plain | Projected
+               ) -> tuple[float, float, int, float]:
+    """``(m*, h*, iterations, residual)`` of the stick zone ``[m* - h*, m* + h*]`` for ``|Q| < f P``.
+
+    Newton (:func:`sie.normal.solve_ends`, tilt held at ``normal.alpha``) from
+    the contact scaled by ``sqrt(P*/P)``. On a concave centre the equations may
+    have several roots: a root that breaks Coulomb's law (:func:`_coulomb`) is
+    set aside and the others are found by a scan (:func:`sie.normal._scan_ends`).
+
+    Raises
+    ------
+    StickSeparationError
+        If no single stick zone inside the contact obeys Coulomb's law.
+    NoConvergenceError
+        If no root is found at all.
+    """
+    punch, A = normal.punch, normal.A
+    P_star = normal.P - abs(Q) / f
+    m0 = 0.5 * (normal.c - normal.a)
+    h0 = 0.5 * (normal.a + normal.c) * math.sqrt(P_star / normal.P)
+    try:
+        try:
+            m, h, _, its, res = solve_ends(punch, A, P_star, sch, alpha=normal.alpha, m0=m0, h0=h0)
+        except NoConvergenceError:
+            m, h, its, res = _continuation(normal, P_star, sch)
+        found = [(m, h, its, res)]
+    except NoConvergenceError:
+        if punch.kappa0 >= 0 or punch.b == 0:
+            raise
+        found = []
+    ratio = abs(Q) / (f * normal.P)
+    whys = []
+    for k, (m, h, its, res) in enumerate(found):
+        why = _coulomb(normal, P_star, m, h)
+        if why is None:
+            return m, h, its, res
+        whys.append((m, h, why))
+        if k == 0:      # a concave centre: every other root of the stick-zone equations
+            found += [(mm, hh, it, rr) for mm, hh, _, it, rr in
+                      _scan_ends(punch, A, P_star, sch, alpha=normal.alpha)
+                      if abs(mm - m) > 1e-9 * h or abs(hh - h) > 1e-9 * h]
+    if not whys:
+        raise NoConvergenceError(f"sie: no stick zone found for `Q`/(f P) = {ratio:.6g}")
+    m, h, why = whys[0]
+    raise StickSeparationError(
+        f"`Q`/(f P) = {ratio:.6g}: the single stick zone [{m - h:.6g}, {m + h:.6g}] of the "
+        f"Ciavarella–Jäger superposition on the concave centre R = {punch.R:g} breaks Coulomb's "
+        f"law: {why}; no other single stick zone obeys it, so the true stick zone is not one "
+        "interval")
 
 
 def solve_partial_slip(normal: NormalResult, Q: float, f: float, *, n: int | None = None,
@@ -98,21 +207,25 @@ def solve_partial_slip(normal: NormalResult, Q: float, f: float, *, n: int | Non
 
     Raises
     ------
+    TypeError
+        ``normal`` not a NormalResult, a number of the wrong type.
     ValueError
-        For invalid input (``FullSlidingError`` for ``|Q| >= f P``).
+        For invalid input (``FullSlidingError`` for ``|Q| >= f P``, and for
+        ``|Q|/(fP)`` past ``threepart.validate.SLIP_RATIO_LIMIT = 1 - 1e-6``).
+    StickSeparationError
+        On a concave centre, when no single stick zone obeys Coulomb's law
+        ``|q| <= f p`` (the true one splits in two).
     NoConvergenceError
         If the Newton iteration fails.
     """
-    _check_slip(normal, Q, f)
+    Q, f = check_shear(normal, Q, f, limit=SLIP_RATIO_LIMIT)
     n = int(normal.info.get("n", DEFAULT_N)) if n is None else n
     scheme = str(normal.info.get("scheme", DEFAULT_SCHEME)) if scheme is None else scheme
     sch = check_scheme(scheme, n)
     t0 = time.perf_counter()
     P_star = normal.P - abs(Q) / f
     punch, A = normal.punch, normal.A
-    m0 = 0.5 * (normal.c - normal.a)
-    h0 = 0.5 * (normal.a + normal.c) * math.sqrt(P_star / normal.P)
-    m, h, _, its, res = solve_ends(punch, A, P_star, sch, alpha=normal.alpha, m0=m0, h0=h0)
+    m, h, its, res = stick_zone(normal, Q, f, sch)
     d, e = h, -m
     lo, hi = m - h, m + h
     if lo < -normal.a * (1 + 1e-12) or hi > normal.c * (1 + 1e-12):

@@ -36,7 +36,8 @@ EDGE_ON_CENTRE = {                    # (punch, s): the left edge lies on the ce
 }
 ON_CORNER = {                         # (punch, s): the punch rests on its R2 corner alone
     "flat": (Punch(10, 10, 1), 2.5),
-    "convex centre, R2/R1 = 0.5": (Punch(10, 5, 1, R=30), 6.0),
+    # R2 = 10: the contact on the corner alone stays inside the small-slope limit (tilt -0.22)
+    "convex centre, R2/R1 = 0.5": (Punch(20, 10, 1, R=60), 3.0),
 }
 
 

@@ -29,8 +29,8 @@ def test_bad_geometry(kwargs, match):
 
 
 @pytest.mark.parametrize("P,s,Av,tilt,match", [
-    (0.0, 0.0, A, "free", r"`P` = 0.0 must be a finite compressive load > 0"),
-    (-5.0, 0.0, A, "free", r"`P` = -5.0 must be a finite compressive load > 0"),
+    (0.0, 0.0, A, "free", r"`P` = 0.0 must be > 0"),
+    (-5.0, 0.0, A, "free", r"`P` = -5.0 must be > 0"),
     (math.inf, 0.0, A, "free", r"`P` = inf must be a finite number"),
     (400.0, math.nan, A, "free", r"`s` = nan must be a finite number"),
     (400.0, 0.0, -1.0, "free", r"`A` = -1.0 must be > 0"),
@@ -177,8 +177,8 @@ def test_punch_rejects_lengths_outside_double_range():
 
 
 @pytest.mark.parametrize("P,error,match", [
-    (1e308, ValueError, r"`P` = 1e\+308 gives A P max\(R1, R2, b\) = .* outside"),
-    (1e-320, ValueError, r"`P` = 1e-320 gives A P max\(R1, R2, b\) = .* outside"),
+    (1e308, ValueError, r"`P` = 1e\+308 is outside \[1e-60, 1e\+60\]"),
+    (1e-320, ValueError, r"`P` = 1e-320 is outside \[1e-60, 1e\+60\]"),
     (True, TypeError, r"`P` = True must be a real number, not bool"),
 ])
 def test_extreme_loads_are_named_errors_not_overflow(P, error, match):

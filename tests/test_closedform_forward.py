@@ -97,7 +97,7 @@ def test_pressure_abbreviated_as_printed_equals_reduced_form(name):
 
 
 # -- anchors -------------------------------------------------------------------------
-@pytest.mark.parametrize("P,R,Av", [(1.0, 1.0, 1.0), (400.0, 10.0, 8.67e-6), (3e-3, 50.0, 2.0)])
+@pytest.mark.parametrize("P,R,Av", [(0.1, 1.0, 1.0), (400.0, 10.0, 8.67e-6), (3e-3, 50.0, 2.0)])
 def test_hertz_anchor(P, R, Av):
     """Hertz: a^2 = 2PAR/pi and p0 = 2P/(pi a), to 1e-12."""
     from threepart.closedform import solve_normal

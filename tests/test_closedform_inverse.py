@@ -130,7 +130,8 @@ def loaded_punch(draw):
          "concave": -draw(st.floats(50.0, 500.0))}[kind]
     punch = Punch(R1, R2, b, R=R)
     Av = 1.0
-    P = cf.P_min(punch, Av) + draw(st.floats(1e-4, 1.0)) * (1 + b)
+    # loads up to 0.05 (1 + b): contacts inside the arcs and the small-slope limit
+    P = cf.P_min(punch, Av) + draw(st.floats(1e-4, 0.05)) * (1 + b)
     lim = cf.lift_off(punch, P, Av)
     frac = draw(st.floats(0.001, 0.999))
     s = lim.s_min + frac * (lim.s_max - lim.s_min)
@@ -157,6 +158,8 @@ def check_solve_then_forward_and_pressure(case):
         sol = cf.solve_normal(punch, P, s, A=Av)
     except cf.SeparationError:
         assume(False)  # concave centre that separates: inadmissible, tested separately
+    except (cf.SlopeLimitError, cf.ArcExtentError):
+        assume(False)  # past half-plane theory's limits: refused by name, tested in test_hostile
     # forward evaluation gives P and s back
     assert formulas.load(punch, sol.a, sol.c, Av) == pytest.approx(P, rel=1e-10)
     assert formulas.lever_arm(punch, sol.a, sol.c) == pytest.approx(s, rel=1e-10, abs=1e-10 * sol.width)

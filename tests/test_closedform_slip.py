@@ -81,3 +81,60 @@ def test_symmetric_hertz_stick_zone_is_mindlin():
     slip = cf.solve_partial_slip(sol, 0.36 * 0.4 * 400.0, 0.4)
     assert slip.d == pytest.approx(sol.a * 0.8, rel=1e-12)
     assert abs(slip.e) < 1e-14 * sol.a
+
+
+# -- Coulomb's law on a concave centre (the fuzz's silent wrong answer) ------------------------
+FUZZ_PUNCH = Punch(129.99466117361627, 14.000802771729001, 1, R=-58.14116867456134)
+FUZZ_P, FUZZ_Q, FUZZ_F = 49551.68031495414, -5483.299786174661, 0.12412140892765157
+
+
+def test_a_stick_zone_that_breaks_coulomb_is_refused_by_name():
+    """The single stick zone [-5.15, 1.58] needs p* = -1109 < 0 on the concave centre: |q| = 1.46 f p.
+
+    Checked independently: the shear of that stick zone, q = f (p - p*) with p* the closed
+    form's pressure on [-(d+e), d-e], exceeds f p on a dense grid.
+    """
+    from threepart.closedform import formulas
+    from threepart.errors import StickSeparationError, StickZoneError
+
+    normal = cf.solve_normal(FUZZ_PUNCH, FUZZ_P, A=A, tilt="suppressed")
+    with pytest.raises(StickSeparationError, match=r"`Q`/\(f P\) = 0.891532: the single stick zone "
+                       r"\[-5.15101, 1.58018\] .* breaks Coulomb's law: its corrective pressure p\* = "
+                       r"-1109 < 0 at x = -0.17"):
+        cf.solve_partial_slip(normal, FUZZ_Q, FUZZ_F)
+    assert issubclass(StickSeparationError, StickZoneError)      # so that method="auto" falls back
+    x = np.linspace(-normal.a, normal.c, 4001)
+    p_star = formulas.pressure(FUZZ_PUNCH, 5.15101, 1.58018, A, x)
+    assert np.max(FUZZ_F * np.abs(normal.pressure(x) - p_star) / np.maximum(
+        FUZZ_F * normal.pressure(x), 1e-300)) > 1.4
+
+
+def test_auto_falls_back_and_the_sie_refuses_the_same_stick_zone():
+    """The SIE's one-flank stick zone [-5.20, -1.27] would penetrate at x = 1.29: refused too."""
+    from threepart import sie, solve
+    from threepart.errors import StickSeparationError
+
+    with pytest.raises(StickSeparationError, match="penetrate the half-plane at x = 1.28"):
+        sie.solve_partial_slip(sie.solve_normal(FUZZ_PUNCH, FUZZ_P, A=A, tilt="suppressed"),
+                               FUZZ_Q, FUZZ_F)
+    with pytest.raises(StickSeparationError):
+        solve(FUZZ_PUNCH, FUZZ_P, A=A, tilt="suppressed", Q=FUZZ_Q, f=FUZZ_F)
+
+
+def test_case_c_stick_zone_bound_is_the_true_one():
+    """Case C near lift-off: the bound is where the SIE's stick zone stops containing x = 0.
+
+    The message used to say "< 1"; the SIE (an independent method) puts the stick zone's
+    left end at x = 0 between Q/fP = 0.01 (end at -0.0045) and 0.065 (end at +0.021).
+    """
+    from threepart import sie
+
+    punch = Punch(10.0, 5.0, 0.0)
+    s = 0.99 * cf.lift_off(punch, 28846.0, A).s_max
+    normal = cf.solve_normal(punch, 28846.0, s, A=A)
+    with pytest.raises(cf.StickZoneError, match=r"not contain the join x = 0 .* holds for "
+                       r"\|Q\|/\(f P\) < 0.0198"):
+        cf.solve_partial_slip(normal, 0.065 * 0.3 * 28846.0, 0.3)
+    for q, inside in ((0.0195, True), (0.0202, False)):
+        lo, _ = sie.solve_partial_slip(normal, q * 0.3 * 28846.0, 0.3).stick_zone
+        assert (lo < 0) == inside, (q, lo)

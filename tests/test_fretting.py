@@ -389,7 +389,7 @@ def test_energy_grows_as_the_cube_of_the_amplitude(normals, name):
 @given(R1=st.floats(2.0, 20.0), R2=st.floats(2.0, 20.0), b=st.floats(0.05, 2.0),
        s_frac=st.floats(-0.9, 0.9), ratio=st.floats(0.02, 0.9))
 def test_methods_agree_on_random_punches(R1, R2, b, s_frac, ratio):
-    punch, P = Punch(R1, R2, b), 1.0
+    punch, P = Punch(R1, R2, b), 0.2      # slopes <= 0.25: inside the small-slope limit
     lim = cf.lift_off(punch, P, 1.0)
     s = s_frac * (lim.s_max if s_frac > 0 else -lim.s_min)
     nc = cf.solve_normal(punch, P, s, A=1.0)
@@ -404,6 +404,12 @@ def test_methods_agree_on_random_punches(R1, R2, b, s_frac, ratio):
 
 
 # -- (6) refusals --------------------------------------------------------------------------------
+@pytest.mark.parametrize("method", [0, 1], ids=["closedform", "sie"])
+def test_a_normal_that_is_not_a_result_is_a_type_error(method):
+    with pytest.raises(TypeError, match="`normal` must be a NormalResult .*, not str"):
+        (cf, sie)[method].fretting_cycle("nope", 1.0, F)
+
+
 @pytest.mark.parametrize("kwargs, error, match", [
     (dict(Q_max=0.0), ValueError, r"`Q_max` = 0.0 must be > 0"),
     (dict(Q_max=-1.0), ValueError, r"`Q_max`"),
@@ -412,8 +418,11 @@ def test_methods_agree_on_random_punches(R1, R2, b, s_frac, ratio):
     (dict(Q_max=1.0, f=0.0), ValueError, r"`f`"),
     (dict(Q_max=1.0, f=math.nan), ValueError, r"`f`"),
     (dict(Q_max=1.0, states=1), ValueError, r"`states`"),
-    (dict(Q_max=1.0, states=2.0), ValueError, r"`states`"),
-    (dict(Q_max=F * 28846.0), FullSlidingError, r"`Q_max` .*f P"),
+    (dict(Q_max=1.0, states=2.0), TypeError, r"`states` = 2.0 must be an integer, not float"),
+    (dict(Q_max=1.0, states=10**6), ValueError, r"`states` = 1000000 must lie in \[2, 10000\]"),
+    (dict(Q_max=F * 28846.0), FullSlidingError,
+     r"\|`Q_max`\| = 14423 >= f P = 14423 \(`f` = 0.5, `P` = 28846\): the contact slides as a "
+     r"whole \(full sliding\), there is no fretting cycle"),
     (dict(Q_max=F * 28846.0 * 1.5), FullSlidingError, r"`Q_max`"),
 ])
 @pytest.mark.parametrize("method", [0, 1], ids=["closedform", "sie"])

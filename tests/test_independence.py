@@ -13,7 +13,7 @@ import sys
 import pytest
 
 SOLVE = {
-    "threepart.sie": "import threepart.sie as m; m.solve_normal(Punch(1.0, 2.0, 0.4), 1.0, 0.1, A=1.0, n=16)",
+    "threepart.sie": "import threepart.sie as m; m.solve_normal(Punch(1.0, 2.0, 0.4), 0.1, 0.1, A=1.0, n=16)",
     "threepart.fem": "import threepart.fem as m",
     "threepart.meshes": "import threepart.meshes as m",
 }

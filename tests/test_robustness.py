@@ -19,7 +19,15 @@ edges on the outer segments, the closed form must find the same one to
 ``1e-8 W``; where the SIE's contact leaves that framework (an edge at or
 inside a join, or a one-flank contact) or separates, the closed form must
 refuse with :class:`~threepart.LiftOffError` or
-:class:`~threepart.SeparationError`. It must never raise anything else.
+:class:`~threepart.SeparationError`. Where the SIE's contact runs past an arc
+or past the small-slope limit, both refuse (``ArcExtentError``,
+``SlopeLimitError``). It must never raise anything else.
+
+The partial-slip sweep draws ``Q/(fP)`` and ``f`` on top of the same cases:
+every closed-form stick zone obeys Coulomb's law ``|q| <= f p`` (on a dense
+grid and at the exact minima of ``p*`` and ``p - p*``) and agrees with the
+SIE's to ``1e-8 W``; where the closed form refuses, the SIE answers or
+refuses with the same named error.
 """
 from __future__ import annotations
 
@@ -32,6 +40,12 @@ from hypothesis import strategies as st
 
 from threepart import (LiftOffError, NoConvergenceError, Punch, SeparationError, closedform,
                        rigid_punch, sie)
+from threepart.closedform.slip import coulomb_margin
+from threepart.errors import (ArcExtentError, SlopeLimitError, StickSeparationError,
+                              StickZoneError)
+
+#: the refusals of a contact past the arcs or the small-slope limit (both methods)
+LIMITS = (SlopeLimitError, ArcExtentError)
 
 A = rigid_punch(210e3, 0.3)
 B = 1.0
@@ -74,17 +88,23 @@ def _lever_arm(punch: Punch, P: float, frac: float) -> float:
 def test_closed_form_agrees_with_the_sie_or_refuses_rightly(case):
     punch, P, frac, tilt = case
     s = 0.0 if tilt == "suppressed" else _lever_arm(punch, P, frac)
+    if not -(punch.b + punch.R1) < s < punch.b + punch.R2:
+        # a lever arm off the punch's footprint is refused by both before any numerics
+        for solver in (sie, closedform):
+            with pytest.raises(ValueError, match="`s` = .* lies outside the punch's footprint"):
+                solver.solve_normal(punch, P, s, A=A, tilt=tilt)
+        return
     try:
         ref = sie.solve_normal(punch, P, s, A=A, tilt=tilt, n=16)
         sie_error = None
-    except SeparationError as exc:
+    except (SeparationError, *LIMITS) as exc:
         ref, sie_error = None, exc
     except NoConvergenceError:
         assume(False)  # the reference found nothing to compare with
     try:
         got = closedform.solve_normal(punch, P, s, A=A, tilt=tilt)
         cf_error = None
-    except (LiftOffError, SeparationError) as exc:
+    except (LiftOffError, SeparationError, *LIMITS) as exc:
         got, cf_error = None, exc
     if sie_error is not None:
         assert cf_error is not None, f"SIE refuses ({sie_error}), the closed form solves {got}"
@@ -111,6 +131,74 @@ def test_closed_form_agrees_with_the_sie_or_refuses_rightly(case):
     assert abs(got.a - ref.a) <= AGREE * W and abs(got.c - ref.c) <= AGREE * W, (got, ref)
     assert abs(got.s - ref.s) <= AGREE * W
     assert abs(got.alpha - ref.alpha) <= AGREE * W / min(punch.R1, punch.R2)
+
+
+def _coulomb_excess(r, minima: bool = True) -> float:
+    """Largest ``(|q| - f p)/(f P/W)`` of a slip result: a dense grid, the joins, the stick
+    zone's ends and (``minima``: a closed-form stick zone) the exact minima of ``p*`` and
+    ``p - p*``, each evaluated by the result's own ``shear`` and ``pressure``."""
+    n = r.normal
+    lo, hi = r.stick_zone
+    minima = [x for (x, _) in coulomb_margin(n, -lo, hi)] if minima else []
+    x = np.r_[np.linspace(-n.a, n.c, 4001), -n.punch.b, n.punch.b, lo, hi, minima]
+    x = x[(x >= -n.a) & (x <= n.c)]
+    excess = np.abs(r.shear(x)) - r.f * r.pressure(x)
+    return float(excess.max() / (r.f * n.P / n.width))
+
+
+#: the shear's excess over f p allowed on the grid, in units of the mean f P/W: the closed
+#: forms' rounding (p and p* are each accurate to ~1e-13 of the peak)
+COULOMB = 1e-9
+
+
+@pytest.mark.filterwarnings("ignore::RuntimeWarning")
+@settings(max_examples=EXAMPLES, deadline=None, derandomize=True,
+          suppress_health_check=[HealthCheck.too_slow, HealthCheck.filter_too_much])
+@given(cases(), st.floats(1e-3, 0.999), st.sampled_from([1.0, -1.0]), st.floats(0.05, 1.0))
+def test_partial_slip_obeys_coulomb_and_agrees_with_the_sie(case, ratio, sign, f):
+    """500 random admissible slip cases (concave centres included), against the SIE."""
+    punch, P, frac, tilt = case
+    s = 0.0 if tilt == "suppressed" else _lever_arm(punch, P, frac)
+    try:
+        normal = closedform.solve_normal(punch, P, s, A=A, tilt=tilt)
+    except (LiftOffError, SeparationError, *LIMITS):
+        assume(False)           # the normal problem is tested above
+    except ValueError as exc:
+        assert "footprint" in str(exc)
+        assume(False)           # the normal problem is tested above
+    Q = sign * ratio * f * P
+    try:
+        got = closedform.solve_partial_slip(normal, Q, f)
+        cf_error = None
+    except StickZoneError as exc:
+        got, cf_error = None, exc
+    try:
+        ref = sie.solve_partial_slip(normal, Q, f, n=16)
+        sie_error = None
+    except StickSeparationError as exc:
+        ref, sie_error = None, exc
+    if cf_error is not None:
+        # the SIE answers where the stick zone ends on the centre; a stick zone that breaks
+        # Coulomb's law is refused by both with the same named error, or answered by the SIE
+        if sie_error is not None:
+            assert isinstance(cf_error, StickSeparationError), (cf_error, sie_error)
+            return
+        assert ref is not None
+        # its p* carries the truncation error of 16 sine terms, bounded by `pressure_bound`
+        slack = ref.info["pressure_bound"] / (normal.P / normal.width)
+        assert _coulomb_excess(ref, minima=False) <= COULOMB + slack, f"the SIE's fallback breaks Coulomb: {ref}"
+        if not isinstance(cf_error, StickSeparationError):
+            lo, hi = ref.stick_zone
+            assert not (lo <= -punch.b and hi >= punch.b and punch.b > 0) or \
+                abs(lo + punch.b) < 1e-8 * normal.width or abs(hi - punch.b) < 1e-8 * normal.width, \
+                f"closed form refuses ({cf_error}), the SIE's stick zone {ref.stick_zone} holds the centre"
+        return
+    assert got is not None
+    assert _coulomb_excess(got) <= COULOMB, f"closed-form stick zone breaks |q| <= f p: {got}"
+    assert sie_error is None, f"the SIE refuses ({sie_error}), the closed form answers {got}"
+    assert ref is not None
+    W = normal.width
+    assert abs(got.d - ref.d) <= AGREE * W and abs(got.e - ref.e) <= AGREE * W, (got, ref)
 
 
 @pytest.mark.parametrize("P", [1.0, 3.0, 10.0, 30.0, 100.0, 1e3, 1e4])

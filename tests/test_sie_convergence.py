@@ -51,7 +51,7 @@ def test_plain_load_converges_as_n_minus_2(name):
 def test_plain_contact_ends_converge_as_n_minus_2():
     k, r, _, _ = contact("nd_A")
     study = sie.convergence_study(
-        lambda n: sie.solve_normal(k.punch, k.P, k.s, A=k.A, n=n, scheme="plain").a, NS[::2],
+        lambda n: sie.solve_normal(k.punch, k.P, k.s, A=k.A, n=n, scheme="plain").a, NS,   # all 14 n: the kink aliasing wobbles
         reference=r.a, scale=r.a)
     assert study.orders['value'] >= tol("sie-plain", "a_order"), f"observed order of a: {study.orders['value']:.2f}"
     assert np.asarray(study.errors['value'])[-1] < tol("sie-plain", "a_level"), f"error in a {np.asarray(study.errors['value'])[-1]:.2e} (order {study.orders['value']:.2f})"

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 __all__ = ["NoConvergenceError", "LiftOffError", "FullSlidingError", "StickZoneError",
            "SeparationError", "ContactZoneError", "MeshResolutionError", "SlopeLimitError",
-           "ArcExtentError"]
+           "ArcExtentError", "StickSeparationError", "full_sliding"]
 
 
 class NoConvergenceError(RuntimeError):
@@ -27,6 +27,35 @@ class FullSlidingError(ValueError):
 
 class StickZoneError(ValueError):
     """The stick zone would end inside the central segment, where the closed form does not hold."""
+
+
+class StickSeparationError(StickZoneError):
+    """The single stick zone found breaks Coulomb's law: its corrective pressure ``p*`` is not in ``[0, p]``.
+
+    The Ciavarella–Jäger superposition ``q = f (p - p*)`` obeys ``|q| <= f p``
+    only where ``0 <= p* <= p``. On a concave centre the corrective contact of
+    the stick zone (the punch at ``P* = P - |Q|/f`` with the tilt held) can be
+    tensile, or exceed ``p``, on the centre's dip; the true stick zone is then
+    not that single interval (it splits in two or rests on one flank).
+    """
+
+
+def full_sliding(name: str, Q: float, f: float, P: float, what: str = "there is no stick zone"
+                 ) -> FullSlidingError:
+    """The one :class:`FullSlidingError` of every method, for ``|Q| >= f P``.
+
+    Parameters
+    ----------
+    name
+        The shear argument's name (``"Q"``, ``"Q_max"``).
+    Q, f, P
+        The shear force, the coefficient of friction and the normal load.
+    what
+        What is lost, e.g. ``"there is no fretting cycle"``.
+    """
+    return FullSlidingError(
+        f"|`{name}`| = {abs(Q):.6g} >= f P = {f * P:.6g} (`f` = {f:g}, `P` = {P:.6g}): the "
+        f"contact slides as a whole (full sliding), {what}")
 
 
 class SeparationError(ValueError):
