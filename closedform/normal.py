@@ -246,7 +246,7 @@ def _separation_load(punch: Punch, A: float, s: float, tilt: str) -> float:
 
 # -- public API ---------------------------------------------------------------------
 def solve_normal(punch: Punch, P: float, s: float = 0.0, *, A: float,
-                 tilt: str = "free") -> NormalSolution:
+                 tilt: str = "free", beyond_small_slopes: bool = False) -> NormalSolution:
     """Contact ``[-a, c]`` and tilt ``alpha`` of the punch under the load ``P`` at lever arm ``s``.
 
     Parameters
@@ -266,6 +266,12 @@ def solve_normal(punch: Punch, P: float, s: float = 0.0, *, A: float,
         ``alpha = 0``; solve the consistency condition and eq.
         (equilibrium_condition_1) for ``a_hat, c_hat``, and return in ``s``
         the lever arm ``s*`` that holds the punch without a support.
+    beyond_small_slopes
+        Evaluate the paper's formulas even past half-plane theory's small-slope
+        limit and the arcs' extents (no :func:`threepart.validate.check_contact`),
+        for a study of the formulas' own error such as the validity map
+        (:mod:`threepart.reports.validity`); such an answer lies outside the
+        theory. Default False: refused.
 
     Raises
     ------
@@ -296,7 +302,8 @@ def solve_normal(punch: Punch, P: float, s: float = 0.0, *, A: float,
                          np.array([above]))
     alpha, s = (st.alpha, s) if tilt == "free" else (0.0, st.T / st.AP)
     _check_separation(punch, np.array([st.a]), np.array([st.c]), A, np.array([P]), np.array([s]), tilt)
-    check_contact(punch, st.a, st.c, alpha)
+    if beyond_small_slopes is not True:
+        check_contact(punch, st.a, st.c, alpha)
     return NormalSolution(punch, A, st.a, st.c, alpha, P, s, tilt)
 
 

@@ -9,7 +9,6 @@ the rest is :mod:`threepart.validate`'s.
 
 Bounds
 ------
-NU_RANGE        -- Poisson's ratio, open interval ``(-1, 0.5)``
 MAX_ITER        -- active-set iterations, ``[1, 10000]``
 STEPS, STATES   -- load steps of a partial-slip solve, states per fretting branch
 H_FACTOR        -- a finite punch's height ``H`` is at most this many footprints ``b + max(R1, R2)``
@@ -21,14 +20,12 @@ from pathlib import Path
 from typing import Any
 
 from threepart.punch import Punch
-from threepart.validate import (LENGTH_RANGE, check_punch, check_tilt, finite, integer,
-                                lever_arm, positive)
+from threepart.validate import (check_punch, check_tilt, finite, integer, lever_arm, load_scale,
+                                poisson, positive)
 
-__all__ = ["NU_RANGE", "FE_LENGTH_RANGE", "MAX_ITER", "STEPS", "STATES", "H_FACTOR", "material", "load", "count",
+__all__ = ["FE_LENGTH_RANGE", "MAX_ITER", "STEPS", "STATES", "H_FACTOR", "material", "load", "count",
            "mesh_arg", "normal_iv", "shear_iv", "height_iv"]
 
-#: Poisson's ratio: the elastic energy is positive definite only inside this open interval
-NU_RANGE = (-1.0, 0.5)
 #: active-set iterations (each is one dense solve on the active set)
 MAX_ITER = (1, 10_000)
 #: equal load steps of ``Q`` in :func:`fem.solve_partial_slip` (each costs one contact solve)
@@ -47,11 +44,7 @@ H_FACTOR = 1000.0
 
 def material(E: Any, nu: Any) -> tuple[float, float]:
     """``(E, nu)`` as floats; ``nu`` is checked first (``E`` is often derived from it)."""
-    nu = finite("nu", nu)
-    lo, hi = NU_RANGE
-    if not lo < nu < hi:
-        raise ValueError(f"`nu` = {nu!r} must lie in ({lo:g}, {hi:g}), Poisson's ratio of a "
-                         "stable isotropic solid")
+    nu = poisson(nu)
     return positive("E", E), nu
 
 
@@ -64,13 +57,8 @@ def load(punch: Punch, P: Any, A: float) -> float:
     ``b + sqrt(A P max(R1, R2))`` inside :data:`FE_LENGTH_RANGE`.
     """
     P = positive("P", P)
-    lo, hi = LENGTH_RANGE[0] ** 2, LENGTH_RANGE[1] ** 2
-    scale = A * P * max(punch.R1, punch.R2, punch.b)
-    if not lo <= scale <= hi:
-        raise ValueError(f"`P` = {P!r} gives A P max(R1, R2, b) = {scale:.3g}, outside "
-                         f"[{lo:g}, {hi:g}] (length^2), the range this library computes in "
-                         "double precision")
-    ell = punch.b + math.sqrt(scale)
+    load_scale(punch, P, A)
+    ell = punch.b + math.sqrt(A * P * max(punch.R1, punch.R2, punch.b))
     lo, hi = FE_LENGTH_RANGE
     if not lo <= ell <= hi:
         raise ValueError(f"`P` = {P!r} gives the contact's length scale b + sqrt(A P max(R1, R2)) "
@@ -126,13 +114,12 @@ def normal_iv(punch: Any, P: Any, s: Any, E: Any, nu: Any, tilt: Any, max_iter: 
 
 def shear_iv(Q: Any, f: Any, P: float, name: str = "Q") -> tuple[float, float]:
     """``(Q, f)`` as floats, ``f > 0`` and ``|Q| < f P`` (else ``FullSlidingError``)."""
-    from threepart.errors import FullSlidingError
+    from threepart.errors import full_sliding
 
-    Q = finite(name, Q)
+    Q = positive(name, Q) if name == "Q_max" else finite(name, Q)
     f = positive("f", f)
     if abs(Q) >= f * P:
-        raise FullSlidingError(f"|`{name}`| = {abs(Q):.6g} >= f P = {f * P:.6g} (`f` = {f:g}, "
-                               f"`P` = {P:.6g}): the contact slides as a whole")
+        raise full_sliding(name, Q, f, P)
     return Q, f
 
 

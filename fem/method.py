@@ -17,7 +17,7 @@ from typing import Any
 from threepart.punch import Punch
 from threepart.registry import Method, register
 from threepart.results import FrettingResult, NormalResult, SlipResult
-from threepart.validate import positive, real
+from threepart.validate import poisson, positive
 
 from .friction import fretting_cycle, solve_partial_slip
 from .solve import solve_normal
@@ -29,10 +29,7 @@ NU = 0.3
 
 
 def _nu(nu: float | None) -> float:
-    v = NU if nu is None else real("nu", nu)
-    if not -1.0 < v < 0.5:
-        raise ValueError(f"`nu` = {nu!r} must lie in (-1, 0.5)")
-    return v
+    return NU if nu is None else poisson(nu)
 
 
 def rigid_punch_modulus(A: float, nu: float | None = None) -> float:

@@ -11,7 +11,7 @@ from threepart.registry import Method, register
 from threepart.results import FrettingResult, NormalResult, SlipResult
 
 from .fretting import fretting_cycle
-from .normal import solve_normal
+from .normal import DEFAULT_N, DEFAULT_SCHEME, check_scheme, solve_normal
 from .slip import solve_partial_slip
 
 __all__ = ["METHOD"]
@@ -37,4 +37,10 @@ def _fretting(punch: Punch, P: float, s: float, *, A: float, tilt: str = "free",
     return fretting_cycle(base, Q_max, f, **extra, **options)
 
 
-METHOD = register(Method("sie", _normal, _slip, _fretting, options=("n", "scheme")))
+def _options_iv(options: dict[str, Any]) -> None:
+    """``n`` and ``scheme`` checked before anything is solved (``auto`` may not reach the SIE)."""
+    check_scheme(options.get("scheme", DEFAULT_SCHEME), options.get("n", DEFAULT_N))
+
+
+METHOD = register(Method("sie", _normal, _slip, _fretting, options=("n", "scheme"),
+                         options_iv=_options_iv))

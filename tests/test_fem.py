@@ -283,7 +283,7 @@ def test_the_fuzzed_singular_case_answers_as_the_sie_does():
 
 
 @pytest.mark.parametrize("R, a_hertz, error", [
-    (1.0, 0.45, "SlopeLimitError"),     # slope a/R = 0.45 > SLOPE_LIMIT = 0.3
+    (0.8, 0.45, "SlopeLimitError"),     # slope a/R = 0.56 > SLOPE_LIMIT = 0.5
     (0.3, 0.45, "ArcExtentError"),      # a > b + R = 0.3: past the arc's extent
     (1.0, 0.2, None),                   # slope 0.2: answered, as Hertz says
 ])

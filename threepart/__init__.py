@@ -52,6 +52,7 @@ LiftOffError        -- s (or P) puts a contact edge inside the central segment (
 SeparationError     -- a concave centre would separate (ValueError)
 FullSlidingError    -- |Q| >= f P (ValueError)
 StickZoneError      -- the stick zone would end inside the central segment (ValueError)
+StickSeparationError -- a stick zone whose corrective pressure breaks Coulomb's law (a StickZoneError)
 NoConvergenceError  -- an iteration did not converge (RuntimeError)
 ContactZoneError    -- the FE contact reached the end of its mesh zone (RuntimeError)
 MeshResolutionError -- a contact end too close to a join for the FE mesh (a ContactZoneError)
@@ -71,7 +72,8 @@ _HOMES = {
     "rigid_punch": "material", "TILTS": "validate",
     "NormalResult": "results", "SlipResult": "results", "Peak": "results",
     "LiftOffError": "errors", "SeparationError": "errors", "FullSlidingError": "errors",
-    "StickZoneError": "errors", "NoConvergenceError": "errors", "ContactZoneError": "errors",
+    "StickZoneError": "errors", "StickSeparationError": "errors",
+    "NoConvergenceError": "errors", "ContactZoneError": "errors",
     "MeshResolutionError": "errors", "SlopeLimitError": "errors", "ArcExtentError": "errors",
     "solve": "methods", "METHODS": "methods", "CHOICES": "methods",
     "Stress": "stress",
@@ -84,7 +86,7 @@ __all__ = list(_HOMES)
 if TYPE_CHECKING:   # pragma: no cover - for type checkers and IDEs only
     from .errors import (ArcExtentError, ContactZoneError, FullSlidingError, LiftOffError,
                          MeshResolutionError, NoConvergenceError, SeparationError,
-                         SlopeLimitError, StickZoneError)
+                         SlopeLimitError, StickSeparationError, StickZoneError)
     from .material import compliance, rigid_punch, similar_pair
     from .methods import CHOICES, METHODS, solve
     from .punch import Punch

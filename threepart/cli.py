@@ -225,6 +225,7 @@ def _solve(args: argparse.Namespace, slip: bool) -> tuple[Any, dict[str, Any]]:
         "P": float(args.P), "s": float(args.s) if normal.tilt == "free" else normal.s,
         "tilt": normal.tilt,
         "a": normal.a, "c": normal.c, "alpha": normal.alpha, "slope": normal.slope,
+        **_slope_note(normal.slope),
         "contact": {"left": -normal.a, "right": normal.c},
         "segments": list(normal.segments), "within_paper": normal.within_paper,
         "peak_left": _peak(left, "left"), "peak_right": _peak(right, "right"),
@@ -242,6 +243,18 @@ def _solve(args: argparse.Namespace, slip: bool) -> tuple[Any, dict[str, Any]]:
         out["points"] = points
     out["_describe"] = describe(res)
     return res, out
+
+
+def _slope_note(slope: float) -> dict[str, str]:
+    """A note past the slope where half-plane theory's measured error reaches 5 %."""
+    from threepart.validate import SLOPE_LIMIT, SLOPE_WARNING
+
+    if slope <= SLOPE_WARNING:
+        return {}
+    return {"slope_note": f"slope {slope:.3g} > {SLOPE_WARNING:g}: half-plane theory's small-slope "
+                          "error in the peak pressure may exceed 5 % here (about 0.43 slope^1.1 "
+                          f"against finite deformation; refused past {SLOPE_LIMIT:g}; see "
+                          "docs/SMALL_SLOPE.md)"}
 
 
 def _peak(peak: Any, side: str) -> dict[str, Any]:

@@ -78,6 +78,9 @@ class Method:
         Poisson's ratio the method assumes when none is given, for a method
         that models bodies of finite size (the FEM); None for a half-plane
         method, which depends on the material only through ``A``.
+    options_iv
+        Checks the values of the options (a ``TypeError`` or ``ValueError``
+        naming the option) before anything is solved, or None.
     """
 
     name: str
@@ -87,9 +90,10 @@ class Method:
     options: tuple[str, ...] = ()
     framework_only: bool = False
     default_nu: float | None = None
+    options_iv: Callable[[dict[str, Any]], None] | None = None
 
     def check_options(self, options: dict[str, Any], called: str | None = None) -> None:
-        """``ValueError`` naming the first option this method does not take.
+        """``ValueError`` naming the first option this method does not take; then the values.
 
         ``called`` is the name the user gave, when it differs (``"auto"``).
         """
@@ -97,6 +101,8 @@ class Method:
         if unknown:
             raise ValueError(f"`{unknown[0]}` is not an option of method {called or repr(self.name)} "
                              f"(its options: {', '.join(self.options) or 'none'})")
+        if self.options_iv is not None:
+            self.options_iv(options)
 
 
 _REGISTRY: dict[str, Method] = {}
