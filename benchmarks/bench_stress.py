@@ -18,8 +18,9 @@ from __future__ import annotations
 
 import argparse
 import json
-import math
+import sys
 import time
+from pathlib import Path
 
 import numpy as np
 
@@ -28,34 +29,16 @@ from threepart import closedform as cf
 from threepart.catalogue import get_case
 from threepart.stress import stress
 
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))   # the tests' references
+from tests.stress_reference import mcewen as _mcewen  # noqa: E402
+from bench_sie import best_time as best_of  # noqa: E402  (the benchmarks' one timer)
+
 F = 0.3
 
 
-def best_of(fn, repeat: int) -> tuple[float, object]:
-    """Smallest wall time of ``repeat`` runs, in seconds, and the last result."""
-    best, out = math.inf, None
-    for _ in range(repeat):
-        t = time.perf_counter()
-        out = fn()
-        best = min(best, time.perf_counter() - t)
-    return best, out
-
-
 def mcewen(x, z, a=1.0, p0=1.0, q0=F):
-    """McEwen's stresses of a Hertz line contact sliding with q = f p along +x (Johnson eq. 7.18)."""
-    x, z = np.broadcast_arrays(np.asarray(x, float), np.asarray(z, float))
-    A = a * a - x * x + z * z
-    R = np.sqrt(A * A + 4 * x * x * z * z)
-    big = np.sqrt(0.5 * (R + np.abs(A)))
-    small = np.divide(np.abs(x) * z, big, out=np.zeros_like(big), where=big > 0)
-    m = np.where(A >= 0, big, small)
-    n = np.sign(x) * np.where(A >= 0, small, big)
-    mn = m * m + n * n
-    sxx = -(p0 / a) * (m * (1 + (z * z + n * n) / mn) - 2 * z) \
-        + (q0 / a) * (n * (2 - (z * z - m * m) / mn) - 2 * x)
-    szz = -(p0 / a) * m * (1 - (z * z + n * n) / mn) - (q0 / a) * n * (m * m - z * z) / mn
-    sxz = -(p0 / a) * n * (m * m - z * z) / mn - (q0 / a) * (m * (1 + (z * z + n * n) / mn) - 2 * z)
-    return sxx, szz, sxz
+    """McEwen's stresses of a Hertz line contact sliding with q = f p (tests/stress_reference.py)."""
+    return _mcewen(x, z, a=a, p0=p0, q0=q0)
 
 
 def grid(a: float, c: float) -> tuple[np.ndarray, np.ndarray]:

@@ -18,6 +18,8 @@ from threepart import closedform as cf
 from threepart.catalogue import get_case
 from threepart.stress import Stress, flamant_normal, flamant_tangential, hilbert, stress
 
+from .stress_reference import mcewen as _mcewen
+
 #: the accuracy the module promises, as a fraction of p0 = max p, at every depth
 TARGET = 1e-8
 
@@ -32,25 +34,9 @@ def q_hertz(t):
     return F * p_hertz(t)
 
 
-def mcewen(x, z, a=A_H, p0=P0, q0=F * P0):
-    """McEwen's stresses of a Hertz line contact sliding with q = f p along +x (Johnson eq. 7.18).
-
-    ``m, n`` of eq. (7.17), with m >= 0 and n of the sign of x, computed free of cancellation
-    (``m n = x z``).
-    """
-    x, z = np.broadcast_arrays(np.asarray(x, float), np.asarray(z, float))
-    A = a * a - x * x + z * z
-    R = np.sqrt(A * A + 4 * x * x * z * z)
-    big = np.sqrt(0.5 * (R + np.abs(A)))
-    small = np.divide(np.abs(x) * z, big, out=np.zeros_like(big), where=big > 0)
-    m = np.where(A >= 0, big, small)
-    n = np.sign(x) * np.where(A >= 0, small, big)
-    mn = m * m + n * n
-    sxx = -(p0 / a) * (m * (1 + (z * z + n * n) / mn) - 2 * z) \
-        + (q0 / a) * (n * (2 - (z * z - m * m) / mn) - 2 * x)
-    szz = -(p0 / a) * m * (1 - (z * z + n * n) / mn) - (q0 / a) * n * (m * m - z * z) / mn
-    sxz = -(p0 / a) * n * (m * m - z * z) / mn - (q0 / a) * (m * (1 + (z * z + n * n) / mn) - 2 * z)
-    return sxx, szz, sxz
+def mcewen(x, z):
+    """McEwen's stresses for this file's Hertz contact (half-width A_H, peak P0, q = F p)."""
+    return _mcewen(x, z, a=A_H, p0=P0, q0=F * P0)
 
 
 def worst(S: Stress, ref) -> float:
