@@ -10,7 +10,8 @@ the rest is :mod:`threepart.validate`'s.
 Bounds
 ------
 MAX_ITER        -- active-set iterations, ``[1, 10000]``
-STEPS, STATES   -- load steps of a partial-slip solve, states per fretting branch
+STEPS           -- load steps of a partial-slip solve
+MAX_FE_STATES   -- states per fretting branch (each a contact solve)
 H_FACTOR        -- a finite punch's height ``H`` is at most this many footprints ``b + max(R1, R2)``
 """
 from __future__ import annotations
@@ -23,15 +24,15 @@ from threepart.punch import Punch
 from threepart.validate import (check_punch, check_tilt, finite, integer, lever_arm, load_scale,
                                 poisson, positive)
 
-__all__ = ["FE_LENGTH_RANGE", "MAX_ITER", "STEPS", "STATES", "H_FACTOR", "material", "load", "count",
-           "mesh_arg", "normal_iv", "shear_iv", "height_iv"]
+__all__ = ["FE_LENGTH_RANGE", "MAX_ITER", "STEPS", "MAX_FE_STATES", "H_FACTOR", "material", "load",
+           "mesh_arg", "normal_iv", "height_iv"]
 
 #: active-set iterations (each is one dense solve on the active set)
 MAX_ITER = (1, 10_000)
 #: equal load steps of ``Q`` in :func:`fem.solve_partial_slip` (each costs one contact solve)
 STEPS = (1, 1000)
-#: states per branch of :func:`fem.fretting_cycle` (both ends included)
-STATES = (2, 1000)
+#: the most states per branch of :func:`fem.fretting_cycle` (each costs a contact solve)
+MAX_FE_STATES = 1000
 #: The contact's length scale ``b + sqrt(A P max(R1, R2))`` that gmsh meshes faithfully:
 #: gmsh's absolute tolerances move the answer (by 6e-4 in ``c`` at 1e-10, measured with the
 #: same problem scaled by powers of ten) or fail it (1e-20), and past 1e20 it answers wrongly
@@ -65,11 +66,6 @@ def load(punch: Punch, P: Any, A: float) -> float:
                          f"= {ell:.3g}, outside [{lo:g}, {hi:g}], where gmsh meshes it faithfully; "
                          "give the lengths in other units")
     return P
-
-
-def count(name: str, value: Any, limits: tuple[int, int]) -> int:
-    """A count (iterations, steps, states) inside ``limits``; a bool is a ``TypeError``."""
-    return integer(name, value, *limits)
 
 
 def mesh_arg(mesh: Any, kinds: tuple[type, ...], allow_path: bool = True) -> Any:
@@ -108,19 +104,8 @@ def normal_iv(punch: Any, P: Any, s: Any, E: Any, nu: Any, tilt: Any, max_iter: 
     P = load(punch, P, A)
     s = lever_arm(punch, s)
     tilt = check_tilt(tilt)
-    max_iter = count("max_iter", max_iter, MAX_ITER)
+    max_iter = integer("max_iter", max_iter, *MAX_ITER)
     return P, s, E, nu, tilt, max_iter
-
-
-def shear_iv(Q: Any, f: Any, P: float, name: str = "Q") -> tuple[float, float]:
-    """``(Q, f)`` as floats, ``f > 0`` and ``|Q| < f P`` (else ``FullSlidingError``)."""
-    from threepart.errors import full_sliding
-
-    Q = positive(name, Q) if name == "Q_max" else finite(name, Q)
-    f = positive("f", f)
-    if abs(Q) >= f * P:
-        raise full_sliding(name, Q, f, P)
-    return Q, f
 
 
 def height_iv(punch: Punch, H: Any, theta: Any, profile: Any) -> tuple[float | None, float, str]:

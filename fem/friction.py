@@ -47,12 +47,12 @@ from threepart.material import similar_pair
 from threepart.meshes import SubstrateSpec
 from threepart.punch import Punch
 from threepart.results import BRANCHES, FrettingResult, NormalResult, SlipResult
-from threepart.validate import check_contact
+from threepart.validate import check_contact, check_states, integer, shear_load
 
 from .contact import ContactSolution, solve_contact
 from .elasticity import SurfaceCompliance, condense
 from ._boundary import boundary
-from ._iv import STATES, STEPS, count, mesh_arg, normal_iv, shear_iv
+from ._iv import MAX_FE_STATES, STEPS, mesh_arg, normal_iv
 from ._progress import Progress, ProgressArg, progress_iv
 from .ends import REFINE_ATTEMPTS, check_one_zone, contact_ends, end_size, refined
 from .mesh import PRESETS, MeshPreset, Substrate, make_substrate
@@ -449,12 +449,13 @@ def _model(punch: Punch, P: float, s: float, E: float, nu: float, tilt: str,
 
 
 def _slip_iv(punch: Any, P: Any, s: Any, Q: Any, f: Any, E: Any, nu: Any, tilt: Any, mesh: Any,
-             steps: Any, max_iter: Any, progress: Any, name: str = "Q", steps_name: str = "steps",
-             steps_range: tuple[int, int] = STEPS) -> tuple[Any, ...]:
-    """The checked input of :func:`solve_partial_slip` (and, with ``Q_max``, :func:`fretting_cycle`)."""
+             steps: Any, max_iter: Any, progress: Any, name: str = "Q") -> tuple[Any, ...]:
+    """The checked input of :func:`solve_partial_slip` (and, with ``Q_max``, :func:`fretting_cycle`,
+    whose ``steps`` are its ``states``)."""
     P, s, E, nu, tilt, max_iter = normal_iv(punch, P, s, E, nu, tilt, max_iter, pair=True)
-    Q, f = shear_iv(Q, f, P, name)
-    steps = count(steps_name, steps, steps_range)
+    Q, f = shear_load(Q, f, P, name)
+    steps = (check_states(steps, MAX_FE_STATES) if name == "Q_max"
+             else integer("steps", steps, *STEPS))
     pre = mesh_arg(mesh, (MeshPreset, SubstrateSpec, Substrate))
     return P, s, Q, f, E, nu, tilt, pre, steps, max_iter, progress_iv(progress)
 
@@ -539,10 +540,7 @@ def fretting_cycle(punch: Punch, P: float, s: float = 0.0, *, Q_max: float, f: f
     ``states`` in ``[2, 1000]``.
     """
     P, s, Q_max, f, E, nu, tilt, pre, states, max_iter, progress = _slip_iv(
-        punch, P, s, Q_max, f, E, nu, tilt, mesh, states, max_iter, progress, "Q_max", "states",
-        STATES)
-    if Q_max <= 0:
-        raise ValueError(f"`Q_max` = {Q_max!r} must be > 0")
+        punch, P, s, Q_max, f, E, nu, tilt, mesh, states, max_iter, progress, "Q_max")
     say = Progress(progress)
     t0 = time.perf_counter()
     model = _model(punch, P, s, E, nu, tilt, pre, max_iter, f, Q_max, say)

@@ -20,7 +20,7 @@ from numpy.typing import ArrayLike
 
 from threepart.punch import Punch
 
-from threepart.validate import check_contact
+from threepart.validate import check_contact, integer
 from threepart.errors import ContactZoneError, SeparationError
 from threepart.material import rigid_punch
 from threepart.results import NormalResult
@@ -30,7 +30,7 @@ from .contact import ContactSolution, solve_contact
 from .export import Fields, fields_of
 from .elasticity import SurfaceCompliance, condense
 from ._boundary import boundary
-from ._iv import count, mesh_arg, normal_iv
+from ._iv import mesh_arg, normal_iv
 from ._progress import Progress, ProgressArg, progress_iv
 from .ends import REFINE_ATTEMPTS, check_one_zone, contact_ends, end_size, refined
 from .mesh import PRESETS, MeshPreset, Substrate, make_substrate, read_substrate
@@ -119,7 +119,7 @@ def locate_contact(punch: Punch, P: float, s: float, *, E: float, nu: float, til
     in ``[1, 20]``; the other arguments are checked as by :func:`solve_normal`.
     """
     P, s, E, nu, tilt, max_iter = normal_iv(punch, P, s, E, nu, tilt, max_iter, pair=False)
-    tries = count("tries", tries, TRIES)
+    tries = integer("tries", tries, *TRIES)
     return locate_ends(punch, P, s, E, nu, tilt, max_iter, tries)
 
 

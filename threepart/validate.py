@@ -19,11 +19,14 @@ lever_arm           -- ``s`` inside the punch's footprint ``(-(b + R1), b + R2)`
 SLOPE_LIMIT         -- the small-slope limit of half-plane theory (tilt and profile slopes)
 check_contact       -- a solved contact: inside the arcs' extents and within SLOPE_LIMIT
 integer             -- a discretisation count (``n``, ``steps``) between bounds
+poisson             -- Poisson's ratio inside NU_RANGE, ``(-1, 0.5)``
+SLOPE_WARNING       -- the slope past which the measured small-slope error exceeds 5 %
 MAX_STATES          -- the most recorded states per fretting branch (``check_states``)
 reals               -- an array of real numbers as float64 (the batch solvers' ``P`` and ``s``)
 load_scale          -- ``A P max(R1, R2, b)`` inside ``LENGTH_RANGE**2`` (the contact scale squared)
 check_normal        -- the ``normal`` argument of a slip or fretting solve: a NormalResult
-check_shear         -- ``Q`` (or ``Q_max``) and ``f``: finite, and ``|Q| < f P`` (FullSlidingError)
+shear_load          -- ``Q`` (or ``Q_max``) and ``f`` for a load ``P``: ``|Q| < f P`` (FullSlidingError)
+check_shear         -- the same on a normal result (a half-plane slip or fretting solve)
 SLIP_RATIO_LIMIT    -- the largest ``|Q|/(fP)`` a numerical stick zone is solved for (1 - 1e-6)
 """
 from __future__ import annotations
@@ -35,9 +38,9 @@ from typing import Any
 import numpy as np
 
 __all__ = ["real", "finite", "positive", "check_finite", "check_positive", "TILTS", "check_tilt",
-           "LENGTH_RANGE", "NU_RANGE", "poisson", "integer", "SLOPE_WARNING", "lever_arm", "SLOPE_LIMIT", "check_contact", "check_punch",
-           "MAX_STATES", "check_states", "reals", "load_scale", "check_normal", "check_shear",
-           "SLIP_RATIO_LIMIT"]
+           "LENGTH_RANGE", "NU_RANGE", "poisson", "integer", "lever_arm", "SLOPE_LIMIT",
+           "SLOPE_WARNING", "check_contact", "check_punch", "MAX_STATES", "check_states", "reals",
+           "load_scale", "check_normal", "shear_load", "check_shear", "SLIP_RATIO_LIMIT"]
 
 #: tilt modes: the tilt ``alpha`` follows from the moment, or is held at zero
 TILTS = ("free", "suppressed")
@@ -224,13 +227,15 @@ def check_contact(punch: Any, a: float, c: float, alpha: float) -> float:
 MAX_STATES = 10_000
 
 
-def check_states(states: Any) -> int:
-    """``states``, the recorded states per fretting branch, as an int in ``[2, MAX_STATES]``.
+def check_states(states: Any, most: int = MAX_STATES) -> int:
+    """``states``, the recorded states per fretting branch, as an int in ``[2, most]``.
 
     Both ends of each branch are recorded, so at least 2; a bool or a
-    non-integer is a ``TypeError``. Shared by every method's fretting cycle.
+    non-integer is a ``TypeError``. Shared by every method's fretting cycle; a
+    method whose states cost more (the FEM: a contact solve each) passes a
+    smaller ``most``.
     """
-    return integer("states", states, 2, MAX_STATES)
+    return integer("states", states, 2, most)
 
 
 def reals(name: str, value: Any) -> np.ndarray:
@@ -313,27 +318,32 @@ def check_normal(normal: Any) -> Any:
 SLIP_RATIO_LIMIT = 1.0 - 1e-6
 
 
-def check_shear(normal: Any, Q: Any, f: Any, name: str = "Q", what: str = "there is no stick zone",
-                limit: float = 1.0) -> tuple[float, float]:
-    """``(Q, f)`` as floats for a slip solve on ``normal``; refuse ``|Q| >= f P``.
+def shear_load(Q: Any, f: Any, P: float, name: str = "Q", what: str = "there is no stick zone",
+               limit: float = 1.0) -> tuple[float, float]:
+    """``(Q, f)`` as floats for a shear load on a contact carrying ``P``; refuse ``|Q| >= f P``.
 
     ``f`` must lie in :data:`LENGTH_RANGE`; ``Q`` (``name``) must be finite
     (``Q_max`` > 0). ``|Q| >= f P`` is a :class:`~threepart.errors.FullSlidingError`
     with the one wording of :func:`threepart.errors.full_sliding`; a numerical
     method passes ``limit=SLIP_RATIO_LIMIT`` and ``|Q|/(fP)`` above it is a
-    ``FullSlidingError`` that names that limit.
+    ``FullSlidingError`` that names that limit. Shared by every method.
     """
     from .errors import FullSlidingError, full_sliding
 
-    check_normal(normal)
     Q = positive(name, Q) if name == "Q_max" else finite(name, Q)
     f = positive("f", f)
-    if abs(Q) >= f * normal.P:
-        raise full_sliding(name, Q, f, normal.P, what)
-    ratio = abs(Q) / (f * normal.P)
+    if abs(Q) >= f * P:
+        raise full_sliding(name, Q, f, P, what)
+    ratio = abs(Q) / (f * P)
     if ratio > limit:
         raise FullSlidingError(
             f"|`{name}`|/(f P) = {ratio!r} is within {1 - limit:.0e} of full sliding, past "
             f"{limit!r} (threepart.validate.SLIP_RATIO_LIMIT), the closest to full sliding this "
             "method resolves the stick zone; the closed form has no such limit")
     return Q, f
+
+
+def check_shear(normal: Any, Q: Any, f: Any, name: str = "Q", what: str = "there is no stick zone",
+                limit: float = 1.0) -> tuple[float, float]:
+    """:func:`shear_load` on a normal result: ``normal`` must be a NormalResult (else ``TypeError``)."""
+    return shear_load(Q, f, check_normal(normal).P, name, what, limit)
