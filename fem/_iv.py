@@ -20,6 +20,7 @@ import math
 from pathlib import Path
 from typing import Any
 
+from threepart.material import rigid_punch, similar_pair
 from threepart.punch import Punch
 from threepart.validate import (check_punch, check_tilt, finite, integer, lever_arm, load_scale,
                                 poisson, positive)
@@ -100,7 +101,7 @@ def normal_iv(punch: Any, P: Any, s: Any, E: Any, nu: Any, tilt: Any, max_iter: 
     """
     check_punch(punch)
     E, nu = material(E, nu)
-    A = (4.0 if pair else 2.0) * (1.0 - nu * nu) / E
+    A = (similar_pair if pair else rigid_punch)(E, nu)
     P = load(punch, P, A)
     s = lever_arm(punch, s)
     tilt = check_tilt(tilt)

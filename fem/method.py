@@ -45,14 +45,16 @@ def pair_modulus(A: float, nu: float | None = None) -> float:
 
 def _normal(punch: Punch, P: float, s: float, *, A: float, tilt: str = "free",
             nu: float | None = None, **options: Any) -> NormalResult:
-    return solve_normal(punch, P, s, E=rigid_punch_modulus(A, nu), nu=_nu(nu), tilt=tilt,
+    nu = _nu(nu)
+    return solve_normal(punch, P, s, E=rigid_punch_modulus(A, nu), nu=nu, tilt=tilt,
                         **options)
 
 
 def _slip(punch: Punch, P: float, s: float, *, A: float, tilt: str = "free",
           nu: float | None = None, Q: float, f: float, normal: NormalResult | None = None,
           **options: Any) -> SlipResult:
-    return solve_partial_slip(punch, P, s, Q=Q, f=f, E=pair_modulus(A, nu), nu=_nu(nu), tilt=tilt,
+    nu = _nu(nu)
+    return solve_partial_slip(punch, P, s, Q=Q, f=f, E=pair_modulus(A, nu), nu=nu, tilt=tilt,
                               **options)
 
 
@@ -60,7 +62,8 @@ def _fretting(punch: Punch, P: float, s: float, *, A: float, tilt: str = "free",
               nu: float | None = None, Q_max: float, f: float, states: int | None = None,
               normal: NormalResult | None = None, **options: Any) -> FrettingResult:
     extra: dict[str, Any] = {} if states is None else {"states": states}
-    return fretting_cycle(punch, P, s, Q_max=Q_max, f=f, E=pair_modulus(A, nu), nu=_nu(nu),
+    nu = _nu(nu)
+    return fretting_cycle(punch, P, s, Q_max=Q_max, f=f, E=pair_modulus(A, nu), nu=nu,
                           tilt=tilt, **extra, **options)
 
 

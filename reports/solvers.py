@@ -15,7 +15,7 @@ from threepart.results import FrettingResult, NormalResult, SlipResult
 if TYPE_CHECKING:  # pragma: no cover
     from .catalogue import Case
 
-__all__ = ["METHODS", "normal", "slip", "fretting", "has"]
+__all__ = ["METHODS", "normal", "slip", "fretting"]
 
 #: the methods the verification run compares, in report order; the closed form is the
 #: reference of the others
@@ -32,11 +32,6 @@ def _args(method: str, case: Case, options: dict[str, Any]) -> dict[str, Any]:
     if registry.get(method).default_nu is not None and case.material is not None:
         problem["nu"] = case.material[1]
     return {**problem, **options}
-
-
-def has(method: str, kind: str) -> bool:
-    """Whether ``method`` solves problems of ``kind`` (``"normal"``, ``"slip"``, ``"fretting"``)."""
-    return getattr(registry.get(method), kind) is not None
 
 
 def normal(method: str, case: Case, **options: Any) -> NormalResult:
