@@ -77,7 +77,7 @@ from threepart.validate import check_shear, check_states
 
 from . import formulas
 from .newton import ray_state, solve_phi
-from .slip import _leave, check_coulomb, solve_partial_slip, stick_zone_bound
+from .slip import check_coulomb, solve_partial_slip, stick_zone_bound, stick_zone_leaves
 
 __all__ = ["FrettingSolution", "fretting_cycle", "approach", "stick_gap", "omega",
            "loop_energy"]
@@ -237,7 +237,7 @@ def _stick_zones(normal: NormalResult, u: np.ndarray, f: float, Q_max: float
     if not ok:
         raise StickZoneError(
             f"`Q_max`/(f P) = {Q_max / (f * normal.P):.6g}: the stick zone at `Q_max` would "
-            f"{_leave(punch.b)}, where the closed form does not hold; it holds for "
+            f"{stick_zone_leaves(punch.b)}, where the closed form does not hold; it holds for "
             f"`Q_max`/(f P) < {stick_zone_bound(normal):.6g}")
     st = ray_state(punch, r, phi, np, full=False)
     return np.where(u > 0, st.a, normal.a), np.where(u > 0, st.c, normal.c)

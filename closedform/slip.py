@@ -28,7 +28,7 @@ from .newton import HALF_PI, SCALAR, bracketed_root, ray_state, solve_phi
 from threepart.results import NormalResult, SlipResult
 
 __all__ = ["SlipSolution", "solve_partial_slip", "stick_zone_bound", "coulomb_margin",
-           "check_coulomb", "COULOMB_RTOL"]
+           "check_coulomb", "COULOMB_RTOL", "stick_zone_leaves"]
 
 #: ``p*`` may dip below 0 (or above ``p``) by this fraction of the mean pressure ``P/(a+c)``
 #: before the stick zone is refused: the closed forms' rounding, with a wide margin
@@ -187,14 +187,14 @@ def solve_partial_slip(normal_solution: NormalResult, Q: float, f: float) -> Sli
         inside = not (below or above)
     if not inside:
         raise StickZoneError(
-            f"`Q`/(f P) = {ratio:.6g}: the stick zone would {_leave(punch.b)}, where the closed "
+            f"`Q`/(f P) = {ratio:.6g}: the stick zone would {stick_zone_leaves(punch.b)}, where the closed "
             f"form does not hold; it holds for |Q|/(f P) < {stick_zone_bound(normal):.6g}")
     st = ray_state(punch, r, phi, SCALAR)
     check_coulomb(normal, st.a, st.c, ratio)
     return SlipSolution(normal=normal, Q=Q, f=f, d=st.h, e=-st.m)
 
 
-def _leave(b: float) -> str:
+def stick_zone_leaves(b: float) -> str:
     """Where a stick zone outside the closed form ends: on the centre, or short of the join (b = 0)."""
     if b == 0:
         return "not contain the join x = 0 of the two arcs (it lies on one arc)"

@@ -47,7 +47,7 @@ from threepart.validate import SLIP_RATIO_LIMIT, check_shear, check_states
 from .normal import DEFAULT_N, DEFAULT_SCHEME, check_scheme, solve_ends
 from .projection import slope_coefficients
 from .schemes import Plain, Projected
-from .slip import _continuation, _coulomb, solve_partial_slip
+from .slip import stick_zone_by_continuation, coulomb_violation, solve_partial_slip
 
 __all__ = ["SieFrettingResult", "fretting_cycle", "mean_profile", "approach", "stick_gap"]
 
@@ -177,7 +177,7 @@ class _Zones:
             m, h, _, _, _ = solve_ends(nrm.punch, nrm.A, P_star, self.sch, alpha=nrm.alpha,
                                        m0=self.m0, h0=self.h0 * math.sqrt(P_star / nrm.P))
         except NoConvergenceError:
-            m, h, _, _ = _continuation(nrm, P_star, self.sch)
+            m, h, _, _ = stick_zone_by_continuation(nrm, P_star, self.sch)
         self.solves += 1
         if m - h < -nrm.a * (1 + 1e-12) or m + h > nrm.c * (1 + 1e-12):
             raise ValueError(f"stick zone [{m - h:.6g}, {m + h:.6g}] at u = {u:g} leaves the contact "
@@ -277,7 +277,7 @@ def fretting_cycle(normal: NormalResult, Q_max: float, f: float, *, n: int | Non
     u = np.linspace(0.0, Q_max, states)
     mh = np.array([zones(float(v)) for v in u])
     for v, (m, h) in zip(u[1:], mh[1:]):    # Coulomb's law in every recorded loading state
-        why = _coulomb(normal, normal.P - v / f, m, h)
+        why = coulomb_violation(normal, normal.P - v / f, m, h)
         if why is not None:
             raise StickSeparationError(
                 f"`Q`/(f P) = {v / (f * normal.P):.6g} of the cycle's loading branch: the stick zone "

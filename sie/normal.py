@@ -40,7 +40,8 @@ from .roots import bracket_root, newton
 from .schemes import Plain, Projected, make_scheme
 from .series import ChebyshevPressure
 
-__all__ = ["SieNormalResult", "solve_normal", "solve_ends", "lift_off", "DEFAULT_N", "DEFAULT_SCHEME"]
+__all__ = ["SieNormalResult", "solve_normal", "solve_ends", "lift_off", "DEFAULT_N", "DEFAULT_SCHEME",
+           "check_scheme", "check_single_contact", "scan_ends"]
 
 DEFAULT_N = 1024
 DEFAULT_SCHEME = "projected"
@@ -161,7 +162,7 @@ def _gap_slope_outside(punch: Punch, m: float, h: float, alpha: float, xi: np.nd
     return punch.slope(m + h * xi, alpha) - series
 
 
-def _check_single_contact(punch: Punch, A: float, P: float, s: float, m: float, h: float,
+def check_single_contact(punch: Punch, A: float, P: float, s: float, m: float, h: float,
                           alpha: float) -> None:
     """Refuse a one-contact solution that is not one: tensile pressure, or penetration outside.
 
@@ -207,7 +208,7 @@ def _check_single_contact(punch: Punch, A: float, P: float, s: float, m: float, 
                 f"{gap[j]:.3g}) for R = {punch.R:g}; the contact separates into two zones")
 
 
-def _scan_ends(punch: Punch, A: float, P: float, sch: Plain | Projected, *,
+def scan_ends(punch: Punch, A: float, P: float, sch: Plain | Projected, *,
                s: float | None = None, alpha: float | None = None,
                points: int = 161) -> list[tuple[float, float, np.ndarray, int, float]]:
     """Every single contact ``m ± h`` of load ``P`` with centroid ``s`` (or tilt ``α``), by a scan.
@@ -314,7 +315,7 @@ def solve_normal(punch: Punch, P: float, s: float = 0.0, *, A: float, tilt: str 
             alpha = -float(G[0]) if tilt == "free" else 0.0
             s_out = float(s) if tilt == "free" else m + math.pi * h * h * float(G[2]) / (4 * A * P)
             try:
-                _check_single_contact(punch, A, P, s_out, m, h, alpha)
+                check_single_contact(punch, A, P, s_out, m, h, alpha)
             except SeparationError as exc:
                 refusals.append(exc)
                 continue
@@ -324,7 +325,7 @@ def solve_normal(punch: Punch, P: float, s: float = 0.0, *, A: float, tilt: str 
     chosen = single(found)
     if chosen is None and punch.kappa0 < 0:
         # a concave centre: look for every single contact that carries P at s
-        chosen = single(_scan_ends(punch, A, P, sch, s=target.get("s"), alpha=target.get("alpha")))
+        chosen = single(scan_ends(punch, A, P, sch, s=target.get("s"), alpha=target.get("alpha")))
     if chosen is None:
         raise refusals[0] if refusals else SeparationError(
             f"`P` = {P:g} with `s` = {s:g}: no single contact of the concave centre R = "

@@ -26,12 +26,13 @@ from threepart.validate import SLIP_RATIO_LIMIT, check_shear
 from threepart.errors import NoConvergenceError, SeparationError, StickSeparationError
 from threepart.results import NormalResult, SlipResult
 
-from .normal import (DEFAULT_N, DEFAULT_SCHEME, _check_single_contact, _scan_ends, check_scheme,
+from .normal import (DEFAULT_N, DEFAULT_SCHEME, check_scheme, check_single_contact, scan_ends,
                      solve_ends)
 from .schemes import Plain, Projected
 from .series import ChebyshevPressure
 
-__all__ = ["SieSlipResult", "solve_partial_slip", "stick_zone"]
+__all__ = ["SieSlipResult", "solve_partial_slip", "stick_zone", "coulomb_violation",
+           "stick_zone_by_continuation"]
 
 
 @dataclass(frozen=True)
@@ -61,20 +62,20 @@ class SieSlipResult(SlipResult):
             if self.Q != 0 else np.zeros(np.shape(x))
 
 
-def _coulomb(normal: NormalResult, P_star: float, m: float, h: float) -> str | None:
+def coulomb_violation(normal: NormalResult, P_star: float, m: float, h: float) -> str | None:
     """Why the stick zone ``m ± h`` (load ``P_star``) breaks Coulomb's law, or None if it does not.
 
     ``|q| <= f p`` needs ``0 <= p* <= p`` on the stick zone; the slip in the
     slip zones opposes the shear only if the corrective contact's gap stays
     open outside the stick zone. Only a concave centre can fail: then ``p*``
-    and its gap are checked as a normal contact's (:func:`sie.normal._check_single_contact`),
+    and its gap are checked as a normal contact's (:func:`sie.normal.check_single_contact`),
     and ``p - p*`` at 1599 points clustered at the stick zone's ends.
     """
     punch, A = normal.punch, normal.A
     if punch.kappa0 >= 0 or punch.b == 0:
         return None
     try:
-        _check_single_contact(punch, A, P_star, normal.s, m, h, normal.alpha)
+        check_single_contact(punch, A, P_star, normal.s, m, h, normal.alpha)
     except SeparationError as exc:
         return f"its corrective contact (load P* = {P_star:.6g}) separates: {exc}"
     p_star, extra = Projected(2048).pressure(punch, A, m, h)
@@ -94,7 +95,7 @@ CONTINUATION_STEPS = 16
 CONTINUATION_RATIO = 2.0
 
 
-def _continuation(normal: NormalResult, P_star: float, sch: Plain | Projected
+def stick_zone_by_continuation(normal: NormalResult, P_star: float, sch: Plain | Projected
                   ) -> tuple[float, float, int, float]:
     """The stick zone at ``P_star`` by continuation in the load from the contact itself.
 
@@ -133,8 +134,8 @@ def stick_zone(normal: NormalResult, Q: float, f: float, sch: Plain | Projected
 
     Newton (:func:`sie.normal.solve_ends`, tilt held at ``normal.alpha``) from
     the contact scaled by ``sqrt(P*/P)``. On a concave centre the equations may
-    have several roots: a root that breaks Coulomb's law (:func:`_coulomb`) is
-    set aside and the others are found by a scan (:func:`sie.normal._scan_ends`).
+    have several roots: a root that breaks Coulomb's law (:func:`coulomb_violation`) is
+    set aside and the others are found by a scan (:func:`sie.normal.scan_ends`).
 
     Raises
     ------
@@ -151,7 +152,7 @@ def stick_zone(normal: NormalResult, Q: float, f: float, sch: Plain | Projected
         try:
             m, h, _, its, res = solve_ends(punch, A, P_star, sch, alpha=normal.alpha, m0=m0, h0=h0)
         except NoConvergenceError:
-            m, h, its, res = _continuation(normal, P_star, sch)
+            m, h, its, res = stick_zone_by_continuation(normal, P_star, sch)
         found = [(m, h, its, res)]
     except NoConvergenceError:
         if punch.kappa0 >= 0 or punch.b == 0:
@@ -160,13 +161,13 @@ def stick_zone(normal: NormalResult, Q: float, f: float, sch: Plain | Projected
     ratio = abs(Q) / (f * normal.P)
     whys = []
     for k, (m, h, its, res) in enumerate(found):
-        why = _coulomb(normal, P_star, m, h)
+        why = coulomb_violation(normal, P_star, m, h)
         if why is None:
             return m, h, its, res
         whys.append((m, h, why))
         if k == 0:      # a concave centre: every other root of the stick-zone equations
             found += [(mm, hh, it, rr) for mm, hh, _, it, rr in
-                      _scan_ends(punch, A, P_star, sch, alpha=normal.alpha)
+                      scan_ends(punch, A, P_star, sch, alpha=normal.alpha)
                       if abs(mm - m) > 1e-9 * h or abs(hh - h) > 1e-9 * h]
     if not whys:
         raise NoConvergenceError(f"sie: no stick zone found for `Q`/(f P) = {ratio:.6g}")

@@ -55,7 +55,7 @@ from typing import Any, Callable
 import numpy as np
 from numpy.typing import ArrayLike
 
-from .validate import _show, finite
+from .validate import show, finite
 
 __all__ = ["Stress", "stress", "hilbert", "flamant_normal", "flamant_tangential",
            "kernel_primitives", "RULE"]
@@ -203,7 +203,7 @@ class Stress:
 def _array(name: str, value: Any) -> np.ndarray:
     """``value`` as a finite float array, else ``TypeError``/``ValueError`` naming ``name``."""
     if isinstance(value, (str, bytes)) or value is None:
-        raise TypeError(f"`{name}` = {_show(value)} must be a real number or array, "
+        raise TypeError(f"`{name}` = {show(value)} must be a real number or array, "
                         f"not {type(value).__name__}")
     try:
         arr = np.asarray(value)
@@ -239,7 +239,7 @@ def _evaluate(name: str, func: Traction, t: np.ndarray) -> np.ndarray:
 
 def _ends_kinks(ends: Any, kinks: Any) -> tuple[float, float, np.ndarray]:
     if not isinstance(ends, (tuple, list, np.ndarray)) or len(ends) != 2:
-        raise TypeError(f"`ends` = {_show(ends)} must be the pair (-a, c)")
+        raise TypeError(f"`ends` = {show(ends)} must be the pair (-a, c)")
     lo, hi = finite("ends[0]", ends[0]), finite("ends[1]", ends[1])
     if not lo < hi:
         raise ValueError(f"`ends` = ({lo:g}, {hi:g}) must satisfy ends[0] < ends[1]")

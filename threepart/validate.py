@@ -38,7 +38,7 @@ from typing import Any
 import numpy as np
 
 __all__ = ["real", "finite", "positive", "check_finite", "check_positive", "TILTS", "check_tilt",
-           "LENGTH_RANGE", "NU_RANGE", "poisson", "integer", "lever_arm", "SLOPE_LIMIT",
+           "LENGTH_RANGE", "show", "NU_RANGE", "poisson", "integer", "lever_arm", "SLOPE_LIMIT",
            "SLOPE_WARNING", "check_contact", "check_punch", "MAX_STATES", "check_states", "reals",
            "load_scale", "check_normal", "shear_load", "check_shear", "SLIP_RATIO_LIMIT"]
 
@@ -49,8 +49,8 @@ TILTS = ("free", "suppressed")
 LENGTH_RANGE = (1e-60, 1e60)
 
 
-def _show(value: Any) -> str:
-    """``repr(value)``, cut to 40 characters, for a one-line message."""
+def show(value: Any) -> str:
+    """``repr(value)``, cut to 40 characters, for a one-line message (every check's messages use it)."""
     text = repr(value)
     return text if len(text) <= 40 else f"{text[:18]}...{text[-18:]} ({len(text)} characters)"
 
@@ -58,14 +58,14 @@ def _show(value: Any) -> str:
 def _number(name: str, value: Any) -> float:
     if isinstance(value, (bool, np.bool_)) or not isinstance(value, (numbers.Real, np.floating,
                                                                       np.integer)):
-        raise TypeError(f"`{name}` = {_show(value)} must be a real number, not {type(value).__name__}")
+        raise TypeError(f"`{name}` = {show(value)} must be a real number, not {type(value).__name__}")
     try:
         v = float(value)      # float64, whatever the width or kind of the real number given
     except OverflowError:
-        raise ValueError(f"`{name}` = {_show(value)} is outside the double-precision range") from None
+        raise ValueError(f"`{name}` = {show(value)} is outside the double-precision range") from None
     if math.isinf(v) and not (isinstance(value, (float, np.floating)) and np.isinf(value)):
         # e.g. np.longdouble(1e4000): finite as given, infinite in float64
-        raise ValueError(f"`{name}` = {_show(value)} is outside the double-precision range")
+        raise ValueError(f"`{name}` = {show(value)} is outside the double-precision range")
     return v
 
 
@@ -81,7 +81,7 @@ def finite(name: str, value: Any) -> float:
     """``value`` as a finite float, else ``ValueError``."""
     v = _number(name, value)
     if not math.isfinite(v):
-        raise ValueError(f"`{name}` = {_show(value)} must be a finite number")
+        raise ValueError(f"`{name}` = {show(value)} must be a finite number")
     return v
 
 
@@ -89,10 +89,10 @@ def positive(name: str, value: Any, limits: tuple[float, float] = LENGTH_RANGE) 
     """``value`` as a float in ``[limits[0], limits[1]]`` (a positive magnitude), else ``ValueError``."""
     v = finite(name, value)
     if v <= 0:
-        raise ValueError(f"`{name}` = {_show(value)} must be > 0")
+        raise ValueError(f"`{name}` = {show(value)} must be > 0")
     lo, hi = limits
     if not lo <= v <= hi:
-        raise ValueError(f"`{name}` = {_show(value)} is outside [{lo:g}, {hi:g}], the range this "
+        raise ValueError(f"`{name}` = {show(value)} is outside [{lo:g}, {hi:g}], the range this "
                          "library computes in double precision")
     return v
 
@@ -124,7 +124,7 @@ def integer(name: str, value: Any, lo: int, hi: int) -> int:
     solve within this machine's memory and time).
     """
     if isinstance(value, (bool, np.bool_)) or not isinstance(value, (numbers.Integral, np.integer)):
-        raise TypeError(f"`{name}` = {_show(value)} must be an integer, not {type(value).__name__}")
+        raise TypeError(f"`{name}` = {show(value)} must be an integer, not {type(value).__name__}")
     v = int(value)
     if not lo <= v <= hi:
         raise ValueError(f"`{name}` = {v} must lie in [{lo}, {hi}]")
@@ -247,12 +247,12 @@ def reals(name: str, value: Any) -> np.ndarray:
     float64; a value outside float64's range is a ``ValueError``.
     """
     if isinstance(value, (str, bytes)) or value is None:
-        raise TypeError(f"`{name}` = {_show(value)} must be real numbers, not {type(value).__name__}")
+        raise TypeError(f"`{name}` = {show(value)} must be real numbers, not {type(value).__name__}")
     try:
         # a list is checked element by element: numpy would turn True into 1.0
         arr = np.asarray(value, dtype=object if isinstance(value, (list, tuple)) else None)
     except ValueError:
-        raise TypeError(f"`{name}` = {_show(value)} must be a flat array of real numbers") from None
+        raise TypeError(f"`{name}` = {show(value)} must be a flat array of real numbers") from None
     kind = arr.dtype.kind
     if kind == "O":
         out = np.empty(arr.size)
@@ -262,20 +262,20 @@ def reals(name: str, value: Any) -> np.ndarray:
             except (TypeError, ValueError) as exc:
                 raise type(exc)(f"{exc} (element {i})") from None
             if math.isinf(out[i]) and not math.isinf(v):
-                raise ValueError(f"`{name}` = {_show(v)} is outside the double-precision range "
+                raise ValueError(f"`{name}` = {show(v)} is outside the double-precision range "
                                  f"(element {i})")
             if math.isnan(out[i]):
                 raise ValueError(f"`{name}` = nan is not a number (element {i})")
         return out
     if kind not in "iuf":
         raise TypeError(f"`{name}` must be real numbers, not an array of {arr.dtype} "
-                        f"(first value {_show(arr.ravel()[0] if arr.size else arr)})")
+                        f"(first value {show(arr.ravel()[0] if arr.size else arr)})")
     with np.errstate(over="ignore"):
         out = arr.astype(float).ravel()
     bad = np.isinf(out) & ~np.isinf(arr.ravel()) if kind == "f" else np.isinf(out)
     if bad.any():
         i = int(np.argmax(bad))
-        raise ValueError(f"`{name}` = {_show(arr.ravel()[i])} is outside the double-precision range "
+        raise ValueError(f"`{name}` = {show(arr.ravel()[i])} is outside the double-precision range "
                          f"(element {i})")
     if np.isnan(out).any():
         raise ValueError(f"`{name}` = nan is not a number (element {int(np.argmax(np.isnan(out)))})")
