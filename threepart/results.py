@@ -12,7 +12,7 @@ of the load, positive to the right, and equals the centroid of the pressure;
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import Any, Self
+from typing import TYPE_CHECKING, Any, Mapping, Self
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -21,8 +21,15 @@ from scipy.optimize import minimize_scalar
 from .punch import Punch
 from .validate import finite
 
-__all__ = ["NormalResult", "SlipResult", "FrettingResult", "MasingCycle", "Peak", "SEGMENTS", "BRANCHES", "masing",
-           "segments_in_contact"]
+if TYPE_CHECKING:
+    from .stress import Stress
+
+__all__ = ["NormalResult", "SlipResult", "FrettingResult", "MasingCycle", "Peak", "Diagnostics", "SEGMENTS",
+           "BRANCHES", "NU", "masing", "segments_in_contact"]
+
+#: Poisson's ratio that ``stress()`` assumes for a half-plane result (closed form, SIE),
+#: which knows only the compliance ``A``; the FEM's results use their own.
+NU = 0.3
 
 #: the punch's segments, left to right (eq. 2)
 SEGMENTS = ("R1", "centre", "R2")
@@ -67,6 +74,54 @@ class Peak:
 
 
 @dataclass(frozen=True)
+class Diagnostics:
+    """How a result was computed: its discretisation, iterations and timings.
+
+    One typed record for every method; a field that a method does not have is
+    ``None`` (the closed form has no ``n``, the SIE no ``h``). A result's
+    ``info`` holds only what is particular to one method and is not here.
+
+    Attributes
+    ----------
+    n, scheme
+        SIE: collocation points and Gauss–Chebyshev scheme.
+    h, h_end, dofs, L
+        FEM: element size along the contact and at its ends, degrees of
+        freedom, block size (width and depth).
+    iterations
+        Iterations of the method's nonlinear solve (Newton, active set),
+        summed over its load steps.
+    residual
+        The final residual of that solve, in the method's own norm.
+    steps
+        Load steps (FEM partial slip) or recorded states (fretting cycles).
+    timings
+        Wall seconds per phase; ``"total"`` is the whole solve.
+    """
+
+    n: int | None = None
+    scheme: str | None = None
+    h: float | None = None
+    h_end: float | None = None
+    dofs: int | None = None
+    L: float | None = None
+    iterations: int | None = None
+    residual: float | None = None
+    steps: int | None = None
+    timings: Mapping[str, float] = field(default_factory=dict)
+
+    @property
+    def time_s(self) -> float | None:
+        """Wall seconds of the whole solve (``timings["total"]``), ``None`` if not timed."""
+        return self.timings.get("total")
+
+
+def _kinks(b: float, lo: float, hi: float, *more: float) -> list[float]:
+    """The joins ``x = ±b`` and the points ``more`` that lie strictly inside ``(lo, hi)``."""
+    return sorted({float(k) for k in (-b, b, *more) if lo < k < hi})
+
+
+@dataclass(frozen=True)
 class NormalResult:
     """Solution of the normal problem on the contact ``[-a, c]``.
 
@@ -84,8 +139,10 @@ class NormalResult:
         ``"free"`` or ``"suppressed"``.
     method
         ``"closedform"``, ``"sie"`` or ``"fem"``.
+    diagnostics
+        How it was computed (:class:`Diagnostics`).
     info
-        Discretisation metadata (``n``, ``h``, ``dofs``, timings, ...).
+        What is particular to one method and not in ``diagnostics``.
     """
 
     punch: Punch
@@ -97,11 +154,23 @@ class NormalResult:
     s: float
     tilt: str = "free"
     method: str = ""
+    diagnostics: Diagnostics = field(default_factory=Diagnostics, compare=False)
     info: dict[str, Any] = field(default_factory=dict, compare=False)
 
     def pressure(self, x: ArrayLike) -> np.ndarray:
         """Compressive contact pressure at ``x`` (0 outside ``[-a, c]``)."""
         raise NotImplementedError
+
+    def stress(self, x: ArrayLike, z: ArrayLike, *, nu: float = NU) -> Stress:
+        """Stresses in the substrate at ``(x, z)``, ``z >= 0`` the depth (:func:`threepart.stress.stress`).
+
+        From this result's pressure by Flamant's kernels; ``z = 0`` gives the
+        surface. ``nu`` is the substrate's Poisson ratio (plane strain), used
+        for ``σyy`` and the derived stresses; an FE result uses its own.
+        """
+        from .stress import stress
+        return stress(x, z, pressure=self.pressure, ends=(-self.a, self.c), nu=nu,
+                      kinks=_kinks(self.punch.b, -self.a, self.c))
 
     @property
     def width(self) -> float:
@@ -177,6 +246,9 @@ class SlipResult:
         Shear force and coefficient of friction, ``|Q| < f P``.
     d, e
         Stick-zone half-width and eccentricity (stick zone centred at ``-e``).
+    sigma_bulk
+        Bulk stress ``σxx`` in the substrate, tension positive, applied with
+        ``Q`` in proportion (after the normal load).
     """
 
     normal: NormalResult
@@ -185,6 +257,8 @@ class SlipResult:
     d: float
     e: float
     method: str = ""
+    sigma_bulk: float = 0.0
+    diagnostics: Diagnostics = field(default_factory=Diagnostics, compare=False)
     info: dict[str, Any] = field(default_factory=dict, compare=False)
 
     # the normal result's fields, so that a slip result has the shared shape too
@@ -244,6 +318,13 @@ class SlipResult:
         """Shear traction ``q(x)``, with the sign of ``Q``; integrates to ``Q``."""
         raise NotImplementedError
 
+    def stress(self, x: ArrayLike, z: ArrayLike, *, nu: float = NU) -> Stress:
+        """Stresses in the substrate at ``(x, z)``: pressure, shear and ``sigma_bulk`` (see :meth:`NormalResult.stress`)."""
+        from .stress import stress
+        return stress(x, z, pressure=self.pressure, shear=self.shear, ends=(-self.a, self.c),
+                      sigma_bulk=self.sigma_bulk, nu=nu,
+                      kinks=_kinks(self.normal.punch.b, -self.a, self.c, *self.stick_zone))
+
 
 @dataclass(frozen=True)
 class FrettingResult:
@@ -271,6 +352,9 @@ class FrettingResult:
         to a term linear in ``Q``; :meth:`loop` removes that term.
     energy
         Energy dissipated per cycle and unit length (the area of the ``Q``–``delta`` loop).
+    sigma_bulk
+        Bulk stress ``σxx`` in the substrate at ``Q_max``, tension positive; it
+        varies in phase with ``Q``: ``sigma_bulk Q / Q_max`` at each state.
     """
 
     normal: NormalResult
@@ -282,6 +366,8 @@ class FrettingResult:
     delta: np.ndarray
     energy: float
     method: str = ""
+    sigma_bulk: float = 0.0
+    diagnostics: Diagnostics = field(default_factory=Diagnostics, compare=False)
     info: dict[str, Any] = field(default_factory=dict, compare=False)
 
     def loop(self) -> tuple[np.ndarray, np.ndarray]:
@@ -301,6 +387,27 @@ class FrettingResult:
     def slip_amplitude(self, x: ArrayLike) -> np.ndarray:
         """Half the peak-to-peak relative slip at ``x`` over the cycle (0 where it never slips)."""
         raise NotImplementedError
+
+    def state_kinks(self, Q: float, branch: str) -> list[float]:
+        """Points of the contact where the shear at ``(Q, branch)`` may not be smooth.
+
+        The joins ``x = ±b`` and the ends of every recorded zone that has not
+        slipped; :meth:`stress` puts quadrature panel ends there.
+        """
+        return _kinks(self.normal.punch.b, -self.normal.a, self.normal.c, *np.ravel(self.stick))
+
+    def stress(self, x: ArrayLike, z: ArrayLike, Q: float, branch: str, *, nu: float = NU) -> Stress:
+        """Stresses in the substrate at ``(x, z)`` in the state ``(Q, branch)`` of the cycle.
+
+        The pressure, the shear :meth:`shear` of that state and the bulk stress
+        ``sigma_bulk Q / Q_max`` (in phase with ``Q``); see
+        :meth:`NormalResult.stress`.
+        """
+        from .stress import stress
+        normal = self.normal
+        return stress(x, z, pressure=normal.pressure, shear=lambda t: self.shear(t, Q, branch),
+                      ends=(-normal.a, normal.c), sigma_bulk=self.sigma_bulk * float(Q) / self.Q_max,
+                      nu=nu, kinks=self.state_kinks(Q, branch))
 
 
 class MasingCycle(FrettingResult):
