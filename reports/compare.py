@@ -16,7 +16,8 @@ from typing import Any
 import numpy as np
 
 from threepart.output import json_safe
-from threepart.tolerances import FRETTING_QUANTITIES, NORMAL_QUANTITIES, SLIP_QUANTITIES, tolerance
+from threepart.tolerances import (FRETTING_QUANTITIES, NORMAL_QUANTITIES, SLIP_QUANTITIES, STRESS_QUANTITIES,
+                                  tolerance)
 
 __all__ = ["Check", "FieldErrors", "compare", "field_errors", "sample_points", "is_slip", "normal_of",
            "normal_figures", "slip_figures", "fretting_figures", "is_fretting", "SHEAR_STATES",
@@ -185,6 +186,70 @@ def slip_figures(ref: Any, other: Any) -> dict[str, tuple[float, float, float]]:
     return out
 
 
+#: points of the stress comparison: surface points over the contact and its surroundings
+#: (a fraction ``STRESS_REACH`` of W beyond each end), and a grid at depth >= ``STRESS_DEPTH`` a
+STRESS_REACH = 0.25
+STRESS_DEPTH = 0.2
+_STRESS_SURFACE = 401
+_STRESS_GRID = (41, 9)
+
+
+def stress_points(ref: Any) -> tuple[tuple[np.ndarray, np.ndarray], tuple[np.ndarray, np.ndarray]]:
+    """``((x, z), (x, z))``: the surface line and the grid at depth where stresses are compared.
+
+    The surface line spans the contact and ``STRESS_REACH W`` beyond each end,
+    where the trailing edge's tension peaks; the grid spans the contact in
+    ``x`` and ``STRESS_DEPTH a <= z <= W`` in depth (``a`` the contact's
+    half-width ``W/2``), where an FE stress recovery converges at its own
+    rate. Both avoid the contact ends at the surface, where σxx has a
+    ``sqrt``-kink.
+    """
+    n = normal_of(ref)
+    W = n.a + n.c
+    xs = np.linspace(-n.a - STRESS_REACH * W, n.c + STRESS_REACH * W, _STRESS_SURFACE)
+    xs = xs[np.min(np.abs(xs[:, None] - np.array([-n.a, n.c])), axis=1) > 1e-3 * W]
+    nx, nz = _STRESS_GRID
+    xg, zg = np.meshgrid(np.linspace(-n.a, n.c, nx), np.linspace(STRESS_DEPTH * 0.5 * W, W, nz))
+    return (xs, np.zeros_like(xs)), (xg.ravel(), zg.ravel())
+
+
+def stress_figures(ref: Any, other: Any) -> dict[str, tuple[float, float, float]]:
+    """``quantity -> (reference, obtained, normalised error)`` for the stress field in the substrate.
+
+    ``sxx_surface`` is the largest difference of the surface ``σxx`` over
+    :func:`stress_points`' surface line, ``stress_depth`` that of ``σxx``,
+    ``σzz`` and ``σxz`` over its grid at depth, both in units of the
+    reference's peak pressure; ``sxx_peak`` is the difference of the largest
+    surface ``σxx`` (the tension at the trailing edge) in units of the
+    reference's largest ``|σxx|`` on that line. Each result evaluates its own
+    ``stress(x, z)`` (the FEM from its displacement field).
+    """
+    (xs, zs), (xg, zg) = stress_points(ref)
+    p_max = max(pk.p for pk in normal_of(ref).peaks())
+    nu = _stress_nu(other)
+    sr, so = ref.stress(xs, zs, nu=nu), other.stress(xs, zs, nu=nu)
+    out: dict[str, tuple[float, float, float]] = {}
+    i = int(np.argmax(np.abs(so.sxx - sr.sxx)))
+    out["sxx_surface"] = (float(sr.sxx[i]), float(so.sxx[i]), float(np.abs(so.sxx - sr.sxx)[i]) / p_max)
+    top_r, top_o = float(sr.sxx.max()), float(so.sxx.max())
+    out["sxx_peak"] = (top_r, top_o, abs(top_o - top_r) / float(np.abs(sr.sxx).max()))
+    gr, go = ref.stress(xg, zg, nu=nu), other.stress(xg, zg, nu=nu)
+    worst = (0.0, 0.0, -1.0)
+    for comp in ("sxx", "szz", "sxz"):
+        r, o = getattr(gr, comp), getattr(go, comp)
+        j = int(np.argmax(np.abs(o - r)))
+        worst = max(worst, (float(r[j]), float(o[j]), float(abs(o[j] - r[j])) / p_max), key=lambda t: t[2])
+    out["stress_depth"] = worst
+    return out
+
+
+def _stress_nu(res: Any) -> float:
+    """Poisson's ratio for a stress comparison: the result's own (an FE model's), else the default."""
+    from threepart.results import NU
+    own = getattr(res, "nu", None)
+    return float(own) if own is not None else NU
+
+
 def _shear_integral(res: Any) -> float:
     """``∫ q dx`` of a slip result: exact on a nodal result's interpolant, else by quadrature.
 
@@ -248,7 +313,8 @@ def compare(ref: Any, other: Any, comparison: str) -> list[Check]:
     quantities: tuple[str, ...] = NORMAL_QUANTITIES
     if is_slip(ref) and is_slip(other):
         figures.update(slip_figures(ref, other))
-        quantities = NORMAL_QUANTITIES + SLIP_QUANTITIES
+        figures.update(stress_figures(ref, other))
+        quantities = NORMAL_QUANTITIES + SLIP_QUANTITIES + STRESS_QUANTITIES
     elif is_fretting(ref) and is_fretting(other):
         figures.update(fretting_figures(ref, other))
         quantities = NORMAL_QUANTITIES + FRETTING_QUANTITIES
