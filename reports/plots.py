@@ -23,8 +23,8 @@ from .compare import EDGE_FRACTION, field_errors, is_slip, normal_of
 from .sections import ENERGY_UNIT, order_text
 from .studies import Study
 
-__all__ = ["new_figure", "save", "overlay", "error_curves", "sie_convergence", "fem_convergence",
-           "step_convergence", "fretting", "STYLE"]
+__all__ = ["new_figure", "save", "overlay", "error_curves", "stress_surface", "von_mises", "sie_convergence",
+           "fem_convergence", "step_convergence", "fretting", "STYLE"]
 
 #: how each method is drawn
 STYLE = {
@@ -291,4 +291,93 @@ def fretting(results: dict[str, Any], title: str, path: str | Path,
         ax.set_title(f"{title}: shear traction at {label} ({branch})", fontsize=10)
         ax.grid(True, color="0.9", lw=0.6)
         ax.legend(loc="lower center", fontsize=7)
+    return save(fig, path)
+
+
+def stress_surface(results: dict[str, Any], title: str, path: str | Path, *, nu: float,
+                   reference: str = "closedform", physical: bool = False) -> Path:
+    """Surface stress ``σxx`` of every method along the contact and beyond its ends.
+
+    In MPa against mm for a case with a material, else over the reference's
+    peak pressure against x / W. The trailing edge's tension (x = -a for
+    Q > 0) is where fretting cracks start.
+    """
+    from .stress import surface_line
+
+    ref = results.get(reference) or next(iter(results.values()))
+    name = REFERENCE_NAME.get(reference, reference)
+    nref = normal_of(ref)
+    xscale, xlabel = _axis(nref, physical)
+    pmax = max(p.p for p in nref.peaks())
+    sscale = 1.0 if physical else pmax
+    fig, axes = new_figure()
+    ax = axes[0, 0]
+    x = surface_line(ref)
+    for method, res in results.items():
+        xs = x[:: max(len(x) // N_MARKERS, 1)] if method == "sie" else x
+        sxx = res.stress(xs, np.zeros_like(xs), nu=nu).sxx
+        ax.plot(xs / xscale, sxx / sscale, **STYLE.get(method, {"label": method}))
+    for i, xe in enumerate((-nref.a, nref.c)):
+        ax.axvline(xe / xscale, color="0.3", lw=0.8, ls="-.",
+                   label="contact ends x = -a, c" if i == 0 else None)
+    bulk = float(getattr(ref, "sigma_bulk", 0.0))
+    ax.axhline(bulk / sscale, color="0.7", lw=0.8, label=f"bulk stress {fmt_stress(bulk, physical)}")
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel(f"surface σxx ({UNITS['p']}, tension positive)" if physical
+                  else f"σxx / p_max  (peak pressure of the {name}; tension positive)")
+    Qr = f", Q/fP = {ref.Q / (ref.f * ref.P):.2g}" if is_slip(ref) else ""
+    ax.set_title(f"{title}: surface stress σxx{Qr}, {_methods(results)}\n"
+                 f"(reference: the {name})", fontsize=10)
+    ax.legend(loc="best", fontsize=7)
+    return save(fig, path)
+
+
+def fmt_stress(value: float, physical: bool) -> str:
+    """A stress for a legend: in MPa for a case with a material, else in the case's units."""
+    return f"{value:.4g} {UNITS['p']}" if physical else f"{value:.4g}"
+
+
+def von_mises(results: dict[str, Any], title: str, path: str | Path, *, nu: float,
+              reference: str = "closedform", physical: bool = False) -> Path:
+    """Von Mises stress under the contact: the reference filled, every other method's contours on top.
+
+    Depth ``z`` points down; the levels are the same for every method, so a
+    displaced line is a difference in the field.
+    """
+    from .stress import field_grid
+
+    ref = results.get(reference) or next(iter(results.values()))
+    name = REFERENCE_NAME.get(reference, reference)
+    nref = normal_of(ref)
+    xscale, xlabel = _axis(nref, physical)
+    pmax = max(p.p for p in nref.peaks())
+    sscale = 1.0 if physical else pmax
+    x, z = field_grid(ref)
+    vm = ref.stress(x, z, nu=nu).von_mises / sscale
+    levels = np.linspace(0.0, float(vm.max()), 11)[1:]
+    fig, axes = new_figure(size=(6.4, 4.4))
+    ax = axes[0, 0]
+    filled = ax.contourf(x / xscale, z / xscale, vm, levels=np.linspace(0.0, float(vm.max()), 21),
+                         cmap="viridis")
+    fig.colorbar(filled, ax=ax, label=(f"von Mises ({UNITS['p']}), {name}" if physical
+                                       else f"von Mises / p_max, {name}"))
+    ax.contour(x / xscale, z / xscale, vm, levels=levels, colors="k", linewidths=0.9)
+    handles = [ax.plot([], [], color="k", lw=0.9, label=f"{name} (filled and black lines)")[0]]
+    colours = {"sie": "tab:red", "fem": "tab:orange"}
+    for method, res in results.items():
+        if method == reference:
+            continue
+        other = res.stress(x, z, nu=nu).von_mises / sscale
+        colour = colours.get(method, "w")
+        ax.contour(x / xscale, z / xscale, other, levels=levels, colors=colour, linewidths=1.0,
+                   linestyles="--")
+        handles.append(ax.plot([], [], color=colour, lw=1.0, ls="--", label=METHOD_NAME.get(method, method))[0])
+    ax.plot([-nref.a / xscale, nref.c / xscale], [0, 0], color="w", lw=4, solid_capstyle="butt")
+    ax.invert_yaxis()
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel(f"depth z ({UNITS['x']})" if physical else "depth z / W")
+    ax.set_title(f"{title}: von Mises stress in the substrate (ν = {nu:g}), "
+                 f"{_methods(results)}\n(same levels for every method; the white bar is the contact)",
+                 fontsize=10)
+    ax.legend(handles=handles, loc="lower right", fontsize=7)
     return save(fig, path)

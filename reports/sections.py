@@ -43,7 +43,11 @@ PLOT_KINDS = {
     "overlay": "pressure (and shear) of every method, the reference as a line",
     "errors": "pointwise error of each method against the reference, as a fraction of its peak",
     "cycle": "fretting cycle: hysteresis loop and the shear at three states",
+    "stress": "surface stress σxx of every method, along the contact and beyond its ends",
+    "von_mises": "von Mises stress under the contact: the reference filled, every method's contours",
 }
+#: the stress quantities of a hot spot, as the report names them
+HOT_SPOTS = {"sxx": "largest surface σxx", "von_mises": "largest von Mises", "max_shear": "largest Tresca shear"}
 
 
 # -- the typed pieces -----------------------------------------------------------------------
@@ -459,6 +463,37 @@ def _studies(doc: dict[str, Any]) -> Section:
     return Section("Convergence studies", "studies", (intro,), children=tuple(children))
 
 
+def _stress(doc: dict[str, Any]) -> tuple[Section | None, set[str]]:
+    """Hot spots of the stress field by each method, and the stress plots of every partial-slip case."""
+    cases = [c for c in doc["cases"] if "stress" in c]
+    if not cases:
+        return None, set()
+    rows = []
+    for c in cases:
+        for m, spots in c["stress"]["hot_spots"].items():
+            rows.append((c["name"], METHOD_NAMES.get(m, m),
+                         *(f"{fmt(h['value'])} at x = {fmt(h['x'])}"
+                           + (f", z = {fmt(h['z'])}" if q != "sxx" else "") for q, h in spots.items())))
+    units = " [MPa; x, z in mm]" if any(physical(c) for c in cases) else ""
+    head = ("case", "method", *(HOT_SPOTS[q] for q in ("sxx", "von_mises", "max_shear")))
+    figs = tuple(Figure(p, f"{c['name']}: {PLOT_KINDS[_kind(p, c['name'])]}", f"#{c['name']}",
+                        Status.of(c["passed"]))
+                 for c in cases for p in c["plots"] if _kind(p, c["name"]) in ("stress", "von_mises"))
+    bulk = ", ".join(f"{c['name']} {fmt(c['stress']['sigma_bulk'])}" for c in cases)
+    intro: tuple[Para, ...] = (
+        ("The stress in the substrate under every partial-slip case, by each method from its own "
+         "tractions (the FEM from its displacement field): x along the surface, z the depth, "
+         "tension positive, plane strain. The comparison checks the surface σxx, its peak at the "
+         "trailing edge and the stresses at depth (rows sxx_surface, sxx_peak and stress_depth of "
+         "each case); the hot spots below are where a designer looks for crack nucleation.",),
+        (f"Bulk stress σxx in the substrate: {bulk}.",),
+    )
+    return (Section("Stress in the substrate", "stress", intro,
+                    (Table(head, tuple(rows), f"hot spots{units}"),), figs,
+                    Status.of(all(c["passed"] for c in cases))),
+            {f.path for f in figs})
+
+
 def _map(map_link: str | None) -> Section:
     intro: list[Inline] = [
         "Every check above compares idealisations of one model: a parabolic profile on "
@@ -524,6 +559,8 @@ def build(doc: dict[str, Any], map_link: str | None = None) -> Document:
         (it exists); otherwise the section says how to make one.
     """
     overlays, shown = _overlays(doc)
+    stress, stress_plots = _stress(doc)
+    shown |= stress_plots
     inside = [c for c in doc["cases"] if c.get("reference") != "sie"]
     beyond = [c for c in doc["cases"] if c.get("reference") == "sie"]
     sections = [
@@ -536,6 +573,7 @@ def build(doc: dict[str, Any], map_link: str | None = None) -> Document:
                 status=Status.of(all(c["passed"] for c in inside)) if inside else None),
         Section("Beyond the closed form", "beyond", (), (_case_lines(doc, True),),
                 status=Status.of(all(c["passed"] for c in beyond)) if beyond else None),
+        *((stress,) if stress else ()),
         Section("Details of each case", "details",
                 (("Each case's input, the results of each method, every check and the error "
                   "plots.",),), children=tuple(_case_section(c, shown) for c in doc["cases"])),

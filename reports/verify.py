@@ -28,10 +28,11 @@ from threepart.output import atomic_dir, json_safe, strict_json, validate_json
 from . import render
 from .catalogue import FRETTING_STATES, MODES, CaseRun, Mode, run_case
 from .sections import MAP_JSON, plot_path, study_plot_path
+from .stress import case_hot_spots, stress_nu
 from .solvers import METHODS
 from .studies import STEP_STATES, Study, fem_slip_study, fem_step_study, fem_study, sie_study
 
-__all__ = ["main", "run", "build_report", "write_report",
+__all__ = ["main", "run", "build_report", "write_report", "stress_record",
            "SCHEMA_FILE", "load_schema", "validate", "STUDY_CASE", "SLIP_STUDY_CASE",
            "SCHEMA_VERSION"]
 
@@ -186,8 +187,14 @@ def run(mode: Mode, cases: Sequence[Case], say: Callable[[str], None]) -> tuple[
 
 
 def build_report(mode: Mode, runs: Sequence[CaseRun], studies: Sequence[Study],
-                 timings: dict[str, float], plots: dict[str, list[str]]) -> dict[str, Any]:
-    """The ``report.json`` document (see ``reports/report.schema.json``)."""
+                 timings: dict[str, float], plots: dict[str, list[str]],
+                 stress: dict[str, dict[str, Any]] | None = None) -> dict[str, Any]:
+    """The ``report.json`` document (see ``reports/report.schema.json``).
+
+    ``stress`` maps a partial-slip case to its stress record (Poisson's ratio,
+    bulk stress, hot spots by method; :func:`stress_record`).
+    """
+    stress = stress or {}
     from threepart.tolerances import ERROR_UNITS, TOLERANCES
 
     checks = [c for r in runs for c in r.checks]
@@ -205,6 +212,7 @@ def build_report(mode: Mode, runs: Sequence[CaseRun], studies: Sequence[Study],
     cases = []
     for r in runs:
         worst = max((c.error / c.limit for c in r.checks if c.limit > 0), default=None)
+        extra = {"stress": stress[r.case.name]} if r.case.name in stress else {}
         cases.append({
             **r.case.as_dict(),
             "passed": r.passed,
@@ -215,6 +223,7 @@ def build_report(mode: Mode, runs: Sequence[CaseRun], studies: Sequence[Study],
             "refusals": dict(r.refusals),
             "checks": [c.as_dict() for c in r.checks],
             "plots": plots.get(r.case.name, []),
+            **extra,
         })
     doc = {
         "schema_version": SCHEMA_VERSION,
@@ -240,6 +249,14 @@ def build_report(mode: Mode, runs: Sequence[CaseRun], studies: Sequence[Study],
     return json_safe(doc)
 
 
+def stress_record(run: CaseRun) -> dict[str, Any]:
+    """The stress record of a partial-slip case: ν, the bulk stress and each method's hot spots."""
+    ref = run.results[run.case.reference]
+    nu = stress_nu(run.case.material)
+    return {"nu": nu, "sigma_bulk": float(getattr(ref, "sigma_bulk", 0.0)),
+            "hot_spots": case_hot_spots(run.results, nu, run.case.reference)}
+
+
 def load_schema() -> dict[str, Any]:
     """The JSON schema of ``report.json``."""
     return json.loads(SCHEMA_FILE.read_text(encoding="utf-8"))
@@ -261,6 +278,7 @@ def write_report(tmp: Path, mode: Mode, runs: Sequence[CaseRun], studies: Sequen
 
     t0 = time.perf_counter()
     drawn: dict[str, list[str]] = {}
+    stressed: dict[str, dict[str, Any]] = {}
     todo = [r for r in runs if r.case.reference in r.results]
     say(f"[report] drawing the plots of {len(todo)} cases and {len(studies)} studies ...")
     with _heartbeat(say, lambda: "[report] drawing the plots"):
@@ -278,6 +296,13 @@ def write_report(tmp: Path, mode: Mode, runs: Sequence[CaseRun], studies: Sequen
                 plots.error_curves(r.results, name, tmp / plot_path(name, "errors"), reference=ref,
                                    physical=physical)
                 drawn[name].append(plot_path(name, "errors"))
+            if r.case.kind == "slip":
+                record = stress_record(r)
+                stressed[name] = record
+                for kind, draw in (("stress", plots.stress_surface), ("von_mises", plots.von_mises)):
+                    draw(r.results, name, tmp / plot_path(name, kind), nu=record["nu"], reference=ref,
+                         physical=physical)
+                    drawn[name].append(plot_path(name, kind))
         drawn["_studies"] = []
         for st in studies:
             if not st.values:
@@ -288,7 +313,7 @@ def write_report(tmp: Path, mode: Mode, runs: Sequence[CaseRun], studies: Sequen
             drawn["_studies"].append(name)
     timings = dict(timings, plots_s=time.perf_counter() - t0)
     timings["total_s"] = timings.get("solve_s", 0.0) + timings["plots_s"]
-    doc = build_report(mode, runs, studies, timings, drawn)
+    doc = build_report(mode, runs, studies, timings, drawn, stressed)
     validate(doc)
     map_link = MAP_JSON if (tmp / MAP_JSON).is_file() else None
     (tmp / "report.json").write_text(strict_json(doc, indent=1), encoding="utf-8")

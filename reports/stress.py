@@ -1,0 +1,98 @@
+"""Stress and fatigue in the verification run: the substrate under each partial-slip case, by every method.
+
+The comparison (:func:`reports.compare.stress_figures`) judges each method's
+stress field against the reference's; this module gives the report what a
+designer reads off that field: where the surface tension and the von Mises
+stress peak, and how much, by each method, and the fields drawn in
+:func:`reports.plots.stress_surface` and :func:`reports.plots.von_mises`.
+Every method's stresses come from its own ``stress(x, z)`` (one result shape;
+nothing here knows a method). Nothing here solves a contact.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any, Mapping
+
+import numpy as np
+
+from threepart.results import NU
+
+from .compare import STRESS_REACH, normal_of
+
+__all__ = ["HotSpot", "FIELD_GRID", "field_grid", "surface_line", "hot_spots", "stress_nu"]
+
+#: points ``(nx, nz)`` of the field under a contact: x over the contact and ``STRESS_REACH W``
+#: beyond each end, z from the surface to the depth ``W``
+FIELD_GRID = (97, 49)
+
+
+@dataclass(frozen=True)
+class HotSpot:
+    """Where a stress quantity is largest, and its value (the stress unit of the case)."""
+
+    quantity: str
+    x: float
+    z: float
+    value: float
+
+    def as_dict(self) -> dict[str, Any]:
+        return {"quantity": self.quantity, "x": self.x, "z": self.z, "value": self.value}
+
+
+def stress_nu(case_material: tuple[float, float] | None) -> float:
+    """Poisson's ratio for the stresses of a case: its material's, else :data:`threepart.results.NU`."""
+    return float(case_material[1]) if case_material is not None else NU
+
+
+def surface_line(ref: Any, n: int = 801) -> np.ndarray:
+    """Surface points over the contact of ``ref`` and ``STRESS_REACH W`` beyond each end.
+
+    The contact ends themselves are left out: the surface ``σxx`` has a
+    square-root kink there.
+    """
+    nr = normal_of(ref)
+    W = nr.a + nr.c
+    x = np.linspace(-nr.a - STRESS_REACH * W, nr.c + STRESS_REACH * W, n)
+    return x[np.min(np.abs(x[:, None] - np.array([-nr.a, nr.c])), axis=1) > 1e-3 * W]
+
+
+def field_grid(ref: Any, shape: tuple[int, int] = FIELD_GRID) -> tuple[np.ndarray, np.ndarray]:
+    """``(x, z)`` of shape ``(nz, nx)``: the section under the contact of ``ref``, depth 0 to ``W``.
+
+    The surface row avoids the contact ends (see :func:`surface_line`) by
+    starting the depth at ``1e-3 W``.
+    """
+    nr = normal_of(ref)
+    W = nr.a + nr.c
+    nx, nz = shape
+    xs = np.linspace(-nr.a - STRESS_REACH * W, nr.c + STRESS_REACH * W, nx)
+    zs = np.linspace(1e-3 * W, W, nz)
+    return np.meshgrid(xs, zs)
+
+
+def hot_spots(result: Any, nu: float, ref: Any | None = None) -> dict[str, HotSpot]:
+    """The largest surface tension ``σxx``, von Mises stress and Tresca shear of ``result``.
+
+    ``σxx`` is searched along :func:`surface_line` (where fretting cracks
+    start: the trailing edge), the other two over :func:`field_grid`
+    (Hamilton's subsurface maximum, or the surface in partial slip). ``ref``
+    sets the points (the reference's contact), so that every method of a case
+    is searched on the same points.
+    """
+    ref = result if ref is None else ref
+    xs = surface_line(ref)
+    surf = result.stress(xs, np.zeros_like(xs), nu=nu)
+    i = int(np.argmax(surf.sxx))
+    out = {"sxx": HotSpot("sxx", float(xs[i]), 0.0, float(surf.sxx[i]))}
+    x, z = field_grid(ref)
+    st = result.stress(x, z, nu=nu)
+    for name, values in (("von_mises", st.von_mises), ("max_shear", st.max_shear)):
+        j = np.unravel_index(int(np.argmax(values)), values.shape)
+        out[name] = HotSpot(name, float(x[j]), float(z[j]), float(values[j]))
+    return out
+
+
+def case_hot_spots(results: Mapping[str, Any], nu: float, reference: str) -> dict[str, dict[str, Any]]:
+    """``method -> quantity -> hot spot`` (as dicts) for the slip results of one case."""
+    ref = results[reference]
+    return {m: {q: h.as_dict() for q, h in hot_spots(res, nu, ref).items()} for m, res in results.items()}
