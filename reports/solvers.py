@@ -44,7 +44,7 @@ def slip(method: str, case: Case, base: NormalResult | None, **options: Any) -> 
     """Partial slip of ``case`` by ``method``, on its normal result ``base`` where the method uses one."""
     Q, f = case.shear_load
     return registry.get(method).slip(case.punch, case.P, case.s_load, Q=Q, f=f,  # type: ignore[misc]
-                                     normal=base, **_args(method, case, options))
+                                     normal=base, **_bulk(case), **_args(method, case, options))
 
 
 def fretting(method: str, case: Case, base: NormalResult | None, states: int,
@@ -53,4 +53,9 @@ def fretting(method: str, case: Case, base: NormalResult | None, states: int,
     Q, f = case.shear_load
     return registry.get(method).fretting(  # type: ignore[misc]
         case.punch, case.P, case.s_load, Q_max=Q, f=f, states=states, normal=base,
-        **_args(method, case, options))
+        **_bulk(case), **_args(method, case, options))
+
+
+def _bulk(case: Case) -> dict[str, float]:
+    """``sigma_bulk`` for a case that has one (no keyword otherwise, so every adapter takes it)."""
+    return {"sigma_bulk": case.sigma_bulk} if case.sigma_bulk else {}

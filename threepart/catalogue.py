@@ -40,7 +40,9 @@ class Case:
     must raise for a case past its framework (``"LiftOffError"``,
     ``"StickZoneError"``); such a case is judged against the SIE. With
     ``cycle`` the shear load is the amplitude ``Q_max`` of a fretting cycle
-    ``0 -> Q_max -> -Q_max -> Q_max``.
+    ``0 -> Q_max -> -Q_max -> Q_max``. ``sigma_bulk`` is a bulk stress ``σxx``
+    in the substrate (tension positive), applied with the shear load in
+    proportion (in phase over a cycle).
     """
 
     name: str
@@ -58,6 +60,7 @@ class Case:
     suites: tuple[str, ...] = ()
     closedform_refuses: str | None = None
     cycle: bool = False
+    sigma_bulk: float = 0.0
 
     @property
     def beyond(self) -> bool:
@@ -154,7 +157,7 @@ class Case:
                 "s_lift_off_fraction": self.s_lift_off_fraction, "load_4PA_over_b":
                     None if math.isinf(self.load_4PA_over_b) else self.load_4PA_over_b,
                 "f": self.f, "Q_over_fP": self.Q_over_fP, "Q": self.Q,
-                "closedform_refuses": self.closedform_refuses}
+                "closedform_refuses": self.closedform_refuses, "sigma_bulk": self.sigma_bulk}
 
 
 def _read(path: str | Path | None) -> dict[str, Any]:
@@ -174,7 +177,8 @@ def _case(c: dict[str, Any], default_material: dict[str, float]) -> Case:
                 s=c.get("s", None if "s_lift_off_fraction" in c else 0.0), tilt=c.get("tilt", "free"),
                 s_lift_off_fraction=c.get("s_lift_off_fraction"), s_max=c.get("s_max"),
                 f=c.get("f"), Q_over_fP=c.get("Q_over_fP"), suites=tuple(c["suites"]),
-                closedform_refuses=c.get("closedform_refuses"), cycle=bool(c.get("cycle", False)))
+                closedform_refuses=c.get("closedform_refuses"), cycle=bool(c.get("cycle", False)),
+                sigma_bulk=float(c.get("sigma_bulk", 0.0)))
 
 
 def load_cases(suite: str | None = "verify", path: str | Path | None = None) -> list[Case]:
