@@ -1,6 +1,7 @@
 """Meshes: the committed reference mesh against its manifest, physical groups by name, gmsh hygiene."""
 from __future__ import annotations
 
+import hashlib
 import json
 from pathlib import Path
 
@@ -16,7 +17,19 @@ HERE = Path(meshes.__file__).parent
 
 
 def test_reference_mesh_matches_manifest():
+    """The manifest's numbers recomputed from the file on disk with meshio and hashlib."""
     assert check_manifest(HERE / "manifest.json") == ["reference.msh"]
+    entry = json.loads((HERE / "manifest.json").read_text())["meshes"][0]
+    m = meshio.read(HERE / entry["file"])
+    assert entry["nodes"] == len(m.points) and entry["triangles"] == len(m.cells_dict["triangle"])
+    for name, group in entry["physical_groups"].items():
+        tag, dim = m.field_data[name]
+        kind = "line" if dim == 1 else "triangle"
+        assert group == {"dim": dim, "cells": int(np.sum(m.cell_data_dict["gmsh:physical"][kind] == tag))}
+    # SHA-256 of the x, y coordinates rounded to 1e-9 L as little-endian int64 (the manifest's rule)
+    grid = 1e-9 * entry["parameters"]["L"]
+    q = np.rint(m.points[:, :2] / grid).astype("<i8")
+    assert hashlib.sha256(q.tobytes()).hexdigest() == entry["coordinate_checksum"]
 
 
 def test_manifest_records_gmsh_version_and_parameters():
