@@ -10,6 +10,8 @@ from threepart.catalogue import CASES_FILE, SUITES, get_case, load_cases, slip_l
 from threepart.tolerances import tolerance
 
 CASES = load_cases(None)
+#: a case within 10 % of the lift-off lever arm tests the closed form at its framework's edge
+NEAR_LIFT_OFF = 0.9
 
 
 def test_verification_suite_covers_every_punch_kind_and_load():
@@ -20,7 +22,7 @@ def test_verification_suite_covers_every_punch_kind_and_load():
     assert {c.closedform_refuses for c in cases if c.beyond} == {"LiftOffError", "StickZoneError"}
     assert {"general", "A", "B", "C", "Hertz"} <= {c.punch.case for c in cases}
     assert any(c.tilt == "suppressed" for c in cases)
-    assert any(c.s_lift_off_fraction and c.s_lift_off_fraction > 0.9 for c in cases)
+    assert any(c.s_lift_off_fraction and c.s_lift_off_fraction > NEAR_LIFT_OFF for c in cases)
     assert sorted(c.Q_over_fP for c in inside if c.kind == "slip") == [0.2, 0.4, 0.7]
     sym = get_case("caseA_sym")
     assert sym.punch.R1 == sym.punch.R2 == 10.0 and sym.punch.b == 1.0
