@@ -4,15 +4,18 @@ The fake contact is an ellipse of half-width ``h = sqrt(2 P A R1 / pi)``
 centred on the lever arm ``s`` (so the centroid is ``s``); partial slip is the
 Ciavarella–Jäger solution of that ellipse. The pressure is defined by the
 ``centre``/``half`` fields, so that ``dataclasses.replace`` of ``a``, ``c``,
-``alpha``, ... perturbs only that figure.
+``alpha``, ... perturbs only that figure. The other fields move one compared
+figure each by a known normalised size (see ``tests/test_compare.py``).
 """
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
+from functools import lru_cache
 from types import SimpleNamespace
 
 import numpy as np
+from scipy.integrate import quad
 
 from threepart import registry
 from threepart.registry import Method
@@ -25,6 +28,9 @@ class FakeNormal(NormalResult):
     half: float = 1.0
     bump: float = 0.0          # relative pressure bump at the centre (perturbs the field only)
     peak_shift: float = 0.0    # relative shift of the reported right peak only
+    left_shift: float = 0.0    # relative shift of the reported left peak only
+    x_shifts: tuple[float, float] = (0.0, 0.0)   # reported peak positions moved by this fraction of W
+    edge_bump: float = 0.0     # a narrow bump near the right end, of this L2 norm relative to p's
 
     def pressure(self, x):
         x = np.asarray(x, dtype=float)
@@ -33,17 +39,47 @@ class FakeNormal(NormalResult):
         p = p0 * np.sqrt(np.clip(1 - t**2, 0, None))
         if self.bump:
             p = p + self.bump * p0 * np.exp(-((t / 0.05) ** 2))
+        if self.edge_bump:
+            # ||p||^2 = p0^2 h 4/3 and ||g||^2 = h w sqrt(pi/2) for g = exp(-((t - t0)/w)^2):
+            # the bump's L2 norm is edge_bump ||p||; it lies inside the 5 % edge band (t > 0.9)
+            amp = self.edge_bump * p0 * math.sqrt((4 / 3) / (EDGE_W * math.sqrt(math.pi / 2)))
+            p = p + amp * np.exp(-(((t - EDGE_T) / EDGE_W) ** 2))
         return p
 
     def peaks(self, n: int = 2001):
         p0 = 2 * self.P / (math.pi * self.half)
-        return Peak(self.centre, p0), Peak(self.centre, p0 * (1 + self.peak_shift))
+        W = 2 * self.half
+        return (Peak(self.centre + self.x_shifts[0] * W, p0 * (1 + self.left_shift)),
+                Peak(self.centre + self.x_shifts[1] * W, p0 * (1 + self.peak_shift)))
+
+
+#: where (t = (x - centre)/half) and how wide the narrow bumps of the fakes are: t = 0.95 lies in
+#: the 5 % band at the right end that the interior errors leave out, and 5 widths from its edge
+EDGE_T, EDGE_W = 0.95, 0.01
+#: half-width of the hump at the centre that keeps ∫q dx of a perturbed shear: inside the fakes'
+#: stick zone (|t| < d/h = 0.77), so that it never lifts |q| above f p
+WIDE = 0.5
+#: the pair of opposite shear bumps at t = ∓BUMP_T (on the 4001-point grid, in the stick zone)
+BUMP_T = 0.3
+
+
+def _bump(t, t0, w=EDGE_W):
+    """A Gaussian of height 1: integral ``w sqrt(pi)``, squared integral ``w sqrt(pi/2)`` (in t)."""
+    return np.exp(-(((t - t0) / w) ** 2))
+
+
+def _hump(t, w):
+    """``(1 - (t/w)^2)^2`` on ``|t| < w``: integral ``16 w / 15``, squared integral ``256 w / 315``."""
+    return np.clip(1 - (t / w) ** 2, 0, None) ** 2
 
 
 @dataclass(frozen=True)
 class FakeSlip(SlipResult):
     d0: float = 1.0   # stick zone of the shear field (replace(d=...) perturbs the figure only)
     e0: float = 0.0
+    bumps: float = 0.0        # opposite bumps at t = ∓BUMP_T of this fraction of max|q| (∫ unchanged)
+    edge_dip: float = 0.0     # a dip near the right end of this L2 norm relative to q's (∫ unchanged)
+    bound_bump: float = 0.0   # |q| above f p near the right end by this fraction of f p_max
 
     def shear(self, x):
         x = np.asarray(x, dtype=float)
@@ -51,7 +87,34 @@ class FakeSlip(SlipResult):
         q = self.f * n.pressure(x)
         t = (x + self.e0) / self.d0
         p0 = 2 * n.P / (math.pi * n.half)
-        return q - self.f * p0 * (self.d0 / n.half) * np.sqrt(np.clip(1 - t**2, 0, None))
+        q = q - self.f * p0 * (self.d0 / n.half) * np.sqrt(np.clip(1 - t**2, 0, None))
+        t = (x - n.centre) / n.half
+        if self.bumps:
+            # max|q| = f p0 sqrt(1 - (d/h)^2), at the stick-zone ends (Ciavarella–Jäger)
+            q_max = self.f * p0 * math.sqrt(1 - (self.d0 / n.half) ** 2)
+            q = q + self.bumps * q_max * (_bump(t, -BUMP_T) - _bump(t, BUMP_T))
+        if self.edge_dip:
+            # a dip in the slip zone (|q| falls below f p), balanced by a wide rise of the same
+            # integral at the centre; its L2 norm (the two hardly overlap) is edge_dip ||q||
+            norm = _l2(replace(self, bumps=0.0, edge_dip=0.0, bound_bump=0.0))
+            rise = EDGE_W * math.sqrt(math.pi) / (WIDE * 16 / 15)   # equal integrals
+            amp = self.edge_dip * norm / math.sqrt(n.half * (EDGE_W * math.sqrt(math.pi / 2)
+                                                             + rise**2 * WIDE * 256 / 315))
+            q = q - amp * _bump(t, EDGE_T) + amp * rise * _hump(t, WIDE)
+        if self.bound_bump:
+            # balanced by a wide dip of the same integral at the centre (in the stick zone)
+            amp = self.bound_bump * self.f * p0
+            q = q + amp * _bump(t, EDGE_T) - amp * EDGE_W * math.sqrt(math.pi) / (WIDE * 16 / 15) * _hump(t, WIDE)
+        return q
+
+
+
+@lru_cache
+def _l2(slip: FakeSlip) -> float:
+    """``||q||_2`` over the contact by adaptive quadrature split at the stick-zone ends."""
+    n = slip.normal
+    return math.sqrt(quad(lambda u: float(slip.shear(u)) ** 2, -n.a, n.c, points=slip.stick_zone,
+                          limit=200)[0])
 
 
 def _normal(punch, P, s=0.0, *, A, tilt="free", method="fake", **kw):

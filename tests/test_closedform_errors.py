@@ -10,8 +10,19 @@ from threepart import rigid_punch
 from threepart import closedform as cf
 from threepart.closedform import Punch
 from tests import quad_reference as ref
+from threepart.tolerances import tolerance
 
 A = rigid_punch(210e3, 0.3)   # rigid punch, steel half-plane, N and mm
+#: closed form against the quadrature reference; identities in double precision
+RTOL = tolerance("closedform", "quadrature").limit
+ROUND_OFF = tolerance("closedform", "round_off").limit
+#: 1e-9 inside the lift-off lever arm the contact ends this close to the join (mm)
+NEAR_JOIN = 1e-6
+#: the load that the concave centre refuses as separating (test_concave_centre_that_separates)
+SEPARATING_P = 400.0
+#: just above P_sep the centre's smallest pressure is 0: not below -1e-7 (quadrature), not above
+#: 1e-5 (the 1e-9 step of the load), of the mean pressure
+CENTRE_ZERO = (1e-7, 1e-5)
 
 
 @pytest.mark.parametrize("kwargs,match", [
@@ -59,7 +70,7 @@ def test_lift_off_limits_are_real():
     punch, P = Punch(10.0, 5.0, 1.0), 400.0
     lim = cf.lift_off(punch, P, A)
     inside = cf.solve_normal(punch, P, lim.s_max - 1e-9, A=A)
-    assert inside.a - punch.b < 1e-6
+    assert inside.a - punch.b < NEAR_JOIN
     with pytest.raises(cf.LiftOffError):
         cf.solve_normal(punch, P, lim.s_max + 1e-9, A=A)
 
@@ -71,7 +82,7 @@ def test_load_below_the_convex_centre_limit():
                                                rf"{pmin:.6g}"):
         cf.solve_normal(punch, 400.0, A=A)
     # P_min is the Hertz load of the central radius with a = b (quadrature)
-    assert ref.load(punch, punch.b, punch.b, A) == pytest.approx(pmin, rel=1e-10)
+    assert ref.load(punch, punch.b, punch.b, A) == pytest.approx(pmin, rel=RTOL)
 
 
 def test_concave_centre_that_separates():
@@ -98,12 +109,12 @@ def test_separation_load_is_where_the_centre_pressure_vanishes(s, tilt):
     """P_min of a concave centre: just above it solves, with a zero of p on [-b, b] (quadrature)."""
     punch = Punch(10.0, 20.0, 1.0, R=-200.0)
     P_sep = cf.P_min(punch, A, s, tilt)
-    assert P_sep > 400.0  # 400 separates (above)
+    assert P_sep > SEPARATING_P  # 400 separates (above)
     sol = cf.solve_normal(punch, P_sep * (1 + 1e-9), s, A=A, tilt=tilt)
     x = np.linspace(-punch.b, punch.b, 201)
     p = np.array([ref.pressure(punch, sol.a, sol.c, A, xi) for xi in x])
     mean = sol.P / sol.width
-    assert p.min() >= -1e-7 * mean and p.min() <= 1e-5 * mean
+    assert p.min() >= -CENTRE_ZERO[0] * mean and p.min() <= CENTRE_ZERO[1] * mean
     with pytest.raises(cf.SeparationError, match=rf"needs `P` > {P_sep:.6g}"):
         cf.solve_normal(punch, P_sep * (1 - 1e-6), s, A=A, tilt=tilt)
 
@@ -137,7 +148,7 @@ def test_stick_zone_inside_the_central_segment_gives_the_bound():
     # the bound is where an end of the stick zone reaches a join
     at = cf.solve_partial_slip(sol, (bound - 1e-10) * 200.0, 0.5)
     lo, hi = at.stick_zone
-    assert min(-lo, hi) - sol.punch.b < 1e-6
+    assert min(-lo, hi) - sol.punch.b < NEAR_JOIN
 
 
 def test_no_nan_anywhere_on_a_sweep_to_the_limits():
@@ -197,7 +208,7 @@ def test_P_min_validates_its_input():
         cf.P_min("punch", A)
     # the convex limit is the Hertz load of the central radius with a = b (quadrature)
     punch = Punch(10.0, 20.0, 1.0, R=100.0)
-    assert cf.P_min(punch, A) == pytest.approx(ref.load(punch, punch.b, punch.b, A), rel=1e-10)
+    assert cf.P_min(punch, A) == pytest.approx(ref.load(punch, punch.b, punch.b, A), rel=RTOL)
 
 
 def test_no_nan_from_an_edge_a_rounding_error_inside_a_join():
@@ -207,7 +218,7 @@ def test_no_nan_from_an_edge_a_rounding_error_inside_a_join():
     inside = cf.formulas.pressure(punch, 1.1, punch.b - 1e-16, A, x)
     at = cf.formulas.pressure(punch, 1.1, punch.b, A, x)
     assert np.all(np.isfinite(inside))
-    np.testing.assert_allclose(inside, at, rtol=0, atol=1e-12 * at.max())
+    np.testing.assert_allclose(inside, at, rtol=0, atol=ROUND_OFF * at.max())
 
 
 def test_a_failing_iteration_is_a_named_error_never_a_number(monkeypatch):

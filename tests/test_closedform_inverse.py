@@ -12,8 +12,25 @@ from threepart import rigid_punch
 from threepart import closedform as cf
 from threepart.closedform import Punch, formulas
 from tests import quad_reference as ref
+from threepart.tolerances import tolerance
 
 A = rigid_punch(210e3, 0.3)   # rigid punch, steel half-plane, N and mm
+#: closed form against the quadrature reference; identities in double precision; exact figures
+RTOL = tolerance("closedform", "quadrature").limit
+ROUND_OFF = tolerance("closedform", "round_off").limit
+EXACT = tolerance("closedform", "exact").limit
+#: α of a symmetric case is 0 up to the rounding of a difference of O(1) slopes (rad)
+TILT_ZERO = 1e-16
+#: a = c of a symmetric case: both ends from one Newton solve that stops at 1e-14
+SYMMETRY = 1e-13
+#: s = s_max (1 - 1e-9) puts the left end much closer to the join than 1e-3 b
+NEAR_JOIN = 1e-3
+#: the batch's lever arm against quadrature: a ratio of two quadratures, with no absolute floor for small |s|
+BATCH_LEVER_ARM = 1e-9
+#: p ~ sqrt(distance): 100 times nearer the end gives 10 times less, to O(distance / overhang)
+SQRT_EDGE = 1e-2
+#: ∫p dx and ∫x p dx of the returned pressure by _moments' quadrature over the whole contact
+MOMENTS = 1e-8
 
 
 def _moments(sol):
@@ -43,14 +60,14 @@ def _moments(sol):
 ])
 def test_solution_satisfies_the_defining_integrals(punch, P, s):
     sol = cf.solve_normal(punch, P, s, A=A)
-    assert ref.load(punch, sol.a, sol.c, A) == pytest.approx(P, rel=1e-10)
-    assert ref.moment(punch, sol.a, sol.c, A) / P == pytest.approx(s, rel=1e-10, abs=1e-12 * sol.width)
-    assert ref.tilt(punch, sol.a, sol.c) == pytest.approx(sol.alpha, rel=1e-10, abs=1e-16)
+    assert ref.load(punch, sol.a, sol.c, A) == pytest.approx(P, rel=RTOL)
+    assert ref.moment(punch, sol.a, sol.c, A) / P == pytest.approx(s, rel=RTOL, abs=ROUND_OFF * sol.width)
+    assert ref.tilt(punch, sol.a, sol.c) == pytest.approx(sol.alpha, rel=RTOL, abs=TILT_ZERO)
 
 
 def test_symmetric_punch_central_load_has_no_tilt_and_a_equals_c():
     sol = cf.solve_normal(Punch(10.0, 10.0, 1.0, R=300.0), 2000.0, 0.0, A=A)
-    assert sol.a == pytest.approx(sol.c, rel=1e-13) and abs(sol.alpha) < 1e-16
+    assert sol.a == pytest.approx(sol.c, rel=SYMMETRY) and abs(sol.alpha) < TILT_ZERO
 
 
 def test_cylinder_shifts_under_a_moment():
@@ -58,21 +75,21 @@ def test_cylinder_shifts_under_a_moment():
     R, P, s = 10.0, 400.0, 0.05
     sol = cf.solve_normal(Punch(R, R, 0.0), P, s, A=A)
     a0 = math.sqrt(2 * P * A * R / math.pi)
-    assert (sol.c - sol.a) / 2 == pytest.approx(s, rel=1e-12)
-    assert (sol.a + sol.c) / 2 == pytest.approx(a0, rel=1e-12)
-    assert sol.alpha == pytest.approx(-s / R, rel=1e-12)
+    assert (sol.c - sol.a) / 2 == pytest.approx(s, rel=ROUND_OFF)
+    assert (sol.a + sol.c) / 2 == pytest.approx(a0, rel=ROUND_OFF)
+    assert sol.alpha == pytest.approx(-s / R, rel=ROUND_OFF)
 
 
 def test_suppressed_tilt_solves_alpha_zero_and_returns_the_holding_lever_arm():
     punch = Punch(10.0, 5.0, 1.0)
     sup = cf.solve_normal(punch, 400.0, A=A, tilt="suppressed")
     assert sup.alpha == 0.0
-    assert abs(ref.tilt(punch, sup.a, sup.c)) < 1e-12 * (punch.kappa1 + punch.kappa2)
-    assert ref.load(punch, sup.a, sup.c, A) == pytest.approx(400.0, rel=1e-10)
+    assert abs(ref.tilt(punch, sup.a, sup.c)) < ROUND_OFF * (punch.kappa1 + punch.kappa2)
+    assert ref.load(punch, sup.a, sup.c, A) == pytest.approx(400.0, rel=RTOL)
     # the lever arm s* holds the punch without the support: free solve at s* has no tilt
     free = cf.solve_normal(punch, 400.0, sup.s, A=A)
-    assert abs(free.alpha) < 1e-14 and free.a == pytest.approx(sup.a, rel=1e-10)
-    assert ref.moment(punch, sup.a, sup.c, A) / 400.0 == pytest.approx(sup.s, rel=1e-10)
+    assert abs(free.alpha) < EXACT and free.a == pytest.approx(sup.a, rel=RTOL)
+    assert ref.moment(punch, sup.a, sup.c, A) / 400.0 == pytest.approx(sup.s, rel=RTOL)
 
 
 @pytest.mark.parametrize("punch", [Punch(10.0, 5.0, 1.0), Punch(10.0, 20.0, 1.0, R=1000.0),
@@ -81,20 +98,20 @@ def test_lift_off_edges_reach_the_joins(punch):
     P = 4000.0
     lim = cf.lift_off(punch, P, A)
     # at s_min the right edge is at the join: quadrature gives P and s there
-    assert ref.load(punch, lim.a_min, punch.b, A) == pytest.approx(P, rel=1e-10)
-    assert ref.moment(punch, lim.a_min, punch.b, A) / P == pytest.approx(lim.s_min, rel=1e-10)
-    assert ref.load(punch, punch.b, lim.c_max, A) == pytest.approx(P, rel=1e-10)
-    assert ref.moment(punch, punch.b, lim.c_max, A) / P == pytest.approx(lim.s_max, rel=1e-10)
+    assert ref.load(punch, lim.a_min, punch.b, A) == pytest.approx(P, rel=RTOL)
+    assert ref.moment(punch, lim.a_min, punch.b, A) / P == pytest.approx(lim.s_min, rel=RTOL)
+    assert ref.load(punch, punch.b, lim.c_max, A) == pytest.approx(P, rel=RTOL)
+    assert ref.moment(punch, punch.b, lim.c_max, A) / P == pytest.approx(lim.s_max, rel=RTOL)
     # just inside the range the solution approaches the joins
     near = cf.solve_normal(punch, P, lim.s_max * (1 - 1e-9), A=A)
-    assert near.a - punch.b < 1e-3 * punch.b
+    assert near.a - punch.b < NEAR_JOIN * punch.b
 
 
 def test_lift_off_is_the_mirror_image():
     punch, P = Punch(10.0, 5.0, 1.0, R=800.0), 5000.0
     lim, mir = cf.lift_off(punch, P, A), cf.lift_off(punch.mirrored(), P, A)
-    assert lim.s_max == pytest.approx(-mir.s_min, rel=1e-12)
-    assert lim.c_max == pytest.approx(mir.a_min, rel=1e-12)
+    assert lim.s_max == pytest.approx(-mir.s_min, rel=ROUND_OFF)
+    assert lim.c_max == pytest.approx(mir.a_min, rel=ROUND_OFF)
 
 
 def test_batch_round_trip_against_quadrature():
@@ -104,10 +121,10 @@ def test_batch_round_trip_against_quadrature():
     s = rng.uniform(-0.3, 0.3, 200)
     batch = cf.solve_normal_batch(punch, P, s, A=A)
     for i in range(0, 200, 40):
-        assert ref.load(punch, batch.a[i], batch.c[i], A) == pytest.approx(P[i], rel=1e-10)
-        assert ref.moment(punch, batch.a[i], batch.c[i], A) / P[i] == pytest.approx(s[i], rel=1e-9)
-    assert np.allclose(formulas.load(punch, batch.a, batch.c, A), P, rtol=1e-12)
-    assert np.allclose(formulas.lever_arm(punch, batch.a, batch.c), s, rtol=0, atol=1e-12)
+        assert ref.load(punch, batch.a[i], batch.c[i], A) == pytest.approx(P[i], rel=RTOL)
+        assert ref.moment(punch, batch.a[i], batch.c[i], A) / P[i] == pytest.approx(s[i], rel=BATCH_LEVER_ARM)
+    assert np.allclose(formulas.load(punch, batch.a, batch.c, A), P, rtol=ROUND_OFF)
+    assert np.allclose(formulas.lever_arm(punch, batch.a, batch.c), s, rtol=0, atol=ROUND_OFF)
 
 
 def test_peaks_of_flat_rounded_punch_sit_near_the_joins():
@@ -115,7 +132,7 @@ def test_peaks_of_flat_rounded_punch_sit_near_the_joins():
     left, right = sol.peaks()
     x = np.linspace(-sol.a, sol.c, 200001)
     p = sol.pressure(x)
-    assert max(left.p, right.p) >= p.max() * (1 - 1e-12)
+    assert max(left.p, right.p) >= p.max() * (1 - ROUND_OFF)
     assert -sol.a < left.x < -sol.punch.b and sol.punch.b < right.x < sol.c
 
 
@@ -161,13 +178,13 @@ def check_solve_then_forward_and_pressure(case):
     except (cf.SlopeLimitError, cf.ArcExtentError):
         assume(False)  # past half-plane theory's limits: refused by name, tested in test_hostile
     # forward evaluation gives P and s back
-    assert formulas.load(punch, sol.a, sol.c, Av) == pytest.approx(P, rel=1e-10)
-    assert formulas.lever_arm(punch, sol.a, sol.c) == pytest.approx(s, rel=1e-10, abs=1e-10 * sol.width)
+    assert formulas.load(punch, sol.a, sol.c, Av) == pytest.approx(P, rel=RTOL)
+    assert formulas.lever_arm(punch, sol.a, sol.c) == pytest.approx(s, rel=RTOL, abs=RTOL * sol.width)
     # pressure >= 0 over the contact, -> 0 at both ends
     x = np.linspace(-sol.a, sol.c, 401)
     p = sol.pressure(x)
     peak = p.max()
-    assert p.min() >= -1e-12 * peak and p[0] == 0 and p[-1] == 0
+    assert p.min() >= -ROUND_OFF * peak and p[0] == 0 and p[-1] == 0
     # bounded ends: p ~ sqrt(distance) within the overhang beyond the joins
     overhang = min(sol.a - sol.punch.b, sol.c - sol.punch.b) if sol.punch.b > 0 else min(sol.a, sol.c)
     eps = 1e-6 * overhang
@@ -175,8 +192,8 @@ def check_solve_then_forward_and_pressure(case):
         near, nearer = sol.pressure(edge + inward * 100 * eps), sol.pressure(edge + inward * eps)
         assert nearer <= near
         if eps > 1e-12 * sol.width:  # resolvable in double precision
-            assert nearer == pytest.approx(0.1 * near, rel=1e-2)
+            assert nearer == pytest.approx(0.1 * near, rel=SQRT_EDGE)
     # its integral is P and its centroid is s
     Pq, Mq = _moments(sol)
-    assert Pq == pytest.approx(P, rel=1e-8)
-    assert Mq / Pq == pytest.approx(s, rel=1e-8, abs=1e-8 * sol.width)
+    assert Pq == pytest.approx(P, rel=MOMENTS)
+    assert Mq / Pq == pytest.approx(s, rel=MOMENTS, abs=MOMENTS * sol.width)

@@ -10,8 +10,25 @@ from threepart import rigid_punch
 from threepart import closedform as cf
 from threepart.closedform import Punch
 from tests import quad_reference as ref
+from threepart.tolerances import tolerance
 
 A = rigid_punch(210e3, 0.3)   # rigid punch, steel half-plane, N and mm
+#: closed form against the quadrature reference; identities in double precision; exact figures
+RTOL = tolerance("closedform", "quadrature").limit
+ROUND_OFF = tolerance("closedform", "round_off").limit
+EXACT = tolerance("closedform", "exact").limit
+#: the stick zone's tilt by quadrature, in units of the slope scale (kappa1 + kappa2) W
+TILT_QUADRATURE = 1e-11
+#: ∫q dx by quad (epsrel 1e-12) on the pieces between the kinks, against Q
+SHEAR_QUADRATURE = 1e-9
+#: |q| = f p in the slip zones by construction: rounding of f p minus a zero correction
+SLIDING = 1e-13
+#: dg/dx in the stick zone by the nested quadrature of strain_in_stick, units of f P / (2W)
+STRAIN_QUADRATURE = 1e-8
+#: ... and in the slip zone it is of order 1 in those units, far above this
+SLIP_STRAIN = 1e-3
+#: the fuzz case's corrective pressure exceeds Coulomb's bound by about half (measured 1.5)
+BREACH = 1.4
 CASES = [(Punch(10.0, 10.0, 1.0), 400.0, 0.0), (Punch(10.0, 5.0, 1.0), 400.0, 0.1),
          (Punch(10.0, 20.0, 1.0, R=1000.0), 4000.0, -0.1), (Punch(10.0, 5.0, 0.0), 400.0, 0.03)]
 
@@ -28,9 +45,9 @@ def test_stick_zone_side_conditions_by_quadrature(normal, ratio):
     f = 0.5
     slip = cf.solve_partial_slip(normal, ratio * f * normal.P, f)
     a_s, c_s = slip.d + slip.e, slip.d - slip.e
-    assert ref.load(normal.punch, a_s, c_s, A) == pytest.approx(normal.P * (1 - abs(ratio)), rel=1e-10)
+    assert ref.load(normal.punch, a_s, c_s, A) == pytest.approx(normal.P * (1 - abs(ratio)), rel=RTOL)
     scale = normal.punch.kappa1 + normal.punch.kappa2
-    assert abs(ref.tilt(normal.punch, a_s, c_s) - normal.alpha) < 1e-11 * scale * (a_s + c_s)
+    assert abs(ref.tilt(normal.punch, a_s, c_s) - normal.alpha) < TILT_QUADRATURE * scale * (a_s + c_s)
 
 
 @pytest.mark.parametrize("ratio", [0.4, -0.7])
@@ -44,14 +61,14 @@ def test_shear_integrates_to_Q_and_has_its_sign(normal, ratio):
             if -normal.a < t < normal.c]
     pts = sorted({0.0, math.pi, *ends})
     total = sum(ref.quiet_quad(g, lo, hi, epsabs=0, epsrel=1e-12, limit=200)[0] for lo, hi in zip(pts[:-1], pts[1:]))
-    assert total == pytest.approx(Q, rel=1e-9)
+    assert total == pytest.approx(Q, rel=SHEAR_QUADRATURE)
     x = np.linspace(-normal.a, normal.c, 501)[1:-1]
     assert np.all(np.sign(slip.shear(x)) * math.copysign(1, Q) >= 0)
     # slip zones carry the sliding traction f p; the stick zone carries less
     lo, hi = slip.stick_zone
     out = (x < lo) | (x > hi)
-    assert np.allclose(np.abs(slip.shear(x[out])), f * normal.pressure(x[out]), rtol=1e-13)
-    assert np.all(np.abs(slip.shear(x[~out])) <= f * normal.pressure(x[~out]) * (1 + 1e-13))
+    assert np.allclose(np.abs(slip.shear(x[out])), f * normal.pressure(x[out]), rtol=SLIDING)
+    assert np.all(np.abs(slip.shear(x[~out])) <= f * normal.pressure(x[~out]) * (1 + SLIDING))
 
 
 def test_no_relative_slip_in_the_stick_zone(normal):
@@ -62,16 +79,16 @@ def test_no_relative_slip_in_the_stick_zone(normal):
     breaks = (lo, hi, -normal.punch.b, normal.punch.b)
     qscale = 0.5 * normal.P / normal.width
     for x in np.linspace(lo, hi, 7)[1:-1]:
-        assert abs(ref.strain_in_stick(q, normal.a, normal.c, breaks, x)) < 1e-8 * qscale
+        assert abs(ref.strain_in_stick(q, normal.a, normal.c, breaks, x)) < STRAIN_QUADRATURE * qscale
     # ... and it does not vanish in the slip zones
     x_slip = 0.5 * (-normal.a + lo)
-    assert abs(ref.strain_in_stick(q, normal.a, normal.c, breaks, x_slip)) > 1e-3 * qscale
+    assert abs(ref.strain_in_stick(q, normal.a, normal.c, breaks, x_slip)) > SLIP_STRAIN * qscale
 
 
 def test_zero_shear_keeps_the_whole_contact_stuck(normal):
     slip = cf.solve_partial_slip(normal, 0.0, 0.5)
-    assert slip.d + slip.e == pytest.approx(normal.a, rel=1e-12)
-    assert slip.d - slip.e == pytest.approx(normal.c, rel=1e-12)
+    assert slip.d + slip.e == pytest.approx(normal.a, rel=ROUND_OFF)
+    assert slip.d - slip.e == pytest.approx(normal.c, rel=ROUND_OFF)
     assert np.all(slip.shear(np.linspace(-normal.a, normal.c, 11)) == 0)
 
 
@@ -79,8 +96,8 @@ def test_symmetric_hertz_stick_zone_is_mindlin():
     """Cattaneo-Mindlin: d/a = sqrt(1 - Q/fP), e = 0."""
     sol = cf.solve_normal(Punch(10.0, 10.0, 0.0), 400.0, A=A)
     slip = cf.solve_partial_slip(sol, 0.36 * 0.4 * 400.0, 0.4)
-    assert slip.d == pytest.approx(sol.a * 0.8, rel=1e-12)
-    assert abs(slip.e) < 1e-14 * sol.a
+    assert slip.d == pytest.approx(sol.a * 0.8, rel=ROUND_OFF)
+    assert abs(slip.e) < EXACT * sol.a
 
 
 # -- Coulomb's law on a concave centre (the fuzz's silent wrong answer) ------------------------
@@ -106,7 +123,7 @@ def test_a_stick_zone_that_breaks_coulomb_is_refused_by_name():
     x = np.linspace(-normal.a, normal.c, 4001)
     p_star = formulas.pressure(FUZZ_PUNCH, 5.15101, 1.58018, A, x)
     assert np.max(FUZZ_F * np.abs(normal.pressure(x) - p_star) / np.maximum(
-        FUZZ_F * normal.pressure(x), 1e-300)) > 1.4
+        FUZZ_F * normal.pressure(x), 1e-300)) > BREACH
 
 
 def test_auto_falls_back_and_the_sie_refuses_the_same_stick_zone():

@@ -3,21 +3,28 @@ from __future__ import annotations
 
 import json
 import math
-from dataclasses import replace
+from dataclasses import dataclass, replace
+
+import numpy as np
 
 import pytest
 
+import closedform as cf
+from closedform import FrettingSolution
 from threepart import catalogue, rigid_punch
 from threepart.punch import Punch
 from threepart.reports import verify
 from threepart.reports.compare import compare
-from threepart.tolerances import COMPARISONS, QUANTITIES, TOLERANCES, tolerance
+from threepart.tolerances import (COMPARISONS, FRETTING_QUANTITIES, NORMAL_QUANTITIES, QUANTITIES,
+                                  SLIP_QUANTITIES, TOLERANCES, tolerance)
 
 from .fakes import _normal, _slip, fake_solver, install_fakes
 
 PUNCH = Punch(R1=10.0, R2=10.0, b=1.0)
 A = rigid_punch(210e3, 0.3)   # rigid punch, steel half-plane, N and mm
 P = 28846.0
+#: ∫q dx of the fake's Ciavarella–Jäger shear by the comparator's Gauss rule: exact up to rounding
+GAUSS_ROUND_OFF = 1e-12
 
 
 def _pair(slip: bool = False):
@@ -44,11 +51,23 @@ def test_identical_results_pass_everything():
     # a difference of a result with itself is 0; q_integral and q_bound check the result itself
     assert all(c.error == 0 for c in checks if c.quantity not in ("q_integral", "q_bound"))
     integral = next(c for c in checks if c.quantity == "q_integral")
-    assert integral.reference == ref.Q and integral.error < 1e-12   # closed form: quadrature only
+    assert integral.reference == ref.Q and integral.error < GAUSS_ROUND_OFF   # closed form: quadrature only
+
+
+#: a perturbation "just over" and "just under" a tolerance: every normalised size below is exact
+#: to better than 1e-3 of itself (scalars exactly; fields up to the comparator's 4001-point grid)
+OVER, UNDER = 1.1, 0.9
 
 
 def _perturb(ref, quantity: str, size: float):
-    """``ref`` with exactly one figure moved by ``size`` (normalised as in the table)."""
+    """``ref`` with exactly one compared figure moved by ``size`` (normalised as in the table).
+
+    ``ref`` is a fake normal or slip result (:mod:`tests.fakes`) or a closed-form
+    fretting cycle (:func:`_cycle`); each move is built from the normalisation
+    written in :mod:`threepart.tolerances`, not from the comparator.
+    """
+    if quantity in FRETTING_QUANTITIES:
+        return _perturb_cycle(ref, quantity, size)
     n = ref.normal if hasattr(ref, "normal") else ref
     W = n.a + n.c
     if quantity in ("a", "c"):
@@ -60,39 +79,118 @@ def _perturb(ref, quantity: str, size: float):
         n = replace(n, P=n.P * (1 + size))  # the field scales by the same tiny factor
     elif quantity == "s":
         n = replace(n, s=n.s + size * W)
+    elif quantity == "p_left":
+        n = replace(n, left_shift=size)
     elif quantity == "p_right":
         n = replace(n, peak_shift=size)
+    elif quantity in ("x_left", "x_right"):
+        n = replace(n, x_shifts=(size, 0.0) if quantity == "x_left" else (0.0, size))
     elif quantity == "p_interior_max":
         n = replace(n, bump=size)
+    elif quantity == "p_L2":
+        n = replace(n, edge_bump=size)
     elif quantity in ("d", "e"):
         return replace(ref, **{quantity: getattr(ref, quantity) + size * ref.d})
+    elif quantity == "q_interior_max":
+        return replace(ref, bumps=size)
+    elif quantity == "q_L2":
+        return replace(ref, edge_dip=size)
+    elif quantity == "q_integral":
+        # the shear is unchanged (its stick zone is d0, e0), so ∫q dx = Q_old: |Q_old - Q| / Q = size
+        return replace(ref, Q=ref.Q / (1 - size))
+    elif quantity == "q_bound":
+        return replace(ref, bound_bump=size)
     else:  # pragma: no cover
         raise AssertionError(quantity)
     return replace(ref, normal=n) if hasattr(ref, "normal") else n
 
 
+@dataclass(frozen=True)
+class _BumpedCycle(FrettingSolution):
+    """A closed-form cycle whose shear at ``Q_max`` (loading) carries a bump of ``bump`` max|q|."""
+
+    bump: float = 0.0
+
+    def shear(self, x, Q, branch):
+        q = super().shear(x, Q, branch)
+        if self.bump and branch == "loading" and Q == self.Q_max:
+            n = self.normal
+            mid = 0.5 * (n.c - n.a)     # the middle of the contact: a point of the comparator's grid
+            q = q + self.bump * _q_peak(self) * np.exp(-(((np.asarray(x) - mid) / (0.01 * n.width)) ** 2))
+        return q
+
+
+def _q_peak(cycle) -> float:
+    """max|q| at Q_max on loading: at a stick-zone end, where the slip zone's q = f p is smooth."""
+    n = cycle.normal
+    x = np.linspace(-n.a, n.c, 200001)
+    return float(np.max(np.abs(FrettingSolution.shear(cycle, x, cycle.Q_max, "loading"))))
+
+
+def _cycle():
+    """A correct fretting cycle: the closed form's, three states a branch (the cycle figures' reference)."""
+    normal = cf.solve_normal(PUNCH, P, 0.1, A=A)
+    cyc = cf.fretting_cycle(normal, 0.4 * 0.5 * P, 0.5, states=3)
+    return _BumpedCycle(**{k: getattr(cyc, k) for k in cyc.__dataclass_fields__})
+
+
+def _perturb_cycle(ref, quantity: str, size: float):
+    """The closed-form cycle with one cycle figure moved by ``size`` (normalised as in the table)."""
+    mid = 4              # the unloading branch's middle state (Q = 0), not a loop tip
+    if quantity == "energy":
+        return replace(ref, energy=ref.energy * (1 + size))
+    if quantity == "stick":
+        tip = int(np.flatnonzero(ref.branch == "loading")[-1])
+        d_max = 0.5 * float(ref.stick[tip, 1] - ref.stick[tip, 0])
+        stick = np.array(ref.stick, dtype=float)
+        stick[mid, 0] -= size * d_max
+        return replace(ref, stick=stick)
+    if quantity == "loop":
+        _, h = ref.loop()
+        delta = np.array(ref.delta, dtype=float)
+        delta[mid] += size * float(np.max(np.abs(h)))
+        return replace(ref, delta=delta)
+    if quantity == "q_states":
+        return replace(ref, bump=size)
+    raise AssertionError(quantity)  # pragma: no cover
+
+
 def _p_separable(comparison):
-    """P moves the pressure too: it is only separable when 3x its limit stays inside the field tolerance."""
-    return 3 * tolerance(comparison, "P").limit < 0.3 * tolerance(comparison, "p_L2").limit
+    """P moves the pressure too: it is only separable when OVER x its limit stays inside the field tolerance."""
+    return OVER * tolerance(comparison, "P").limit < UNDER * tolerance(comparison, "p_L2").limit
 
 
-PERTURBATIONS = [(comp, q) for comp in COMPARISONS
-                 for q in ("a", "c", "alpha", "s", "p_right", "p_interior_max")]
-PERTURBATIONS += [(comp, "P") for comp in COMPARISONS if _p_separable(comp)]
-PERTURBATIONS += [("sie", "d"), ("sie", "e")]          # only the SIE solves partial slip
+COMPARED = NORMAL_QUANTITIES + SLIP_QUANTITIES + FRETTING_QUANTITIES
+PERTURBATIONS = [(comp, q) for comp in COMPARISONS for q in COMPARED
+                 if q != "P" or _p_separable(comp)]
+
+
+@pytest.fixture(scope="module")
+def cycle():
+    return _cycle()
+
+
+def test_every_compared_quantity_is_perturbed():
+    assert len(COMPARED) == 21
+    assert {q for _, q in PERTURBATIONS} == set(COMPARED)
 
 
 @pytest.mark.parametrize("comparison,quantity", PERTURBATIONS)
-def test_a_perturbed_result_fails_that_tolerance_only(comparison, quantity):
-    ref = _pair(quantity in ("d", "e"))
+def test_a_perturbed_result_fails_that_tolerance_only(comparison, quantity, cycle):
+    if quantity in FRETTING_QUANTITIES:
+        ref = cycle
+    else:
+        ref = _pair(quantity in SLIP_QUANTITIES)
     limit = tolerance(comparison, quantity).limit
-    size = 3 * limit
-    bad = _perturb(ref, quantity, size)
-    # below the limit the same perturbation passes
-    ok = _perturb(ref, quantity, 0.3 * limit)
-    failed = [c.quantity for c in compare(ref, bad, comparison) if not c.passed]
-    assert failed == [quantity], f"{quantity} perturbed by {size:g}: failed {failed}"
-    assert all(c.passed for c in compare(ref, ok, comparison))
+    bad = _perturb(ref, quantity, OVER * limit)
+    ok = _perturb(ref, quantity, UNDER * limit)    # just below the limit the same move passes
+    checks = compare(ref, bad, comparison)
+    failed = [c.quantity for c in checks if not c.passed]
+    assert failed == [quantity], f"{quantity} perturbed by {OVER} x {limit:g}: failed {failed}"
+    error = next(c.error for c in checks if c.quantity == quantity)
+    assert limit < error < OVER**2 * limit, f"{quantity}: error {error:g} is not just over {limit:g}"
+    assert all(c.passed for c in compare(ref, ok, comparison)), \
+        [(c.quantity, c.error, c.limit) for c in compare(ref, ok, comparison) if not c.passed]
 
 
 def test_nan_never_passes():

@@ -22,6 +22,11 @@ from threepart.tolerances import tolerance
 
 REFERENCE_MSH = Path(meshes.__file__).parent / "reference.msh"
 CASES = {c.name: c for c in load_cases("fem")}
+#: the fuzzed singular case's tilt against the SIE's, relative: the finite block's far field
+SINGULAR_TILT = 1e-3
+#: a cylinder on the committed reference mesh (h = 0.05, 8 elements on a = 0.2) answers Hertz to a
+#: few per cent; the test is about the refusals around it
+COARSE_HERTZ = 0.05
 
 
 def tol(quantity: str, comparison: str = "fem-quick") -> float:
@@ -43,21 +48,19 @@ def test_agrees_with_closed_form(pair):
     failed = {c.quantity: f"{c.error:.2e} > {c.limit:g}" for c in compare(ref, fe, "fem-quick")
               if not c.passed}
     assert not failed, f"{case.name}: FEM disagrees with closedform: {failed}"
-    if fe.tilt == "free":
-        assert abs(fe.s - case.s) / (ref.a + ref.c) < tol("s_imposed"), f"s: {fe.s} vs {case.s}"
-    else:
+    if fe.tilt == "suppressed":
         assert fe.alpha == 0.0
 
 
 def test_pressure_integrates_to_load_and_lever_arm(pair):
-    case, _, fe = pair
+    case, ref, fe = pair
     x = np.linspace(-fe.a, fe.c, 20001)
     p = fe.pressure(x)
     W = fe.a + fe.c
     load = np.trapezoid(p, x)
     moment = np.trapezoid(x * p, x)
     assert abs(load / case.P - 1) < tol("load_integral")
-    assert abs(moment / load - fe.s) / W < tol("load_integral")
+    assert abs(moment / load - ref.s) / W < tol("load_integral")    # the closed form's lever arm
     assert np.all(fe.pressure(np.array([-fe.a - 1e-9 * W, fe.c + 1e-9 * W])) == 0.0)
 
 
@@ -253,7 +256,7 @@ def test_an_end_too_close_to_a_join_refines_the_preset_or_is_refused():
     for k in (1.5, 0.2):
         s, ref = state(k)
         r = fem.solve_normal(punch, P, s, E=E, nu=nu, mesh="quick")
-        assert r.info["refined"] > 1 and abs(r.a - ref.a) <= 1e-4 * ref.width, (k, r.a, ref.a)
+        assert r.info["refined"] > 1 and abs(r.a - ref.a) <= tol("a") * ref.width, (k, r.a, ref.a)
 
     k = 0.01
     assert MIN_END_ELEMENTS / k > MAX_REFINEMENT   # the refusal below is the limit's, not luck
@@ -277,8 +280,8 @@ def test_the_fuzzed_singular_case_answers_as_the_sie_does():
     fe = solve(*args, A=A, method="fem", mesh="quick")
     W = ref.a + ref.c
     assert fe.info["refined"] > 1
-    assert abs(fe.a - ref.a) < 1e-5 * W and abs(fe.c - ref.c) < 1e-5 * W, (fe.a, fe.c, ref.a, ref.c)
-    assert abs(fe.alpha - ref.alpha) < 1e-3 * abs(ref.alpha), (fe.alpha, ref.alpha)
+    assert abs(fe.a - ref.a) < tol("a", "fem-default") * W and abs(fe.c - ref.c) < tol("c", "fem-default") * W, (fe.a, fe.c, ref.a, ref.c)
+    assert abs(fe.alpha - ref.alpha) < SINGULAR_TILT * abs(ref.alpha), (fe.alpha, ref.alpha)
 
 
 
@@ -300,7 +303,7 @@ def test_a_contact_past_half_plane_theory_is_refused(R, a_hertz, error):
     if error is None:
         assert a_hertz / R < SLOPE_LIMIT
         r = fem.solve_normal(*args, E=1.0, nu=0.3, mesh=REFERENCE_MSH)
-        assert abs(r.a - a_hertz) < 0.05 * a_hertz and abs(r.c - a_hertz) < 0.05 * a_hertz
+        assert abs(r.a - a_hertz) < COARSE_HERTZ * a_hertz and abs(r.c - a_hertz) < COARSE_HERTZ * a_hertz
     else:
         with pytest.raises(getattr(errors, error)):
             fem.solve_normal(*args, E=1.0, nu=0.3, mesh=REFERENCE_MSH)

@@ -32,6 +32,41 @@ from threepart.punch import Punch
 from threepart.tolerances import tolerance
 
 F = 0.5
+#: closed form against the quadrature reference; identities in double precision; exact figures
+RTOL = tolerance("closedform", "quadrature").limit
+ROUND_OFF = tolerance("closedform", "round_off").limit
+EXACT = tolerance("closedform", "exact").limit
+#: 1e-6 below its bound the stick zone ends this close to the join -b (b = 1)
+NEAR_JOIN = 1e-4
+#: at the bound as printed (6 digits) in the error message the SIE's stick zone ends this close to -b
+NEAR_JOIN_PRINTED = 1e-5
+#: the loop's area (trapezoid, 201 states) and Masing's Simpson integral against the Gauss-rule energy
+#: (measured <= 7e-11)
+LOOP_AREA = 1e-9
+#: as LOOP_AREA past the paper (401 states, a stick-zone end crossing a join)
+LOOP_AREA_PAST = 1e-7
+#: the work of the shear on the slip, midpoint steps on 201 states a branch, against the energy
+#: (measured 6.3e-6)
+WORK = 3e-5
+#: ∫q dx of the SIE's shear at a state by quadrature, in units of Q_max
+SHEAR_QUADRATURE = 1e-8
+#: ∫p dx of the closed form by the split quadrature: only rounding
+PRESSURE_QUADRATURE = 1e-13
+#: a factor 1 + 1e-6 in delta shows as a misfit of about 1e-6, far above this (exact: rounding)
+MISFIT = 1e-8
+#: the closed form's stick-zone displacement and slip amplitude against the log-potential
+#: quadrature, of their largest values (measured 2.4e-14)
+LOG_POTENTIAL = 1e-11
+#: the SIE's slip amplitude against the closed form's, of its largest value
+AMPLITUDE_SIE = 1e-9
+#: Mindlin's energy: below Q/(fP) = MINDLIN_SMALL, (1 - q) ln(1 - q) + q - q^2/2 ~ q^3/6 cancels
+#: six digits, leaving MINDLIN_CANCEL
+MINDLIN_SMALL, MINDLIN_CANCEL = 0.01, 1e-9
+#: delta less the Hertz approach difference is linear in Q: rounding of the approach's log terms
+LINEAR_PART = 1e-10
+#: W ~ Q_max^3 fitted over Q/(fP) = 1e-4..8e-4, where the next term is O(Q/fP): the exponent and
+#: the leading coefficient
+CUBE_ORDER, CUBE_LEADING = 1e-3, 1e-4
 #: the catalogue's punches the cycle is checked on: symmetric (R1 = R2 = 10, b = 1), tilt
 #: suppressed, tilted with unequal radii (R1 = 10, R2 = 5, s = 0.2), convex and concave
 #: centres, case C, Hertz, and nondimensional ones
@@ -144,7 +179,7 @@ def test_agreement_at_the_closed_forms_limit(normals):
     Q = (1 - 1e-6) * bound * F * nc.P
     a, b = cf.fretting_cycle(nc, Q, F, states=3), sie.fretting_cycle(ns, Q, F, states=3)
     assert abs(b.energy / a.energy - 1) <= tol("energy")
-    assert a.stick[tip(a), 0] == pytest.approx(-nc.punch.b, abs=1e-4)
+    assert a.stick[tip(a), 0] == pytest.approx(-nc.punch.b, abs=NEAR_JOIN)
 
 
 # -- (2) energy = area of the hysteresis loop ---------------------------------------------------
@@ -163,10 +198,10 @@ def test_energy_is_the_area_of_the_sampled_loop(normals, name):
     """
     nc, _ = normals[name]
     cyc = cf.fretting_cycle(nc, 0.6 * F * nc.P, F, states=201)
-    assert abs(loop_area(cyc) / cyc.energy - 1) < 1e-9          # measured <= 7e-11
+    assert abs(loop_area(cyc) / cyc.energy - 1) < LOOP_AREA          # measured <= 7e-11
     load = cyc.branch == "loading"
     masing = 4 * cyc.Q_max * cyc.delta[tip(cyc)] - 8 * simpson(cyc.delta[load], x=cyc.Q[load])
-    assert abs(masing / cyc.energy - 1) < 1e-9
+    assert abs(masing / cyc.energy - 1) < LOOP_AREA
 
 
 def test_sie_energy_is_the_loop_area_past_the_closed_form(normals):
@@ -177,7 +212,7 @@ def test_sie_energy_is_the_loop_area_past_the_closed_form(normals):
     lo, hi = cyc.stick[tip(cyc)]
     assert -ns.punch.b < lo < ns.punch.b < hi              # the left end lies on the centre
     assert len(cyc.info["crossings"]) == 1
-    assert abs(loop_area(cyc) / cyc.energy - 1) < 1e-7
+    assert abs(loop_area(cyc) / cyc.energy - 1) < LOOP_AREA_PAST
     with pytest.raises(StickZoneError, match="`Q_max`"):
         cf.fretting_cycle(normals["beyond_stick_centre"][0], k.Q_over_fP * F * ns.P, F)
 
@@ -196,7 +231,7 @@ def test_energy_is_the_work_of_friction_on_the_slip(tilted):
         for i in range(len(Q) - 1):
             q_mid = cyc.shear(x, 0.5 * (Q[i] + Q[i + 1]), branch)
             work += np.trapezoid(q_mid * (slip[i + 1] - slip[i]) * dx, theta)
-    assert abs(work / cyc.energy - 1) < 3e-5, work / cyc.energy - 1     # measured 6.3e-6
+    assert abs(work / cyc.energy - 1) < WORK, work / cyc.energy - 1     # measured 6.3e-6
 
 
 # -- (3) equilibrium and Coulomb on every branch -------------------------------------------------
@@ -209,7 +244,7 @@ def zone_of(cyc, Q: float, branch: str) -> tuple[float, float]:
     u = Q if branch == "loading" else 0.5 * (cyc.Q_max - Q if branch == "unloading" else cyc.Q_max + Q)
     loading = cyc.branch == "loading"
     i = int(np.argmin(np.abs(cyc.Q[loading] - u)))
-    assert abs(cyc.Q[loading][i] - u) < 1e-12 * cyc.Q_max, "not a recorded state"
+    assert abs(cyc.Q[loading][i] - u) < ROUND_OFF * cyc.Q_max, "not a recorded state"
     return tuple(cyc.stick[loading][i])
 
 
@@ -221,11 +256,11 @@ def test_shear_integrates_to_Q_and_obeys_coulomb_on_every_branch(tilted, method)
     n = cyc.normal
     x = np.linspace(-n.a, n.c, 3001)
     fp = cyc.f * n.pressure(x)
-    slack = (1e-12 if method == 0 else tol("q_states")) * fp.max()
+    slack = (ROUND_OFF if method == 0 else tol("q_states")) * fp.max()
     for branch, frac in STATES:
         Q = frac * cyc.Q_max
         total = integrate(lambda t: cyc.shear(t, Q, branch), breaks_of(cyc, zone_of(cyc, Q, branch)))
-        assert total == pytest.approx(Q, abs=(1e-12, 1e-8)[method] * cyc.Q_max), (branch, frac)
+        assert total == pytest.approx(Q, abs=(ROUND_OFF, SHEAR_QUADRATURE)[method] * cyc.Q_max), (branch, frac)
         q = cyc.shear(x, Q, branch)
         assert np.all(np.abs(q) <= fp + slack), (branch, frac)
         assert np.all(np.isfinite(q))
@@ -233,7 +268,7 @@ def test_shear_integrates_to_Q_and_obeys_coulomb_on_every_branch(tilted, method)
 
 def test_the_quadrature_integrates_the_pressure_to_P(tilted):
     n = tilted[0].normal
-    assert integrate(n.pressure, breaks_of(tilted[0])) == pytest.approx(n.P, rel=1e-13)
+    assert integrate(n.pressure, breaks_of(tilted[0])) == pytest.approx(n.P, rel=PRESSURE_QUADRATURE)
 
 
 # -- delta is the displacement of the stick zone -------------------------------------------------
@@ -259,14 +294,14 @@ def test_delta_is_the_tangential_displacement_in_the_stick_zone(tilted, method):
     (the log-potential of q) equals delta, up to one term linear in Q for the whole cycle.
     The SIE's delta comes from its stick zones alone; its shear, integrated here, carries the
     series' pointwise error. Measured: 2.4e-14 (closed form), 5.9e-8 (SIE)."""
-    limit = (1e-11, tol("q_states"))[method]
+    limit = (LOG_POTENTIAL, tol("q_states"))[method]
     assert stick_displacement_misfit(tilted[method]) < limit
 
 
 def test_a_wrong_factor_in_delta_fails_the_displacement_check(tilted):
     """``F = f [D(P) - D(P*)]`` exactly: a factor ``1 + 1e-6`` is seen (by 4 orders)."""
     cyc = tilted[0]
-    assert stick_displacement_misfit(replace(cyc, delta=cyc.delta * (1 + 1e-6))) > 1e-8
+    assert stick_displacement_misfit(replace(cyc, delta=cyc.delta * (1 + 1e-6))) > MISFIT
 
 
 # -- slip ----------------------------------------------------------------------------------------
@@ -283,7 +318,7 @@ def test_slip_amplitude_is_the_relative_displacement_from_the_stick_zone(tilted,
     ref = np.array([base - log_potential(cyc, cyc.Q_max, "loading", xi, (lo, hi)) for xi in x])
     amp = cyc.slip_amplitude(x)
     assert np.all(amp > 0)
-    assert np.abs(amp - ref).max() < (1e-11, tol("q_states"))[method] * np.abs(ref).max()
+    assert np.abs(amp - ref).max() < (LOG_POTENTIAL, tol("q_states"))[method] * np.abs(ref).max()
     # it vanishes in the stick zone and outside the contact
     inner = np.linspace(lo, hi, 9)
     assert np.all(cyc.slip_amplitude(inner) == 0)
@@ -295,7 +330,7 @@ def test_slip_amplitude_of_both_methods_agrees(tilted):
     n = a.normal
     x = np.linspace(-n.a, n.c, 801)
     amp = a.slip_amplitude(x)
-    assert np.abs(amp - b.slip_amplitude(x)).max() < 1e-9 * amp.max()
+    assert np.abs(amp - b.slip_amplitude(x)).max() < AMPLITUDE_SIE * amp.max()
 
 
 def test_reversal_mirrors_the_state_and_sticks_the_whole_contact(tilted):
@@ -309,12 +344,12 @@ def test_reversal_mirrors_the_state_and_sticks_the_whole_contact(tilted):
     last_unloading = int(np.flatnonzero(cyc.branch == "unloading")[-1])
     assert np.array_equal(cyc.stick[last_unloading], cyc.stick[tip(cyc)])
     q_max = cyc.shear(x, cyc.Q_max, "loading")
-    assert np.abs(cyc.shear(x, -cyc.Q_max, "unloading") + q_max).max() < 1e-12 * q_max.max()
-    assert np.abs(cyc.shear(x, cyc.Q_max, "reloading") - q_max).max() < 1e-12 * q_max.max()
+    assert np.abs(cyc.shear(x, -cyc.Q_max, "unloading") + q_max).max() < ROUND_OFF * q_max.max()
+    assert np.abs(cyc.shear(x, cyc.Q_max, "reloading") - q_max).max() < ROUND_OFF * q_max.max()
     s_max = cyc.slip(x, cyc.Q_max, "loading")
-    assert np.abs(cyc.slip(x, -cyc.Q_max, "unloading") + s_max).max() < 1e-12 * s_max.max()
-    assert cyc.delta[-1] == pytest.approx(cyc.delta[tip(cyc)], rel=1e-14)
-    assert cyc.delta[last_unloading] == pytest.approx(-cyc.delta[tip(cyc)], rel=1e-14)
+    assert np.abs(cyc.slip(x, -cyc.Q_max, "unloading") + s_max).max() < ROUND_OFF * s_max.max()
+    assert cyc.delta[-1] == pytest.approx(cyc.delta[tip(cyc)], rel=EXACT)
+    assert cyc.delta[last_unloading] == pytest.approx(-cyc.delta[tip(cyc)], rel=EXACT)
 
 
 # -- (4) Hertz: the cylinder ---------------------------------------------------------------------
@@ -338,7 +373,7 @@ def test_hertz_approach_by_quadrature():
     """The standard integral of :func:`hertz_approach`, by quadrature."""
     a = 0.7
     val = log_integral(lambda t: np.sqrt(a * a - t * t), 0.0, [-a, a])
-    assert val == pytest.approx(0.5 * math.pi * a * a * (math.log(a / 2) - 0.5), rel=1e-12)
+    assert val == pytest.approx(0.5 * math.pi * a * a * (math.log(a / 2) - 0.5), rel=ROUND_OFF)
 
 
 @pytest.mark.parametrize("q", [1e-3, 0.3, 0.9])
@@ -356,19 +391,19 @@ def test_hertz_cycle_is_the_cylinder_in_closed_form(normals, q):
     Q = q * F * P
     W = 2 * A / math.pi * (F * P) ** 2 * ((1 - q) * math.log1p(-q) + q - 0.5 * q * q)
     for cyc in (cf.fretting_cycle(nc, Q, F, states=9), sie.fretting_cycle(ns, Q, F, states=9)):
-        assert cyc.energy == pytest.approx(W, rel=1e-9 if q < 0.01 else 1e-12)
+        assert cyc.energy == pytest.approx(W, rel=MINDLIN_CANCEL if q < MINDLIN_SMALL else ROUND_OFF)
         load = cyc.branch == "loading"
         Fh = np.array([F * (hertz_approach(P, A, R) - hertz_approach(P - u / F, A, R))
                        for u in cyc.Q[load]])
         linear = cyc.delta[load] - Fh
-        assert np.abs(linear - linear[-1] * cyc.Q[load] / Q).max() < 1e-10 * abs(Fh[-1])
+        assert np.abs(linear - linear[-1] * cyc.Q[load] / Q).max() < LINEAR_PART * abs(Fh[-1])
         d = nc.a * math.sqrt(1 - q)
-        assert tuple(cyc.stick[tip(cyc)]) == pytest.approx((-d, d), rel=1e-12)
+        assert tuple(cyc.stick[tip(cyc)]) == pytest.approx((-d, d), rel=ROUND_OFF)
         x = np.linspace(d, nc.a, 50)[1:-1]
         gap = (x * np.sqrt(x * x - d * d) - d * d * np.arccosh(x / d)) / (2 * R)
         amp = cyc.slip_amplitude(np.concatenate([x, -x]))
         scale = F * nc.a**2 / (2 * R)         # the gap's natural scale, whatever q
-        assert np.abs(amp - F * np.concatenate([gap, gap])).max() < 1e-12 * scale
+        assert np.abs(amp - F * np.concatenate([gap, gap])).max() < ROUND_OFF * scale
 
 
 # -- (5) small amplitude -------------------------------------------------------------------------
@@ -379,9 +414,9 @@ def test_energy_grows_as_the_cube_of_the_amplitude(normals, name):
     Q = F * nc.P * np.array([1e-4, 2e-4, 4e-4, 8e-4])
     W = np.array([cf.fretting_cycle(nc, float(q), F, states=2).energy for q in Q])
     order = np.polyfit(np.log(Q), np.log(W), 1)[0]
-    assert abs(order - 3) < 1e-3, f"observed exponent {order:.5f}"
+    assert abs(order - 3) < CUBE_ORDER, f"observed exponent {order:.5f}"
     if name == "hertz":
-        assert W[0] == pytest.approx(nc.A * Q[0] ** 3 / (3 * math.pi * F * nc.P), rel=1e-4)
+        assert W[0] == pytest.approx(nc.A * Q[0] ** 3 / (3 * math.pi * F * nc.P), rel=CUBE_LEADING)
 
 
 # -- property: random admissible case-A punches ---------------------------------------------------
@@ -442,7 +477,7 @@ def test_stick_zone_on_the_centre_is_the_named_error_with_the_bound(normals):
         cf.fretting_cycle(nc, 0.9 * F * nc.P, F)
     bound = float(info.value.args[0].rsplit("< ", 1)[1])
     at = sie.fretting_cycle(ns, bound * F * ns.P, F, states=2)
-    assert at.stick[tip(at), 0] == pytest.approx(-ns.punch.b, abs=1e-5)
+    assert at.stick[tip(at), 0] == pytest.approx(-ns.punch.b, abs=NEAR_JOIN_PRINTED)
 
 
 @pytest.mark.parametrize("method", [0, 1], ids=["closedform", "sie"])
@@ -478,5 +513,5 @@ def test_E10_tangential_equation_as_printed_does_not_vanish_in_the_stick_zone():
         I_star = ref.strain_in_stick(p_star, a_s, c_s, (-punch.b, punch.b), x)
         printed, corrected = f * I + f * I_star, -f * I + f * I_star
         slope = float(punch.slope(x, sol.alpha))
-        assert abs(corrected) < 1e-12 * abs(slope / A)
-        assert printed == pytest.approx(2 * f * slope / A, rel=1e-10)
+        assert abs(corrected) < ROUND_OFF * abs(slope / A)
+        assert printed == pytest.approx(2 * f * slope / A, rel=RTOL)

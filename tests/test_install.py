@@ -20,6 +20,8 @@ import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
 FOREIGN = ("closedform", "sie", "fem", "meshes", "reports")
+#: the solve below: b and R1 (mm); a symmetric-load contact lies between b and b + R1
+B, R1 = 1.0, 10.0
 
 
 @pytest.fixture(scope="module")
@@ -80,4 +82,4 @@ def test_fresh_environment_imports_threepart_fem_but_not_fem(isolated, tmp_path)
     # the half-width of this symmetric-load solve, against Hertz-like bounds: b < a < b + R1
     a = float(next(line.split()[1] for line in script.stdout.splitlines()
                    if line.startswith("a ")))
-    assert 1.0 < a < 11.0
+    assert B < a < B + R1

@@ -1,6 +1,7 @@
 """Meshes: the committed reference mesh against its manifest, physical groups by name, gmsh hygiene."""
 from __future__ import annotations
 
+import hashlib
 import json
 from pathlib import Path
 
@@ -13,10 +14,26 @@ from threepart import meshes
 from threepart.meshes import REFERENCE_SPEC, SubstrateSpec, build_substrate, check_manifest, describe
 
 HERE = Path(meshes.__file__).parent
+#: node coordinates that gmsh places at given points (joins, zone ends): rounding (mm)
+GMSH_ROUND_OFF = 1e-12
+#: the contact's node spacing may exceed h by the rounding of gmsh's transfinite placement only
+SPACING = 1e-9
 
 
 def test_reference_mesh_matches_manifest():
+    """The manifest's numbers recomputed from the file on disk with meshio and hashlib."""
     assert check_manifest(HERE / "manifest.json") == ["reference.msh"]
+    entry = json.loads((HERE / "manifest.json").read_text())["meshes"][0]
+    m = meshio.read(HERE / entry["file"])
+    assert entry["nodes"] == len(m.points) and entry["triangles"] == len(m.cells_dict["triangle"])
+    for name, group in entry["physical_groups"].items():
+        tag, dim = m.field_data[name]
+        kind = "line" if dim == 1 else "triangle"
+        assert group == {"dim": dim, "cells": int(np.sum(m.cell_data_dict["gmsh:physical"][kind] == tag))}
+    # SHA-256 of the x, y coordinates rounded to 1e-9 L as little-endian int64 (the manifest's rule)
+    grid = 1e-9 * entry["parameters"]["L"]
+    q = np.rint(m.points[:, :2] / grid).astype("<i8")
+    assert hashlib.sha256(q.tobytes()).hexdigest() == entry["coordinate_checksum"]
 
 
 def test_manifest_records_gmsh_version_and_parameters():
@@ -60,14 +77,14 @@ def test_physical_groups_by_name():
     assert np.allclose(y[contact], 0.0)
     assert x[contact].min() == pytest.approx(spec.x_lo) and x[contact].max() == pytest.approx(spec.x_hi)
     for xb in spec.breakpoints:  # nodes at x = ±b
-        assert np.min(np.abs(x[contact] - xb)) < 1e-12
+        assert np.min(np.abs(x[contact] - xb)) < GMSH_ROUND_OFF
     assert np.allclose(y[_group(m, "base")], -spec.L)
     assert np.allclose(x[_group(m, "left")], -spec.L / 2)
     assert np.allclose(x[_group(m, "right")], spec.L / 2)
     top = _group(m, "top")
-    assert np.allclose(y[top], 0.0) and np.all((x[top] <= spec.x_lo + 1e-12) | (x[top] >= spec.x_hi - 1e-12))
+    assert np.allclose(y[top], 0.0) and np.all((x[top] <= spec.x_lo + GMSH_ROUND_OFF) | (x[top] >= spec.x_hi - GMSH_ROUND_OFF))
     # uniform spacing h (or less) along the contact zone
-    assert np.diff(np.sort(x[contact])).max() <= spec.h * (1 + 1e-9)
+    assert np.diff(np.sort(x[contact])).max() <= spec.h * (1 + SPACING)
 
 
 def test_gmsh_finalized_after_error(tmp_path, monkeypatch):
