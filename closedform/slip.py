@@ -190,7 +190,8 @@ def check_slip_direction(normal: NormalResult, Q: float, f: float, sigma_bulk: f
 
     The least of :func:`threepart.bulk.slip_direction_margin` over the load
     fraction ``lam`` in ``[0, 1]`` (a grid brackets it, Brent refines it,
-    :func:`_least`) must be ``>= 0``; at ``lam = 0`` it is
+    :func:`_least`, where the grid's least is within 5 % of ``|Q|/π`` of
+    zero) must be ``>= 0``; at ``lam = 0`` it is
     ``|Q|/π - |sigma_bulk| (a + c)/8``. The message gives the largest
     ``|sigma_bulk|`` of the same sign that passes at this ``Q`` (bisection).
     """
@@ -223,9 +224,11 @@ def _least_margin(normal: NormalResult, Q: float, f: float, sigma_bulk: float,
         gl, gr = slip_direction_margin(Q, sigma_bulk, normal.a, normal.c, -a_s, c_s)
         return np.where(out, np.inf, gl), np.where(out, np.inf, gr)
 
-    if not refine:
-        gl, gr = both(np.linspace(0.0, 1.0, _GRID))
-        return (float(gl.min()), "left") if gl.min() < gr.min() else (float(gr.min()), "right")
+    gl, gr = both(np.linspace(0.0, 1.0, _GRID))
+    grid = (float(gl.min()), "left") if gl.min() < gr.min() else (float(gr.min()), "right")
+    # Brent refines only a grid minimum within 5 % of |Q|/π of zero (as _check_separation)
+    if not refine or grid[0] > 0.05 * abs(Q) / math.pi:
+        return grid
     left = _least(lambda t: both(t)[0], 0.0, 1.0)
     right = _least(lambda t: both(t)[1], 0.0, 1.0)
     return (left[1], "left") if left[1] < right[1] else (right[1], "right")

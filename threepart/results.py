@@ -440,6 +440,20 @@ class MasingCycle(FrettingResult):
     def _q_load(self, x: np.ndarray, u: float) -> np.ndarray:
         raise NotImplementedError
 
+    def _stick_load(self, u: float) -> tuple[float, float]:
+        """Ends of the loading stick zone at ``0 < u <= Q_max``."""
+        raise NotImplementedError
+
+    def state_kinks(self, Q: float, branch: str) -> list[float]:
+        """The joins ``x = ±b`` and the stick-zone ends of the loading states superposed at ``(Q, branch)``.
+
+        Only the states at ``Q_max`` and at ``u`` of :func:`masing` enter the
+        shear there, so only their ends are kinks of it.
+        """
+        c_max, c_u, u = masing(self.Q_max, Q, branch)
+        ends = [*(self._stick_load(self.Q_max) if c_max else ()), *(self._stick_load(u) if u > 0 else ())]
+        return _kinks(self.normal.punch.b, -self.normal.a, self.normal.c, *ends)
+
     def _s_load(self, x: np.ndarray, u: float) -> np.ndarray:
         raise NotImplementedError
 
