@@ -73,7 +73,7 @@ from numpy.typing import ArrayLike
 from threepart.bulk import check_sigma_bulk, corrective_tilt, slip_dissipation
 from threepart.errors import LiftOffError, NoConvergenceError, StickZoneError
 from threepart.punch import Punch
-from threepart.results import MasingCycle, NormalResult
+from threepart.results import Diagnostics, MasingCycle, NormalResult
 from threepart.validate import check_shear, check_states
 
 from . import formulas
@@ -311,7 +311,8 @@ def fretting_cycle(normal_solution: NormalResult, Q_max: float, f: float, *,
         (Masing's rule on ``F(u) = f [D(P) - D(P - u/f)]``, :func:`approach`),
         ``energy`` (:func:`loop_energy`; under a bulk stress, which also works on
         the substrate, the friction work :func:`threepart.bulk.slip_dissipation`).
-        ``info`` holds ``states``, ``energy_nodes`` and ``time_s``.
+        ``diagnostics`` hold ``steps`` (the recorded states per branch) and the
+        time; ``info`` holds ``energy_nodes`` (of the energy quadrature).
 
     Raises
     ------
@@ -352,6 +353,7 @@ def fretting_cycle(normal_solution: NormalResult, Q_max: float, f: float, *,
         energy, nodes = slip_dissipation(normal.pressure, lambda x: stick_gap(punch, a_s[-1], c_s[-1], x),
                                          f, normal.a, normal.c, (-float(a_s[-1]), float(c_s[-1])))
     stick = np.column_stack([-a_s, c_s])
-    info = {"states": states, "energy_nodes": nodes, "time_s": time.perf_counter() - t0}
+    diagnostics = Diagnostics(steps=states, timings={"total": time.perf_counter() - t0})
     return FrettingSolution.from_loading(normal, Q_max, f, u, stick, F, energy=energy,
-                                         method="closedform", info=info, sigma_bulk=sigma_bulk)
+                                         method="closedform", diagnostics=diagnostics,
+                                         info={"energy_nodes": nodes}, sigma_bulk=sigma_bulk)

@@ -14,6 +14,7 @@ With ``Q`` of either sign, ``q(x) = sign(Q) f [p(x) - p*(x)]`` integrates to ``Q
 from __future__ import annotations
 
 import math
+import time
 from dataclasses import dataclass
 
 import numpy as np
@@ -26,7 +27,7 @@ from threepart.bulk import check_sigma_bulk, corrective_tilt, slip_direction_mar
 from threepart.errors import SlipReversalError, StickSeparationError, StickZoneError
 from threepart.validate import check_shear
 from .newton import HALF_PI, SCALAR, bracketed_root, ray_state, solve_phi
-from threepart.results import NormalResult, SlipResult
+from threepart.results import Diagnostics, NormalResult, SlipResult
 
 __all__ = ["SlipSolution", "solve_partial_slip", "stick_zone_bound", "coulomb_margin",
            "check_coulomb", "COULOMB_RTOL", "stick_zone_leaves", "stick_zones_on_path",
@@ -284,6 +285,7 @@ def solve_partial_slip(normal_solution: NormalResult, Q: float, f: float, *,
     normal = normal_solution
     Q, f = check_shear(normal, Q, f)
     sigma_bulk = check_sigma_bulk(sigma_bulk)
+    t0 = time.perf_counter()
     punch = normal.punch
     ratio = abs(Q) / (f * normal.P)
     a_s, c_s, out = stick_zones_on_path(normal, Q, f, sigma_bulk, [1.0])
@@ -296,7 +298,8 @@ def solve_partial_slip(normal_solution: NormalResult, Q: float, f: float, *,
     a_star, c_star = float(a_s[0]), float(c_s[0])
     check_coulomb(normal, a_star, c_star, ratio)
     return SlipSolution(normal=normal, Q=Q, f=f, d=0.5 * (a_star + c_star), e=0.5 * (a_star - c_star),
-                        sigma_bulk=sigma_bulk)
+                        sigma_bulk=sigma_bulk,
+                        diagnostics=Diagnostics(timings={"total": time.perf_counter() - t0}))
 
 
 def stick_zone_leaves(b: float) -> str:

@@ -42,7 +42,7 @@ from scipy.optimize import brentq
 from threepart.bulk import check_sigma_bulk, corrective_tilt, slip_dissipation
 from threepart.errors import NoConvergenceError, StickSeparationError
 from threepart.punch import Punch
-from threepart.results import MasingCycle, NormalResult
+from threepart.results import Diagnostics, MasingCycle, NormalResult
 from threepart.validate import SLIP_RATIO_LIMIT, check_shear, check_states
 
 from .normal import DEFAULT_N, DEFAULT_SCHEME, check_scheme, solve_ends
@@ -136,21 +136,20 @@ class SieFrettingResult(MasingCycle):
 
     ``shear``, ``slip`` and ``slip_amplitude`` take any ``Q`` on a branch: the
     loading state of ``(Q_max ∓ Q)/2`` (with ``sigma_bulk`` in proportion) is
-    solved anew by :func:`sie.slip.stick_zone`; the cycle checked the slip
-    direction once.
+    solved anew by :func:`sie.slip.stick_zone`, with the discretisation of
+    ``diagnostics`` (``n``, ``scheme``); the cycle checked the slip direction once.
     """
-
-    n: int = 0
-    scheme: str = ""
 
     def _load(self, u: float) -> SieSlipResult:
         """The loading state at ``u > 0``, bulk stress ``sigma_bulk u/Q_max``."""
-        nrm, sch = self.normal, check_scheme(self.scheme, self.n)
+        nrm = self.normal
+        sch = check_scheme(self.diagnostics.scheme or DEFAULT_SCHEME, self.diagnostics.n or DEFAULT_N)
         sb = self.sigma_bulk * u / self.Q_max
         m, h, _, _ = stick_zone(nrm, u, self.f, sch, sb)
         stick, _ = sch.pressure(nrm.punch, nrm.A, m, h)
-        return SieSlipResult(normal=nrm, Q=u, f=self.f, d=h, e=-m, method="sie", n=sch.n,
-                             scheme=sch.name, stick=stick, sigma_bulk=sb)
+        return SieSlipResult(normal=nrm, Q=u, f=self.f, d=h, e=-m, method="sie",
+                             diagnostics=Diagnostics(n=sch.n, scheme=sch.name), stick=stick,
+                             sigma_bulk=sb)
 
     def _stick_load(self, u: float) -> tuple[float, float]:
         return self._load(u).stick_zone
@@ -275,10 +274,10 @@ def fretting_cycle(normal: NormalResult, Q_max: float, f: float, *, n: int | Non
     SieFrettingResult
         ``method="sie"``; ``stick`` is the zone not slipped since the last
         reversal (the whole contact at ``Q = 0`` and at each reversal); stick
-        zones ending on the central segment are solved as any other. ``info``
-        holds ``n``, ``scheme``, ``states``, ``energy_nodes`` (per panel),
-        ``crossings`` (forces at which a stick-zone end crosses a join),
-        ``solves`` and ``time_s``.
+        zones ending on the central segment are solved as any other. ``diagnostics`` hold ``n``,
+        ``scheme``, ``steps`` (the recorded states per branch) and the time;
+        ``info`` holds ``energy_nodes`` (per panel), ``crossings`` (forces at
+        which a stick-zone end crosses a join) and ``solves``.
 
     Raises
     ------
@@ -302,8 +301,8 @@ def fretting_cycle(normal: NormalResult, Q_max: float, f: float, *, n: int | Non
     substrate too, so it is no longer the ``Q``–``delta`` loop's area.
     """
     Q_max, f, states = _check_fretting(normal, Q_max, f, states)
-    n = int(normal.info.get("n", DEFAULT_N)) if n is None else n
-    scheme = str(normal.info.get("scheme", DEFAULT_SCHEME)) if scheme is None else scheme
+    n = (normal.diagnostics.n or DEFAULT_N) if n is None else n
+    scheme = (normal.diagnostics.scheme or DEFAULT_SCHEME) if scheme is None else scheme
     sch = check_scheme(scheme, n)
     sigma_bulk = check_sigma_bulk(sigma_bulk)
     t0 = time.perf_counter()
@@ -332,7 +331,8 @@ def fretting_cycle(normal: NormalResult, Q_max: float, f: float, *, n: int | Non
             normal.a, normal.c, (m1 - h1, m1 + h1), joins=(-punch.b, punch.b))
         cuts = []
     stick = np.column_stack([mh[:, 0] - mh[:, 1], mh[:, 0] + mh[:, 1]])
-    info = {"n": sch.n, "scheme": sch.name, "states": states, "energy_nodes": nodes,
-            "crossings": cuts, "solves": zones.solves, "time_s": time.perf_counter() - t0}
+    info = {"energy_nodes": nodes, "crossings": cuts, "solves": zones.solves}
+    diagnostics = Diagnostics(n=sch.n, scheme=sch.name, steps=states,
+                              timings={"total": time.perf_counter() - t0})
     return SieFrettingResult.from_loading(normal, Q_max, f, u, stick, F, energy=energy, method="sie",
-                                          info=info, n=sch.n, scheme=sch.name, sigma_bulk=sigma_bulk)
+                                          diagnostics=diagnostics, info=info, sigma_bulk=sigma_bulk)

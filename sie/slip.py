@@ -25,7 +25,7 @@ from numpy.typing import ArrayLike
 from threepart.bulk import check_sigma_bulk, corrective_tilt, slip_direction_margin
 from threepart.validate import SLIP_RATIO_LIMIT, check_shear
 from threepart.errors import NoConvergenceError, SeparationError, SlipReversalError, StickSeparationError
-from threepart.results import NormalResult, SlipResult
+from threepart.results import Diagnostics, NormalResult, SlipResult
 
 from .normal import (DEFAULT_N, DEFAULT_SCHEME, check_scheme, check_single_contact, scan_ends,
                      solve_ends)
@@ -40,16 +40,15 @@ __all__ = ["SieSlipResult", "solve_partial_slip", "stick_zone", "coulomb_violati
 class SieSlipResult(SlipResult):
     """Partial-slip solution from :func:`solve_partial_slip`.
 
+    Its ``diagnostics`` hold the discretisation of the corrective pressure
+    ``p*`` (``n``, ``scheme``), the Newton ``iterations`` and ``residual``.
+
     Attributes
     ----------
-    n, scheme
-        Discretisation of the corrective pressure ``p*``.
     stick
         The corrective pressure ``p*`` on the stick zone (zero outside).
     """
 
-    n: int = 0
-    scheme: str = ""
     stick: ChebyshevPressure | None = field(default=None, repr=False, compare=False)
 
     def corrective(self, x: ArrayLike) -> np.ndarray:
@@ -248,8 +247,9 @@ def solve_partial_slip(normal: NormalResult, Q: float, f: float, *, n: int | Non
     Returns
     -------
     SieSlipResult
-        ``method="sie"``; ``info`` holds ``n``, ``scheme``, ``iterations``,
-        ``residual``, ``time_s`` and ``P_star``. Its ``within_paper`` says whether the
+        ``method="sie"``; ``diagnostics`` hold ``n``, ``scheme``, ``iterations``,
+        ``residual`` and the time; ``info`` holds ``P_star`` and the scheme's
+        ``pressure_bound``. Its ``within_paper`` says whether the
         stick zone contains the central segment, as the paper's closed form
         requires (end of its partial-slip section); a stick zone that ends on
         the central segment is solved all the same, as is one on a contact
@@ -273,8 +273,8 @@ def solve_partial_slip(normal: NormalResult, Q: float, f: float, *, n: int | Non
     """
     Q, f = check_shear(normal, Q, f, limit=SLIP_RATIO_LIMIT)
     sigma_bulk = check_sigma_bulk(sigma_bulk)
-    n = int(normal.info.get("n", DEFAULT_N)) if n is None else n
-    scheme = str(normal.info.get("scheme", DEFAULT_SCHEME)) if scheme is None else scheme
+    n = (normal.diagnostics.n or DEFAULT_N) if n is None else n
+    scheme = (normal.diagnostics.scheme or DEFAULT_SCHEME) if scheme is None else scheme
     sch = check_scheme(scheme, n)
     t0 = time.perf_counter()
     P_star = normal.P - abs(Q) / f
@@ -288,7 +288,8 @@ def solve_partial_slip(normal: NormalResult, Q: float, f: float, *, n: int | Non
         raise ValueError(f"`Q` = {Q:g}: stick zone [{lo:.6g}, {hi:.6g}] leaves the contact "
                          f"[{-normal.a:.6g}, {normal.c:.6g}]; is `normal` consistent with its punch?")
     stick, extra = sch.pressure(punch, A, m, h)
-    info = {"n": sch.n, "scheme": sch.name, "iterations": its, "residual": res,
-            "time_s": time.perf_counter() - t0, "P_star": P_star, **extra}
-    return SieSlipResult(normal=normal, Q=float(Q), f=float(f), d=d, e=e, method="sie", info=info,
-                         n=sch.n, scheme=sch.name, stick=stick, sigma_bulk=sigma_bulk)
+    diagnostics = Diagnostics(n=sch.n, scheme=sch.name, iterations=its, residual=res,
+                              timings={"total": time.perf_counter() - t0})
+    return SieSlipResult(normal=normal, Q=float(Q), f=float(f), d=d, e=e, method="sie",
+                         diagnostics=diagnostics, info={"P_star": P_star, **extra}, stick=stick,
+                         sigma_bulk=sigma_bulk)

@@ -10,6 +10,8 @@ from __future__ import annotations
 
 import math
 import re
+import subprocess
+import sys
 
 import numpy as np
 import pytest
@@ -214,3 +216,31 @@ def test_bad_sigma_bulk(bad, err, msg):
                  lambda: cf.fretting_cycle(n, 80.0, 0.5, sigma_bulk=bad)):
         with pytest.raises(err, match=msg):
             call()
+
+
+CLI = [sys.executable, "-m", "threepart", "slip", "--R1", "10", "--R2", "10", "--b", "0", "--A",
+       str(A), "--P", "400", "--Q", "100", "--f", "0.6"]
+
+
+def test_cli_sigma_bulk_through_the_entry_point():
+    """``threepart slip --sigma-bulk`` echoes it and moves the stick zone by Nowell & Hills' offset along Q."""
+    import json
+    out = subprocess.run([*CLI, "--sigma-bulk", "300", "--json"], capture_output=True, text=True)
+    assert out.returncode == 0, out.stderr
+    doc = json.loads(out.stdout)
+    a = doc["a"]
+    p0 = 2 * 400 / (math.pi * a)
+    assert doc["sigma_bulk"] == 300 and doc["units"]["sigma_bulk"] == "MPa"
+    assert -doc["e"] == pytest.approx(a * 300 / (4 * 0.6 * p0), rel=1e-10)
+    text = subprocess.run([*CLI, "--sigma-bulk", "-300"], capture_output=True, text=True).stdout
+    assert "sigma_bulk -300 MPa" in text
+
+
+@pytest.mark.parametrize("value,msg", [("nan", r"`sigma_bulk` = nan must be a finite number"),
+                                       ("abc", r"argument --sigma-bulk: invalid float value"),
+                                       ("5000", r"`sigma_bulk` = 5000 reverses the slip at the right end")])
+def test_cli_bad_sigma_bulk_is_one_line_and_exit_2(value, msg):
+    out = subprocess.run([*CLI, "--sigma-bulk", value], capture_output=True, text=True)
+    assert out.returncode == 2 and out.stdout == ""
+    lines = out.stderr.strip().splitlines()
+    assert len(lines) == 1 and re.search(msg, lines[0]), out.stderr
