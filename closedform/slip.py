@@ -223,7 +223,8 @@ def _least_margin(normal: NormalResult, Q: float, f: float, sigma_bulk: float,
     def both(lam: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         a_s, c_s, out = stick_zones_on_path(normal, Q, f, sigma_bulk, lam)
         gl, gr = slip_direction_margin(Q, sigma_bulk, normal.a, normal.c, -a_s, c_s)
-        return np.where(out, np.inf, gl), np.where(out, np.inf, gr)
+        big = abs(Q) if Q else 1.0       # not counted (outside the framework); finite for Brent
+        return np.where(out, big, gl), np.where(out, big, gr)
 
     gl, gr = both(np.linspace(0.0, 1.0, _GRID))
     grid = (float(gl.min()), "left") if gl.min() < gr.min() else (float(gr.min()), "right")

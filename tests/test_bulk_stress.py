@@ -244,3 +244,67 @@ def test_cli_bad_sigma_bulk_is_one_line_and_exit_2(value, msg):
     assert out.returncode == 2 and out.stdout == ""
     lines = out.stderr.strip().splitlines()
     assert len(lines) == 1 and re.search(msg, lines[0]), out.stderr
+
+
+def _agree_or_refuse(punch, P_ratio, s_frac, tilt, ratio, f, bulk_frac):
+    """Where the SIE finds a stick zone, the closed form finds the same one (1e-8 W) or refuses by name.
+
+    The SIE's own refusal of a reversal must be the closed form's too.
+    """
+    from threepart.errors import NoConvergenceError, StickSeparationError
+    A_ = 1e-5
+    P0 = cf.normal.P_min(punch, A_)
+    P_ = (P0 if P0 > 0 else math.pi * max(punch.b, 1e-3 * punch.R1) ** 2 / (2 * A_ * punch.R1)) * P_ratio
+    try:
+        if tilt == "free":
+            lim = cf.lift_off(punch, P_, A_)
+            s = lim.s_min + (lim.s_max - lim.s_min) * s_frac
+            normal = cf.solve_normal(punch, P_, s, A=A_)
+        else:
+            normal = cf.solve_normal(punch, P_, A=A_, tilt="suppressed")
+    except ValueError:     # LiftOffError, SeparationError, SlopeLimitError, ArcExtentError, footprint
+        return "normal refused"
+    Q = ratio * f * normal.P
+    sb = bulk_frac * 8 * abs(Q) / (math.pi * (normal.a + normal.c))
+    W = normal.a + normal.c
+    try:
+        ref = sie.solve_partial_slip(normal, Q, f, sigma_bulk=sb)
+    except SlipReversalError:
+        with pytest.raises(StickZoneError):        # SlipReversalError, or the zone leaves the framework first
+            cf.solve_partial_slip(normal, Q, f, sigma_bulk=sb)
+        return "both refuse"
+    except (StickSeparationError, NoConvergenceError):
+        return "sie refused"
+    if not ref.within_paper:
+        with pytest.raises(StickZoneError):
+            cf.solve_partial_slip(normal, Q, f, sigma_bulk=sb)
+        return "beyond the paper"
+    got = cf.solve_partial_slip(normal, Q, f, sigma_bulk=sb)
+    assert abs(got.d - ref.d) <= 1e-8 * W and abs(got.e - ref.e) <= 1e-8 * W, (got.d, ref.d, got.e, ref.e)
+    return "agree"
+
+
+hyp = pytest.importorskip("hypothesis")
+from hypothesis import HealthCheck, given, settings, strategies as st  # noqa: E402
+
+PUNCHES = st.builds(
+    lambda R1, k2, b_frac, kind: Punch(R1=R1, R2=R1 * k2, b=b_frac * R1,
+                                       R={"flat": math.inf, "convex": 20 * R1, "concave": -30 * R1}[kind]),
+    st.floats(0.1, 1000.0), st.floats(0.1, 10.0), st.sampled_from([0.0, 0.01, 0.1, 0.5]),
+    st.sampled_from(["flat", "convex", "concave"]))
+INPUTS = dict(punch=PUNCHES, P_ratio=st.floats(1.001, 1e4), s_frac=st.floats(0.02, 0.98),
+              tilt=st.sampled_from(["free", "suppressed"]), ratio=st.floats(0.02, 0.95) | st.floats(-0.95, -0.02),
+              f=st.floats(0.1, 1.0), bulk_frac=st.floats(-1.5, 1.5))
+
+
+@settings(max_examples=25, deadline=None, suppress_health_check=list(HealthCheck))
+@given(**INPUTS)
+def test_property_sie_and_closed_form_agree_or_refuse_by_name(punch, P_ratio, s_frac, tilt, ratio, f, bulk_frac):
+    _agree_or_refuse(punch, P_ratio, s_frac, tilt, ratio, f, bulk_frac)
+
+
+@pytest.mark.slow
+@settings(max_examples=400, deadline=None, suppress_health_check=list(HealthCheck))
+@given(**INPUTS)
+def test_property_sweep_slow(punch, P_ratio, s_frac, tilt, ratio, f, bulk_frac):
+    _agree_or_refuse(punch, P_ratio, s_frac, tilt, ratio, f, bulk_frac)
