@@ -107,7 +107,7 @@ def omega(beta: ArrayLike) -> np.ndarray:
     return np.where(b < 0.2, series, exact)
 
 
-def approach(punch: Punch, a: ArrayLike, c: ArrayLike, A: float, alpha: float) -> np.ndarray:
+def approach(punch: Punch, a: ArrayLike, c: ArrayLike, A: float, alpha: ArrayLike) -> np.ndarray:
     """Rigid approach ``D`` of the normal problem on ``[-a, c]`` with tilt ``alpha``.
 
     ``D = g(x) + alpha x - (A/π) ∫ p(t) ln|x - t| dt`` for any ``x`` in the contact
@@ -119,10 +119,11 @@ def approach(punch: Punch, a: ArrayLike, c: ArrayLike, A: float, alpha: float) -
             + alpha m - (A P/π) ln(h/2),
 
     with ``beta1, beta2`` of eq. (f0) and ``P`` of eq. (equilibrium_condition_1).
-    ``a``, ``c`` broadcast; ``alpha`` must be the tilt that makes ``[-a, c]``
-    consistent (eq. consistency_condition).
+    ``a``, ``c`` and ``alpha`` broadcast; ``alpha`` must be the tilt that makes
+    ``[-a, c]`` consistent (eq. consistency_condition), the corrective tilt
+    under a bulk stress.
     """
-    a, c = np.asarray(a, dtype=float), np.asarray(c, dtype=float)
+    a, c, alpha = (np.asarray(v, dtype=float) for v in (a, c, alpha))
     h, m = 0.5 * (a + c), 0.5 * (c - a)
     b1, b2 = formulas.beta(a, c, punch.b)
     AP = A * formulas.load(punch, a, c, A)
