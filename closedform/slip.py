@@ -270,7 +270,9 @@ def solve_partial_slip(normal_solution: NormalResult, Q: float, f: float, *,
         Coefficient of friction, > 0.
     sigma_bulk
         Bulk stress ``σxx`` in the substrate at ``Q`` (tension positive),
-        applied with ``Q`` in proportion after the normal load.
+        applied with ``Q`` in proportion after the normal load. Its strain is
+        ``A sigma_bulk/4``: ``A`` must be that of an elastically similar pair,
+        ``4(1 - nu^2)/E`` (eq. 4), as the uncoupled partial-slip problem assumes.
 
     Raises
     ------

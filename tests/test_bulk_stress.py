@@ -238,9 +238,12 @@ def test_cli_sigma_bulk_through_the_entry_point():
 
 @pytest.mark.parametrize("value,msg", [("nan", r"`sigma_bulk` = nan must be a finite number"),
                                        ("abc", r"argument --sigma-bulk: invalid float value"),
-                                       ("5000", r"`sigma_bulk` = 5000 reverses the slip at the right end")])
+                                       ("5000", r"`sigma_bulk` = 5000 reverses the slip at the right end"),
+                                       ("300 --E 2e5 --nu 0.3 --rigid",
+                                        r"`--sigma-bulk` = 300 needs elastically similar bodies")])
 def test_cli_bad_sigma_bulk_is_one_line_and_exit_2(value, msg):
-    out = subprocess.run([*CLI, "--sigma-bulk", value], capture_output=True, text=True)
+    cli = CLI if "--rigid" not in value else [t for t in CLI[:CLI.index("--A")]] + CLI[CLI.index("--A") + 2:]
+    out = subprocess.run([*cli, "--sigma-bulk", *value.split()], capture_output=True, text=True)
     assert out.returncode == 2 and out.stdout == ""
     lines = out.stderr.strip().splitlines()
     assert len(lines) == 1 and re.search(msg, lines[0]), out.stderr

@@ -40,7 +40,9 @@ def corrective_tilt(alpha: ArrayLike, A: float, Q: float, f: float, sigma_bulk: 
     In the stick zone ``(A/π) ∫ q/(x - t) dt = A sigma_bulk/4`` (the bulk
     strain); with ``q = sign(Q) f (p - p*)`` and eq. (integral_equation) for
     ``p`` (slope ``alpha + g'``), ``p*`` solves eq. (integral_equation_2) with
-    the slope ``alpha* + g'`` (docs/BULK_STRESS.md, eq. B4).
+    the slope ``alpha* + g'`` (docs/BULK_STRESS.md, eq. B4). ``A`` is the
+    compliance of an elastically similar pair, ``4(1 - nu^2)/E``, whose quarter
+    is the substrate's strain per unit bulk stress (eq. B2).
     """
     return np.asarray(alpha, dtype=float) - math.copysign(1.0, Q) * A * np.asarray(sigma_bulk) / (4 * f)
 

@@ -213,6 +213,9 @@ def _solve(args: argparse.Namespace, slip: bool) -> tuple[Any, dict[str, Any]]:
         if args.nu is None:
             nu_note = (f"the FE model needs Poisson's ratio; nu = {finite_body.default_nu} "
                        "assumed (give --nu to set it; in half-plane theory only A matters)")
+    if slip and args.sigma_bulk and args.rigid:
+        raise ValueError(f"`--sigma-bulk` = {args.sigma_bulk:g} needs elastically similar bodies (its "
+                         "strain is A sigma_bulk/4 with A of eq. (4) for one material): drop `--rigid`")
     loads = {"Q": args.Q, "f": args.f, "sigma_bulk": args.sigma_bulk} if slip else {}
     res = solve(punch, args.P, args.s, A=A, tilt=args.tilt, method=args.method, **loads, **options)
     normal = res.normal if isinstance(res, SlipResult) else res
