@@ -351,7 +351,9 @@ class FrettingResult:
         in the direction of positive ``Q``. In half-plane theory it is defined only up
         to a term linear in ``Q``; :meth:`loop` removes that term.
     energy
-        Energy dissipated per cycle and unit length (the area of the ``Q``–``delta`` loop).
+        Energy dissipated per cycle and unit length (the area of the ``Q``–``delta`` loop;
+        under a bulk stress, which works on the substrate too, the friction work,
+        docs/BULK_STRESS.md eq. B9).
     sigma_bulk
         Bulk stress ``σxx`` in the substrate at ``Q_max``, tension positive; it
         varies in phase with ``Q``: ``sigma_bulk Q / Q_max`` at each state.
