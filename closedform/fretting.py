@@ -70,14 +70,16 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
+from threepart.bulk import check_sigma_bulk, corrective_tilt, slip_dissipation
 from threepart.errors import LiftOffError, NoConvergenceError, StickZoneError
 from threepart.punch import Punch
-from threepart.results import MasingCycle, NormalResult
+from threepart.results import Diagnostics, MasingCycle, NormalResult
 from threepart.validate import check_shear, check_states
 
 from . import formulas
-from .newton import ray_state, solve_phi
-from .slip import check_coulomb, solve_partial_slip, stick_zone_bound, stick_zone_leaves
+
+from .slip import (check_coulomb, check_slip_direction, stick_zone_bound, stick_zone_leaves,
+                   stick_zones_on_path)
 
 __all__ = ["FrettingSolution", "fretting_cycle", "approach", "stick_gap", "omega",
            "loop_energy"]
@@ -105,7 +107,7 @@ def omega(beta: ArrayLike) -> np.ndarray:
     return np.where(b < 0.2, series, exact)
 
 
-def approach(punch: Punch, a: ArrayLike, c: ArrayLike, A: float, alpha: float) -> np.ndarray:
+def approach(punch: Punch, a: ArrayLike, c: ArrayLike, A: float, alpha: ArrayLike) -> np.ndarray:
     """Rigid approach ``D`` of the normal problem on ``[-a, c]`` with tilt ``alpha``.
 
     ``D = g(x) + alpha x - (A/π) ∫ p(t) ln|x - t| dt`` for any ``x`` in the contact
@@ -117,10 +119,11 @@ def approach(punch: Punch, a: ArrayLike, c: ArrayLike, A: float, alpha: float) -
             + alpha m - (A P/π) ln(h/2),
 
     with ``beta1, beta2`` of eq. (f0) and ``P`` of eq. (equilibrium_condition_1).
-    ``a``, ``c`` broadcast; ``alpha`` must be the tilt that makes ``[-a, c]``
-    consistent (eq. consistency_condition).
+    ``a``, ``c`` and ``alpha`` broadcast; ``alpha`` must be the tilt that makes
+    ``[-a, c]`` consistent (eq. consistency_condition), the corrective tilt
+    under a bulk stress.
     """
-    a, c = np.asarray(a, dtype=float), np.asarray(c, dtype=float)
+    a, c, alpha = (np.asarray(v, dtype=float) for v in (a, c, alpha))
     h, m = 0.5 * (a + c), 0.5 * (c - a)
     b1, b2 = formulas.beta(a, c, punch.b)
     AP = A * formulas.load(punch, a, c, A)
@@ -184,23 +187,34 @@ class FrettingSolution(MasingCycle):
     """Closed-form fretting cycle from :func:`fretting_cycle`.
 
     ``shear``, ``slip`` and ``slip_amplitude`` take any ``Q`` on a branch, not only
-    the recorded states: the stick zone of ``(Q_max ∓ Q)/2`` is solved anew
-    (:func:`closedform.solve_partial_slip`, microseconds).
+    the recorded states: the stick zone of ``(Q_max ∓ Q)/2`` (with the bulk
+    stress in proportion) is solved anew (:func:`closedform.slip.stick_zones_on_path`,
+    microseconds).
     """
 
     method: str = "closedform"
 
+    def _stick_load(self, u: float) -> tuple[float, float]:
+        """Ends of the loading stick zone at ``u > 0`` (``sigma_bulk u/Q_max`` with it)."""
+        a_s, c_s, _ = stick_zones_on_path(self.normal, self.Q_max, self.f, self.sigma_bulk,
+                                          [u / self.Q_max])
+        return -float(a_s[0]), float(c_s[0])
+
     def _q_load(self, x: np.ndarray, u: float) -> np.ndarray:
-        """Shear of the loading state at ``u >= 0``."""
-        return solve_partial_slip(self.normal, u, self.f).shear(x) if u > 0 else np.zeros(x.shape)
+        """Shear of the loading state at ``u >= 0``: ``f (p - p*)``."""
+        n = self.normal
+        if u == 0:
+            return np.zeros(x.shape)
+        left, right = self._stick_load(u)
+        return self.f * (n.pressure(x) - formulas.pressure(n.punch, -left, right, n.A, x))
 
     def _s_load(self, x: np.ndarray, u: float) -> np.ndarray:
         """Slip of the loading state at ``u >= 0``: ``f`` times the stick zone's gap, in the contact."""
         n = self.normal
         if u == 0:
             return np.zeros(x.shape)
-        sl = solve_partial_slip(n, u, self.f)
-        gap = stick_gap(n.punch, sl.d + sl.e, sl.d - sl.e, x)
+        left, right = self._stick_load(u)
+        gap = stick_gap(n.punch, -left, right, x)
         return np.where((x > -n.a) & (x < n.c), self.f * gap, 0.0)
 
 
@@ -215,32 +229,28 @@ def _fretting_iv(normal: NormalResult, Q_max: float, f: float, states: int
     return Q_max, f, states
 
 
-def _stick_zones(normal: NormalResult, u: np.ndarray, f: float, Q_max: float
-                 ) -> tuple[np.ndarray, np.ndarray]:
+def _stick_zones(normal: NormalResult, u: np.ndarray, f: float, Q_max: float,
+                 sigma_bulk: float = 0.0) -> tuple[np.ndarray, np.ndarray]:
     """Ends ``(a*, c*)`` of the loading stick zones at the forces ``u`` (vectorised), ``(a, c)`` at 0.
 
     As :func:`closedform.solve_partial_slip`: load ``P - u/f`` (eq.
-    horizontal_equilibrium) at the normal solution's tilt (eq. consistency_condition).
+    horizontal_equilibrium) at the normal solution's tilt (eq. consistency_condition),
+    shifted by the bulk stress ``sigma_bulk u/Q_max`` (:func:`threepart.bulk.corrective_tilt`).
 
     Raises
     ------
     StickZoneError
         A stick zone (the one at ``Q_max`` first) would end inside the central segment.
     """
-    punch, A = normal.punch, normal.A
-    dAP = A * (normal.P - u / f) - 0.5 * math.pi * punch.kappa0 * punch.b**2
-    ok = bool(np.all(dAP > 0))
-    if ok:
-        r, phi, below, above = solve_phi(punch, dAP, "tilt", normal.alpha, np, sign=-1.0)
-        # u = 0 is the contact itself, exact below; it may sit on a join at lift-off
-        ok = not bool(np.any((below | above) & (u > 0)))
-    if not ok:
+    punch = normal.punch
+    a_s, c_s, out = stick_zones_on_path(normal, Q_max, f, sigma_bulk, u / Q_max)
+    if bool(np.any(out)):
         raise StickZoneError(
             f"`Q_max`/(f P) = {Q_max / (f * normal.P):.6g}: the stick zone at `Q_max` would "
             f"{stick_zone_leaves(punch.b)}, where the closed form does not hold; it holds for "
-            f"`Q_max`/(f P) < {stick_zone_bound(normal):.6g}")
-    st = ray_state(punch, r, phi, np, full=False)
-    return np.where(u > 0, st.a, normal.a), np.where(u > 0, st.c, normal.c)
+            f"`Q_max`/(f P) < {stick_zone_bound(normal):.6g}"
+            + (" without a bulk stress" if sigma_bulk else ""))
+    return a_s, c_s
 
 
 @functools.lru_cache(maxsize=16)
@@ -275,7 +285,7 @@ def _energy(normal: NormalResult, Q_max: float, f: float) -> tuple[float, int]:
 
 
 def fretting_cycle(normal_solution: NormalResult, Q_max: float, f: float, *,
-                   states: int = 21) -> FrettingSolution:
+                   states: int = 21, sigma_bulk: float = 0.0) -> FrettingSolution:
     """One fretting cycle ``0 -> Q_max -> -Q_max -> Q_max`` at the normal solution's ``P``, ``s``, ``alpha``.
 
     Parameters
@@ -289,6 +299,10 @@ def fretting_cycle(normal_solution: NormalResult, Q_max: float, f: float, *,
         Coefficient of friction, > 0.
     states
         Recorded states per branch, evenly spaced in ``Q``, both ends included (>= 2).
+    sigma_bulk
+        Bulk stress ``σxx`` in the substrate at ``Q_max`` (tension positive),
+        in phase with ``Q`` (``sigma_bulk Q/Q_max``); Masing's superposition
+        carries it, as it is linear in ``Q`` (docs/BULK_STRESS.md).
 
     Returns
     -------
@@ -296,8 +310,10 @@ def fretting_cycle(normal_solution: NormalResult, Q_max: float, f: float, *,
         ``branch``, ``Q``, ``stick`` (the zone not slipped since the last
         reversal; the whole contact at ``Q = 0`` and at each reversal), ``delta``
         (Masing's rule on ``F(u) = f [D(P) - D(P - u/f)]``, :func:`approach`),
-        ``energy`` (:func:`loop_energy`). ``info`` holds ``states``,
-        ``energy_nodes`` and ``time_s``.
+        ``energy`` (:func:`loop_energy`; under a bulk stress, which also works on
+        the substrate, the friction work :func:`threepart.bulk.slip_dissipation`).
+        ``diagnostics`` hold ``steps`` (the recorded states per branch) and the
+        time; ``info`` holds ``energy_nodes`` (of the energy quadrature).
 
     Raises
     ------
@@ -310,6 +326,8 @@ def fretting_cycle(normal_solution: NormalResult, Q_max: float, f: float, *,
         the central segment; the message gives the bound on ``Q_max/(f P)``.
         ``StickSeparationError`` (a subclass): a recorded stick zone on a
         concave centre breaks Coulomb's law (:func:`closedform.slip.check_coulomb`).
+        ``SlipReversalError`` (a subclass): ``sigma_bulk`` reverses the slip at one
+        end on the loading branch (and so on every branch).
     TypeError
         ``normal_solution`` not a NormalResult, ``states`` not an integer.
     LiftOffError
@@ -319,16 +337,24 @@ def fretting_cycle(normal_solution: NormalResult, Q_max: float, f: float, *,
     """
     normal = normal_solution
     Q_max, f, states = _fretting_iv(normal, Q_max, f, states)
+    sigma_bulk = check_sigma_bulk(sigma_bulk)
     t0 = time.perf_counter()
     punch, A, alpha = normal.punch, normal.A, normal.alpha
     u = np.linspace(0.0, Q_max, states)
-    a_s, c_s = _stick_zones(normal, u, f, Q_max)
+    check_slip_direction(normal, Q_max, f, sigma_bulk)
+    a_s, c_s = _stick_zones(normal, u, f, Q_max, sigma_bulk)
     for i in range(1, states):      # Coulomb's law in every recorded loading state (concave centre)
         check_coulomb(normal, float(a_s[i]), float(c_s[i]), float(u[i]) / (f * normal.P))
-    F = f * (approach(punch, normal.a, normal.c, A, alpha) - approach(punch, a_s, c_s, A, alpha))
+    alpha_star = corrective_tilt(alpha, A, 1.0, f, sigma_bulk * u / Q_max)
+    F = f * (approach(punch, normal.a, normal.c, A, alpha) - approach(punch, a_s, c_s, A, alpha_star))
     F[0] = 0.0
-    energy, nodes = _energy(normal, Q_max, f)
+    if sigma_bulk == 0:
+        energy, nodes = _energy(normal, Q_max, f)
+    else:
+        energy, nodes = slip_dissipation(normal.pressure, lambda x: stick_gap(punch, a_s[-1], c_s[-1], x),
+                                         f, normal.a, normal.c, (-float(a_s[-1]), float(c_s[-1])))
     stick = np.column_stack([-a_s, c_s])
-    info = {"states": states, "energy_nodes": nodes, "time_s": time.perf_counter() - t0}
+    diagnostics = Diagnostics(steps=states, timings={"total": time.perf_counter() - t0})
     return FrettingSolution.from_loading(normal, Q_max, f, u, stick, F, energy=energy,
-                                         method="closedform", info=info)
+                                         method="closedform", diagnostics=diagnostics,
+                                         info={"energy_nodes": nodes}, sigma_bulk=sigma_bulk)

@@ -24,18 +24,18 @@ def _normal(punch: Punch, P: float, s: float, *, A: float, tilt: str = "free",
 
 
 def _slip(punch: Punch, P: float, s: float, *, A: float, tilt: str = "free",
-          nu: float | None = None, Q: float, f: float,
+          nu: float | None = None, Q: float, f: float, sigma_bulk: float = 0.0,
           normal: NormalResult | None = None) -> SlipResult:
     base = normal if normal is not None else _normal(punch, P, s, A=A, tilt=tilt)
-    return solve_partial_slip(base, Q, f)
+    return solve_partial_slip(base, Q, f, sigma_bulk=sigma_bulk)
 
 
 def _fretting(punch: Punch, P: float, s: float, *, A: float, tilt: str = "free",
               nu: float | None = None, Q_max: float, f: float, states: int | None = None,
-              normal: NormalResult | None = None) -> FrettingResult:
+              sigma_bulk: float = 0.0, normal: NormalResult | None = None) -> FrettingResult:
     base = normal if normal is not None else _normal(punch, P, s, A=A, tilt=tilt)
     extra: dict[str, Any] = {} if states is None else {"states": states}
-    return fretting_cycle(base, Q_max, f, **extra)
+    return fretting_cycle(base, Q_max, f, sigma_bulk=sigma_bulk, **extra)
 
 
 METHOD = register(Method("closedform", _normal, _slip, _fretting, framework_only=True))

@@ -15,6 +15,7 @@ the named error of :mod:`threepart.errors` before any iteration could stall.
 from __future__ import annotations
 
 import math
+import time
 from dataclasses import dataclass
 from typing import Any
 
@@ -24,7 +25,7 @@ from scipy.optimize import minimize_scalar
 
 from threepart.errors import LiftOffError, SeparationError
 from threepart.punch import Punch
-from threepart.results import NormalResult
+from threepart.results import Diagnostics, NormalResult
 from threepart.validate import (LENGTH_RANGE, check_contact, check_punch, check_tilt, lever_arm, load_scale, positive,
                                 reals)
 
@@ -293,6 +294,7 @@ def solve_normal(punch: Punch, P: float, s: float = 0.0, *, A: float,
     """
     check_punch(punch)
     P, s = positive("P", P), lever_arm(punch, s)
+    t0 = time.perf_counter()
     if tilt == "suppressed" and s != 0:
         raise ValueError(f"`s` = {s!r} is an output when tilt='suppressed' (the lever arm s*); pass s=0")
     A = _normal_iv(punch, np.array([P]), A, tilt)
@@ -304,7 +306,8 @@ def solve_normal(punch: Punch, P: float, s: float = 0.0, *, A: float,
     _check_separation(punch, np.array([st.a]), np.array([st.c]), A, np.array([P]), np.array([s]), tilt)
     if beyond_small_slopes is not True:
         check_contact(punch, st.a, st.c, alpha)
-    return NormalSolution(punch, A, st.a, st.c, alpha, P, s, tilt)
+    return NormalSolution(punch, A, st.a, st.c, alpha, P, s, tilt,
+                          diagnostics=Diagnostics(timings={"total": time.perf_counter() - t0}))
 
 
 def solve_normal_batch(punch: Punch, P: ArrayLike, s: ArrayLike = 0.0, *, A: float,

@@ -14,6 +14,7 @@ With ``Q`` of either sign, ``q(x) = sign(Q) f [p(x) - p*(x)]`` integrates to ``Q
 from __future__ import annotations
 
 import math
+import time
 from dataclasses import dataclass
 
 import numpy as np
@@ -22,13 +23,15 @@ from numpy.typing import ArrayLike
 from scipy.optimize import minimize_scalar
 
 from . import formulas
-from threepart.errors import StickSeparationError, StickZoneError
+from threepart.bulk import check_sigma_bulk, corrective_tilt, slip_direction_margin
+from threepart.errors import SlipReversalError, StickSeparationError, StickZoneError
 from threepart.validate import check_shear
 from .newton import HALF_PI, SCALAR, bracketed_root, ray_state, solve_phi
-from threepart.results import NormalResult, SlipResult
+from threepart.results import Diagnostics, NormalResult, SlipResult
 
 __all__ = ["SlipSolution", "solve_partial_slip", "stick_zone_bound", "coulomb_margin",
-           "check_coulomb", "COULOMB_RTOL", "stick_zone_leaves"]
+           "check_coulomb", "COULOMB_RTOL", "stick_zone_leaves", "stick_zones_on_path",
+           "check_slip_direction"]
 
 #: ``p*`` may dip below 0 (or above ``p``) by this fraction of the mean pressure ``P/(a+c)``
 #: before the stick zone is refused: the closed forms' rounding, with a wide margin
@@ -159,14 +162,117 @@ def stick_zone_bound(normal: NormalResult) -> float:
     return min(max(1.0 - P_star / normal.P, 0.0), 1.0)
 
 
-def solve_partial_slip(normal_solution: NormalResult, Q: float, f: float) -> SlipSolution:
+def stick_zones_on_path(normal: NormalResult, Q: float, f: float, sigma_bulk: float,
+                        lam: ArrayLike) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Ends ``(a*, c*)`` of the stick zones at the fractions ``lam`` of ``(Q, sigma_bulk)``, and a flag.
+
+    The load ``P - lam |Q|/f`` (eq. horizontal_equilibrium, eq.
+    equilibrium_condition_1) at the tilt ``alpha*`` of
+    :func:`threepart.bulk.corrective_tilt` (eq. consistency_condition), by the
+    vectorised bracketed roots of :mod:`closedform.newton`. ``lam = 0`` is the
+    contact itself. The flag is True where the stick zone would end on the
+    central segment (outside the closed form).
+    """
+    punch, A = normal.punch, normal.A
+    lam = np.atleast_1d(np.asarray(lam, dtype=float))
+    dAP = A * (normal.P - lam * abs(Q) / f) - 0.5 * math.pi * punch.kappa0 * punch.b**2
+    alpha_star = corrective_tilt(normal.alpha, A, Q if Q else 1.0, f, lam * sigma_bulk)
+    out = ~(dAP > 0)
+    safe = np.where(out, A * normal.P, dAP)
+    r, phi, below, above = solve_phi(punch, safe, "tilt", alpha_star, np, sign=-1.0)
+    st = ray_state(punch, r, phi, np, full=False)
+    zero = lam == 0
+    out = (out | below | above) & ~zero
+    return np.where(zero, normal.a, st.a), np.where(zero, normal.c, st.c), out
+
+
+def check_slip_direction(normal: NormalResult, Q: float, f: float, sigma_bulk: float) -> None:
+    """Refuse a bulk stress that reverses the slip anywhere on the load path (:class:`SlipReversalError`).
+
+    The least of :func:`threepart.bulk.slip_direction_margin` over the load
+    fraction ``lam`` in ``[0, 1]`` (a grid brackets it, Brent refines it,
+    :func:`_least`, where the grid's least is within 5 % of ``|Q|/π`` of
+    zero) must be ``>= 0``; at ``lam = 0`` it is
+    ``|Q|/π - |sigma_bulk| (a + c)/8``. The message gives the largest
+    ``|sigma_bulk|`` of the same sign that passes at this ``Q`` (bisection).
+    """
+    if sigma_bulk == 0:
+        return
+    least, end = _least_margin(normal, Q, f, sigma_bulk)
+    if least >= -1e-12 * abs(Q):
+        return
+    lo, hi = 0.0, 1.0
+    for _ in range(24):        # the bound to ~1e-7, on the grid alone
+        mid = 0.5 * (lo + hi)
+        if _least_margin(normal, Q, f, mid * sigma_bulk, refine=False)[0] >= 0:
+            lo = mid
+        else:
+            hi = mid
+    raise SlipReversalError(
+        f"`sigma_bulk` = {sigma_bulk:.6g} reverses the slip at the {end} end of the contact with "
+        f"`Q` = {Q:.6g} rising in proportion (the Ciavarella–Jäger superposition does not hold); "
+        f"it holds for |sigma_bulk| <= {abs(lo * sigma_bulk):.6g} of the same sign at this `Q`")
+
+
+def _least_margin(normal: NormalResult, Q: float, f: float, sigma_bulk: float,
+                  refine: bool = True) -> tuple[float, str]:
+    """Least slip-direction margin over the load path, and at which end (``"left"``/``"right"``).
+
+    ``refine=False`` takes the least grid value only (for the bisection of the bound).
+    """
+    def both(lam: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        a_s, c_s, out = stick_zones_on_path(normal, Q, f, sigma_bulk, lam)
+        gl, gr = slip_direction_margin(Q, sigma_bulk, normal.a, normal.c, -a_s, c_s)
+        big = abs(Q) if Q else 1.0       # not counted (outside the framework); finite for Brent
+        return np.where(out, big, gl), np.where(out, big, gr)
+
+    gl, gr = both(np.linspace(0.0, 1.0, _GRID))
+    grid = (float(gl.min()), "left") if gl.min() < gr.min() else (float(gr.min()), "right")
+    # Brent refines only a grid minimum within 5 % of |Q|/π of zero (as _check_separation)
+    if not refine or grid[0] > 0.05 * abs(Q) / math.pi:
+        return grid
+    left = _least(lambda t: both(t)[0], 0.0, 1.0)
+    right = _least(lambda t: both(t)[1], 0.0, 1.0)
+    return (left[1], "left") if left[1] < right[1] else (right[1], "right")
+
+
+def _bound(normal: NormalResult, Q: float, f: float, sigma_bulk: float) -> float:
+    """Largest ``|Q|/(fP)`` (``sigma_bulk`` in proportion) at which the stick zone covers ``[-b, b]``."""
+    if sigma_bulk == 0:
+        return stick_zone_bound(normal)
+    lo, hi = 0.0, 1.0
+    for _ in range(60):
+        mid = 0.5 * (lo + hi)
+        if stick_zones_on_path(normal, Q, f, sigma_bulk, [mid])[2][0]:
+            hi = mid
+        else:
+            lo = mid
+    return lo * abs(Q) / (f * normal.P)
+
+
+def solve_partial_slip(normal_solution: NormalResult, Q: float, f: float, *,
+                       sigma_bulk: float = 0.0) -> SlipSolution:
     """Stick zone ``[-(d+e), d-e]`` and shear ``q(x)`` for a shear force ``Q``, ``|Q| < f P``.
 
-    The stick zone keeps the normal solution's tilt ``alpha``: its ends solve
-    ``P(a*, c*) = P - |Q|/f`` (eq. horizontal_equilibrium with eq.
-    equilibrium_condition_1) and ``alpha(a*, c*) = alpha`` (eq.
-    consistency_condition) by the bracketed roots of
-    :mod:`threepart.closedform.newton`.
+    The corrective contact ``p*`` carries the load ``P - |Q|/f`` (eq.
+    horizontal_equilibrium with eq. equilibrium_condition_1) at the tilt
+    ``alpha* = alpha - sign(Q) A sigma_bulk/(4 f)`` (eq. consistency_condition;
+    ``alpha* = alpha`` without a bulk stress), solved by the bracketed roots
+    of :mod:`threepart.closedform.newton` (docs/BULK_STRESS.md).
+
+    Parameters
+    ----------
+    normal_solution
+        The normal problem (any method) in the closed form's framework.
+    Q
+        Shear force the punch exerts on the substrate, along +x, ``|Q| < f P``.
+    f
+        Coefficient of friction, > 0.
+    sigma_bulk
+        Bulk stress ``σxx`` in the substrate at ``Q`` (tension positive),
+        applied with ``Q`` in proportion after the normal load. Its strain is
+        ``A sigma_bulk/4``: ``A`` must be that of an elastically similar pair,
+        ``4(1 - nu^2)/E`` (eq. 4), as the uncoupled partial-slip problem assumes.
 
     Raises
     ------
@@ -175,23 +281,28 @@ def solve_partial_slip(normal_solution: NormalResult, Q: float, f: float) -> Sli
     StickZoneError
         The stick zone would end inside the central segment; the message gives
         the ``|Q|/(fP)`` bound of the closed form.
+    SlipReversalError
+        ``sigma_bulk`` reverses the slip at one end somewhere on the load path
+        (:func:`check_slip_direction`); the message gives the bound on ``|sigma_bulk|``.
     """
     normal = normal_solution
     Q, f = check_shear(normal, Q, f)
-    punch, A = normal.punch, normal.A
+    sigma_bulk = check_sigma_bulk(sigma_bulk)
+    t0 = time.perf_counter()
+    punch = normal.punch
     ratio = abs(Q) / (f * normal.P)
-    dAP = A * (normal.P - abs(Q) / f) - 0.5 * math.pi * punch.kappa0 * punch.b**2
-    inside = dAP > 0
-    if inside:
-        r, phi, below, above = solve_phi(punch, dAP, "tilt", normal.alpha, SCALAR, sign=-1.0)
-        inside = not (below or above)
-    if not inside:
+    a_s, c_s, out = stick_zones_on_path(normal, Q, f, sigma_bulk, [1.0])
+    check_slip_direction(normal, Q, f, sigma_bulk)
+    if out[0]:
         raise StickZoneError(
             f"`Q`/(f P) = {ratio:.6g}: the stick zone would {stick_zone_leaves(punch.b)}, where the closed "
-            f"form does not hold; it holds for |Q|/(f P) < {stick_zone_bound(normal):.6g}")
-    st = ray_state(punch, r, phi, SCALAR)
-    check_coulomb(normal, st.a, st.c, ratio)
-    return SlipSolution(normal=normal, Q=Q, f=f, d=st.h, e=-st.m)
+            f"form does not hold; it holds for |Q|/(f P) < {_bound(normal, Q, f, sigma_bulk):.6g}"
+            + (f" (with `sigma_bulk` in proportion, {sigma_bulk:g} at this Q)" if sigma_bulk else ""))
+    a_star, c_star = float(a_s[0]), float(c_s[0])
+    check_coulomb(normal, a_star, c_star, ratio)
+    return SlipSolution(normal=normal, Q=Q, f=f, d=0.5 * (a_star + c_star), e=0.5 * (a_star - c_star),
+                        sigma_bulk=sigma_bulk,
+                        diagnostics=Diagnostics(timings={"total": time.perf_counter() - t0}))
 
 
 def stick_zone_leaves(b: float) -> str:

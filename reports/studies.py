@@ -95,7 +95,7 @@ def sie_study(case: Case, ns: Sequence[int], scheme: str | None = None,
         return solvers.normal("sie", c, n=int(lab), **options)
 
     return _run("sie", case, [str(n) for n in ns], solver,
-                lambda res, lab: float(getattr(res, "n", None) or res.info.get("n", int(lab))),
+                lambda res, lab: float(res.diagnostics.n or int(lab)),
                 "n", progress, "scheme " + (scheme or "default"), scheme=scheme or "default")
 
 
@@ -136,7 +136,7 @@ def _family(n: int) -> Any:
 def _h_of(res: Any, lab: str) -> float:
     """Element size along the contact of an FE result (normal or partial slip)."""
     normal = getattr(res, "normal", res)
-    return float(getattr(normal, "h", None) or normal.info["h"])
+    return float(normal.diagnostics.h or getattr(normal, "h", None) or normal.info["h"])
 
 
 def fem_step_study(case: Case, reference: Any, mesh: Any = "quick",

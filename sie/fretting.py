@@ -39,15 +39,17 @@ import numpy as np
 from numpy.typing import ArrayLike
 from scipy.optimize import brentq
 
+from threepart.bulk import check_sigma_bulk, corrective_tilt, slip_dissipation
 from threepart.errors import NoConvergenceError, StickSeparationError
 from threepart.punch import Punch
-from threepart.results import MasingCycle, NormalResult
+from threepart.results import Diagnostics, MasingCycle, NormalResult
 from threepart.validate import SLIP_RATIO_LIMIT, check_shear, check_states
 
 from .normal import DEFAULT_N, DEFAULT_SCHEME, check_scheme, solve_ends
 from .projection import slope_coefficients
 from .schemes import Plain, Projected
-from .slip import stick_zone_by_continuation, coulomb_violation, solve_partial_slip
+from .slip import (SieSlipResult, check_slip_direction, coulomb_violation, stick_zone,
+                   stick_zone_by_continuation)
 
 __all__ = ["SieFrettingResult", "fretting_cycle", "mean_profile", "approach", "stick_gap"]
 
@@ -133,23 +135,37 @@ class SieFrettingResult(MasingCycle):
     """Fretting cycle from :func:`fretting_cycle`, with the discretisation of its stick zones.
 
     ``shear``, ``slip`` and ``slip_amplitude`` take any ``Q`` on a branch: the
-    loading state of ``(Q_max ∓ Q)/2`` is solved anew by :func:`sie.solve_partial_slip`.
+    loading state of ``(Q_max ∓ Q)/2`` (with ``sigma_bulk`` in proportion) is
+    solved anew by :func:`sie.slip.stick_zone`, with the discretisation of
+    ``diagnostics`` (``n``, ``scheme``); the cycle checked the slip direction once.
     """
 
-    n: int = 0
-    scheme: str = ""
+    def _load(self, u: float) -> SieSlipResult:
+        """The loading state at ``u > 0``, bulk stress ``sigma_bulk u/Q_max``."""
+        nrm = self.normal
+        sch = check_scheme(self.diagnostics.scheme or DEFAULT_SCHEME, self.diagnostics.n or DEFAULT_N)
+        sb = self.sigma_bulk * u / self.Q_max
+        m, h, _, _ = stick_zone(nrm, u, self.f, sch, sb)
+        stick, _ = sch.pressure(nrm.punch, nrm.A, m, h)
+        return SieSlipResult(normal=nrm, Q=u, f=self.f, d=h, e=-m, method="sie",
+                             diagnostics=Diagnostics(n=sch.n, scheme=sch.name), stick=stick,
+                             sigma_bulk=sb)
+
+    def _stick_load(self, u: float) -> tuple[float, float]:
+        return self._load(u).stick_zone
 
     def _q_load(self, x: np.ndarray, u: float) -> np.ndarray:
         if u == 0:
             return np.zeros(x.shape)
-        return solve_partial_slip(self.normal, u, self.f, n=self.n, scheme=self.scheme).shear(x)
+        return self._load(u).shear(x)
 
     def _s_load(self, x: np.ndarray, u: float) -> np.ndarray:
         nrm = self.normal
         if u == 0:
             return np.zeros(x.shape)
-        sl = solve_partial_slip(nrm, u, self.f, n=self.n, scheme=self.scheme)
-        gap = stick_gap(nrm.punch, nrm.alpha, -sl.e, sl.d, x)
+        sl = self._load(u)
+        alpha = float(corrective_tilt(nrm.alpha, nrm.A, 1.0, self.f, sl.sigma_bulk))
+        gap = stick_gap(nrm.punch, alpha, -sl.e, sl.d, x)
         return np.where((x > -nrm.a) & (x < nrm.c), self.f * gap, 0.0)
 
 
@@ -163,8 +179,10 @@ def _check_fretting(normal: NormalResult, Q_max: float, f: float, states: int
 class _Zones:
     """Loading stick zones ``(m*, h*)`` of one normal solution, by :func:`sie.normal.solve_ends`."""
 
-    def __init__(self, normal: NormalResult, f: float, sch: Plain | Projected) -> None:
+    def __init__(self, normal: NormalResult, f: float, sch: Plain | Projected,
+                 bulk_tilt: float = 0.0) -> None:
         self.normal, self.f, self.sch = normal, f, sch
+        self.bulk_tilt = bulk_tilt      # corrective tilt shift per unit u (bulk stress in phase)
         self.m0, self.h0 = 0.5 * (normal.c - normal.a), 0.5 * (normal.a + normal.c)
         self.solves = 0
 
@@ -173,11 +191,12 @@ class _Zones:
         if u == 0:
             return self.m0, self.h0
         P_star = nrm.P - u / self.f
+        alpha = nrm.alpha + self.bulk_tilt * u
         try:
-            m, h, _, _, _ = solve_ends(nrm.punch, nrm.A, P_star, self.sch, alpha=nrm.alpha,
+            m, h, _, _, _ = solve_ends(nrm.punch, nrm.A, P_star, self.sch, alpha=alpha,
                                        m0=self.m0, h0=self.h0 * math.sqrt(P_star / nrm.P))
         except NoConvergenceError:
-            m, h, _, _ = stick_zone_by_continuation(nrm, P_star, self.sch)
+            m, h, _, _ = stick_zone_by_continuation(nrm, P_star, self.sch, alpha)
         self.solves += 1
         if m - h < -nrm.a * (1 + 1e-12) or m + h > nrm.c * (1 + 1e-12):
             raise ValueError(f"stick zone [{m - h:.6g}, {m + h:.6g}] at u = {u:g} leaves the contact "
@@ -229,7 +248,8 @@ def _energy(zones: _Zones, Q_max: float, top: tuple[float, float]) -> tuple[floa
 
 
 def fretting_cycle(normal: NormalResult, Q_max: float, f: float, *, n: int | None = None,
-                   scheme: str | None = None, states: int = 21) -> SieFrettingResult:
+                   scheme: str | None = None, states: int = 21,
+                   sigma_bulk: float = 0.0) -> SieFrettingResult:
     """One fretting cycle ``0 -> Q_max -> -Q_max -> Q_max`` at the normal solution's ``P``, ``s``, ``alpha``.
 
     Parameters
@@ -245,16 +265,19 @@ def fretting_cycle(normal: NormalResult, Q_max: float, f: float, *, n: int | Non
         Discretisation of the stick zones, as :func:`sie.solve_partial_slip`.
     states
         Recorded states per branch, evenly spaced in ``Q``, both ends included (>= 2).
+    sigma_bulk
+        Bulk stress ``σxx`` in the substrate at ``Q_max`` (tension positive), in
+        phase with ``Q``; Masing's superposition carries it (docs/BULK_STRESS.md).
 
     Returns
     -------
     SieFrettingResult
         ``method="sie"``; ``stick`` is the zone not slipped since the last
         reversal (the whole contact at ``Q = 0`` and at each reversal); stick
-        zones ending on the central segment are solved as any other. ``info``
-        holds ``n``, ``scheme``, ``states``, ``energy_nodes`` (per panel),
-        ``crossings`` (forces at which a stick-zone end crosses a join),
-        ``solves`` and ``time_s``.
+        zones ending on the central segment are solved as any other. ``diagnostics`` hold ``n``,
+        ``scheme``, ``steps`` (the recorded states per branch) and the time;
+        ``info`` holds ``energy_nodes`` (per panel), ``crossings`` (forces at
+        which a stick-zone end crosses a join) and ``solves``.
 
     Raises
     ------
@@ -265,19 +288,31 @@ def fretting_cycle(normal: NormalResult, Q_max: float, f: float, *, n: int | Non
         (``FullSlidingError`` for ``Q_max >= f P``).
     StickSeparationError
         A recorded stick zone on a concave centre breaks Coulomb's law.
+    SlipReversalError
+        ``sigma_bulk`` reverses the slip at one end on the loading branch
+        (:func:`sie.slip.check_slip_direction`), and so on every branch.
     NoConvergenceError
         A stick zone or the energy quadrature did not converge.
+
+    Notes
+    -----
+    Under a bulk stress ``energy`` is the friction work
+    (:func:`threepart.bulk.slip_dissipation`): the bulk stress works on the
+    substrate too, so it is no longer the ``Q``–``delta`` loop's area.
     """
     Q_max, f, states = _check_fretting(normal, Q_max, f, states)
-    n = int(normal.info.get("n", DEFAULT_N)) if n is None else n
-    scheme = str(normal.info.get("scheme", DEFAULT_SCHEME)) if scheme is None else scheme
+    n = (normal.diagnostics.n or DEFAULT_N) if n is None else n
+    scheme = (normal.diagnostics.scheme or DEFAULT_SCHEME) if scheme is None else scheme
     sch = check_scheme(scheme, n)
+    sigma_bulk = check_sigma_bulk(sigma_bulk)
     t0 = time.perf_counter()
-    zones = _Zones(normal, f, sch)
+    tilt_rate = float(corrective_tilt(0.0, normal.A, 1.0, f, sigma_bulk)) / Q_max
+    zones = _Zones(normal, f, sch, tilt_rate)
     u = np.linspace(0.0, Q_max, states)
     mh = np.array([zones(float(v)) for v in u])
+    check_slip_direction(normal, Q_max, f, sigma_bulk, sch, (float(mh[-1, 0]), float(mh[-1, 1])))
     for v, (m, h) in zip(u[1:], mh[1:]):    # Coulomb's law in every recorded loading state
-        why = coulomb_violation(normal, normal.P - v / f, m, h)
+        why = coulomb_violation(normal, normal.P - v / f, m, h, normal.alpha + tilt_rate * v)
         if why is not None:
             raise StickSeparationError(
                 f"`Q`/(f P) = {v / (f * normal.P):.6g} of the cycle's loading branch: the stick zone "
@@ -285,11 +320,19 @@ def fretting_cycle(normal: NormalResult, Q_max: float, f: float, *, n: int | Non
                 f"Coulomb's law: {why}")
     punch, A, alpha = normal.punch, normal.A, normal.alpha
     D0 = approach(punch, A, alpha, normal.P, zones.m0, zones.h0)
-    F = np.array([f * (D0 - approach(punch, A, alpha, normal.P - v / f, m, h)) if v > 0 else 0.0
-                  for v, (m, h) in zip(u, mh)])
-    energy, nodes, cuts = _energy(zones, Q_max, (float(mh[-1, 0]), float(mh[-1, 1])))
+    F = np.array([f * (D0 - approach(punch, A, alpha + tilt_rate * v, normal.P - v / f, m, h))
+                  if v > 0 else 0.0 for v, (m, h) in zip(u, mh)])
+    if sigma_bulk == 0:
+        energy, nodes, cuts = _energy(zones, Q_max, (float(mh[-1, 0]), float(mh[-1, 1])))
+    else:
+        m1, h1 = float(mh[-1, 0]), float(mh[-1, 1])
+        energy, nodes = slip_dissipation(
+            normal.pressure, lambda x: stick_gap(punch, alpha + tilt_rate * Q_max, m1, h1, x), f,
+            normal.a, normal.c, (m1 - h1, m1 + h1), joins=(-punch.b, punch.b))
+        cuts = []
     stick = np.column_stack([mh[:, 0] - mh[:, 1], mh[:, 0] + mh[:, 1]])
-    info = {"n": sch.n, "scheme": sch.name, "states": states, "energy_nodes": nodes,
-            "crossings": cuts, "solves": zones.solves, "time_s": time.perf_counter() - t0}
+    info = {"energy_nodes": nodes, "crossings": cuts, "solves": zones.solves}
+    diagnostics = Diagnostics(n=sch.n, scheme=sch.name, steps=states,
+                              timings={"total": time.perf_counter() - t0})
     return SieFrettingResult.from_loading(normal, Q_max, f, u, stick, F, energy=energy, method="sie",
-                                          info=info, n=sch.n, scheme=sch.name)
+                                          diagnostics=diagnostics, info=info, sigma_bulk=sigma_bulk)

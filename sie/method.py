@@ -23,18 +23,19 @@ def _normal(punch: Punch, P: float, s: float, *, A: float, tilt: str = "free",
 
 
 def _slip(punch: Punch, P: float, s: float, *, A: float, tilt: str = "free",
-          nu: float | None = None, Q: float, f: float, normal: NormalResult | None = None,
-          **options: Any) -> SlipResult:
+          nu: float | None = None, Q: float, f: float, sigma_bulk: float = 0.0,
+          normal: NormalResult | None = None, **options: Any) -> SlipResult:
     base = normal if normal is not None else _normal(punch, P, s, A=A, tilt=tilt, **options)
-    return solve_partial_slip(base, Q, f, **options)
+    return solve_partial_slip(base, Q, f, sigma_bulk=sigma_bulk, **options)
 
 
 def _fretting(punch: Punch, P: float, s: float, *, A: float, tilt: str = "free",
               nu: float | None = None, Q_max: float, f: float, states: int | None = None,
-              normal: NormalResult | None = None, **options: Any) -> FrettingResult:
+              sigma_bulk: float = 0.0, normal: NormalResult | None = None,
+              **options: Any) -> FrettingResult:
     base = normal if normal is not None else _normal(punch, P, s, A=A, tilt=tilt, **options)
     extra: dict[str, Any] = {} if states is None else {"states": states}
-    return fretting_cycle(base, Q_max, f, **extra, **options)
+    return fretting_cycle(base, Q_max, f, sigma_bulk=sigma_bulk, **extra, **options)
 
 
 def _options_iv(options: dict[str, Any]) -> None:

@@ -32,7 +32,7 @@ from threepart.punch import Punch
 from threepart.validate import (check_contact, check_punch, check_tilt, lever_arm, load_scale,
                                 positive)
 from threepart.errors import NoConvergenceError, SeparationError
-from threepart.results import NormalResult
+from threepart.results import Diagnostics, NormalResult
 
 from .projection import slope_coefficients
 from .quadrature import check_n
@@ -52,18 +52,16 @@ MAX_PLAIN_N = 4096
 class SieNormalResult(NormalResult):
     """Normal solution from :func:`solve_normal`, with its discretisation.
 
+    Its ``diagnostics`` hold ``n`` (Gauss–Chebyshev nodes for ``"plain"``, sine
+    terms for ``"projected"``), ``scheme``, the Newton ``iterations`` and
+    ``residual``, and the time.
+
     Attributes
     ----------
-    n
-        Number of Gauss–Chebyshev nodes (``"plain"``) or sine terms (``"projected"``).
-    scheme
-        ``"plain"`` or ``"projected"``.
     density
         The pressure representation that :meth:`pressure` evaluates.
     """
 
-    n: int = 0
-    scheme: str = ""
     density: ChebyshevPressure | None = field(default=None, repr=False, compare=False)
 
     def pressure(self, x: ArrayLike) -> np.ndarray:
@@ -278,9 +276,9 @@ def solve_normal(punch: Punch, P: float, s: float = 0.0, *, A: float, tilt: str 
     Returns
     -------
     SieNormalResult
-        ``method="sie"``; ``info`` holds ``n``, ``scheme``, Newton
-        ``iterations`` and ``residual``, ``time_s`` and, for the projected
-        scheme, ``pressure_bound`` (bound on the pointwise truncation error).
+        ``method="sie"``; ``diagnostics`` hold ``n``, ``scheme``, the Newton
+        ``iterations`` and ``residual`` and the time; ``info`` holds, for the
+        projected scheme, ``pressure_bound`` (bound on the pointwise truncation error).
 
     Raises
     ------
@@ -333,11 +331,11 @@ def solve_normal(punch: Punch, P: float, s: float = 0.0, *, A: float, tilt: str 
     m, h, G, its, res, alpha, s_out = chosen
     check_contact(punch, h - m, h + m, alpha)
     density, extra = sch.pressure(punch, A, m, h)
-    info = {"n": sch.n, "scheme": sch.name, "iterations": its, "residual": res,
-            "time_s": time.perf_counter() - t0, **extra}
+    diagnostics = Diagnostics(n=sch.n, scheme=sch.name, iterations=its, residual=res,
+                              timings={"total": time.perf_counter() - t0})
     return SieNormalResult(punch=punch, A=float(A), a=h - m, c=h + m, alpha=alpha, P=float(P),
-                           s=s_out, tilt=tilt, method="sie", info=info, n=sch.n,
-                           scheme=sch.name, density=density)
+                           s=s_out, tilt=tilt, method="sie", diagnostics=diagnostics,
+                           info=dict(extra), density=density)
 
 
 def lift_off(punch: Punch, P: float, A: float) -> tuple[float, float]:

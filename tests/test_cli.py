@@ -203,7 +203,7 @@ def test_every_number_in_the_text_output_carries_its_unit(capsys, command):
         if len(tokens) >= 2 and re.fullmatch(r"[-+]?(\d[\d.e+-]*|inf)", tokens[1]):
             numbers += 1
             assert len(tokens) == 3 and tokens[2] in UNIT_LABELS, line
-    assert numbers == (25 if command == "slip" else 19)   # slope included
+    assert numbers == (26 if command == "slip" else 19)   # slope (and sigma_bulk) included
     if command == "slip":
         assert "f          0.5 (dimensionless)" in lines
     assert "  R          inf mm" in lines

@@ -56,7 +56,7 @@ def test_hertz_is_exact_for_any_n(scheme, n):
     x = interior(r)
     exact = 2 * P / (math.pi * a * a) * np.sqrt(a * a - x * x)
     np.testing.assert_allclose(r.pressure(x), exact, atol=exact_tol * exact.max())
-    assert r.n == n and r.method == "sie" and r.info["scheme"] == scheme
+    assert r.diagnostics.n == n and r.method == "sie" and r.diagnostics.scheme == scheme
 
 
 @pytest.mark.parametrize("scheme", SCHEMES)

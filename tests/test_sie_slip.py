@@ -40,7 +40,7 @@ def test_hertz_stick_zone_is_exact(scheme):
     exact = tol("sie-exact", "hertz")
     assert r.d == pytest.approx(h * math.sqrt(1 - abs(Q) / (f * P)), rel=exact, abs=0)
     assert r.e == pytest.approx(-0.02, rel=exact, abs=0)
-    assert r.n == 8 and r.info["scheme"] == scheme
+    assert r.diagnostics.n == 8 and r.diagnostics.scheme == scheme
 
 
 @pytest.mark.parametrize("Q", [0.03, -0.045])

@@ -50,12 +50,14 @@ UNITS: dict[str, str] = {
     "d": "mm", "e": "mm", "left": "mm", "right": "mm",  # stick zone
     "alpha": "rad",                                   # tilt, eq. (2)
     "p": "MPa", "q": "MPa",                           # pressure, shear traction
+    "sigma_bulk": "MPa",                              # bulk stress in the substrate, tension > 0
     "f": "1", "nu": "1",                              # friction coefficient, Poisson's ratio
     "slope": "rad",                                   # Punch.max_slope: tilt, profile, surface
 }
 #: options that take a number; ``--s -1e-3`` is read as ``--s=-1e-3`` (argparse alone
 #: would take ``-1e-3`` for an option)
-NUMERIC_OPTIONS = ("--R1", "--R2", "--b", "--R", "--A", "--E", "--nu", "--P", "--s", "--Q", "--f")
+NUMERIC_OPTIONS = ("--R1", "--R2", "--b", "--R", "--A", "--E", "--nu", "--P", "--s", "--Q", "--f",
+                   "--sigma-bulk")
 #: options that take a comma-separated list of numbers (``--x -0.5,0.2`` is read as ``--x=-0.5,0.2``)
 LIST_OPTIONS = ("--x",)
 #: the most points ``--grid`` prints
@@ -211,7 +213,10 @@ def _solve(args: argparse.Namespace, slip: bool) -> tuple[Any, dict[str, Any]]:
         if args.nu is None:
             nu_note = (f"the FE model needs Poisson's ratio; nu = {finite_body.default_nu} "
                        "assumed (give --nu to set it; in half-plane theory only A matters)")
-    loads = {"Q": args.Q, "f": args.f} if slip else {}
+    if slip and args.sigma_bulk and args.rigid:
+        raise ValueError(f"`--sigma-bulk` = {args.sigma_bulk:g} needs elastically similar bodies (its "
+                         "strain is A sigma_bulk/4 with A of eq. (4) for one material): drop `--rigid`")
+    loads = {"Q": args.Q, "f": args.f, "sigma_bulk": args.sigma_bulk} if slip else {}
     res = solve(punch, args.P, args.s, A=A, tilt=args.tilt, method=args.method, **loads, **options)
     normal = res.normal if isinstance(res, SlipResult) else res
     left, right = normal.peaks()
@@ -235,7 +240,7 @@ def _solve(args: argparse.Namespace, slip: bool) -> tuple[Any, dict[str, Any]]:
         out["lift_off"] = limits
     if isinstance(res, SlipResult):
         lo, hi = res.stick_zone
-        out.update({"Q": res.Q, "f": res.f, "d": res.d, "e": res.e,
+        out.update({"Q": res.Q, "f": res.f, "sigma_bulk": res.sigma_bulk, "d": res.d, "e": res.e,
                     "stick_zone": {"left": lo, "right": hi},
                     "stick_segments": list(res.stick_segments), "within_paper": res.within_paper})
     points = _points(args, res)
@@ -435,6 +440,9 @@ def build_parser() -> argparse.ArgumentParser:
     _geometry_args(p)
     p.add_argument("--Q", type=float, required=True, help=_labelled("shear force, |Q| < f P", "Q"))
     p.add_argument("--f", type=float, required=True, help="coefficient of friction, > 0")
+    p.add_argument("--sigma-bulk", type=float, default=0.0, dest="sigma_bulk",
+                   help=_labelled("bulk stress along x in the substrate at Q, MPa, tension positive; "
+                                  "rises with Q in proportion (default 0)", "sigma_bulk"))
     p.set_defaults(func=_cmd_slip)
 
     p = sub.add_parser("verify", help="closed form against SIE and FEM; writes a tolerance report")

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 __all__ = ["NoConvergenceError", "LiftOffError", "FullSlidingError", "StickZoneError",
            "SeparationError", "ContactZoneError", "MeshResolutionError", "SlopeLimitError",
-           "ArcExtentError", "StickSeparationError", "full_sliding"]
+           "ArcExtentError", "StickSeparationError", "SlipReversalError", "full_sliding"]
 
 
 class NoConvergenceError(RuntimeError):
@@ -37,6 +37,17 @@ class StickSeparationError(StickZoneError):
     the stick zone (the punch at ``P* = P - |Q|/f`` with the tilt held) can be
     tensile, or exceed ``p``, on the centre's dip; the true stick zone is then
     not that single interval (it splits in two or rests on one flank).
+    """
+
+
+class SlipReversalError(StickZoneError):
+    """A bulk stress reverses the slip at one end: the Ciavarella–Jäger superposition does not hold.
+
+    Under a bulk stress ``sigma_bulk`` rising with ``Q`` the stick zone is the
+    superposition's only while both its ends move inwards and every slip zone
+    slips in the direction that opposes ``q`` (docs/BULK_STRESS.md). Past that,
+    one end slips backwards (a reversed slip zone, or a second stick zone
+    appears); the closed form refuses, and ``method="auto"`` falls back.
     """
 
 

@@ -34,6 +34,7 @@ from . import registry
 from .errors import LiftOffError, SeparationError, StickZoneError
 from .punch import Punch
 from .results import NormalResult, SlipResult
+from .bulk import check_sigma_bulk
 from .validate import check_positive
 
 __all__ = ["METHODS", "CHOICES", "AUTO", "solve", "describe"]
@@ -49,7 +50,8 @@ FALLBACK_ON = (LiftOffError, StickZoneError, SeparationError)
 
 
 def _one(name: str, punch: Punch, P: float, s: float, A: float, tilt: str, Q: float | None,
-         f: float | None, nu: float | None, options: dict[str, Any]) -> NormalResult | SlipResult:
+         f: float | None, nu: float | None, options: dict[str, Any],
+         sigma_bulk: float = 0.0) -> NormalResult | SlipResult:
     m = registry.get(name)
     m.check_options(options)
     if nu is not None and m.default_nu is None:
@@ -59,12 +61,14 @@ def _one(name: str, punch: Punch, P: float, s: float, A: float, tilt: str, Q: fl
         return m.normal(punch, P, s, A=A, tilt=tilt, nu=nu, **options)
     if m.slip is None:
         raise ValueError(f"method {name!r} has no partial-slip model")
-    return m.slip(punch, P, s, A=A, tilt=tilt, nu=nu, Q=Q, f=f, **options)
+    # a method that predates the bulk stress is still reached without one
+    bulk = {"sigma_bulk": sigma_bulk} if sigma_bulk else {}
+    return m.slip(punch, P, s, A=A, tilt=tilt, nu=nu, Q=Q, f=f, **bulk, **options)
 
 
 def solve(punch: Punch, P: float, s: float = 0.0, *, A: float, tilt: str = "free",
           Q: float | None = None, f: float | None = None, method: str = "auto",
-          nu: float | None = None, **options: Any) -> NormalResult | SlipResult:
+          nu: float | None = None, sigma_bulk: float = 0.0, **options: Any) -> NormalResult | SlipResult:
     """Normal (and, with ``Q`` and ``f``, partial-slip) solution by ``method``.
 
     Parameters
@@ -86,6 +90,12 @@ def solve(punch: Punch, P: float, s: float = 0.0, *, A: float, tilt: str = "free
     nu
         Poisson's ratio, for a method that models bodies of finite size (the
         FEM; default 0.3 there). A half-plane method refuses it.
+    sigma_bulk
+        Bulk stress ``σxx`` in the substrate (tension positive) at ``Q``, rising
+        with ``Q`` in proportion after the normal load; partial slip only
+        (docs/BULK_STRESS.md). Where it reverses the slip at one end the closed
+        form refuses with ``SlipReversalError`` (a ``StickZoneError``), on which
+        ``"auto"`` falls back.
     **options
         The method's discretisation: ``n`` and ``scheme`` for the SIE,
         ``mesh`` for the FEM. With ``"auto"`` they go to the SIE.
@@ -114,16 +124,19 @@ def solve(punch: Punch, P: float, s: float = 0.0, *, A: float, tilt: str = "free
         registry.get(method, also=("auto",))   # an unknown name is refused before anything else
     if (Q is None) != (f is None):
         raise ValueError("give both `Q` and `f` for partial slip, or neither")
+    sigma_bulk = check_sigma_bulk(sigma_bulk)
+    if sigma_bulk and Q is None:
+        raise ValueError(f"`sigma_bulk` = {sigma_bulk:g} applies to partial slip only: give `Q` and `f`")
     check_positive(A=A)
     if method != "auto":
-        return _one(method, punch, P, s, A, tilt, Q, f, nu, options)
+        return _one(method, punch, P, s, A, tilt, Q, f, nu, options, sigma_bulk)
     first, fallback = AUTO
     registry.get(fallback).check_options(options, called=repr("auto"))
     try:
-        return _one(first, punch, P, s, A, tilt, Q, f, nu, {})
+        return _one(first, punch, P, s, A, tilt, Q, f, nu, {}, sigma_bulk)
     except FALLBACK_ON as refusal:
         why = f"the closed form does not hold here: {' '.join(str(refusal).split())}"
-    result = _one(fallback, punch, P, s, A, tilt, Q, f, nu, options)
+    result = _one(fallback, punch, P, s, A, tilt, Q, f, nu, options, sigma_bulk)
     result.info["auto"] = why
     if isinstance(result, SlipResult):
         result.normal.info["auto"] = why

@@ -351,7 +351,9 @@ class FrettingResult:
         in the direction of positive ``Q``. In half-plane theory it is defined only up
         to a term linear in ``Q``; :meth:`loop` removes that term.
     energy
-        Energy dissipated per cycle and unit length (the area of the ``Q``–``delta`` loop).
+        Energy dissipated per cycle and unit length (the area of the ``Q``–``delta`` loop;
+        under a bulk stress, which works on the substrate too, the friction work,
+        docs/BULK_STRESS.md eq. B9).
     sigma_bulk
         Bulk stress ``σxx`` in the substrate at ``Q_max``, tension positive; it
         varies in phase with ``Q``: ``sigma_bulk Q / Q_max`` at each state.
@@ -439,6 +441,20 @@ class MasingCycle(FrettingResult):
 
     def _q_load(self, x: np.ndarray, u: float) -> np.ndarray:
         raise NotImplementedError
+
+    def _stick_load(self, u: float) -> tuple[float, float]:
+        """Ends of the loading stick zone at ``0 < u <= Q_max``."""
+        raise NotImplementedError
+
+    def state_kinks(self, Q: float, branch: str) -> list[float]:
+        """The joins ``x = ±b`` and the stick-zone ends of the loading states superposed at ``(Q, branch)``.
+
+        Only the states at ``Q_max`` and at ``u`` of :func:`masing` enter the
+        shear there, so only their ends are kinks of it.
+        """
+        c_max, c_u, u = masing(self.Q_max, Q, branch)
+        ends = [*(self._stick_load(self.Q_max) if c_max else ()), *(self._stick_load(u) if u > 0 else ())]
+        return _kinks(self.normal.punch.b, -self.normal.a, self.normal.c, *ends)
 
     def _s_load(self, x: np.ndarray, u: float) -> np.ndarray:
         raise NotImplementedError
