@@ -116,7 +116,10 @@ def _plan(rd: ResumableDir, plots: Sequence[str]) -> None:
 
 
 def _draw(rd: ResumableDir, doc: dict[str, Any], say: Say) -> None:
-    """Draw one contour map per group (:data:`~reports.map_schema.GROUP_AXES`) into ``out/plots``; list them in ``doc``."""
+    """Draw one contour map per group of points into ``out/plots`` and list them in ``doc``.
+
+    A group is one combination of values of :data:`reports.map_schema.GROUP_AXES`.
+    """
     points = doc["points"]
     for values in groups(points):
         where = dict(zip(GROUP_AXES, values))

@@ -80,7 +80,9 @@ def _silenced(loggers: Sequence[str] = ("distributed", "dask", "tornado", "async
 
 @contextmanager
 def open_engine(scheduler: str | None, workers: int, timeout: float) -> Iterator[tuple[Any, dict[str, Any]]]:
-    """A dask client on a new local cluster of ``workers`` or on ``scheduler``; closed on exit (the cluster too).
+    """A dask client on a new local cluster of ``workers`` or on ``scheduler``; closed on exit.
+
+    The local cluster, if one is made, is closed too.
 
     ``timeout`` is how long an existing scheduler has to answer (seconds).
 

@@ -83,8 +83,12 @@ def groups(points: Sequence[dict[str, Any]]) -> list[tuple[float, ...]]:
 
 
 def plot_name(group: Sequence[float]) -> str:
-    """The file of the contour map of ``group`` (values of :data:`GROUP_AXES`), e.g. ``plots/peak_error_R2R1_1_Hb_4.png``."""
-    return "plots/peak_error_" + "_".join(f"{FILE_LABELS[a]}_{v:g}" for a, v in zip(GROUP_AXES, group)) + ".png"
+    """The file of the contour map of ``group`` (values of :data:`GROUP_AXES`).
+
+    For example ``plots/peak_error_R2R1_1_Hb_4.png``.
+    """
+    labels = "_".join(f"{FILE_LABELS[a]}_{v:g}" for a, v in zip(GROUP_AXES, group))
+    return f"plots/peak_error_{labels}.png"
 
 
 def finite(v: Any) -> bool:

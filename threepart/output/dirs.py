@@ -22,8 +22,8 @@ from typing import Any, Iterator, Literal
 
 from .atomic import OutputExistsError, current_umask, digest, reraise
 from .keys import signature_holds
-from .markers import (MARKER, MARKER_FORMAT, new_marker, read_marker, remove_owned, remove_tmp,
-                      why_not_ours, write_marker, writer_running)
+from .markers import (MARKER, MARKER_FORMAT, entries, new_marker, read_marker, remove_owned,
+                      remove_tmp, why_not_ours, write_marker, writer_running)
 
 __all__ = ["State", "check_dir", "check_out", "clean_stale", "atomic_dir"]
 
@@ -163,12 +163,7 @@ def _walk(root: Path) -> tuple[list[str], list[str]]:
     dirs: list[str] = []
 
     def visit(d: Path, rel: str) -> None:
-        with os.scandir(d) as it:
-            entries = sorted(it, key=lambda e: e.name)
-        for e in entries:
-            name = f"{rel}{e.name}"
-            if not rel and e.name in (MARKER, MARKER + ".part"):
-                continue
+        for name, e in entries(d, rel, skip=(MARKER, MARKER + ".part")):
             if e.is_dir(follow_symlinks=False):
                 dirs.append(name)
                 visit(Path(e.path), name + "/")

@@ -112,17 +112,13 @@ def write_file(path: str | Path, data: str | bytes | Callable[[Path], None], *, 
 
     Parameters
     ----------
-    path
-        The file to write.
+    path, arg, overwrite, how
+        As for :func:`check_file`: the file, the caller's argument named in
+        the messages, whether to replace a file threepart did not write, and
+        what a refusal tells the user to do instead.
     data
         Text (written as UTF-8), bytes, or a function that writes the file at
         the path it is given (e.g. a meshio writer).
-    arg
-        The name of the caller's argument, for the messages (e.g. ``"--csv"``).
-    overwrite
-        Replace an existing regular file even if threepart did not write it.
-    how
-        What a refusal tells the user to do instead.
 
     Returns
     -------

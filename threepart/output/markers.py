@@ -12,6 +12,7 @@ MARKER          -- file name of a directory's marker, ``.threepart-output.json``
 MARKER_FORMAT   -- version of the marker's and the ledger's layout
 write_marker    -- sign a marker for a directory and write it there
 read_marker     -- the marker of a directory, or None
+entries         -- the entries of a directory walked from its top, sorted, its marker left out
 new_marker      -- the marker of a run that starts writing a directory
 leftover_parts  -- the temporary files a marker announces
 why_not_ours    -- why a directory is not provably threepart's own output, or None
@@ -34,8 +35,8 @@ from typing import Any, Iterator
 from .atomic import unchanged, write_json
 from .keys import sign, signature_holds
 
-__all__ = ["MARKER", "MARKER_FORMAT", "write_marker", "read_marker", "new_marker", "leftover_parts",
-           "why_not_ours", "foreign_entries", "remove_listed", "remove_owned", "remove_tmp",
+__all__ = ["MARKER", "MARKER_FORMAT", "write_marker", "read_marker", "entries", "new_marker",
+           "leftover_parts", "why_not_ours", "foreign_entries", "remove_listed", "remove_owned", "remove_tmp",
            "writer_running"]
 
 #: file name of the marker that every directory written by threepart carries
@@ -89,6 +90,19 @@ def read_marker(directory: str | Path) -> dict[str, Any] | None:
     return doc if ok else None
 
 
+def entries(d: Path, rel: str, skip: tuple[str, ...] = (MARKER,)) -> Iterator[tuple[str, os.DirEntry[str]]]:
+    """The entries of the directory ``d``, sorted by name, each with its path ``rel + name``.
+
+    ``rel`` is ``d``'s path relative to the directory walked (``""`` at its
+    top, where the names in ``skip``, its marker, are left out).
+    """
+    with os.scandir(d) as it:
+        found = sorted(it, key=lambda e: e.name)
+    for e in found:
+        if rel or e.name not in skip:
+            yield f"{rel}{e.name}", e
+
+
 def leftover_parts(marker: dict[str, Any]) -> set[str]:
     """The temporary files the marker announces (a run killed while writing them leaves them)."""
     pending = marker.get("pending", [])
@@ -121,12 +135,7 @@ def why_not_ours(directory: Path, where: Path | None = None) -> str | None:
     parts = leftover_parts(marker)
 
     def visit(d: Path, rel: str) -> str | None:
-        with os.scandir(d) as it:
-            entries = sorted(it, key=lambda e: e.name)
-        for e in entries:
-            name = f"{rel}{e.name}"
-            if not rel and e.name == MARKER:
-                continue
+        for name, e in entries(d, rel):
             if name in files:
                 if e.is_symlink():
                     return (f"holds {name!r}, a symbolic link where threepart wrote a file; "
@@ -159,12 +168,7 @@ def _foreign(directory: Path) -> Iterator[str]:
     files, dirs = set(marker["files"]), set(marker["dirs"])
 
     def visit(d: Path, rel: str) -> Iterator[str]:
-        with os.scandir(d) as it:
-            entries = sorted(it, key=lambda e: e.name)
-        for e in entries:
-            name = f"{rel}{e.name}"
-            if not rel and e.name == MARKER:
-                continue
+        for name, e in entries(d, rel):
             if e.is_dir(follow_symlinks=False):
                 if name not in dirs:
                     yield name + "/"
