@@ -82,9 +82,9 @@ def _silenced(loggers: Sequence[str] = ("distributed", "dask", "tornado", "async
 def open_engine(scheduler: str | None, workers: int, timeout: float) -> Iterator[tuple[Any, dict[str, Any]]]:
     """A dask client on a new local cluster of ``workers`` or on ``scheduler``; closed on exit.
 
-    The local cluster, if one is made, is closed too.
-
-    ``timeout`` is how long an existing scheduler has to answer (seconds).
+    The local cluster, if one is made, is closed too. ``workers`` is its
+    number of worker processes (unused with ``scheduler``); ``timeout`` is how
+    long an existing scheduler has to answer (seconds).
 
     On an interrupt the close is silent: the one line that says so is the
     command line's.
