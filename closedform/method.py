@@ -12,7 +12,7 @@ from threepart.registry import Method, register
 from threepart.results import FrettingResult, NormalResult, SlipResult
 
 from .fretting import fretting_cycle
-from .normal import solve_normal
+from .normal import lift_off, solve_normal
 from .slip import solve_partial_slip
 
 __all__ = ["METHOD"]
@@ -38,4 +38,11 @@ def _fretting(punch: Punch, P: float, s: float, *, A: float, tilt: str = "free",
     return fretting_cycle(base, Q_max, f, sigma_bulk=sigma_bulk, **extra)
 
 
-METHOD = register(Method("closedform", _normal, _slip, _fretting, framework_only=True))
+def _lift_off(punch: Punch, P: float, A: float) -> tuple[float, float]:
+    """``(s_min, s_max)`` of :func:`~threepart.closedform.lift_off` (eqs. Pctob and s_lift-off)."""
+    lim = lift_off(punch, P, A)
+    return lim.s_min, lim.s_max
+
+
+METHOD = register(Method("closedform", _normal, _slip, _fretting, framework_only=True,
+                         lift_off=_lift_off))

@@ -24,7 +24,7 @@ fem_study       -- FEM convergence in h against the closed form (orders, GCI)
 """
 from __future__ import annotations
 
-from .catalogue import MODES, CaseRun, run_case
+from .runs import MODES, CaseRun, run_case
 from .compare import Check, compare
 from .studies import fem_study, sie_study
 

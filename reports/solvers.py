@@ -13,7 +13,7 @@ from threepart import registry
 from threepart.results import FrettingResult, NormalResult, SlipResult
 
 if TYPE_CHECKING:  # pragma: no cover
-    from .catalogue import Case
+    from threepart.catalogue import Case
 
 __all__ = ["METHODS", "normal", "slip", "fretting"]
 

@@ -14,7 +14,7 @@ from typing import Any, Callable, Sequence
 from threepart.catalogue import Case
 from threepart.convergence import Study, fitted_order, run_study
 
-from .catalogue import Mode, solve_normal
+from .runs import Mode, solve_normal
 from .compare import normal_figures, slip_figures
 from . import solvers
 

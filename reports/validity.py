@@ -57,15 +57,21 @@ class MapPoint:
 
 #: the scale of every point (the ratios fix the rest), the material and the flank angle
 R1, E, NU, THETA = 10.0, 1.0, 0.3, math.pi / 3
-#: the grid: quick and full (:func:`map_points` drops the points the punch cannot hold)
+#: the grid of each map mode (:func:`map_points` drops the points the punch cannot hold)
 GRID = {
-    True: dict(R2_over_R1=(1.0,), H_over_b=(4.0,), b_over_R1=(0.1, 0.3, 1.0),
-               a_minus_b_over_R1=(0.01, 0.03, 0.1, 0.2, 0.3)),
-    False: dict(R2_over_R1=(1.0, 0.5), H_over_b=(4.0, 16.0), b_over_R1=(0.1, 0.3, 1.0, 3.0),
-                a_minus_b_over_R1=(0.01, 0.03, 0.1, 0.2, 0.35, 0.5)),
+    "quick": dict(R2_over_R1=(1.0,), H_over_b=(4.0,), b_over_R1=(0.1, 0.3, 1.0),
+                  a_minus_b_over_R1=(0.01, 0.03, 0.1, 0.2, 0.3)),
+    "full": dict(R2_over_R1=(1.0, 0.5), H_over_b=(4.0, 16.0), b_over_R1=(0.1, 0.3, 1.0, 3.0),
+                 a_minus_b_over_R1=(0.01, 0.03, 0.1, 0.2, 0.35, 0.5)),
 }
-#: the FE meshes of a point, fine and coarse (their difference is the FEM's error estimate)
-MESHES = {True: ("quick", 0.5), False: ("default", 0.5)}
+#: the FE meshes of a point in each map mode, fine and coarse (their difference is the FEM's
+#: error estimate)
+MESHES = {"quick": ("quick", 0.5), "full": ("default", 0.5)}
+
+
+def _mode(quick: bool) -> str:
+    """The map mode, the key of :data:`GRID` and :data:`MESHES`."""
+    return "quick" if quick else "full"
 
 
 def _punch(point: MapPoint) -> Punch:
@@ -108,7 +114,7 @@ def feasible(point: MapPoint) -> bool:
 
 def map_points(quick: bool = False) -> list[MapPoint]:
     """The grid of the map (:data:`GRID`) less the points whose punch cannot hold the contact."""
-    g = GRID[quick]
+    g = GRID[_mode(quick)]
     return [pt for pt in (MapPoint(r, b, ab, hb) for r in g["R2_over_R1"] for hb in g["H_over_b"]
                           for b in g["b_over_R1"] for ab in g["a_minus_b_over_R1"])
             if feasible(pt)]
@@ -133,7 +139,7 @@ def evaluate(point: MapPoint, quick: bool = False) -> dict[str, Any]:
     t0 = time.perf_counter()
     punch, P = _punch(point), _load(point)
     cf = _closed_form(punch, P, 0.0, A=similar_pair(E, NU))
-    name, coarse = MESHES[quick]
+    name, coarse = MESHES[_mode(quick)]
     runs = [fem.solve_finite(punch, P, 0.0, E=E, nu=NU, H=point.H_over_b * punch.b, theta=THETA,
                              mesh=m) for m in (PRESETS[name].scaled(coarse), name)]
     fine, rough = _errors(runs[1], cf), _errors(runs[0], cf)
@@ -152,7 +158,7 @@ def control(quick: bool = False) -> dict[str, Any]:
     point = MapPoint(1.0, 0.3, 0.1, 4.0)
     punch, P = _punch(point), _load(point)
     cf = _closed_form(punch, P, 0.0, A=similar_pair(E, NU))
-    fe = fem.solve_finite(punch, P, 0.0, E=E, nu=NU, H=None, mesh=MESHES[quick][0])
+    fe = fem.solve_finite(punch, P, 0.0, E=E, nu=NU, H=None, mesh=MESHES[_mode(quick)][0])
     err = _errors(fe, cf)
     studies = [convergence(pt, STUDY_N[:-1] if quick else STUDY_N) for pt in STUDY_POINTS]
     return {"control_rel_error": err["peak_rel_error"], **err, "point": point.as_dict(), "P": P,

@@ -26,7 +26,7 @@ from threepart.catalogue import Case, load_cases
 from threepart.output import atomic_dir, json_safe, strict_json, validate_json
 
 from . import render
-from .catalogue import FRETTING_STATES, MODES, CaseRun, Mode, run_case
+from .runs import FRETTING_STATES, MODES, CaseRun, Mode, run_case
 from .sections import MAP_JSON, plot_path, study_plot_path
 from .stress import case_hot_spots, stress_nu
 from .solvers import METHODS

@@ -11,7 +11,7 @@ from threepart.registry import Method, register
 from threepart.results import FrettingResult, NormalResult, SlipResult
 
 from .fretting import fretting_cycle
-from .normal import DEFAULT_N, DEFAULT_SCHEME, check_scheme, solve_normal
+from .normal import DEFAULT_N, DEFAULT_SCHEME, check_scheme, lift_off, solve_normal
 from .slip import solve_partial_slip
 
 __all__ = ["METHOD"]
@@ -44,4 +44,4 @@ def _options_iv(options: dict[str, Any]) -> None:
 
 
 METHOD = register(Method("sie", _normal, _slip, _fretting, options=("n", "scheme"),
-                         options_iv=_options_iv))
+                         options_iv=_options_iv, lift_off=lift_off))

@@ -12,7 +12,6 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, replace
 from functools import lru_cache
-from types import SimpleNamespace
 
 import numpy as np
 from scipy.integrate import quad
@@ -132,8 +131,9 @@ def _slip(normal, Q, f, method="fake", **kw):
 
 
 def _lift_off(punch, P, A):
+    """The fake lift-off lever arms ``(s_min, s_max)``: half the fake contact's half-width."""
     half = math.sqrt(2 * P * A * punch.R1 / math.pi)
-    return SimpleNamespace(s_min=-0.5 * half, s_max=0.5 * half)
+    return -0.5 * half, 0.5 * half
 
 
 def fake_solver(method: str) -> Method:
@@ -158,7 +158,7 @@ def fake_solver(method: str) -> Method:
     def slip(punch, P, s, *, A, tilt="free", nu=None, Q, f, normal=None, n=64):
         return _slip(normal, Q, f, method=method, n=n)
 
-    return Method(method, normal, slip, options=("n", "scheme"))
+    return Method(method, normal, slip, options=("n", "scheme"), lift_off=_lift_off)
 
 
 def install_fakes(monkeypatch, **replacements: Method) -> None:

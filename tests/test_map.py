@@ -233,6 +233,20 @@ def test_the_schema_rejects_what_it_should(finished):
         assert schema["$defs"]["point"]["properties"][k].get("description"), k
 
 
+def test_the_design_space_is_declared_once_and_agrees_with_the_point_and_the_schema():
+    """A new map axis (issue 23) must appear in MapPoint, the axes of reports.map_schema and the schema."""
+    import dataclasses
+
+    from threepart.reports.map_schema import COORDINATES, FILE_LABELS, GROUP_AXES, PLOT_AXES
+
+    fields = [f.name for f in dataclasses.fields(MapPoint)]
+    assert sorted(COORDINATES) == sorted(fields) and len(set(COORDINATES)) == len(COORDINATES)
+    assert set(GROUP_AXES) | set(PLOT_AXES) == set(fields) and not set(GROUP_AXES) & set(PLOT_AXES)
+    assert set(FILE_LABELS) == set(GROUP_AXES)
+    point = map_mod.load_schema()["$defs"]["point"]
+    assert point["required"] == list(COLUMNS) and set(point["properties"]) == set(COLUMNS)
+
+
 # ---------------------------------------------------------------------------------------
 # interruption and resume
 # ---------------------------------------------------------------------------------------

@@ -9,6 +9,7 @@ import hashlib
 import json
 import os
 import shutil
+import socket
 import stat
 import subprocess
 import sys
@@ -163,7 +164,7 @@ def test_out_that_is_no_directory_is_refused(tmp_path, fake_solvers, kind):
 def test_rmtree_is_never_called_on_the_output(tmp_path, fake_solvers, monkeypatch):
     removed: list[str] = []
     real = shutil.rmtree
-    monkeypatch.setattr(output.shutil, "rmtree", lambda p, **k: (removed.append(str(p)), real(p, **k)))
+    monkeypatch.setattr(shutil, "rmtree", lambda p, **k: (removed.append(str(p)), real(p, **k)))
     out = tmp_path / "rep"
     assert _verify(out, fake_solvers) == 0
     assert _verify(out, fake_solvers, force=True) == 0
@@ -219,10 +220,9 @@ def test_ctrl_c_prints_one_line_exits_130_and_leaves_no_temporary(tmp_path, fake
 KILLED_WRITER = """
 import os, sys
 from pathlib import Path
-from threepart import output
-from threepart.output import atomic_dir
+from threepart.output import atomic_dir, dirs
 out, stage = Path(sys.argv[1]), sys.argv[2]
-output.clean_stale = lambda out: []       # keep the leftovers of the earlier killed runs here
+dirs.clean_stale = lambda out: []         # keep the leftovers of the earlier killed runs here
 with atomic_dir(out, command="verify") as tmp:
     (tmp / "plots").mkdir()
     (tmp / "plots" / "a.png").write_bytes(b"png")
@@ -270,7 +270,7 @@ def test_a_forged_marker_in_a_temporary_sibling_protects_nothing(tmp_path):
     (forged2 / "data" / "x.csv").write_text("1,2")
     (forged2 / MARKER).write_text(json.dumps(
         {"tool": "threepart", "format": output.MARKER_FORMAT, "command": "verify", "state": "writing",
-         "target": "rep", "pid": _dead_pid(), "host": output.socket.gethostname(),
+         "target": "rep", "pid": _dead_pid(), "host": socket.gethostname(),
          "files": {}, "dirs": [], "path": str(forged2), "mac": "0" * 64}))
     assert output.clean_stale(out) == [real]
     assert (forged / "sub" / "thesis.tex").read_text() == "keep me"

@@ -18,8 +18,9 @@ SUBPACKAGES = ("closedform", "sie", "fem", "meshes", "reports")
 def test_mypy_is_clean(tmp_path):
     pkg = tmp_path / "threepart"
     pkg.mkdir()
-    for path in (ROOT / "threepart").glob("*.py"):
-        (pkg / path.name).symlink_to(path)
+    for path in (ROOT / "threepart").iterdir():   # its modules and subpackages (threepart.output)
+        if path.suffix == ".py" or (path / "__init__.py").is_file():
+            (pkg / path.name).symlink_to(path, target_is_directory=path.is_dir())
     for name in SUBPACKAGES:
         (pkg / name).symlink_to(ROOT / name, target_is_directory=True)
     cwd = os.getcwd()

@@ -15,6 +15,7 @@ import os
 import shutil
 import subprocess
 import sys
+import tempfile
 from pathlib import Path
 
 import numpy as np
@@ -303,7 +304,7 @@ with scratch_dir("threepart-testmesh-") as d:
 
 def test_scratch_dirs_of_killed_runs_are_cleaned_by_the_next(tmp_path, monkeypatch):
     monkeypatch.setenv("TMPDIR", str(tmp_path))
-    monkeypatch.setattr(output.tempfile, "tempdir", None)
+    monkeypatch.setattr(tempfile, "tempdir", None)
     proc = subprocess.run([sys.executable, "-c", KILLED_MESHER], capture_output=True, text=True,
                           env={**os.environ, "TMPDIR": str(tmp_path)})
     assert proc.returncode == 9, proc.stderr

@@ -3,11 +3,13 @@
 Every test, benchmark and the verification run take their cases from here; a
 case's ``suites`` says who uses it (``"verify"``, ``"fem"``, ``"sie"``, see the
 file's ``"about"``). Inputs only, no solution: a case exposes its numbers, and
-the solvers are called elsewhere (:mod:`threepart.reports.catalogue`).
+the solvers are called elsewhere (:mod:`threepart.reports.runs`).
 
-The one closed-form call is the lazy lift-off range in :meth:`Case.resolved`,
-for a case given as a fraction of its lift-off lever arm; a case that the SIE
-or the FEM reads alone stores that lever arm, so they never load the closed form.
+A case given as a fraction of its lift-off lever arm is resolved
+(:meth:`Case.resolved`) with the lift-off range of the method
+:data:`LIFT_OFF_METHOD`, asked for through :mod:`threepart.registry` (this
+module imports no solver); a case that the SIE or the FEM reads alone stores
+that lever arm, so they never load the closed form.
 """
 from __future__ import annotations
 
@@ -19,12 +21,16 @@ from typing import Any
 
 from .material import rigid_punch
 from .punch import Punch
+from .registry import lift_off
 
-__all__ = ["Case", "CASES_FILE", "SUITES", "load_cases", "get_case", "slip_loads"]
+__all__ = ["Case", "CASES_FILE", "SUITES", "LIFT_OFF_METHOD", "load_cases", "get_case", "slip_loads"]
 
 CASES_FILE = Path(__file__).with_name("cases.json")
 #: who reads a case: the verification run, the FEM tests and benchmark, the SIE tests and benchmark
 SUITES = ("verify", "fem", "sie")
+#: the method whose lift-off range resolves ``s_lift_off_fraction``: the paper's closed form,
+#: whose framework (both contact ends on the edge arcs) the fraction measures
+LIFT_OFF_METHOD = "closedform"
 
 
 @dataclass(frozen=True)
@@ -140,10 +146,8 @@ class Case:
             return self
         if frac >= 0 and self.s_max is not None:
             return replace(self, s=frac * self.s_max)
-        from threepart import closedform
-
-        lim = closedform.lift_off(self.punch, self.P, self.A)
-        s = frac * (lim.s_max if frac >= 0 else -lim.s_min)
+        s_min, s_max = lift_off(LIFT_OFF_METHOD, self.punch, self.P, self.A)
+        s = frac * (s_max if frac >= 0 else -s_min)
         return replace(self, s=float(s))
 
     def as_dict(self) -> dict[str, Any]:

@@ -272,14 +272,15 @@ def _peak(peak: Any, side: str) -> dict[str, Any]:
 
 
 def _lift_off(punch: Any, P: float, A: float) -> dict[str, float] | None:
-    """The closed form's admissible lever arms at ``P``, or None where it has none."""
-    from threepart import closedform
+    """The closed form's admissible lever arms at ``P`` (through the registry), or None where it has none."""
+    from threepart.catalogue import LIFT_OFF_METHOD
+    from threepart.registry import lift_off
 
     try:
-        lim = closedform.lift_off(punch, P, A)
+        s_min, s_max = lift_off(LIFT_OFF_METHOD, punch, P, A)
     except ValueError:
         return None
-    return {"s_min": lim.s_min, "s_max": lim.s_max}
+    return {"s_min": s_min, "s_max": s_max}
 
 
 def _points_iv(args: argparse.Namespace) -> None:

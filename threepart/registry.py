@@ -32,6 +32,11 @@ discretisation options, named in :attr:`Method.options`.
     solves its own normal problem with the shear (the FEM) ignores it.
 ``fretting(punch, P, s, *, A, tilt, nu, Q_max, f, states, normal, **options)``
     One fretting cycle: a :class:`~threepart.results.FrettingResult`.
+``lift_off(punch, P, A)``
+    The lever arms ``(s_min, s_max)`` at which, with the tilt free, a contact
+    end reaches a join ``x = -+b``: the range of ``s`` with both ends on the
+    edge arcs (eq. s_lift-off). The shared package asks a method by name for
+    it (the case catalogue, the command line) and never imports a solver.
 
 Names
 -----
@@ -39,6 +44,7 @@ Method      -- a method's adapter: name, calls, options, capabilities
 register    -- add (or replace) a method in the registry
 get         -- the method of a name, importing a built-in solver on first use
 names       -- every method's name: the built-in ones first, in report order
+lift_off    -- the lift-off lever arms (s_min, s_max) by a method of a name
 BUILTIN     -- the built-in methods and the packages that register them
 """
 from __future__ import annotations
@@ -48,9 +54,10 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, Callable
 
 if TYPE_CHECKING:  # pragma: no cover
+    from .punch import Punch
     from .results import FrettingResult, NormalResult, SlipResult
 
-__all__ = ["Method", "register", "get", "names", "BUILTIN"]
+__all__ = ["Method", "register", "get", "names", "lift_off", "BUILTIN"]
 
 #: the built-in methods, in report order (the closed form is the reference of the others),
 #: and the package whose import registers each
@@ -81,6 +88,9 @@ class Method:
     options_iv
         Checks the values of the options (a ``TypeError`` or ``ValueError``
         naming the option) before anything is solved, or None.
+    lift_off
+        The lift-off lever arms ``(s_min, s_max)`` at ``(punch, P, A)``, or
+        None where the method does not compute them.
     """
 
     name: str
@@ -91,6 +101,7 @@ class Method:
     framework_only: bool = False
     default_nu: float | None = None
     options_iv: Callable[[dict[str, Any]], None] | None = None
+    lift_off: Callable[[Punch, float, float], tuple[float, float]] | None = None
 
     def check_options(self, options: dict[str, Any], called: str | None = None) -> None:
         """``ValueError`` naming the first option this method does not take; then the values.
@@ -139,3 +150,18 @@ def get(name: Any, also: tuple[str, ...] = ()) -> Method:
     except (KeyError, TypeError):
         raise ValueError(f"`method` = {name!r} must be one of "
                          f"{', '.join((*also, *names()))}") from None
+
+
+def lift_off(name: str, punch: Punch, P: float, A: float) -> tuple[float, float]:
+    """The lever arms ``(s_min, s_max)`` at which a contact end reaches a join, by the method ``name``.
+
+    Raises
+    ------
+    ValueError
+        If no method of that name is registered, or it does not compute them;
+        or as the method's ``lift_off`` raises (e.g. ``b = 0``: no join).
+    """
+    method = get(name)
+    if method.lift_off is None:
+        raise ValueError(f"`method` = {name!r} does not compute lift-off lever arms")
+    return method.lift_off(punch, P, A)

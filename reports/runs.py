@@ -1,11 +1,23 @@
-"""The one place that calls all three solvers on a catalogue case.
+"""Runs of the catalogue's cases: every method on one case, timed and compared.
 
 A :class:`~threepart.catalogue.Case` of the one case catalogue
-(``threepart/cases.json``) holds the numbers of one case; :func:`run_case`
-solves it with closedform, sie and fem and compares the last two with the
-first. Like scikit-fem's examples, a case exposes its numbers (a
-:class:`CaseRun` holds every result, time and check) and nothing is plotted
-here: :mod:`reports.plots` draws only when a report is written.
+(:mod:`threepart.catalogue`, ``threepart/cases.json``) holds the inputs of one
+case; :func:`run_case` solves it with each method of the registry
+(:mod:`threepart.registry`) and compares the others with the reference. Like
+scikit-fem's examples, a case exposes its numbers (a :class:`CaseRun` holds
+every result, time and check) and nothing is plotted here: :mod:`reports.plots`
+draws only when a report is written.
+
+Names
+-----
+Mode            -- the discretisation settings of one verification mode
+MODES           -- ``quick``, ``default`` and ``full``
+run_case        -- solve one case with every method and compare
+CaseRun         -- every result, time, error and check of one case
+solve           -- one case by one method: normal, partial slip or a fretting cycle, timed
+solve_normal    -- the normal problem of one case by one method
+METHODS         -- the methods compared, in report order
+FRETTING_STATES -- recorded states per branch of a fretting cycle
 """
 from __future__ import annotations
 
@@ -13,6 +25,7 @@ import time
 from dataclasses import dataclass, field
 from typing import Any, Callable
 
+from threepart import registry
 from threepart.catalogue import Case
 from threepart.tolerances import fem_comparison, tolerance
 
@@ -44,13 +57,17 @@ class Mode:
     sie_study_n: tuple[int, ...]
     fem_study_n: tuple[int, ...]
 
+    @property
+    def settings(self) -> dict[str, Any]:
+        """The settings by the option name a method's adapter takes them under (None: its default)."""
+        return {"n": self.sie_n, "mesh": self.fem_mesh}
+
     def options(self, method: str) -> dict[str, Any]:
-        """Discretisation keywords of ``method``'s adapter (:mod:`threepart.registry`)."""
-        if method == "sie":
-            return {} if self.sie_n is None else {"n": self.sie_n}
-        if method == "fem":
-            return {"mesh": self.fem_mesh}
-        return {}
+        """The keywords of ``method``'s adapter: those of its options (:attr:`Method.options
+        <threepart.registry.Method.options>`) that this mode sets."""
+        settings = self.settings
+        return {k: settings[k] for k in registry.get(method).options
+                if settings.get(k) is not None}
 
 
 MODES: dict[str, Mode] = {

@@ -1,0 +1,167 @@
+"""The engine of a validity-map sweep: dask.distributed, a local cluster or an existing scheduler.
+
+Names
+-----
+open_engine -- context manager: a client on a new local cluster or on a scheduler, closed on exit
+sweep       -- submit every task, log each result as it arrives, report progress
+"""
+from __future__ import annotations
+
+import gc
+import os
+import time
+import uuid
+from asyncio import CancelledError
+from contextlib import contextmanager, nullcontext
+from typing import Any, Callable, Iterator, Sequence
+
+import dask
+from dask.distributed import Client, LocalCluster, as_completed
+
+from .map_log import control_record, one_line, point_record
+from .map_schema import pct
+
+__all__ = ["open_engine", "sweep"]
+
+Say = Callable[[str], None]
+
+
+@contextmanager
+def _quiet_workers() -> Iterator[None]:
+    """Start worker processes that leave Ctrl-C to this one and log only errors.
+
+    A terminal's Ctrl-C reaches every process of the group. The workers
+    spawned here inherit an ignored SIGINT (an ignored signal survives
+    ``exec``; Python and asyncio then install no handler of their own), so
+    only this process is interrupted and closes the cluster; their
+    ``distributed`` loggers (configured from the environment at import) say
+    nothing below ERROR, such as the cancelled tasks of that close.
+    """
+    import signal
+
+    saved_env = os.environ.get(_WORKER_LOG_ENV)
+    os.environ[_WORKER_LOG_ENV] = "error"
+    saved = signal.signal(signal.SIGINT, signal.SIG_IGN) if _main_thread() else None
+    try:
+        yield
+    finally:
+        if saved is not None:
+            signal.signal(signal.SIGINT, saved)
+        if saved_env is None:
+            os.environ.pop(_WORKER_LOG_ENV, None)
+        else:
+            os.environ[_WORKER_LOG_ENV] = saved_env
+
+
+#: the dask setting (as an environment variable) of the worker processes' log level
+_WORKER_LOG_ENV = "DASK_LOGGING__DISTRIBUTED"
+
+
+def _main_thread() -> bool:
+    import threading
+
+    return threading.current_thread() is threading.main_thread()
+
+
+@contextmanager
+def _silenced(loggers: Sequence[str] = ("distributed", "dask", "tornado", "asyncio")) -> Iterator[None]:
+    """Raise the level of ``loggers`` above CRITICAL for the block (the cluster's close on Ctrl-C)."""
+    import logging
+
+    saved = {name: logging.getLogger(name).level for name in loggers}
+    for name in loggers:
+        logging.getLogger(name).setLevel(logging.CRITICAL + 1)
+    try:
+        yield
+    finally:
+        for name, level in saved.items():
+            logging.getLogger(name).setLevel(level)
+
+
+@contextmanager
+def open_engine(scheduler: str | None, workers: int, timeout: float) -> Iterator[tuple[Any, dict[str, Any]]]:
+    """A dask client on a new local cluster of ``workers`` or on ``scheduler``; closed on exit.
+
+    The local cluster, if one is made, is closed too. ``workers`` is its
+    number of worker processes (unused with ``scheduler``); ``timeout`` is how
+    long an existing scheduler has to answer (seconds).
+
+    On an interrupt the close is silent: the one line that says so is the
+    command line's.
+    """
+    cluster = None
+    if scheduler is None:
+        with _quiet_workers():
+            cluster = LocalCluster(n_workers=workers, threads_per_worker=1,
+                                   processes=True)
+        try:
+            client = Client(cluster)
+        except BaseException:
+            with _silenced():
+                cluster.close()
+            raise
+    else:
+        client = connect(scheduler, timeout)
+    interrupted = False
+    try:
+        engine = {"kind": "dask.distributed", "scheduler": client.scheduler.address,
+                  "workers": len(client.nthreads()), "dask_version": dask.__version__}
+        yield client, engine
+    except BaseException:
+        interrupted = True
+        raise
+    finally:
+        with _silenced() if interrupted else nullcontext():
+            client.close()
+            if cluster is not None:
+                cluster.close()
+
+
+def connect(scheduler: str, timeout: float) -> Any:
+    """A client of the scheduler at ``scheduler``, or a one-line ``OSError``."""
+    try:
+        return Client(scheduler, timeout=timeout)
+    except (OSError, ValueError, TypeError) as exc:
+        reason = one_line(exc)
+    # the half-made client sits in reference cycles; collected later, on whatever thread, its
+    # __del__ can deadlock the start of the next client in this process (it takes the loop
+    # runners' lock): collect it now, outside the handler, where nothing refers to it any more
+    gc.collect()
+    raise OSError(f"cannot reach the dask scheduler `--scheduler` = {scheduler!r}: {reason}")
+
+
+def sweep(client: Any, tasks: list[tuple[str, Callable[..., Any], tuple[Any, ...], Any]],
+           log: Callable[[dict[str, Any]], None], mode: str, done0: int, total: int,
+           say: Say) -> list[dict[str, Any]]:
+    """Submit every task, log each result as it arrives, and report progress; return the records."""
+    futures = {}
+    for key, fn, args, point in tasks:
+        fut = client.submit(fn, *args, pure=False, key=f"threepart-map-{key}-{uuid.uuid4().hex[:8]}")
+        futures[fut] = (key, point)
+    records: list[dict[str, Any]] = []
+    t0 = time.perf_counter()
+    try:
+        for fut in as_completed(list(futures)):
+            key, point = futures[fut]
+            try:
+                result, error = fut.result(), None
+            except (Exception, CancelledError) as exc:   # a failed point is recorded, never a crash
+                result, error = None, one_line(exc)
+            rec = (control_record(result, error, mode) if point is None
+                   else point_record(point, result, error, mode))
+            log(rec)
+            records.append(rec)
+            done = done0 + len(records)
+            elapsed = time.perf_counter() - t0
+            eta = elapsed / len(records) * (total - done)
+            status = "FAILED " + rec["error"] if rec["error"] else (
+                f"peak error {pct(rec.get('peak_rel_error'))}" if point is not None
+                else f"control error {rec['control_rel_error']:.2e}")
+            say(f"[{done:>{len(str(total))}}/{total}] {key}  {status}  "
+                f"elapsed {elapsed:.1f} s, ETA {eta:.0f} s")
+    finally:   # on an interrupt or an error: nothing left running for this run
+        try:
+            client.cancel([f for f in futures if not f.done()])
+        except Exception:   # the scheduler is gone already: nothing to cancel
+            pass
+    return records

@@ -1,0 +1,100 @@
+"""The fields of a validity-map point, the schema of ``map.json`` and the text of ``map.csv``.
+
+The map's design space is declared here once: :data:`GROUP_AXES` (one contour
+map per combination of their values) and :data:`PLOT_AXES` (the x and y of
+each contour map) make up a point's :data:`COORDINATES`, which are the fields
+of :class:`reports.validity.MapPoint`. A new axis is a new field of
+``MapPoint``, a name in one of these two tuples (with its short label in
+:data:`FILE_LABELS` if it groups the plots) and its entry in
+``map.schema.json``; ``tests/test_map.py`` checks that the three agree.
+
+Names
+-----
+SCHEMA_FILE    -- ``reports/map.schema.json``
+SCHEMA_VERSION -- the version of ``map.json``'s layout
+GROUP_AXES     -- the coordinates that make one contour map per combination
+PLOT_AXES      -- the coordinates along x and y of each contour map
+FILE_LABELS    -- the short label of each group axis in a plot's file name
+COORDINATES    -- the coordinates of a point, in CSV order
+COLUMNS        -- the fields of every point in ``map.json`` and the columns of ``map.csv``
+load_schema    -- the JSON schema of ``map.json``
+validate       -- validate a document against ``map.schema.json``
+csv_text       -- ``map.csv`` of a list of points
+groups         -- the values of :data:`GROUP_AXES` that the points take, in plot order
+plot_name      -- the file of one group's contour map
+finite         -- whether a value is a finite number
+pct            -- a fraction as a percentage
+"""
+from __future__ import annotations
+
+import csv
+import io
+import json
+import math
+from pathlib import Path
+from typing import Any, Sequence
+
+from threepart.output import validate_json
+
+from .validity import RESULT_KEYS
+
+__all__ = ["SCHEMA_FILE", "SCHEMA_VERSION", "GROUP_AXES", "PLOT_AXES", "FILE_LABELS", "COORDINATES",
+           "COLUMNS", "load_schema", "validate", "csv_text", "groups", "plot_name", "finite", "pct"]
+
+SCHEMA_FILE = Path(__file__).with_name("map.schema.json")
+SCHEMA_VERSION = "1.0"
+#: one contour map per combination of these coordinates (R2/R1 descending, then ascending)
+GROUP_AXES = ("R2_over_R1", "H_over_b")
+#: the x and y of each contour map (both on log scales)
+PLOT_AXES = ("a_minus_b_over_R1", "b_over_R1")
+#: the short label of each group axis in a plot's file name
+FILE_LABELS = {"R2_over_R1": "R2R1", "H_over_b": "Hb"}
+#: the coordinates of a point (:class:`reports.validity.MapPoint`), in CSV order
+COORDINATES = (*GROUP_AXES, *reversed(PLOT_AXES))
+#: the fields of every point in ``map.json`` and the columns of ``map.csv``, in order
+COLUMNS = ("key", *COORDINATES, *RESULT_KEYS, "error")
+
+
+def load_schema() -> dict[str, Any]:
+    """The JSON schema of ``map.json``."""
+    return json.loads(SCHEMA_FILE.read_text(encoding="utf-8"))
+
+
+def validate(doc: dict[str, Any]) -> None:
+    """Validate ``doc`` against ``map.schema.json`` (needs ``jsonschema``; skipped without it)."""
+    validate_json(doc, SCHEMA_FILE)
+
+
+def csv_text(points: Sequence[dict[str, Any]]) -> str:
+    """``map.csv``: the :data:`COLUMNS` of every point; null as an empty field, floats round-trip."""
+    buf = io.StringIO()
+    w = csv.writer(buf, lineterminator="\n")
+    w.writerow(COLUMNS)
+    for p in points:
+        w.writerow(["" if p[k] is None else f"{p[k]:.17g}" if isinstance(p[k], float) else p[k]
+                    for k in COLUMNS])
+    return buf.getvalue()
+
+
+
+def groups(points: Sequence[dict[str, Any]]) -> list[tuple[float, ...]]:
+    """The values of :data:`GROUP_AXES` that ``points`` take: the first descending, the rest ascending."""
+    return sorted({tuple(p[a] for a in GROUP_AXES) for p in points}, key=lambda g: (-g[0], *g[1:]))
+
+
+def plot_name(group: Sequence[float]) -> str:
+    """The file of the contour map of ``group`` (values of :data:`GROUP_AXES`).
+
+    For example ``plots/peak_error_R2R1_1_Hb_4.png``.
+    """
+    labels = "_".join(f"{FILE_LABELS[a]}_{v:g}" for a, v in zip(GROUP_AXES, group))
+    return f"plots/peak_error_{labels}.png"
+
+
+def finite(v: Any) -> bool:
+    return isinstance(v, (int, float)) and math.isfinite(v)
+
+
+def pct(v: Any) -> str:
+    """A fraction as a percentage, e.g. ``0.0123`` as ``"1.23 %"``."""
+    return "n/a" if v is None else f"{100 * v:.3g} %"
