@@ -379,12 +379,27 @@ def load_refs(directory: str | Path) -> dict[str, dict[str, Any]]:
     return docs
 
 
-def main(out: str | Path = "refs", force: bool = False, quiet: bool = False) -> int:
-    """Export the catalogue's reference dataset to ``out``; 0 when written."""
+def main(out: str | Path = "refs", force: bool = False, cases: Sequence[str] | None = None,
+         quiet: bool = False) -> int:
+    """Export the reference dataset of ``cases`` (names; default every case) to ``out``; 0 when written.
+
+    Raises
+    ------
+    ValueError
+        For a name that is not a catalogue case (the message lists them), before any work.
+    """
     def say(msg: str) -> None:
         if not quiet:
             print(msg, flush=True)
 
-    docs = export_refs(out, force=force, progress=say)
+    chosen = None
+    if cases is not None:
+        known = {c.name: c for c in load_cases(None)}
+        unknown = [n for n in cases if n not in known]
+        if unknown or not cases:
+            raise ValueError(f"`--cases` = {','.join(cases)!r}: {unknown[0] if unknown else 'empty'!r} "
+                             f"is not a catalogue case (one of {', '.join(known)})")
+        chosen = [known[n] for n in dict.fromkeys(cases)]
+    docs = export_refs(out, cases=chosen, force=force, progress=say)
     say(f"threepart export-refs: {len(docs)} cases, dataset version {DATASET_VERSION} -> {out}")
     return 0

@@ -405,7 +405,7 @@ def _cmd_map(args: argparse.Namespace) -> int:
 def _cmd_export_refs(args: argparse.Namespace) -> int:
     from threepart.reports.refs import main as refs_main
 
-    return int(refs_main(out=args.out, force=args.force))
+    return int(refs_main(out=args.out, force=args.force, cases=args.cases))
 
 
 _FORCE_HELP = ("no longer needed: a rerun replaces threepart's own earlier output in --out (its "
@@ -483,6 +483,8 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--out", default="refs",
                    help="output directory: new, empty, or threepart's own earlier export, which is "
                         "replaced (default: ./refs)")
+    p.add_argument("--cases", metavar="NAME,...", type=lambda t: t.split(","),
+                   help="export only these catalogue cases (default: every case)")
     p.add_argument("--force", action="store_true", help=_FORCE_HELP)
     p.set_defaults(func=_cmd_export_refs)
     return parser
