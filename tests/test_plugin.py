@@ -8,6 +8,8 @@ passes (as tests/test_compare.py proves for the verification run).
 """
 from __future__ import annotations
 
+import subprocess
+import sys
 import types
 from importlib import metadata
 
@@ -20,6 +22,8 @@ from threepart import registry
 from threepart.catalogue import get_case
 from threepart.pytest_plugin import check
 from threepart.tolerances import tolerance
+
+from .test_install import isolated, wheel  # noqa: F401 - fixtures: the fresh environment of test_install
 
 pytest_plugins = ["pytester"]
 
@@ -156,3 +160,33 @@ def test_bad_input_is_named():
         check(res, case, tolerances={"d": 1e-3})
     with pytest.raises(ValueError, match=r"`tolerances\['a'\]` = -1"):
         check(res, case, tolerances={"a": -1})
+
+
+@pytest.mark.slow
+def test_the_plugin_works_from_an_outside_project(isolated, tmp_path):
+    """threepart's wheel and pytest in an isolated venv: an outside project's test uses the plugin."""
+    env = isolated
+    python = env / "bin" / "python"
+    done = subprocess.run([sys.executable, "-m", "pip", "--python", str(python), "install", "-q",
+                           "--no-compile", "pytest"], capture_output=True, text=True)
+    assert done.returncode == 0, done.stderr[-2000:]
+    project = tmp_path / "outside"
+    project.mkdir()
+    (project / "test_outside.py").write_text(TOY + '''
+@pytest.mark.threepart_cases("caseA_moment")
+def test_sie(threepart_case, threepart_check):
+    threepart_check(sie(threepart_case), threepart_case, comparison="sie")
+
+
+@pytest.mark.threepart_cases("caseA_moment")
+def test_wrong(threepart_case, threepart_check):
+    res = sie(threepart_case)
+    threepart_check(types.SimpleNamespace(a=1.01 * res.a, c=res.c, pressure=res.pressure), threepart_case)
+''', encoding="utf-8")
+    run = subprocess.run([str(python), "-m", "pytest", "-p", "no:cacheprovider", "-rA"], cwd=project,
+                         capture_output=True, text=True)
+    out = run.stdout
+    assert "1 failed, 1 passed" in out, out[-3000:]
+    assert "threepart margins" in out and "out of tolerance: a error" in out, out[-3000:]
+    assert str(env) in subprocess.run([str(python), "-c", "import threepart; print(threepart.__file__)"],
+                                      capture_output=True, text=True, cwd=project).stdout
