@@ -21,11 +21,18 @@ Studies
 -------
 sie_study       -- SIE convergence in n against the closed form (orders, Richardson)
 fem_study       -- FEM convergence in h against the closed form (orders, GCI)
+
+Reference data (``threepart export-refs``, :mod:`reports.refs`)
+--------------
+export_refs     -- the catalogue's reference solutions as a versioned dataset (JSON, CSV, schema)
+load_refs       -- read a dataset back, every CSV checked against its JSON bit for bit
 """
 from __future__ import annotations
 
 from .runs import MODES, CaseRun, run_case
 from .compare import Check, compare
+from .refs import export_refs, load_refs
 from .studies import fem_study, sie_study
 
-__all__ = ["CaseRun", "run_case", "MODES", "compare", "Check", "sie_study", "fem_study"]
+__all__ = ["CaseRun", "run_case", "MODES", "compare", "Check", "sie_study", "fem_study",
+           "export_refs", "load_refs"]

@@ -20,6 +20,7 @@ convergence         -- fitted and three-level observed orders, GCI, Richardson s
 output              -- atomic, marked output directories; strict JSON
 validate            -- the input checks behind every entry point's ``_*_iv`` helper
 cli                 -- the ``threepart`` command line
+pytest_plugin       -- pytest fixtures ``threepart_case`` and ``threepart_check`` (entry point pytest11)
 
 Problem
 -------

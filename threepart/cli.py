@@ -7,6 +7,7 @@ slip     partial slip: adds the stick zone for a shear load Q and friction f
 verify   verification run: closed form against SIE and FEM, tolerance report
 figures  the paper's result figures, with the SIE solution as markers
 map      where the half-plane formulas stop: the finite-body validity map, on dask.distributed
+export-refs  the catalogue's reference solutions as a versioned dataset (JSON + CSV, JSON schema)
 
 --method auto (default) uses the paper's closed form where it holds and the SIE
 where it does not (past lift-off, the punch on one corner, a stick zone that
@@ -65,7 +66,7 @@ MAX_GRID = 1_000_000
 
 
 #: the sub-commands (kept in step with :func:`build_parser` by tests/test_cli.py)
-COMMANDS = ("solve", "slip", "verify", "figures", "map")
+COMMANDS = ("solve", "slip", "verify", "figures", "map", "export-refs")
 
 
 class UsageError(Exception):
@@ -407,6 +408,12 @@ def _cmd_map(args: argparse.Namespace) -> int:
                         workers=args.workers, force=args.force))
 
 
+def _cmd_export_refs(args: argparse.Namespace) -> int:
+    from threepart.reports.refs import main as refs_main
+
+    return int(refs_main(out=args.out, force=args.force, cases=args.cases))
+
+
 _FORCE_HELP = ("no longer needed: a rerun replaces threepart's own earlier output in --out (its "
                ".threepart-output.json lists every file with a checksum, and nothing else is there); "
                "a directory holding anything else, or an edited file, is never replaced, with or "
@@ -479,6 +486,16 @@ def build_parser() -> argparse.ArgumentParser:
                         "--force; only one threepart wrote, unchanged); an unfinished map of the "
                         "same mode is resumed, with or without it")
     p.set_defaults(func=_cmd_map)
+
+    p = sub.add_parser("export-refs", help="the catalogue's reference solutions as a versioned "
+                                           "dataset (docs/REFERENCE_DATA.md)")
+    p.add_argument("--out", default="refs",
+                   help="output directory: new, empty, or threepart's own earlier export, which is "
+                        "replaced (default: ./refs)")
+    p.add_argument("--cases", metavar="NAME,...", type=lambda t: t.split(","),
+                   help="export only these catalogue cases (default: every case)")
+    p.add_argument("--force", action="store_true", help=_FORCE_HELP)
+    p.set_defaults(func=_cmd_export_refs)
     return parser
 
 

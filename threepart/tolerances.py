@@ -64,6 +64,9 @@ normalised error (``_level``: at the finest discretisation of a study).
     The closed form's identities, limits and its agreement with the quadrature reference.
 ``catalogue``
     Numbers stored in ``threepart/cases.json`` against what they stand for.
+``refs``
+    The precision each quantity of the reference dataset claims (``threepart
+    export-refs``, ``docs/REFERENCE_DATA.md``), checked by ``tests/test_refs.py``.
 ``convergence``
     The convergence tools (:mod:`threepart.convergence`) on manufactured sequences.
 """
@@ -283,6 +286,21 @@ TOLERANCES: dict[tuple[str, str], Tolerance] = {
     # --- numbers stored in the case catalogue ----------------------------------------------------
     ("catalogue", "stored_lift_off"): _T(1e-12, "a stored lift-off lever arm (the closed form's, an exact root) against sie.lift_off, another exact root (as sie-exact lift_off)"),
     ("catalogue", "paper_load"): _T(1e-4, "P = 28846 N/mm is the paper's 4PA/b = 1 rounded to five digits"),
+    # --- the reference dataset (`threepart export-refs`): the precision each quantity claims -----
+    ("refs", "a"): _T(1e-12, "closed form: an exact root; past lift-off the SIE's projected ends, exact for any n (vs the SIE, and vs the shifted punch's forward formulas: measured <= 6e-16 W)"),
+    ("refs", "c"): _T(1e-12, "as a"),
+    ("refs", "alpha"): _T(1e-12, "from the same root as a, c (of the slope scale); measured <= 3e-16"),
+    ("refs", "s"): _T(1e-12, "imposed (free tilt) or the closed form's s* (suppressed), of W"),
+    ("refs", "p"): _T(1e-12, "closed form, or past lift-off the inversion integral at the SIE's ends by adaptive quadrature (sie.reference), of the peak: vs each other and vs tests/quad_reference.py measured <= 2e-15"),
+    ("refs", "p_integral"): _T(1e-12, "∫p dx = P and ∫x p dx = P s of the exported pressure by adaptive quadrature (of P, of W): measured <= 2.4e-15"),
+    ("refs", "p_peak"): _T(1e-12, "a peak of the pressure above, located to 1e-12 W where p' = 0 (of the peak)"),
+    ("refs", "x_peak"): _T(1e-6, "a flat maximum: its position is known to about sqrt(1e-12) W although p is exact"),
+    ("refs", "d"): _T(1e-12, "closed form's root; past the framework the SIE's stick-zone ends, exact for any n (of d): vs the SIE measured <= 1.5e-16"),
+    ("refs", "e"): _T(1e-12, "as d (of d)"),
+    ("refs", "q"): _T(1e-12, "q = f (p - p*), p* the pressure of the stick zone by the same formula (Ciavarella-Jaeger), of max|q|: closed form vs the inversion integral measured 1.2e-15"),
+    ("refs", "energy"): _T(1e-12, "closed-form energy per cycle vs the SIE's superposition of its own stick zones: measured 4.2e-16"),
+    ("refs", "loop"): _T(1e-12, "the fretting cycle's hysteresis loop (of its largest value) and stick-zone ends (of d): closed form vs the SIE's Masing superposition measured <= 3e-14"),
+    ("refs", "stress"): _T(1e-7, "Flamant quadrature of threepart.stress (1e-8 of p0, docs/STRESS.md) on the closed form, or past lift-off on the SIE at n = 1024 (pressure error 5e-8 of the peak); of the peak pressure"),
     # --- the convergence tools on manufactured sequences -----------------------------------------
     ("convergence", "exact"): _T(1e-12, "err = C h^p exactly: the fit and the extrapolation are exact up to rounding"),
     ("convergence", "iterated"): _T(1e-8, "the three-level fixed point stops when p moves by < 1e-10"),
