@@ -352,7 +352,7 @@ def critical_plane(history: History | Sequence[Stress], func: PlaneFunction,
     :data:`CANDIDATES` largest local maxima; each is zoomed into :data:`ZOOM_LEVELS`
     times (11 angles over ± the previous step), to a step of 9e-8 rad in φ. The
     scan is vectorised over the points and states; the loop is over the angles only.
-    tests/test_fatigue.py checks it against a brute-force scan of 2·10⁵ angles.
+    tests/test_fatigue.py checks it against a brute-force scan of 10⁵ angles.
     """
     h = _history(history)
     m = h.states
