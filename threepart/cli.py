@@ -56,7 +56,8 @@ UNITS: dict[str, str] = {
 }
 #: options that take a number; ``--s -1e-3`` is read as ``--s=-1e-3`` (argparse alone
 #: would take ``-1e-3`` for an option)
-NUMERIC_OPTIONS = ("--R1", "--R2", "--b", "--R", "--A", "--E", "--nu", "--P", "--s", "--Q", "--f")
+NUMERIC_OPTIONS = ("--R1", "--R2", "--b", "--R", "--A", "--E", "--nu", "--P", "--s", "--Q", "--f",
+                   "--Q-max", "--sigma-bulk", "--k", "--depth")   # the last four: fatigue
 #: options that take a comma-separated list of numbers (``--x -0.5,0.2`` is read as ``--x=-0.5,0.2``)
 LIST_OPTIONS = ("--x",)
 #: the most points ``--grid`` prints
@@ -404,8 +405,6 @@ def _cmd_map(args: argparse.Namespace) -> int:
 
 # --- threepart fatigue ---------------------------------------------------------------------
 
-#: the fatigue command's options that take a number (a negative one may follow its option)
-NUMERIC_OPTIONS = (*NUMERIC_OPTIONS, "--Q-max", "--sigma-bulk", "--k", "--depth")
 #: the most grid points ``threepart fatigue`` evaluates (each state costs a stress evaluation)
 MAX_FATIGUE_POINTS = 100_000
 #: units of the fatigue parameters in the command line's consistent set (mm, N/mm, MPa)

@@ -165,14 +165,14 @@ class History:
             if s.nu != first.nu:
                 raise ValueError(f"`stresses[{i}]` has nu = {s.nu!r}, `stresses[0]` nu = {first.nu!r}: "
                                  "a history needs one material")
-        stack = [np.stack([getattr(s, k) for s in stresses]) for k in ("sxx", "szz", "sxz")]
-        for k, arr in zip(("sxx", "szz", "sxz"), stack):
+        sxx, szz, sxz = (np.stack([getattr(s, k) for s in stresses]) for k in ("sxx", "szz", "sxz"))
+        for k, arr in zip(("sxx", "szz", "sxz"), (sxx, szz, sxz)):
             if not np.all(np.isfinite(arr)):
                 raise ValueError(f"`stresses` hold a non-finite {k}: every stress must be finite")
         m = len(stresses)
         Qs = np.full(m, np.nan) if Q is None else np.asarray(Q, float).reshape(m)
         br = np.full(m, "", dtype=object) if branch is None else np.asarray(branch, dtype=object).reshape(m)
-        return cls(first.x, first.z, *stack, nu=first.nu, Q=Qs, branch=br)
+        return cls(first.x, first.z, sxx, szz, sxz, nu=first.nu, Q=Qs, branch=br)
 
     @property
     def states(self) -> int:
