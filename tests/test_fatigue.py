@@ -285,7 +285,7 @@ def test_bad_input_is_refused_by_name(hertz_cycle, surface):
 # ---------------------------------------------------------------------------------------
 CLI_E, CLI_NU = 210_000.0, 0.3
 ARGS = ["fatigue", "--R1", "10", "--R2", "10", "--b", "0", "--E", str(CLI_E), "--nu", str(CLI_NU),
-        "--P", "100", "--Q-max", "20", "--f", "0.5", "--nx", "11", "--nz", "4", "--states", "3"]
+        "--P", "100", "--Q-max", "20", "--f", "0.5", "--nx", "11", "--nz", "4", "--states", "3", "--ns", "21"]
 
 
 def _err(capsys):
@@ -348,6 +348,7 @@ def test_cli_writes_csv_vtu_png_and_prints_the_hot_spots(capsys, tmp_path):
     (["--k", "-1"], r"`k` = -1.0 must lie in \[0, 10\]"),
     (["--nx", "1"], r"`--nx` = 1 must lie in \[2, "),
     (["--depth", "0"], r"`--depth` = 0.0 must be > 0"),
+    (["--ns", "1"], r"`--ns` = 1 must lie in \[2, "),
     (["--Q-max", "60"], r"\|`Q_max`\| = 60 >= f P = 50"),
     (["--sigma-bulk", "nan"], r"`--sigma-bulk` = nan"),
 ])

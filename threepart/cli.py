@@ -457,6 +457,9 @@ def _fatigue_args(p: argparse.ArgumentParser) -> None:
     gr.add_argument("--nx", type=int, default=41, help="points along x, >= 2 (default 41)")
     gr.add_argument("--nz", type=int, default=21, help="points in depth, >= 2 (default 21; the "
                                                       "first row is the surface, z = 0)")
+    gr.add_argument("--ns", type=int, default=201,
+                    help="surface points over the contact for Ruiz's parameters, >= 2 (default "
+                         "201, at the midpoints of equal parts, with the grid's surface row)")
     gr.add_argument("--depth", type=float, default=1.0,
                     help="depth of the grid as a multiple of the contact width W = a + c, > 0 "
                          "(default 1)")
@@ -484,6 +487,7 @@ def _fatigue_iv(args: argparse.Namespace) -> None:
     integer("--states", args.states, 2, 1000)
     integer("--nx", args.nx, 2, MAX_FATIGUE_POINTS // 2)
     integer("--nz", args.nz, 2, MAX_FATIGUE_POINTS // 2)
+    integer("--ns", args.ns, 2, MAX_FATIGUE_POINTS)
     if args.nx * args.nz > MAX_FATIGUE_POINTS:
         raise ValueError(f"`--nx` x `--nz` = {args.nx * args.nz} points exceeds "
                          f"{MAX_FATIGUE_POINTS}, the most this command evaluates")
@@ -550,6 +554,8 @@ def _fatigue_grid(args: argparse.Namespace, normal: Any) -> tuple[Any, Any]:
 
 
 def _cmd_fatigue(args: argparse.Namespace) -> int:
+    import numpy as np
+
     from threepart.fatigue import fatigue
     from threepart.material import similar_pair
     from threepart.methods import describe
@@ -560,7 +566,10 @@ def _cmd_fatigue(args: argparse.Namespace) -> int:
     A = similar_pair(args.E, args.nu)
     cycle = _fretting(args, punch, A)
     x, z = _fatigue_grid(args, cycle.normal)
-    res = fatigue(cycle, x, z, E=args.E, nu=args.nu, k=args.k)
+    a, c = cycle.normal.a, cycle.normal.c
+    line = -a + (a + c) * (np.arange(args.ns) + 0.5) / args.ns   # inside: never on a contact end
+    res = fatigue(cycle, x, z, E=args.E, nu=args.nu, k=args.k,
+                  surface=np.union1d(np.ravel(x), line))
     if args.csv is not None:
         _fatigue_csv(args.csv, res)
     if args.vtu is not None:
@@ -604,12 +613,15 @@ def _fatigue_print(args: argparse.Namespace, res: Any, cycle: Any, A: float, hea
     print(f"cycle      Q_max {args.Q_max:g} N/mm, f {args.f:g}, sigma_bulk {args.sigma_bulk:g} MPa, "
           f"{res.states} distinct states")
     print(f"grid       {args.nx} x {args.nz} points, x over [-a - W/4, c + W/4], z over "
-          f"[0, {args.depth:g} W]")
+          f"[0, {args.depth:g} W]; Ruiz also at {args.ns} surface points over the contact")
     print("hot spots (units: mm, N/mm, MPa, or any consistent set):")
     for name, row in hot.items():
         unit = FATIGUE_UNITS[name]
         where = f"x = {row['x']:.6g} mm, z = {row['z']:.6g} mm"
         plane = f", plane theta = {row['theta']:.2f} deg" if "theta" in row else ""
+        if name.startswith("ruiz") and row["value"] == 0.0:
+            where = "no surface point in tension where the contact slips" if name == "ruiz_ffdp" \
+                else "no surface point slips"
         print(f"  {_FATIGUE_LABELS[name]:<26} {row['value']:.6g} {unit}  at {where}{plane}")
 
 
@@ -688,12 +700,16 @@ def _fatigue_plot(path: str, res: Any, cycle: Any) -> None:
         ax.legend(loc="lower right", fontsize=8)
     ax = axes.flat[3]
     r = res.ruiz
-    ax.plot(r.x, r.ffdp.value, label=f"FFDP [{FATIGUE_UNITS['ruiz_ffdp']}]")
-    ax.plot(r.x, r.fdp.value, label=f"FDP [{FATIGUE_UNITS['ruiz_fdp']}]")
+    ax.plot(r.x, r.ffdp.value, "C0", label="FFDP s_xx q delta")
+    ax.set_ylabel(f"FFDP [{FATIGUE_UNITS['ruiz_ffdp']}]", color="C0")
     ax.axvspan(-normal.a, normal.c, color="red", alpha=0.1, label="contact")
+    twin = ax.twinx()   # FDP has other units
+    twin.plot(r.x, r.fdp.value, "C1--", label="FDP q delta")
+    twin.set_ylabel(f"FDP [{FATIGUE_UNITS['ruiz_fdp']}]", color="C1")
     ax.set_xlabel("x [mm]")
     ax.set_title("Ruiz at the surface")
-    ax.legend(fontsize=8)
+    ax.legend(handles=[*ax.get_legend_handles_labels()[0], *twin.get_legend_handles_labels()[0]],
+              fontsize=8, loc="upper center")
     try:
         write_file(path, lambda p: fig.savefig(p, format="png", dpi=110), arg="--plot")
     finally:

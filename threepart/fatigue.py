@@ -528,7 +528,7 @@ class Fatigue:
 
 
 def fatigue(cycle: FrettingResult, x: ArrayLike, z: ArrayLike, *, E: float, nu: float = NU,
-            k: float = K_FINDLEY, states: Any = None) -> Fatigue:
+            k: float = K_FINDLEY, states: Any = None, surface: ArrayLike | None = None) -> Fatigue:
     """The von Mises range, SWT, Findley and Ruiz parameters of ``cycle`` at ``(x, z)``.
 
     Parameters
@@ -536,24 +536,28 @@ def fatigue(cycle: FrettingResult, x: ArrayLike, z: ArrayLike, *, E: float, nu: 
     cycle
         A fretting cycle of any method.
     x, z
-        Points, broadcast against each other, ``z >= 0``. Ruiz's parameters are
-        taken at those with ``z = 0``; if there are none, at the distinct ``x``
-        on the surface.
+        Points, broadcast against each other, ``z >= 0``.
     E, nu
         Young's modulus (> 0) and Poisson's ratio of the substrate (plane strain).
     k
         Findley's constant (default :data:`K_FINDLEY`).
     states
         Indices of the states to use (default all; :func:`stress_history`).
+    surface
+        Surface points ``x`` for Ruiz's parameters. Default: the points of ``(x, z)``
+        at ``z = 0`` or, if there are none, the distinct ``x`` on the surface. Ruiz's
+        tension lives in a narrow band at the slip zones' outer ends, so a grid's
+        row is often too coarse for its hot spot: give a fine line here.
     """
     E = positive("E", E)
     nu = poisson(nu)
     k = _findley_k(k)
+    xs = None if surface is None else reals("surface", surface)
     h = stress_history(cycle, x, z, states=states, nu=nu)
-    if np.any(h.z == 0):
-        surface = h
+    if xs is None and np.any(h.z == 0):
+        top = h
     else:
-        xs = np.unique(h.x)
-        surface = stress_history(cycle, xs, np.zeros_like(xs), states=states, nu=nu)
-    return Fatigue(von_mises_range(h), swt(h, E=E), findley(h, k=k), ruiz(cycle, surface),
+        xs = np.unique(h.x) if xs is None else xs
+        top = stress_history(cycle, xs, np.zeros_like(xs), states=states, nu=nu)
+    return Fatigue(von_mises_range(h), swt(h, E=E), findley(h, k=k), ruiz(cycle, top),
                    E=E, nu=nu, k=k, states=h.states)
