@@ -417,7 +417,6 @@ _FATIGUE_LABELS = {"von_mises_range": "von Mises range", "swt": "SWT (critical p
 
 def _fatigue_args(p: argparse.ArgumentParser) -> None:
     from threepart import registry
-    from threepart.fatigue import K_FINDLEY
 
     g = p.add_argument_group("punch geometry (eq. 2)")
     g.add_argument("--R1", type=float, required=True, help=_labelled("left edge radius, > 0", "R1"))
@@ -430,8 +429,8 @@ def _fatigue_args(p: argparse.ArgumentParser) -> None:
     m.add_argument("--E", type=float, required=True,
                    help=_labelled("Young's modulus (also for the SWT strains)", "E"))
     m.add_argument("--nu", type=float, required=True, help="Poisson's ratio, in (-1, 0.5)")
-    m.add_argument("--k", type=float, default=K_FINDLEY,
-                   help=f"Findley's constant, in [0, 10] (default {K_FINDLEY})")
+    m.add_argument("--k", type=float,   # None: threepart.fatigue.K_FINDLEY, read when used
+                   help="Findley's constant, in [0, 10] (default {k_findley})")
     ld = p.add_argument_group("loads: P at s, then the cycle Q = 0 -> Q_max -> -Q_max -> Q_max")
     ld.add_argument("--P", type=float, required=True,
                     help=_labelled("compressive normal load per unit length, > 0", "P"))
@@ -472,17 +471,32 @@ def _fatigue_args(p: argparse.ArgumentParser) -> None:
     p.add_argument("--json", action="store_true", help="print strict JSON instead of text")
 
 
+class _FatigueHelp(argparse.HelpFormatter):
+    """The help of ``fatigue``: Findley's default constant read only when help is shown.
+
+    Building the parser loads no numpy (see :data:`threepart._HOMES`).
+    """
+
+    def _get_help_string(self, action: argparse.Action) -> str | None:
+        text = super()._get_help_string(action)
+        if text and "{k_findley}" in text:
+            from threepart.fatigue import K_FINDLEY
+
+            text = text.replace("{k_findley}", f"{K_FINDLEY:g}")
+        return text
+
+
 def _fatigue_iv(args: argparse.Namespace) -> None:
-    """Check the fatigue command's own options before any numerics."""
+    """Check the fatigue command's own options before any numerics (``--k`` gets its default)."""
     import math
 
-    from threepart.fatigue import _findley_k
+    from threepart.fatigue import K_FINDLEY, findley_k
     from threepart.output import check_file
     from threepart.validate import finite, integer, poisson, positive
 
     positive("--E", args.E)
     poisson(args.nu)
-    _findley_k(args.k)
+    args.k = findley_k(K_FINDLEY if args.k is None else args.k)
     finite("--sigma-bulk", args.sigma_bulk)
     integer("--states", args.states, 2, 1000)
     integer("--nx", args.nx, 2, MAX_FATIGUE_POINTS // 2)
@@ -791,7 +805,7 @@ def build_parser() -> argparse.ArgumentParser:
                        epilog="Units: mm, N/mm, MPa, 1/MPa, or any consistent set (the parameters "
                               "then follow: SWT, Findley and the von Mises range in the stress "
                               "unit, Ruiz's FDP in stress x length, FFDP in stress^2 x length). "
-                              "Definitions: docs/FATIGUE.md.")
+                              "Definitions: docs/FATIGUE.md.", formatter_class=_FatigueHelp)
     _fatigue_args(p)
     p.set_defaults(func=_cmd_fatigue)
     return parser

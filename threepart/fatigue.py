@@ -33,6 +33,7 @@ stress_history      -- the history of a cycle's states at points (x, z)
 fatigue             -- the four parameters of a cycle on points (x, z), in one :class:`Fatigue`
 HotSpot             -- where a parameter peaks, how much, and on which plane
 critical_plane      -- max over plane angles of a function of (σn, τ) histories
+findley_k           -- Findley's constant checked: a float in [0, 10]
 K_FINDLEY           -- the default Findley constant k = 0.3
 """
 from __future__ import annotations
@@ -50,7 +51,7 @@ from .validate import finite, integer, poisson, positive, reals
 
 __all__ = ["HotSpot", "Parameter", "Ruiz", "Fatigue", "History", "stress_history",
            "von_mises_range", "swt", "findley", "ruiz", "fatigue", "critical_plane",
-           "K_FINDLEY", "COARSE_ANGLES", "ZOOM_LEVELS"]
+           "K_FINDLEY", "COARSE_ANGLES", "ZOOM_LEVELS", "findley_k"]
 
 #: Findley's constant ``k`` by default: 0.3 is typical of steels and titanium alloys
 #: (Socie & Marquis, *Multiaxial Fatigue*, 2000, report 0.2–0.3); give the material's own
@@ -421,7 +422,7 @@ def swt(history: History | Sequence[Stress], *, E: float) -> Parameter:
     return _parameter("swt", h.x, h.z, value, theta)
 
 
-def _findley_k(k: Any) -> float:
+def findley_k(k: Any) -> float:
     """Findley's constant as a float in ``[0, 10]``, else ``ValueError`` naming ``k``."""
     v = finite("k", k)
     if not 0.0 <= v <= 10.0:
@@ -444,7 +445,7 @@ def findley(history: History | Sequence[Stress], *, k: float = K_FINDLEY) -> Par
         Findley's material constant, ``0 <= k <= 10``; default :data:`K_FINDLEY` = 0.3.
     """
     h = _history(history)
-    k = _findley_k(k)
+    k = findley_k(k)
 
     def plane(sn: np.ndarray, tau: np.ndarray, trace: np.ndarray) -> np.ndarray:
         return 0.5 * (tau.max(axis=0) - tau.min(axis=0)) + k * sn.max(axis=0)
@@ -551,7 +552,7 @@ def fatigue(cycle: FrettingResult, x: ArrayLike, z: ArrayLike, *, E: float, nu: 
     """
     E = positive("E", E)
     nu = poisson(nu)
-    k = _findley_k(k)
+    k = findley_k(k)
     xs = None if surface is None else reals("surface", surface)
     h = stress_history(cycle, x, z, states=states, nu=nu)
     if xs is None and np.any(h.z == 0):
