@@ -403,3 +403,27 @@ def test_cli_passes_sigma_bulk_to_the_method_or_refuses_in_one_line(capsys, monk
     assert hot["value"] == pytest.approx(float(want[0]), rel=1e-6)
     assert main([*ARGS, "--method", "nobulk_toy", "--sigma-bulk", str(S)]) == 2
     assert "`--sigma-bulk` = 300: method 'nobulk_toy' does not take a bulk stress" in _err(capsys)
+
+
+def test_any_method_s_cycle_gives_the_same_parameters_sie_against_closed_form():
+    """The module asks nothing of a method but the shared interface: the SIE's Hertz cycle gives
+    the closed form's four parameters, to the table's SIE shear tolerance, and the same hot
+    spots (mirror-image ties broken alike, HOT_SPOT_TIE)."""
+    from threepart.tolerances import tolerance
+
+    limit = tolerance("sie", "q_states").limit
+    out = {}
+    for name in ("closedform", "sie"):
+        cycle = registry.get(name).fretting(Punch(R1=R, R2=R, b=0.0), P, 0.0, A=A, Q_max=Q_MAX, f=F,
+                                            states=3)
+        a = cycle.normal.a
+        x, z = np.linspace(-1.25 * a, 1.25 * a, 7)[None, :], np.linspace(0.0, 2 * a, 3)[:, None]
+        line = -a + 2 * a * (np.arange(21) + 0.5) / 21
+        out[name] = fat.fatigue(cycle, x, z, E=E, nu=NU, surface=np.union1d(x, line))
+    ref, sie = out["closedform"], out["sie"]
+    for got, want in [(sie.von_mises_range, ref.von_mises_range), (sie.swt, ref.swt),
+                      (sie.findley, ref.findley), (sie.ruiz.fdp, ref.ruiz.fdp),
+                      (sie.ruiz.ffdp, ref.ruiz.ffdp)]:
+        scale = float(np.max(np.abs(want.value)))
+        assert np.max(np.abs(got.value - want.value)) <= limit * scale, got.name
+        assert (got.hot.x, got.hot.z) == (want.hot.x, want.hot.z), got.name

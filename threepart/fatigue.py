@@ -51,7 +51,7 @@ from .validate import finite, integer, poisson, positive, reals
 
 __all__ = ["HotSpot", "Parameter", "Ruiz", "Fatigue", "History", "stress_history",
            "von_mises_range", "swt", "findley", "ruiz", "fatigue", "critical_plane",
-           "K_FINDLEY", "COARSE_ANGLES", "ZOOM_LEVELS", "findley_k"]
+           "K_FINDLEY", "COARSE_ANGLES", "ZOOM_LEVELS", "HOT_SPOT_TIE", "findley_k"]
 
 #: Findley's constant ``k`` by default: 0.3 is typical of steels and titanium alloys
 #: (Socie & Marquis, *Multiaxial Fatigue*, 2000, report 0.2–0.3); give the material's own
@@ -63,6 +63,9 @@ COARSE_ANGLES = 180
 ZOOM_LEVELS = 8
 #: local maxima of the coarse scan that are zoomed into, per point (the best is kept)
 CANDIDATES = 2
+#: peaks within this fraction of the largest value are ties: the hot spot is the first of them
+#: in the points' order (a symmetric cycle's two mirror-image peaks differ by rounding only)
+HOT_SPOT_TIE = 1e-6
 #: points per block of the critical-plane scan (memory: states x block x 8 bytes per array)
 _BLOCK = 4096
 
@@ -93,7 +96,8 @@ class Parameter:
         The critical plane's angle at each point (rad, ``[0, π)``, the normal from ``+x``
         toward ``+z``); ``None`` for a parameter without a plane.
     hot
-        The largest value, where (the first such point) and on which plane.
+        The largest value, where and on which plane: the first point, in the points'
+        order, within :data:`HOT_SPOT_TIE` (1e-6) of the largest value, and its value.
     """
 
     name: str
@@ -106,7 +110,10 @@ class Parameter:
 
 def _parameter(name: str, x: np.ndarray, z: np.ndarray, value: np.ndarray,
                theta: np.ndarray | None = None) -> Parameter:
-    i = int(np.argmax(value))
+    top = float(np.max(value))
+    # the first point within HOT_SPOT_TIE of the largest value: mirror-image peaks (a symmetric
+    # cycle) then give the same hot spot whatever the rounding of each method
+    i = int(np.argmax(value >= top - HOT_SPOT_TIE * abs(top)))
     hot = HotSpot(float(x.flat[i]), float(z.flat[i]), float(value.flat[i]),
                   None if theta is None else float(theta.flat[i]))
     return Parameter(name, x, z, value, theta, hot)
