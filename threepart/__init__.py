@@ -47,6 +47,16 @@ Stresses (threepart.stress)
 Stress              -- sxx, szz, sxz in the substrate, principal, von Mises, Tresca (tension > 0)
 hilbert             -- (1/pi) PV int f(t)/(t - x) dt over the contact, kinks respected
 
+Fretting fatigue (threepart.fatigue)
+----------------
+stress_history      -- the stresses of a cycle's states at points (x, z)
+von_mises_range     -- max over pairs of states of the von Mises stress of the difference
+swt                 -- Smith-Watson-Topper on the critical plane
+findley             -- Findley on the critical plane, tau_a + k sigma_n,max
+ruiz                -- Ruiz's FDP (tau delta) and FFDP (sigma_xx tau delta) at the surface
+HotSpot             -- where a parameter is largest, how much, and on which plane
+(all four at once: ``threepart.fatigue.fatigue``; the module keeps the name ``fatigue``)
+
 Errors (one family, raised by every solver)
 ------
 LiftOffError        -- s (or P) puts a contact edge inside the central segment (ValueError)
@@ -79,6 +89,8 @@ _HOMES = {
     "solve": "methods", "METHODS": "methods", "CHOICES": "methods",
     "Stress": "stress",
     "hilbert": "stress",
+    "stress_history": "fatigue", "von_mises_range": "fatigue",
+    "swt": "fatigue", "findley": "fatigue", "ruiz": "fatigue", "HotSpot": "fatigue",
 }
 _SUBPACKAGES = ("closedform", "sie", "fem", "meshes", "reports")
 
@@ -92,6 +104,7 @@ if TYPE_CHECKING:   # pragma: no cover - for type checkers and IDEs only
     from .methods import CHOICES, METHODS, solve
     from .punch import Punch
     from .results import NormalResult, Peak, SlipResult
+    from .fatigue import HotSpot, findley, ruiz, stress_history, swt, von_mises_range
     from .stress import Stress, hilbert
     from .validate import TILTS
 

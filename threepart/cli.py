@@ -8,6 +8,7 @@ verify   verification run: closed form against SIE and FEM, tolerance report
 figures  the paper's result figures, with the SIE solution as markers
 map      where the half-plane formulas stop: the finite-body validity map, on dask.distributed
 export-refs  the catalogue's reference solutions as a versioned dataset (JSON + CSV, JSON schema)
+fatigue  fretting-fatigue parameters of a fretting cycle: hot spots, CSV, VTU and a contour plot
 
 --method auto (default) uses the paper's closed form where it holds and the SIE
 where it does not (past lift-off, the punch on one corner, a stick zone that
@@ -58,7 +59,7 @@ UNITS: dict[str, str] = {
 #: options that take a number; ``--s -1e-3`` is read as ``--s=-1e-3`` (argparse alone
 #: would take ``-1e-3`` for an option)
 NUMERIC_OPTIONS = ("--R1", "--R2", "--b", "--R", "--A", "--E", "--nu", "--P", "--s", "--Q", "--f",
-                   "--sigma-bulk")
+                   "--Q-max", "--sigma-bulk", "--k", "--depth")   # --Q-max, --k, --depth: fatigue
 #: options that take a comma-separated list of numbers (``--x -0.5,0.2`` is read as ``--x=-0.5,0.2``)
 LIST_OPTIONS = ("--x",)
 #: the most points ``--grid`` prints
@@ -66,7 +67,7 @@ MAX_GRID = 1_000_000
 
 
 #: the sub-commands (kept in step with :func:`build_parser` by tests/test_cli.py)
-COMMANDS = ("solve", "slip", "verify", "figures", "map", "export-refs")
+COMMANDS = ("solve", "slip", "verify", "figures", "map", "export-refs", "fatigue")
 
 
 class UsageError(Exception):
@@ -414,6 +415,333 @@ def _cmd_export_refs(args: argparse.Namespace) -> int:
     return int(refs_main(out=args.out, force=args.force, cases=args.cases))
 
 
+# --- threepart fatigue ---------------------------------------------------------------------
+
+#: the most grid points ``threepart fatigue`` evaluates (each state costs a stress evaluation)
+MAX_FATIGUE_POINTS = 100_000
+#: units of the fatigue parameters in the command line's consistent set (mm, N/mm, MPa)
+FATIGUE_UNITS = {"von_mises_range": "MPa", "swt": "MPa", "findley": "MPa",
+                 "ruiz_fdp": "MPa mm", "ruiz_ffdp": "MPa^2 mm", "theta": "deg"}
+_FATIGUE_LABELS = {"von_mises_range": "von Mises range", "swt": "SWT (critical plane)",
+                   "findley": "Findley (critical plane)", "ruiz_ffdp": "Ruiz FFDP s_xx q delta",
+                   "ruiz_fdp": "Ruiz FDP q delta"}
+
+
+def _fatigue_args(p: argparse.ArgumentParser) -> None:
+    from threepart import registry
+
+    g = p.add_argument_group("punch geometry (eq. 2)")
+    g.add_argument("--R1", type=float, required=True, help=_labelled("left edge radius, > 0", "R1"))
+    g.add_argument("--R2", type=float, required=True, help=_labelled("right edge radius, > 0", "R2"))
+    g.add_argument("--b", type=float, required=True,
+                   help=_labelled("half-width of the central segment, >= 0", "b"))
+    g.add_argument("--R", type=float, default=float("inf"),
+                   help=_labelled("central radius: inf (flat, default), negative for concave", "R"))
+    m = p.add_argument_group("material (two similar bodies, plane strain: A = 4(1 - nu^2)/E)")
+    m.add_argument("--E", type=float, required=True,
+                   help=_labelled("Young's modulus (also for the SWT strains)", "E"))
+    m.add_argument("--nu", type=float, required=True, help="Poisson's ratio, in (-1, 0.5)")
+    m.add_argument("--k", type=float,   # None: threepart.fatigue.K_FINDLEY, read when used
+                   help="Findley's constant, in [0, 10] (default {k_findley})")
+    ld = p.add_argument_group("loads: P at s, then the cycle Q = 0 -> Q_max -> -Q_max -> Q_max")
+    ld.add_argument("--P", type=float, required=True,
+                    help=_labelled("compressive normal load per unit length, > 0", "P"))
+    ld.add_argument("--s", type=float, default=0.0,
+                    help=_labelled("lever arm of P, positive to the right", "s"))
+    ld.add_argument("--Q-max", dest="Q_max", type=float, required=True,
+                    help=_labelled("amplitude of the shear force the punch exerts on the substrate "
+                                   "along +x, 0 < Q_max < f P", "Q"))
+    ld.add_argument("--f", type=float, required=True, help="coefficient of friction, > 0")
+    ld.add_argument("--sigma-bulk", dest="sigma_bulk", type=float, default=0.0,
+                    help="bulk stress sigma_xx in the substrate at Q_max, tension positive, in "
+                         "phase with Q [MPa] (default 0)")
+    ld.add_argument("--tilt", choices=("free", "suppressed"), default="free")
+    mt = p.add_argument_group("method")
+    mt.add_argument("--method", choices=("auto", *registry.names()), default="auto",
+                    help="auto (default): the closed form where it holds, else the SIE; or one method")
+    mt.add_argument("--mesh", choices=("quick", "default", "fine"), default="default",
+                    help="FE mesh preset for --method fem (default: default)")
+    mt.add_argument("--states", type=int, default=5,
+                    help="recorded states per branch of the cycle, >= 2 (default 5; +-Q_max are "
+                         "always recorded); each distinct state costs one stress evaluation")
+    gr = p.add_argument_group("grid under the contact: x over [-a - W/4, c + W/4], z over [0, depth W]")
+    gr.add_argument("--nx", type=int, default=41, help="points along x, >= 2 (default 41)")
+    gr.add_argument("--nz", type=int, default=21, help="points in depth, >= 2 (default 21; the "
+                                                      "first row is the surface, z = 0)")
+    gr.add_argument("--ns", type=int, default=201,
+                    help="surface points over the contact for Ruiz's parameters, >= 2 (default "
+                         "201, at the midpoints of equal parts, with the grid's surface row)")
+    gr.add_argument("--depth", type=float, default=1.0,
+                    help="depth of the grid as a multiple of the contact width W = a + c, > 0 "
+                         "(default 1)")
+    out = p.add_argument_group("output files (each a new file, or one threepart wrote there and "
+                               "that is unchanged; never over anything else)")
+    out.add_argument("--csv", metavar="FILE", help="the fields at the grid points, as CSV")
+    out.add_argument("--vtu", metavar="FILE",
+                     help="the fields as a VTU structured grid of quads for ParaView (y = -z)")
+    out.add_argument("--plot", metavar="FILE.png", help="contour plots under the contact, as PNG")
+    p.add_argument("--json", action="store_true", help="print strict JSON instead of text")
+
+
+class _FatigueHelp(argparse.HelpFormatter):
+    """The help of ``fatigue``: Findley's default constant read only when help is shown.
+
+    Building the parser loads no numpy (see :data:`threepart._HOMES`).
+    """
+
+    def _get_help_string(self, action: argparse.Action) -> str | None:
+        text = super()._get_help_string(action)
+        if text and "{k_findley}" in text:
+            from threepart.fatigue import K_FINDLEY
+
+            text = text.replace("{k_findley}", f"{K_FINDLEY:g}")
+        return text
+
+
+def _fatigue_iv(args: argparse.Namespace) -> None:
+    """Check the fatigue command's own options before any numerics (``--k`` gets its default)."""
+    import math
+
+    from threepart.fatigue import K_FINDLEY, findley_k
+    from threepart.output import check_file
+    from threepart.validate import finite, integer, poisson, positive
+
+    positive("--E", args.E)
+    poisson(args.nu)
+    args.k = findley_k(K_FINDLEY if args.k is None else args.k)
+    finite("--sigma-bulk", args.sigma_bulk)
+    integer("--states", args.states, 2, 1000)
+    integer("--nx", args.nx, 2, MAX_FATIGUE_POINTS // 2)
+    integer("--nz", args.nz, 2, MAX_FATIGUE_POINTS // 2)
+    integer("--ns", args.ns, 2, MAX_FATIGUE_POINTS)
+    if args.nx * args.nz > MAX_FATIGUE_POINTS:
+        raise ValueError(f"`--nx` x `--nz` = {args.nx * args.nz} points exceeds "
+                         f"{MAX_FATIGUE_POINTS}, the most this command evaluates")
+    depth = positive("--depth", args.depth)
+    if not depth <= 100:
+        raise ValueError(f"`--depth` = {args.depth!r} must be <= 100 contact widths")
+    files = [(a, getattr(args, a)) for a in ("csv", "vtu", "plot") if getattr(args, a) is not None]
+    seen: dict[str, str] = {}
+    for arg, path in files:
+        import os
+
+        key = os.path.abspath(path)
+        if key in seen:
+            raise ValueError(f"`--{arg}` and `--{seen[key]}` name the same file {path!r}")
+        seen[key] = arg
+        check_file(path, arg=f"--{arg}")
+    if not math.isfinite(args.s):
+        raise ValueError(f"`--s` = {args.s!r} must be a finite number")
+
+
+def _fretting(args: argparse.Namespace, punch: Any, A: float) -> Any:
+    """The fretting cycle by ``--method`` (``auto``: the closed form, else the SIE where it refuses)."""
+    from threepart import registry
+    from threepart.methods import AUTO, FALLBACK_ON
+
+    def run(name: str) -> Any:
+        m = registry.get(name)
+        if m.fretting is None:
+            raise ValueError(f"method {name!r} has no fretting cycle")
+        options: dict[str, Any] = {"mesh": args.mesh} if "mesh" in m.options else {}
+        if m.default_nu is not None:
+            options["nu"] = args.nu
+        if args.sigma_bulk != 0.0:   # passed only when asked for, to methods that take it
+            options["sigma_bulk"] = args.sigma_bulk
+        try:
+            return m.fretting(punch, args.P, args.s, A=A, tilt=args.tilt, Q_max=args.Q_max, f=args.f,
+                              states=args.states, normal=None, **options)
+        except TypeError as exc:
+            if "sigma_bulk" in str(exc):
+                raise ValueError(f"`--sigma-bulk` = {args.sigma_bulk:g}: method {name!r} does not "
+                                 "take a bulk stress in its fretting cycle; give --sigma-bulk 0 "
+                                 "or another --method") from None
+            raise
+
+    if args.method != "auto":
+        return run(args.method)
+    first, fallback = AUTO
+    try:
+        return run(first)
+    except FALLBACK_ON as refusal:
+        why = f"the closed form does not hold here: {' '.join(str(refusal).split())}"
+    cycle = run(fallback)
+    cycle.info["auto"] = why
+    return cycle
+
+
+def _fatigue_grid(args: argparse.Namespace, normal: Any) -> tuple[Any, Any]:
+    import numpy as np
+
+    W = normal.a + normal.c
+    x = np.linspace(-normal.a - 0.25 * W, normal.c + 0.25 * W, args.nx)
+    z = np.linspace(0.0, args.depth * W, args.nz)
+    return x[None, :], z[:, None]   # fields of shape (nz, nx): row 0 the surface
+
+
+def _cmd_fatigue(args: argparse.Namespace) -> int:
+    import numpy as np
+
+    from threepart.fatigue import fatigue
+    from threepart.material import similar_pair
+    from threepart.methods import describe
+    from threepart.punch import Punch
+
+    punch = Punch(R1=args.R1, R2=args.R2, b=args.b, R=args.R)
+    _fatigue_iv(args)
+    A = similar_pair(args.E, args.nu)
+    cycle = _fretting(args, punch, A)
+    x, z = _fatigue_grid(args, cycle.normal)
+    a, c = cycle.normal.a, cycle.normal.c
+    line = -a + (a + c) * (np.arange(args.ns) + 0.5) / args.ns   # inside: never on a contact end
+    res = fatigue(cycle, x, z, E=args.E, nu=args.nu, k=args.k,
+                  surface=np.union1d(np.ravel(x), line))
+    if args.csv is not None:
+        _fatigue_csv(args.csv, res)
+    if args.vtu is not None:
+        _fatigue_vtu(args.vtu, res)
+    if args.plot is not None:
+        _fatigue_plot(args.plot, res, cycle)
+    _fatigue_print(args, res, cycle, A, describe(cycle))
+    return 0
+
+
+def _hot_spots(res: Any) -> dict[str, dict[str, Any]]:
+    import math
+
+    out = {}
+    for par in (res.von_mises_range, res.swt, res.findley, res.ruiz.ffdp, res.ruiz.fdp):
+        h = par.hot
+        row: dict[str, Any] = {"value": h.value, "x": h.x, "z": h.z}
+        if h.theta is not None:
+            row["theta"] = math.degrees(h.theta)
+        out[par.name] = row
+    return out
+
+
+def _fatigue_print(args: argparse.Namespace, res: Any, cycle: Any, A: float, headline: str) -> None:
+    normal = cycle.normal
+    hot = _hot_spots(res)
+    doc = {"method": cycle.method, "A": A, "E": args.E, "nu": args.nu, "k": args.k,
+           "P": args.P, "s": args.s, "Q_max": args.Q_max, "f": args.f,
+           "sigma_bulk": args.sigma_bulk, "a": normal.a, "c": normal.c,
+           "states": res.states, "grid": {"nx": args.nx, "nz": args.nz, "depth_W": args.depth},
+           "hot_spots": hot}
+    if args.json:
+        from threepart.output import strict_json
+
+        units = {"A": "1/MPa", "E": "MPa", "P": "N/mm", "s": "mm", "Q_max": "N/mm", "a": "mm",
+                 "c": "mm", "sigma_bulk": "MPa", "x": "mm", "z": "mm", **FATIGUE_UNITS}
+        print(strict_json({**doc, "units": units}, indent=2))
+        return
+    print(headline)
+    print(f"contact    [{-normal.a:.6g}, {normal.c:.6g}] mm (a = {normal.a:.6g}, c = {normal.c:.6g})")
+    print(f"cycle      Q_max {args.Q_max:g} N/mm, f {args.f:g}, sigma_bulk {args.sigma_bulk:g} MPa, "
+          f"{res.states} distinct states")
+    print(f"grid       {args.nx} x {args.nz} points, x over [-a - W/4, c + W/4], z over "
+          f"[0, {args.depth:g} W]; Ruiz also at {args.ns} surface points over the contact")
+    print("hot spots (units: mm, N/mm, MPa, or any consistent set):")
+    for name, row in hot.items():
+        unit = FATIGUE_UNITS[name]
+        where = f"x = {row['x']:.6g} mm, z = {row['z']:.6g} mm"
+        plane = f", plane theta = {row['theta']:.2f} deg" if "theta" in row else ""
+        if name.startswith("ruiz") and row["value"] == 0.0:
+            where = "no surface point in tension where the contact slips" if name == "ruiz_ffdp" \
+                else "no surface point slips"
+        print(f"  {_FATIGUE_LABELS[name]:<26} {row['value']:.6g} {unit}  at {where}{plane}")
+
+
+def _fatigue_columns(res: Any) -> dict[str, Any]:
+    import numpy as np
+
+    cols = {"x": res.von_mises_range.x, "z": res.von_mises_range.z}
+    for par in (res.von_mises_range, res.swt, res.findley):
+        cols[par.name] = par.value
+    for par in (res.swt, res.findley):
+        cols[f"theta_{par.name}"] = np.degrees(par.theta)
+    return cols
+
+
+def _fatigue_csv(path: str, res: Any) -> None:
+    """The fields at the grid points, one row each; Ruiz's (surface) columns only where z = 0."""
+    import numpy as np
+
+    from threepart.output import write_file
+
+    cols = _fatigue_columns(res)
+    units = {"x": "mm", "z": "mm", "theta_swt": "deg", "theta_findley": "deg", **FATIGUE_UNITS}
+    names = [*cols, "ruiz_fdp", "ruiz_ffdp"]
+    flat = {k: np.ravel(v) for k, v in cols.items()}
+    surface = {(float(x)): (fdp, ffdp) for x, fdp, ffdp in
+               zip(res.ruiz.x, res.ruiz.fdp.value, res.ruiz.ffdp.value)}
+    lines = [",".join(f"{k} [{units[k]}]" for k in names)]
+    for i in range(flat["x"].size):
+        row = [f"{flat[k][i]:.17g}" for k in cols]
+        r = surface.get(float(flat["x"][i])) if flat["z"][i] == 0 else None
+        row += [f"{r[0]:.17g}", f"{r[1]:.17g}"] if r is not None else ["", ""]
+        lines.append(",".join(row))
+    write_file(path, "\n".join(lines) + "\n", arg="--csv")
+
+
+def _fatigue_vtu(path: str, res: Any) -> None:
+    """The fields as a VTU grid of quads (points ``(x, -z, 0)``: the surface at y = 0, depth down)."""
+    import meshio
+    import numpy as np
+
+    from threepart.output import write_file
+
+    cols = _fatigue_columns(res)
+    nz, nx = res.von_mises_range.value.shape
+    pts = np.column_stack([np.ravel(cols["x"]), -np.ravel(cols["z"]), np.zeros(nx * nz)])
+    i, j = np.meshgrid(np.arange(nz - 1), np.arange(nx - 1), indexing="ij")
+    n0 = (i * nx + j).ravel()
+    quads = np.column_stack([n0, n0 + 1, n0 + nx + 1, n0 + nx])
+    data = {k: np.ravel(v).astype(float) for k, v in cols.items() if k not in ("x", "z")}
+    data["depth"] = np.ravel(cols["z"]).astype(float)
+    mesh = meshio.Mesh(pts, [("quad", quads)], point_data=data)
+    write_file(path, lambda p: meshio.write(p, mesh, file_format="vtu"), arg="--vtu")
+
+
+def _fatigue_plot(path: str, res: Any, cycle: Any) -> None:
+    """Contours of the three field parameters under the contact (z downward) and Ruiz on the surface."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from threepart.output import write_file
+
+    normal = cycle.normal
+    fig, axes = plt.subplots(2, 2, figsize=(11, 8), constrained_layout=True)
+    for ax, par in zip(axes.flat, (res.von_mises_range, res.swt, res.findley)):
+        cs = ax.contourf(par.x, par.z, par.value, levels=20, cmap="viridis")
+        fig.colorbar(cs, ax=ax, label=f"{_FATIGUE_LABELS[par.name]} [{FATIGUE_UNITS[par.name]}]")
+        ax.plot([-normal.a, normal.c], [0, 0], color="red", lw=4, solid_capstyle="butt",
+                label="contact")
+        ax.plot(par.hot.x, par.hot.z, "w*", ms=12, mec="k", label="hot spot")
+        ax.set_ylim(float(par.z.max()), 0.0)   # z downward
+        ax.set_xlabel("x [mm]")
+        ax.set_ylabel("depth z [mm]")
+        ax.set_title(_FATIGUE_LABELS[par.name])
+        ax.legend(loc="lower right", fontsize=8)
+    ax = axes.flat[3]
+    r = res.ruiz
+    ax.plot(r.x, r.ffdp.value, "C0", label="FFDP s_xx q delta")
+    ax.set_ylabel(f"FFDP [{FATIGUE_UNITS['ruiz_ffdp']}]", color="C0")
+    ax.axvspan(-normal.a, normal.c, color="red", alpha=0.1, label="contact")
+    twin = ax.twinx()   # FDP has other units
+    twin.plot(r.x, r.fdp.value, "C1--", label="FDP q delta")
+    twin.set_ylabel(f"FDP [{FATIGUE_UNITS['ruiz_fdp']}]", color="C1")
+    ax.set_xlabel("x [mm]")
+    ax.set_title("Ruiz at the surface")
+    ax.legend(handles=[*ax.get_legend_handles_labels()[0], *twin.get_legend_handles_labels()[0]],
+              fontsize=8, loc="upper center")
+    try:
+        write_file(path, lambda p: fig.savefig(p, format="png", dpi=110), arg="--plot")
+    finally:
+        plt.close(fig)
+
+
 _FORCE_HELP = ("no longer needed: a rerun replaces threepart's own earlier output in --out (its "
                ".threepart-output.json lists every file with a checksum, and nothing else is there); "
                "a directory holding anything else, or an edited file, is never replaced, with or "
@@ -496,6 +824,14 @@ def build_parser() -> argparse.ArgumentParser:
                    help="export only these catalogue cases (default: every case)")
     p.add_argument("--force", action="store_true", help=_FORCE_HELP)
     p.set_defaults(func=_cmd_export_refs)
+    p = sub.add_parser("fatigue", help="fretting-fatigue parameters of a fretting cycle: hot spots, "
+                                       "CSV, VTU, contour plot",
+                       epilog="Units: mm, N/mm, MPa, 1/MPa, or any consistent set (the parameters "
+                              "then follow: SWT, Findley and the von Mises range in the stress "
+                              "unit, Ruiz's FDP in stress x length, FFDP in stress^2 x length). "
+                              "Definitions: docs/FATIGUE.md.", formatter_class=_FatigueHelp)
+    _fatigue_args(p)
+    p.set_defaults(func=_cmd_fatigue)
     return parser
 
 

@@ -1,0 +1,571 @@
+"""Fretting-fatigue parameters from the stress history of a fretting cycle, for any method.
+
+Every function here works on a :class:`~threepart.results.FrettingResult` of any
+method through the shared interface only: ``cycle.stress(x, z, Q, branch, nu=...)``,
+``cycle.shear(x, Q, branch)``, ``cycle.slip_amplitude(x)``, ``cycle.Q`` and
+``cycle.branch``. None of them special-cases a method. Definitions, units and
+references: ``docs/FATIGUE.md``.
+
+Conventions (README): ``x`` along the surface, ``z >= 0`` the depth into the
+substrate, tension positive; ``q(x)`` is the shear the punch exerts on the
+substrate along ``+x``; plane strain, ``σyy = ν (σxx + σzz)``. A plane is named by
+the angle ``theta`` (rad, in ``[0, π)``) of its normal ``n = (cos θ, sin θ)`` from
+``+x`` toward ``+z``; every plane whose normal lies in the x–z plane is searched.
+On such a plane the normal stress and the in-plane shear are (with ``φ = 2θ``)::
+
+    σn = (σxx + σzz)/2 + (σxx - σzz)/2 cos φ + σxz sin φ
+    τ  = -(σxx - σzz)/2 sin φ + σxz cos φ
+
+and plane-strain Hooke's law gives the normal strain
+``εn = (1 + ν)/E [σn - ν (σxx + σzz)]``.
+
+Parameters (each a :class:`Parameter`: the field on the points and its hot spot)
+----------
+von_mises_range     -- max over pairs of states of the von Mises stress of the stress difference
+swt                 -- Smith–Watson–Topper on the critical plane: max_θ σn,max Δεn / 2
+findley             -- Findley on the critical plane: max_θ (τa + k σn,max)
+ruiz                -- Ruiz's FDP τδ and FFDP σxx τ δ at the surface (Ruiz, Boddington & Chen 1984)
+
+Building blocks
+---------------
+History             -- stacked σxx, σzz, σxz of several states at the same points
+stress_history      -- the history of a cycle's states at points (x, z)
+fatigue             -- the four parameters of a cycle on points (x, z), in one :class:`Fatigue`
+HotSpot             -- where a parameter peaks, how much, and on which plane
+critical_plane      -- max over plane angles of a function of (σn, τ) histories
+findley_k           -- Findley's constant checked: a float in [0, 10]
+K_FINDLEY           -- the default Findley constant k = 0.3
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any, Callable, Sequence
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from .results import BRANCHES, NU, FrettingResult
+from .stress import Stress
+from .validate import finite, integer, poisson, positive, reals
+
+__all__ = ["HotSpot", "Parameter", "Ruiz", "Fatigue", "History", "stress_history",
+           "von_mises_range", "swt", "findley", "ruiz", "fatigue", "critical_plane",
+           "K_FINDLEY", "COARSE_ANGLES", "ZOOM_LEVELS", "HOT_SPOT_TIE", "findley_k"]
+
+#: Findley's constant ``k`` by default: 0.3 is typical of steels and titanium alloys
+#: (Socie & Marquis, *Multiaxial Fatigue*, 2000, report 0.2–0.3); give the material's own
+K_FINDLEY = 0.3
+#: plane angles of the coarse scan over ``φ = 2θ`` in ``[0, 2π)`` (θ in steps of 1°)
+COARSE_ANGLES = 180
+#: zoom levels after the coarse scan: each scans 11 angles over ± the previous step around
+#: the best so far, so the step shrinks 5-fold a level: 2π/180/5**8 = 9e-8 rad in φ
+ZOOM_LEVELS = 8
+#: local maxima of the coarse scan that are zoomed into, per point (the best is kept)
+CANDIDATES = 2
+#: peaks within this fraction of the largest value are ties: the hot spot is the first of them
+#: in the points' order (a symmetric cycle's two mirror-image peaks differ by rounding only)
+HOT_SPOT_TIE = 1e-6
+#: points per block of the critical-plane scan (memory: states x block x 8 bytes per array)
+_BLOCK = 4096
+
+
+@dataclass(frozen=True)
+class HotSpot:
+    """Where a parameter is largest: at ``(x, z)``, ``value``, on the plane ``theta`` (rad) if any."""
+
+    x: float
+    z: float
+    value: float
+    theta: float | None = None
+
+
+@dataclass(frozen=True)
+class Parameter:
+    """A fatigue parameter's field on the points and its hot spot.
+
+    Attributes
+    ----------
+    name
+        ``"von_mises_range"``, ``"swt"``, ``"findley"``, ``"ruiz_fdp"`` or ``"ruiz_ffdp"``.
+    x, z
+        The points (broadcast against each other).
+    value
+        The parameter at the points, of their shape.
+    theta
+        The critical plane's angle at each point (rad, ``[0, π)``, the normal from ``+x``
+        toward ``+z``); ``None`` for a parameter without a plane.
+    hot
+        The largest value, where and on which plane: the first point, in the points'
+        order, within :data:`HOT_SPOT_TIE` (1e-6) of the largest value, and its value.
+    """
+
+    name: str
+    x: np.ndarray
+    z: np.ndarray
+    value: np.ndarray
+    theta: np.ndarray | None
+    hot: HotSpot
+
+
+def _parameter(name: str, x: np.ndarray, z: np.ndarray, value: np.ndarray,
+               theta: np.ndarray | None = None) -> Parameter:
+    top = float(np.max(value))
+    # the first point within HOT_SPOT_TIE of the largest value: mirror-image peaks (a symmetric
+    # cycle) then give the same hot spot whatever the rounding of each method
+    i = int(np.argmax(value >= top - HOT_SPOT_TIE * abs(top)))
+    hot = HotSpot(float(x.flat[i]), float(z.flat[i]), float(value.flat[i]),
+                  None if theta is None else float(theta.flat[i]))
+    return Parameter(name, x, z, value, theta, hot)
+
+
+@dataclass(frozen=True)
+class History:
+    """The stresses of several states of a cycle at the same points, stacked on a first axis.
+
+    Attributes
+    ----------
+    x, z
+        The points, broadcast against each other (shape ``S``).
+    sxx, szz, sxz
+        ``σxx``, ``σzz``, ``σxz`` of each state, shape ``(m,) + S``.
+    nu
+        Poisson's ratio of the plane-strain substrate, ``σyy = ν (σxx + σzz)``.
+    Q, branch
+        The shear force and branch of each state (``NaN`` and ``""`` for a synthetic history).
+    """
+
+    x: np.ndarray
+    z: np.ndarray
+    sxx: np.ndarray
+    szz: np.ndarray
+    sxz: np.ndarray
+    nu: float
+    Q: np.ndarray
+    branch: np.ndarray
+
+    @classmethod
+    def from_stresses(cls, stresses: Sequence[Stress], Q: ArrayLike | None = None,
+                      branch: Sequence[str] | None = None) -> History:
+        """Stack :class:`~threepart.stress.Stress` records of one set of points, one per state.
+
+        Raises
+        ------
+        TypeError
+            An entry that is not a ``Stress``.
+        ValueError
+            Fewer than 2 states, points or ``nu`` that differ between states,
+            non-finite stresses.
+        """
+        stresses = list(stresses)
+        for i, s in enumerate(stresses):
+            if not isinstance(s, Stress):
+                raise TypeError(f"`stresses[{i}]` must be a threepart.stress.Stress, not "
+                                f"{type(s).__name__}")
+        if len(stresses) < 2:
+            raise ValueError(f"`stresses` holds {len(stresses)} state(s): a cycle needs at least 2")
+        first = stresses[0]
+        for i, s in enumerate(stresses[1:], 1):
+            if s.x.shape != first.x.shape or not (np.array_equal(s.x, first.x)
+                                                  and np.array_equal(s.z, first.z)):
+                raise ValueError(f"`stresses[{i}]` is at other points than `stresses[0]`: a history "
+                                 "needs every state at the same points")
+            if s.nu != first.nu:
+                raise ValueError(f"`stresses[{i}]` has nu = {s.nu!r}, `stresses[0]` nu = {first.nu!r}: "
+                                 "a history needs one material")
+        sxx, szz, sxz = (np.stack([getattr(s, k) for s in stresses]) for k in ("sxx", "szz", "sxz"))
+        for k, arr in zip(("sxx", "szz", "sxz"), (sxx, szz, sxz)):
+            if not np.all(np.isfinite(arr)):
+                raise ValueError(f"`stresses` hold a non-finite {k}: every stress must be finite")
+        m = len(stresses)
+        Qs = np.full(m, np.nan) if Q is None else np.asarray(Q, float).reshape(m)
+        br = np.full(m, "", dtype=object) if branch is None else np.asarray(branch, dtype=object).reshape(m)
+        return cls(first.x, first.z, sxx, szz, sxz, nu=first.nu, Q=Qs, branch=br)
+
+    @property
+    def states(self) -> int:
+        """The number of states."""
+        return self.sxx.shape[0]
+
+    def surface(self) -> History:
+        """The history at the points with ``z = 0``, flattened (``ValueError`` if there are none)."""
+        at = (self.z == 0).ravel()
+        if not at.any():
+            raise ValueError("the history has no surface point (z = 0): Ruiz's parameter is a "
+                             "surface quantity")
+        m = self.states
+        pick = lambda a: a.reshape(m, -1)[:, at]   # noqa: E731
+        return History(self.x.ravel()[at], self.z.ravel()[at], pick(self.sxx), pick(self.szz),
+                       pick(self.sxz), self.nu, self.Q, self.branch)
+
+
+def _history(history: Any) -> History:
+    if isinstance(history, History):
+        return history
+    if isinstance(history, (list, tuple)):
+        return History.from_stresses(history)
+    raise TypeError(f"`history` must be a threepart.fatigue.History or a sequence of Stress, not "
+                    f"{type(history).__name__}")
+
+
+def _check_cycle(cycle: Any) -> FrettingResult:
+    if not isinstance(cycle, FrettingResult):
+        raise TypeError(f"`cycle` must be a FrettingResult (from a fretting_cycle), not "
+                        f"{type(cycle).__name__}")
+    return cycle
+
+
+def _points(x: ArrayLike, z: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
+    """``x``, ``z`` as finite float arrays, ``z >= 0``, broadcast against each other."""
+    xa = reals("x", x).reshape(np.shape(x))
+    za = reals("z", z).reshape(np.shape(z))
+    if not (np.all(np.isfinite(xa)) and np.all(np.isfinite(za))):
+        raise ValueError("`x` and `z` must hold finite numbers")
+    if np.any(za < 0):
+        raise ValueError(f"`z` = {float(za[za < 0].flat[0])!r} must be >= 0: z is the depth into "
+                         "the substrate")
+    try:
+        xb, zb = np.broadcast_arrays(xa, za)
+    except ValueError:
+        raise ValueError(f"`x` of shape {xa.shape} and `z` of shape {za.shape} do not broadcast "
+                         "against each other") from None
+    if xb.size == 0:
+        raise ValueError("`x` and `z` hold no point")
+    return xb.copy(), zb.copy()
+
+
+def _states(cycle: FrettingResult, states: Any) -> np.ndarray:
+    """Indices of the recorded states to use: all by default, else ``states`` checked."""
+    n = len(cycle.Q)
+    if states is None:
+        return np.arange(n)
+    if isinstance(states, (str, bytes)) or not hasattr(states, "__len__"):
+        raise TypeError(f"`states` must be a sequence of indices into `cycle.Q`, not "
+                        f"{type(states).__name__}")
+    idx = np.array([integer(f"states[{i}]", s, -n, n - 1) for i, s in enumerate(states)], dtype=int)
+    idx = np.unique(idx % n) if idx.size else idx
+    if idx.size < 2:
+        raise ValueError(f"`states` selects {idx.size} distinct state(s) of the cycle's {n}: a "
+                         "stress range needs at least 2")
+    return idx
+
+
+def _distinct(cycle: FrettingResult, idx: np.ndarray) -> np.ndarray:
+    """``idx`` less the states that repeat an earlier one (same ``Q``, same shear).
+
+    A branch starts where the previous one ended (``Q_max`` on loading and on
+    unloading, ``-Q_max`` on unloading and reloading), so these states appear
+    twice; the shear is compared at 65 points of the contact, to 1e-12 of its
+    largest value, so that a method whose two records differ keeps both.
+    """
+    normal = cycle.normal
+    xs = np.linspace(-normal.a, normal.c, 65)
+    q = {int(i): np.asarray(cycle.shear(xs, float(cycle.Q[i]), str(cycle.branch[i])), float)
+         for i in idx}
+    scale = max(float(np.max(np.abs(v))) for v in q.values()) or 1.0
+    kept: list[int] = []
+    for i in map(int, idx):
+        if not any(cycle.Q[j] == cycle.Q[i] and np.max(np.abs(q[j] - q[i])) <= 1e-12 * scale
+                   for j in kept):
+            kept.append(i)
+    return np.array(kept, dtype=int)
+
+
+def stress_history(cycle: FrettingResult, x: ArrayLike, z: ArrayLike, *, states: Any = None,
+                   nu: float = NU) -> History:
+    """The stresses of a cycle's states at the points ``(x, z)``, ``z >= 0``.
+
+    Parameters
+    ----------
+    cycle
+        A fretting cycle of any method.
+    x, z
+        Points, broadcast against each other; ``z = 0`` is the surface.
+    states
+        Indices into ``cycle.Q`` (and ``cycle.branch``) of the states to use, at
+        least 2 distinct; default all recorded states. States that repeat an
+        earlier one (a branch's first state is the previous branch's last) are
+        evaluated once.
+    nu
+        Poisson's ratio of the substrate, in ``(-1, 0.5)`` (:meth:`FrettingResult.stress`).
+
+    Returns
+    -------
+    History
+    """
+    cycle = _check_cycle(cycle)
+    xb, zb = _points(x, z)
+    nu = poisson(nu)
+    idx = _distinct(cycle, _states(cycle, states))
+    stresses = [cycle.stress(xb, zb, float(cycle.Q[i]), str(cycle.branch[i]), nu=nu) for i in idx]
+    return History.from_stresses(stresses, Q=cycle.Q[idx], branch=cycle.branch[idx])
+
+
+def von_mises_range(history: History | Sequence[Stress]) -> Parameter:
+    """Von Mises range: the largest von Mises stress of the difference of two states.
+
+    ``max_{i<j} σvM(σ_i - σ_j)`` with ``σvM² = ((Δσxx - Δσyy)² + (Δσyy - Δσzz)² +
+    (Δσzz - Δσxx)²)/2 + 3 Δσxz²`` and, in plane strain, ``Δσyy = ν (Δσxx + Δσzz)``.
+
+    Parameters
+    ----------
+    history
+        The states' stresses (:func:`stress_history`, or a sequence of ``Stress``).
+    """
+    h = _history(history)
+    nu = h.nu
+    best = np.zeros(h.x.shape)
+    for i in range(h.states - 1):
+        dxx, dzz, dxz = (a[i + 1:] - a[i] for a in (h.sxx, h.szz, h.sxz))
+        dyy = nu * (dxx + dzz)
+        vm2 = 0.5 * ((dxx - dyy) ** 2 + (dyy - dzz) ** 2 + (dzz - dxx) ** 2) + 3.0 * dxz ** 2
+        best = np.maximum(best, np.sqrt(vm2.max(axis=0)))
+    return _parameter("von_mises_range", h.x, h.z, best)
+
+
+#: a plane function: (σn, τ, σxx + σzz) histories of shape (m, N) -> the parameter, shape (N,)
+PlaneFunction = Callable[[np.ndarray, np.ndarray, np.ndarray], np.ndarray]
+
+
+def _on_planes(ABC: tuple[np.ndarray, np.ndarray, np.ndarray], func: PlaneFunction,
+               phi: np.ndarray | float) -> np.ndarray:
+    """``func`` on the plane ``φ`` (shape ``(N,)`` or scalar) from ``A = (σxx + σzz)/2``, ``B = (σxx - σzz)/2``, ``C = σxz``."""
+    A, B, C = ABC
+    cos, sin = np.cos(phi), np.sin(phi)
+    return func(A + B * cos + C * sin, C * cos - B * sin, 2.0 * A)
+
+
+def critical_plane(history: History | Sequence[Stress], func: PlaneFunction,
+                   ) -> tuple[np.ndarray, np.ndarray]:
+    """The largest value over planes of ``func`` and its plane angle, at each point.
+
+    Parameters
+    ----------
+    history
+        The states' stresses.
+    func
+        ``func(sn, tau, trace)`` of the normal stress ``σn``, the shear ``τ`` on the
+        plane and ``σxx + σzz``, each of shape ``(m, N)`` (states by points), returning
+        the parameter of that plane at each point, shape ``(N,)``.
+
+    Returns
+    -------
+    value, theta
+        The maximum over ``θ`` in ``[0, π)`` and the angle ``θ`` (rad) where it is
+        reached, of the points' shape.
+
+    Notes
+    -----
+    A coarse scan of :data:`COARSE_ANGLES` angles ``φ = 2θ`` finds, per point, the
+    :data:`CANDIDATES` largest local maxima; each is zoomed into :data:`ZOOM_LEVELS`
+    times (11 angles over ± the previous step), to a step of 9e-8 rad in φ. The
+    scan is vectorised over the points and states; the loop is over the angles only.
+    tests/test_fatigue.py checks it against a brute-force scan of 10⁵ angles.
+    """
+    h = _history(history)
+    m = h.states
+    shape = h.x.shape
+    flat = History(h.x.ravel(), h.z.ravel(), h.sxx.reshape(m, -1), h.szz.reshape(m, -1),
+                   h.sxz.reshape(m, -1), h.nu, h.Q, h.branch)
+    N = flat.x.size
+    value, angle = np.empty(N), np.empty(N)
+    step0 = 2 * math.pi / COARSE_ANGLES
+    coarse = np.arange(COARSE_ANGLES) * step0
+    for start in range(0, N, _BLOCK):
+        sl = slice(start, start + _BLOCK)
+        sxx, szz = flat.sxx[:, sl], flat.szz[:, sl]
+        part = (0.5 * (sxx + szz), 0.5 * (sxx - szz), flat.sxz[:, sl])
+        F = np.stack([_on_planes(part, func, p) for p in coarse])            # (angles, n)
+        peak = (F >= np.roll(F, 1, axis=0)) & (F >= np.roll(F, -1, axis=0))
+        ranked = np.argsort(np.where(peak, F, -np.inf), axis=0)[::-1][:CANDIDATES]
+        best_v = np.full(F.shape[1], -np.inf)
+        best_p = np.zeros(F.shape[1])
+        for cand in ranked:
+            phi = coarse[cand]
+            v = F[cand, np.arange(F.shape[1])]
+            step = step0
+            for _ in range(ZOOM_LEVELS):
+                trial = phi[None, :] + np.linspace(-step, step, 11)[:, None]
+                G = np.stack([_on_planes(part, func, t) for t in trial])
+                j = np.argmax(G, axis=0)
+                gv = G[j, np.arange(G.shape[1])]
+                better = gv > v
+                phi = np.where(better, trial[j, np.arange(G.shape[1])], phi)
+                v = np.where(better, gv, v)
+                step /= 5.0
+            take = v > best_v
+            best_v, best_p = np.where(take, v, best_v), np.where(take, phi, best_p)
+        value[sl], angle[sl] = best_v, best_p
+    theta = np.mod(0.5 * angle, math.pi)
+    return value.reshape(shape), theta.reshape(shape)
+
+
+def swt(history: History | Sequence[Stress], *, E: float) -> Parameter:
+    """Smith–Watson–Topper on the critical plane: ``max_θ σn,max(θ) Δεn(θ) / 2``.
+
+    ``σn,max`` is the largest normal stress on the plane over the states and
+    ``Δεn`` the range of its normal strain, ``εn = (1 + ν)/E [σn - ν (σxx + σzz)]``
+    (plane-strain Hooke's law, ``ν`` the history's). Units: stress (strain is
+    dimensionless). Smith, Watson & Topper, *J. Materials* 5 (1970) 767–778; on the
+    critical plane as Szolwinski & Farris, *Wear* 198 (1996) 93–107.
+
+    Parameters
+    ----------
+    history
+        The states' stresses.
+    E
+        Young's modulus of the substrate, > 0, in the stresses' unit.
+    """
+    h = _history(history)
+    E = positive("E", E)
+    factor = (1.0 + h.nu) / E
+    nu = h.nu
+
+    def plane(sn: np.ndarray, tau: np.ndarray, trace: np.ndarray) -> np.ndarray:
+        eps = sn - nu * trace
+        return sn.max(axis=0) * factor * (eps.max(axis=0) - eps.min(axis=0)) / 2.0
+
+    value, theta = critical_plane(h, plane)
+    return _parameter("swt", h.x, h.z, value, theta)
+
+
+def findley_k(k: Any) -> float:
+    """Findley's constant as a float in ``[0, 10]``, else ``ValueError`` naming ``k``."""
+    v = finite("k", k)
+    if not 0.0 <= v <= 10.0:
+        raise ValueError(f"`k` = {k!r} must lie in [0, 10] (Findley's constant; typically 0.2-0.3)")
+    return v
+
+
+def findley(history: History | Sequence[Stress], *, k: float = K_FINDLEY) -> Parameter:
+    """Findley on the critical plane: ``max_θ [τa(θ) + k σn,max(θ)]``.
+
+    ``τa`` is half the range of the shear stress ``τ`` on the plane over the
+    states and ``σn,max`` the largest normal stress on it. Findley, *J. Eng.
+    Industry* 81 (1959) 301–306.
+
+    Parameters
+    ----------
+    history
+        The states' stresses.
+    k
+        Findley's material constant, ``0 <= k <= 10``; default :data:`K_FINDLEY` = 0.3.
+    """
+    h = _history(history)
+    k = findley_k(k)
+
+    def plane(sn: np.ndarray, tau: np.ndarray, trace: np.ndarray) -> np.ndarray:
+        return 0.5 * (tau.max(axis=0) - tau.min(axis=0)) + k * sn.max(axis=0)
+
+    value, theta = critical_plane(h, plane)
+    return _parameter("findley", h.x, h.z, value, theta)
+
+
+@dataclass(frozen=True)
+class Ruiz:
+    """Ruiz's parameters along the surface (Ruiz, Boddington & Chen 1984).
+
+    Attributes
+    ----------
+    x
+        Surface points.
+    sxx_max
+        Tensile part of the surface ``σxx``, largest over the states: ``max(0, max_t σxx)``.
+    q
+        ``|q(x)|`` at ``Q_max`` (the end of the loading branch).
+    delta
+        Slip amplitude ``δ(x)`` (:meth:`FrettingResult.slip_amplitude`).
+    fdp
+        ``τ δ = |q| δ``, the fretting damage parameter (frictional work; units stress·length).
+    ffdp
+        ``σxx,max⁺ |q| δ``, the fretting-fatigue damage parameter (stress²·length).
+    """
+
+    x: np.ndarray
+    sxx_max: np.ndarray
+    q: np.ndarray
+    delta: np.ndarray
+    fdp: Parameter
+    ffdp: Parameter
+
+
+def ruiz(cycle: FrettingResult, history: History) -> Ruiz:
+    """Ruiz's fretting parameters at the surface points of ``history``.
+
+    With ``σxx⁺ = max(0, max over the history's states of σxx(x, 0))``,
+    ``τ = |q(x)|`` at ``Q_max`` and ``δ(x)`` the slip amplitude (half the
+    peak-to-peak relative slip over the cycle):
+
+    - ``FDP = τ δ`` (Ruiz's first parameter, the frictional work, for wear);
+    - ``FFDP = σxx⁺ τ δ`` (the fretting-fatigue damage parameter).
+
+    Ruiz, Boddington & Chen, "An investigation of fatigue and fretting in a
+    dovetail joint", *Experimental Mechanics* 24 (1984) 208–217.
+
+    Parameters
+    ----------
+    cycle
+        The cycle the history was taken from.
+    history
+        Its states' stresses; only the points at ``z = 0`` are used (at least one).
+    """
+    cycle = _check_cycle(cycle)
+    s = _history(history).surface()
+    x = s.x
+    sxx_max = np.maximum(s.sxx.max(axis=0), 0.0)
+    q = np.abs(np.asarray(cycle.shear(x, cycle.Q_max, BRANCHES[0]), float))
+    delta = np.asarray(cycle.slip_amplitude(x), float)
+    fdp = q * delta
+    zero = np.zeros_like(x)
+    return Ruiz(x, sxx_max, q, delta, _parameter("ruiz_fdp", x, zero, fdp),
+                _parameter("ruiz_ffdp", x, zero, sxx_max * fdp))
+
+
+@dataclass(frozen=True)
+class Fatigue:
+    """The four fretting-fatigue parameters of one cycle on one set of points."""
+
+    von_mises_range: Parameter
+    swt: Parameter
+    findley: Parameter
+    ruiz: Ruiz
+    E: float
+    nu: float
+    k: float
+    states: int
+
+
+def fatigue(cycle: FrettingResult, x: ArrayLike, z: ArrayLike, *, E: float, nu: float = NU,
+            k: float = K_FINDLEY, states: Any = None, surface: ArrayLike | None = None) -> Fatigue:
+    """The von Mises range, SWT, Findley and Ruiz parameters of ``cycle`` at ``(x, z)``.
+
+    Parameters
+    ----------
+    cycle
+        A fretting cycle of any method.
+    x, z
+        Points, broadcast against each other, ``z >= 0``.
+    E, nu
+        Young's modulus (> 0) and Poisson's ratio of the substrate (plane strain).
+    k
+        Findley's constant (default :data:`K_FINDLEY`).
+    states
+        Indices of the states to use (default all; :func:`stress_history`).
+    surface
+        Surface points ``x`` for Ruiz's parameters. Default: the points of ``(x, z)``
+        at ``z = 0`` or, if there are none, the distinct ``x`` on the surface. Ruiz's
+        tension lives in a narrow band at the slip zones' outer ends, so a grid's
+        row is often too coarse for its hot spot: give a fine line here.
+    """
+    E = positive("E", E)
+    nu = poisson(nu)
+    k = findley_k(k)
+    xs = None if surface is None else reals("surface", surface)
+    h = stress_history(cycle, x, z, states=states, nu=nu)
+    if xs is None and np.any(h.z == 0):
+        top = h
+    else:
+        xs = np.unique(h.x) if xs is None else xs
+        top = stress_history(cycle, xs, np.zeros_like(xs), states=states, nu=nu)
+    return Fatigue(von_mises_range(h), swt(h, E=E), findley(h, k=k), ruiz(cycle, top),
+                   E=E, nu=nu, k=k, states=h.states)
