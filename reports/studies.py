@@ -135,8 +135,9 @@ def _family(n: int) -> Any:
 
 def _h_of(res: Any, lab: str) -> float:
     """Element size along the contact of an FE result (normal or partial slip)."""
-    normal = getattr(res, "normal", res)
-    return float(getattr(normal, "h", None) or normal.info["h"])
+    h = res.diagnostics.h
+    assert h is not None, "an FE result carries its element size in diagnostics"
+    return float(h)
 
 
 def fem_step_study(case: Case, reference: Any, mesh: Any = "quick",

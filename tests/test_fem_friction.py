@@ -138,7 +138,7 @@ def test_fretting_slip_amplitude_vanishes_in_the_stick_zone(cycle):
     lo, hi = cycle.stick[cycle.branch == "loading"][-1]
     x = np.linspace(-cycle.normal.a, cycle.normal.c, 4001)[1:-1]
     amp = cycle.slip_amplitude(x)
-    h = 2 * cycle.normal.info["h_end"]
+    h = 2 * cycle.normal.diagnostics.h_end
     assert np.abs(amp[(x > lo + h) & (x < hi - h)]).max() < 1e-12 * amp.max()
     assert amp[x < lo - h].min() > 0 and amp[x > hi + h].min() > 0
 
