@@ -213,7 +213,7 @@ def solve_finite(punch: Punch, P: float, s: float = 0.0, *, E: float, nu: float,
             "mesh": mesh if isinstance(mesh, str) else type(mesh).__name__,
             "model": "punch of real shape on a finite block"}
     diag = Diagnostics(h=h, h_end=end_size(x, a_end, c_end), dofs=dofs,
-                       L=float(np.ptp(S._solver[0].mesh.p[0])), iterations=sol.iterations,
+                       L=float(np.ptp(S.basis.mesh.p[0])), iterations=sol.iterations,
                        residual=sol.residual, timings=timings)
     basis, u = S.displacement(sol.f)
     return FemResult(punch=punch, A=similar_pair(E, nu), a=-a_end, c=c_end, alpha=sol.alpha,

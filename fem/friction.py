@@ -192,7 +192,7 @@ class _Model:
             sc = self.itf.substrate
             assert sc is not None
             self.u_bulk = bulk_field(lower, sc, E, nu)
-            self.ub = sigma_bulk * self.u_bulk[sc._solver[1][:n]]
+            self.ub = sigma_bulk * self.u_bulk[sc.surface_dofs[:n]]
             self.timings["bulk"] = time.perf_counter() - t1
         self.timings["condense"] = time.perf_counter() - t0
 

@@ -167,7 +167,7 @@ def bulk_field(sub: Substrate, sc: SurfaceCompliance, E: float, nu: float) -> np
     if missing:
         raise ValueError(f"`mesh` has no {missing} boundary groups: a bulk stress `sigma_bulk` "
                          "acts on the substrate's end faces")
-    basis = sc._solver[0]
+    basis = sc.basis
     lam, mu = lame_parameters(E, nu)
     K = asm(linear_elasticity(lam, mu), basis)
     ends = np.concatenate([sub.boundaries["left"], sub.boundaries["right"]])

@@ -18,6 +18,7 @@ import sys
 import threading
 import time
 from contextlib import contextmanager
+from dataclasses import fields
 from importlib import metadata
 from pathlib import Path
 from typing import Any, Callable, Iterator, Sequence
@@ -73,6 +74,14 @@ def _git() -> dict[str, Any]:
         return {"commit": None, "dirty": None}
 
 
+def _metadata(normal: Any) -> dict[str, Any]:
+    """The scalar discretisation metadata of a result: its typed diagnostics, then its ``info``."""
+    dg = getattr(normal, "diagnostics", None)
+    typed = {} if dg is None else {f.name: getattr(dg, f.name) for f in fields(dg)}
+    return {k: v for k, v in {**typed, **dict(normal.info)}.items()
+            if isinstance(v, (int, float, str, bool))}
+
+
 def _result_dict(res: Any, dt: float) -> dict[str, Any]:
     normal = getattr(res, "normal", res)
     left, right = normal.peaks()
@@ -80,8 +89,7 @@ def _result_dict(res: Any, dt: float) -> dict[str, Any]:
                          "s": normal.s, "tilt": normal.tilt,
                          "peak_left": {"x": left.x, "p": left.p},
                          "peak_right": {"x": right.x, "p": right.p},
-                         "time_s": dt, "info": {k: v for k, v in dict(normal.info).items()
-                                                 if isinstance(v, (int, float, str, bool))}}
+                         "time_s": dt, "info": _metadata(normal)}
     if hasattr(res, "energy"):   # a fretting cycle: its stick zone at Q_max
         left, right = res.stick[(res.branch == "loading")][-1]
         d.update({"Q_max": res.Q_max, "f": res.f, "energy": res.energy,

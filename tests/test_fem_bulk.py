@@ -73,7 +73,7 @@ def test_bulk_field_is_the_uniform_plane_strain_state():
     sub = fem.make_substrate(PRESETS["trial"].spec(-1.0, 1.0))
     sc = fem.condense(sub, 2.0, 0.25, ("u^1", "u^2"))
     u = fem.bulk_field(sub, sc, 2.0, 0.25)
-    basis = sc._solver[0]
+    basis = sc.basis
     x, y = basis.doflocs[0], basis.doflocs[1]
     ux, uy = u[basis.nodal_dofs[0]], u[basis.nodal_dofs[1]]
     xv, yv = x[basis.nodal_dofs[0]], y[basis.nodal_dofs[1]]

@@ -17,6 +17,7 @@ from threepart import closedform, fem, sie
 from threepart.catalogue import get_case
 from threepart.errors import FullSlidingError
 from threepart.punch import Punch
+from threepart.results import FrettingResult
 from threepart.reports.compare import compare
 from threepart.reports import solvers
 from threepart.tolerances import tolerance
@@ -132,6 +133,25 @@ def test_fretting_energy_is_the_loop_area_and_the_cycle_closes(cycle):
     assert np.abs(cycle.stick[cycle.branch == "loading"][-1] - cycle.stick[-1]).max() < 1e-9 * W
     Q, h = cycle.loop()
     assert abs(h[-1]) < 1e-12 * abs(cycle.delta).max()
+
+
+def test_fretting_state_stress_is_flamants_over_its_own_tractions(cycle):
+    """The FE field at depth >= 0.2a against Flamant's kernels over the same state's nodal
+    tractions (the base FrettingResult.stress, an independent evaluation of the same
+    solution); issue 21's target 1e-2 p0. At -Q_max the shear is reversed: the FE σxz
+    follows it."""
+    n = cycle.normal
+    x = np.linspace(-1.5 * n.a, 1.5 * n.c, 21)[:, None]
+    z = np.array([0.2, 0.6])[None, :] * n.width / 2
+    p0 = max(pk.p for pk in n.peaks())
+    for Q, branch in ((cycle.Q_max, "loading"), (-cycle.Q_max, "unloading")):
+        fe = cycle.stress(x, z, Q, branch)
+        ref = FrettingResult.stress(cycle, x, z, Q, branch, nu=NU)
+        for k in ("sxx", "szz", "sxz"):
+            err = np.abs(getattr(fe, k) - getattr(ref, k)).max() / p0
+            assert err < 1e-2, f"{branch} {k}: {err:.2e} p0"
+    with pytest.raises(ValueError, match="`nu`"):
+        cycle.stress(x, z, cycle.Q_max, "loading", nu=0.2)
 
 
 def test_fretting_slip_amplitude_vanishes_in_the_stick_zone(cycle):
