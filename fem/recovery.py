@@ -21,7 +21,6 @@ import numpy as np
 import scipy.sparse.linalg as sla
 from numpy.typing import ArrayLike
 from skfem import Basis, BilinearForm, ElementTriP2, ElementVector, LinearForm, asm
-from skfem.helpers import dot
 from skfem.models.elasticity import lame_parameters
 from threadpoolctl import threadpool_limits
 
