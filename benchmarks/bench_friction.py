@@ -116,5 +116,10 @@ def bulk(meshes: list[str], E: float = 210e3, nu: float = 0.3, R: float = 50.0, 
                   f"(err {abs(res.d - d_ref) / W:.1e} W), e {res.e:.6g} {nh}, stick "
                   f"[{lo / a:+.4f}, {hi / a:+.4f}] a, {dt:6.2f} s ({dt / base:.2f}x the solve without)")
 
+
 if __name__ == "__main__":
-    main(sys.argv[1:] or ["quick", "default"])
+    args = sys.argv[1:]
+    if args[:1] == ["bulk"]:     # only the bulk-stress part: bench_friction.py bulk default
+        bulk(args[1:] or ["quick", "default"])
+    else:
+        main(args or ["quick", "default"])
