@@ -142,3 +142,12 @@ def test_a_bulk_stress_past_the_threshold_reverses_the_slip_at_the_leading_edge(
     lo, hi = over.stick_zone
     assert x[reversed_].min() > hi and x[reversed_].max() <= over.normal.c   # at the leading end
     assert -a < lo < hi < a
+
+
+@pytest.mark.parametrize("value, error", [(float("nan"), ValueError), (float("inf"), ValueError),
+                                          ("100", TypeError), (True, TypeError)])
+def test_a_bad_bulk_stress_is_refused_before_any_meshing(value, error):
+    for solve, load in ((fem.solve_partial_slip, {"Q": Q}), (fem.fretting_cycle, {"Q_max": Q})):
+        with pytest.raises(error, match="`sigma_bulk`"):
+            solve(Punch(R, R, 0.0), P, 0.0, **load, f=F, E=E, nu=NU, mesh="quick",
+                  sigma_bulk=value)
