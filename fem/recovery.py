@@ -21,11 +21,12 @@ import numpy as np
 import scipy.sparse.linalg as sla
 from numpy.typing import ArrayLike
 from skfem import Basis, BilinearForm, ElementTriP2, ElementVector, LinearForm, asm
-from skfem.models.elasticity import lame_parameters
 from threadpoolctl import threadpool_limits
 
 from threepart.stress import Stress
 from threepart.validate import finite
+
+from .export import plane_strain_stress
 
 __all__ = ["StressField", "model_nu"]
 
@@ -74,11 +75,8 @@ class StressField:
         mesh = self.basis.mesh
         vb = Basis(mesh, ElementVector(ElementTriP2()), intorder=4)   # exact for P2 x P2
         sb = vb.with_element(ElementTriP2())
-        grad = vb.interpolate(self.u).grad
-        lam, mu = lame_parameters(self.E, self.nu)
-        tr = grad[0, 0] + grad[1, 1]
-        comps = {"sxx": lam * tr + 2 * mu * grad[0, 0], "syy": lam * tr + 2 * mu * grad[1, 1],
-                 "sxy": mu * (grad[0, 1] + grad[1, 0])}
+        sxx, syy, sxy, _ = plane_strain_stress(vb.interpolate(self.u).grad, self.E, self.nu)
+        comps = {"sxx": sxx, "syy": syy, "sxy": sxy}
         M = asm(BilinearForm(lambda u, v, w: u * v), sb).tocsc()
         rhs = np.stack([asm(LinearForm(lambda v, w: w["s"] * v), sb, s=s) for s in comps.values()],
                        axis=1)
