@@ -43,10 +43,6 @@ def test_agrees_with_closed_form(pair):
     failed = {c.quantity: f"{c.error:.2e} > {c.limit:g}" for c in compare(ref, fe, "fem-quick")
               if not c.passed}
     assert not failed, f"{case.name}: FEM disagrees with closedform: {failed}"
-    if fe.tilt == "free":
-        assert abs(fe.s - case.s) / (ref.a + ref.c) < tol("s_imposed"), f"s: {fe.s} vs {case.s}"
-    else:
-        assert fe.alpha == 0.0
 
 
 def test_pressure_integrates_to_load_and_lever_arm(pair):
