@@ -34,6 +34,21 @@ is the load fraction: ``P`` at ``s`` first (frictionless normal contact,
 together in proportion, in steps (``lambda = Q / Q_ref``, ``Q_ref`` the largest
 shear of the path). Each step finds the stick and slip nodes by
 :func:`fem.coulomb.tangential`.
+
+The sign of the stick-zone offset, the half-plane check of this model
+(tests/test_fem_bulk.py). The punch's surface strain under its traction ``-q``
+is ``+(A/4)(2/π) PV∫ q(t)/(x - t) dt``, the substrate's ``-(A/4)(2/π) PV∫ ...``
+plus its bulk strain ``sigma_bulk (1 - nu^2)/E = A sigma_bulk/4``; in a stick zone
+the relative strain vanishes: ``(1/π) PV∫ q(t)/(x - t) dt = sigma_bulk/4``. With
+``q = f p - f p*`` (``Q > 0``) and ``(1/π) PV∫ p/(x - t) dt = h'(x)/A`` this is
+``(1/π) PV∫ p*/(x - t) dt = h'(x)/A - sigma_bulk/(4 f)``: ``p*`` is the normal
+pressure of the same profile under an extra rigid tilt ``-sigma_bulk A/(4 f)``.
+For Hertz it is centred at ``x0 = a sigma_bulk/(4 f p0)``, so
+``e = -sign(Q) a sigma_bulk/(4 f p0)`` (Nowell & Hills' ``|e|``): a tension moves
+the stick zone towards the leading edge (``x = c`` for ``Q > 0``; the trailing edge
+``x = -a`` carries the tension peak), and the stick zone reaches ``x = c`` at
+``sigma_bulk/(f p0) = 4 (1 - sqrt(1 - Q/(f P)))``. Past it the model opens a
+zone of reversed slip (``t_i = -f fn_i``) at the leading edge.
 """
 from __future__ import annotations
 
