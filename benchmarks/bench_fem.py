@@ -50,13 +50,13 @@ def errors(fe, ref) -> dict[str, float]:
     }
 
 
-#: the stages of one FE solve, as in ``FemResult.timings``
+#: the stages of one FE solve, as in ``FemResult.diagnostics.timings``
 STAGES = ("locate", "mesh", "assemble", "factorise", "contact")
 
 
 def cold_solve(case, mesh: str):
     """One FE solve of ``case`` without the run's cached contact estimate and meshes; its wall time."""
-    fem.solve._locate.cache_clear()
+    fem.solve.locate_ends.cache_clear()
     fem.mesh._meshed.cache_clear()
     t0 = time.perf_counter()
     fe = fem.solve_normal(case.punch, case.P, case.s_load, E=case.E, nu=case.nu, tilt=case.tilt,
@@ -79,9 +79,9 @@ def main(meshes: list[str]) -> None:
         for mesh in meshes:
             fe, t_fe = cold_solve(case, mesh)
             err = errors(fe, ref)
-            print(f"{case.name:14s} {mesh:8s} {fe.dofs:7d} {t_fe:6.2f} {t_cf:7.4f} "
+            print(f"{case.name:14s} {mesh:8s} {fe.diagnostics.dofs:7d} {t_fe:6.2f} {t_cf:7.4f} "
                   + " ".join(f"{v:+9.1e}" for v in err.values())
-                  + "   " + " ".join(f"{fe.timings[k]:.2f}" for k in STAGES), flush=True)
+                  + "   " + " ".join(f"{fe.diagnostics.timings[k]:.2f}" for k in STAGES), flush=True)
 
 
 #: the tilt-free cases the FFT-BEM peer can solve (it has no rigid-body tilt unknown)
@@ -239,7 +239,7 @@ def backends(meshes: list[str], repeat: int = 2) -> None:
             for b, t in zip(names, (ts, tc)):
                 total[b]["cond"] += t_cond[b]
                 total[b]["solve"] += t
-            print(f"{case.name:14s} {mesh:8s} {fs.dofs:7d} {len(fs.x_nodes):5d} "
+            print(f"{case.name:14s} {mesh:8s} {fs.diagnostics.dofs:7d} {len(fs.x_nodes):5d} "
                   + " ".join(f"{t_cond[b]:12.3f}" for b in names)
                   + f" {t_cond['scipy'] / t_cond['cholmod']:6.2f} {ts:13.3f} {tc:13.3f} "
                   f"{ts / tc:6.2f} {'yes' if same else 'no':>4s} "

@@ -3,8 +3,8 @@
 Solvers
 -------
 solve_normal        -- load-controlled normal contact (tilt "free" or "suppressed") on a gmsh mesh
-FemResult           -- the shared result shape plus h, dofs, L, delta, timings and nodal pressures
-solve_partial_slip  -- two similar elastic bodies, P at s then Q in steps, Coulomb friction
+FemResult           -- the shared result shape plus delta, nodal pressures and the stress field
+solve_partial_slip  -- two similar elastic bodies, P at s then Q (and a bulk stress) in steps, Coulomb friction
 fretting_cycle      -- the same model through Q: 0 -> Q_max -> -Q_max -> Q_max (energy per cycle)
 FemSlipResult, FemFrettingResult -- their shared result shapes, with the per-step history
 solve_finite        -- a punch of real shape (exact arcs, flanks, height H) on a finite block
@@ -31,6 +31,10 @@ condense            -- P2 plane-strain stiffness, condensed by one ordered facto
 choose_backend, backends -- CHOLMOD (scikit-sparse, the `fast` extra) or SciPy's SuperLU
 solve_contact       -- primal-dual active set with translation and tilt as unknowns
 interface, mirror   -- two bodies condensed onto matched interface nodes; a body's mirror image
+Interface           -- their flexibility blocks on the matched nodes
+bulk_field          -- the substrate's displacement under a unit tension on its end faces
+tangential, Step    -- one load step's Coulomb stick/slip states (primal-dual active set)
+StressField         -- stresses at arbitrary points from the FE field (L2 projection onto P2)
 
 Export
 ------
@@ -40,8 +44,8 @@ to_meshio           -- Fields as a meshio.Mesh
 
 Studies
 -------
-convergence_study   -- >= 4 mesh levels: values, observed orders and GCI for a, c, alpha, peaks
-domain_study        -- results as the block size L grows
+convergence_study   -- >= 4 mesh levels: a threepart.convergence.Study of a, c, alpha and the peaks
+domain_study        -- the same quantities as the block size L grows (a Study in L)
 """
 from __future__ import annotations
 
@@ -51,18 +55,21 @@ from threepart.errors import (ContactZoneError, MeshResolutionError, NoConvergen
 from .contact import ContactSolution, solve_contact
 from .elasticity import SurfaceCompliance, backends, choose_backend, condense
 from .export import Fields, to_meshio, write_fields
-from .friction import (FemFrettingResult, FemSlipResult, Interface, fretting_cycle, interface,
-                       mirror, solve_partial_slip)
+from .coulomb import Step, tangential
+from .friction import FemFrettingResult, FemSlipResult, fretting_cycle, solve_partial_slip
+from .interface import Interface, bulk_field, interface, mirror
+from .recovery import StressField
 from .finite import solve_finite
 from .mesh import PRESETS, MeshPreset, Substrate, make_substrate, read_substrate
 from .solve import FemResult, locate_contact, solve_normal
-from .studies import StudyLevel, StudyRecord, convergence_study, domain_study
+from .studies import convergence_study, domain_study
 
 __all__ = ["solve_normal", "FemResult", "solve_partial_slip", "fretting_cycle", "FemSlipResult",
-           "FemFrettingResult", "solve_finite", "Interface", "interface", "mirror", "NoConvergenceError", "ContactZoneError", "SeparationError",
+           "FemFrettingResult", "solve_finite", "Interface", "interface", "mirror", "bulk_field", "Step", "tangential",
+           "StressField", "NoConvergenceError", "ContactZoneError", "SeparationError",
            "MeshResolutionError", "locate_contact", "MeshPreset", "PRESETS", "Substrate", "read_substrate",
            "make_substrate", "SurfaceCompliance", "condense", "choose_backend", "backends",
            "solve_contact", "ContactSolution", "Fields", "write_fields", "to_meshio",
-           "convergence_study", "domain_study", "StudyRecord", "StudyLevel"]
+           "convergence_study", "domain_study"]
 
 from . import method as _method  # registers this solver in threepart.registry

@@ -48,6 +48,9 @@ class ContactSolution:
         Rigid indentation and tilt of the punch.
     iterations
         Active-set iterations used.
+    residual
+        The largest complementarity violation left: tensile force (relative to
+        ``P/n``) or penetration (relative to the profile's range), >= 0.
     """
 
     f: np.ndarray
@@ -56,6 +59,7 @@ class ContactSolution:
     delta: float
     alpha: float
     iterations: int
+    residual: float = 0.0
 
 
 def _solve_active(C: np.ndarray, x: np.ndarray, g0: np.ndarray, active: np.ndarray,
@@ -219,4 +223,6 @@ def _iterate(C: np.ndarray, x: np.ndarray, g0: np.ndarray, P: float, s: float, f
         raise NoConvergenceError(
             f"active set settled after {it} iterations with min force {f.min():.3g} "
             f"and min gap {gap.min():.3g}: not a contact solution")
-    return ContactSolution(f=f, gap=gap, active=act, delta=delta, alpha=alpha, iterations=it)
+    residual = max(0.0, -float(f.min()) / scale_f, -float(gap.min()) / scale_g)
+    return ContactSolution(f=f, gap=gap, active=act, delta=delta, alpha=alpha, iterations=it,
+                           residual=residual)

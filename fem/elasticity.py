@@ -123,6 +123,16 @@ class SurfaceCompliance:
     backend: str = "scipy"
     _solver: Any = field(repr=False, default=None)
 
+    @property
+    def basis(self) -> Basis:
+        """The vector P2 basis of the body's displacement field."""
+        return self._solver[0]
+
+    @property
+    def surface_dofs(self) -> np.ndarray:
+        """The condensed DOFs in the order of :attr:`C` (``u_x`` then ``u_y`` for two components)."""
+        return self._solver[1]
+
     def displacement(self, f: np.ndarray) -> tuple[Basis, np.ndarray]:
         """The P2 displacement field for nodal forces at the candidates.
 

@@ -14,7 +14,7 @@ import numpy as np
 from skfem import Basis
 from skfem.models.elasticity import lame_parameters
 
-__all__ = ["Fields", "fields_of", "to_meshio", "write_fields"]
+__all__ = ["Fields", "fields_of", "plane_strain_stress", "to_meshio", "write_fields"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -39,17 +39,20 @@ class Fields:
     stress: np.ndarray
 
 
-def fields_of(basis: Basis, u: np.ndarray, E: float, nu: float) -> Fields:
-    """Vertex displacement and mean cell stress of the P2 field ``u`` on ``basis``."""
+def plane_strain_stress(grad: np.ndarray, E: float, nu: float) -> tuple[np.ndarray, ...]:
+    """``sigma_xx, sigma_yy, sigma_xy, sigma_zz`` (mesh axes, plane strain) from the displacement
+    gradient ``grad[i, j] = d u_i / d x_j`` at quadrature points."""
     lam, mu = lame_parameters(E, nu)
-    grad = basis.interpolate(u).grad  # (2, 2, cells, quadrature points)
     eps = 0.5 * (grad + grad.transpose(1, 0, 2, 3))
     tr = eps[0, 0] + eps[1, 1]
-    sxx = lam * tr + 2 * mu * eps[0, 0]
-    syy = lam * tr + 2 * mu * eps[1, 1]
-    sxy = 2 * mu * eps[0, 1]
-    szz = lam * tr
-    stress = np.stack([s.mean(axis=1) for s in (sxx, syy, sxy, szz)], axis=1)
+    return (lam * tr + 2 * mu * eps[0, 0], lam * tr + 2 * mu * eps[1, 1], 2 * mu * eps[0, 1],
+            lam * tr)
+
+
+def fields_of(basis: Basis, u: np.ndarray, E: float, nu: float) -> Fields:
+    """Vertex displacement and mean cell stress of the P2 field ``u`` on ``basis``."""
+    grad = basis.interpolate(u).grad  # (2, 2, cells, quadrature points)
+    stress = np.stack([s.mean(axis=1) for s in plane_strain_stress(grad, E, nu)], axis=1)
     disp = u[basis.nodal_dofs].T
     return Fields(points=basis.mesh.p.T.copy(), triangles=basis.mesh.t.T.copy(),
                   displacement=disp, stress=stress)

@@ -38,11 +38,13 @@ from threepart.meshes import SubstrateSpec
 from threepart.output import scratch_dir
 from threepart.meshes.punch import PunchSpec, build_punch
 from threepart.punch import Punch
+from threepart.results import Diagnostics
 from threepart.validate import check_contact, check_punch
 
 from .contact import ContactSolution, solve_contact
-from .elasticity import condense
-from .friction import mirror
+from .elasticity import SurfaceCompliance, condense
+from .recovery import StressField
+from .interface import check_matched, mirror
 from ._boundary import boundary
 from ._iv import height_iv, mesh_arg, normal_iv
 from ._progress import Progress, ProgressArg, progress_iv
@@ -62,7 +64,7 @@ def punch_body(spec: PunchSpec) -> Substrate:
 
 def _solve(punch: Punch, P: float, s: float, E: float, nu: float, tilt: str, max_iter: int,
            zone: SubstrateSpec, H: float | None, theta: float, profile: str
-           ) -> tuple[ContactSolution, np.ndarray, np.ndarray, dict[str, float], int]:
+           ) -> tuple[ContactSolution, SurfaceCompliance, dict[str, float], int]:
     """Contact of the punch body on the block, both meshed around ``zone``.
 
     ``H = None`` is the paper's model: the punch body is the block's mirror
@@ -79,8 +81,7 @@ def _solve(punch: Punch, P: float, s: float, E: float, nu: float, tilt: str, max
         body = punch_body(spec)
     t1 = time.perf_counter()
     S, B = condense(block, E, nu), condense(body, E, nu)
-    if len(S.x) != len(B.x) or not np.allclose(S.x, B.x, rtol=0, atol=1e-9 * np.ptp(S.x)):
-        raise ValueError("the punch's and the block's interface nodes do not match")
+    check_matched(S.x, B.x, "the block and the punch body")
     t2 = time.perf_counter()
     if H is None:
         g0 = punch.profile(S.x)
@@ -94,7 +95,7 @@ def _solve(punch: Punch, P: float, s: float, E: float, nu: float, tilt: str, max
             f"the contact reaches the candidate zone end [{S.x[0]:.6g}, {S.x[-1]:.6g}]")
     check_one_zone(S.x, sol.active, P, s)
     timings = {"mesh": t1 - t0, "condense": t2 - t1, "contact": time.perf_counter() - t2}
-    return sol, S.x, S.weights, timings, S.dofs + B.dofs
+    return sol, S, timings, S.dofs + B.dofs
 
 
 def zone_margin(b: float, left: float, right: float, margin: float) -> float:
@@ -182,21 +183,22 @@ def solve_finite(punch: Punch, P: float, s: float = 0.0, *, E: float, nu: float,
     locate = replace(PRESETS["locate"], margin=zone_margin(punch.b, left, right, 0.15))
     for _ in range(4):
         try:
-            sol, x, w, _, _ = _solve(punch, P, s, E, nu, tilt, max_iter,
-                                     locate.spec(left, right, breaks), H, theta, profile)
+            sol, S, _, _ = _solve(punch, P, s, E, nu, tilt, max_iter,
+                                  locate.spec(left, right, breaks), H, theta, profile)
             break
         except ContactZoneError:
             locate = replace(locate, margin=min(2.0, 2 * locate.margin))
     else:
         raise ContactZoneError("the finite-body contact outgrows every candidate zone tried")
-    left, right = contact_ends(x, sol.f / w, sol.active, breaks)
+    left, right = contact_ends(S.x, sol.f / S.weights, sol.active, breaks)
     t_locate = time.perf_counter() - t_start
     pre = replace(pre, margin=zone_margin(punch.b, left, right, pre.margin))
     base = pre
     for attempt in range(REFINE_ATTEMPTS + 1):   # an end near a join refines the mesh there, as in solve_normal
-        sol, x, w, timings, dofs = _solve(punch, P, s, E, nu, tilt, max_iter,
-                                          pre.spec(left, right, breaks), H, theta, profile)
-        p = sol.f / w
+        sol, S, timings, dofs = _solve(punch, P, s, E, nu, tilt, max_iter,
+                                       pre.spec(left, right, breaks), H, theta, profile)
+        x = S.x
+        p = sol.f / S.weights
         a_end, c_end = contact_ends(x, p, sol.active, breaks)
         finer = refined(punch, a_end, c_end, end_size(x, a_end, c_end), pre, attempt, base)
         if finer is None:
@@ -207,11 +209,14 @@ def solve_finite(punch: Punch, P: float, s: float = 0.0, *, E: float, nu: float,
         check_contact(punch, -a_end, c_end, sol.alpha)
     timings = {"locate": t_locate, **timings, "total": time.perf_counter() - t_start}
     h = float(np.max(np.diff(x)) * 2)
-    info = {"dofs": dofs, "h": h, "H": H, "theta": theta, "profile": "eq. 2" if H is None else profile,
-            "iterations": sol.iterations, "delta": sol.delta, "timings": timings,
+    info = {"H": H, "theta": theta, "profile": "eq. 2" if H is None else profile,
             "mesh": mesh if isinstance(mesh, str) else type(mesh).__name__,
             "model": "punch of real shape on a finite block"}
+    diag = Diagnostics(h=h, h_end=end_size(x, a_end, c_end), dofs=dofs,
+                       L=float(np.ptp(S.basis.mesh.p[0])), iterations=sol.iterations,
+                       residual=sol.residual, timings=timings)
+    basis, u = S.displacement(sol.f)
     return FemResult(punch=punch, A=similar_pair(E, nu), a=-a_end, c=c_end, alpha=sol.alpha,
                      P=float(np.sum(sol.f)), s=float(np.sum(x * sol.f) / np.sum(sol.f)),
-                     tilt=tilt, method="fem", info=info, h=h, dofs=dofs, L=math.nan,
-                     delta=sol.delta, timings=timings, x_nodes=x, p_nodes=p)
+                     tilt=tilt, method="fem", diagnostics=diag, info=info, delta=sol.delta,
+                     x_nodes=x, p_nodes=p, stress_field=StressField(basis=basis, u=u, E=E, nu=nu))

@@ -52,19 +52,20 @@ def _normal(punch: Punch, P: float, s: float, *, A: float, tilt: str = "free",
 
 def _slip(punch: Punch, P: float, s: float, *, A: float, tilt: str = "free",
           nu: float | None = None, Q: float, f: float, normal: NormalResult | None = None,
-          **options: Any) -> SlipResult:
+          sigma_bulk: float = 0.0, **options: Any) -> SlipResult:
     nu = _nu(nu)
     return solve_partial_slip(punch, P, s, Q=Q, f=f, E=pair_modulus(A, nu), nu=nu, tilt=tilt,
-                              **options)
+                              sigma_bulk=sigma_bulk, **options)
 
 
 def _fretting(punch: Punch, P: float, s: float, *, A: float, tilt: str = "free",
               nu: float | None = None, Q_max: float, f: float, states: int | None = None,
-              normal: NormalResult | None = None, **options: Any) -> FrettingResult:
+              normal: NormalResult | None = None, sigma_bulk: float = 0.0,
+              **options: Any) -> FrettingResult:
     extra: dict[str, Any] = {} if states is None else {"states": states}
     nu = _nu(nu)
     return fretting_cycle(punch, P, s, Q_max=Q_max, f=f, E=pair_modulus(A, nu), nu=nu,
-                          tilt=tilt, **extra, **options)
+                          tilt=tilt, sigma_bulk=sigma_bulk, **extra, **options)
 
 
 METHOD = register(Method("fem", _normal, _slip, _fretting, options=("mesh", "progress"),

@@ -23,11 +23,13 @@ from threepart.punch import Punch
 from threepart.validate import check_contact, integer
 from threepart.errors import ContactZoneError, SeparationError
 from threepart.material import rigid_punch
-from threepart.results import NormalResult
+from threepart.results import NU, Diagnostics, NormalResult
+from threepart.stress import Stress
 from threepart.meshes import SubstrateSpec
 
 from .contact import ContactSolution, solve_contact
 from .export import Fields, fields_of
+from .recovery import StressField, model_nu
 from .elasticity import SurfaceCompliance, condense
 from ._boundary import boundary
 from ._iv import mesh_arg, normal_iv
@@ -35,41 +37,38 @@ from ._progress import Progress, ProgressArg, progress_iv
 from .ends import REFINE_ATTEMPTS, check_one_zone, contact_ends, end_size, refined
 from .mesh import PRESETS, MeshPreset, Substrate, make_substrate, read_substrate
 
-__all__ = ["FemResult", "solve_normal", "locate_contact", "place_substrate", "MeshArg"]
+__all__ = ["FemResult", "solve_normal", "locate_contact", "locate_ends", "place_substrate", "MeshArg",
+           "TRIES_DEFAULT", "TRIES"]
 
 MeshArg = Union[str, Path, MeshPreset, SubstrateSpec, Substrate]
 
 @dataclass(frozen=True)
 class FemResult(NormalResult):
-    """FE solution of the normal problem, with its discretisation.
+    """FE solution of the normal problem, with its discretisation in ``diagnostics``.
 
-    Attributes (beyond :class:`~closedform.results.NormalResult`)
+    Attributes (beyond :class:`~threepart.results.NormalResult`)
     ----------
-    h
-        Element size along the contact zone (P2 node spacing is ``h/2``).
-    dofs
-        FE degrees of freedom.
-    L
-        Block size (width and depth).
     delta
         Rigid indentation of the punch (depends on ``L``: half-plane displacements diverge).
-    timings
-        Wall seconds of ``locate`` (trial and locate solves; cached per case in a run),
-        ``mesh``, ``assemble``, ``factorise``, ``contact`` and ``total``.
     x_nodes, p_nodes
         Candidate node positions and their pressures ``f_i / w_i``.
     fields
         Displacement and stress (:class:`~fem.export.Fields`) when asked for.
+    stress_field
+        The substrate's displacement field, for :meth:`stress`.
+
+    ``diagnostics`` (:class:`~threepart.results.Diagnostics`) holds ``h`` (the
+    element size along the contact zone; P2 node spacing is ``h/2``), ``h_end``,
+    ``dofs``, ``L`` (block size), the active-set ``iterations`` and the
+    ``timings`` (``locate``, cached per case in a run; ``mesh``, ``assemble``,
+    ``factorise``, ``contact``, ``total``).
     """
 
-    h: float = math.nan
-    dofs: int = 0
-    L: float = math.nan
     delta: float = math.nan
-    timings: dict[str, float] = field(default_factory=dict, compare=False)
     x_nodes: np.ndarray = field(default_factory=lambda: np.zeros(0), compare=False, repr=False)
     p_nodes: np.ndarray = field(default_factory=lambda: np.zeros(0), compare=False, repr=False)
     fields: Fields | None = field(default=None, compare=False, repr=False)
+    stress_field: StressField | None = field(default=None, compare=False, repr=False)
 
     def pressure(self, x: ArrayLike) -> np.ndarray:
         """Compressive pressure, linear between nodes, 0 at the ends and outside ``[-a, c]``."""
@@ -78,6 +77,19 @@ class FemResult(NormalResult):
         xs = np.concatenate([[-self.a], self.x_nodes[inside], [self.c]])
         ps = np.concatenate([[0.0], self.p_nodes[inside], [0.0]])
         return np.interp(x, xs, ps, left=0.0, right=0.0)
+
+    def stress(self, x: ArrayLike, z: ArrayLike, *, nu: float | None = None) -> Stress:  # type: ignore[override]
+        """Stresses in the substrate at ``(x, z)``, ``z >= 0`` the depth, from the FE field.
+
+        Recovered by :class:`fem.recovery.StressField` (L2 projection onto
+        continuous P2); ``nu`` must be the model's Poisson ratio (``None``).
+        A result without its field (rebuilt by hand) falls back to Flamant's
+        kernels over its pressure (:meth:`NormalResult.stress`).
+        """
+        if self.stress_field is None:
+            return super().stress(x, z, nu=NU if nu is None else nu)
+        model_nu(nu, self.stress_field.nu)
+        return self.stress_field.at(x, z)
 
 
 def _contact(sc: SurfaceCompliance, punch: Punch, P: float, s: float, tilt: str,
@@ -279,13 +291,15 @@ def solve_normal(punch: Punch, P: float, s: float = 0.0, *, E: float, nu: float,
     timings = {"locate": t_locate, "mesh": t1 - t0 - t_loc, **sc.timings, "contact": t3 - t2,
                "total": t3 - t_start}
     s_out = float(np.sum(sc.x * sol.f) / np.sum(sol.f))
-    info = {"dofs": sc.dofs, "h": sc.h, "h_end": h_end, "L": L, "n_candidates": len(sc.x),
-            "backend": sc.backend,
-            "iterations": sol.iterations, "delta": sol.delta, "timings": timings,
+    info = {"n_candidates": len(sc.x), "backend": sc.backend,
             "mesh": mesh if isinstance(mesh, str) else type(mesh).__name__,
             "refined": (float(chosen.refine / pre.refine) if isinstance(chosen, MeshPreset)
                         and isinstance(pre, MeshPreset) else 1.0)}
+    diag = Diagnostics(h=sc.h, h_end=h_end, dofs=sc.dofs, L=L, iterations=sol.iterations,
+                       residual=sol.residual, timings=timings)
+    basis, u = sc.displacement(sol.f)
     return FemResult(punch=punch, A=rigid_punch(E, nu), a=-left, c=right,
                      alpha=sol.alpha, P=float(np.sum(sol.f)),
-                     s=s_out, tilt=tilt, method="fem", info=info, h=sc.h, dofs=sc.dofs,
-                     L=L, delta=sol.delta, timings=timings, x_nodes=sc.x, p_nodes=p, fields=flds)
+                     s=s_out, tilt=tilt, method="fem", diagnostics=diag, info=info,
+                     delta=sol.delta, x_nodes=sc.x, p_nodes=p, fields=flds,
+                     stress_field=StressField(basis=basis, u=u, E=E, nu=nu))

@@ -135,8 +135,12 @@ def _family(n: int) -> Any:
 
 def _h_of(res: Any, lab: str) -> float:
     """Element size along the contact of an FE result (normal or partial slip)."""
-    normal = getattr(res, "normal", res)
-    return float(normal.diagnostics.h or getattr(normal, "h", None) or normal.info["h"])
+    h = res.diagnostics.h
+    if h is None:   # a slip result's element size is its normal result's
+        h = getattr(res, "normal", res).diagnostics.h
+    if h is None:
+        raise ValueError(f"the FE result of level {lab} carries no element size in its diagnostics")
+    return float(h)
 
 
 def fem_step_study(case: Case, reference: Any, mesh: Any = "quick",

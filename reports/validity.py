@@ -185,7 +185,7 @@ def convergence(point: MapPoint, ns: tuple[int, ...] = STUDY_N) -> dict[str, Any
         res = fem.solve_finite(punch, P, 0.0, E=E, nu=NU, H=point.H_over_b * punch.b, theta=THETA,
                                mesh=PRESETS["default"].scaled(n / PRESETS["default"].n))
         left, right = res.peaks()
-        return res.h, {"p_left": left.p, "p_right": right.p, "a": res.a}, {}
+        return res.diagnostics.h or math.nan, {"p_left": left.p, "p_right": right.p, "a": res.a}, {}
 
     st = run_study(level, list(ns), param="h")
     nan = math.nan

@@ -18,6 +18,7 @@ import sys
 import threading
 import time
 from contextlib import contextmanager
+from dataclasses import fields
 from importlib import metadata
 from pathlib import Path
 from typing import Any, Callable, Iterator, Sequence
@@ -75,11 +76,11 @@ def _git() -> dict[str, Any]:
 
 
 def _metadata(normal: Any) -> dict[str, Any]:
-    """The result's discretisation metadata: its typed diagnostics (scalars set) and its ``info`` scalars."""
-    diag = {k: v for k, v in vars(normal.diagnostics).items()
-            if v is not None and isinstance(v, (int, float, str, bool))}
-    return {**diag, **{k: v for k, v in dict(normal.info).items()
-                       if isinstance(v, (int, float, str, bool))}}
+    """The scalar discretisation metadata of a result: its typed diagnostics, then its ``info``."""
+    dg = getattr(normal, "diagnostics", None)
+    typed = {} if dg is None else {f.name: getattr(dg, f.name) for f in fields(dg)}
+    return {k: v for k, v in {**typed, **dict(normal.info)}.items()
+            if isinstance(v, (int, float, str, bool))}
 
 
 def _result_dict(res: Any, dt: float) -> dict[str, Any]:

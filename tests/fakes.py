@@ -18,7 +18,7 @@ from scipy.integrate import quad
 
 from threepart import registry
 from threepart.registry import Method
-from threepart.results import NormalResult, Peak, SlipResult
+from threepart.results import Diagnostics, NormalResult, Peak, SlipResult
 
 
 @dataclass(frozen=True)
@@ -141,14 +141,14 @@ def fake_solver(method: str) -> Method:
     if method == "fem":
         def fem_normal(punch, P, s, *, A, tilt="free", nu=None, mesh="quick"):
             h = {"quick": 0.04, "default": 0.01, "fine": 0.005}[mesh] if isinstance(mesh, str) else 2.0 / mesh.n
-            r = _normal(punch, P, s, A=A, tilt=tilt, method="fem", h=h)
+            r = _normal(punch, P, s, A=A, tilt=tilt, method="fem")
             # a small O(h^2) error so that the convergence study has something to fit
             return FakeNormal(**{**{k: getattr(r, k) for k in r.__dataclass_fields__},
-                                 "a": r.a * (1 + 0.01 * h**2)})
+                                 "a": r.a * (1 + 0.01 * h**2), "diagnostics": Diagnostics(h=h)})
 
         def fem_slip(punch, P, s, *, A, tilt="free", nu=None, Q, f, normal=None, mesh="quick"):
-            return _slip(fem_normal(punch, P, s, A=A, tilt=tilt, mesh=mesh), Q, f, method="fem",
-                         mesh=mesh)
+            fe = fem_normal(punch, P, s, A=A, tilt=tilt, mesh=mesh)
+            return replace(_slip(fe, Q, f, method="fem", mesh=mesh), diagnostics=fe.diagnostics)
 
         return Method("fem", fem_normal, fem_slip, options=("mesh",), default_nu=0.3)
 

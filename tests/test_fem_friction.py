@@ -17,6 +17,7 @@ from threepart import closedform, fem, sie
 from threepart.catalogue import get_case
 from threepart.errors import FullSlidingError
 from threepart.punch import Punch
+from threepart.results import FrettingResult
 from threepart.reports.compare import compare
 from threepart.reports import solvers
 from threepart.tolerances import tolerance
@@ -70,7 +71,8 @@ def test_agrees_with_the_closed_form(slip_pair):
     assert not failed, f"{case.name}: two-body FEM disagrees with closedform: {failed}"
 
 
-def test_shear_balances_Q_and_never_exceeds_friction(slip_pair):
+def test_shear_integrates_to_Q_and_never_exceeds_friction(slip_pair):
+    """The interpolated shear field integrates to Q (sum t_i = Q itself is imposed by the solve)."""
     case, _, fe = slip_pair
     Q, f = case.shear_load
     last = fe.history[-1]
@@ -151,11 +153,30 @@ def test_fretting_energy_is_the_loop_area_and_the_cycle_closes(cycle):
     assert abs(h[-1]) < REVERSAL * abs(cycle.delta).max()
 
 
+def test_fretting_state_stress_is_flamants_over_its_own_tractions(cycle):
+    """The FE field at depth >= 0.2a against Flamant's kernels over the same state's nodal
+    tractions (the base FrettingResult.stress, an independent evaluation of the same
+    solution); issue 21's target 1e-2 p0. At -Q_max the shear is reversed: the FE σxz
+    follows it."""
+    n = cycle.normal
+    x = np.linspace(-1.5 * n.a, 1.5 * n.c, 21)[:, None]
+    z = np.array([0.2, 0.6])[None, :] * n.width / 2
+    p0 = max(pk.p for pk in n.peaks())
+    for Q, branch in ((cycle.Q_max, "loading"), (-cycle.Q_max, "unloading")):
+        fe = cycle.stress(x, z, Q, branch)
+        ref = FrettingResult.stress(cycle, x, z, Q, branch, nu=NU)
+        for k in ("sxx", "szz", "sxz"):
+            err = np.abs(getattr(fe, k) - getattr(ref, k)).max() / p0
+            assert err < tolerance("fem-quick", "stress_depth").limit, f"{branch} {k}: {err:.2e} p0"
+    with pytest.raises(ValueError, match="`nu`"):
+        cycle.stress(x, z, cycle.Q_max, "loading", nu=0.2)
+
+
 def test_fretting_slip_amplitude_vanishes_in_the_stick_zone(cycle):
     lo, hi = cycle.stick[cycle.branch == "loading"][-1]
     x = np.linspace(-cycle.normal.a, cycle.normal.c, 4001)[1:-1]
     amp = cycle.slip_amplitude(x)
-    h = 2 * cycle.normal.info["h_end"]
+    h = 2 * cycle.normal.diagnostics.h_end
     assert np.abs(amp[(x > lo + h) & (x < hi - h)]).max() < REVERSAL * amp.max()
     assert amp[x < lo - h].min() > 0 and amp[x > hi + h].min() > 0
 

@@ -1,0 +1,121 @@
+"""Stresses at arbitrary points of the substrate, recovered from its FE displacement field.
+
+The P2 displacement gives a stress that is linear in each triangle and jumps
+between them; its plain cell mean is first order and worst at the surface.
+Here each component is projected in L2 onto the continuous P2 space of the
+same mesh (a global mass-matrix solve, quadrature exact for the products),
+which converges at the surface too, and is evaluated at the points by
+locating them in the mesh (scikit-fem's ``probes``).
+
+Coordinates: the mesh has ``y = 0`` at the surface and the substrate below
+it; threepart's ``z = -y`` is the depth. So ``σzz = σyy(mesh)`` and
+``σxz = -σxy(mesh)`` (at the surface ``σxz = -q``, ``σzz = -p``, as in
+:mod:`threepart.stress`). Tension is positive.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+import scipy.sparse.linalg as sla
+from numpy.typing import ArrayLike
+from skfem import Basis, BilinearForm, ElementTriP2, ElementVector, LinearForm, asm
+from threadpoolctl import threadpool_limits
+
+from threepart.stress import Stress
+from threepart.validate import finite
+
+from .export import plane_strain_stress
+
+__all__ = ["StressField", "model_nu"]
+
+
+def model_nu(nu: Any, own: float) -> float:
+    """``nu`` of a ``stress()`` call on an FE result: ``None`` or the model's own ``own``.
+
+    Raises
+    ------
+    ValueError
+        For any other value: the FE field was solved with ``own``.
+    """
+    if nu is None:
+        return own
+    v = finite("nu", nu)
+    if v != own:
+        raise ValueError(f"`nu` = {v!r} differs from the FE model's Poisson ratio {own!r}: "
+                         "its stress field was solved with it (pass None)")
+    return own
+
+
+@dataclass(frozen=True, eq=False)
+class StressField:
+    """The substrate's displacement field and its recovered stress.
+
+    Attributes
+    ----------
+    basis
+        The vector P2 basis of the displacement.
+    u
+        Its DOFs (contact forces, plus the bulk stress where there is one).
+    E, nu
+        The substrate's material (plane strain).
+    """
+
+    basis: Basis
+    u: np.ndarray
+    E: float
+    nu: float
+    _nodal: dict[str, np.ndarray] = field(default_factory=dict, repr=False)
+
+    def nodal(self) -> dict[str, np.ndarray]:
+        """``sxx``, ``syy``, ``sxy`` (mesh axes) as continuous P2 DOFs, by L2 projection (cached)."""
+        if self._nodal:
+            return self._nodal
+        mesh = self.basis.mesh
+        vb = Basis(mesh, ElementVector(ElementTriP2()), intorder=4)   # exact for P2 x P2
+        sb = vb.with_element(ElementTriP2())
+        sxx, syy, sxy, _ = plane_strain_stress(vb.interpolate(self.u).grad, self.E, self.nu)
+        comps = {"sxx": sxx, "syy": syy, "sxy": sxy}
+        M = asm(BilinearForm(lambda u, v, w: u * v), sb).tocsc()
+        rhs = np.stack([asm(LinearForm(lambda v, w: w["s"] * v), sb, s=s) for s in comps.values()],
+                       axis=1)
+        with threadpool_limits(limits=1, user_api="blas"):
+            nodal = sla.splu(M).solve(rhs)
+        self._nodal.update({k: nodal[:, i] for i, k in enumerate(comps)})
+        self._nodal["_basis"] = sb   # type: ignore[assignment]
+        return self._nodal
+
+    def at(self, x: ArrayLike, z: ArrayLike) -> Stress:
+        """The recovered stress at ``(x, z)``, ``z >= 0`` the depth, inside the block.
+
+        Raises
+        ------
+        ValueError
+            For points outside the substrate block (``z < 0``, past its ends or its base).
+        """
+        xa, za = np.asarray(x, dtype=float), np.asarray(z, dtype=float)
+        try:
+            xb, zb = np.broadcast_arrays(xa, za)
+        except ValueError:
+            raise ValueError(f"`x` of shape {xa.shape} and `z` of shape {za.shape} do not "
+                             "broadcast against each other") from None
+        if not (np.all(np.isfinite(xb)) and np.all(np.isfinite(zb))):
+            raise ValueError("`x` and `z` must be finite")
+        p = self.basis.mesh.p
+        lo, hi, depth = float(p[0].min()), float(p[0].max()), float(-p[1].min())
+        if np.any(zb < 0) or np.any(zb > depth):
+            raise ValueError(f"`z` must lie in [0, {depth:.6g}], the depth of the FE block "
+                             "(z is the depth into the substrate)")
+        if np.any(xb < lo) or np.any(xb > hi):
+            raise ValueError(f"`x` must lie in [{lo:.6g}, {hi:.6g}], the width of the FE block")
+        nodal = self.nodal()
+        sb = nodal["_basis"]
+        pts = np.vstack([xb.ravel(), -zb.ravel()])
+        # a point exactly on the surface may fall just outside by round-off: nudge it inside
+        pts[1] = np.minimum(pts[1], -1e-14 * (hi - lo))
+        probe = sb.probes(pts).tocsr()   # type: ignore[attr-defined]
+        shape = xb.shape
+        return Stress(x=xb.copy(), z=zb.copy(), sxx=(probe @ nodal["sxx"]).reshape(shape),
+                      szz=(probe @ nodal["syy"]).reshape(shape),
+                      sxz=-(probe @ nodal["sxy"]).reshape(shape), nu=self.nu)
