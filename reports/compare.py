@@ -222,18 +222,18 @@ def stress_figures(ref: Any, other: Any) -> dict[str, tuple[float, float, float]
     reference's peak pressure; ``sxx_peak`` is the difference of the largest
     surface ``σxx`` (the tension at the trailing edge) in units of the
     reference's largest ``|σxx|`` on that line. Each result evaluates its own
-    ``stress(x, z)`` (the FEM from its displacement field).
+    ``stress(x, z)`` (the FEM from its displacement field) with its own
+    Poisson ratio, which the compared components do not depend on.
     """
     (xs, zs), (xg, zg) = stress_points(ref)
     p_max = max(pk.p for pk in normal_of(ref).peaks())
-    nu = _stress_nu(other)
-    sr, so = ref.stress(xs, zs, nu=nu), other.stress(xs, zs, nu=nu)
+    sr, so = ref.stress(xs, zs), other.stress(xs, zs)
     out: dict[str, tuple[float, float, float]] = {}
     i = int(np.argmax(np.abs(so.sxx - sr.sxx)))
     out["sxx_surface"] = (float(sr.sxx[i]), float(so.sxx[i]), float(np.abs(so.sxx - sr.sxx)[i]) / p_max)
     top_r, top_o = float(sr.sxx.max()), float(so.sxx.max())
     out["sxx_peak"] = (top_r, top_o, abs(top_o - top_r) / float(np.abs(sr.sxx).max()))
-    gr, go = ref.stress(xg, zg, nu=nu), other.stress(xg, zg, nu=nu)
+    gr, go = ref.stress(xg, zg), other.stress(xg, zg)
     worst = (0.0, 0.0, -1.0)
     for comp in ("sxx", "szz", "sxz"):
         r, o = getattr(gr, comp), getattr(go, comp)
@@ -241,13 +241,6 @@ def stress_figures(ref: Any, other: Any) -> dict[str, tuple[float, float, float]
         worst = max(worst, (float(r[j]), float(o[j]), float(abs(o[j] - r[j])) / p_max), key=lambda t: t[2])
     out["stress_depth"] = worst
     return out
-
-
-def _stress_nu(res: Any) -> float:
-    """Poisson's ratio for a stress comparison: the result's own (an FE model's), else the default."""
-    from threepart.results import NU
-    own = getattr(res, "nu", None)
-    return float(own) if own is not None else NU
 
 
 def _shear_integral(res: Any) -> float:
