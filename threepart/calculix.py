@@ -50,6 +50,8 @@ __all__ = ["DeckSettings", "Model", "build_model", "write_deck", "CONVENTIONS", 
            "nodes_text", "elements_text", "nset_text", "surface_text", "material_text",
            "contact_text", "equation_text", "boundary_text", "step_text", "GMSH_TO_CCX"]
 
+#: the punch's (master) element size over the block's (slave) at the contact
+MASTER_RATIO = 1.37
 #: gmsh element type -> (CalculiX element, number of corner nodes)
 GMSH_TO_CCX = {16: ("CPE8", 4), 9: ("CPE6", 3)}
 
@@ -490,10 +492,14 @@ def _parabola(occ: Any, punch: Punch, ends: tuple[int, int], x0: float, x1: floa
     ``ends`` are the gmsh points at ``x0`` and ``x1``; the middle control point is where
     the tangents at both ends meet.
     """
+    if float(punch.curvature(0.5 * (x0 + x1))) == 0.0:     # the flat centre of case A
+        return occ.addLine(ends[0], ends[1])
     g0 = float(punch.profile(x0)) - lift
     s0 = float(punch.slope(x0 + 1e-12 * (x1 - x0)))
     pm = occ.addPoint(0.5 * (x0 + x1), g0 + 0.5 * s0 * (x1 - x0), 0)
-    return occ.addBezier([ends[0], pm, ends[1]])
+    curve = occ.addBezier([ends[0], pm, ends[1]])
+    occ.remove([(0, pm)])            # a free point would carry a node of its own
+    return curve
 
 
 def build_model(punch: Punch, a: float, c: float, settings: DeckSettings = DeckSettings()) -> Model:
@@ -557,6 +563,13 @@ def build_model(punch: Punch, a: float, c: float, settings: DeckSettings = DeckS
                 for name, (dim, ents) in groups.items()}
         size_field([lb[1], *fine], h=h0, growth=settings.growth,
                    sampling=int(4 * (xf1 - xf0) / h0) + 10, size_max=depth / 8)
+        # the master face (the punch's) coarser than the slave (the block's), and slightly
+        # graded, so that no node of one lies on a node of the other: CalculiX's expansion of
+        # plane elements fails on coinciding nodes of two bodies ("nonpositive jacobian")
+        for f in face:
+            length = gmsh.model.occ.getMass(1, f)
+            gmsh.model.mesh.setTransfiniteCurve(f, max(2, math.ceil(length / (MASTER_RATIO * h0)) + 1),
+                                                "Progression", 1.003)
         for name, value in [("Mesh.Algorithm", 8), ("Mesh.RecombineAll", 1),
                             ("Mesh.RecombinationAlgorithm", 1), ("Mesh.SecondOrderIncomplete", 1)]:
             gmsh.option.setNumber(name, value)
@@ -578,9 +591,18 @@ def _collect(gmsh: Any, surfaces: dict[str, int], tags: dict[str, int],
                                               dict[str, np.ndarray]]:
     """Nodes (renumbered 1..N), CalculiX elements per body and node sets from gmsh's model."""
     node_tags, coords, _ = gmsh.model.mesh.getNodes()
+    # only the nodes of the 2-D elements: a free geometric point (a Bezier's control point)
+    # carries an orphan node, which CalculiX's expansion of plane elements does not survive
+    used = np.unique(np.concatenate([np.concatenate(gmsh.model.mesh.getElements(2, s)[2])
+                                     for s in surfaces.values()]).astype(np.int64))
+    keep = np.isin(node_tags.astype(np.int64), used)
+    node_tags, coords = node_tags[keep], coords.reshape(-1, 3)[keep]
     index = np.zeros(int(node_tags.max()) + 1, dtype=np.int64)
     index[node_tags.astype(np.int64)] = np.arange(1, node_tags.size + 1)
-    xy = coords.reshape(-1, 3)[:, :2].copy()
+    xy = coords[:, :2].copy()
+    # gmsh's round-off leaves x = -4e-14 where 0 was meant; CalculiX's expansion of plane
+    # elements fails on such a node ("nonpositive jacobian"): snap to 0
+    xy[np.abs(xy) < 1e-12 * np.max(np.abs(xy))] = 0.0
     elements: dict[str, list[tuple[str, np.ndarray]]] = {}
     for body, s in surfaces.items():
         elements[body] = []
