@@ -235,19 +235,22 @@ class Pitfall:
 
 
 def _oscillation(p: np.ndarray) -> float:
-    """The node-to-node (odd-even) part of ``p``: ``max |p_i - (p_{i-1} + p_{i+1})/2|``
-    over runs where that second difference flips sign at every node."""
+    """The amplitude of the node-to-node (odd-even) part of ``p``, zero when there is none.
+
+    Half the second difference ``d_i = p_i - (p_{i-1} + p_{i+1})/2`` is that amplitude
+    for ``p = smooth + eps (-1)^i``; its median is taken over the nodes where ``d``
+    flips sign from node to node, if it does at most (>= 60 %) of them.
+    """
     if p.size < 5:
         return 0.0
     d = p[1:-1] - 0.5 * (p[:-2] + p[2:])
     flips = np.sign(d[1:]) * np.sign(d[:-1]) < 0
-    # a node-to-node mode: the second difference flips sign at most nodes
     if flips.mean() < 0.6:
         return 0.0
     both = np.zeros_like(d, dtype=bool)
     both[1:] |= flips
     both[:-1] |= flips
-    return float(np.max(np.abs(d[both]), initial=0.0))
+    return float(0.5 * np.median(np.abs(d[both])))
 
 
 def diagnose(res: PointsResult, ref: NormalResult, *, penalty: float | None = None) -> list[Pitfall]:
