@@ -877,7 +877,9 @@ def contact_edge(x: np.ndarray, gap: np.ndarray, k: int = 8) -> float:
     the end; the fit stays clear of the penalty's penetration inside.
     """
     closed = np.nonzero(gap <= 0)[0]
-    j = np.arange(closed[-1] + 1, closed[-1] + 1 + k)
+    j = np.arange(closed[-1] + 1, min(closed[-1] + 1 + k, len(x)))
+    if len(j) < 2:            # the zone ends before k open nodes: the last closed node
+        return float(x[closed[-1]])
     coef = np.polyfit(x[j], gap[j] ** (2 / 3), 1)
     return float(-coef[1] / coef[0])
 
