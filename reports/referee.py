@@ -35,6 +35,11 @@ Pitfall         -- one diagnosed pitfall: its name, the number and what to do
 diagnose        -- every pitfall a pressure shows
 judge           -- compare and diagnose: the document of the report
 write_report    -- the report directory (md, html, json) through threepart.output
+
+CalculiX in the verification run
+--------------------------------
+calculix_result  -- one CalculiX run of a case (threepart.calculix) as a PointsResult
+calculix_studies -- its convergence in h and in the penalty K against the closed form
 """
 from __future__ import annotations
 
@@ -54,7 +59,8 @@ from .compare import EDGE_FRACTION, Check, compare
 from .sections import Bullets, Document, Item, Section, Status, Table, Verdict, fmt, words
 
 __all__ = ["PointsResult", "from_points", "read_pressure", "Pitfall", "diagnose", "judge",
-           "write_report", "END_NODES", "OSCILLATION", "NEGATIVE", "LOAD", "PENETRATION",
+           "write_report", "calculix_result", "calculix_studies", "CALCULIX_CASE", "SLOPE_SCALE",
+           "CALCULIX_N", "CALCULIX_K", "END_NODES", "OSCILLATION", "NEGATIVE", "LOAD", "PENETRATION",
            "COMPARISON"]
 
 #: the tolerance table's rows a pressure from outside is judged by
@@ -108,7 +114,8 @@ def _end(x: np.ndarray, p: np.ndarray, k: int = 4) -> float:
 
 
 def from_points(x: ArrayLike, p: ArrayLike, ref: NormalResult, *, alpha: float | None = None,
-                method: str = "points", info: dict[str, Any] | None = None) -> PointsResult:
+                ends: tuple[float, float] | None = None, method: str = "points",
+                info: dict[str, Any] | None = None) -> PointsResult:
     """A :class:`PointsResult` of the case that ``ref`` solved.
 
     Parameters
@@ -122,6 +129,9 @@ def from_points(x: ArrayLike, p: ArrayLike, ref: NormalResult, *, alpha: float |
     alpha
         The tilt, if the other code reports it; otherwise the reference's, and
         the comparison leaves ``alpha`` out.
+    ends
+        ``(a, c)``, if the other code locates them (CalculiX: from the gap);
+        otherwise from the points.
 
     The ends ``a``, ``c`` come from the points (the root of ``p^2`` fitted over
     the last four loaded nodes at each end); ``P = ∫p dx`` and ``s = ∫x p dx / P``
@@ -141,8 +151,11 @@ def from_points(x: ArrayLike, p: ArrayLike, ref: NormalResult, *, alpha: float |
         raise ValueError("the pressure's `x` repeats a position; give each point once")
     if np.count_nonzero(p > 0) < 2:
         raise ValueError("the pressure has fewer than 2 points with p > 0: no contact to judge")
-    c = _end(x, p)
-    a = _end(-x[::-1], p[::-1])       # the left end, mirrored
+    if ends is None:
+        c = _end(x, p)
+        a = _end(-x[::-1], p[::-1])       # the left end, mirrored
+    else:
+        a, c = (float(v) for v in ends)
     pp = np.maximum(p, 0.0)
     P = float(np.trapezoid(pp, x))
     s = float(np.trapezoid(x * pp, x) / P)
@@ -368,3 +381,103 @@ def main(pressure: str | Path, ref: NormalResult, *, out: str | Path, alpha: flo
     for q in doc["pitfalls"]:
         say(f"  pitfall {q['name']}: {q['message']}")
     return 0 if doc["passed"] else 1
+
+
+# --------------------------------------------------------------------------- CalculiX in verify
+#: the case of the CalculiX column: the symmetric flat rounded punch
+CALCULIX_CASE = "caseA_sym"
+#: its radii times this and P over it: the same contact [-a, c] and pressure shape, slopes and
+#: pressures divided by it (half-plane theory is linear in them): small slopes for the FE model
+SLOPE_SCALE = 20.0
+#: elements across W at the contact of the mesh study (K = 20 E/h)
+CALCULIX_N = (50, 100, 200)
+#: the penalty K in units of E/h of the penalty study (at W/h = 100)
+CALCULIX_K = (5.0, 20.0, 80.0)
+#: what the CalculiX study follows (errors normalised as in the tolerance table)
+CALCULIX_QUANTITIES = ("a", "c", "P", "p_left", "p_right", "p_interior_max")
+
+
+def _smooth(p: np.ndarray) -> np.ndarray:
+    """``(p[i-1] + 2 p[i] + p[i+1]) / 4``: removes the vertex/midside (odd-even) alternation of a
+    quadratic face's nodal stress, at an ``h^2 p''/4`` cost (the end values are kept)."""
+    out = p.copy()
+    out[1:-1] = 0.25 * (p[:-2] + 2 * p[1:-1] + p[2:])
+    return out
+
+
+def calculix_result(case: Any, n: float, penalty_factor: float, workdir: Path,
+                    scale: float = SLOPE_SCALE) -> tuple[PointsResult, NormalResult]:
+    """One CalculiX run of ``case`` scaled to small slopes: ``(result, closed-form reference)``.
+
+    The block's surface ``-S22`` at its nodes (smoothed over an element, see
+    :func:`_smooth`) is the pressure; the ends come from the gap
+    (:func:`threepart.calculix.contact_edge`), ``P`` from the points.
+    """
+    from dataclasses import replace as _replace
+
+    from threepart import calculix
+    from threepart.material import compliance
+    from threepart.methods import solve
+
+    case = case.resolved()
+    E, nu = case.material
+    settings = calculix.DeckSettings(n=n, penalty_factor=penalty_factor)
+    A = compliance(E, nu, E * settings.stiffening, nu)
+    punch = _replace(case.punch, R1=scale * case.punch.R1, R2=scale * case.punch.R2,
+                     R=scale * case.punch.R)
+    P, s = case.P / scale, float(case.s or 0.0)
+    ref = solve(punch, P, s, A=A, tilt=case.tilt)
+    model = calculix.build_model(punch, ref.a, ref.c, settings)
+    stem = calculix.run_ccx(calculix.write_deck(model, P=P, s=s, E=E, nu=nu, settings=settings,
+                                                title=f"{case.name}, radii x {scale:g}, P / {scale:g}"),
+                            workdir, f"n{n:g}_K{penalty_factor:g}")
+    sp = calculix.surface_pressure(model, stem)
+    res = from_points(sp.x, _smooth(sp.p), ref, ends=(sp.a, sp.c), method="calculix",
+                      info={"penalty": settings.K(E, ref.a + ref.c)})
+    return _replace(res, diagnostics=Diagnostics(h=model.h0, dofs=2 * model.n_nodes)), ref
+
+
+def calculix_studies(say: Callable[[str], None] = print) -> list[Any]:
+    """The CalculiX column of the verification run: convergence in h, then in K, on one case.
+
+    Without ``ccx`` on the PATH, one empty study whose note says so.
+    """
+    import tempfile
+
+    from threepart import calculix
+    from threepart.catalogue import get_case
+    from threepart.convergence import Study, run_study
+
+    from .compare import normal_figures
+
+    if not calculix.ccx_available():
+        st = Study("h", method="calculix", case=CALCULIX_CASE)
+        st.notes.append("`ccx` (CalculiX) is not on the PATH: the CalculiX column was not run "
+                        "(Debian: apt-get install calculix-ccx)")
+        return [st]
+    case = get_case(CALCULIX_CASE)
+    cache: dict[tuple[float, float], tuple[PointsResult, NormalResult]] = {}
+    with tempfile.TemporaryDirectory(prefix="threepart-ccx-") as tmp:
+        def level(n: float, k: float) -> tuple[float, dict[str, float], dict[str, Any], dict[str, float]]:
+            if (n, k) not in cache:
+                cache[n, k] = calculix_result(case, n, k, Path(tmp))
+            res, ref = cache[n, k]
+            fig = normal_figures(ref, res)
+            err = {q: fig[q][2] for q in CALCULIX_QUANTITIES}
+            raw = {q: (fig[q][1] if q != "p_interior_max" else fig[q][2]) for q in CALCULIX_QUANTITIES}
+            say(f"[study]   calculix W/h = {n:g}, K = {k:g} E/h: peak error {max(err['p_left'], err['p_right']):.3g}, "
+                f"a {err['a']:.3g} W, c {err['c']:.3g} W")
+            return (res.diagnostics.h if k == 20.0 else 1.0 / (k * case.material[0] / res.diagnostics.h),
+                    raw, {"dofs": res.diagnostics.dofs}, err)
+
+        mesh = run_study(lambda n: level(n, 20.0), list(CALCULIX_N), param="h",
+                         error_only=("p_interior_max",), skip=(calculix.CcxError,),
+                         method="calculix", case=CALCULIX_CASE, scheme="K = 20 E/h")
+        penalty = run_study(lambda k: level(100.0, k), list(CALCULIX_K), param="1/K",
+                            error_only=("p_interior_max",), skip=(calculix.CcxError,),
+                            method="calculix", case=CALCULIX_CASE, scheme="W/h = 100")
+    for st in (mesh, penalty):
+        st.notes.append(f"{CALCULIX_CASE} with the radii x {SLOPE_SCALE:g} and P / {SLOPE_SCALE:g} "
+                        "(the same contact, slopes / 20); punch 10 x stiffer than the block (in A); "
+                        "pressure = the block's surface -S22, smoothed over an element; a, c from the gap")
+    return [mesh, penalty]

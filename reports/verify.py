@@ -27,6 +27,7 @@ from threepart.output import atomic_dir, json_safe, strict_json, validate_json
 
 from . import render
 from .catalogue import FRETTING_STATES, MODES, CaseRun, Mode, run_case
+from .referee import CALCULIX_CASE, CALCULIX_K, CALCULIX_N, calculix_studies
 from .sections import MAP_JSON, plot_path, study_plot_path
 from .solvers import METHODS
 from .studies import STEP_STATES, Study, fem_slip_study, fem_step_study, fem_study, sie_study
@@ -173,6 +174,13 @@ def run(mode: Mode, cases: Sequence[Case], say: Callable[[str], None]) -> tuple[
             studies.append(fem_slip_study(slip_case, mode.fem_study_n,
                                           progress=lambda m: say(f"[study]   {m}")))
         timings["fem_slip_study_s"] = time.perf_counter() - t1
+    if mode.name != "quick" and (not cases or any(c.name == CALCULIX_CASE for c in cases)):
+        t1 = time.perf_counter()
+        say(f"[study] CalculiX convergence in h (W/h = {list(CALCULIX_N)}) and in the penalty "
+            f"(K = {list(CALCULIX_K)} E/h) on {CALCULIX_CASE}, scaled to small slopes")
+        with _heartbeat(say, lambda: "[study]   CalculiX"):
+            studies.extend(calculix_studies(say))
+        timings["calculix_study_s"] = time.perf_counter() - t1
     cycle = next((r for r in runs if r.case.kind == "fretting" and "closedform" in r.results), None)
     if cycle is not None:
         t1 = time.perf_counter()
@@ -280,7 +288,7 @@ def write_report(tmp: Path, mode: Mode, runs: Sequence[CaseRun], studies: Sequen
                 drawn[name].append(plot_path(name, "errors"))
         drawn["_studies"] = []
         for st in studies:
-            if not st.values:
+            if not st.values or st.method == "calculix":   # the CalculiX column: tables only
                 continue
             name = study_plot_path(st.method, st.scheme, st.case)
             {"n": plots.sie_convergence, "h": plots.fem_convergence,
