@@ -137,3 +137,21 @@ def test_ccx_runs_the_deck(tmp_path):
     inside = (sp.x > -sp.a) & (sp.x < sp.c)
     assert np.trapezoid(np.where(inside, sp.p, 0), sp.x) == pytest.approx(c.P / k, rel=3e-2)
     assert abs(sp.a - ref.a) < 0.5 * model.h0 and abs(sp.c - ref.c) < 0.5 * model.h0, (sp.a, sp.c, W)
+
+
+def test_verify_column_without_ccx_says_so(monkeypatch):
+    """Without ccx the CalculiX column is one empty study whose note says so, and the report
+    that carries it is valid against the schema and shows the note."""
+    from threepart.reports import render
+    from threepart.reports.catalogue import MODES
+    from threepart.reports.referee import calculix_studies
+    from threepart.reports.verify import build_report, validate
+
+    monkeypatch.setattr(calculix, "ccx_available", lambda: False)
+    studies = calculix_studies(say=lambda m: None)
+    assert len(studies) == 1 and not studies[0].values
+    assert "not on the PATH" in studies[0].notes[0] and studies[0].method == "calculix"
+    doc = build_report(MODES["quick"], [], studies, {}, {})
+    validate(doc)
+    md = render.markdown(doc)
+    assert "CalculiX convergence in h" in md and "apt-get install calculix-ccx" in md
