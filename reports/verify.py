@@ -118,8 +118,13 @@ def _heartbeat(say: Callable[[str], None], stage: Callable[[], str],
         thread.join()
 
 
-def run(mode: Mode, cases: Sequence[Case], say: Callable[[str], None]) -> tuple[list[CaseRun], list[Study], dict[str, float]]:
-    """Solve and compare every case, then the convergence studies; return the numbers."""
+def run(mode: Mode, cases: Sequence[Case], say: Callable[[str], None],
+        calculix: bool = False) -> tuple[list[CaseRun], list[Study], dict[str, float]]:
+    """Solve and compare every case, then the convergence studies; return the numbers.
+
+    ``calculix`` adds the CalculiX column (:func:`reports.referee.calculix_studies`),
+    except in the quick mode.
+    """
     runs: list[CaseRun] = []
     cache: dict[Any, Any] = {}
     timings: dict[str, float] = {}
@@ -174,7 +179,7 @@ def run(mode: Mode, cases: Sequence[Case], say: Callable[[str], None]) -> tuple[
             studies.append(fem_slip_study(slip_case, mode.fem_study_n,
                                           progress=lambda m: say(f"[study]   {m}")))
         timings["fem_slip_study_s"] = time.perf_counter() - t1
-    if mode.name != "quick" and (not cases or any(c.name == CALCULIX_CASE for c in cases)):
+    if calculix and mode.name != "quick":
         t1 = time.perf_counter()
         say(f"[study] CalculiX convergence in h (W/h = {list(CALCULIX_N)}) and in the penalty "
             f"(K = {list(CALCULIX_K)} E/h) on {CALCULIX_CASE}, scaled to small slopes")
@@ -323,7 +328,9 @@ def main(mode: str = "default", out: str | Path = "report", force: bool = False,
         Kept for compatibility; it changes nothing (a directory holding
         anything threepart did not write, or edited, is never replaced).
     cases
-        Cases to run (default: the whole catalogue).
+        Cases to run (default: the whole catalogue, and then, except in the quick
+        mode, the CalculiX column: :func:`reports.referee.calculix_studies`, which
+        says so when ``ccx`` is not on the PATH).
     quiet
         Print no progress.
 
@@ -348,9 +355,10 @@ def main(mode: str = "default", out: str | Path = "report", force: bool = False,
 
     with atomic_dir(out, force, command="verify") as tmp:
         m = MODES[mode]
+        whole = cases is None          # the CalculiX column goes with the whole catalogue
         cases = list(load_cases() if cases is None else cases)
         say(f"threepart verify --{mode}: {len(cases)} cases, FEM mesh {m.fem_mesh!r}, report -> {out}")
-        runs, studies, timings = run(m, cases, say)
+        runs, studies, timings = run(m, cases, say, calculix=whole)
         timings["solve_s"] = time.perf_counter() - t0
         doc = write_report(tmp, m, runs, studies, timings, say)
     s = doc["summary"]
