@@ -486,10 +486,12 @@ def _cmd_compare(args: argparse.Namespace) -> int:
     from threepart.material import rigid_punch
     from threepart.methods import solve
     from threepart.reports.referee import main as referee_main
+    from threepart.results import NormalResult
 
     pr = _problem(args)
     A = args.A if args.A is not None else pr["A"] if pr["A"] is not None else rigid_punch(pr["E"], pr["nu"])
     ref = solve(pr["punch"], pr["P"], pr["s"], A=A, tilt=pr["tilt"])
+    assert isinstance(ref, NormalResult)           # no Q: the normal problem
     return int(referee_main(args.pressure, ref, out=args.out, alpha=args.alpha, penalty=args.penalty))
 
 
