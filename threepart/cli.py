@@ -573,7 +573,7 @@ def build_parser() -> argparse.ArgumentParser:
                    help="the deck to write (a new file, or one threepart wrote there, unchanged)")
     p.add_argument("--h", type=float, help=_labelled("element size at the contact (default W/200)", "a"))
     p.add_argument("--penalty", type=float, metavar="K",
-                   help="penalty stiffness K [MPa/mm] (default 20 E/h)")
+                   help="penalty stiffness K [MPa/mm] (default 200 E/h)")
     p.add_argument("--pair", action="store_true",
                    help="two similar elastic bodies instead of a stiff punch")
     p.add_argument("--stiffening", type=float,
