@@ -34,7 +34,7 @@ __all__ = ["Status", "Verdict", "Code", "Link", "Item", "Bullets", "Table", "Fig
 ENERGY_UNIT = f"N·{UNITS['d']}/{UNITS['b']}"
 ENERGY_UNIT_TEXT = f"N·{UNITS['d']} per {UNITS['b']} of contact length, per cycle"
 #: how the report names each method
-METHOD_NAMES = {"closedform": "closed form", "sie": "SIE", "fem": "FEM"}
+METHOD_NAMES = {"closedform": "closed form", "sie": "SIE", "fem": "FEM", "calculix": "CalculiX"}
 #: the validity map's file beside the report (written by ``threepart map``) and the command
 MAP_JSON = "../map/map.json"
 MAP_COMMAND = "threepart map --quick"
@@ -446,7 +446,8 @@ def _order_cell(st: dict[str, Any], q: str) -> str:
 
 def _study_title(st: dict[str, Any]) -> str:
     scheme = f" ({st['scheme']})" if st.get("scheme") else ""
-    what = {"n": "in n", "h": "in h", "dQ": "in the load step ΔQ"}.get(st["param"], f"in {st['param']}")
+    what = {"n": "in n", "h": "in h", "dQ": "in the load step ΔQ",
+            "1/K": "in the penalty 1/K"}.get(st["param"], f"in {st['param']}")
     return f"{METHOD_NAMES.get(st['method'], st['method'])}{scheme} convergence {what}, case {st['case']}"
 
 

@@ -28,6 +28,7 @@ from threepart.output import atomic_dir, json_safe, strict_json, validate_json
 
 from . import render
 from .runs import FRETTING_STATES, MODES, CaseRun, Mode, run_case
+from .referee import CALCULIX_CASE, CALCULIX_K, CALCULIX_N, calculix_studies
 from .sections import MAP_JSON, plot_path, study_plot_path
 from .stress import case_hot_spots, stress_nu
 from .solvers import METHODS
@@ -126,8 +127,13 @@ def _heartbeat(say: Callable[[str], None], stage: Callable[[], str],
         thread.join()
 
 
-def run(mode: Mode, cases: Sequence[Case], say: Callable[[str], None]) -> tuple[list[CaseRun], list[Study], dict[str, float]]:
-    """Solve and compare every case, then the convergence studies; return the numbers."""
+def run(mode: Mode, cases: Sequence[Case], say: Callable[[str], None],
+        calculix: bool = False) -> tuple[list[CaseRun], list[Study], dict[str, float]]:
+    """Solve and compare every case, then the convergence studies; return the numbers.
+
+    ``calculix`` adds the CalculiX column (:func:`reports.referee.calculix_studies`),
+    except in the quick mode.
+    """
     runs: list[CaseRun] = []
     cache: dict[Any, Any] = {}
     timings: dict[str, float] = {}
@@ -182,6 +188,13 @@ def run(mode: Mode, cases: Sequence[Case], say: Callable[[str], None]) -> tuple[
             studies.append(fem_slip_study(slip_case, mode.fem_study_n,
                                           progress=lambda m: say(f"[study]   {m}")))
         timings["fem_slip_study_s"] = time.perf_counter() - t1
+    if calculix and mode.name != "quick":
+        t1 = time.perf_counter()
+        say(f"[study] CalculiX convergence in h (W/h = {list(CALCULIX_N)}) and in the penalty "
+            f"(K = {list(CALCULIX_K)} E/h) on {CALCULIX_CASE}, scaled to small slopes")
+        with _heartbeat(say, lambda: "[study]   CalculiX"):
+            studies.extend(calculix_studies(say))
+        timings["calculix_study_s"] = time.perf_counter() - t1
     cycle = next((r for r in runs if r.case.kind == "fretting" and "closedform" in r.results), None)
     if cycle is not None:
         t1 = time.perf_counter()
@@ -313,7 +326,7 @@ def write_report(tmp: Path, mode: Mode, runs: Sequence[CaseRun], studies: Sequen
                     drawn[name].append(plot_path(name, kind))
         drawn["_studies"] = []
         for st in studies:
-            if not st.values:
+            if not st.values or st.method == "calculix":   # the CalculiX column: tables only
                 continue
             name = study_plot_path(st.method, st.scheme, st.case)
             {"n": plots.sie_convergence, "h": plots.fem_convergence,
@@ -348,7 +361,9 @@ def main(mode: str = "default", out: str | Path = "report", force: bool = False,
         Kept for compatibility; it changes nothing (a directory holding
         anything threepart did not write, or edited, is never replaced).
     cases
-        Cases to run (default: the whole catalogue).
+        Cases to run (default: the whole catalogue, and then, except in the quick
+        mode, the CalculiX column: :func:`reports.referee.calculix_studies`, which
+        says so when ``ccx`` is not on the PATH).
     quiet
         Print no progress.
 
@@ -373,9 +388,10 @@ def main(mode: str = "default", out: str | Path = "report", force: bool = False,
 
     with atomic_dir(out, force, command="verify") as tmp:
         m = MODES[mode]
+        whole = cases is None          # the CalculiX column goes with the whole catalogue
         cases = list(load_cases() if cases is None else cases)
         say(f"threepart verify --{mode}: {len(cases)} cases, FEM mesh {m.fem_mesh!r}, report -> {out}")
-        runs, studies, timings = run(m, cases, say)
+        runs, studies, timings = run(m, cases, say, calculix=whole)
         timings["solve_s"] = time.perf_counter() - t0
         doc = write_report(tmp, m, runs, studies, timings, say)
     s = doc["summary"]

@@ -9,6 +9,8 @@ figures  the paper's result figures, with the SIE solution as markers
 map      where the half-plane formulas stop: the finite-body validity map, on dask.distributed
 export-refs  the catalogue's reference solutions as a versioned dataset (JSON + CSV, JSON schema)
 fatigue  fretting-fatigue parameters of a fretting cycle: hot spots, CSV, VTU and a contour plot
+deck     a ready-to-run CalculiX input deck of a catalogue case or of a punch and loads
+compare  judge another code's contact pressure (CSV x, p or CalculiX .frd) against threepart
 
 --method auto (default) uses the paper's closed form where it holds and the SIE
 where it does not (past lift-off, the punch on one corner, a stick zone that
@@ -59,7 +61,8 @@ UNITS: dict[str, str] = {
 #: options that take a number; ``--s -1e-3`` is read as ``--s=-1e-3`` (argparse alone
 #: would take ``-1e-3`` for an option)
 NUMERIC_OPTIONS = ("--R1", "--R2", "--b", "--R", "--A", "--E", "--nu", "--P", "--s", "--Q", "--f",
-                   "--Q-max", "--sigma-bulk", "--k", "--depth")   # --Q-max, --k, --depth: fatigue
+                   "--Q-max", "--sigma-bulk", "--k", "--depth",   # --Q-max, --k, --depth: fatigue
+                   "--alpha", "--h", "--penalty", "--stiffening")   # deck and compare
 #: options that take a comma-separated list of numbers (``--x -0.5,0.2`` is read as ``--x=-0.5,0.2``)
 LIST_OPTIONS = ("--x",)
 #: the most points ``--grid`` prints
@@ -67,7 +70,7 @@ MAX_GRID = 1_000_000
 
 
 #: the sub-commands (kept in step with :func:`build_parser` by tests/test_cli.py)
-COMMANDS = ("solve", "slip", "verify", "figures", "map", "export-refs", "fatigue")
+COMMANDS = ("solve", "slip", "verify", "figures", "map", "export-refs", "fatigue", "deck", "compare")
 
 
 class UsageError(Exception):
@@ -742,6 +745,97 @@ def _fatigue_plot(path: str, res: Any, cycle: Any) -> None:
         plt.close(fig)
 
 
+def _problem_args(p: argparse.ArgumentParser, *, compliance_option: bool) -> None:
+    """``--case NAME``, or the punch, the loads and the material on the command line."""
+    g = p.add_argument_group("the problem: --case NAME, or the punch and the loads (eq. 2)")
+    g.add_argument("--case", metavar="NAME", help="a case of the catalogue (threepart/cases.json)")
+    for name, text in (("--R1", "left edge radius"), ("--R2", "right edge radius"),
+                       ("--b", "half-width of the central segment")):
+        g.add_argument(name, type=float, help=_labelled(text, name[2:]))
+    g.add_argument("--R", type=float, default=None,
+                   help=_labelled("central radius (default inf: flat)", "R"))
+    g.add_argument("--P", type=float, help=_labelled("normal load per unit length", "P"))
+    g.add_argument("--s", type=float, default=None, help=_labelled("lever arm of P (default 0)", "s"))
+    g.add_argument("--E", type=float, help=_labelled("Young's modulus of the block", "E"))
+    g.add_argument("--nu", type=float, help="Poisson's ratio of the block")
+    if compliance_option:
+        g.add_argument("--A", type=float,
+                       help=_labelled("compliance of the model judged (eq. 4); default: the case's, "
+                                      "or 2(1 - nu^2)/E (a rigid punch)", "A"))
+    g.add_argument("--tilt", choices=("free", "suppressed"), default=None,
+                   help="free (default, or the case's) or suppressed")
+
+
+def _problem(args: argparse.Namespace) -> dict[str, Any]:
+    """The punch, loads and material of ``--case`` or of the command line's options."""
+    from threepart.catalogue import get_case, load_cases
+    from threepart.punch import Punch
+
+    given = [o for o in ("R1", "R2", "b", "R", "P", "s") if getattr(args, o) is not None]
+    if args.case is not None:
+        if given:
+            raise ValueError(f"give `--case` or the punch and loads, not both (also got "
+                             f"`--{given[0]}`)")
+        try:
+            case = get_case(args.case).resolved()
+        except KeyError:
+            names = ", ".join(c.name for c in load_cases(None))
+            raise ValueError(f"`--case` = {args.case!r} is not in the catalogue ({names})") from None
+        if case.material is None and (args.E is None or args.nu is None):
+            raise ValueError(f"case {case.name!r} gives only A; add `--E` and `--nu`")
+        E, nu = case.material if case.material is not None else (args.E, args.nu)
+        E = E if args.E is None else args.E
+        nu = nu if args.nu is None else args.nu
+        return {"name": case.name, "punch": case.punch, "P": case.P, "s": float(case.s or 0.0),
+                "E": E, "nu": nu, "A": case.A if args.E is None and args.nu is None else None,
+                "tilt": args.tilt or case.tilt}
+    missing = [o for o in ("R1", "R2", "b", "P", "E", "nu") if getattr(args, o) is None]
+    if missing:
+        raise ValueError(f"give `--case NAME`, or the punch and the loads: `--{missing[0]}` is missing")
+    punch = Punch(R1=args.R1, R2=args.R2, b=args.b, R=float("inf") if args.R is None else args.R)
+    return {"name": "", "punch": punch, "P": args.P, "s": 0.0 if args.s is None else args.s,
+            "E": args.E, "nu": args.nu, "A": None, "tilt": args.tilt or "free"}
+
+
+def _cmd_deck(args: argparse.Namespace) -> int:
+    from threepart import calculix
+    from threepart.material import compliance, similar_pair
+    from threepart.methods import solve
+    from threepart.output import write_file
+
+    if args.format != "calculix":
+        raise ValueError(f"`--format` = {args.format!r}: only calculix is written")
+    pr = _problem(args)
+    settings = calculix.DeckSettings(h=args.h, penalty=args.penalty, pair=args.pair,
+                                     tilt=pr["tilt"], **({} if args.stiffening is None
+                                                         else {"stiffening": args.stiffening}))
+    E, nu = pr["E"], pr["nu"]
+    A = similar_pair(E, nu) if args.pair else compliance(E, nu, E * settings.stiffening, nu)
+    ref = solve(pr["punch"], pr["P"], pr["s"], A=A, tilt=pr["tilt"])
+    model = calculix.build_model(pr["punch"], ref.a, ref.c, settings)
+    deck = calculix.write_deck(model, P=pr["P"], s=pr["s"], E=E, nu=nu, settings=settings,
+                               title=(pr["name"] or "a punch from the command line")
+                               + f"; judge it with A = {A:.10g}")
+    write_file(args.out, deck, arg="--out")
+    print(f"wrote {args.out}: {model.n_nodes} nodes, {model.n_elements} elements, h = {model.h0:.4g}, "
+          f"K = {settings.K(E, ref.a + ref.c):.4g}; the model's compliance A = {A:.10g} "
+          f"(give it to `threepart compare --A`); expected contact [{-ref.a:.6g}, {ref.c:.6g}]")
+    return 0
+
+
+def _cmd_compare(args: argparse.Namespace) -> int:
+    from threepart.material import rigid_punch
+    from threepart.methods import solve
+    from threepart.reports.referee import main as referee_main
+    from threepart.results import NormalResult
+
+    pr = _problem(args)
+    A = args.A if args.A is not None else pr["A"] if pr["A"] is not None else rigid_punch(pr["E"], pr["nu"])
+    ref = solve(pr["punch"], pr["P"], pr["s"], A=A, tilt=pr["tilt"])
+    assert isinstance(ref, NormalResult)           # no Q: the normal problem
+    return int(referee_main(args.pressure, ref, out=args.out, alpha=args.alpha, penalty=args.penalty))
+
+
 _FORCE_HELP = ("no longer needed: a rerun replaces threepart's own earlier output in --out (its "
                ".threepart-output.json lists every file with a checksum, and nothing else is there); "
                "a directory holding anything else, or an edited file, is never replaced, with or "
@@ -832,6 +926,34 @@ def build_parser() -> argparse.ArgumentParser:
                               "Definitions: docs/FATIGUE.md.", formatter_class=_FatigueHelp)
     _fatigue_args(p)
     p.set_defaults(func=_cmd_fatigue)
+
+
+    p = sub.add_parser("deck", help="write a ready-to-run CalculiX deck of a case or a punch",
+                       epilog="Units: mm, N/mm, MPa, or any consistent set. See docs/CALCULIX.md.")
+    p.add_argument("--format", default="calculix", help="the deck's format: calculix (default)")
+    _problem_args(p, compliance_option=False)
+    p.add_argument("--out", required=True, metavar="FILE.inp",
+                   help="the deck to write (a new file, or one threepart wrote there, unchanged)")
+    p.add_argument("--h", type=float, help=_labelled("element size at the contact (default W/200)", "a"))
+    p.add_argument("--penalty", type=float, metavar="K",
+                   help="penalty stiffness K [MPa/mm] (default 200 E/h)")
+    p.add_argument("--pair", action="store_true",
+                   help="two similar elastic bodies instead of a stiff punch")
+    p.add_argument("--stiffening", type=float,
+                   help="the stiff punch's modulus over the block's (default 10)")
+    p.set_defaults(func=_cmd_deck)
+
+    p = sub.add_parser("compare", help="judge another code's contact pressure against threepart")
+    p.add_argument("--pressure", required=True, metavar="FILE",
+                   help="a CSV of x, p (p >= 0 compressive) or CalculiX's .frd with CPRESS")
+    _problem_args(p, compliance_option=True)
+    p.add_argument("--alpha", type=float, help=_labelled("the model's tilt, if known", "alpha"))
+    p.add_argument("--penalty", type=float, metavar="K",
+                   help="the model's penalty stiffness [MPa/mm], for the penalty diagnosis")
+    p.add_argument("--out", default="compare",
+                   help="report directory: new, empty, or threepart's own earlier report "
+                        "(default: ./compare)")
+    p.set_defaults(func=_cmd_compare)
     return parser
 
 

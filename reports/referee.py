@@ -1,0 +1,491 @@
+"""``threepart compare --pressure FILE``: a pressure from another code, judged against threepart.
+
+A user's finite-element (or any) contact pressure, given as points ``x, p``
+(a CSV file, or CalculiX's ``.frd`` contact output), becomes a result of the
+shared shape (:class:`PointsResult`, a :class:`~threepart.results.NormalResult`)
+and is compared with the reference of the same case -- the closed form where
+it holds, the SIE past lift-off (``threepart.methods.solve(method="auto")``)
+-- by the verification run's own comparison (:func:`reports.compare.compare`)
+and the tolerance table's ``"referee"`` rows. :func:`diagnose` then looks for
+the known pitfalls of contact FE results, each with the number that shows it:
+
+``negative-pressure``
+    Tension outside (or inside) the contact: CalculiX writes CPRESS = -K COPEN
+    at open nodes, so a penalty contact shows negative "pressures" beyond its ends.
+``load``
+    ``∫p dx`` differs from ``P`` (a second increment re-paired on the deformed
+    geometry, a wrong thickness, a half model).
+``end-resolution``
+    An end of the contact resolved by fewer than :data:`END_NODES` nodes
+    within ``EDGE_FRACTION * W`` of it.
+``mesh-peak``
+    A peak set by the mesh: the largest pressure at a node next to an end, or
+    an element-scale (node-to-node) oscillation larger than :data:`OSCILLATION`
+    of the peak.
+``penalty``
+    The penalty's overclosure ``p_max / K`` against the profile's rise over
+    the contact: the peak error falls as ``1/K``.
+
+Names
+-----
+PointsResult    -- a NormalResult whose pressure interpolates given points
+from_points     -- build one: the ends from the data (square-root fit), P and s its moments
+read_pressure   -- the points of a CSV file (``x, p``) or of a CalculiX ``.frd`` (CPRESS)
+Pitfall         -- one diagnosed pitfall: its name, the number and what to do
+diagnose        -- every pitfall a pressure shows
+judge           -- compare and diagnose: the document of the report
+write_report    -- the report directory (md, html, json) through threepart.output
+
+CalculiX in the verification run
+--------------------------------
+calculix_result  -- one CalculiX run of a case (threepart.calculix) as a PointsResult
+calculix_studies -- its convergence in h and in the penalty K against the closed form
+"""
+from __future__ import annotations
+
+import csv
+import math
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any, Callable
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from threepart.output import atomic_dir, json_safe, strict_json
+from threepart.results import Diagnostics, NormalResult
+
+from .compare import EDGE_FRACTION, Check, compare
+from .sections import Bullets, Document, Item, Section, Status, Table, Verdict, fmt, words
+
+__all__ = ["PointsResult", "from_points", "read_pressure", "Pitfall", "diagnose", "judge",
+           "write_report", "calculix_result", "calculix_studies", "CALCULIX_CASE", "SLOPE_SCALE",
+           "CALCULIX_N", "CALCULIX_K", "END_NODES", "OSCILLATION", "NEGATIVE", "LOAD", "PENETRATION",
+           "COMPARISON"]
+
+#: the tolerance table's rows a pressure from outside is judged by
+COMPARISON = "referee"
+#: fewest nodes within EDGE_FRACTION * W of a contact end that resolve it
+END_NODES = 3
+#: node-to-node oscillation (of the peak) above which the peak is the mesh's
+OSCILLATION = 2e-3
+#: tension (of the peak) above which negative pressures are reported
+NEGATIVE = 1e-3
+#: |∫p - P| / P above which the load is reported
+LOAD = 1e-3
+#: overclosure p_max / K (of the profile's rise over the contact) above which the penalty is reported
+PENETRATION = 1e-3
+
+
+@dataclass(frozen=True)
+class PointsResult(NormalResult):
+    """A normal result from pressure points: ``pressure(x)`` interpolates them linearly.
+
+    ``x_nodes`` and ``p_nodes`` are the points as given (sorted); the
+    comparison samples the field there (:func:`reports.compare.sample_points`).
+    ``P`` and ``s`` are the points' own load and centroid, ``a`` and ``c``
+    their ends (see :func:`from_points`).
+    """
+
+    x_nodes: np.ndarray = field(default_factory=lambda: np.zeros(0), compare=False)
+    p_nodes: np.ndarray = field(default_factory=lambda: np.zeros(0), compare=False)
+
+    def pressure(self, x: ArrayLike) -> np.ndarray:
+        """The points' pressure, linear between them and 0 outside ``[-a, c]``."""
+        x = np.asarray(x, dtype=float)
+        p = np.interp(x, self.x_nodes, np.maximum(self.p_nodes, 0.0), left=0.0, right=0.0)
+        return np.where((x >= -self.a) & (x <= self.c), p, 0.0)
+
+
+def _end(x: np.ndarray, p: np.ndarray, k: int = 4) -> float:
+    """The right end of a square-root pressure: the root of ``p^2``, linear over the last ``k`` nodes.
+
+    ``x`` ascending; the end lies between the last node with ``p > 0`` and the next one.
+    """
+    on = np.flatnonzero(p > 0)
+    last = int(on[-1])
+    j = on[max(0, len(on) - k):]
+    hi = x[last + 1] if last + 1 < len(x) else x[last]
+    if len(j) >= 2:
+        slope, icpt = np.polyfit(x[j], p[j] ** 2, 1)
+        if slope < 0:
+            return float(np.clip(-icpt / slope, x[last], hi))
+    return float(x[last])
+
+
+def from_points(x: ArrayLike, p: ArrayLike, ref: NormalResult, *, alpha: float | None = None,
+                ends: tuple[float, float] | None = None, method: str = "points",
+                info: dict[str, Any] | None = None) -> PointsResult:
+    """A :class:`PointsResult` of the case that ``ref`` solved.
+
+    Parameters
+    ----------
+    x, p
+        Positions (along the surface, the README's x) and pressures (>= 0
+        compressive); at least 8 points, finite, two or more with ``p > 0``.
+    ref
+        The reference result of the same case: it gives the punch, ``A`` and
+        the tilt mode, never a figure of the points.
+    alpha
+        The tilt, if the other code reports it; otherwise the reference's, and
+        the comparison leaves ``alpha`` out.
+    ends
+        ``(a, c)``, if the other code locates them (CalculiX: from the gap);
+        otherwise from the points.
+
+    The ends ``a``, ``c`` come from the points (the root of ``p^2`` fitted over
+    the last four loaded nodes at each end); ``P = ∫p dx`` and ``s = ∫x p dx / P``
+    by the trapezoidal rule over the positive pressures.
+    """
+    x = np.asarray(x, dtype=float).ravel()
+    p = np.asarray(p, dtype=float).ravel()
+    if x.shape != p.shape:
+        raise ValueError(f"`x` and `p` must have the same length, not {x.size} and {p.size}")
+    if x.size < 8:
+        raise ValueError(f"the pressure has {x.size} points; at least 8 are needed")
+    if not (np.all(np.isfinite(x)) and np.all(np.isfinite(p))):
+        raise ValueError("the pressure holds a non-finite x or p (NaN or inf)")
+    order = np.argsort(x, kind="stable")
+    x, p = x[order], p[order]
+    if np.any(np.diff(x) <= 0):
+        raise ValueError("the pressure's `x` repeats a position; give each point once")
+    if np.count_nonzero(p > 0) < 2:
+        raise ValueError("the pressure has fewer than 2 points with p > 0: no contact to judge")
+    if ends is None:
+        c = _end(x, p)
+        a = _end(-x[::-1], p[::-1])       # the left end, mirrored
+    else:
+        a, c = (float(v) for v in ends)
+    pp = np.maximum(p, 0.0)
+    P = float(np.trapezoid(pp, x))
+    s = float(np.trapezoid(x * pp, x) / P)
+    return PointsResult(punch=ref.punch, A=ref.A, a=a, c=c,
+                        alpha=float(ref.alpha if alpha is None else alpha), P=P, s=s,
+                        tilt=ref.tilt, method=method,
+                        diagnostics=Diagnostics(h=float(np.median(np.diff(x))), dofs=int(x.size)),
+                        info=dict(info or {}, alpha_given=alpha is not None),
+                        x_nodes=x, p_nodes=p)
+
+
+def read_pressure(path: str | Path) -> tuple[np.ndarray, np.ndarray, dict[str, Any]]:
+    """The points of a pressure file: ``(x, p, info)``.
+
+    ``.csv`` (or ``.txt``): two columns ``x, p``, an optional header line,
+    ``#`` comments. ``.frd``: CalculiX's contact output (``*CONTACT FILE``,
+    CSTR/CDIS): CPRESS at the slave nodes at their deformed ``x``; a plane
+    model's contact output is written on the expanded nodes (``N + 3(n - 1) + 1..3``
+    for node ``n`` of ``N``), which are averaged back onto ``n``; ``info`` then
+    holds COPEN and, where the contact is open, the penalty ``K = -CPRESS/COPEN``.
+    """
+    path = Path(path)
+    if not path.is_file():
+        raise ValueError(f"`--pressure` = {str(path)!r} is not a file")
+    suffix = path.suffix.lower()
+    if suffix == ".frd":
+        return _read_frd(path)
+    if suffix not in (".csv", ".txt"):
+        raise ValueError(f"`--pressure` = {str(path)!r}: give a .csv (x, p) or CalculiX's .frd, "
+                         f"not {suffix or 'a file without a suffix'}")
+    rows = []
+    with open(path, newline="", encoding="utf-8") as f:
+        for i, row in enumerate(csv.reader(line for line in f if not line.lstrip().startswith("#"))):
+            if not row or not "".join(row).strip():
+                continue
+            try:
+                rows.append((float(row[0]), float(row[1])))
+            except (ValueError, IndexError):
+                if i == 0 and not rows:
+                    continue          # a header line
+                raise ValueError(f"`--pressure` = {str(path)!r}: row {i + 1} is not two numbers "
+                                 f"x, p: {','.join(row)!r}") from None
+    if not rows:
+        raise ValueError(f"`--pressure` = {str(path)!r} holds no x, p rows")
+    xp = np.array(rows)
+    return xp[:, 0], xp[:, 1], {"source": "csv"}
+
+
+def _read_frd(path: Path) -> tuple[np.ndarray, np.ndarray, dict[str, Any]]:
+    from threepart.calculix import read_frd, read_frd_nodes
+
+    stem = path.with_suffix("")
+    blocks = read_frd(stem)
+    if "CONTACT" not in blocks:
+        raise ValueError(f"`--pressure` = {str(path)!r} has no CONTACT block: request "
+                         "`*CONTACT FILE` with CSTR, CDIS in the step")
+    xyz = read_frd_nodes(stem)
+    disp = blocks.get("DISP", {})
+    by_x: dict[float, list[tuple[float, float]]] = {}
+    N = max(xyz)
+    for k, v in blocks["CONTACT"].items():
+        # a plane model's node n is written as its three expanded nodes N + 3(n - 1) + 1..3
+        n = k if k <= N else (k - N - 1) // 3 + 1
+        if n not in xyz:
+            continue
+        x = xyz[n][0] + (disp[n][0] if n in disp else 0.0)
+        by_x.setdefault(round(float(x), 9), []).append((float(v[3]), float(v[0])))
+    if not by_x:
+        raise ValueError(f"`--pressure` = {str(path)!r}: no contact node has coordinates")
+    xs = np.array(sorted(by_x))
+    cp = np.array([np.mean([t[0] for t in by_x[k]]) for k in xs])
+    co = np.array([np.mean([t[1] for t in by_x[k]]) for k in xs])
+    open_ = co > 0
+    K = float(np.median(-cp[open_] / co[open_])) if np.count_nonzero(open_ & (cp < 0)) >= 3 else math.nan
+    return xs, cp, {"source": "frd", "copen": co, "penalty": K}
+
+
+@dataclass(frozen=True)
+class Pitfall:
+    """One pitfall a pressure shows: its name, the figure that shows it, and the message."""
+
+    name: str
+    value: float
+    limit: float
+    message: str
+
+    def as_dict(self) -> dict[str, Any]:
+        return json_safe({"name": self.name, "value": self.value, "limit": self.limit,
+                          "message": self.message})
+
+
+def _oscillation(p: np.ndarray) -> float:
+    """The amplitude of the node-to-node (odd-even) part of ``p``, zero when there is none.
+
+    Half the second difference ``d_i = p_i - (p_{i-1} + p_{i+1})/2`` is that amplitude
+    for ``p = smooth + eps (-1)^i``; its median is taken over the nodes where ``d``
+    flips sign from node to node, if it does at most (>= 60 %) of them.
+    """
+    if p.size < 5:
+        return 0.0
+    d = p[1:-1] - 0.5 * (p[:-2] + p[2:])
+    flips = np.sign(d[1:]) * np.sign(d[:-1]) < 0
+    if flips.mean() < 0.6:
+        return 0.0
+    both = np.zeros_like(d, dtype=bool)
+    both[1:] |= flips
+    both[:-1] |= flips
+    return float(0.5 * np.median(np.abs(d[both])))
+
+
+def diagnose(res: PointsResult, ref: NormalResult, *, penalty: float | None = None) -> list[Pitfall]:
+    """The known pitfalls ``res`` shows against the case ``ref`` solved, each with its number."""
+    x, p = res.x_nodes, res.p_nodes
+    W = ref.a + ref.c
+    peak = float(max(pk.p for pk in ref.peaks()))
+    out: list[Pitfall] = []
+    tension = float(-min(p.min(), 0.0)) / peak
+    if tension > NEGATIVE:
+        k = int(np.count_nonzero(p < -NEGATIVE * peak))
+        out.append(Pitfall("negative-pressure", tension, NEGATIVE,
+                           f"{k} points carry tension, down to -{tension:.3g} of the peak: a penalty "
+                           "contact writes CPRESS = -K*COPEN at open nodes; read p only where the "
+                           "contact is closed (COPEN <= 0) or use the surface's -S22"))
+    load = abs(res.P - ref.P) / ref.P
+    if load > LOAD:
+        out.append(Pitfall("load", load, LOAD,
+                           f"∫p dx = {res.P:.6g} differs from P = {ref.P:.6g} by {load:.3g} of P: "
+                           "analyse the first increment (a later one re-pairs the surfaces on the "
+                           "deformed geometry), check the thickness and a half model's factor 2"))
+    margin = EDGE_FRACTION * W
+    inside = p > 0
+    for side, (lo, hi) in (("left", (-res.a, -res.a + margin)), ("right", (res.c - margin, res.c))):
+        n = int(np.count_nonzero(inside & (x >= lo) & (x <= hi)))
+        if n < END_NODES:
+            out.append(Pitfall("end-resolution", float(n), float(END_NODES),
+                               f"the {side} end is resolved by {n} nodes within {EDGE_FRACTION:g} W "
+                               f"(W = {W:.6g}) of it; refine there to at least {END_NODES}"))
+    on = np.flatnonzero(inside)
+    i_max = int(np.argmax(p))
+    if i_max <= on[0] + 1 or i_max >= on[-1] - 1:
+        out.append(Pitfall("mesh-peak", float(abs(x[i_max] - (res.c if i_max >= on[-1] - 1 else -res.a)) / W),
+                           0.0, f"the largest pressure sits at a node next to a contact end "
+                                f"(x = {x[i_max]:.6g}): the mesh, not the solution, sets it"))
+    osc = _oscillation(p[inside]) / peak
+    if osc > OSCILLATION:
+        out.append(Pitfall("mesh-peak", osc, OSCILLATION,
+                           f"the pressure oscillates from node to node by {osc:.3g} of the peak "
+                           "(vertex against midside nodes of quadratic faces): a peak read at one "
+                           "node carries that error; smooth over an element or refine"))
+    K = penalty if penalty is not None else res.info.get("penalty")
+    if K is not None and math.isfinite(K) and K > 0:
+        rise = float(np.max(ref.punch.profile(np.array([-ref.a, ref.c]))) - np.min(
+            ref.punch.profile(np.linspace(-ref.a, ref.c, 201))))
+        pen = float(p.max()) / K / rise if rise > 0 else math.inf
+        if pen > PENETRATION:
+            out.append(Pitfall("penalty", pen, PENETRATION,
+                               f"the penalty's overclosure p_max/K = {float(p.max()) / K:.3g} is "
+                               f"{pen:.3g} of the profile's rise over the contact ({rise:.3g}); "
+                               "the peak error falls as 1/K: rerun with 10 K and compare"))
+    return out
+
+
+def judge(res: PointsResult, ref: NormalResult, *, penalty: float | None = None,
+          source: str = "") -> dict[str, Any]:
+    """The comparison and the diagnosis of ``res`` against ``ref``, as a JSON-safe document."""
+    checks = [c for c in compare(ref, res, COMPARISON)
+              if c.quantity != "alpha" or res.info.get("alpha_given")]
+    pitfalls = diagnose(res, ref, penalty=penalty)
+    return json_safe({
+        "tool": "threepart compare", "source": source,
+        "reference": {"method": ref.method, "a": ref.a, "c": ref.c, "alpha": ref.alpha,
+                      "P": ref.P, "s": ref.s, "note": ref.info.get("auto", "")},
+        "obtained": {"a": res.a, "c": res.c, "P": res.P, "s": res.s, "points": int(res.x_nodes.size)},
+        "passed": all(c.passed for c in checks) and not pitfalls,
+        "checks": [c.as_dict() for c in checks],
+        "pitfalls": [q.as_dict() for q in pitfalls],
+    })
+
+
+def _document(doc: dict[str, Any]) -> Document:
+    ok = bool(doc["passed"])
+    rows = tuple((c["quantity"], fmt(c["reference"]), fmt(c["obtained"]), fmt(c["error"]),
+                  fmt(c["limit"]), Verdict(Status.of(bool(c["passed"]))), words(c["reason"]))
+                 for c in doc["checks"])
+    table = Table(("quantity", "reference", "obtained", "error", "limit", "verdict", "reason"), rows)
+    items = tuple(Item(words(f"{q['name']}: {q['message']}")) for q in doc["pitfalls"]) or \
+        (Item(("none of the known pitfalls was found",)),)
+    ref = doc["reference"]
+    intro = (words(f"`{doc['source']}` ({doc['obtained']['points']} points) against the "
+                   f"{ref['method']} reference" + (f" ({ref['note']})" if ref["note"] else "") +
+                   "; errors normalised as in the verification report, limits from the tolerance "
+                   f"table's `{COMPARISON}` rows."),)
+    return Document("threepart compare", "PASSED" if ok else "FAILED", Status.of(ok), (
+        Section("Checks", "checks", intro, (table,), status=Status.of(all(c["passed"] for c in doc["checks"]))),
+        Section("Pitfalls", "pitfalls", (Bullets(items),), status=Status.of(not doc["pitfalls"]))))
+
+
+def write_report(doc: dict[str, Any], out: str | Path) -> None:
+    """Write ``report.md``, ``report.html`` and ``report.json`` into the new directory ``out``."""
+    from .render import render_html, render_markdown
+
+    with atomic_dir(out, command="compare") as tmp:
+        d = _document(doc)
+        (tmp / "report.json").write_text(strict_json(doc, indent=1), encoding="utf-8")
+        (tmp / "report.md").write_text(render_markdown(d), encoding="utf-8")
+        (tmp / "report.html").write_text(render_html(d, tmp), encoding="utf-8")
+
+
+def main(pressure: str | Path, ref: NormalResult, *, out: str | Path, alpha: float | None = None,
+         penalty: float | None = None, say: Callable[[str], None] = print) -> int:
+    """Read, judge and report; 0 when every check holds and no pitfall shows, else 1."""
+    x, p, info = read_pressure(pressure)
+    res = from_points(x, p, ref, alpha=alpha, info={k: v for k, v in info.items()
+                                                   if k in ("source", "penalty")})
+    doc = judge(res, ref, penalty=penalty, source=str(pressure))
+    write_report(doc, out)
+    failed = [c for c in doc["checks"] if not c["passed"]]
+    say(f"{'PASSED' if doc['passed'] else 'FAILED'}: {len(doc['checks']) - len(failed)}/"
+        f"{len(doc['checks'])} checks within tolerance, {len(doc['pitfalls'])} pitfalls -> "
+        f"{Path(out) / 'report.html'}")
+    for c in failed:
+        say(f"  failed: {c['quantity']}: error {c['error']:.3g} > {c['limit']:.3g}")
+    for q in doc["pitfalls"]:
+        say(f"  pitfall {q['name']}: {q['message']}")
+    return 0 if doc["passed"] else 1
+
+
+# --------------------------------------------------------------------------- CalculiX in verify
+#: the case of the CalculiX column: the symmetric flat rounded punch
+CALCULIX_CASE = "caseA_sym"
+#: its radii times this and P over it: the same contact [-a, c] and pressure shape, slopes and
+#: pressures divided by it (half-plane theory is linear in them): small slopes for the FE model
+SLOPE_SCALE = 20.0
+#: elements across W at the contact of the mesh study; the penalty study is run at
+#: the middle one. The deck's default, W/h = 200, costs 1 to 1.5 min of CPU and is left out of
+#: the verification run (this column: 42 s of CPU, measured)
+CALCULIX_N = (25, 50, 100)
+#: the penalty K in units of E/h of the penalty study (at W/h = CALCULIX_N[1]); the mesh study
+#: runs at the deck's default, 200 E/h
+CALCULIX_K = (20.0, 80.0, 320.0)
+#: the penalty of the mesh study, in E/h (the deck's default)
+CALCULIX_K_MESH = 200.0
+#: what the CalculiX study follows (errors normalised as in the tolerance table)
+CALCULIX_QUANTITIES = ("a", "c", "P", "p_left", "p_right", "p_interior_max")
+
+
+def _smooth(p: np.ndarray) -> np.ndarray:
+    """``(p[i-1] + 2 p[i] + p[i+1]) / 4``: removes the vertex/midside (odd-even) alternation of a
+    quadratic face's nodal stress, at an ``h^2 p''/4`` cost (the end values are kept)."""
+    out = p.copy()
+    out[1:-1] = 0.25 * (p[:-2] + 2 * p[1:-1] + p[2:])
+    return out
+
+
+def calculix_result(case: Any, n: float, penalty_factor: float, workdir: Path,
+                    scale: float = SLOPE_SCALE) -> tuple[PointsResult, NormalResult]:
+    """One CalculiX run of ``case`` scaled to small slopes: ``(result, closed-form reference)``.
+
+    The block's surface ``-S22`` at its nodes (smoothed over an element, see
+    :func:`_smooth`) is the pressure; the ends come from the gap
+    (:func:`threepart.calculix.contact_edge`), ``P`` from the points.
+    """
+    from dataclasses import replace as _replace
+
+    from threepart import calculix
+    from threepart.material import compliance
+    from threepart.methods import solve
+
+    case = case.resolved()
+    E, nu = case.material
+    settings = calculix.DeckSettings(n=n, penalty_factor=penalty_factor)
+    A = compliance(E, nu, E * settings.stiffening, nu)
+    punch = _replace(case.punch, R1=scale * case.punch.R1, R2=scale * case.punch.R2,
+                     R=scale * case.punch.R)
+    P, s = case.P / scale, float(case.s or 0.0)
+    ref = solve(punch, P, s, A=A, tilt=case.tilt)
+    assert isinstance(ref, NormalResult)
+    model = calculix.build_model(punch, ref.a, ref.c, settings)
+    stem = calculix.run_ccx(calculix.write_deck(model, P=P, s=s, E=E, nu=nu, settings=settings,
+                                                title=f"{case.name}, radii x {scale:g}, P / {scale:g}"),
+                            workdir, f"n{n:g}_K{penalty_factor:g}")
+    sp = calculix.surface_pressure(model, stem)
+    res = from_points(sp.x, _smooth(sp.p), ref, ends=(sp.a, sp.c), method="calculix",
+                      info={"penalty": settings.K(E, ref.a + ref.c)})
+    return _replace(res, diagnostics=Diagnostics(h=model.h0, dofs=2 * model.n_nodes)), ref
+
+
+def calculix_studies(say: Callable[[str], None] = print) -> list[Any]:
+    """The CalculiX column of the verification run: convergence in h, then in K, on one case.
+
+    Without ``ccx`` on the PATH, one empty study whose note says so.
+    """
+    import tempfile
+
+    from threepart import calculix
+    from threepart.catalogue import get_case
+    from threepart.convergence import Study, run_study
+
+    from .compare import normal_figures
+
+    if not calculix.ccx_available():
+        st = Study("h", method="calculix", case=CALCULIX_CASE)
+        st.notes.append("`ccx` (CalculiX) is not on the PATH: the CalculiX column was not run "
+                        "(Debian: apt-get install calculix-ccx)")
+        return [st]
+    case = get_case(CALCULIX_CASE)
+    cache: dict[tuple[float, float], tuple[PointsResult, NormalResult]] = {}
+    with tempfile.TemporaryDirectory(prefix="threepart-ccx-") as tmp:
+        def level(n: float, k: float, param: str) -> tuple[float, dict[str, float], dict[str, Any],
+                                                          dict[str, float]]:
+            if (n, k) not in cache:
+                cache[n, k] = calculix_result(case, n, k, Path(tmp))
+            res, ref = cache[n, k]
+            fig = normal_figures(ref, res)
+            err = {q: fig[q][2] for q in CALCULIX_QUANTITIES}
+            raw = {q: (fig[q][1] if q != "p_interior_max" else fig[q][2]) for q in CALCULIX_QUANTITIES}
+            say(f"[study]   calculix W/h = {n:g}, K = {k:g} E/h: peak error {max(err['p_left'], err['p_right']):.3g}, "
+                f"a {err['a']:.3g} W, c {err['c']:.3g} W")
+            h = float(res.diagnostics.h or math.nan)
+            E = float(case.material[0]) if case.material else math.nan
+            return (h if param == "h" else h / (k * E), raw, {"dofs": res.diagnostics.dofs}, err)
+
+        mesh = run_study(lambda n: level(n, CALCULIX_K_MESH, "h"), list(CALCULIX_N), param="h",
+                         error_only=("p_interior_max",), skip=(calculix.CcxError,),
+                         method="calculix", case=CALCULIX_CASE, scheme=f"K = {CALCULIX_K_MESH:g} E/h")
+        penalty = run_study(lambda k: level(CALCULIX_N[1], k, "1/K"), list(CALCULIX_K), param="1/K",
+                            error_only=("p_interior_max",), skip=(calculix.CcxError,),
+                            method="calculix", case=CALCULIX_CASE, scheme=f"W/h = {CALCULIX_N[1]}")
+    for st in (mesh, penalty):
+        st.notes.append(f"{CALCULIX_CASE} with the radii x {SLOPE_SCALE:g} and P / {SLOPE_SCALE:g} "
+                        "(the same contact, slopes / 20); punch 10 x stiffer than the block (in A); "
+                        "pressure = the block's surface -S22, smoothed over an element; a, c from the gap")
+    return [mesh, penalty]

@@ -1,0 +1,157 @@
+"""CalculiX decks (``threepart deck``): the deck's structure checked by a keyword parser, and a run.
+
+Without ``ccx`` every check here still runs: the deck is parsed
+(:func:`threepart.calculix.parse_deck`) and its mesh, sets, loads and
+constraints are checked against what they stand for -- the load and its
+moment against ``P`` and ``P s``, every element counterclockwise, the tied
+lid, no node of one body on a node of the other. With ``ccx`` on the PATH the
+slow test runs the deck and checks the load the base carries and the contact
+against the closed form.
+"""
+from __future__ import annotations
+
+import shutil
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from threepart import calculix
+from threepart.catalogue import get_case
+from threepart.cli import main
+from threepart.material import compliance
+from threepart.methods import solve
+
+
+def _deck(tmp_path: Path, *extra: str) -> tuple[str, list[calculix.Keyword]]:
+    out = tmp_path / "job.inp"
+    assert main(["deck", "--R1", "10", "--R2", "5", "--b", "1", "--P", "1442.3", "--s", "0.1",
+                 "--E", "210000", "--nu", "0.3", "--h", "0.4", "--out", str(out), *extra]) == 0
+    text = out.read_text()
+    return text, calculix.parse_deck(text)
+
+
+def _nodes(cards: list[calculix.Keyword]) -> dict[int, np.ndarray]:
+    card = next(c for c in cards if c.name == "NODE")
+    return {int(r[0]): np.array([float(r[1]), float(r[2])]) for r in card.data}
+
+
+def _nset(cards: list[calculix.Keyword], name: str) -> list[int]:
+    card = next(c for c in cards if c.name == "NSET" and c.params["NSET"] == name)
+    return [int(v) for r in card.data for v in r]
+
+
+def test_deck_parses_and_holds_the_model(tmp_path):
+    text, cards = _deck(tmp_path)
+    kinds = [c.name for c in cards]
+    for k in ("HEADING", "NODE", "ELEMENT", "NSET", "MATERIAL", "ELASTIC", "SOLID SECTION", "SURFACE",
+              "CONTACT PAIR", "SURFACE BEHAVIOR", "EQUATION", "BOUNDARY", "STEP", "STATIC", "CLOAD",
+              "NODE FILE", "CONTACT FILE", "NODE PRINT", "END STEP"):
+        assert k in kinds, k
+    assert "** Units:" in text and "-K*COPEN" in text and "FIRST increment" in text
+    nodes = _nodes(cards)
+    # every element is counterclockwise (positive area) and second order
+    for card in (c for c in cards if c.name == "ELEMENT"):
+        assert card.params["TYPE"] in ("CPE8", "CPE6")
+        nc = 4 if card.params["TYPE"] == "CPE8" else 3
+        for row in card.data:
+            xy = np.array([nodes[int(n)] for n in row[1:1 + nc]])
+            area = 0.5 * np.sum(xy[:, 0] * np.roll(xy[:, 1], -1) - np.roll(xy[:, 0], -1) * xy[:, 1])
+            assert area > 0, row[0]
+            assert len(row) == 1 + 2 * nc
+    # no node of the punch lies on a node of the block (ccx fails on that), no x = -4e-14
+    xy = np.array(list(nodes.values()))
+    assert len(np.unique(np.round(xy, 10), axis=0)) == len(xy)
+    assert not np.any((np.abs(xy) < 1e-12) & (xy != 0))
+    # the load: resultant P and moment P s (free tilt), on the punch's two top corners
+    load = next(c for c in cards if c.name == "CLOAD").data
+    F = np.array([float(r[2]) for r in load])
+    xs = np.array([nodes[int(r[0])][0] for r in load])
+    assert [r[1] for r in load] == ["2", "2"]
+    assert -F.sum() == pytest.approx(1442.3, rel=1e-14)
+    assert -(F * xs).sum() == pytest.approx(1442.3 * 0.1, rel=1e-12)
+    # the lid: every other top node follows the corners linearly (three-term equations)
+    top, ctrl = _nset(cards, "NTOP"), _nset(cards, "NCTRL")
+    eq = next(c for c in cards if c.name == "EQUATION").data
+    assert len(eq) == 2 * (len(top) - 2) and all(r == ["3"] for r in eq[::2])
+    for r in eq[1::2]:
+        n, t = int(r[0]), -float(r[8])
+        assert [int(r[3]), int(r[6])] == ctrl
+        xl, xr = nodes[ctrl[0]][0], nodes[ctrl[1]][0]
+        assert t == pytest.approx((nodes[n][0] - xl) / (xr - xl), abs=1e-14)
+    # the penalty: K = 200 E / h
+    K = float(next(c for c in cards if c.name == "SURFACE BEHAVIOR").data[0][0])
+    assert K == pytest.approx(200 * 210000 / 0.4, rel=1e-5)
+
+
+def test_deck_options(tmp_path):
+    _, cards = _deck(tmp_path, "--tilt", "suppressed", "--s", "0", "--pair", "--penalty", "1e9")
+    eq = next(c for c in cards if c.name == "EQUATION").data
+    assert all(r == ["2"] for r in eq[::2])            # the lid held level
+    mats = [c for c in cards if c.name == "ELASTIC"]
+    assert mats[0].data == mats[1].data                 # two similar bodies
+    assert float(next(c for c in cards if c.name == "SURFACE BEHAVIOR").data[0][0]) == 1e9
+
+
+def test_parse_deck_refuses_malformed_text():
+    with pytest.raises(ValueError, match="line 1: data before the first keyword"):
+        calculix.parse_deck("1, 2, 3\n*NODE\n")
+    with pytest.raises(ValueError, match="line 2: malformed parameter"):
+        calculix.parse_deck("** c\n*NSET, NSET=\n1\n")
+
+
+@pytest.mark.parametrize("argv, match", [
+    (["--case", "caseA_sym", "--h", "-1"], "`h` = -1"),
+    (["--case", "caseA_sym", "--format", "abaqus"], "`--format` = 'abaqus'"),
+    (["--case", "caseA_sym", "--R1", "3"], "give `--case` or the punch and loads, not both"),
+])
+def test_deck_bad_input(tmp_path, capsys, argv, match):
+    assert main(["deck", *argv, "--out", str(tmp_path / "x.inp")]) == 2
+    err = capsys.readouterr().err
+    assert match in err and len(err.strip().splitlines()) == 1
+
+
+@pytest.mark.slow
+def test_ccx_runs_the_deck(tmp_path):
+    """ccx solves the deck: the base carries P, ∫p = P, the ends near the closed form's.
+
+    Without ``ccx`` the run is refused with the named error and the install hint.
+    """
+    c = get_case("caseA_sym").resolved()
+    E, nu = c.material
+    settings = calculix.DeckSettings(n=25)
+    A = compliance(E, nu, E * settings.stiffening, nu)
+    k = 20.0                                    # radii x 20, P / 20: the same contact, small slopes
+    punch = type(c.punch)(R1=k * c.punch.R1, R2=k * c.punch.R2, b=c.punch.b, R=c.punch.R)
+    ref = solve(punch, c.P / k, 0.0, A=A)
+    model = calculix.build_model(punch, ref.a, ref.c, settings)
+    if shutil.which("ccx") is None:
+        with pytest.raises(calculix.CcxMissing, match="apt-get install calculix-ccx"):
+            calculix.run_ccx("*HEADING\n", tmp_path)
+        return
+    stem = calculix.run_ccx(calculix.write_deck(model, P=c.P / k, s=0.0, E=E, nu=nu,
+                                                settings=settings), tmp_path)
+    sp = calculix.surface_pressure(model, stem)
+    W = ref.a + ref.c
+    assert sp.P == pytest.approx(c.P / k, rel=1e-9)
+    inside = (sp.x > -sp.a) & (sp.x < sp.c)
+    assert np.trapezoid(np.where(inside, sp.p, 0), sp.x) == pytest.approx(c.P / k, rel=3e-2)
+    assert abs(sp.a - ref.a) < 0.5 * model.h0 and abs(sp.c - ref.c) < 0.5 * model.h0, (sp.a, sp.c, W)
+
+
+def test_verify_column_without_ccx_says_so(monkeypatch):
+    """Without ccx the CalculiX column is one empty study whose note says so, and the report
+    that carries it is valid against the schema and shows the note."""
+    from threepart.reports import render
+    from threepart.reports.runs import MODES
+    from threepart.reports.referee import calculix_studies
+    from threepart.reports.verify import build_report, validate
+
+    monkeypatch.setattr(calculix, "ccx_available", lambda: False)
+    studies = calculix_studies(say=lambda m: None)
+    assert len(studies) == 1 and not studies[0].values
+    assert "not on the PATH" in studies[0].notes[0] and studies[0].method == "calculix"
+    doc = build_report(MODES["quick"], [], studies, {}, {})
+    validate(doc)
+    md = render.markdown(doc)
+    assert "CalculiX convergence in h" in md and "apt-get install calculix-ccx" in md

@@ -1,0 +1,161 @@
+"""``threepart compare --pressure``: another code's pressure judged, and its pitfalls diagnosed.
+
+The reference is the closed form (an independent solver of the same case);
+the "other code" is the closed form's own pressure sampled on a grid (which
+must pass) and the same with one pitfall planted at a time (each must be
+named), and a real CalculiX result (``tests/data``, see its README).
+"""
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from threepart.catalogue import get_case
+from threepart.cli import main
+from threepart.methods import solve
+from threepart.reports.referee import (END_NODES, LOAD, NEGATIVE, OSCILLATION, diagnose, from_points,
+                                       judge, read_pressure)
+
+DATA = Path(__file__).parent / "data"
+FRD = DATA / "calculix_caseA_sym_h0.1.frd"
+#: the compliance of that CalculiX model (a punch 10 x stiffer than the block)
+FRD_A = 9.533333333e-06
+
+
+@pytest.fixture(scope="module")
+def ref():
+    c = get_case("caseA_moment").resolved()
+    return solve(c.punch, c.P, c.s, A=c.A)
+
+
+def grid(ref, n=400):
+    x = np.linspace(-1.1 * ref.a, 1.1 * ref.c, n)
+    return x, ref.pressure(x)
+
+
+def names(res, ref, **kw):
+    return {p.name for p in diagnose(res, ref, **kw)}
+
+
+def test_sampled_closed_form_passes(ref):
+    x, p = grid(ref)
+    doc = judge(from_points(x, p, ref), ref, source="grid")
+    failed = [(c["quantity"], c["error"]) for c in doc["checks"] if not c["passed"]]
+    assert doc["passed"], (failed, doc["pitfalls"])
+    # alpha is not given, so it is not judged; every other normal quantity is
+    assert {c["quantity"] for c in doc["checks"]} == {"a", "c", "P", "s", "p_left", "x_left", "p_right",
+                                                      "x_right", "p_interior_max", "p_L2"}
+
+
+def test_ends_and_moments_come_from_the_points(ref):
+    """a, c from the square-root fit and P, s from the points: close to the exact ones, not copied."""
+    x, p = grid(ref, 200)
+    res = from_points(x, p, ref)
+    W = ref.a + ref.c
+    h = x[1] - x[0]
+    assert abs(res.a - ref.a) < 0.1 * h and abs(res.c - ref.c) < 0.1 * h
+    assert res.a != ref.a and res.c != ref.c
+    assert abs(res.P / ref.P - 1) < 1e-3 and abs(res.s - ref.s) < 1e-3 * W
+
+
+def test_negative_pressure_outside(ref):
+    x, p = grid(ref)
+    out = (x < -ref.a) | (x > ref.c)
+    K_open = 0.1 * p.max()            # CPRESS = -K COPEN grows with the clearance
+    p = np.where(out, -K_open * np.minimum(np.abs(x - np.clip(x, -ref.a, ref.c)) / (0.1 * ref.a), 1), p)
+    res = from_points(x, p, ref)
+    found = [q for q in diagnose(res, ref) if q.name == "negative-pressure"]
+    assert found and found[0].value == pytest.approx(0.1 * p.max() / max(pk.p for pk in ref.peaks()), rel=1e-2)
+    assert found[0].value > NEGATIVE
+
+
+def test_load_mismatch(ref):
+    x, p = grid(ref)
+    res = from_points(x, 1.018 * p, ref)   # a second increment's 1.8 % overshoot
+    found = [q for q in diagnose(res, ref) if q.name == "load"]
+    assert found and found[0].value == pytest.approx(0.018, abs=1e-3) and found[0].value > LOAD
+    # 0.3 x the threshold is not reported
+    assert "load" not in names(from_points(x, (1 + 0.3 * LOAD) * p, ref), ref)
+
+
+def test_end_resolved_by_too_few_nodes(ref):
+    x, p = grid(ref, 2000)
+    W = ref.a + ref.c
+    coarse = (x > ref.c - 0.06 * W) & (x < ref.c)
+    keep = ~coarse | (np.arange(x.size) % 400 == 0)
+    found = [q for q in diagnose(from_points(x[keep], p[keep], ref), ref) if q.name == "end-resolution"]
+    assert found and found[0].value < END_NODES and "right" in found[0].message
+
+
+def test_element_scale_oscillation(ref):
+    x, p = grid(ref)
+    pk = max(q.p for q in ref.peaks())
+    wiggle = np.where(p > 0, 0.01 * pk * (-1) ** np.arange(x.size), 0.0)
+    found = [q for q in diagnose(from_points(x, p + wiggle, ref), ref) if q.name == "mesh-peak"]
+    assert found and found[0].value == pytest.approx(0.01, rel=0.2) and found[0].value > OSCILLATION
+    # a tenth of the threshold is not
+    small = np.where(p > 0, 0.1 * OSCILLATION * pk * (-1) ** np.arange(x.size), 0.0)
+    assert "mesh-peak" not in names(from_points(x, p + small, ref), ref)
+
+
+def test_peak_at_a_node_next_to_an_end(ref):
+    x, p = grid(ref)
+    on = np.flatnonzero(p > 0)
+    p = p.copy()
+    p[on[-1]] = 2 * p.max()
+    assert "mesh-peak" in names(from_points(x, p, ref), ref)
+
+
+def test_soft_penalty(ref):
+    x, p = grid(ref)
+    res = from_points(x, p, ref)
+    rise = float(ref.punch.profile(ref.c) - ref.punch.profile(0.0))
+    K_soft = p.max() / (0.01 * rise)      # overclosure 1 % of the profile's rise
+    found = [q for q in diagnose(res, ref, penalty=K_soft) if q.name == "penalty"]
+    assert found and found[0].value == pytest.approx(0.01, rel=0.05)
+    assert "penalty" not in names(res, ref, penalty=1e3 * K_soft)
+
+
+def test_calculix_cpress_is_diagnosed():
+    """A real CalculiX CPRESS (penalty, quadratic faces): the node-to-node alternation and the
+    load are found, and the comparison fails (the raw CPRESS is not the pressure)."""
+    c = get_case("caseA_sym").resolved()
+    ref = solve(c.punch, c.P, c.s, A=FRD_A)
+    x, p, info = read_pressure(FRD)
+    assert x.size > 50 and np.all(np.diff(x) > 0)
+    res = from_points(x, p, ref)
+    found = names(res, ref)
+    assert {"mesh-peak", "load"} <= found
+    assert not judge(res, ref)["passed"]
+
+
+def test_cli_compare_end_to_end(tmp_path, ref, capsys):
+    x, p = grid(ref)
+    f = tmp_path / "p.csv"
+    np.savetxt(f, np.c_[x, p], delimiter=",", header="x,p", comments="")
+    assert main(["compare", "--pressure", str(f), "--case", "caseA_moment", "--out",
+                 str(tmp_path / "rep")]) == 0
+    assert {q.name for q in (tmp_path / "rep").iterdir()} >= {"report.md", "report.html", "report.json"}
+    np.savetxt(f2 := tmp_path / "q.csv", np.c_[x, 1.05 * p], delimiter=",")
+    assert main(["compare", "--pressure", str(f2), "--case", "caseA_moment", "--out",
+                 str(tmp_path / "rep2")]) == 1
+    assert "pitfall load" in capsys.readouterr().out
+
+
+@pytest.mark.parametrize("argv, match", [
+    (["--pressure", "missing.csv", "--case", "caseA_moment"], "`--pressure` = 'missing.csv' is not a file"),
+    (["--pressure", "{csv}", "--case", "nosuch"], "`--case` = 'nosuch' is not in the catalogue"),
+    (["--pressure", "{csv}", "--R1", "10", "--R2", "5", "--b", "1", "--P", "100"], "`--E` is missing"),
+    (["--pressure", "{bad}", "--case", "caseA_moment"], "row 3 is not two numbers"),
+])
+def test_cli_compare_bad_input(tmp_path, capsys, argv, match):
+    good = tmp_path / "p.csv"
+    good.write_text("x,p\n" + "\n".join(f"{i},{1.0}" for i in range(10)))
+    bad = tmp_path / "b.csv"
+    bad.write_text("x,p\n0,1\nzero,2\n")
+    argv = [a.format(csv=good, bad=bad) for a in argv]
+    assert main(["compare", *argv, "--out", str(tmp_path / "r")]) == 2
+    err = capsys.readouterr().err
+    assert match in err and len(err.strip().splitlines()) == 1
