@@ -33,6 +33,22 @@ ROUNDING = 1e-12
 #: surface stresses of the closed-form cycle come from threepart.stress's quadrature,
 #: held to 1e-8 of p0 by tests/test_stress.py; 1e-7 p0 leaves it a factor 10
 STRESS_QUADRATURE = 1e-7
+#: a parameter of two equal states is zero: only the rounding of their difference remains
+ZERO_RANGE = 1e-15
+#: the 1° coarse scan alone (no zoom) falls below the brute-force maximum by more than this, of the
+#: largest value: the zoom is needed, and the comparison with the scan can fail
+COARSE_MISS = 1e-6
+#: q, δ and q δ of the closed-form cycle against the textbook Cattaneo–Mindlin forms: rounding,
+#: amplified by the cycle's superposition of states and the slip's logarithm
+CYCLE_ROUNDING = 1e-10
+#: a hot spot's value against the textbook's largest FFDP: σxx's quadrature (STRESS_QUADRATURE of
+#: p0) relative to the σxx at the hot spot
+HOT_SPOT = 1e-6
+#: the textbook surface σxx against QUADPACK's Cauchy principal value of the textbook q
+#: (epsabs 1e-13 p0; q has square-root kinks at ±d)
+CAUCHY_PV = 1e-9
+#: the printed hot spot is the CSV's largest value to 6 significant digits (``:.6g``)
+PRINTED = 1e-5
 
 
 def _history(sxx, szz, sxz, nu=NU):
@@ -95,7 +111,7 @@ def test_a_constant_stress_has_no_range():
     """Two equal states: every range is zero, SWT zero, Findley k σn,max of the largest normal stress."""
     h = _history([50.0, 50.0], [-20.0, -20.0], [10.0, 10.0])
     assert fat.von_mises_range(h).hot.value == 0.0
-    assert fat.swt(h, E=E).hot.value == pytest.approx(0.0, abs=1e-15)
+    assert fat.swt(h, E=E).hot.value == pytest.approx(0.0, abs=ZERO_RANGE)
     s1 = 15.0 + math.hypot(35.0, 10.0)   # the major principal stress
     assert fat.findley(h, k=K).hot.value == pytest.approx(K * s1, rel=ROUNDING)
 
@@ -146,7 +162,7 @@ def test_critical_plane_matches_a_brute_force_scan(random_history, kind, monkeyp
     ref = _brute(h, kind)
     scale = float(np.max(np.abs(ref)))
     ours = call(h)
-    assert np.all(ours.value >= ref - 1e-12 * scale), np.min(ours.value - ref) / scale
+    assert np.all(ours.value >= ref - ROUNDING * scale), np.min(ours.value - ref) / scale
     assert np.all(ours.value <= ref + 2 * math.pi / BRUTE_ANGLES * scale), np.max(ours.value - ref) / scale
     # the angle returned is where the value is reached: the brute force formula there
     at = fat.History(h.x, h.z, h.sxx, h.szz, h.sxz, h.nu, h.Q, h.branch)
@@ -159,10 +175,10 @@ def test_critical_plane_matches_a_brute_force_scan(random_history, kind, monkeyp
         there = sn.max(0) * (eps.max(0) - eps.min(0)) / 2
     else:
         there = (tau.max(0) - tau.min(0)) / 2 + K * sn.max(0)
-    assert np.allclose(there, ours.value, rtol=0, atol=1e-12 * scale)
+    assert np.allclose(there, ours.value, rtol=0, atol=ROUNDING * scale)
     monkeypatch.setattr(fat, "ZOOM_LEVELS", 0)
     coarse = call(h)
-    assert np.min(coarse.value - ref) < -1e-6 * scale   # the coarse scan alone misses: the test can fail
+    assert np.min(coarse.value - ref) < -COARSE_MISS * scale   # the coarse scan alone misses: the test can fail
 
 
 # ---------------------------------------------------------------------------------------
@@ -219,18 +235,18 @@ def test_ruiz_on_hertz_matches_cattaneo_mindlin(hertz_cycle, surface):
     ref = hertz(x)
     r = fat.ruiz(hertz_cycle, h)
     p0 = ref["p0"]
-    assert np.max(np.abs(r.q - ref["q"])) <= ROUNDING * 1e2 * F * p0
-    assert np.max(np.abs(r.delta - ref["delta"])) <= ROUNDING * 1e2 * np.max(ref["delta"])
+    assert np.max(np.abs(r.q - ref["q"])) <= CYCLE_ROUNDING * F * p0
+    assert np.max(np.abs(r.delta - ref["delta"])) <= CYCLE_ROUNDING * np.max(ref["delta"])
     # over the whole cycle the largest σxx is the tension of ±Q_max, mirrored: -p + 2(f p0/a) sqrt(x² - d²)
     sxx_max = np.maximum(-ref["p"] + 2 * F * p0 / ref["a"] * _root(x * x - ref["d"] ** 2), 0.0)
     assert np.max(np.abs(r.sxx_max - sxx_max)) <= STRESS_QUADRATURE * p0
     scale = p0 * F * p0 * np.max(ref["delta"])
     assert np.max(np.abs(r.ffdp.value - sxx_max * ref["q"] * ref["delta"])) <= STRESS_QUADRATURE * scale
-    assert np.max(np.abs(r.fdp.value - ref["q"] * ref["delta"])) <= 1e-10 * F * p0 * np.max(ref["delta"])
+    assert np.max(np.abs(r.fdp.value - ref["q"] * ref["delta"])) <= CYCLE_ROUNDING * F * p0 * np.max(ref["delta"])
     # the hot spot lies in a slip zone, near an edge, where all three factors are non-zero
     hot = r.ffdp.hot
     assert ref["d"] < abs(hot.x) < ref["a"] and hot.z == 0.0
-    assert hot.value == pytest.approx(float(np.max(sxx_max * ref["q"] * ref["delta"])), rel=1e-6)
+    assert hot.value == pytest.approx(float(np.max(sxx_max * ref["q"] * ref["delta"])), rel=HOT_SPOT)
 
 
 def test_the_surface_tension_peaks_at_the_trailing_edge_x_minus_a(hertz_cycle, surface):
@@ -247,7 +263,7 @@ def test_the_surface_tension_peaks_at_the_trailing_edge_x_minus_a(hertz_cycle, s
     for xi in (-0.9 * a, -0.5 * a, 0.3 * a, 0.95 * a):
         pv = quad(q, -a, a, weight="cauchy", wvar=xi, epsabs=1e-13 * p0, limit=200)[0]
         assert float(hertz(np.array([xi]))["sxx_Qmax"][0]) == pytest.approx(
-            -float(hertz(np.array([xi]))["p"][0]) + 2 / math.pi * pv, abs=1e-9 * p0)
+            -float(hertz(np.array([xi]))["p"][0]) + 2 / math.pi * pv, abs=CAUCHY_PV * p0)
     loading = np.flatnonzero(hertz_cycle.branch == "loading")
     sub = fat.stress_history(hertz_cycle, x, np.zeros_like(x), states=loading)
     at_qmax = sub.sxx[int(np.argmax(sub.Q))]
@@ -340,7 +356,7 @@ def test_cli_writes_csv_vtu_png_and_prints_the_hot_spots(capsys, tmp_path):
     assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     # the printed hot spot is the largest value in the CSV
     vm_line = next(ln for ln in text.splitlines() if ln.strip().startswith("von Mises range"))
-    assert float(vm_line.split()[3]) == pytest.approx(vm_col.max(), rel=1e-5)
+    assert float(vm_line.split()[3]) == pytest.approx(vm_col.max(), rel=PRINTED)
 
 
 @pytest.mark.parametrize("extra,match", [
@@ -414,7 +430,7 @@ def test_cli_passes_sigma_bulk_to_the_method_or_refuses_in_one_line(capsys, monk
     ref = _cli_hertz(np.array([hot["x"]]))
     assert -ref["a"] < hot["x"] < -ref["d"]
     want = (ref["sxx_Qmax"] + S) * ref["q"] * ref["delta"]
-    assert hot["value"] == pytest.approx(float(want[0]), rel=1e-6)
+    assert hot["value"] == pytest.approx(float(want[0]), rel=HOT_SPOT)
     assert main([*ARGS, "--method", "nobulk_toy", "--sigma-bulk", str(S)]) == 2
     assert "`--sigma-bulk` = 300: method 'nobulk_toy' does not take a bulk stress" in _err(capsys)
 

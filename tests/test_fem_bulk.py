@@ -39,6 +39,14 @@ W = 2 * a
 #: issue 21's targets for the FEM: d, e within 1e-3 W; stresses at depth >= 0.2a within
 #: 1e-2 p0; the peak surface σxx within 2 %
 DE_LIMIT, DEPTH_LIMIT, PEAK_LIMIT = 1e-3, 1e-2, 2e-2
+#: a uniform strain lies in the FE space: the bulk field reproduces it to the rounding of the
+#: sparse solves (of the largest displacement)
+UNIFORM = 1e-9
+#: x = -a is the surface line's first point: the reference's peak lies on it, up to rounding of a
+ON_POINT = 1e-9
+#: the FE's peak surface σxx at the trailing end x = -a, of a: its square-root cusp, rounded off
+#: over the few refined end elements (W/9600 on MESH), not the other end, 2a away
+PEAK_POSITION = 1e-2
 #: the quick preset with 8x finer elements at the contact and stick-zone ends: σxx has a
 #: square-root cusp at the contact end, which any recovery rounds off by O(sqrt(h_end))
 #: (measured peak error 2.9 % on "quick", 2.0 % on "default", 0.84 % on this mesh)
@@ -81,8 +89,8 @@ def test_bulk_field_is_the_uniform_plane_strain_state():
     eps = (1 - 0.25**2) / 2.0
     scale = eps * np.ptp(x)
     assert np.abs(ux - ux[np.argmin(np.abs(xv))] - eps * (xv - xv[np.argmin(np.abs(xv))])).max() \
-        < 1e-9 * scale
-    assert np.abs(uy + 0.25 * 1.25 / 2.0 * (yv + L)).max() < 1e-9 * scale
+        < UNIFORM * scale
+    assert np.abs(uy + 0.25 * 1.25 / 2.0 * (yv + L)).max() < UNIFORM * scale
 
 
 def test_stick_zone_is_cattaneo_and_nowell_hills(slip):
@@ -111,9 +119,9 @@ def test_peak_surface_tension_is_at_the_trailing_edge(slip):
     x = np.linspace(-a, a, 4001)
     fe, ref = slip.stress(x, 0.0), reference(x, 0.0)
     peak = ref.sxx.max()
-    assert abs(x[np.argmax(ref.sxx)] + a) < 1e-9 * a       # the reference's peak: x = -a
+    assert abs(x[np.argmax(ref.sxx)] + a) < ON_POINT * a       # the reference's peak: x = -a
     assert abs(fe.sxx.max() / peak - 1) < PEAK_LIMIT, (fe.sxx.max() / p0, peak / p0)
-    assert abs(x[np.argmax(fe.sxx)] + a) < 1e-2 * a
+    assert abs(x[np.argmax(fe.sxx)] + a) < PEAK_POSITION * a
     assert fe.sxx[-1] < 0 < fe.sxx[0]
     assert abs(fe.sxx[-1] - ref.sxx[-1]) < PEAK_LIMIT * peak
 
