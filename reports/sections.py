@@ -48,6 +48,9 @@ PLOT_KINDS = {
 }
 #: the stress quantities of a hot spot, as the report names them
 HOT_SPOTS = {"sxx": "largest surface σxx", "von_mises": "largest von Mises", "max_shear": "largest Tresca shear"}
+#: the fatigue parameters of a fretting case's hot spots, as the report names them
+FATIGUE_NAMES = {"von_mises_range": "von Mises range", "swt": "SWT", "findley": "Findley",
+                 "ruiz_ffdp": "Ruiz FFDP"}
 
 
 # -- the typed pieces -----------------------------------------------------------------------
@@ -481,7 +484,7 @@ def _stress(doc: dict[str, Any]) -> tuple[Section | None, set[str]]:
                         Status.of(c["passed"]))
                  for c in cases for p in c["plots"] if _kind(p, c["name"]) in ("stress", "von_mises"))
     bulk = ", ".join(f"{c['name']} {fmt(c['stress']['sigma_bulk'])}" for c in cases)
-    intro: tuple[Para, ...] = (
+    intro: tuple[Block, ...] = (
         ("The stress in the substrate under every partial-slip case, by each method from its own "
          "tractions (the FEM from its displacement field): x along the surface, z the depth, "
          "tension positive, plane strain. The comparison checks the surface σxx, its peak at the "
@@ -489,8 +492,24 @@ def _stress(doc: dict[str, Any]) -> tuple[Section | None, set[str]]:
          "each case); the hot spots below are where a designer looks for crack nucleation.",),
         (f"Bulk stress σxx in the substrate: {bulk}.",),
     )
-    return (Section("Stress in the substrate", "stress", intro,
-                    (Table(head, tuple(rows), f"hot spots{units}"),), figs,
+    tables = [Table(head, tuple(rows), f"hot spots{units}")]
+    cycles = [c for c in doc["cases"] if "fatigue" in c]
+    if cycles:
+        fat_rows = []
+        for c in cycles:
+            for m, spots in c["fatigue"]["hot_spots"].items():
+                fat_rows.append((c["name"], METHOD_NAMES.get(m, m),
+                                 *(f"{fmt(spots[q]['value'])} at x = {fmt(spots[q]['x'])}, "
+                                   f"z = {fmt(spots[q]['z'])}" for q in FATIGUE_NAMES)))
+        fat_units = (" [MPa; FFDP MPa²·mm; x, z in mm]" if any(physical(c) for c in cycles) else "")
+        tables.append(Table(("case", "method", *FATIGUE_NAMES.values()),
+                            tuple(fat_rows), f"fatigue hot spots over the fretting cycle{fat_units}"))
+        intro = (*intro, (
+            "Fretting fatigue: over each fretting cycle, from the stress history at the cycle's "
+            "states, the von Mises range, Smith–Watson–Topper and Findley on the critical plane, and "
+            "Ruiz's FFDP σxx·q·δ at the surface, by each method on the same points and states (",
+            Code("threepart fatigue"), ", ", Code("docs/FATIGUE.md"), ").",))
+    return (Section("Stress and fatigue", "stress", intro, tuple(tables), figs,
                     Status.of(all(c["passed"] for c in cases))),
             {f.path for f in figs})
 

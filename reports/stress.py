@@ -19,7 +19,8 @@ from threepart.results import NU
 
 from .compare import STRESS_REACH, normal_of
 
-__all__ = ["HotSpot", "FIELD_GRID", "field_grid", "surface_line", "hot_spots", "stress_nu"]
+__all__ = ["HotSpot", "FIELD_GRID", "FATIGUE_GRID", "field_grid", "surface_line", "hot_spots", "case_hot_spots",
+           "fatigue_states", "fatigue_hot_spots", "stress_nu"]
 
 #: points ``(nx, nz)`` of the field under a contact: x over the contact and ``STRESS_REACH W``
 #: beyond each end, z from the surface to the depth ``W``
@@ -96,3 +97,41 @@ def case_hot_spots(results: Mapping[str, Any], nu: float, reference: str) -> dic
     """``method -> quantity -> hot spot`` (as dicts) for the slip results of one case."""
     ref = results[reference]
     return {m: {q: h.as_dict() for q, h in hot_spots(res, nu, ref).items()} for m, res in results.items()}
+
+
+#: points ``(nx, nz)`` of the fatigue fields of a fretting case, and every how many recorded
+#: states its stress history takes (the cycle's reversals and tips are kept)
+FATIGUE_GRID = (25, 13)
+FATIGUE_STRIDE = 5
+
+
+def fatigue_states(cycle: Any) -> np.ndarray:
+    """Indices of the states a report's fatigue history uses: every :data:`FATIGUE_STRIDE`-th and each branch's ends."""
+    n = len(cycle.Q)
+    ends = [i for i in range(n) if i == 0 or i == n - 1 or cycle.branch[i] != cycle.branch[i - 1]
+            or cycle.branch[i] != cycle.branch[min(i + 1, n - 1)]]
+    return np.unique(np.concatenate([np.arange(0, n, FATIGUE_STRIDE), ends]))
+
+
+def fatigue_hot_spots(results: Mapping[str, Any], nu: float, reference: str) -> dict[str, Any]:
+    """``method -> parameter -> hot spot`` of the fretting cycles of one case (:mod:`threepart.fatigue`).
+
+    Every method is evaluated on the reference's points and the same states;
+    the substrate's Young's modulus for the SWT strains is that of the similar
+    pair of the cycle's compliance, ``E = 4(1 - ν²)/A``.
+    """
+    from threepart.fatigue import K_FINDLEY, fatigue
+
+    ref = results[reference]
+    A = normal_of(ref).A
+    E = 4.0 * (1.0 - nu**2) / A
+    x, z = field_grid(ref, FATIGUE_GRID)
+    nr = normal_of(ref)
+    line = np.linspace(-nr.a, nr.c, 202)[1:-1]
+    idx = fatigue_states(ref)
+    out: dict[str, Any] = {"E": E, "nu": nu, "k": K_FINDLEY, "states": int(len(idx)), "hot_spots": {}}
+    for m, cycle in results.items():
+        fat = fatigue(cycle, x, z, E=E, nu=nu, states=idx, surface=line)
+        out["hot_spots"][m] = {p.name: {"x": p.hot.x, "z": p.hot.z, "value": p.hot.value}
+                               for p in (fat.von_mises_range, fat.swt, fat.findley, fat.ruiz.ffdp)}
+    return out

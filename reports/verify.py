@@ -30,7 +30,7 @@ from . import render
 from .runs import FRETTING_STATES, MODES, CaseRun, Mode, run_case
 from .referee import CALCULIX_CASE, CALCULIX_K, CALCULIX_N, calculix_studies
 from .sections import MAP_JSON, plot_path, study_plot_path
-from .stress import case_hot_spots, stress_nu
+from .stress import case_hot_spots, fatigue_hot_spots, stress_nu
 from .solvers import METHODS
 from .studies import STEP_STATES, Study, fem_slip_study, fem_step_study, fem_study, sie_study
 
@@ -209,13 +209,17 @@ def run(mode: Mode, cases: Sequence[Case], say: Callable[[str], None],
 
 def build_report(mode: Mode, runs: Sequence[CaseRun], studies: Sequence[Study],
                  timings: dict[str, float], plots: dict[str, list[str]],
-                 stress: dict[str, dict[str, Any]] | None = None) -> dict[str, Any]:
+                 stress: dict[str, dict[str, Any]] | None = None,
+                 fatigue: dict[str, dict[str, Any]] | None = None) -> dict[str, Any]:
     """The ``report.json`` document (see ``reports/report.schema.json``).
 
     ``stress`` maps a partial-slip case to its stress record (Poisson's ratio,
-    bulk stress, hot spots by method; :func:`stress_record`).
+    bulk stress, hot spots by method; :func:`stress_record`), ``fatigue`` a
+    fretting case to its fatigue parameters' hot spots by method
+    (:func:`reports.stress.fatigue_hot_spots`).
     """
     stress = stress or {}
+    fatigue = fatigue or {}
     from threepart.tolerances import ERROR_UNITS, TOLERANCES
 
     checks = [c for r in runs for c in r.checks]
@@ -233,7 +237,8 @@ def build_report(mode: Mode, runs: Sequence[CaseRun], studies: Sequence[Study],
     cases = []
     for r in runs:
         worst = max((c.error / c.limit for c in r.checks if c.limit > 0), default=None)
-        extra = {"stress": stress[r.case.name]} if r.case.name in stress else {}
+        extra = {**({"stress": stress[r.case.name]} if r.case.name in stress else {}),
+                 **({"fatigue": fatigue[r.case.name]} if r.case.name in fatigue else {})}
         cases.append({
             **r.case.as_dict(),
             "passed": r.passed,
@@ -300,6 +305,7 @@ def write_report(tmp: Path, mode: Mode, runs: Sequence[CaseRun], studies: Sequen
     t0 = time.perf_counter()
     drawn: dict[str, list[str]] = {}
     stressed: dict[str, dict[str, Any]] = {}
+    tired: dict[str, dict[str, Any]] = {}
     todo = [r for r in runs if r.case.reference in r.results]
     say(f"[report] drawing the plots of {len(todo)} cases and {len(studies)} studies ...")
     with _heartbeat(say, lambda: "[report] drawing the plots"):
@@ -309,6 +315,7 @@ def write_report(tmp: Path, mode: Mode, runs: Sequence[CaseRun], studies: Sequen
                 plots.fretting(r.results, name, tmp / plot_path(name, "cycle"), reference=ref,
                                physical=physical)
                 drawn[name] = [plot_path(name, "cycle")]
+                tired[name] = fatigue_hot_spots(r.results, stress_nu(r.case.material), ref)
                 continue
             plots.overlay(r.results, name, tmp / plot_path(name, "overlay"), reference=ref,
                           physical=physical)
@@ -334,7 +341,7 @@ def write_report(tmp: Path, mode: Mode, runs: Sequence[CaseRun], studies: Sequen
             drawn["_studies"].append(name)
     timings = dict(timings, plots_s=time.perf_counter() - t0)
     timings["total_s"] = timings.get("solve_s", 0.0) + timings["plots_s"]
-    doc = build_report(mode, runs, studies, timings, drawn, stressed)
+    doc = build_report(mode, runs, studies, timings, drawn, stressed, tired)
     validate(doc)
     map_link = MAP_JSON if (tmp / MAP_JSON).is_file() else None
     (tmp / "report.json").write_text(strict_json(doc, indent=1), encoding="utf-8")
