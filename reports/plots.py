@@ -294,6 +294,20 @@ def fretting(results: dict[str, Any], title: str, path: str | Path,
     return save(fig, path)
 
 
+def _stress_scales(results: dict[str, Any], reference: str,
+                   physical: bool) -> tuple[Any, str, Any, tuple[float, str], float]:
+    """The reference, its name, its normal result, the x axis and the stress scale of a stress plot.
+
+    Stresses are drawn in MPa for a case with a material, else over the
+    reference's peak pressure.
+    """
+    ref = results.get(reference) or next(iter(results.values()))
+    nref = normal_of(ref)
+    pmax = max(p.p for p in nref.peaks())
+    return (ref, REFERENCE_NAME.get(reference, reference), nref, _axis(nref, physical),
+            1.0 if physical else pmax)
+
+
 def stress_surface(results: dict[str, Any], title: str, path: str | Path, *, nu: float,
                    reference: str = "closedform", physical: bool = False) -> Path:
     """Surface stress ``σxx`` of every method along the contact and beyond its ends.
@@ -304,12 +318,7 @@ def stress_surface(results: dict[str, Any], title: str, path: str | Path, *, nu:
     """
     from .stress import surface_line
 
-    ref = results.get(reference) or next(iter(results.values()))
-    name = REFERENCE_NAME.get(reference, reference)
-    nref = normal_of(ref)
-    xscale, xlabel = _axis(nref, physical)
-    pmax = max(p.p for p in nref.peaks())
-    sscale = 1.0 if physical else pmax
+    ref, name, nref, (xscale, xlabel), sscale = _stress_scales(results, reference, physical)
     fig, axes = new_figure()
     ax = axes[0, 0]
     x = surface_line(ref)
@@ -346,12 +355,7 @@ def von_mises(results: dict[str, Any], title: str, path: str | Path, *, nu: floa
     """
     from .stress import field_grid
 
-    ref = results.get(reference) or next(iter(results.values()))
-    name = REFERENCE_NAME.get(reference, reference)
-    nref = normal_of(ref)
-    xscale, xlabel = _axis(nref, physical)
-    pmax = max(p.p for p in nref.peaks())
-    sscale = 1.0 if physical else pmax
+    ref, name, nref, (xscale, xlabel), sscale = _stress_scales(results, reference, physical)
     x, z = field_grid(ref)
     vm = ref.stress(x, z, nu=nu).von_mises / sscale
     levels = np.linspace(0.0, float(vm.max()), 11)[1:]

@@ -122,9 +122,8 @@ def _labelled(help_text: str, quantity: str) -> str:
     return f"{help_text} [{UNITS[quantity]}]"
 
 
-def _geometry_args(p: argparse.ArgumentParser) -> None:
-    from threepart import registry
-
+def _punch_args(p: argparse.ArgumentParser) -> None:
+    """``--R1 --R2 --b --R``: the punch of eq. (2), for every command that takes one."""
     g = p.add_argument_group("punch geometry (eq. 2)")
     g.add_argument("--R1", type=float, required=True, help=_labelled("left edge radius, > 0", "R1"))
     g.add_argument("--R2", type=float, required=True, help=_labelled("right edge radius, > 0", "R2"))
@@ -133,6 +132,12 @@ def _geometry_args(p: argparse.ArgumentParser) -> None:
     g.add_argument("--R", type=float, default=float("inf"),
                    help=_labelled("central radius: inf (flat, case A, default), negative for "
                                   "concave (case B)", "R"))
+
+
+def _geometry_args(p: argparse.ArgumentParser) -> None:
+    from threepart import registry
+
+    _punch_args(p)
     m = p.add_argument_group("material (eq. 4, plane strain)")
     m.add_argument("--A", type=float, help=_labelled("compliance A; or give --E/--nu", "A"))
     m.add_argument("--E", type=float,
@@ -433,13 +438,7 @@ _FATIGUE_LABELS = {"von_mises_range": "von Mises range", "swt": "SWT (critical p
 def _fatigue_args(p: argparse.ArgumentParser) -> None:
     from threepart import registry
 
-    g = p.add_argument_group("punch geometry (eq. 2)")
-    g.add_argument("--R1", type=float, required=True, help=_labelled("left edge radius, > 0", "R1"))
-    g.add_argument("--R2", type=float, required=True, help=_labelled("right edge radius, > 0", "R2"))
-    g.add_argument("--b", type=float, required=True,
-                   help=_labelled("half-width of the central segment, >= 0", "b"))
-    g.add_argument("--R", type=float, default=float("inf"),
-                   help=_labelled("central radius: inf (flat, default), negative for concave", "R"))
+    _punch_args(p)
     m = p.add_argument_group("material (two similar bodies, plane strain: A = 4(1 - nu^2)/E)")
     m.add_argument("--E", type=float, required=True,
                    help=_labelled("Young's modulus (also for the SWT strains)", "E"))
