@@ -165,7 +165,13 @@ def stick_zone(normal: NormalResult, Q: float, f: float, sch: Plain | Projected,
     except NoConvergenceError:
         if punch.kappa0 >= 0 or punch.b == 0:
             raise
-        found = []
+        # a concave centre: every root of the stick-zone equations, by a scan
+        found = [(mm, hh, it, rr) for mm, hh, _, it, rr in scan_ends(punch, A, P_star, sch, alpha=alpha)]
+        if not found:
+            raise StickSeparationError(
+                f"`Q`/(f P) = {abs(Q) / (f * normal.P):.6g}: no single stick zone on the concave centre "
+                f"R = {punch.R:g}; the corrective contact at P* = {P_star:g} separates into two zones, "
+                "one on each flank, which the Ciavarella–Jäger superposition of one zone cannot model") from None
     ratio = abs(Q) / (f * normal.P)
     whys = []
     for k, (m, h, its, res) in enumerate(found):
