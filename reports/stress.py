@@ -10,34 +10,21 @@ nothing here knows a method). Nothing here solves a contact.
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
 from typing import Any, Mapping
 
 import numpy as np
 
+from threepart.fatigue import HotSpot
 from threepart.results import NU
 
 from .compare import STRESS_REACH, normal_of
 
-__all__ = ["HotSpot", "FIELD_GRID", "FATIGUE_GRID", "field_grid", "surface_line", "hot_spots", "case_hot_spots",
+__all__ = ["FIELD_GRID", "FATIGUE_GRID", "field_grid", "surface_line", "hot_spots", "case_hot_spots",
            "fatigue_states", "fatigue_hot_spots", "stress_nu"]
 
 #: points ``(nx, nz)`` of the field under a contact: x over the contact and ``STRESS_REACH W``
 #: beyond each end, z from the surface to the depth ``W``
 FIELD_GRID = (97, 49)
-
-
-@dataclass(frozen=True)
-class HotSpot:
-    """Where a stress quantity is largest, and its value (the stress unit of the case)."""
-
-    quantity: str
-    x: float
-    z: float
-    value: float
-
-    def as_dict(self) -> dict[str, Any]:
-        return {"quantity": self.quantity, "x": self.x, "z": self.z, "value": self.value}
 
 
 def stress_nu(case_material: tuple[float, float] | None) -> float:
@@ -84,19 +71,20 @@ def hot_spots(result: Any, nu: float, ref: Any | None = None) -> dict[str, HotSp
     xs = surface_line(ref)
     surf = result.stress(xs, np.zeros_like(xs), nu=nu)
     i = int(np.argmax(surf.sxx))
-    out = {"sxx": HotSpot("sxx", float(xs[i]), 0.0, float(surf.sxx[i]))}
+    out = {"sxx": HotSpot(float(xs[i]), 0.0, float(surf.sxx[i]))}
     x, z = field_grid(ref)
     st = result.stress(x, z, nu=nu)
     for name, values in (("von_mises", st.von_mises), ("max_shear", st.max_shear)):
         j = np.unravel_index(int(np.argmax(values)), values.shape)
-        out[name] = HotSpot(name, float(x[j]), float(z[j]), float(values[j]))
+        out[name] = HotSpot(float(x[j]), float(z[j]), float(values[j]))
     return out
 
 
 def case_hot_spots(results: Mapping[str, Any], nu: float, reference: str) -> dict[str, dict[str, Any]]:
     """``method -> quantity -> hot spot`` (as dicts) for the slip results of one case."""
     ref = results[reference]
-    return {m: {q: h.as_dict() for q, h in hot_spots(res, nu, ref).items()} for m, res in results.items()}
+    return {m: {q: {"quantity": q, "x": h.x, "z": h.z, "value": h.value}
+                for q, h in hot_spots(res, nu, ref).items()} for m, res in results.items()}
 
 
 #: points ``(nx, nz)`` of the fatigue fields of a fretting case, and every how many recorded
