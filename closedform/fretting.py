@@ -337,7 +337,7 @@ def fretting_cycle(normal_solution: NormalResult, Q_max: float, f: float, *,
     """
     normal = normal_solution
     Q_max, f, states = _fretting_iv(normal, Q_max, f, states)
-    sigma_bulk = check_sigma_bulk(sigma_bulk)
+    sigma_bulk = check_sigma_bulk(sigma_bulk, normal, Q_max)
     t0 = time.perf_counter()
     punch, A, alpha = normal.punch, normal.A, normal.alpha
     u = np.linspace(0.0, Q_max, states)

@@ -287,7 +287,7 @@ def solve_partial_slip(normal_solution: NormalResult, Q: float, f: float, *,
     """
     normal = normal_solution
     Q, f = check_shear(normal, Q, f)
-    sigma_bulk = check_sigma_bulk(sigma_bulk)
+    sigma_bulk = check_sigma_bulk(sigma_bulk, normal, Q)
     t0 = time.perf_counter()
     punch = normal.punch
     ratio = abs(Q) / (f * normal.P)

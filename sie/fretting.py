@@ -304,7 +304,7 @@ def fretting_cycle(normal: NormalResult, Q_max: float, f: float, *, n: int | Non
     n = (normal.diagnostics.n or DEFAULT_N) if n is None else n
     scheme = (normal.diagnostics.scheme or DEFAULT_SCHEME) if scheme is None else scheme
     sch = check_scheme(scheme, n)
-    sigma_bulk = check_sigma_bulk(sigma_bulk)
+    sigma_bulk = check_sigma_bulk(sigma_bulk, normal, Q_max)
     t0 = time.perf_counter()
     tilt_rate = float(corrective_tilt(0.0, normal.A, 1.0, f, sigma_bulk)) / Q_max
     zones = _Zones(normal, f, sch, tilt_rate)

@@ -278,7 +278,7 @@ def solve_partial_slip(normal: NormalResult, Q: float, f: float, *, n: int | Non
         If the Newton iteration fails.
     """
     Q, f = check_shear(normal, Q, f, limit=SLIP_RATIO_LIMIT)
-    sigma_bulk = check_sigma_bulk(sigma_bulk)
+    sigma_bulk = check_sigma_bulk(sigma_bulk, normal, Q)
     n = (normal.diagnostics.n or DEFAULT_N) if n is None else n
     scheme = (normal.diagnostics.scheme or DEFAULT_SCHEME) if scheme is None else scheme
     sch = check_scheme(scheme, n)

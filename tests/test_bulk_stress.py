@@ -334,3 +334,22 @@ def test_property_sie_and_closed_form_agree_or_refuse_by_name(punch, P_ratio, s_
 @given(**INPUTS)
 def test_property_sweep_slow(punch, P_ratio, s_frac, tilt, ratio, f, bulk_frac):
     _agree_or_refuse(punch, P_ratio, s_frac, tilt, ratio, f, bulk_frac)
+
+
+@pytest.mark.filterwarnings("error")
+@pytest.mark.parametrize("sigma_bulk", [1e300, -1e300, 1e6])
+def test_a_bulk_stress_past_the_start_of_path_bound_is_refused_before_any_numerics(sigma_bulk):
+    """At ``lam = 0`` the slip-direction margin is ``|Q|/π - |sigma_bulk| (a + c)/8`` (B8): past
+    ``8|Q|/(π(a + c))`` every method that superposes refuses by name, with no overflow warning."""
+    normal = cf.solve_normal(Punch(R1=10.0, R2=5.0, b=1.0), 400.0, 0.1, A=rigid_punch(210e3, 0.3))
+    Q, f = 80.0, 0.5
+    bound = 8 * Q / (math.pi * (normal.a + normal.c))
+    for call in (lambda: cf.solve_partial_slip(normal, Q, f, sigma_bulk=sigma_bulk),
+                 lambda: sie.solve_partial_slip(normal, Q, f, sigma_bulk=sigma_bulk),
+                 lambda: cf.fretting_cycle(normal, Q, f, sigma_bulk=sigma_bulk),
+                 lambda: sie.fretting_cycle(normal, Q, f, sigma_bulk=sigma_bulk)):
+        end = "right" if sigma_bulk * Q > 0 else "left"   # the leading edge, x = c for Q > 0 (B8)
+        with pytest.raises(SlipReversalError, match=f"at the {end} end .* start of the load path") as err:
+            call()
+        printed = float(re.search(r"= ([0-9.e+-]+)$", str(err.value)).group(1))
+        assert abs(printed / bound - 1) < PRINTED

@@ -18,20 +18,38 @@ from __future__ import annotations
 
 import functools
 import math
-from typing import Callable
+from typing import Any, Callable
 
 import numpy as np
 from numpy.typing import ArrayLike
 
-from .errors import NoConvergenceError
+from .errors import NoConvergenceError, SlipReversalError
 from .validate import finite
 
 __all__ = ["check_sigma_bulk", "corrective_tilt", "slip_direction_margin", "slip_dissipation"]
 
 
-def check_sigma_bulk(sigma_bulk: object) -> float:
-    """``sigma_bulk`` as a finite float (tension positive), else ``ValueError``/``TypeError``."""
-    return finite("sigma_bulk", sigma_bulk)
+def check_sigma_bulk(sigma_bulk: object, normal: Any = None, Q: float = 0.0) -> float:
+    """``sigma_bulk`` as a finite float (tension positive), else ``ValueError``/``TypeError``.
+
+    With the ``normal`` result and the shear load ``Q`` (``Q_max`` of a cycle) it
+    also refuses, before any numerics, a bulk stress that reverses the slip at
+    the very start of the load path: there the slip-direction margin
+    (docs/BULK_STRESS.md, eq. B8 at ``lam = 0``) is ``|Q|/π - |sigma_bulk| (a + c)/8``
+    (:class:`~threepart.errors.SlipReversalError`).
+    """
+    value = finite("sigma_bulk", sigma_bulk)
+    if normal is not None and value:
+        bound = 8.0 * abs(Q) / (math.pi * (normal.a + normal.c))
+        if abs(value) > bound * (1.0 + 1e-12):
+            gl, gr = slip_direction_margin(Q if Q else 1.0, value, normal.a, normal.c, -normal.a, normal.c)
+            end = "left" if float(np.min(gl)) < float(np.min(gr)) else "right"
+            raise SlipReversalError(
+                f"`sigma_bulk` = {value:.6g} reverses the slip at the {end} end of the contact from the "
+                f"start of the load path, with `Q` = {Q:.6g} rising in proportion (the "
+                f"Ciavarella–Jäger superposition does not hold): it needs |sigma_bulk| <= "
+                f"8|Q|/(π (a + c)) = {bound:.6g}")
+    return value
 
 
 def corrective_tilt(alpha: ArrayLike, A: float, Q: float, f: float, sigma_bulk: ArrayLike) -> np.ndarray:
