@@ -194,6 +194,18 @@ _STRESS_SURFACE = 401
 _STRESS_GRID = (41, 9)
 
 
+def surface_line(ref: Any, n: int = 801) -> np.ndarray:
+    """Surface points over the contact of ``ref`` and ``STRESS_REACH W`` beyond each end.
+
+    The contact ends themselves are left out: the surface ``σxx`` has a
+    square-root kink there.
+    """
+    nr = normal_of(ref)
+    W = nr.a + nr.c
+    x = np.linspace(-nr.a - STRESS_REACH * W, nr.c + STRESS_REACH * W, n)
+    return x[np.min(np.abs(x[:, None] - np.array([-nr.a, nr.c])), axis=1) > 1e-3 * W]
+
+
 def stress_points(ref: Any) -> tuple[tuple[np.ndarray, np.ndarray], tuple[np.ndarray, np.ndarray]]:
     """``((x, z), (x, z))``: the surface line and the grid at depth where stresses are compared.
 
@@ -206,8 +218,7 @@ def stress_points(ref: Any) -> tuple[tuple[np.ndarray, np.ndarray], tuple[np.nda
     """
     n = normal_of(ref)
     W = n.a + n.c
-    xs = np.linspace(-n.a - STRESS_REACH * W, n.c + STRESS_REACH * W, _STRESS_SURFACE)
-    xs = xs[np.min(np.abs(xs[:, None] - np.array([-n.a, n.c])), axis=1) > 1e-3 * W]
+    xs = surface_line(ref, _STRESS_SURFACE)
     nx, nz = _STRESS_GRID
     xg, zg = np.meshgrid(np.linspace(-n.a, n.c, nx), np.linspace(STRESS_DEPTH * 0.5 * W, W, nz))
     return (xs, np.zeros_like(xs)), (xg.ravel(), zg.ravel())

@@ -17,7 +17,7 @@ import numpy as np
 from threepart.fatigue import HotSpot
 from threepart.results import NU
 
-from .compare import STRESS_REACH, normal_of
+from .compare import STRESS_REACH, normal_of, surface_line
 
 __all__ = ["FIELD_GRID", "FATIGUE_GRID", "field_grid", "surface_line", "hot_spots", "case_hot_spots",
            "fatigue_states", "fatigue_hot_spots", "stress_nu"]
@@ -30,18 +30,6 @@ FIELD_GRID = (97, 49)
 def stress_nu(case_material: tuple[float, float] | None) -> float:
     """Poisson's ratio for the stresses of a case: its material's, else :data:`threepart.results.NU`."""
     return float(case_material[1]) if case_material is not None else NU
-
-
-def surface_line(ref: Any, n: int = 801) -> np.ndarray:
-    """Surface points over the contact of ``ref`` and ``STRESS_REACH W`` beyond each end.
-
-    The contact ends themselves are left out: the surface ``σxx`` has a
-    square-root kink there.
-    """
-    nr = normal_of(ref)
-    W = nr.a + nr.c
-    x = np.linspace(-nr.a - STRESS_REACH * W, nr.c + STRESS_REACH * W, n)
-    return x[np.min(np.abs(x[:, None] - np.array([-nr.a, nr.c])), axis=1) > 1e-3 * W]
 
 
 def field_grid(ref: Any, shape: tuple[int, int] = FIELD_GRID) -> tuple[np.ndarray, np.ndarray]:

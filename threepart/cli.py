@@ -134,9 +134,19 @@ def _punch_args(p: argparse.ArgumentParser) -> None:
                                   "concave (case B)", "R"))
 
 
-def _geometry_args(p: argparse.ArgumentParser) -> None:
+def _method_args(p: argparse.ArgumentParser) -> Any:
+    """``--method`` (from the registry) and ``--mesh``, for every command that solves; the group."""
     from threepart import registry
 
+    mt = p.add_argument_group("method")
+    mt.add_argument("--method", choices=("auto", *registry.names()), default="auto",
+                    help="auto (default): the closed form where it holds, else the SIE; or one method")
+    mt.add_argument("--mesh", choices=("quick", "default", "fine"), default="default",
+                    help="FE mesh preset for --method fem (default: default)")
+    return mt
+
+
+def _geometry_args(p: argparse.ArgumentParser) -> None:
     _punch_args(p)
     m = p.add_argument_group("material (eq. 4, plane strain)")
     m.add_argument("--A", type=float, help=_labelled("compliance A; or give --E/--nu", "A"))
@@ -150,11 +160,7 @@ def _geometry_args(p: argparse.ArgumentParser) -> None:
     ld.add_argument("--s", type=float, default=0.0,
                     help=_labelled("lever arm of P, positive to the right", "s"))
     ld.add_argument("--tilt", choices=("free", "suppressed"), default="free")
-    mt = p.add_argument_group("method")
-    mt.add_argument("--method", choices=("auto", *registry.names()), default="auto",
-                    help="auto (default): the closed form where it holds, else the SIE; or one method")
-    mt.add_argument("--mesh", choices=("quick", "default", "fine"), default="default",
-                    help="FE mesh preset for --method fem (default: default)")
+    mt = _method_args(p)
     pt = p.add_argument_group("fields at points")
     pt.add_argument("--x", type=_number_list, metavar="X1,X2,...",
                     help=_labelled("points at which to print p(x) (and q(x) for slip)", "x"))
@@ -436,8 +442,6 @@ _FATIGUE_LABELS = {"von_mises_range": "von Mises range", "swt": "SWT (critical p
 
 
 def _fatigue_args(p: argparse.ArgumentParser) -> None:
-    from threepart import registry
-
     _punch_args(p)
     m = p.add_argument_group("material (two similar bodies, plane strain: A = 4(1 - nu^2)/E)")
     m.add_argument("--E", type=float, required=True,
@@ -458,11 +462,7 @@ def _fatigue_args(p: argparse.ArgumentParser) -> None:
                     help="bulk stress sigma_xx in the substrate at Q_max, tension positive, in "
                          "phase with Q [MPa] (default 0)")
     ld.add_argument("--tilt", choices=("free", "suppressed"), default="free")
-    mt = p.add_argument_group("method")
-    mt.add_argument("--method", choices=("auto", *registry.names()), default="auto",
-                    help="auto (default): the closed form where it holds, else the SIE; or one method")
-    mt.add_argument("--mesh", choices=("quick", "default", "fine"), default="default",
-                    help="FE mesh preset for --method fem (default: default)")
+    mt = _method_args(p)
     mt.add_argument("--states", type=int, default=5,
                     help="recorded states per branch of the cycle, >= 2 (default 5; +-Q_max are "
                          "always recorded); each distinct state costs one stress evaluation")
