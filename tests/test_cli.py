@@ -141,6 +141,38 @@ def test_ctrl_c_prints_one_line_and_exits_130(capsys, monkeypatch):
     assert capsys.readouterr().err == "threepart solve: interrupted\n"
 
 
+#: 128 + SIGPIPE: the status a program killed by SIGPIPE reports (POSIX shells, git, coreutils)
+SIGPIPE_STATUS = 141
+
+
+def test_a_reader_that_goes_away_ends_the_output_silently_with_141():
+    """``threepart slip ... | head -1``: no "Broken pipe" line, the shell's 128 + SIGPIPE."""
+    proc = subprocess.Popen([sys.executable, "-m", "threepart.cli", "slip", "--R1", "10", "--R2",
+                             "10", "--b", "1", "--P", "100", "--Q", "20", "--f", "0.5", "--A",
+                             "1e-5", "--grid", "20000"],
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    assert proc.stdout.readline().startswith("method:")
+    proc.stdout.close()                       # the reader goes away, as `head -1` does
+    err = proc.stderr.read()
+    assert proc.wait() == SIGPIPE_STATUS
+    assert err == ""
+
+
+def test_a_broken_pipe_elsewhere_is_still_a_one_line_error(capsys, monkeypatch):
+    """A broken pipe that is not standard output's (a socket, a worker) is an error, exit 2."""
+    from dataclasses import replace
+
+    from threepart import registry
+
+    def broken(*a, **k):
+        raise BrokenPipeError(32, "Broken pipe")
+
+    monkeypatch.setitem(registry._REGISTRY, "closedform", replace(registry.get("closedform"),
+                                                                  normal=broken))
+    assert main(["solve", *GEOM]) == 2
+    assert "error: [Errno 32] Broken pipe" in _one_line_error(capsys)
+
+
 def test_help_still_works_and_documents_units_and_null(capsys):
     assert main(["solve", "--help"]) == 0
     text = " ".join(capsys.readouterr().out.split())

@@ -38,6 +38,8 @@ line on stderr), 130 interrupted (map: run it again to resume).
 from __future__ import annotations
 
 import argparse
+import os
+import select
 import sys
 from typing import Any, NoReturn, Sequence
 
@@ -960,6 +962,29 @@ def _one_line(exc: BaseException) -> str:
     return " ".join(str(exc).split()) or type(exc).__name__
 
 
+#: the exit status when the reader of standard output went away (``threepart slip | head``):
+#: 128 + SIGPIPE, what a program killed by the signal reports, and silent, as ``git`` and coreutils are
+PIPE_CLOSED = 141
+
+
+def _stdout_closed() -> bool:
+    """Whether standard output is a pipe whose reader has gone (then nothing more can be printed).
+
+    Its buffer is pointed at ``os.devnull`` so that the interpreter's flush at exit
+    does not fail a second time.
+    """
+    try:
+        fd = sys.stdout.fileno()
+        poll = select.poll()
+        poll.register(fd, select.POLLOUT)
+        closed = any(ev & select.POLLERR for _, ev in poll.poll(0))
+    except (OSError, ValueError, AttributeError):   # no file descriptor (a test's capture)
+        return False
+    if closed:
+        os.dup2(os.open(os.devnull, os.O_WRONLY), fd)
+    return closed
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     """Entry point of the ``threepart`` console script.
 
@@ -972,7 +997,8 @@ def main(argv: Sequence[str] | None = None) -> int:
     -------
     int
         0 done, 1 a verification tolerance failed, 2 an error (one line on
-        stderr, no traceback), 130 interrupted (Ctrl-C).
+        stderr, no traceback), 130 interrupted (Ctrl-C), 141 (silently) when
+        the reader of standard output has gone.
     """
     from threepart.errors import ContactZoneError, NoConvergenceError
 
@@ -992,6 +1018,11 @@ def main(argv: Sequence[str] | None = None) -> int:
     except UsageError as exc:
         print(exc, file=sys.stderr)
         return 2
+    except BrokenPipeError as exc:
+        if not _stdout_closed():
+            print(f"{prog}: error: {_one_line(exc)}", file=sys.stderr)
+            return 2
+        return PIPE_CLOSED
     except (ValueError, NoConvergenceError, ContactZoneError, OSError) as exc:
         print(f"{prog}: error: {_one_line(exc)}", file=sys.stderr)
         return 2
