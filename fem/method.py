@@ -17,6 +17,7 @@ from typing import Any
 from threepart.punch import Punch
 from threepart.registry import Method, register
 from threepart.results import FrettingResult, NormalResult, SlipResult
+from threepart.tolerances import fem_comparison
 from threepart.validate import poisson, positive
 
 from .friction import fretting_cycle, solve_partial_slip
@@ -69,4 +70,5 @@ def _fretting(punch: Punch, P: float, s: float, *, A: float, tilt: str = "free",
 
 
 METHOD = register(Method("fem", _normal, _slip, _fretting, options=("mesh", "progress"),
-                         default_nu=NU))
+                         default_nu=NU,
+                         comparison=lambda options: fem_comparison(options.get("mesh", "default"))))

@@ -27,7 +27,7 @@ from typing import Any, Callable
 
 from threepart import registry
 from threepart.catalogue import Case
-from threepart.tolerances import fem_comparison, tolerance
+from threepart.tolerances import tolerance
 
 from .compare import Check, compare
 from . import solvers
@@ -190,9 +190,11 @@ def run_case(case: Case, mode: Mode, cache: dict[Any, Any] | None = None,
     for method in methods:
         if method in (case.reference, "closedform") or method not in run.results:
             continue
-        comparison = "sie" if method == "sie" else fem_comparison(mode.fem_mesh)
+        judged_by = registry.get(method).comparison
         try:
-            run.checks.extend(compare(ref, run.results[method], comparison))
+            if judged_by is None:
+                raise ValueError(f"method {method!r} names no tolerance group (Method.comparison)")
+            run.checks.extend(compare(ref, run.results[method], judged_by(mode.options(method))))
         except Exception as exc:  # noqa: BLE001
             run.errors[f"compare-{method}"] = f"{type(exc).__name__}: {exc}"
     return run

@@ -44,4 +44,5 @@ def _options_iv(options: dict[str, Any]) -> None:
 
 
 METHOD = register(Method("sie", _normal, _slip, _fretting, options=("n", "scheme"),
-                         options_iv=_options_iv, lift_off=lift_off))
+                         options_iv=_options_iv, lift_off=lift_off,
+                         comparison=lambda options: "sie"))

@@ -65,6 +65,28 @@ def test_a_toy_method_is_one_module_and_every_caller_finds_it(toy, capsys):
     assert out["method"] == "toy" and abs(out["a"] - ref.a) <= ROUND_OFF * ref.width
 
 
+def test_the_verification_run_judges_a_method_by_the_group_it_names(toy, monkeypatch):
+    """``reports.runs.run_case`` asks the method for its tolerance group: no method is special-cased."""
+    from dataclasses import replace
+
+    from threepart import catalogue
+    from threepart.reports.runs import MODES, run_case
+    from threepart.tolerances import TOLERANCES, fem_comparison
+
+    case = next(c for c in catalogue.load_cases() if c.name == "hertz")
+    run = run_case(case, MODES["quick"], methods=("closedform", "toy"))
+    assert run.checks and {c.comparison for c in run.checks} == {"sie"} and run.passed
+    # the built-in groups are rows of the table; the FEM's follows its mesh
+    assert registry.get("sie").comparison({}) == "sie"
+    for mesh in ("quick", "default", "fine"):
+        assert registry.get("fem").comparison({"mesh": mesh}) == fem_comparison(mesh)
+        assert any(k[0] == fem_comparison(mesh) for k in TOLERANCES)
+    # a method that names no group is an error of the run, not a silent pass
+    registry.register(replace(toy, comparison=None))
+    run = run_case(case, MODES["quick"], methods=("closedform", "toy"))
+    assert not run.passed and "names no tolerance group" in run.errors["compare-toy"]
+
+
 def test_nu_is_refused_by_a_half_plane_method_and_used_by_the_fem():
     with pytest.raises(ValueError, match="`nu` is not used by method 'closedform'"):
         threepart.solve(HERTZ, 400.0, 0.0, A=A, method="closedform", nu=0.3)

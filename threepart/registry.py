@@ -91,6 +91,11 @@ class Method:
     lift_off
         The lift-off lever arms ``(s_min, s_max)`` at ``(punch, P, A)``, or
         None where the method does not compute them.
+    comparison
+        The row group of :data:`threepart.tolerances.TOLERANCES` that judges
+        this method's results against the reference, from the options it was
+        run with (the FEM's limits depend on its mesh); None for a method that
+        is only ever the reference (the closed form).
     """
 
     name: str
@@ -102,6 +107,7 @@ class Method:
     default_nu: float | None = None
     options_iv: Callable[[dict[str, Any]], None] | None = None
     lift_off: Callable[[Punch, float, float], tuple[float, float]] | None = None
+    comparison: Callable[[dict[str, Any]], str] | None = None
 
     def check_options(self, options: dict[str, Any], called: str | None = None) -> None:
         """``ValueError`` naming the first option this method does not take; then the values.
