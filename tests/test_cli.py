@@ -384,9 +384,12 @@ def test_ctrl_c_while_loading_or_solving_prints_exactly_one_line(loaded, delay, 
     import signal
     import time
 
+    # a shell's background job (`pytest &`, nohup) starts with SIGINT ignored, and so would the
+    # child: give it the default disposition a terminal's foreground process has
     proc = subprocess.Popen([sys.executable, "-m", "threepart", "solve", *AGEOM, "--method", "fem",
                              "--mesh", "fine"], cwd=tmp_path, stdout=subprocess.PIPE,
-                            stderr=subprocess.PIPE, text=True)
+                            stderr=subprocess.PIPE, text=True,
+                            preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
     maps = Path(f"/proc/{proc.pid}/maps")
     deadline = time.monotonic() + 60
     while loaded not in maps.read_text() and time.monotonic() < deadline:
