@@ -26,9 +26,11 @@ at ``s = 0``, with the sign of ``Q``; and the frictionless normal load leaves a
 relative tangential displacement ``C_tn fn`` that the stick nodes keep (friction
 is engaged only after ``P``, as in the paper's load path). The differences from
 the closed form's ``d`` and ``e`` therefore measure the half-plane idealisation
-of both the normal and the tangential problem, and vanish as the punch grows
-tall and the contact small against ``R1``, ``R2`` and ``H``
-(tests/test_finite_slip.py).
+of both the normal and the tangential problem. They shrink as the punch grows
+tall and the contact small against ``R1``, ``R2``, ``H`` and the punch's face
+(tests/test_finite_slip.py: for a symmetric punch, ``(a - b)/R1 = 0.01``, the
+closed form's ``d`` errs by 9.8e-4 at ``H = 4 b`` and 4.9e-4 at ``H = 40 b``; its
+``e = 0`` holds to 6e-5 ``d``).
 """
 from __future__ import annotations
 
