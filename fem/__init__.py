@@ -8,6 +8,7 @@ solve_partial_slip  -- two similar elastic bodies, P at s then Q (and a bulk str
 fretting_cycle      -- the same model through Q: 0 -> Q_max -> -Q_max -> Q_max (energy per cycle)
 FemSlipResult, FemFrettingResult -- their shared result shapes, with the per-step history
 solve_finite        -- a punch of real shape (exact arcs, flanks, height H) on a finite block
+solve_finite_slip   -- the same punch and block, P at s then Q in steps, Coulomb friction (two-body model)
 NoConvergenceError  -- the contact active-set iteration did not converge
 ContactZoneError    -- the contact reached the end of the candidate zone of the mesh
 SeparationError     -- the contact separates into two zones (from threepart.errors)
@@ -60,12 +61,13 @@ from .friction import FemFrettingResult, FemSlipResult, fretting_cycle, solve_pa
 from .interface import Interface, bulk_field, interface, mirror
 from .recovery import StressField
 from .finite import solve_finite
+from .finite_slip import solve_finite_slip
 from .mesh import PRESETS, MeshPreset, Substrate, make_substrate, read_substrate
 from .solve import FemResult, locate_contact, solve_normal
 from .studies import convergence_study, domain_study
 
 __all__ = ["solve_normal", "FemResult", "solve_partial_slip", "fretting_cycle", "FemSlipResult",
-           "FemFrettingResult", "solve_finite", "Interface", "interface", "mirror", "bulk_field", "Step", "tangential",
+           "FemFrettingResult", "solve_finite", "solve_finite_slip", "Interface", "interface", "mirror", "bulk_field", "Step", "tangential",
            "StressField", "NoConvergenceError", "ContactZoneError", "SeparationError",
            "MeshResolutionError", "locate_contact", "MeshPreset", "PRESETS", "Substrate", "read_substrate",
            "make_substrate", "SurfaceCompliance", "condense", "choose_backend", "backends",

@@ -98,6 +98,34 @@ def _solve(punch: Punch, P: float, s: float, E: float, nu: float, tilt: str, max
     return sol, S, timings, S.dofs + B.dofs
 
 
+def locate_finite(punch: Punch, P: float, s: float, E: float, nu: float, tilt: str,
+                  max_iter: int, H: float | None, theta: float, profile: str, say: Progress
+                  ) -> tuple[float, float, MeshPreset]:
+    """The finite body's contact ends ``(-a, c)`` on the ``"locate"`` mesh, and that mesh's preset.
+
+    Starts from the half-plane estimate (the pair is a rigid punch on ``E/2``);
+    a contact that reaches the candidate zone's end doubles the zone's margin
+    (three times at most).
+    """
+    t0 = time.perf_counter()
+    breaks = (-punch.b, punch.b)
+    left, right = locate_ends(punch, P, s, 0.5 * E, nu, tilt, max_iter, TRIES_DEFAULT)
+    say(f"locate: half-plane contact about [{left:.6g}, {right:.6g}] "
+        f"({time.perf_counter() - t0:.1f} s)")
+    locate = replace(PRESETS["locate"], margin=zone_margin(punch.b, left, right, 0.15))
+    for _ in range(4):
+        try:
+            sol, S, _, _ = _solve(punch, P, s, E, nu, tilt, max_iter,
+                                  locate.spec(left, right, breaks), H, theta, profile)
+            break
+        except ContactZoneError:
+            locate = replace(locate, margin=min(2.0, 2 * locate.margin))
+    else:
+        raise ContactZoneError("the finite-body contact outgrows every candidate zone tried")
+    left, right = contact_ends(S.x, sol.f / S.weights, sol.active, breaks)
+    return left, right, locate
+
+
 def zone_margin(b: float, left: float, right: float, margin: float) -> float:
     """The candidate zone's margin (a fraction of ``W``) for a contact ``[left, right]``.
 
@@ -176,21 +204,7 @@ def solve_finite(punch: Punch, P: float, s: float = 0.0, *, E: float, nu: float,
     say = Progress(progress)
     t_start = time.perf_counter()
     breaks = (-punch.b, punch.b)
-    # half-plane estimate (the pair is a rigid punch on E/2), then the finite body's own ends
-    left, right = locate_ends(punch, P, s, 0.5 * E, nu, tilt, max_iter, TRIES_DEFAULT)
-    say(f"locate: half-plane contact about [{left:.6g}, {right:.6g}] "
-        f"({time.perf_counter() - t_start:.1f} s)")
-    locate = replace(PRESETS["locate"], margin=zone_margin(punch.b, left, right, 0.15))
-    for _ in range(4):
-        try:
-            sol, S, _, _ = _solve(punch, P, s, E, nu, tilt, max_iter,
-                                  locate.spec(left, right, breaks), H, theta, profile)
-            break
-        except ContactZoneError:
-            locate = replace(locate, margin=min(2.0, 2 * locate.margin))
-    else:
-        raise ContactZoneError("the finite-body contact outgrows every candidate zone tried")
-    left, right = contact_ends(S.x, sol.f / S.weights, sol.active, breaks)
+    left, right, _ = locate_finite(punch, P, s, E, nu, tilt, max_iter, H, theta, profile, say)
     t_locate = time.perf_counter() - t_start
     pre = replace(pre, margin=zone_margin(punch.b, left, right, pre.margin))
     base = pre

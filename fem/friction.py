@@ -54,7 +54,7 @@ from __future__ import annotations
 
 import math
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any
 
 import numpy as np
@@ -244,6 +244,17 @@ def solve_partial_slip(punch: Punch, P: float, s: float = 0.0, *, Q: float, f: f
     say = Progress(progress)
     t0 = time.perf_counter()
     model = two_body_model(punch, P, s, E, nu, tilt, pre, max_iter, f, Q, sigma_bulk, say)
+    return shear_path(model, Q, f, steps, say, t0)
+
+
+def shear_path(model: TwoBodyModel, Q: float, f: float, steps: int, say: Progress, t0: float,
+               info: dict[str, Any] | None = None) -> FemSlipResult:
+    """Shear ``model`` (under its normal load) by ``Q`` and its bulk stress in ``steps`` equal steps.
+
+    The load path of :func:`solve_partial_slip` and :func:`fem.solve_finite_slip`;
+    ``info`` is added to the normal result's and the slip result's ``info``,
+    ``t0`` is when the solve began (for the total time).
+    """
     direction = 1 if Q >= 0 else -1
     for k in range(1, steps + 1):
         t1 = time.perf_counter()
@@ -254,9 +265,11 @@ def solve_partial_slip(punch: Punch, P: float, s: float = 0.0, *, Q: float, f: f
     field = model.field(st, 1.0)
     diag = model.diagnostics(steps, time.perf_counter() - t0)
     normal = model.normal_result(diag)
+    if info:
+        normal = replace(normal, info={**normal.info, **info})
     info = {**normal.info, "xi": st.xi, "stick_nodes": int(st.stick.sum())}
     return FemSlipResult(normal=normal, Q=float(Q), f=float(f), d=0.5 * (right - left),
-                         e=-0.5 * (right + left), method="fem", sigma_bulk=sigma_bulk,
+                         e=-0.5 * (right + left), method="fem", sigma_bulk=model.sigma_bulk,
                          diagnostics=diag, info=info, x_nodes=model.itf.x,
                          q_nodes=st.t / model.itf.weights, slip_nodes=st.w - model.w0,
                          history=tuple(model.steps), stress_field=field)

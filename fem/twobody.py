@@ -12,10 +12,12 @@ from __future__ import annotations
 
 import math
 import time
+from collections.abc import Callable
 from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
+from threadpoolctl import threadpool_limits
 
 from threepart.errors import NoConvergenceError
 from threepart.material import similar_pair
@@ -33,17 +35,28 @@ from .mesh import PRESETS, MeshPreset, Substrate, make_substrate
 from .recovery import StressField
 from .solve import FemResult, place_substrate
 
-__all__ = ["TwoBodyModel", "two_body_model"]
+__all__ = ["TwoBodyModel", "two_body_model", "with_nodes"]
 
 
 class TwoBodyModel:
-    """The two-body interface under ``P`` at ``s``, stepped through a shear-load path (and the bulk stress)."""
+    """The two-body interface under ``P`` at ``s``, stepped through a shear-load path (and the bulk stress).
+
+    ``upper`` is the punch body (default: ``lower``'s mirror image, the
+    paper's model) and ``gap`` the initial gap over the interface nodes
+    (default: the profile of eq. 2, ``punch.profile``). A real punch body
+    (:func:`fem.solve_finite_slip`) is not ``lower``'s mirror image, so the
+    coupling blocks ``C_nt``, ``C_tn`` of :func:`fem.interface.interface` do
+    not vanish and :meth:`step` iterates the normal and tangential problems.
+    """
 
     def __init__(self, punch: Punch, P: float, s: float, E: float, nu: float, tilt: str,
                  lower: Substrate, L: float, guess: tuple[float, float] | None,
-                 max_iter: int, mu: float, sigma_bulk: float = 0.0) -> None:
+                 max_iter: int, mu: float, sigma_bulk: float = 0.0, *,
+                 upper: Substrate | None = None,
+                 gap: Callable[[np.ndarray], np.ndarray] | None = None) -> None:
         t0 = time.perf_counter()
-        self.itf = interface(lower, None, E, nu)
+        self.itf = interface(lower, upper, E, nu)
+        self.gap = punch.profile if gap is None else gap
         self.punch, self.P, self.s, self.tilt, self.max_iter = punch, P, s, tilt, max_iter
         self.E, self.nu, self.L, self.guess, self.mu = E, nu, L, guess, mu
         self.lower, self.sigma_bulk = lower, sigma_bulk
@@ -72,7 +85,7 @@ class TwoBodyModel:
     def _normal(self, t: np.ndarray) -> ContactSolution:
         t0 = time.perf_counter()
         itf = self.itf
-        g0 = self.punch.profile(itf.x) - itf.C_nt @ t
+        g0 = self.gap(itf.x) - itf.C_nt @ t
         active = None if self.guess is None else (itf.x >= self.guess[0]) & (itf.x <= self.guess[1])
         sol = solve_contact(itf.C_nn, itf.x, g0, self.P, self.s, free_tilt=self.tilt == "free",
                             max_iter=self.max_iter, active=active)
@@ -87,16 +100,19 @@ class TwoBodyModel:
         t0 = time.perf_counter()
         normal, t = self.normal, self.t
         bulk = fraction * self.ub
-        for _ in range(20):
-            w_fixed = self.itf.C_tn @ normal.f - bulk
-            t, xi, stick, its, res = tangential(self.itf, normal.f, self.w, w_fixed, Q, self.mu,
-                                                self.stick, self.max_iter)
-            coupled = self._normal(t) if np.any(self.itf.C_nt) else normal
-            if np.abs(coupled.f - normal.f).max() <= 1e-12 * self.P:
-                break
-            normal = coupled
-        else:
-            raise NoConvergenceError("normal and tangential problems did not reach a fixed point")
+        # dense systems of a few hundred nodes: BLAS threads only contend for the cores (on two
+        # busy cores the finite body's shear path took 16 s in np.linalg.solve, 1 thread 0.3 s)
+        with threadpool_limits(limits=1, user_api="blas"):
+            for _ in range(20):
+                w_fixed = self.itf.C_tn @ normal.f - bulk
+                t, xi, stick, its, res = tangential(self.itf, normal.f, self.w, w_fixed, Q,
+                                                    self.mu, self.stick, self.max_iter)
+                coupled = self._normal(t) if np.any(self.itf.C_nt) else normal
+                if np.abs(coupled.f - normal.f).max() <= 1e-12 * self.P:
+                    break
+                normal = coupled
+            else:
+                raise NoConvergenceError("normal and tangential problems did not reach a fixed point")
         self.normal, self.t, self.stick = normal, t, stick
         self.w = xi + self.itf.C_tn @ normal.f - bulk - self.itf.C_tt @ t
         st = Step(Q=float(Q), branch=branch, fn=normal.f, t=t, w=self.w.copy(), xi=xi,
@@ -154,6 +170,17 @@ class TwoBodyModel:
         return contact_ends(self.itf.x, pstar, st.stick, (-self.punch.b, self.punch.b))
 
 
+def with_nodes(spec: SubstrateSpec, ends: tuple[float, ...]) -> SubstrateSpec:
+    """``spec`` with a node and fine elements at each of ``ends`` inside its zone (stick-zone ends).
+
+    The ends are rounded to ``h_fine / 64``, so that a mesh refined around the
+    same ends twice has the same nodes.
+    """
+    fine = spec.h_fine / 2.0 ** 6
+    nodes = tuple(round(x / fine) * fine for x in ends if spec.x_lo < x < spec.x_hi)
+    return replace(spec, breakpoints=spec.breakpoints + nodes, refine_at=spec.refine_at + nodes)
+
+
 def two_body_model(punch: Punch, P: float, s: float, E: float, nu: float, tilt: str,
            mesh: MeshPreset | Path | SubstrateSpec | Substrate, max_iter: int, mu: float, Q: float,
            sigma_bulk: float, say: Progress) -> TwoBodyModel:
@@ -188,11 +215,7 @@ def two_body_model(punch: Punch, P: float, s: float, E: float, nu: float, tilt: 
         if isinstance(pre, MeshPreset) and guess is not None:
             spec = pre.spec(*guess, breaks)
             if ends and pre.refine > 1:
-                fine = spec.h_fine / 2.0 ** 6
-                nodes = tuple(round(x / fine) * fine for x in ends
-                              if spec.x_lo < x < spec.x_hi)
-                spec = replace(spec, breakpoints=spec.breakpoints + nodes,
-                               refine_at=spec.refine_at + nodes)
+                spec = with_nodes(spec, ends)
             lower = make_substrate(spec)
         t2 = time.perf_counter()
         t_mesh += t2 - t1
