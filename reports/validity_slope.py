@@ -37,7 +37,7 @@ from scipy.optimize import brentq
 from threepart import fem
 from threepart.material import similar_pair
 
-from .validity import E, GRID, MESHES, NU, R1, THETA, MapPoint, _closed_form, _load, _punch, \
+from .validity import E, GRID, MESHES, NU, THETA, MapPoint, _closed_form, _load, _punch, \
     feasible
 
 __all__ = ["evaluate_slope", "slope_crossing", "load_level", "SLOPE_RESULT_KEYS", "SLOPE_LEVEL",
@@ -96,9 +96,10 @@ def slope_crossing(R2_over_R1: float, b_over_R1: float, H_over_b: float, quick: 
                    bracket: tuple[float, float] | None = None) -> dict[str, Any]:
     """The load level at which the small-slope cost of the peak crosses ``level`` on one map curve.
 
-    Brent's method on the overhang ``(a - b)/R1`` over ``bracket`` (relative
-    precision :data:`CROSSING_RTOL`), each step one :func:`evaluate_slope`
-    (two FEM solves). ``bracket = None``: :data:`SLOPE_BRACKET`, its upper end
+    Brent's method on ``log(cost / level)`` against ``log((a - b)/R1)`` over
+    ``bracket`` (nearly linear: the cost grows as a power of the overhang, so
+    it converges in a few steps; relative precision :data:`CROSSING_RTOL` of
+    the overhang), each step one :func:`evaluate_slope` (two FEM solves). ``bracket = None``: :data:`SLOPE_BRACKET`, its upper end
     lowered to the largest overhang of the full grid that the curve's punch
     holds (:func:`reports.validity.feasible`).
 
@@ -117,17 +118,19 @@ def slope_crossing(R2_over_R1: float, b_over_R1: float, H_over_b: float, quick: 
         bracket = (SLOPE_BRACKET[0], max(held))
     seen: list[tuple[float, float]] = []
 
-    def excess(overhang: float) -> float:
+    def excess(log_overhang: float) -> float:
+        """``log(cost / level)``: near linear in ``log(overhang)`` (the cost is ~ k overhang^m)."""
+        overhang = float(np.exp(log_overhang))
         cost = abs(evaluate_slope(replace(curve, a_minus_b_over_R1=overhang), quick)
                    ["slope_peak_rel_error"])
         seen.append((overhang, cost))
-        return cost - level
+        return float(np.log(max(cost, 1e-300) / level))
 
-    lo, hi = excess(bracket[0]), excess(bracket[1])
+    lo, hi = (excess(float(np.log(x))) for x in bracket)
     out: dict[str, Any] = {"load_level": None, "a_minus_b_over_R1": None,
                            "ends": [(x, c) for x, c in seen]}
     if lo * hi < 0:
-        root = float(brentq(excess, *bracket, rtol=CROSSING_RTOL, xtol=1e-6 * R1))
+        root = float(np.exp(brentq(excess, *np.log(bracket), xtol=CROSSING_RTOL)))
         out["a_minus_b_over_R1"] = root
         out["load_level"] = load_level(replace(curve, a_minus_b_over_R1=root))
     out.update(evaluations=len(seen), time_s=time.perf_counter() - t0)
