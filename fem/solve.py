@@ -342,10 +342,14 @@ def deformed_ends(result: FemResult) -> tuple[float, float]:
     Raises
     ------
     ValueError
-        If ``result`` carries no displacement field (a rebuilt result).
+        If ``result`` carries no displacement field (a rebuilt result) or is a
+        finite-body result, whose punch deforms too.
     """
     if not isinstance(result, FemResult) or result.stress_field is None:
         raise ValueError("`result` must be a FemResult of fem.solve_normal with its field")
+    if "H" in result.info:
+        raise ValueError("`result` is a finite-body result (fem.solve_finite): its punch moves "
+                         "too; deformed_ends takes a rigid punch's (fem.solve_normal)")
     basis, u = result.stress_field.basis, result.stress_field.u
     ux = basis.split_indices()[0]
     on = ux[np.abs(basis.doflocs[1, ux]) <= 1e-12 * float(np.ptp(basis.mesh.p[0]))]
