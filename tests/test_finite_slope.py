@@ -42,6 +42,9 @@ ORDER_TOL = 0.05
 #: body) has a first-order term above this share of its vertical compliance (measured 2.6e-3 at
 #: the trial mesh's edge slope 0.1), far above the pair's rounding
 COUPLED = 1e-4
+#: the closed form's peak on 4001 points (evaluate_slope) against 20001: the grid's step
+#: at a smooth maximum, (W/4000)^2 p''/2 over p0
+LEVEL_GRID = 1e-4
 #: the issue's target for the size of the change against the independent model: a third
 THIRD = 1.0 / 3.0
 
@@ -145,3 +148,23 @@ def test_the_contact_end_on_the_punch_matches_calculix_linear_run(calculix):
         ours, small = ch["a_punch_first_order"] / a_cf - 1, ch["a_punch_small"] / a_cf - 1
         assert abs(ours - ref) <= THIRD * abs(ref), (row["name"], ours, ref)
         assert abs(small - ref) > THIRD * abs(ref), (row["name"], small, ref)
+
+
+@pytest.mark.slow
+def test_the_map_point_costs_have_the_rigid_punchs_sign_and_the_load_level_is_p0_over_E_star():
+    """evaluate_slope on one map point: the small kinematics narrow the contact and raise the
+    peak, as against the rigid punch and CalculiX; ``load_level`` is the closed form's
+    ``p0 A / 2`` (``A = 4 (1 - nu^2)/E``, eq. 4), computed here from its pressure."""
+    from threepart.material import similar_pair
+    from threepart.reports import validity
+    from threepart.reports.validity_slope import SLOPE_RESULT_KEYS, evaluate_slope
+
+    point = validity.MapPoint(1.0, 0.1, 0.1, 4.0)
+    out = evaluate_slope(point, quick=True)
+    assert tuple(out) == SLOPE_RESULT_KEYS
+    assert out["slope_a_rel_error"] < 0 < out["slope_peak_rel_error"]
+    A = similar_pair(validity.E, validity.NU)
+    cf = validity._closed_form(validity._punch(point), validity._load(point), 0.0, A=A)
+    p0 = float(np.max(cf.pressure(np.linspace(-cf.a, cf.c, 20001))))
+    assert out["load_level"] == pytest.approx(0.5 * A * p0, rel=LEVEL_GRID)
+
