@@ -168,3 +168,16 @@ def test_the_map_point_costs_have_the_rigid_punchs_sign_and_the_load_level_is_p0
     p0 = float(np.max(cf.pressure(np.linspace(-cf.a, cf.c, 20001))))
     assert out["load_level"] == pytest.approx(0.5 * A * p0, rel=LEVEL_GRID)
 
+
+
+def test_the_change_lies_between_two_finite_strain_laws(calculix):
+    """At strains p0/E ~ slope the finite-deformation answer depends on the material law:
+    CalculiX's NLGEOM with St Venant-Kirchhoff (softens in compression) and with a neo-Hookean
+    law (stiffens) bracket the option's change of ``a`` and of the peak (Hertz, slope 0.1),
+    which is the contact kinematics alone."""
+    svk = next(r for r in calculix["rows"] if r["name"] == "hertz" and r["slope"] == 0.1)
+    for nh in calculix["neo_hooke"]:
+        ch = _change(Punch(**nh["punch"]), nh["P"])
+        for key in ("peak", "a"):
+            lo, hi = sorted((svk["nlgeom_vs_linear"][key], nh["nlgeom_vs_linear"][key]))
+            assert lo < ch[key] < hi, (key, ch[key], lo, hi)
