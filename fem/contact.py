@@ -37,7 +37,7 @@ from ._boundary import boundary
 from ._iv import MAX_ITER
 
 __all__ = ["ContactSolution", "solve_contact", "KINEMATICS", "check_kinematics",
-           "first_order_compliance", "tangential_displacement", "solve_kinematic"]
+           "first_order_compliance", "solve_kinematic"]
 
 #: the contact kinematics of :func:`fem.solve_normal` and :func:`fem.solve_finite`
 KINEMATICS = ("small", "first_order")
@@ -105,15 +105,6 @@ def first_order_compliance(C2: np.ndarray, slope: np.ndarray) -> np.ndarray:
     V = np.asarray(slope, dtype=float)
     C_xy, C_yx, C_yy = C2[:n, n:], C2[n:, :n], C2[n:, n:]
     return C_yy - C_yx * V[None, :] - V[:, None] * C_xy
-
-
-def tangential_displacement(C2: np.ndarray, slope: np.ndarray, f: np.ndarray) -> np.ndarray:
-    """The relative tangential surface displacement ``d_x = C_xx V f - C_xy f`` (see :func:`first_order_compliance`).
-
-    With ``kinematics = "small"`` the contact force is vertical: pass ``slope = 0``.
-    """
-    n = len(slope)
-    return C2[:n, :n] @ (np.asarray(slope) * f) - C2[:n, n:] @ f
 
 
 @dataclass(frozen=True, eq=False)

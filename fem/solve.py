@@ -5,6 +5,10 @@ form is used), mesh the substrate around it with :mod:`meshes`, condense the
 elastic body onto the candidate surface nodes (:mod:`fem.elasticity`), solve the
 contact (:mod:`fem.contact`), and recover the pressure ``p_i = f_i / w_i`` and the
 contact ends, found between nodes by extrapolating ``p^2`` to zero.
+
+``kinematics="first_order"`` condenses both displacement components and solves
+the contact on the deformed surfaces to first order in the slopes
+(:func:`fem.contact.first_order_compliance`; ``docs/SMALL_SLOPE.md``).
 """
 from __future__ import annotations
 
@@ -37,8 +41,8 @@ from ._progress import Progress, ProgressArg, progress_iv
 from .ends import REFINE_ATTEMPTS, check_one_zone, contact_ends, end_size, refined
 from .mesh import PRESETS, MeshPreset, Substrate, make_substrate, read_substrate
 
-__all__ = ["FemResult", "solve_normal", "deformed_ends", "locate_contact", "locate_ends", "place_substrate", "MeshArg",
-           "TRIES_DEFAULT", "TRIES"]
+__all__ = ["FemResult", "solve_normal", "deformed_ends", "locate_contact", "locate_ends",
+           "place_substrate", "MeshArg", "TRIES_DEFAULT", "TRIES"]
 
 MeshArg = Union[str, Path, MeshPreset, SubstrateSpec, Substrate]
 
@@ -103,8 +107,8 @@ def _contact(sc: SurfaceCompliance, punch: Punch, P: float, s: float, tilt: str,
     g0 = punch.profile(sc.x)
     active = None if guess is None else (sc.x >= guess[0]) & (sc.x <= guess[1])
     sol = solve_kinematic(sc.C, sc.x, g0, punch.slope(sc.x), P, s, kinematics=kinematics,
-                             free_tilt=tilt == "free", max_iter=max_iter,
-                             active=active if active is not None and active.any() else None)
+                          free_tilt=tilt == "free", max_iter=max_iter,
+                          active=active if active is not None and active.any() else None)
     if sol.active[0] or sol.active[-1]:
         raise ContactZoneError(
             f"the contact reaches the candidate zone end [{sc.x[0]:.6g}, {sc.x[-1]:.6g}]; "
