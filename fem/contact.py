@@ -14,11 +14,18 @@ with the load and its lever arm prescribed::
 A primal-dual active-set iteration (Hintermueller, Ito & Kunisch 2002) solves it,
 with the translation ``delta`` and the tilt ``alpha`` as extra unknowns of the
 small linear system on the active set.
+
+**Contact kinematics** (:data:`KINEMATICS`). ``"small"`` is the half-plane
+theory's: the gap is measured vertically between the undeformed surfaces and
+the contact force is vertical. ``"first_order"`` keeps the terms of first
+order in the slopes that a contact formulation on the deformed surfaces adds
+(:func:`first_order_compliance`): both are linear in ``f``, so the same
+active-set solve takes a modified compliance.
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
-from typing import Any
+from dataclasses import dataclass, replace
+from typing import Any, Callable
 
 import numpy as np
 from threadpoolctl import threadpool_limits
@@ -29,7 +36,75 @@ from threepart.validate import finite, integer, positive
 from ._boundary import boundary
 from ._iv import MAX_ITER
 
-__all__ = ["ContactSolution", "solve_contact"]
+__all__ = ["ContactSolution", "solve_contact", "KINEMATICS", "check_kinematics",
+           "first_order_compliance", "solve_kinematic"]
+
+#: the contact kinematics of :func:`fem.solve_normal` and :func:`fem.solve_finite`
+KINEMATICS = ("small", "first_order")
+
+
+def check_kinematics(kinematics: Any) -> str:
+    """``kinematics`` if it is one of :data:`KINEMATICS`; ``TypeError``/``ValueError`` naming it."""
+    if not isinstance(kinematics, str):
+        raise TypeError(f"`kinematics` must be a str, one of {KINEMATICS}, "
+                        f"not {type(kinematics).__name__}")
+    if kinematics not in KINEMATICS:
+        raise ValueError(f"`kinematics` = {kinematics!r} must be one of {KINEMATICS}")
+    return kinematics
+
+
+def first_order_compliance(C2: np.ndarray, slope: np.ndarray) -> np.ndarray:
+    """The compliance of the contact conditions on the deformed surfaces, to first order in the slopes.
+
+    Parameters
+    ----------
+    C2
+        The ``(2n, 2n)`` compliance of the relative surface displacement in the
+        global directions, ``u_x`` then ``u_y`` (:func:`fem.elasticity.condense`
+        with both components; for two bodies the sum of both, each in its own
+        orientation): ``d = u^lower - u^upper = C2 F`` for the nodal force
+        ``F`` the upper body exerts on the lower one.
+    slope
+        The punch's surface slope ``v'(x_i) = g'(x_i) + alpha`` (eq. 2) at the nodes.
+
+    Returns
+    -------
+    numpy.ndarray
+        ``(n, n)``: ``gap = g + alpha x - delta + C f`` for the downward nodal
+        forces ``f`` (the vertical resultant is ``P = sum f``).
+
+    Notes
+    -----
+    The lower surface is ``y = 0``, the punch's ``y = v(x) - delta`` with
+    ``v = g + alpha x`` (eq. 2). Two first-order terms join the small-slope
+    conditions:
+
+    (i) *the gap between the deformed surfaces*: the lower surface point at
+    ``x`` moves to ``x + d_x`` (relative to the punch) and faces the punch's
+    face there, so ``gap = v(x + d_x) - delta - d_y = v - delta - d_y + v' d_x``;
+
+    (ii) *the force along the punch's normal*: the punch's face ``y = v(x)``
+    has the outward normal ``(v', -1)/sqrt(1 + v'^2)``, so a frictionless
+    contact force ``f`` (down) carries a tangential force ``+v' f`` along
+    ``+x`` on the lower body: outward, away from the lowest point of the
+    profile, on both sides. The nodal force is ``F = (V f, -f)``, ``V = diag(v')``.
+
+    With ``d_x = C_xx V f - C_xy f`` and ``d_y = C_yx V f - C_yy f``::
+
+        gap = v - delta + (C_yy - C_yx V - V C_xy + V C_xx V) f,
+
+    and the last term, of second order in the slope, is dropped. As
+    ``C_xy = C_yx^T``, the result is symmetric (the two first-order terms are
+    each other's transposes: the load is conservative to this order). ``P`` and
+    ``P s`` stay the resultant and moment of the vertical forces; the
+    tangential forces ``v' f`` sum to a horizontal reaction on the punch (zero
+    for a symmetric contact) and act on the surface, where they have no moment
+    arm about it.
+    """
+    n = len(slope)
+    V = np.asarray(slope, dtype=float)
+    C_xy, C_yx, C_yy = C2[:n, n:], C2[n:, :n], C2[n:, n:]
+    return C_yy - C_yx * V[None, :] - V[:, None] * C_xy
 
 
 @dataclass(frozen=True, eq=False)
@@ -51,6 +126,9 @@ class ContactSolution:
     residual
         The largest complementarity violation left: tensile force (relative to
         ``P/n``) or penetration (relative to the profile's range), >= 0.
+    slope
+        The surface slope ``v'(x_i)`` the forces act along (:func:`solve_kinematic`):
+        zeros for vertical forces (``kinematics = "small"``).
     """
 
     f: np.ndarray
@@ -60,6 +138,7 @@ class ContactSolution:
     alpha: float
     iterations: int
     residual: float = 0.0
+    slope: np.ndarray | None = None
 
 
 def _solve_active(C: np.ndarray, x: np.ndarray, g0: np.ndarray, active: np.ndarray,
@@ -226,3 +305,69 @@ def _iterate(C: np.ndarray, x: np.ndarray, g0: np.ndarray, P: float, s: float, f
     residual = max(0.0, -float(f.min()) / scale_f, -float(gap.min()) / scale_g)
     return ContactSolution(f=f, gap=gap, active=act, delta=delta, alpha=alpha, iterations=it,
                            residual=residual)
+
+
+#: fixed-point passes on the tilt's share of the slope in :func:`solve_kinematic`
+TILT_PASSES = 12
+
+
+def solve_kinematic(C: np.ndarray, x: np.ndarray, g0: np.ndarray, slope: np.ndarray, P: float,
+                    s: float, *, kinematics: str, free_tilt: bool, max_iter: int,
+                    active: np.ndarray | None = None,
+                    face_slope: Callable[[ContactSolution], np.ndarray] | None = None
+                    ) -> ContactSolution:
+    """:func:`solve_contact` with the contact kinematics ``kinematics`` (:data:`KINEMATICS`).
+
+    Parameters
+    ----------
+    C
+        ``(n, n)`` vertical compliance for ``"small"``; ``(2n, 2n)`` compliance of
+        both components (:func:`first_order_compliance`) for ``"first_order"``.
+    slope
+        The profile's slope ``g'(x_i)`` at the nodes, without the tilt (eq. 2).
+    kinematics, free_tilt, max_iter, active
+        As :func:`solve_contact`; ``kinematics`` is checked by the caller.
+    face_slope
+        For an elastic punch: the slope of the deformed contact face (the lower
+        body's surface slope, tilt included) of a solution. The solve is then
+        repeated once with that slope in place of ``g' + alpha``: the slope
+        enters multiplied by the normal-tangential coupling, so one correction
+        is consistent to first order (a fixed point on it does not settle: the
+        nodal surface slope at the contact's ends feeds back). ``None``: a rigid
+        punch, whose face keeps the slope ``g' + alpha``.
+
+    Returns
+    -------
+    ContactSolution
+        With ``slope`` the surface slope its forces act along (zeros for
+        ``"small"``: vertical forces).
+
+    Raises
+    ------
+    NoConvergenceError
+        As :func:`solve_contact`, or if the tilt does not settle: a rigid
+        punch's slope ``g' + alpha`` holds the unknown tilt, found by fixed-point
+        passes (each a linear contact problem) until ``alpha`` changes by under
+        ``1e-12`` of the largest slope, at most :data:`TILT_PASSES`.
+    """
+    if kinematics == "small":
+        sol = solve_contact(C, x, g0, P, s, free_tilt=free_tilt, max_iter=max_iter, active=active)
+        return replace(sol, slope=np.zeros(len(x)))
+    alpha, change = 0.0, np.inf
+    for _ in range(TILT_PASSES):
+        V = slope + alpha
+        sol = solve_contact(first_order_compliance(C, V), x, g0, P, s, free_tilt=free_tilt,
+                            max_iter=max_iter, active=active)
+        active, change = sol.active, sol.alpha - alpha
+        if abs(change) <= 1e-12 * (float(np.max(np.abs(V))) + abs(sol.alpha)):
+            break
+        alpha = sol.alpha
+    else:
+        raise NoConvergenceError(f"the tilt of the first-order contact did not settle in "
+                                 f"{TILT_PASSES} passes (last change {change:.3g})")
+    if face_slope is None:
+        return replace(sol, slope=V)
+    V = face_slope(replace(sol, slope=V))
+    sol = solve_contact(first_order_compliance(C, V), x, g0, P, s, free_tilt=free_tilt,
+                        max_iter=max_iter, active=sol.active)
+    return replace(sol, slope=V)

@@ -21,6 +21,21 @@ in two passes: on the ``"locate"`` mesh around the half-plane estimate of the
 contact, then on the preset's mesh with nodes and fine elements at the ends the
 first pass found. Small strain, small displacement; the geometry of the arcs
 and of the finite bodies is exact (to the chords of the mesh).
+
+``kinematics = "first_order"`` measures the gap between the deformed surfaces
+and turns the contact force along the deformed face's normal, to first order in
+the slopes (:func:`fem.contact.first_order_compliance`): both bodies are
+condensed on both displacement components, and their compliances, each in its
+own orientation, sum to that of the relative displacement
+``u^block - u^punch``. The face's slope is that of the deformed interface, the
+block's surface slope ``d u_y/dx`` in contact (the punch's ``v'`` plus its own
+rotation), taken from a first solve with the punch's face slope ``v'`` and
+used in one more (:func:`fem.contact.solve_kinematic`).
+Both first-order terms act through the normal-tangential coupling of the
+relative compliance, which vanishes for two elastically similar half-planes
+(Dundurs' ``beta = 0``): with ``H = None`` (the mirrored block) the option
+changes nothing but round-off; a punch of finite height couples through its
+own shape.
 """
 from __future__ import annotations
 
@@ -41,7 +56,7 @@ from threepart.punch import Punch
 from threepart.results import Diagnostics
 from threepart.validate import check_contact, check_punch
 
-from .contact import ContactSolution, solve_contact
+from .contact import ContactSolution, check_kinematics, solve_kinematic
 from .elasticity import SurfaceCompliance, condense
 from .recovery import StressField
 from .interface import check_matched, mirror
@@ -63,13 +78,15 @@ def punch_body(spec: PunchSpec) -> Substrate:
 
 
 def _solve(punch: Punch, P: float, s: float, E: float, nu: float, tilt: str, max_iter: int,
-           zone: SubstrateSpec, H: float | None, theta: float, profile: str
+           zone: SubstrateSpec, H: float | None, theta: float, profile: str,
+           kinematics: str = "small"
            ) -> tuple[ContactSolution, SurfaceCompliance, dict[str, float], int]:
     """Contact of the punch body on the block, both meshed around ``zone``.
 
     ``H = None`` is the paper's model: the punch body is the block's mirror
     image (:func:`fem.friction.mirror`), a large body whose lower face carries
-    the profile of eq. (2) as the initial gap.
+    the profile of eq. (2) as the initial gap. The solution's ``slope`` is the
+    face's slope the forces act along (zeros for ``kinematics = "small"``).
     """
     t0 = time.perf_counter()
     block = make_substrate(zone)
@@ -80,7 +97,8 @@ def _solve(punch: Punch, P: float, s: float, E: float, nu: float, tilt: str, max
                          profile=profile, growth=zone.growth)
         body = punch_body(spec)
     t1 = time.perf_counter()
-    S, B = condense(block, E, nu), condense(body, E, nu)
+    components = ("u^2",) if kinematics == "small" else ("u^1", "u^2")
+    S, B = condense(block, E, nu, components), condense(body, E, nu, components)
     check_matched(S.x, B.x, "the block and the punch body")
     t2 = time.perf_counter()
     if H is None:
@@ -89,7 +107,21 @@ def _solve(punch: Punch, P: float, s: float, E: float, nu: float, tilt: str, max
         # the exact face over every node: the straight-sided P2 elements follow the chords,
         # by O(h^2 / R), but a gap that kinks at each vertex would err by O(h) at the peaks
         g0 = spec.height(S.x)
-    sol = solve_contact(S.C + B.C, S.x, g0, P, s, free_tilt=tilt == "free", max_iter=max_iter)
+    if H is None:
+        slope = punch.slope(S.x)
+    else:   # the exact face's slope, by central differences far below the mesh size
+        e = 1e-7 * float(np.ptp(S.x))
+        slope = (spec.height(S.x + e) - spec.height(S.x - e)) / (2 * e)
+    n = len(S.x)
+
+    def face_slope(sol: ContactSolution) -> np.ndarray:
+        """The deformed contact face's slope: the block's surface slope ``d u_y / dx``."""
+        assert sol.slope is not None
+        u_y = (S.C @ np.concatenate([sol.slope * sol.f, -sol.f]))[n:]
+        return np.gradient(u_y, S.x)
+
+    sol = solve_kinematic(S.C + B.C, S.x, g0, slope, P, s, kinematics=kinematics,
+                          free_tilt=tilt == "free", max_iter=max_iter, face_slope=face_slope)
     if sol.active[0] or sol.active[-1]:
         raise ContactZoneError(
             f"the contact reaches the candidate zone end [{S.x[0]:.6g}, {S.x[-1]:.6g}]")
@@ -139,7 +171,8 @@ def zone_margin(b: float, left: float, right: float, margin: float) -> float:
 
 
 def _finite_iv(punch: Any, P: Any, s: Any, E: Any, nu: Any, H: Any, theta: Any, profile: Any,
-               tilt: Any, mesh: Any, max_iter: Any, progress: Any) -> tuple[Any, ...]:
+               tilt: Any, mesh: Any, max_iter: Any, progress: Any,
+               kinematics: Any = "small") -> tuple[Any, ...]:
     """The checked input of :func:`solve_finite`, before any numerics."""
     check_punch(punch)
     if not math.isinf(punch.R):
@@ -147,14 +180,15 @@ def _finite_iv(punch: Any, P: Any, s: Any, E: Any, nu: Any, H: Any, theta: Any, 
     P, s, E, nu, tilt, max_iter = normal_iv(punch, P, s, E, nu, tilt, max_iter, pair=True)
     H, theta, profile = height_iv(punch, H, theta, profile)
     pre = mesh_arg(mesh, (MeshPreset,), allow_path=False)
-    return P, s, E, nu, H, theta, profile, tilt, pre, max_iter, progress_iv(progress)
+    kinematics = check_kinematics(kinematics)
+    return P, s, E, nu, H, theta, profile, tilt, pre, max_iter, progress_iv(progress), kinematics
 
 
 @boundary
 def solve_finite(punch: Punch, P: float, s: float = 0.0, *, E: float, nu: float, H: float | None,
                  theta: float = math.pi / 3, profile: str = "arc", tilt: str = "free",
                  mesh: str | MeshPreset = "default", max_iter: int = 100,
-                 progress: ProgressArg = None) -> FemResult:
+                 progress: ProgressArg = None, kinematics: str = "small") -> FemResult:
     """A punch of real shape and height ``H`` pressed into a finite block by ``P`` at ``s``.
 
     Parameters
@@ -176,11 +210,17 @@ def solve_finite(punch: Punch, P: float, s: float = 0.0, *, E: float, nu: float,
         Cap on the active-set iterations, in ``[1, 10000]``.
     progress
         One line per stage on stderr, as in :func:`fem.solve_normal`.
+    kinematics
+        ``"small"`` (default) or ``"first_order"``: the contact conditions on the
+        deformed surfaces to first order in the slopes, as in
+        :func:`fem.solve_normal` (module docstring; the first solve that locates
+        the contact keeps the small kinematics).
 
     Returns
     -------
     FemResult
-        With ``method = "fem"``; ``info`` holds ``H``, ``theta``, ``profile`` and the timings.
+        With ``method = "fem"``; ``info`` holds ``H``, ``theta``, ``profile`` and,
+        for ``"first_order"``, ``kinematics``.
 
     Raises
     ------
@@ -199,8 +239,8 @@ def solve_finite(punch: Punch, P: float, s: float = 0.0, *, E: float, nu: float,
     ContactZoneError, SeparationError, NoConvergenceError
         As :func:`fem.solve_normal`.
     """
-    P, s, E, nu, H, theta, profile, tilt, pre, max_iter, progress = _finite_iv(
-        punch, P, s, E, nu, H, theta, profile, tilt, mesh, max_iter, progress)
+    P, s, E, nu, H, theta, profile, tilt, pre, max_iter, progress, kinematics = _finite_iv(
+        punch, P, s, E, nu, H, theta, profile, tilt, mesh, max_iter, progress, kinematics)
     say = Progress(progress)
     t_start = time.perf_counter()
     breaks = (-punch.b, punch.b)
@@ -210,7 +250,8 @@ def solve_finite(punch: Punch, P: float, s: float = 0.0, *, E: float, nu: float,
     base = pre
     for attempt in range(REFINE_ATTEMPTS + 1):   # an end near a join refines the mesh there, as in solve_normal
         sol, S, timings, dofs = _solve(punch, P, s, E, nu, tilt, max_iter,
-                                       pre.spec(left, right, breaks), H, theta, profile)
+                                       pre.spec(left, right, breaks), H, theta, profile,
+                                       kinematics)
         x = S.x
         p = sol.f / S.weights
         a_end, c_end = contact_ends(x, p, sol.active, breaks)
@@ -226,10 +267,14 @@ def solve_finite(punch: Punch, P: float, s: float = 0.0, *, E: float, nu: float,
     info = {"H": H, "theta": theta, "profile": "eq. 2" if H is None else profile,
             "mesh": mesh if isinstance(mesh, str) else type(mesh).__name__,
             "model": "punch of real shape on a finite block"}
+    if kinematics != "small":
+        info["kinematics"] = kinematics
     diag = Diagnostics(h=h, h_end=end_size(x, a_end, c_end), dofs=dofs,
                        L=float(np.ptp(S.basis.mesh.p[0])), iterations=sol.iterations,
                        residual=sol.residual, timings=timings)
-    basis, u = S.displacement(sol.f)
+    # the block's nodal forces: downward f (small), or (v' f, -f) in the global directions
+    F = sol.f if kinematics == "small" else np.concatenate([sol.slope * sol.f, -sol.f])
+    basis, u = S.displacement(F)
     return FemResult(punch=punch, A=similar_pair(E, nu), a=-a_end, c=c_end, alpha=sol.alpha,
                      P=float(np.sum(sol.f)), s=float(np.sum(x * sol.f) / np.sum(sol.f)),
                      tilt=tilt, method="fem", diagnostics=diag, info=info, delta=sol.delta,

@@ -5,6 +5,10 @@ form is used), mesh the substrate around it with :mod:`meshes`, condense the
 elastic body onto the candidate surface nodes (:mod:`fem.elasticity`), solve the
 contact (:mod:`fem.contact`), and recover the pressure ``p_i = f_i / w_i`` and the
 contact ends, found between nodes by extrapolating ``p^2`` to zero.
+
+``kinematics="first_order"`` condenses both displacement components and solves
+the contact on the deformed surfaces to first order in the slopes
+(:func:`fem.contact.first_order_compliance`; ``docs/SMALL_SLOPE.md``).
 """
 from __future__ import annotations
 
@@ -27,7 +31,7 @@ from threepart.results import NU, Diagnostics, NormalResult
 from threepart.stress import Stress
 from threepart.meshes import SubstrateSpec
 
-from .contact import ContactSolution, solve_contact
+from .contact import ContactSolution, check_kinematics, solve_contact, solve_kinematic
 from .export import Fields, fields_of
 from .recovery import StressField, model_nu
 from .elasticity import SurfaceCompliance, condense
@@ -37,8 +41,8 @@ from ._progress import Progress, ProgressArg, progress_iv
 from .ends import REFINE_ATTEMPTS, check_one_zone, contact_ends, end_size, refined
 from .mesh import PRESETS, MeshPreset, Substrate, make_substrate, read_substrate
 
-__all__ = ["FemResult", "solve_normal", "locate_contact", "locate_ends", "place_substrate", "MeshArg",
-           "TRIES_DEFAULT", "TRIES"]
+__all__ = ["FemResult", "solve_normal", "deformed_ends", "locate_contact", "locate_ends",
+           "place_substrate", "MeshArg", "TRIES_DEFAULT", "TRIES"]
 
 MeshArg = Union[str, Path, MeshPreset, SubstrateSpec, Substrate]
 
@@ -93,12 +97,18 @@ class FemResult(NormalResult):
 
 
 def _contact(sc: SurfaceCompliance, punch: Punch, P: float, s: float, tilt: str,
-             max_iter: int, guess: tuple[float, float] | None = None) -> ContactSolution:
-    """Solve the contact on ``sc``, warm-started from the trial contact ``guess`` if there is one."""
+             max_iter: int, guess: tuple[float, float] | None = None,
+             kinematics: str = "small") -> ContactSolution:
+    """Solve the contact on ``sc``, warm-started from the trial contact ``guess`` if there is one.
+
+    ``kinematics = "first_order"`` needs ``sc`` condensed on both components;
+    the slope its forces act along is ``sol.slope`` (:func:`fem.contact.solve_kinematic`).
+    """
     g0 = punch.profile(sc.x)
     active = None if guess is None else (sc.x >= guess[0]) & (sc.x <= guess[1])
-    sol = solve_contact(sc.C, sc.x, g0, P, s, free_tilt=tilt == "free", max_iter=max_iter,
-                        active=active if active is not None and active.any() else None)
+    sol = solve_kinematic(sc.C, sc.x, g0, punch.slope(sc.x), P, s, kinematics=kinematics,
+                          free_tilt=tilt == "free", max_iter=max_iter,
+                          active=active if active is not None and active.any() else None)
     if sol.active[0] or sol.active[-1]:
         raise ContactZoneError(
             f"the contact reaches the candidate zone end [{sc.x[0]:.6g}, {sc.x[-1]:.6g}]; "
@@ -201,7 +211,7 @@ def place_substrate(mesh: MeshPreset | Path | SubstrateSpec | Substrate, punch: 
 def solve_normal(punch: Punch, P: float, s: float = 0.0, *, E: float, nu: float,
                  tilt: str = "free", mesh: MeshArg = "default",
                  max_iter: int = 100, fields: bool = False,
-                 progress: ProgressArg = None) -> FemResult:
+                 progress: ProgressArg = None, kinematics: str = "small") -> FemResult:
     """Rigid punch pressed into a plane-strain elastic block by ``P`` at lever arm ``s``.
 
     Parameters
@@ -229,11 +239,22 @@ def solve_normal(punch: Punch, P: float, s: float = 0.0, *, E: float, nu: float,
     progress
         One line per stage on stderr (:mod:`fem._progress`): ``None`` (default)
         when stderr is a terminal, ``True``, ``False``, or a callable taking each line.
+    kinematics
+        ``"small"`` (default): the half-plane theory's contact, the gap measured
+        vertically between the undeformed surfaces, the force vertical.
+        ``"first_order"``: the contact conditions on the deformed surfaces to first
+        order in the slopes (:func:`fem.contact.first_order_compliance`): the gap
+        to the punch's face over the displaced surface point, and the force along
+        the punch's normal (a tangential traction ``p v'(x)`` outward). ``P`` and
+        ``s`` stay the vertical resultant and its lever arm; ``a``, ``c`` and the
+        pressure refer to the block's undeformed surface (the contact ends on the
+        punch are :func:`deformed_ends`).
 
     Returns
     -------
     FemResult
-        With ``method = "fem"`` and ``A = 2 (1 - nu^2) / E``.
+        With ``method = "fem"`` and ``A = 2 (1 - nu^2) / E``; ``info["kinematics"]``
+        is set for ``"first_order"`` only.
 
     Raises
     ------
@@ -241,7 +262,7 @@ def solve_normal(punch: Punch, P: float, s: float = 0.0, *, E: float, nu: float,
         For invalid input, naming the argument and its limit, before any numerics:
         ``P`` > 0 with ``A P max(R1, R2, b)`` representable, ``s`` inside the
         punch's footprint (:func:`threepart.validate.lever_arm`), ``nu`` in
-        ``(-1, 0.5)``, ``E`` > 0, ``tilt``, ``mesh``, ``max_iter``.
+        ``(-1, 0.5)``, ``E`` > 0, ``tilt``, ``mesh``, ``max_iter``, ``kinematics``.
     ArcExtentError, SlopeLimitError
         If the solved contact runs past an arc's extent or its surface slope
         exceeds the small-slope limit (:func:`threepart.validate.check_contact`).
@@ -261,6 +282,8 @@ def solve_normal(punch: Punch, P: float, s: float = 0.0, *, E: float, nu: float,
     pre = mesh_arg(mesh, (MeshPreset, SubstrateSpec, Substrate))
     if not isinstance(fields, (bool, np.bool_)):
         raise TypeError(f"`fields` must be a bool, not {type(fields).__name__}")
+    kinematics = check_kinematics(kinematics)
+    components = ("u^2",) if kinematics == "small" else ("u^1", "u^2")
     say = Progress(progress_iv(progress))
     t_start = time.perf_counter()
     chosen, found, t_locate = pre, None, 0.0
@@ -271,10 +294,10 @@ def solve_normal(punch: Punch, P: float, s: float = 0.0, *, E: float, nu: float,
         t_locate += t_loc
         t1 = time.perf_counter()
         say(f"mesh: {sub.mesh.t.shape[1]} triangles ({t1 - t0 - t_loc:.1f} s)")
-        sc = condense(sub, E, nu)
+        sc = condense(sub, E, nu, components)
         t2 = time.perf_counter()
         say(f"condense: {sc.dofs} DOFs onto {len(sc.x)} surface nodes ({t2 - t1:.1f} s)")
-        sol = _contact(sc, punch, P, s, tilt, max_iter, guess)
+        sol = _contact(sc, punch, P, s, tilt, max_iter, guess, kinematics)
         p = sol.f / sc.weights
         left, right = contact_ends(sc.x, p, sol.active, (-punch.b, punch.b))
         h_end = end_size(sc.x, left, right)
@@ -286,7 +309,9 @@ def solve_normal(punch: Punch, P: float, s: float = 0.0, *, E: float, nu: float,
         say(f"refine: an end lies near a join, elements W / (n {finer.refine:g}) there")
         chosen, found = finer, (left, right)   # refine at these ends and the joins, solve again
     check_contact(punch, -left, right, sol.alpha)
-    flds = fields_of(*sc.displacement(sol.f), E, nu) if fields else None
+    # the nodal forces on the block: downward f (small), or (v' f, -f) in the global directions
+    F = sol.f if kinematics == "small" else np.concatenate([sol.slope * sol.f, -sol.f])
+    flds = fields_of(*sc.displacement(F), E, nu) if fields else None
     t3 = time.perf_counter()
     timings = {"locate": t_locate, "mesh": t1 - t0 - t_loc, **sc.timings, "contact": t3 - t2,
                "total": t3 - t_start}
@@ -295,11 +320,44 @@ def solve_normal(punch: Punch, P: float, s: float = 0.0, *, E: float, nu: float,
             "mesh": mesh if isinstance(mesh, str) else type(mesh).__name__,
             "refined": (float(chosen.refine / pre.refine) if isinstance(chosen, MeshPreset)
                         and isinstance(pre, MeshPreset) else 1.0)}
+    if kinematics != "small":
+        info["kinematics"] = kinematics
     diag = Diagnostics(h=sc.h, h_end=h_end, dofs=sc.dofs, L=L, iterations=sol.iterations,
                        residual=sol.residual, timings=timings)
-    basis, u = sc.displacement(sol.f)
+    basis, u = sc.displacement(F)
     return FemResult(punch=punch, A=rigid_punch(E, nu), a=-left, c=right,
                      alpha=sol.alpha, P=float(np.sum(sol.f)),
                      s=s_out, tilt=tilt, method="fem", diagnostics=diag, info=info,
                      delta=sol.delta, x_nodes=sc.x, p_nodes=p, fields=flds,
                      stress_field=StressField(basis=basis, u=u, E=E, nu=nu))
+
+
+def deformed_ends(result: FemResult) -> tuple[float, float]:
+    """The contact's half-widths ``(a, c)`` on the rigid punch: the ends moved by the surface's ``u_x``.
+
+    ``result.a`` and ``result.c`` are positions on the block's undeformed
+    surface; its point there has moved by ``u_x`` (the block's FE field, read
+    at its surface DOFs ``y = 0`` and interpolated linearly), and touches the
+    punch at ``x + u_x``: ``(a - u_x(-a), c + u_x(c))``. This is where a
+    finite-deformation model (CalculiX, ``benchmarks/small_slope_calculix.py``)
+    places the contact's end. To first order the two differ by ``u_x``, as
+    large as the first-order change of the kinematics itself.
+
+    Raises
+    ------
+    ValueError
+        If ``result`` carries no displacement field (a rebuilt result) or is a
+        finite-body result, whose punch deforms too.
+    """
+    if not isinstance(result, FemResult) or result.stress_field is None:
+        raise ValueError("`result` must be a FemResult of fem.solve_normal with its field")
+    if "H" in result.info:
+        raise ValueError("`result` is a finite-body result (fem.solve_finite): its punch moves "
+                         "too; deformed_ends takes a rigid punch's (fem.solve_normal)")
+    basis, u = result.stress_field.basis, result.stress_field.u
+    ux = basis.split_indices()[0]
+    on = ux[np.abs(basis.doflocs[1, ux]) <= 1e-12 * float(np.ptp(basis.mesh.p[0]))]
+    order = np.argsort(basis.doflocs[0, on])
+    xs, us = basis.doflocs[0, on][order], u[on][order]
+    return (result.a - float(np.interp(-result.a, xs, us)),
+            result.c + float(np.interp(result.c, xs, us)))
