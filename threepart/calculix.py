@@ -21,6 +21,11 @@ run_ccx         -- run ``ccx`` on a deck in a directory (one thread); raises Ccx
 read_frd        -- the nodal result blocks of an ``.frd`` file (DISP, STRESS, CONTACT), last increment
 read_frd_nodes  -- the node coordinates of an ``.frd`` file
 read_reaction   -- the total reaction force of a printed node set (``.dat``)
+read_dat        -- the printed blocks of a ``.dat`` file (node sets, contact output), last time
+nodal_forces    -- the contact's force at each slave node, ``-2 CELS / COPEN`` (plane models)
+nodal_areas     -- the nodes' shares ``∫N_i dx`` of a quadratic surface (L/6, 2L/3, L/6)
+dealternate     -- nodal values freed of the vertex/midside alternation (a local fit)
+force_pressure  -- the contact pressure from the nodal forces: over the shares, de-alternated
 surface_pressure -- the contact pressure along the block's surface from a run (x, p, gap, CPRESS)
 contact_edge    -- a contact end from the gap just outside it (``gap^(2/3)`` linear)
 
@@ -45,7 +50,8 @@ from .validate import check_tilt, finite, positive
 
 __all__ = ["DeckSettings", "Model", "build_model", "write_deck", "CONVENTIONS", "parse_deck",
            "Keyword", "ccx_available", "run_ccx", "CcxMissing", "CcxError", "read_frd",
-           "read_frd_nodes", "read_reaction", "read_descent", "surface_pressure", "SurfacePressure",
+           "read_frd_nodes", "read_reaction", "read_dat", "nodal_forces", "nodal_areas", "dealternate",
+           "force_pressure", "DEALTERNATE_NODES", "read_descent", "surface_pressure", "SurfacePressure",
            "contact_edge", "centre_pressure", "Material", "Mesh", "build_half_mesh", "half_deck",
            "nodes_text", "elements_text", "nset_text", "surface_text", "material_text",
            "contact_text", "equation_text", "boundary_text", "step_text", "GMSH_TO_CCX"]
@@ -365,8 +371,12 @@ CONVENTIONS = """\
 **   by P, whose line of action is x = s.
 ** Contact: frictionless node-to-surface penalty (PRESSURE-OVERCLOSURE=LINEAR, stiffness K).
 **   CPRESS at an open node is -K*COPEN (a tension that grows with the clearance), not zero:
-**   read the pressure where COPEN <= 0 only, or use -S22 of the block's surface.
-**   On quadratic faces CPRESS alternates between vertex and midside nodes; -S22 less so.
+**   read the pressure where COPEN <= 0 only.
+**   On quadratic faces CPRESS alternates between vertex and midside nodes by up to 2: it is
+**   the force over CalculiX's own nodal area (about h/2 at every node), not over the node's
+**   share of the face (h/3 at a vertex, 2h/3 at a midside node). The nodal force is
+**   -2*CELS/COPEN (*CONTACT PRINT CSTR, CDIS, CELS below; summed over the 2 or 3 expanded
+**   nodes N + 3(n - 1) + 1..3 of node n of N); threepart compare reads it from this .dat.
 **   The pressure's error falls as 1/K: check that a stiffer K changes nothing you use.
 ** Analyse the FIRST increment only: one increment of the linear step. A later increment
 **   pairs the surfaces again on the deformed geometry and integral(p) overshoots P.
@@ -397,7 +407,10 @@ class DeckSettings:
         ``True``: two similar elastic bodies (``A = 4(1 - nu^2)/E``);
         ``False``: a stiff punch, ``stiffening`` times the block's modulus.
     stiffening
-        The stiff punch's modulus over the block's.
+        The stiff punch's modulus over the block's (1000: the punch's own
+        deformation, interpolated by its quadratic face, put a 0.5 % node-to-node
+        scatter into the contact forces at 10, and the default deck then needed 12
+        increments, 114 s of CPU, instead of one, 10 s; docs/CALCULIX.md).
     tilt
         ``"free"`` (the load at ``s``, the punch free to tilt) or
         ``"suppressed"`` (the punch's top held level).
@@ -414,7 +427,7 @@ class DeckSettings:
     penalty: float | None = None
     penalty_factor: float = 200.0
     pair: bool = False
-    stiffening: float = 10.0
+    stiffening: float = 1000.0
     tilt: str = "free"
     block: float = 20.0
     margin: float = 0.15
@@ -686,8 +699,9 @@ def write_deck(model: Model, *, P: float, s: float, E: float, nu: float,
     parts.append(boundary_text([("NBASE", 2), ("NMID", 1), (str(tl), 1)]))
     parts.append("*STEP, INC=1000\n*CONTROLS, PARAMETERS=TIME INCREMENTATION\n"
                  "40, 60, 9, 200, 10, 4, 12, 40\n*STATIC\n1., 1., 0.015625, 1.\n*CLOAD\n" + loads +
-                 "*NODE FILE, NSET=NOUT\nU, S\n*CONTACT FILE\nCDIS, CSTR\n"
-                 "*NODE PRINT, NSET=NBASE, TOTALS=ONLY\nRF\n*NODE PRINT, NSET=NCTRL\nU\n*END STEP\n")
+                 "*NODE FILE, NSET=NOUT\nU, S\n*CONTACT FILE\nCDIS, CSTR, CELS\n"
+                 "*NODE PRINT, NSET=NBASE, TOTALS=ONLY\nRF\n*NODE PRINT, NSET=NCTRL\nU\n"
+                 "*NODE PRINT, NSET=NSURF\nU\n*CONTACT PRINT\nCSTR, CDIS, CELS\n*END STEP\n")
     return "".join(parts)
 
 
@@ -740,10 +754,13 @@ class SurfacePressure:
     """The contact pressure along the block's surface after one run.
 
     ``x`` are the block's surface nodes (deformed positions, sorted), ``p``
-    its surface ``-S22`` there, ``gap`` the distance up to the punch's
-    deformed face and ``cpress``/``copen`` CalculiX's contact output at those
-    nodes where it was written (NaN elsewhere); ``P`` the load the base
-    carries; ``a``, ``c`` the contact ends from the gap (:func:`contact_edge`).
+    the contact pressure there from CalculiX's nodal contact forces ``f``
+    (:func:`force_pressure`), ``s22`` the block's surface stress ``-S22``
+    (for comparison), ``gap`` the distance up to the punch's deformed face
+    and ``cpress``/``copen`` CalculiX's contact output at those nodes where it
+    was written (NaN elsewhere); ``P`` the load the base carries; ``a``, ``c``
+    the contact ends from the gap (:func:`contact_edge`); ``vertex`` flags the
+    vertex nodes of the quadratic faces.
     """
 
     x: np.ndarray
@@ -755,11 +772,21 @@ class SurfacePressure:
     a: float
     c: float
     vertex: np.ndarray
+    f: np.ndarray
+    s22: np.ndarray
 
 
 def surface_pressure(model: Model, stem: Path) -> SurfacePressure:
-    """Read one run of :func:`write_deck`: pressure, gap, contact output, load and contact ends."""
+    """Read one run of :func:`write_deck`: pressure, gap, contact output, load and contact ends.
+
+    The pressure is the contact's nodal forces (``*CONTACT PRINT`` CELS and
+    CDIS in the ``.dat``, :func:`nodal_forces`) over the nodes' shares of the
+    block's quadratic faces, freed of the vertex/midside alternation
+    (:func:`force_pressure`); the shares are taken on the undeformed surface
+    (small strain: a force per unit length of the reference surface).
+    """
     frd = read_frd(stem)
+    dat = read_dat(stem)
     U, S = frd["DISP"], frd["STRESS"]
     nb, npu = model.nsets["block_surface"], model.nsets["punch_profile"]
     ub = np.array([U[n][:2] for n in nb])
@@ -772,23 +799,29 @@ def surface_pressure(model: Model, stem: Path) -> SurfacePressure:
     from scipy.interpolate import CubicSpline
 
     gap = CubicSpline(xp[order], yp[order])(xb) - yb
-    p = -np.array([S[n][1] for n in nb])
+    s22 = -np.array([S[n][1] for n in nb])
     cp = np.full(len(nb), np.nan)
     co = np.full(len(nb), np.nan)
     contact = frd.get("CONTACT", {})
     for k, n in enumerate(nb):
         if int(n) in contact:
             co[k], cp[k] = contact[int(n)][0], contact[int(n)][3]
+    if "contact print energy" not in dat or "relative contact displacement" not in dat:
+        raise CcxError(f"{stem}.dat holds no `*CONTACT PRINT` CDIS, CELS: the deck must request them")
+    forces = nodal_forces(dat["relative contact displacement"], dat["contact print energy"],
+                          model.n_nodes)
+    f = np.array([forces.get(int(n), (0.0, 0))[0] for n in nb])
     vertex = np.zeros(len(model.xy) + 1, bool)
     for kind, conn in model.elements["block"]:
         vertex[conn[:4 if kind == "CPE8" else 3]] = True
     vertex = vertex[nb]
     order = np.argsort(xb)
-    x, p, gap, cp, co, vertex = (v[order] for v in (xb, p, gap, cp, co, vertex))
+    x, gap, cp, co, vertex, f, s22 = (v[order] for v in (xb, gap, cp, co, vertex, f, s22))
+    p = force_pressure(model.xy[nb[order] - 1, 0], f, vertex)
     c = contact_edge(x, gap)
     a = contact_edge(-x[::-1], gap[::-1])
     P = float(read_reaction(stem)[1])
-    return SurfacePressure(x, p, gap, cp, co, P, a, c, vertex)
+    return SurfacePressure(x, p, gap, cp, co, P, a, c, vertex, f, s22)
 
 
 def ccx_available() -> bool:
@@ -874,6 +907,126 @@ def read_reaction(stem: Path) -> np.ndarray:
     i = max(k for k, ln in enumerate(lines) if ln.strip().startswith("total force"))
     return np.array([float(v) for v in lines[i + 2].split()[:2]])
 
+
+
+# --------------------------------------------------------------------------- the contact's nodal forces
+#: the nodes on each side of a node of the local fit that removes the vertex/midside alternation
+#: (:func:`dealternate`): 9 nodes, 4 elements of a quadratic face
+DEALTERNATE_NODES = 4
+
+
+def read_dat(stem: Path) -> dict[str, dict[int, np.ndarray]]:
+    """The printed blocks of ``stem.dat`` at the last time: ``{title: {node: values}}``.
+
+    The title is the block's heading up to its first ``(``, followed by the set's
+    name where the heading names one (``"displacements NSURF"``, ``"contact stress"``,
+    ``"relative contact displacement"``, ``"contact print energy"``,
+    ``"total force NBASE"``); a later time's block replaces an earlier one's.
+    """
+    out: dict[str, dict[int, np.ndarray]] = {}
+    current: dict[int, np.ndarray] | None = None
+    with open(f"{stem}.dat") as f:
+        for line in f:
+            words = line.split()
+            if not words:
+                continue
+            if words[0][0].isalpha():
+                title = line.split("(")[0].strip()
+                if " for set " in line:
+                    title += " " + line.split(" for set ")[1].split()[0]
+                current = {}
+                out[title] = current
+                continue
+            if current is not None and len(words) > 1:
+                try:
+                    current[int(words[0])] = np.array([float(w) for w in words[1:]])
+                except ValueError:
+                    current = None
+    return out
+
+
+def nodal_forces(copen: dict[int, np.ndarray], energy: dict[int, np.ndarray],
+                 n_nodes: int) -> dict[int, tuple[float, int]]:
+    """The contact's force at each slave node of a plane model: ``{node: (force, expanded nodes)}``.
+
+    CalculiX expands a plane element to a 3-D one and writes the contact
+    output on the expanded nodes: node ``n`` of ``n_nodes`` becomes
+    ``n_nodes + 3(n - 1) + 1..3`` (three for a vertex node, two for a midside
+    node of a quadratic face). The linear penalty law stores the energy
+    ``K g^2 A / 2`` in a contact element of overclosure ``g = -COPEN`` and
+    nodal area ``A``, and carries the force ``K g A``, so the force is
+    ``-2 CELS / COPEN`` (compressive positive; an open element's ``-K COPEN``
+    tension gives a small negative force). The forces of one plane node's
+    expanded nodes are summed.
+    """
+    out: dict[int, tuple[float, int]] = {}
+    for k, e in energy.items():
+        if k not in copen:
+            continue
+        n = k if k <= n_nodes else (k - n_nodes - 1) // 3 + 1
+        g = float(copen[k][0])
+        f = -2.0 * float(e[0]) / g if g != 0.0 else 0.0
+        prev = out.get(n, (0.0, 0))
+        out[n] = (prev[0] + f, prev[1] + 1)
+    return out
+
+
+def nodal_areas(x: np.ndarray, vertex: np.ndarray) -> np.ndarray:
+    """The shares ``∫ N_i dx`` of the nodes ``x`` (sorted) of a quadratic surface: ``L/6`` at a
+    vertex from each element, ``2 L/3`` at a midside node, ``L`` the element's length.
+
+    ``vertex`` flags the vertex nodes; they and the midside nodes alternate.
+    """
+    w = np.zeros(len(x))
+    for i in np.flatnonzero(~vertex):
+        lo, hi = max(i - 1, 0), min(i + 1, len(x) - 1)
+        L = (x[hi] - x[lo]) * (2 if hi - lo == 1 else 1)
+        w[i] += 2 * L / 3
+        if hi - lo == 2:
+            w[lo] += L / 6
+            w[hi] += L / 6
+    return w
+
+
+def dealternate(x: np.ndarray, p: np.ndarray, vertex: np.ndarray,
+                m: int = DEALTERNATE_NODES) -> np.ndarray:
+    """``p`` without its vertex/midside alternation: at each node, the value of the local fit
+    ``q(x) + d_i`` over the ``2 m + 1`` nodes centred on it, ``q`` quadratic and ``d_i = 2 delta``
+    at a vertex, ``-delta`` at a midside node; the ``m`` nodes at each end keep their value.
+
+    A node-to-surface penalty's nodal forces over the nodes' shares of a
+    quadratic face (:func:`nodal_areas`) still alternate between vertex and
+    midside nodes by about 1 % of the peak; the offsets ``2 delta``,
+    ``-delta`` carry no force over an element (``2 delta L/3 - delta 2 L/3 = 0``).
+    The fit reproduces any quadratic exactly (no ``h^2 p''`` bias, unlike an
+    average over an element).
+    """
+    n = len(x)
+    d = np.where(vertex, 2.0, -1.0)
+    out = np.array(p, dtype=float)
+    if n < 2 * m + 1:
+        return out
+    for i in range(m, n - m):            # centred windows only: no extrapolation at the ends
+        lo, hi = i - m, i + m + 1
+        t = (x[lo:hi] - x[i]) / (x[hi - 1] - x[lo])
+        A = np.c_[np.ones(hi - lo), t, t * t, d[lo:hi]]
+        out[i] = np.linalg.lstsq(A, p[lo:hi], rcond=None)[0][0]
+    return out
+
+
+def force_pressure(x: np.ndarray, f: np.ndarray, vertex: np.ndarray) -> np.ndarray:
+    """The contact pressure at the nodes ``x`` (sorted) of a quadratic slave face from their forces
+    ``f``: ``f / ∫N_i dx`` (:func:`nodal_areas`) freed of the vertex/midside alternation
+    (:func:`dealternate`) between the first and the last loaded node (``f > 0``)."""
+    w = nodal_areas(x, vertex)
+    p = np.divide(f, w, out=np.zeros_like(f), where=w > 0)
+    on = np.flatnonzero(f > 0)
+    if on.size:
+        # the fit stays inside the loaded nodes: across a contact end it would spread the
+        # square-root end's curvature onto the open nodes
+        i, j = on[0], on[-1] + 1
+        p[i:j] = dealternate(x[i:j], p[i:j], vertex[i:j])
+    return p
 
 
 def contact_edge(x: np.ndarray, gap: np.ndarray, k: int = 8) -> float:
