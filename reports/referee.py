@@ -273,7 +273,7 @@ def _read_calculix(path: Path, suffix: str) -> tuple[np.ndarray, np.ndarray, dic
     x0 = np.array([xy[n][0] for n in nodes])
     f = np.array([forces[n][0] for n in nodes])
     vertex = _vertex_flags(np.array([forces[n][1] for n in nodes]))
-    p = force_pressure(x0, f, vertex)
+    p = force_pressure(x0, f, vertex, cut=True)
     x = x0 + np.array([disp[n][0] if n in disp else 0.0 for n in nodes])
     ks = [k for k in copen if k in cpress and copen[k][0] > 0 and cpress[k] < 0]
     K = float(np.median([-cpress[k] / copen[k][0] for k in ks])) if len(ks) >= 3 else math.nan

@@ -10,6 +10,7 @@ Decks
 -----
 DeckSettings    -- mesh size, penalty stiffness, punch stiffening, pair or stiff punch, block size
 build_model     -- the whole-model two-body gmsh mesh (second order) of a three-part punch
+build_finite_model -- the validity map's finite punch (exact arcs, flanks, height H) on its block
 write_deck      -- the deck of a model: sets, materials, contact, load at ``s``, free or suppressed tilt
 CONVENTIONS     -- the comment block every deck carries (units, conventions, pitfalls)
 parse_deck      -- a minimal keyword parser (``*KEYWORD, PARAM=...`` and data lines) for checks
@@ -48,7 +49,7 @@ from .material import compliance
 from .punch import Punch
 from .validate import check_tilt, finite, positive
 
-__all__ = ["DeckSettings", "Model", "build_model", "write_deck", "CONVENTIONS", "parse_deck",
+__all__ = ["DeckSettings", "Model", "build_model", "build_finite_model", "write_deck", "CONVENTIONS", "parse_deck",
            "Keyword", "ccx_available", "run_ccx", "CcxMissing", "CcxError", "read_frd",
            "read_frd_nodes", "read_reaction", "read_dat", "nodal_forces", "nodal_areas", "dealternate",
            "force_pressure", "DEALTERNATE_NODES", "read_descent", "surface_pressure", "SurfacePressure",
@@ -602,6 +603,96 @@ def build_model(punch: Punch, a: float, c: float, settings: DeckSettings = DeckS
     return Model(punch, a, c, xy, elements, numbers, nsets, master, slave, h0, lift)
 
 
+def build_finite_model(punch: Punch, a: float, c: float, *, H: float, theta: float,
+                       settings: DeckSettings = DeckSettings(pair=True), block: float = 200.0) -> Model:
+    """Mesh the finite punch of :func:`fem.solve_finite` on its block (the validity map's model).
+
+    The punch: the flat centre ``[-b, b]``, exact circular arcs of radius
+    ``R1`` (left) and ``R2`` (right) tangent to it up to the flank angle
+    ``theta`` (or to the top, if they reach it first), straight flanks up to
+    its top ``y = H`` (:class:`threepart.meshes.punch.PunchSpec`'s geometry).
+    The block: ``block * W`` wide and deep, its top ``y = 0``, as the FEM's
+    default mesh preset (``L = 200 W``). Elements are ``h`` long along both
+    faces over ``[-a - m, c + m]`` (``m = margin W``), the punch's face
+    ``MASTER_RATIO`` times coarser, growing away from it; second order (CPE8,
+    CPE6). Node sets as :func:`build_model`'s (``lift = 0``: the flat touches
+    ``y = 0``). :func:`write_deck` with ``clamped=True`` then clamps the
+    block's base and welds the punch's top to a rigid plate (``u_x = 0``,
+    ``u_y`` linear between its corners: free tilt), as :mod:`fem.finite` does.
+    """
+    import gmsh
+
+    from .meshes import gmsh_session
+    from .meshes.punch import PunchSpec
+    from .meshes.substrate import SubstrateSpec, size_field
+
+    a, c = positive("a", a, (1e-12, 1e12)), positive("c", c, (1e-12, 1e12))
+    W = a + c
+    h0 = settings.size(W)
+    m = settings.margin * W
+    xf0, xf1 = -a - m, c + m
+    half, depth = 0.5 * block * W, block * W
+    spec = PunchSpec(zone=SubstrateSpec(x_lo=xf0, x_hi=xf1, h=h0, L=depth), b=punch.b, R1=punch.R1,
+                     R2=punch.R2, H=H, theta=theta)       # checks that the zone lies on the face
+    if not (xf0 < -punch.b and punch.b < xf1):
+        raise ValueError(f"the fine zone [{xf0:.6g}, {xf1:.6g}] must hold the flat centre [-b, b]")
+    with gmsh_session():
+        occ = gmsh.model.occ
+        q = [occ.addPoint(-half, 0, 0), occ.addPoint(xf0, 0, 0), occ.addPoint(xf1 + 0.37 * h0, 0, 0),
+             occ.addPoint(half, 0, 0), occ.addPoint(half, -depth, 0), occ.addPoint(-half, -depth, 0)]
+        lb = [occ.addLine(q[i], q[(i + 1) % 6]) for i in range(6)]
+        s_block = occ.addPlaneSurface([occ.addCurveLoop(lb)])
+
+        def on_face(x: float) -> int:
+            return occ.addPoint(x, float(spec.height(np.array([x]))[0]), 0)
+
+        pl, pr = occ.addPoint(-punch.b, 0, 0), occ.addPoint(punch.b, 0, 0)
+        fl, fr = on_face(xf0), on_face(xf1)
+        cl, cr = occ.addPoint(-punch.b, punch.R1, 0), occ.addPoint(punch.b, punch.R2, 0)
+        xel, xer = spec.edge_x("left"), spec.edge_x("right")
+        el, er = on_face(xel), on_face(xer)
+        fine = [occ.addCircleArc(fl, cl, pl), occ.addLine(pl, pr), occ.addCircleArc(pr, cr, fr)]
+        face = [occ.addCircleArc(el, cl, fl), *fine, occ.addCircleArc(fr, cr, er)]
+        # counterclockwise: the face left to right, the right flank up, the top, the left flank down
+        tops, flanks = {}, {}
+        for side, e, xe in (("right", er, xer), ("left", el, xel)):
+            ye = float(spec.height(np.array([xe]))[0])
+            if ye < H * (1 - 1e-12):          # a straight flank continues the arc's tangent
+                xt = xe + (1.0 if side == "right" else -1.0) * (H - ye) / math.tan(theta)
+                tops[side] = occ.addPoint(xt, H, 0)
+                flanks[side] = [occ.addLine(e, tops[side]) if side == "right" else occ.addLine(tops[side], e)]
+            else:                             # the arc reaches the top first
+                tops[side], flanks[side] = e, []
+        top = occ.addLine(tops["right"], tops["left"])
+        loop = [*face, *flanks["right"], top, *flanks["left"]]
+        s_punch = occ.addPlaneSurface([occ.addCurveLoop(loop)])
+        occ.synchronize()
+        groups = {"block": (2, [s_block]), "punch": (2, [s_punch]),
+                  "block_surface": (1, [lb[1]]), "block_base": (1, [lb[4]]),
+                  "punch_profile": (1, fine), "punch_top": (1, [top])}
+        tags = {name: gmsh.model.addPhysicalGroup(dim, ents, name=name)
+                for name, (dim, ents) in groups.items()}
+        size_field([lb[1], *fine], h=h0, growth=settings.growth,
+                   sampling=int(4 * (xf1 - xf0) / h0) + 10, size_max=depth / 8)
+        for f in fine:
+            length = gmsh.model.occ.getMass(1, f)
+            gmsh.model.mesh.setTransfiniteCurve(f, max(2, math.ceil(length / (MASTER_RATIO * h0)) + 1))
+        for name, value in [("Mesh.Algorithm", 8), ("Mesh.RecombineAll", 1),
+                            ("Mesh.RecombinationAlgorithm", 1), ("Mesh.SecondOrderIncomplete", 1)]:
+            gmsh.option.setNumber(name, value)
+        gmsh.model.mesh.generate(2)
+        gmsh.model.mesh.setOrder(2)
+        xy, elements, nsets = _collect(gmsh, {"block": s_block, "punch": s_punch}, tags,
+                                       ("block_surface", "block_base", "punch_profile", "punch_top"))
+    numbers, n = {}, 0
+    for body in ("block", "punch"):
+        numbers[body] = np.arange(n + 1, n + 1 + len(elements[body]))
+        n += len(elements[body])
+    master = _faces(elements["punch"], numbers["punch"], nsets["punch_profile"], xy, math.inf)
+    slave = _faces(elements["block"], numbers["block"], nsets["block_surface"], xy, math.inf)
+    return Model(punch, a, c, xy, elements, numbers, nsets, master, slave, h0, 0.0)
+
+
 def _collect(gmsh: Any, surfaces: dict[str, int], tags: dict[str, int],
              names: tuple[str, ...]) -> tuple[np.ndarray, dict[str, list[tuple[str, np.ndarray]]],
                                               dict[str, np.ndarray]]:
@@ -616,9 +707,10 @@ def _collect(gmsh: Any, surfaces: dict[str, int], tags: dict[str, int],
     index = np.zeros(int(node_tags.max()) + 1, dtype=np.int64)
     index[node_tags.astype(np.int64)] = np.arange(1, node_tags.size + 1)
     xy = coords[:, :2].copy()
-    # gmsh's round-off leaves x = -4e-14 where 0 was meant; CalculiX's expansion of plane
-    # elements fails on such a node ("nonpositive jacobian"): snap to 0
-    xy[np.abs(xy) < 1e-12 * np.max(np.abs(xy))] = 0.0
+    # gmsh's round-off leaves x = -4e-14 where 0 was meant (-7e-9 on the finite punch's top,
+    # 1.4e-11 of the 200 W block); CalculiX's expansion of plane elements fails on such a node
+    # ("nonpositive jacobian"): snap to 0
+    xy[np.abs(xy) < 1e-10 * np.max(np.abs(xy))] = 0.0
     elements: dict[str, list[tuple[str, np.ndarray]]] = {}
     for body, s in surfaces.items():
         elements[body] = []
@@ -636,7 +728,7 @@ def _collect(gmsh: Any, surfaces: dict[str, int], tags: dict[str, int],
 
 
 def write_deck(model: Model, *, P: float, s: float, E: float, nu: float,
-               settings: DeckSettings = DeckSettings(), title: str = "") -> str:
+               settings: DeckSettings = DeckSettings(), title: str = "", clamped: bool = False) -> str:
     """The CalculiX deck of ``model`` under the load ``P`` at ``x = s`` (per unit thickness).
 
     The punch's top is a lid: every top node's vertical displacement is the
@@ -644,7 +736,9 @@ def write_deck(model: Model, *, P: float, s: float, E: float, nu: float,
     corner's (tilt suppressed, then all of ``P`` acts there and ``s`` is an
     outcome). ``P`` at ``s`` is split over the corners so that their
     resultant and its moment are ``P`` and ``P s``. The punch's left corner is
-    held in ``x``, the block's base in ``y`` and its middle node in ``x``.
+    held in ``x``, the block's base in ``y`` and its middle node in ``x``;
+    ``clamped``: the block's base in ``x`` and ``y`` and the punch's whole top
+    in ``x`` (the finite body of :func:`build_finite_model`, welded to its plate).
     One linear static step in one increment.
     """
     P, s = positive("P", P, (1e-12, 1e15)), finite("s", s)
@@ -696,7 +790,8 @@ def write_deck(model: Model, *, P: float, s: float, E: float, nu: float,
         F_R = P * (s - xL) / (xR - xL)
         loads = f"{tl}, 2, {-(P - F_R):.15g}\n{tr}, 2, {-F_R:.15g}\n"
     parts.append("*EQUATION\n" + "\n".join(rows) + "\n")
-    parts.append(boundary_text([("NBASE", 2), ("NMID", 1), (str(tl), 1)]))
+    parts.append(boundary_text([("NBASE", 1), ("NBASE", 2), ("NTOP", 1)] if clamped else
+                               [("NBASE", 2), ("NMID", 1), (str(tl), 1)]))
     parts.append("*STEP, INC=1000\n*CONTROLS, PARAMETERS=TIME INCREMENTATION\n"
                  "40, 60, 9, 200, 10, 4, 12, 40\n*STATIC\n1., 1., 0.015625, 1.\n*CLOAD\n" + loads +
                  "*NODE FILE, NSET=NOUT\nU, S\n*CONTACT FILE\nCDIS, CSTR, CELS\n"
@@ -971,11 +1066,14 @@ def nodal_forces(copen: dict[int, np.ndarray], energy: dict[int, np.ndarray],
     return out
 
 
-def nodal_areas(x: np.ndarray, vertex: np.ndarray) -> np.ndarray:
+def nodal_areas(x: np.ndarray, vertex: np.ndarray, *, cut: bool = False) -> np.ndarray:
     """The shares ``∫ N_i dx`` of the nodes ``x`` (sorted) of a quadratic surface: ``L/6`` at a
     vertex from each element, ``2 L/3`` at a midside node, ``L`` the element's length.
 
     ``vertex`` flags the vertex nodes; they and the midside nodes alternate.
+    ``cut``: the nodes are cut from a longer face (CalculiX's contact output
+    covers the slave nodes near the master only), so an end vertex's missing
+    element is taken as long as its neighbour.
     """
     w = np.zeros(len(x))
     for i in np.flatnonzero(~vertex):
@@ -985,6 +1083,10 @@ def nodal_areas(x: np.ndarray, vertex: np.ndarray) -> np.ndarray:
         if hi - lo == 2:
             w[lo] += L / 6
             w[hi] += L / 6
+    if cut:
+        for i, step in ((0, 2), (1, 2), (len(x) - 1, -2), (len(x) - 2, -2)):
+            if 0 <= i < len(x) and vertex[i] and 0 <= i + step < len(x) and not 0 <= i - step < len(x):
+                w[i] *= 2
     return w
 
 
@@ -1014,18 +1116,25 @@ def dealternate(x: np.ndarray, p: np.ndarray, vertex: np.ndarray,
     return out
 
 
-def force_pressure(x: np.ndarray, f: np.ndarray, vertex: np.ndarray) -> np.ndarray:
+def force_pressure(x: np.ndarray, f: np.ndarray, vertex: np.ndarray, *, cut: bool = False) -> np.ndarray:
     """The contact pressure at the nodes ``x`` (sorted) of a quadratic slave face from their forces
     ``f``: ``f / ∫N_i dx`` (:func:`nodal_areas`) freed of the vertex/midside alternation
-    (:func:`dealternate`) between the first and the last loaded node (``f > 0``)."""
-    w = nodal_areas(x, vertex)
+    (:func:`dealternate`) between the first and the last loaded node (``f > 0``); next to them,
+    the force per length over one element centred on the node. ``cut``: as :func:`nodal_areas`."""
+    w = nodal_areas(x, vertex, cut=cut)
     p = np.divide(f, w, out=np.zeros_like(f), where=w > 0)
     on = np.flatnonzero(f > 0)
     if on.size:
         # the fit stays inside the loaded nodes: across a contact end it would spread the
-        # square-root end's curvature onto the open nodes
+        # square-root end's curvature onto the open nodes; the DEALTERNATE_NODES nodes next to
+        # each end, which it leaves, get the force per length over one element centred on them,
+        # (f[i-1]/2 + f[i] + f[i+1]/2) / (x[i+1] - x[i-1]), free of the alternation too
         i, j = on[0], on[-1] + 1
         p[i:j] = dealternate(x[i:j], p[i:j], vertex[i:j])
+        m = DEALTERNATE_NODES
+        for k in [*range(i, min(i + m, j)), *range(max(j - m, i), j)]:
+            if 0 < k < len(x) - 1:
+                p[k] = (0.5 * f[k - 1] + f[k] + 0.5 * f[k + 1]) / (x[k + 1] - x[k - 1])
     return p
 
 
