@@ -1119,22 +1119,18 @@ def dealternate(x: np.ndarray, p: np.ndarray, vertex: np.ndarray,
 def force_pressure(x: np.ndarray, f: np.ndarray, vertex: np.ndarray, *, cut: bool = False) -> np.ndarray:
     """The contact pressure at the nodes ``x`` (sorted) of a quadratic slave face from their forces
     ``f``: ``f / ∫N_i dx`` (:func:`nodal_areas`) freed of the vertex/midside alternation
-    (:func:`dealternate`) between the first and the last loaded node (``f > 0``); next to them,
-    the force per length over one element centred on the node. ``cut``: as :func:`nodal_areas`."""
+    (:func:`dealternate`) between the first and the last loaded node (``f > 0``).
+    ``cut``: as :func:`nodal_areas`."""
     w = nodal_areas(x, vertex, cut=cut)
     p = np.divide(f, w, out=np.zeros_like(f), where=w > 0)
     on = np.flatnonzero(f > 0)
     if on.size:
         # the fit stays inside the loaded nodes: across a contact end it would spread the
         # square-root end's curvature onto the open nodes; the DEALTERNATE_NODES nodes next to
-        # each end, which it leaves, get the force per length over one element centred on them,
-        # (f[i-1]/2 + f[i] + f[i+1]/2) / (x[i+1] - x[i-1]), free of the alternation too
+        # each end keep f / share (better for ∫p than an average over an element there:
+        # 8.5e-4 against 1.0e-3 of P on the default deck)
         i, j = on[0], on[-1] + 1
         p[i:j] = dealternate(x[i:j], p[i:j], vertex[i:j])
-        m = DEALTERNATE_NODES
-        for k in [*range(i, min(i + m, j)), *range(max(j - m, i), j)]:
-            if 0 < k < len(x) - 1:
-                p[k] = (0.5 * f[k - 1] + f[k] + 0.5 * f[k + 1]) / (x[k + 1] - x[k - 1])
     return p
 
 
