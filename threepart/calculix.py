@@ -1076,7 +1076,7 @@ def nodal_areas(x: np.ndarray, vertex: np.ndarray, *, cut: bool = False) -> np.n
     element is taken as long as its neighbour.
     """
     w = np.zeros(len(x))
-    for i in np.flatnonzero(~vertex):
+    for i in (int(k) for k in np.flatnonzero(~vertex)):
         lo, hi = max(i - 1, 0), min(i + 1, len(x) - 1)
         L = (x[hi] - x[lo]) * (2 if hi - lo == 1 else 1)
         w[i] += 2 * L / 3
@@ -1084,9 +1084,9 @@ def nodal_areas(x: np.ndarray, vertex: np.ndarray, *, cut: bool = False) -> np.n
             w[lo] += L / 6
             w[hi] += L / 6
     if cut:
-        for i, step in ((0, 2), (1, 2), (len(x) - 1, -2), (len(x) - 2, -2)):
-            if 0 <= i < len(x) and vertex[i] and 0 <= i + step < len(x) and not 0 <= i - step < len(x):
-                w[i] *= 2
+        for j, step in ((0, 2), (1, 2), (len(x) - 1, -2), (len(x) - 2, -2)):
+            if 0 <= j < len(x) and vertex[j] and 0 <= j + step < len(x) and not 0 <= j - step < len(x):
+                w[j] *= 2
     return w
 
 
