@@ -40,7 +40,7 @@ from threepart.material import similar_pair
 
 from .validity import MESHES, NU, THETA, E, MapPoint, _closed_form, _load, _punch
 
-__all__ = ["REFEREE_POINTS", "REFEREE_N", "REFEREE_PENALTY", "referee", "read_run", "finite_deck"]
+__all__ = ["REFEREE_POINTS", "REFEREE_N", "REFEREE_PENALTY", "REFEREE_INCREMENT", "referee", "read_run", "finite_deck"]
 
 #: the issue's two points: the closed form's peak about 1 % too high at 0.03, 0.3-0.6 % too low at 0.1
 REFEREE_POINTS = (MapPoint(1.0, 0.1, 0.03, 4.0), MapPoint(1.0, 0.1, 0.1, 4.0))
@@ -50,6 +50,10 @@ REFEREE_N = 100.0
 #: the penalty in E/h: 20 (at 200 E/h and W/h = 100 ccx needed 13 increments, at 50 E/h it left
 #: some penetrating slave nodes unpaired; 20 E/h converges in 4 increments of 1/4)
 REFEREE_PENALTY = 20.0
+#: the step's first and smallest increments: 1/4 (one increment does not converge on these
+#: similar bodies), cut down to 1e-5 at most (at (a - b)/R1 = 0.1 the 1/64 of the small-slope
+#: deck was not enough)
+REFEREE_INCREMENT = (0.25, 1e-5)
 
 
 def finite_deck(point: MapPoint, *, n: float = REFEREE_N,
@@ -65,6 +69,7 @@ def finite_deck(point: MapPoint, *, n: float = REFEREE_N,
     model = calculix.build_finite_model(punch, cf.a, cf.c, H=point.H_over_b * punch.b, theta=THETA,
                                         settings=settings)
     deck = calculix.write_deck(model, P=P, s=0.0, E=E, nu=NU, settings=settings, clamped=True,
+                               increment=REFEREE_INCREMENT,
                                title=f"validity map point {point.key()}: finite punch, clamped block")
     return model, deck, cf
 

@@ -728,7 +728,8 @@ def _collect(gmsh: Any, surfaces: dict[str, int], tags: dict[str, int],
 
 
 def write_deck(model: Model, *, P: float, s: float, E: float, nu: float,
-               settings: DeckSettings = DeckSettings(), title: str = "", clamped: bool = False) -> str:
+               settings: DeckSettings = DeckSettings(), title: str = "", clamped: bool = False,
+               increment: tuple[float, float] = (1.0, 1.0 / 64)) -> str:
     """The CalculiX deck of ``model`` under the load ``P`` at ``x = s`` (per unit thickness).
 
     The punch's top is a lid: every top node's vertical displacement is the
@@ -739,7 +740,8 @@ def write_deck(model: Model, *, P: float, s: float, E: float, nu: float,
     held in ``x``, the block's base in ``y`` and its middle node in ``x``;
     ``clamped``: the block's base in ``x`` and ``y`` and the punch's whole top
     in ``x`` (the finite body of :func:`build_finite_model`, welded to its plate).
-    One linear static step in one increment.
+    One linear static step in one increment; ``increment`` = (first, smallest)
+    increment of the step (CalculiX cuts an increment that does not converge).
     """
     P, s = positive("P", P, (1e-12, 1e15)), finite("s", s)
     E, nu = positive("E", E, (1e-6, 1e15)), finite("nu", nu)
@@ -793,7 +795,8 @@ def write_deck(model: Model, *, P: float, s: float, E: float, nu: float,
     parts.append(boundary_text([("NBASE", 1), ("NBASE", 2), ("NTOP", 1)] if clamped else
                                [("NBASE", 2), ("NMID", 1), (str(tl), 1)]))
     parts.append("*STEP, INC=1000\n*CONTROLS, PARAMETERS=TIME INCREMENTATION\n"
-                 "40, 60, 9, 200, 10, 4, 12, 40\n*STATIC\n1., 1., 0.015625, 1.\n*CLOAD\n" + loads +
+                 f"40, 60, 9, 200, 10, 4, 12, 40\n*STATIC\n{increment[0]:.15g}, 1., {increment[1]:.15g}, "
+                 f"{increment[0]:.15g}\n*CLOAD\n" + loads +
                  "*NODE FILE, NSET=NOUT\nU, S\n*CONTACT FILE\nCDIS, CSTR, CELS\n"
                  "*NODE PRINT, NSET=NBASE, TOTALS=ONLY\nRF\n*NODE PRINT, NSET=NCTRL\nU\n"
                  "*NODE PRINT, NSET=NSURF\nU\n*CONTACT PRINT\nCSTR, CDIS, CELS\n*END STEP\n")
