@@ -171,21 +171,27 @@ def read_pressure(path: str | Path) -> tuple[np.ndarray, np.ndarray, dict[str, A
     """The points of a pressure file: ``(x, p, info)``.
 
     ``.csv`` (or ``.txt``): two columns ``x, p``, an optional header line,
-    ``#`` comments. ``.frd``: CalculiX's contact output (``*CONTACT FILE``,
-    CSTR/CDIS): CPRESS at the slave nodes at their deformed ``x``; a plane
-    model's contact output is written on the expanded nodes (``N + 3(n - 1) + 1..3``
-    for node ``n`` of ``N``), which are averaged back onto ``n``; ``info`` then
-    holds COPEN and, where the contact is open, the penalty ``K = -CPRESS/COPEN``.
+    ``#`` comments. CalculiX's ``.frd`` (``*CONTACT FILE`` CDIS, CSTR, CELS) or
+    ``.dat`` (``*CONTACT PRINT`` CSTR, CDIS, CELS, with the deck ``job.inp``
+    beside ``job.dat`` for the coordinates, which a ``.dat`` lacks): the
+    contact's nodal forces over the nodes' shares of the quadratic slave faces,
+    freed of the vertex/midside alternation
+    (:func:`threepart.calculix.force_pressure`), at the slave nodes' positions
+    (deformed where the file holds their displacements: the ``.frd``'s DISP,
+    the ``.dat``'s ``*NODE PRINT, NSET=NSURF`` U). A ``.frd`` without CELS
+    gives CalculiX's CPRESS itself (not the pressure on quadratic faces: the
+    diagnosis names it). ``info`` holds the source, COPEN and, where the
+    contact is open, the penalty ``K = -CPRESS/COPEN``.
     """
     path = Path(path)
     if not path.is_file():
         raise ValueError(f"`--pressure` = {str(path)!r} is not a file")
     suffix = path.suffix.lower()
-    if suffix == ".frd":
-        return _read_frd(path)
+    if suffix in (".frd", ".dat"):
+        return _read_calculix(path, suffix)
     if suffix not in (".csv", ".txt"):
-        raise ValueError(f"`--pressure` = {str(path)!r}: give a .csv (x, p) or CalculiX's .frd, "
-                         f"not {suffix or 'a file without a suffix'}")
+        raise ValueError(f"`--pressure` = {str(path)!r}: give a .csv (x, p) or CalculiX's .frd or "
+                         f".dat, not {suffix or 'a file without a suffix'}")
     rows = []
     with open(path, newline="", encoding="utf-8") as f:
         for i, row in enumerate(csv.reader(line for line in f if not line.lstrip().startswith("#"))):
@@ -204,16 +210,79 @@ def read_pressure(path: str | Path) -> tuple[np.ndarray, np.ndarray, dict[str, A
     return xp[:, 0], xp[:, 1], {"source": "csv"}
 
 
-def _read_frd(path: Path) -> tuple[np.ndarray, np.ndarray, dict[str, Any]]:
-    from threepart.calculix import read_frd, read_frd_nodes
+def _deck_nodes(inp: Path) -> dict[int, np.ndarray]:
+    """The node coordinates of a deck's ``*NODE`` cards: ``{node: (x, y)}``."""
+    from threepart.calculix import parse_deck
+
+    out: dict[int, np.ndarray] = {}
+    for card in parse_deck(inp.read_text()):
+        if card.name == "NODE":
+            for row in card.data:
+                out[int(row[0])] = np.array([float(v) for v in row[1:3]])
+    return out
+
+
+def _vertex_flags(counts: np.ndarray) -> np.ndarray:
+    """Which of the slave nodes (sorted along the face) are vertices of its quadratic faces.
+
+    CalculiX writes three expanded nodes of a vertex node and two of a midside
+    node; the two alternate, and the parity that most counts agree with decides.
+    """
+    even = np.arange(counts.size) % 2 == 0
+    agree = np.count_nonzero((counts == 3) == even)
+    return even if agree >= counts.size - agree else ~even
+
+
+def _read_calculix(path: Path, suffix: str) -> tuple[np.ndarray, np.ndarray, dict[str, Any]]:
+    from threepart.calculix import force_pressure, nodal_forces, read_dat, read_frd, read_frd_nodes
 
     stem = path.with_suffix("")
-    blocks = read_frd(stem)
-    if "CONTACT" not in blocks:
-        raise ValueError(f"`--pressure` = {str(path)!r} has no CONTACT block: request "
-                         "`*CONTACT FILE` with CSTR, CDIS in the step")
-    xyz = read_frd_nodes(stem)
-    disp = blocks.get("DISP", {})
+    if suffix == ".dat":
+        inp = path.with_suffix(".inp")
+        if not inp.is_file():
+            raise ValueError(f"`--pressure` = {str(path)!r}: a .dat holds no coordinates and the deck "
+                             f"{inp.name!r} is not beside it; put the job's .inp there (same stem) or "
+                             "give its .frd")
+        blocks = read_dat(stem)
+        if "contact print energy" not in blocks or "relative contact displacement" not in blocks:
+            raise ValueError(f"`--pressure` = {str(path)!r} holds no contact output: request "
+                             "`*CONTACT PRINT` with CSTR, CDIS, CELS in the step (threepart deck does)")
+        xy = _deck_nodes(inp)
+        disp = blocks.get("displacements NSURF", {})
+        copen = blocks["relative contact displacement"]
+        energy = blocks["contact print energy"]
+        cpress = {k: v[0] for k, v in blocks.get("contact stress", {}).items()}
+    else:
+        frd = read_frd(stem)
+        if "CONTACT" not in frd:
+            raise ValueError(f"`--pressure` = {str(path)!r} has no CONTACT block: request "
+                             "`*CONTACT FILE` with CDIS, CSTR, CELS in the step")
+        xy = read_frd_nodes(stem)
+        disp = frd.get("DISP", {})
+        if "CELS" not in frd:
+            return _read_cpress(path, frd, xy, disp)
+        copen = {k: v[:1] for k, v in frd["CONTACT"].items()}
+        energy = frd["CELS"]
+        cpress = {k: v[3] for k, v in frd["CONTACT"].items()}
+    N = max(xy)
+    forces = {n: v for n, v in nodal_forces(copen, energy, N).items() if n in xy}
+    if len(forces) < 8:
+        raise ValueError(f"`--pressure` = {str(path)!r}: {len(forces)} slave nodes with coordinates "
+                         "and contact output; at least 8 are needed")
+    nodes = np.array(sorted(forces, key=lambda n: xy[n][0]))
+    x0 = np.array([xy[n][0] for n in nodes])
+    f = np.array([forces[n][0] for n in nodes])
+    vertex = _vertex_flags(np.array([forces[n][1] for n in nodes]))
+    p = force_pressure(x0, f, vertex, cut=True)
+    x = x0 + np.array([disp[n][0] if n in disp else 0.0 for n in nodes])
+    ks = [k for k in copen if k in cpress and copen[k][0] > 0 and cpress[k] < 0]
+    K = float(np.median([-cpress[k] / copen[k][0] for k in ks])) if len(ks) >= 3 else math.nan
+    return x, p, {"source": suffix[1:], "forces": f, "penalty": K}
+
+
+def _read_cpress(path: Path, blocks: dict[str, dict[int, np.ndarray]], xyz: dict[int, np.ndarray],
+                 disp: dict[int, np.ndarray]) -> tuple[np.ndarray, np.ndarray, dict[str, Any]]:
+    """CPRESS of a ``.frd`` without CELS, averaged over each plane node's expanded nodes."""
     by_x: dict[float, list[tuple[float, float]]] = {}
     N = max(xyz)
     for k, v in blocks["CONTACT"].items():
@@ -230,7 +299,7 @@ def _read_frd(path: Path) -> tuple[np.ndarray, np.ndarray, dict[str, Any]]:
     co = np.array([np.mean([t[1] for t in by_x[k]]) for k in xs])
     open_ = co > 0
     K = float(np.median(-cp[open_] / co[open_])) if np.count_nonzero(open_ & (cp < 0)) >= 3 else math.nan
-    return xs, cp, {"source": "frd", "copen": co, "penalty": K}
+    return xs, cp, {"source": "frd CPRESS (no CELS)", "copen": co, "penalty": K}
 
 
 @dataclass(frozen=True)
@@ -278,7 +347,8 @@ def diagnose(res: PointsResult, ref: NormalResult, *, penalty: float | None = No
         out.append(Pitfall("negative-pressure", tension, NEGATIVE,
                            f"{k} points carry tension, down to -{tension:.3g} of the peak: a penalty "
                            "contact writes CPRESS = -K*COPEN at open nodes; read p only where the "
-                           "contact is closed (COPEN <= 0) or use the surface's -S22"))
+                           "contact is closed (COPEN <= 0) or use the nodal forces -2 CELS/COPEN "
+                           "(*CONTACT PRINT CELS)"))
     load = abs(res.P - ref.P) / ref.P
     if load > LOAD:
         out.append(Pitfall("load", load, LOAD,
@@ -304,7 +374,8 @@ def diagnose(res: PointsResult, ref: NormalResult, *, penalty: float | None = No
         out.append(Pitfall("mesh-peak", osc, OSCILLATION,
                            f"the pressure oscillates from node to node by {osc:.3g} of the peak "
                            "(vertex against midside nodes of quadratic faces): a peak read at one "
-                           "node carries that error; smooth over an element or refine"))
+                           "node carries that error; divide the nodal forces (-2 CELS/COPEN) by the nodes' "
+                           "shares of the face, h/3 and 2h/3 (threepart compare does, given CELS)"))
     K = penalty if penalty is not None else res.info.get("penalty")
     if K is not None and math.isfinite(K) and K > 0:
         rise = float(np.max(ref.punch.profile(np.array([-ref.a, ref.c]))) - np.min(
@@ -389,10 +460,9 @@ CALCULIX_CASE = "caseA_sym"
 #: its radii times this and P over it: the same contact [-a, c] and pressure shape, slopes and
 #: pressures divided by it (half-plane theory is linear in them): small slopes for the FE model
 SLOPE_SCALE = 20.0
-#: elements across W at the contact of the mesh study; the penalty study is run at
-#: the middle one. The deck's default, W/h = 200, costs 1 to 1.5 min of CPU and is left out of
-#: the verification run (this column: 42 s of CPU, measured)
-CALCULIX_N = (25, 50, 100)
+#: elements across W at the contact of the mesh study, up to the deck's default (200); the
+#: penalty study is run at the middle one (the column: about 30 s of CPU, measured)
+CALCULIX_N = (50, 100, 200)
 #: the penalty K in units of E/h of the penalty study (at W/h = CALCULIX_N[1]); the mesh study
 #: runs at the deck's default, 200 E/h
 CALCULIX_K = (20.0, 80.0, 320.0)
@@ -402,20 +472,13 @@ CALCULIX_K_MESH = 200.0
 CALCULIX_QUANTITIES = ("a", "c", "P", "p_left", "p_right", "p_interior_max")
 
 
-def _smooth(p: np.ndarray) -> np.ndarray:
-    """``(p[i-1] + 2 p[i] + p[i+1]) / 4``: removes the vertex/midside (odd-even) alternation of a
-    quadratic face's nodal stress, at an ``h^2 p''/4`` cost (the end values are kept)."""
-    out = p.copy()
-    out[1:-1] = 0.25 * (p[:-2] + 2 * p[1:-1] + p[2:])
-    return out
-
-
 def calculix_result(case: Any, n: float, penalty_factor: float, workdir: Path,
                     scale: float = SLOPE_SCALE) -> tuple[PointsResult, NormalResult]:
     """One CalculiX run of ``case`` scaled to small slopes: ``(result, closed-form reference)``.
 
-    The block's surface ``-S22`` at its nodes (smoothed over an element, see
-    :func:`_smooth`) is the pressure; the ends come from the gap
+    The pressure is CalculiX's nodal contact forces over the nodes' shares of
+    the block's quadratic faces, freed of the vertex/midside alternation
+    (:func:`threepart.calculix.surface_pressure`); the ends come from the gap
     (:func:`threepart.calculix.contact_edge`), ``P`` from the points.
     """
     from dataclasses import replace as _replace
@@ -438,7 +501,7 @@ def calculix_result(case: Any, n: float, penalty_factor: float, workdir: Path,
                                                 title=f"{case.name}, radii x {scale:g}, P / {scale:g}"),
                             workdir, f"n{n:g}_K{penalty_factor:g}")
     sp = calculix.surface_pressure(model, stem)
-    res = from_points(sp.x, _smooth(sp.p), ref, ends=(sp.a, sp.c), method="calculix",
+    res = from_points(sp.x, sp.p, ref, ends=(sp.a, sp.c), method="calculix",
                       info={"penalty": settings.K(E, ref.a + ref.c)})
     return _replace(res, diagnostics=Diagnostics(h=model.h0, dofs=2 * model.n_nodes)), ref
 
@@ -486,6 +549,7 @@ def calculix_studies(say: Callable[[str], None] = print) -> list[Any]:
                             method="calculix", case=CALCULIX_CASE, scheme=f"W/h = {CALCULIX_N[1]}")
     for st in (mesh, penalty):
         st.notes.append(f"{CALCULIX_CASE} with the radii x {SLOPE_SCALE:g} and P / {SLOPE_SCALE:g} "
-                        "(the same contact, slopes / 20); punch 10 x stiffer than the block (in A); "
-                        "pressure = the block's surface -S22, smoothed over an element; a, c from the gap")
+                        "(the same contact, slopes / 20); punch 1000 x stiffer than the block (in A); "
+                        "pressure = the nodal contact forces -2 CELS/COPEN over the nodes' shares of the "
+                        "quadratic faces, vertex/midside alternation fitted out; a, c from the gap")
     return [mesh, penalty]

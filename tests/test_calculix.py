@@ -19,8 +19,6 @@ import pytest
 from threepart import calculix
 from threepart.catalogue import get_case
 from threepart.cli import main
-from threepart.material import compliance
-from threepart.methods import solve
 from threepart.tolerances import tolerance
 
 #: gmsh leaves coordinates like -4e-14 where 0 was meant; the deck snaps them: none left below this
@@ -32,10 +30,6 @@ ROUND_OFF = tolerance("closedform", "round_off").limit
 PRINTED = 1e-5
 #: ccx's base reaction against the applied P: its Newton solve's convergence
 REACTION = 1e-9
-#: ∫(-S22) against P at W/h = 25: the surface stress, smoothed over one element, at a coarse mesh
-SMOOTHED_LOAD = 3e-2
-#: contact ends read from the gap: within half an element
-HALF_ELEMENT = 0.5
 
 
 
@@ -128,31 +122,32 @@ def test_deck_bad_input(tmp_path, capsys, argv, match):
 
 
 @pytest.mark.slow
-def test_ccx_runs_the_deck(tmp_path):
-    """ccx solves the deck: the base carries P, ∫p = P, the ends near the closed form's.
+def test_ccx_default_deck_meets_the_issue_targets(tmp_path):
+    """The deck at its defaults (W/h = 200, K = 200 E/h, punch 1000 x stiffer) on ``caseA_sym``
+    scaled to small slopes (the CalculiX column's case), against the closed form: the base
+    carries P, the contact's nodal forces sum to P, a and c within 1e-3 W and both peaks
+    within 1e-3 (issue 22; about 10 s of ccx CPU).
 
     Without ``ccx`` the run is refused with the named error and the install hint.
     """
-    c = get_case("caseA_sym").resolved()
-    E, nu = c.material
-    settings = calculix.DeckSettings(n=25)
-    A = compliance(E, nu, E * settings.stiffening, nu)
-    k = 20.0                                    # radii x 20, P / 20: the same contact, small slopes
-    punch = type(c.punch)(R1=k * c.punch.R1, R2=k * c.punch.R2, b=c.punch.b, R=c.punch.R)
-    ref = solve(punch, c.P / k, 0.0, A=A)
-    model = calculix.build_model(punch, ref.a, ref.c, settings)
+    from threepart.reports.compare import normal_figures
+    from threepart.reports.referee import SLOPE_SCALE, calculix_result
+
     if shutil.which("ccx") is None:
         with pytest.raises(calculix.CcxMissing, match="apt-get install calculix-ccx"):
             calculix.run_ccx("*HEADING\n", tmp_path)
         return
-    stem = calculix.run_ccx(calculix.write_deck(model, P=c.P / k, s=0.0, E=E, nu=nu,
-                                                settings=settings), tmp_path)
-    sp = calculix.surface_pressure(model, stem)
+    res, ref = calculix_result(get_case("caseA_sym"), calculix.DeckSettings().n,
+                               calculix.DeckSettings().penalty_factor, tmp_path)
     W = ref.a + ref.c
-    assert sp.P == pytest.approx(c.P / k, rel=REACTION)
-    inside = (sp.x > -sp.a) & (sp.x < sp.c)
-    assert np.trapezoid(np.where(inside, sp.p, 0), sp.x) == pytest.approx(c.P / k, rel=SMOOTHED_LOAD)
-    assert abs(sp.a - ref.a) < HALF_ELEMENT * model.h0 and abs(sp.c - ref.c) < HALF_ELEMENT * model.h0, (sp.a, sp.c, W)
+    sp_P = calculix.read_reaction(next(tmp_path.glob("*.dat")).with_suffix(""))[1]
+    assert sp_P == pytest.approx(get_case("caseA_sym").resolved().P / SLOPE_SCALE, rel=REACTION)
+    fig = normal_figures(ref, res)
+    for q in ("p_left", "p_right"):
+        assert fig[q][2] < tolerance("referee", q).limit, (q, fig[q])
+    assert abs(res.a - ref.a) < tolerance("referee", "a").limit * W
+    assert abs(res.c - ref.c) < tolerance("referee", "c").limit * W
+    assert abs(res.P / ref.P - 1) < tolerance("referee", "P").limit
 
 
 def test_verify_column_without_ccx_says_so(monkeypatch):

@@ -10,6 +10,7 @@ Decks
 -----
 DeckSettings    -- mesh size, penalty stiffness, punch stiffening, pair or stiff punch, block size
 build_model     -- the whole-model two-body gmsh mesh (second order) of a three-part punch
+build_finite_model -- the validity map's finite punch (exact arcs, flanks, height H) on its block
 write_deck      -- the deck of a model: sets, materials, contact, load at ``s``, free or suppressed tilt
 CONVENTIONS     -- the comment block every deck carries (units, conventions, pitfalls)
 parse_deck      -- a minimal keyword parser (``*KEYWORD, PARAM=...`` and data lines) for checks
@@ -21,6 +22,11 @@ run_ccx         -- run ``ccx`` on a deck in a directory (one thread); raises Ccx
 read_frd        -- the nodal result blocks of an ``.frd`` file (DISP, STRESS, CONTACT), last increment
 read_frd_nodes  -- the node coordinates of an ``.frd`` file
 read_reaction   -- the total reaction force of a printed node set (``.dat``)
+read_dat        -- the printed blocks of a ``.dat`` file (node sets, contact output), last time
+nodal_forces    -- the contact's force at each slave node, ``-2 CELS / COPEN`` (plane models)
+nodal_areas     -- the nodes' shares ``∫N_i dx`` of a quadratic surface (L/6, 2L/3, L/6)
+dealternate     -- nodal values freed of the vertex/midside alternation (a local fit)
+force_pressure  -- the contact pressure from the nodal forces: over the shares, de-alternated
 surface_pressure -- the contact pressure along the block's surface from a run (x, p, gap, CPRESS)
 contact_edge    -- a contact end from the gap just outside it (``gap^(2/3)`` linear)
 
@@ -43,9 +49,10 @@ from .material import compliance
 from .punch import Punch
 from .validate import check_tilt, finite, positive
 
-__all__ = ["DeckSettings", "Model", "build_model", "write_deck", "CONVENTIONS", "parse_deck",
+__all__ = ["DeckSettings", "Model", "build_model", "build_finite_model", "write_deck", "CONVENTIONS", "parse_deck",
            "Keyword", "ccx_available", "run_ccx", "CcxMissing", "CcxError", "read_frd",
-           "read_frd_nodes", "read_reaction", "read_descent", "surface_pressure", "SurfacePressure",
+           "read_frd_nodes", "read_reaction", "read_dat", "nodal_forces", "nodal_areas", "dealternate",
+           "force_pressure", "DEALTERNATE_NODES", "read_descent", "surface_pressure", "SurfacePressure",
            "contact_edge", "centre_pressure", "Material", "Mesh", "build_half_mesh", "half_deck",
            "nodes_text", "elements_text", "nset_text", "surface_text", "material_text",
            "contact_text", "equation_text", "boundary_text", "step_text", "GMSH_TO_CCX"]
@@ -365,8 +372,12 @@ CONVENTIONS = """\
 **   by P, whose line of action is x = s.
 ** Contact: frictionless node-to-surface penalty (PRESSURE-OVERCLOSURE=LINEAR, stiffness K).
 **   CPRESS at an open node is -K*COPEN (a tension that grows with the clearance), not zero:
-**   read the pressure where COPEN <= 0 only, or use -S22 of the block's surface.
-**   On quadratic faces CPRESS alternates between vertex and midside nodes; -S22 less so.
+**   read the pressure where COPEN <= 0 only.
+**   On quadratic faces CPRESS alternates between vertex and midside nodes by up to 2: it is
+**   the force over CalculiX's own nodal area (about h/2 at every node), not over the node's
+**   share of the face (h/3 at a vertex, 2h/3 at a midside node). The nodal force is
+**   -2*CELS/COPEN (*CONTACT PRINT CSTR, CDIS, CELS below; summed over the 2 or 3 expanded
+**   nodes N + 3(n - 1) + 1..3 of node n of N); threepart compare reads it from this .dat.
 **   The pressure's error falls as 1/K: check that a stiffer K changes nothing you use.
 ** Analyse the FIRST increment only: one increment of the linear step. A later increment
 **   pairs the surfaces again on the deformed geometry and integral(p) overshoots P.
@@ -397,7 +408,10 @@ class DeckSettings:
         ``True``: two similar elastic bodies (``A = 4(1 - nu^2)/E``);
         ``False``: a stiff punch, ``stiffening`` times the block's modulus.
     stiffening
-        The stiff punch's modulus over the block's.
+        The stiff punch's modulus over the block's (1000: the punch's own
+        deformation, interpolated by its quadratic face, put a 0.5 % node-to-node
+        scatter into the contact forces at 10, and the default deck then needed 12
+        increments, 114 s of CPU, instead of one, 10 s; docs/CALCULIX.md).
     tilt
         ``"free"`` (the load at ``s``, the punch free to tilt) or
         ``"suppressed"`` (the punch's top held level).
@@ -414,7 +428,7 @@ class DeckSettings:
     penalty: float | None = None
     penalty_factor: float = 200.0
     pair: bool = False
-    stiffening: float = 10.0
+    stiffening: float = 1000.0
     tilt: str = "free"
     block: float = 20.0
     margin: float = 0.15
@@ -589,6 +603,96 @@ def build_model(punch: Punch, a: float, c: float, settings: DeckSettings = DeckS
     return Model(punch, a, c, xy, elements, numbers, nsets, master, slave, h0, lift)
 
 
+def build_finite_model(punch: Punch, a: float, c: float, *, H: float, theta: float,
+                       settings: DeckSettings = DeckSettings(pair=True), block: float = 200.0) -> Model:
+    """Mesh the finite punch of :func:`fem.solve_finite` on its block (the validity map's model).
+
+    The punch: the flat centre ``[-b, b]``, exact circular arcs of radius
+    ``R1`` (left) and ``R2`` (right) tangent to it up to the flank angle
+    ``theta`` (or to the top, if they reach it first), straight flanks up to
+    its top ``y = H`` (:class:`threepart.meshes.punch.PunchSpec`'s geometry).
+    The block: ``block * W`` wide and deep, its top ``y = 0``, as the FEM's
+    default mesh preset (``L = 200 W``). Elements are ``h`` long along both
+    faces over ``[-a - m, c + m]`` (``m = margin W``), the punch's face
+    ``MASTER_RATIO`` times coarser, growing away from it; second order (CPE8,
+    CPE6). Node sets as :func:`build_model`'s (``lift = 0``: the flat touches
+    ``y = 0``). :func:`write_deck` with ``clamped=True`` then clamps the
+    block's base and welds the punch's top to a rigid plate (``u_x = 0``,
+    ``u_y`` linear between its corners: free tilt), as :mod:`fem.finite` does.
+    """
+    import gmsh
+
+    from .meshes import gmsh_session
+    from .meshes.punch import PunchSpec
+    from .meshes.substrate import SubstrateSpec, size_field
+
+    a, c = positive("a", a, (1e-12, 1e12)), positive("c", c, (1e-12, 1e12))
+    W = a + c
+    h0 = settings.size(W)
+    m = settings.margin * W
+    xf0, xf1 = -a - m, c + m
+    half, depth = 0.5 * block * W, block * W
+    spec = PunchSpec(zone=SubstrateSpec(x_lo=xf0, x_hi=xf1, h=h0, L=depth), b=punch.b, R1=punch.R1,
+                     R2=punch.R2, H=H, theta=theta)       # checks that the zone lies on the face
+    if not (xf0 < -punch.b and punch.b < xf1):
+        raise ValueError(f"the fine zone [{xf0:.6g}, {xf1:.6g}] must hold the flat centre [-b, b]")
+    with gmsh_session():
+        occ = gmsh.model.occ
+        q = [occ.addPoint(-half, 0, 0), occ.addPoint(xf0, 0, 0), occ.addPoint(xf1 + 0.37 * h0, 0, 0),
+             occ.addPoint(half, 0, 0), occ.addPoint(half, -depth, 0), occ.addPoint(-half, -depth, 0)]
+        lb = [occ.addLine(q[i], q[(i + 1) % 6]) for i in range(6)]
+        s_block = occ.addPlaneSurface([occ.addCurveLoop(lb)])
+
+        def on_face(x: float) -> int:
+            return occ.addPoint(x, float(spec.height(np.array([x]))[0]), 0)
+
+        pl, pr = occ.addPoint(-punch.b, 0, 0), occ.addPoint(punch.b, 0, 0)
+        fl, fr = on_face(xf0), on_face(xf1)
+        cl, cr = occ.addPoint(-punch.b, punch.R1, 0), occ.addPoint(punch.b, punch.R2, 0)
+        xel, xer = spec.edge_x("left"), spec.edge_x("right")
+        el, er = on_face(xel), on_face(xer)
+        fine = [occ.addCircleArc(fl, cl, pl), occ.addLine(pl, pr), occ.addCircleArc(pr, cr, fr)]
+        face = [occ.addCircleArc(el, cl, fl), *fine, occ.addCircleArc(fr, cr, er)]
+        # counterclockwise: the face left to right, the right flank up, the top, the left flank down
+        tops, flanks = {}, {}
+        for side, e, xe in (("right", er, xer), ("left", el, xel)):
+            ye = float(spec.height(np.array([xe]))[0])
+            if ye < H * (1 - 1e-12):          # a straight flank continues the arc's tangent
+                xt = xe + (1.0 if side == "right" else -1.0) * (H - ye) / math.tan(theta)
+                tops[side] = occ.addPoint(xt, H, 0)
+                flanks[side] = [occ.addLine(e, tops[side]) if side == "right" else occ.addLine(tops[side], e)]
+            else:                             # the arc reaches the top first
+                tops[side], flanks[side] = e, []
+        top = occ.addLine(tops["right"], tops["left"])
+        loop = [*face, *flanks["right"], top, *flanks["left"]]
+        s_punch = occ.addPlaneSurface([occ.addCurveLoop(loop)])
+        occ.synchronize()
+        groups = {"block": (2, [s_block]), "punch": (2, [s_punch]),
+                  "block_surface": (1, [lb[1]]), "block_base": (1, [lb[4]]),
+                  "punch_profile": (1, fine), "punch_top": (1, [top])}
+        tags = {name: gmsh.model.addPhysicalGroup(dim, ents, name=name)
+                for name, (dim, ents) in groups.items()}
+        size_field([lb[1], *fine], h=h0, growth=settings.growth,
+                   sampling=int(4 * (xf1 - xf0) / h0) + 10, size_max=depth / 8)
+        for f in fine:
+            length = gmsh.model.occ.getMass(1, f)
+            gmsh.model.mesh.setTransfiniteCurve(f, max(2, math.ceil(length / (MASTER_RATIO * h0)) + 1))
+        for name, value in [("Mesh.Algorithm", 8), ("Mesh.RecombineAll", 1),
+                            ("Mesh.RecombinationAlgorithm", 1), ("Mesh.SecondOrderIncomplete", 1)]:
+            gmsh.option.setNumber(name, value)
+        gmsh.model.mesh.generate(2)
+        gmsh.model.mesh.setOrder(2)
+        xy, elements, nsets = _collect(gmsh, {"block": s_block, "punch": s_punch}, tags,
+                                       ("block_surface", "block_base", "punch_profile", "punch_top"))
+    numbers, n = {}, 0
+    for body in ("block", "punch"):
+        numbers[body] = np.arange(n + 1, n + 1 + len(elements[body]))
+        n += len(elements[body])
+    master = _faces(elements["punch"], numbers["punch"], nsets["punch_profile"], xy, math.inf)
+    slave = _faces(elements["block"], numbers["block"], nsets["block_surface"], xy, math.inf)
+    return Model(punch, a, c, xy, elements, numbers, nsets, master, slave, h0, 0.0)
+
+
 def _collect(gmsh: Any, surfaces: dict[str, int], tags: dict[str, int],
              names: tuple[str, ...]) -> tuple[np.ndarray, dict[str, list[tuple[str, np.ndarray]]],
                                               dict[str, np.ndarray]]:
@@ -603,9 +707,10 @@ def _collect(gmsh: Any, surfaces: dict[str, int], tags: dict[str, int],
     index = np.zeros(int(node_tags.max()) + 1, dtype=np.int64)
     index[node_tags.astype(np.int64)] = np.arange(1, node_tags.size + 1)
     xy = coords[:, :2].copy()
-    # gmsh's round-off leaves x = -4e-14 where 0 was meant; CalculiX's expansion of plane
-    # elements fails on such a node ("nonpositive jacobian"): snap to 0
-    xy[np.abs(xy) < 1e-12 * np.max(np.abs(xy))] = 0.0
+    # gmsh's round-off leaves x = -4e-14 where 0 was meant (-7e-9 on the finite punch's top,
+    # 1.4e-11 of the 200 W block); CalculiX's expansion of plane elements fails on such a node
+    # ("nonpositive jacobian"): snap to 0
+    xy[np.abs(xy) < 1e-10 * np.max(np.abs(xy))] = 0.0
     elements: dict[str, list[tuple[str, np.ndarray]]] = {}
     for body, s in surfaces.items():
         elements[body] = []
@@ -623,7 +728,8 @@ def _collect(gmsh: Any, surfaces: dict[str, int], tags: dict[str, int],
 
 
 def write_deck(model: Model, *, P: float, s: float, E: float, nu: float,
-               settings: DeckSettings = DeckSettings(), title: str = "") -> str:
+               settings: DeckSettings = DeckSettings(), title: str = "", clamped: bool = False,
+               increment: tuple[float, float] = (1.0, 1.0 / 64)) -> str:
     """The CalculiX deck of ``model`` under the load ``P`` at ``x = s`` (per unit thickness).
 
     The punch's top is a lid: every top node's vertical displacement is the
@@ -631,8 +737,11 @@ def write_deck(model: Model, *, P: float, s: float, E: float, nu: float,
     corner's (tilt suppressed, then all of ``P`` acts there and ``s`` is an
     outcome). ``P`` at ``s`` is split over the corners so that their
     resultant and its moment are ``P`` and ``P s``. The punch's left corner is
-    held in ``x``, the block's base in ``y`` and its middle node in ``x``.
-    One linear static step in one increment.
+    held in ``x``, the block's base in ``y`` and its middle node in ``x``;
+    ``clamped``: the block's base in ``x`` and ``y`` and the punch's whole top
+    in ``x`` (the finite body of :func:`build_finite_model`, welded to its plate).
+    One linear static step in one increment; ``increment`` = (first, smallest)
+    increment of the step (CalculiX cuts an increment that does not converge).
     """
     P, s = positive("P", P, (1e-12, 1e15)), finite("s", s)
     E, nu = positive("E", E, (1e-6, 1e15)), finite("nu", nu)
@@ -683,11 +792,14 @@ def write_deck(model: Model, *, P: float, s: float, E: float, nu: float,
         F_R = P * (s - xL) / (xR - xL)
         loads = f"{tl}, 2, {-(P - F_R):.15g}\n{tr}, 2, {-F_R:.15g}\n"
     parts.append("*EQUATION\n" + "\n".join(rows) + "\n")
-    parts.append(boundary_text([("NBASE", 2), ("NMID", 1), (str(tl), 1)]))
+    parts.append(boundary_text([("NBASE", 1), ("NBASE", 2), ("NTOP", 1)] if clamped else
+                               [("NBASE", 2), ("NMID", 1), (str(tl), 1)]))
     parts.append("*STEP, INC=1000\n*CONTROLS, PARAMETERS=TIME INCREMENTATION\n"
-                 "40, 60, 9, 200, 10, 4, 12, 40\n*STATIC\n1., 1., 0.015625, 1.\n*CLOAD\n" + loads +
-                 "*NODE FILE, NSET=NOUT\nU, S\n*CONTACT FILE\nCDIS, CSTR\n"
-                 "*NODE PRINT, NSET=NBASE, TOTALS=ONLY\nRF\n*NODE PRINT, NSET=NCTRL\nU\n*END STEP\n")
+                 f"40, 60, 9, 200, 10, 4, 12, 40\n*STATIC\n{increment[0]:.15g}, 1., {increment[1]:.15g}, "
+                 f"{increment[0]:.15g}\n*CLOAD\n" + loads +
+                 "*NODE FILE, NSET=NOUT\nU, S\n*CONTACT FILE\nCDIS, CSTR, CELS\n"
+                 "*NODE PRINT, NSET=NBASE, TOTALS=ONLY\nRF\n*NODE PRINT, NSET=NCTRL\nU\n"
+                 "*NODE PRINT, NSET=NSURF\nU\n*CONTACT PRINT\nCSTR, CDIS, CELS\n*END STEP\n")
     return "".join(parts)
 
 
@@ -740,10 +852,13 @@ class SurfacePressure:
     """The contact pressure along the block's surface after one run.
 
     ``x`` are the block's surface nodes (deformed positions, sorted), ``p``
-    its surface ``-S22`` there, ``gap`` the distance up to the punch's
-    deformed face and ``cpress``/``copen`` CalculiX's contact output at those
-    nodes where it was written (NaN elsewhere); ``P`` the load the base
-    carries; ``a``, ``c`` the contact ends from the gap (:func:`contact_edge`).
+    the contact pressure there from CalculiX's nodal contact forces ``f``
+    (:func:`force_pressure`), ``s22`` the block's surface stress ``-S22``
+    (for comparison), ``gap`` the distance up to the punch's deformed face
+    and ``cpress``/``copen`` CalculiX's contact output at those nodes where it
+    was written (NaN elsewhere); ``P`` the load the base carries; ``a``, ``c``
+    the contact ends from the gap (:func:`contact_edge`); ``vertex`` flags the
+    vertex nodes of the quadratic faces.
     """
 
     x: np.ndarray
@@ -755,11 +870,21 @@ class SurfacePressure:
     a: float
     c: float
     vertex: np.ndarray
+    f: np.ndarray
+    s22: np.ndarray
 
 
 def surface_pressure(model: Model, stem: Path) -> SurfacePressure:
-    """Read one run of :func:`write_deck`: pressure, gap, contact output, load and contact ends."""
+    """Read one run of :func:`write_deck`: pressure, gap, contact output, load and contact ends.
+
+    The pressure is the contact's nodal forces (``*CONTACT PRINT`` CELS and
+    CDIS in the ``.dat``, :func:`nodal_forces`) over the nodes' shares of the
+    block's quadratic faces, freed of the vertex/midside alternation
+    (:func:`force_pressure`); the shares are taken on the undeformed surface
+    (small strain: a force per unit length of the reference surface).
+    """
     frd = read_frd(stem)
+    dat = read_dat(stem)
     U, S = frd["DISP"], frd["STRESS"]
     nb, npu = model.nsets["block_surface"], model.nsets["punch_profile"]
     ub = np.array([U[n][:2] for n in nb])
@@ -772,23 +897,29 @@ def surface_pressure(model: Model, stem: Path) -> SurfacePressure:
     from scipy.interpolate import CubicSpline
 
     gap = CubicSpline(xp[order], yp[order])(xb) - yb
-    p = -np.array([S[n][1] for n in nb])
+    s22 = -np.array([S[n][1] for n in nb])
     cp = np.full(len(nb), np.nan)
     co = np.full(len(nb), np.nan)
     contact = frd.get("CONTACT", {})
     for k, n in enumerate(nb):
         if int(n) in contact:
             co[k], cp[k] = contact[int(n)][0], contact[int(n)][3]
+    if "contact print energy" not in dat or "relative contact displacement" not in dat:
+        raise CcxError(f"{stem}.dat holds no `*CONTACT PRINT` CDIS, CELS: the deck must request them")
+    forces = nodal_forces(dat["relative contact displacement"], dat["contact print energy"],
+                          model.n_nodes)
+    f = np.array([forces.get(int(n), (0.0, 0))[0] for n in nb])
     vertex = np.zeros(len(model.xy) + 1, bool)
     for kind, conn in model.elements["block"]:
         vertex[conn[:4 if kind == "CPE8" else 3]] = True
     vertex = vertex[nb]
     order = np.argsort(xb)
-    x, p, gap, cp, co, vertex = (v[order] for v in (xb, p, gap, cp, co, vertex))
+    x, gap, cp, co, vertex, f, s22 = (v[order] for v in (xb, gap, cp, co, vertex, f, s22))
+    p = force_pressure(model.xy[nb[order] - 1, 0], f, vertex)
     c = contact_edge(x, gap)
     a = contact_edge(-x[::-1], gap[::-1])
     P = float(read_reaction(stem)[1])
-    return SurfacePressure(x, p, gap, cp, co, P, a, c, vertex)
+    return SurfacePressure(x, p, gap, cp, co, P, a, c, vertex, f, s22)
 
 
 def ccx_available() -> bool:
@@ -874,6 +1005,136 @@ def read_reaction(stem: Path) -> np.ndarray:
     i = max(k for k, ln in enumerate(lines) if ln.strip().startswith("total force"))
     return np.array([float(v) for v in lines[i + 2].split()[:2]])
 
+
+
+# --------------------------------------------------------------------------- the contact's nodal forces
+#: the nodes on each side of a node of the local fit that removes the vertex/midside alternation
+#: (:func:`dealternate`): 9 nodes, 4 elements of a quadratic face
+DEALTERNATE_NODES = 4
+
+
+def read_dat(stem: Path) -> dict[str, dict[int, np.ndarray]]:
+    """The printed blocks of ``stem.dat`` at the last time: ``{title: {node: values}}``.
+
+    The title is the block's heading up to its first ``(``, followed by the set's
+    name where the heading names one (``"displacements NSURF"``, ``"contact stress"``,
+    ``"relative contact displacement"``, ``"contact print energy"``,
+    ``"total force NBASE"``); a later time's block replaces an earlier one's.
+    """
+    out: dict[str, dict[int, np.ndarray]] = {}
+    current: dict[int, np.ndarray] | None = None
+    with open(f"{stem}.dat") as f:
+        for line in f:
+            words = line.split()
+            if not words:
+                continue
+            if words[0][0].isalpha():
+                title = line.split("(")[0].strip()
+                if " for set " in line:
+                    title += " " + line.split(" for set ")[1].split()[0]
+                current = {}
+                out[title] = current
+                continue
+            if current is not None and len(words) > 1:
+                try:
+                    current[int(words[0])] = np.array([float(w) for w in words[1:]])
+                except ValueError:
+                    current = None
+    return out
+
+
+def nodal_forces(copen: dict[int, np.ndarray], energy: dict[int, np.ndarray],
+                 n_nodes: int) -> dict[int, tuple[float, int]]:
+    """The contact's force at each slave node of a plane model: ``{node: (force, expanded nodes)}``.
+
+    CalculiX expands a plane element to a 3-D one and writes the contact
+    output on the expanded nodes: node ``n`` of ``n_nodes`` becomes
+    ``n_nodes + 3(n - 1) + 1..3`` (three for a vertex node, two for a midside
+    node of a quadratic face). The linear penalty law stores the energy
+    ``K g^2 A / 2`` in a contact element of overclosure ``g = -COPEN`` and
+    nodal area ``A``, and carries the force ``K g A``, so the force is
+    ``-2 CELS / COPEN`` (compressive positive; an open element's ``-K COPEN``
+    tension gives a small negative force). The forces of one plane node's
+    expanded nodes are summed.
+    """
+    out: dict[int, tuple[float, int]] = {}
+    for k, e in energy.items():
+        if k not in copen:
+            continue
+        n = k if k <= n_nodes else (k - n_nodes - 1) // 3 + 1
+        g = float(copen[k][0])
+        f = -2.0 * float(e[0]) / g if g != 0.0 else 0.0
+        prev = out.get(n, (0.0, 0))
+        out[n] = (prev[0] + f, prev[1] + 1)
+    return out
+
+
+def nodal_areas(x: np.ndarray, vertex: np.ndarray, *, cut: bool = False) -> np.ndarray:
+    """The shares ``∫ N_i dx`` of the nodes ``x`` (sorted) of a quadratic surface: ``L/6`` at a
+    vertex from each element, ``2 L/3`` at a midside node, ``L`` the element's length.
+
+    ``vertex`` flags the vertex nodes; they and the midside nodes alternate.
+    ``cut``: the nodes are cut from a longer face (CalculiX's contact output
+    covers the slave nodes near the master only), so an end vertex's missing
+    element is taken as long as its neighbour.
+    """
+    w = np.zeros(len(x))
+    for i in (int(k) for k in np.flatnonzero(~vertex)):
+        lo, hi = max(i - 1, 0), min(i + 1, len(x) - 1)
+        L = (x[hi] - x[lo]) * (2 if hi - lo == 1 else 1)
+        w[i] += 2 * L / 3
+        if hi - lo == 2:
+            w[lo] += L / 6
+            w[hi] += L / 6
+    if cut:
+        for j, step in ((0, 2), (1, 2), (len(x) - 1, -2), (len(x) - 2, -2)):
+            if 0 <= j < len(x) and vertex[j] and 0 <= j + step < len(x) and not 0 <= j - step < len(x):
+                w[j] *= 2
+    return w
+
+
+def dealternate(x: np.ndarray, p: np.ndarray, vertex: np.ndarray,
+                m: int = DEALTERNATE_NODES) -> np.ndarray:
+    """``p`` without its vertex/midside alternation: at each node, the value of the local fit
+    ``q(x) + d_i`` over the ``2 m + 1`` nodes centred on it, ``q`` quadratic and ``d_i = 2 delta``
+    at a vertex, ``-delta`` at a midside node; the ``m`` nodes at each end keep their value.
+
+    A node-to-surface penalty's nodal forces over the nodes' shares of a
+    quadratic face (:func:`nodal_areas`) still alternate between vertex and
+    midside nodes by about 1 % of the peak; the offsets ``2 delta``,
+    ``-delta`` carry no force over an element (``2 delta L/3 - delta 2 L/3 = 0``).
+    The fit reproduces any quadratic exactly (no ``h^2 p''`` bias, unlike an
+    average over an element).
+    """
+    n = len(x)
+    d = np.where(vertex, 2.0, -1.0)
+    out = np.array(p, dtype=float)
+    if n < 2 * m + 1:
+        return out
+    for i in range(m, n - m):            # centred windows only: no extrapolation at the ends
+        lo, hi = i - m, i + m + 1
+        t = (x[lo:hi] - x[i]) / (x[hi - 1] - x[lo])
+        A = np.c_[np.ones(hi - lo), t, t * t, d[lo:hi]]
+        out[i] = np.linalg.lstsq(A, p[lo:hi], rcond=None)[0][0]
+    return out
+
+
+def force_pressure(x: np.ndarray, f: np.ndarray, vertex: np.ndarray, *, cut: bool = False) -> np.ndarray:
+    """The contact pressure at the nodes ``x`` (sorted) of a quadratic slave face from their forces
+    ``f``: ``f / ∫N_i dx`` (:func:`nodal_areas`) freed of the vertex/midside alternation
+    (:func:`dealternate`) between the first and the last loaded node (``f > 0``).
+    ``cut``: as :func:`nodal_areas`."""
+    w = nodal_areas(x, vertex, cut=cut)
+    p = np.divide(f, w, out=np.zeros_like(f), where=w > 0)
+    on = np.flatnonzero(f > 0)
+    if on.size:
+        # the fit stays inside the loaded nodes: across a contact end it would spread the
+        # square-root end's curvature onto the open nodes; the DEALTERNATE_NODES nodes next to
+        # each end keep f / share (better for ∫p than an average over an element there:
+        # 8.5e-4 against 1.0e-3 of P on the default deck)
+        i, j = on[0], on[-1] + 1
+        p[i:j] = dealternate(x[i:j], p[i:j], vertex[i:j])
+    return p
 
 
 def contact_edge(x: np.ndarray, gap: np.ndarray, k: int = 8) -> float:

@@ -10,7 +10,7 @@ map      where the half-plane formulas stop: the finite-body validity map, on da
 export-refs  the catalogue's reference solutions as a versioned dataset (JSON + CSV, JSON schema)
 fatigue  fretting-fatigue parameters of a fretting cycle: hot spots, CSV, VTU and a contour plot
 deck     a ready-to-run CalculiX input deck of a catalogue case or of a punch and loads
-compare  judge another code's contact pressure (CSV x, p or CalculiX .frd) against threepart
+compare  judge another code's contact pressure (CSV x, p or CalculiX .frd/.dat) against threepart
 
 --method auto (default) uses the paper's closed form where it holds and the SIE
 where it does not (past lift-off, the punch on one corner, a stick zone that
@@ -941,12 +941,12 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--pair", action="store_true",
                    help="two similar elastic bodies instead of a stiff punch")
     p.add_argument("--stiffening", type=float,
-                   help="the stiff punch's modulus over the block's (default 10)")
+                   help="the stiff punch's modulus over the block's (default 1000)")
     p.set_defaults(func=_cmd_deck)
 
     p = sub.add_parser("compare", help="judge another code's contact pressure against threepart")
     p.add_argument("--pressure", required=True, metavar="FILE",
-                   help="a CSV of x, p (p >= 0 compressive) or CalculiX's .frd with CPRESS")
+                   help="a CSV of x, p (p >= 0 compressive), or CalculiX's .frd or .dat (with the deck .inp beside it) holding the contact output CDIS, CSTR, CELS")
     _problem_args(p, compliance_option=True)
     p.add_argument("--alpha", type=float, help=_labelled("the model's tilt, if known", "alpha"))
     p.add_argument("--penalty", type=float, metavar="K",
