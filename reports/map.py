@@ -348,12 +348,16 @@ def main(out: str | Path = "map", quick: bool = False, scheduler: str | None = N
     status = exit_status(doc)
     control = doc["control_rel_error"]
     say(f"{'DONE' if status == 0 else 'FAILED'}: {s['points'] - s['failed']}/{s['points']} points "
-        f"({s['computed']} computed now), control error "
+        f"({s['computed']} computed now), {len(doc['boundaries'])} boundaries "
+        f"({doc['bisection']['steps']} bisection steps), control error "
         f"{'n/a' if control is None else f'{control:.2e}'} (limit {CONTROL_LIMIT:g}), "
         f"{s['run_time_s']:.1f} s -> {Path(out) / 'map.json'}")
     for p in doc["points"]:
         if p["error"] is not None:
             say(f"  failed: {p['key']}: {p['error']}")
+    for b in doc["boundaries"]:
+        if b["status"] == "failed":
+            say(f"  failed: boundary {b['level']:+g} at b/R1 = {b['b_over_R1']:g}: {b['error']}")
     if doc["control"].get("error"):
         say(f"  failed: control: {doc['control']['error']}")
     return status

@@ -800,3 +800,47 @@ def test_signed_contours_do_not_fold_back_where_the_error_changes_sign():
             d = np.diff(v[:, 1])
             assert np.all(d >= 0) or np.all(d <= 0), level
     assert all(crossings(folded[0.01], y) == 2 for y in rows)      # the old failure, on |e|
+
+
+# ---------------------------------------------------------------------------------------
+# the lever-arm axis (no FEM)
+# ---------------------------------------------------------------------------------------
+#: the closed form's own root: the load's brentq closes to 1e-13 relative
+LOAD_ROOT = 1e-10
+#: Gauss-Chebyshev quadrature of the closed form's pressure, 4000 nodes: its slope has
+#: logarithmic singularities at the joins x = -b, b, which cost the rule its spectral accuracy
+#: (400 nodes: 2.5e-6)
+CENTROID_QUADRATURE = 1e-6
+
+
+@pytest.mark.parametrize("point", [MapPoint(1.0, 0.1, 0.03, 4.0, 0.5), MapPoint(0.5, 1.0, 0.2, 4.0, 0.5),
+                                   MapPoint(0.5, 0.3, 0.1, 16.0, 0.0)])
+def test_a_point_with_a_moment_is_loaded_at_its_overhang_and_half_its_lift_off_arm(point):
+    """s = s_over_lift * s_max(P) from the registry's lift-off capability; max(a, c) - b the overhang;
+    the centroid of the closed form's pressure (quadrature) is s and its integral is P."""
+    import numpy as np
+
+    from threepart import closedform, registry
+    from threepart.material import similar_pair
+    from threepart.reports import validity
+
+    punch, P, s = validity._load_case(point)
+    A = similar_pair(validity.E, validity.NU)
+    s_max = registry.lift_off("closedform", punch, P, A)[1]
+    assert s == point.s_over_lift * s_max
+    cf = closedform.solve_normal(punch, P, s, A=A, beyond_small_slopes=True)
+    assert max(cf.a, cf.c) - punch.b == pytest.approx(point.a_minus_b_over_R1 * validity.R1,
+                                                      rel=LOAD_ROOT)
+    if point.s_over_lift > 0:
+        assert cf.c > cf.a                                      # the load towards the R2 edge
+    # Gauss-Chebyshev of the second kind on [-a, c]: p(x) sqrt-vanishes at both ends
+    n = 4000
+    k = np.arange(1, n + 1)
+    t = np.cos(k * np.pi / (n + 1))
+    w = np.pi / (n + 1) * np.sin(k * np.pi / (n + 1)) ** 2
+    half, mid = (cf.a + cf.c) / 2, (cf.c - cf.a) / 2
+    x = mid + half * t
+    g = cf.pressure(x) / np.sqrt(1 - t**2)
+    force = half * np.sum(w * g)
+    assert force == pytest.approx(P, rel=CENTROID_QUADRATURE)
+    assert half * np.sum(w * g * x) / force == pytest.approx(s, abs=CENTROID_QUADRATURE * cf.width)
