@@ -68,7 +68,7 @@ class Sample:
 def _sample(p: dict[str, Any]) -> Sample | None:
     if not (finite(p.get("peak_rel_error")) and finite(p.get(X))):
         return None
-    u = p.get("fem_error_estimate")
+    u: Any = p.get("fem_error_estimate")
     return Sample(float(p[X]), float(p["peak_rel_error"]), float(u) if finite(u) else 0.0, p["key"])
 
 

@@ -93,11 +93,62 @@ def _sign_words(errors: Sequence[float]) -> str:
             f"{pct(-under)}: not conservative everywhere")
 
 
-def _crossing(boundaries: Sequence[dict[str, Any]], b: float, after: float | None) -> dict[str, Any] | None:
-    """The first located ±1 % crossing of the curve ``b/R1`` past the overhang ``after``."""
-    found = [r for r in boundaries if r["b_over_R1"] == b and abs(r["level"]) == LIMIT
-             and r["status"] != "failed" and (after is None or r[X] > after)]
+def _crossing(boundaries: Sequence[dict[str, Any]], b: float, lo: float, hi: float,
+              level: float) -> dict[str, Any] | None:
+    """The located ``± level`` crossing of the curve ``b/R1`` between the grid overhangs ``lo`` and ``hi``."""
+    found = [r for r in boundaries if r["b_over_R1"] == b and abs(r["level"]) == level
+             and r["status"] != "failed" and lo < r[X] < hi]
     return min(found, key=lambda r: r[X], default=None)
+
+
+def _end(boundaries: Sequence[dict[str, Any]], b: float, lo: float, hi: float, level: float) -> str:
+    """One end of a range within ``± level``: the located crossing with its band, or the grid bracket."""
+    r = _crossing(boundaries, b, lo, hi, level)
+    if r is None:
+        return f"between {lo:g} and {hi:g}"
+    return f"≈ {r[X]:.3g} (FEM band {r['band'][0]:.3g}–{r['band'][1]:.3g})"
+
+
+def _row(line: Sequence[dict[str, Any]], b: float, level: float,
+         boundaries: Sequence[dict[str, Any]]) -> str:
+    """The designer's words for one curve ``b/R1``: where it is within ``± level``, and its sign."""
+    at = f"at b/R1 = {b:g}"
+    xs = [p[X] for p in line]
+    es: list[Any] = [p.get("peak_rel_error") for p in line]
+    ok = [e is not None and finite(e) for e in es]
+    if not any(ok):
+        return f"unknown {at} (its points failed)"
+    inside = [i for i in range(len(line)) if ok[i] and abs(es[i]) < level]
+    if not inside:
+        return f"at no load swept {at} (it {_sign_words([e for e, k in zip(es, ok) if k])})"
+    runs: list[list[int]] = []
+    for i in inside:
+        if runs and runs[-1][-1] == i - 1:
+            runs[-1].append(i)
+        else:
+            runs.append([i])
+    ranges = []
+    for run in runs:
+        i, j = run[0], run[-1]
+        frm = (f"from the lightest load swept, {xs[0]:g}" if i == 0 else
+               f"from {_end(boundaries, b, xs[i - 1], xs[i], level)}" if ok[i - 1] else
+               f"from {xs[i]:g} (the point before failed)")
+        to = (f"to the end of the sweep, {xs[-1]:g}" if j == len(line) - 1 else
+              f"to {_end(boundaries, b, xs[j], xs[j + 1], level)}" if ok[j + 1] else
+              f"to {xs[j]:g} (the next point failed)")
+        run_e = [es[k] for k in run]
+        sign = ("conservative" if min(run_e) >= 0 else "not conservative" if max(run_e) <= 0
+                else "changing sign there: not conservative throughout")
+        ranges.append(f"(a−b)/R1 {frm} {to} ({sign})")
+    words = f"{at} for {' and '.join(ranges)}"
+    lighter = [es[k] for k in range(runs[0][0]) if ok[k]]
+    heavier = [es[k] for k in range(runs[-1][-1] + 1, len(line)) if ok[k]]
+    between = [es[k] for a, c in zip(runs, runs[1:]) for k in range(a[-1] + 1, c[0]) if ok[k]]
+    for errors, where in ((lighter, "at lighter loads"), (between, "in between"),
+                          (heavier, "at heavier loads")):
+        if errors:
+            words += f"; {where} it {_sign_words(errors)}"
+    return words
 
 
 def designer_sentence(points: Sequence[dict[str, Any]], R2_over_R1: float, H_over_b: float,
@@ -105,13 +156,12 @@ def designer_sentence(points: Sequence[dict[str, Any]], R2_over_R1: float, H_ove
                       boundaries: Sequence[dict[str, Any]] = ()) -> str:
     """What the contour map of ``points`` (one group) means for a designer, in one sentence.
 
-    For each ``b/R1``: up to which ``(a-b)/R1`` the closed form's peak is
-    within ``± level`` of the finite body's (the located boundary with its
-    FEM band where the map bisected it, else the last grid point), whether it
-    is conservative there (positive error: it over-predicts the peak), and
-    by how much it over- or under-predicts the peak beyond.
+    For each ``b/R1``: over which ``(a-b)/R1`` the closed form's peak is
+    within ``± level`` of the finite body's (each end the located boundary
+    with its FEM band where the map bisected it, else the grid bracket),
+    whether it is conservative there (a positive error: it over-predicts the
+    peak), and by how much it over- or under-predicts the peak outside.
     """
-    rows = below_level(points, level)
     estimates = [p["fem_error_estimate"] for p in points if finite(p.get("fem_error_estimate"))]
     caveat = ""
     if estimates and max(estimates) > level / 3:
@@ -120,39 +170,19 @@ def designer_sentence(points: Sequence[dict[str, Any]], R2_over_R1: float, H_ove
     lever = "s = 0" if s_over_lift == 0 else f"s = {s_over_lift:g} of the lift-off lever arm"
     head = (f"For R2/R1 = {R2_over_R1:g}, H/b = {H_over_b:g} and {lever}, the closed form's "
             "peak pressure")
-    if rows and all(r["limit"] is None and r["stop"] == "level" for r in rows):
-        first = [r["first_error"] for r in rows]
-        lightest = ", ".join(f"{v:g}" for v in sorted({r["first"] for r in rows}))
-        return (f"{head} is off by {pct(min(first, key=abs))} to {pct(max(first, key=abs))} already "
-                f"at the lightest load swept, (a−b)/R1 = {lightest}, for every b/R1 (it "
-                f"{_sign_words(first)}): over this whole range, design with a finite-body "
-                f"model{caveat}.")
-    parts = []
-    for row in rows:
-        at = f"at b/R1 = {row['b_over_R1']:g}"
-        if row["limit"] is None and row["stop"] == "failed":
-            parts.append(f"unknown {at} (its first point failed)")
-            continue
-        if row["limit"] is None:
-            parts.append(f"at no load swept {at} (already at (a−b)/R1 = {row['first']:g} it "
-                         f"{_sign_words([row['first_error']])})")
-            continue
-        inside = "conservative" if min(row["inside"]) >= 0 else "not conservative"
-        if row["stop"] == "end":
-            parts.append(f"{at} over the whole sweep, (a−b)/R1 ≤ {row['swept']:g}, and {inside} "
-                         f"there (it {_sign_words(row['inside']).split(':')[0]})")
-            continue
-        cross = _crossing(boundaries, row["b_over_R1"], row["limit"]) if row["stop"] == "level" else None
-        if cross is not None:
-            lo, hi = cross["band"]
-            upto = f"(a−b)/R1 ≈ {cross[X]:.3g} (FEM band {lo:.3g}–{hi:.3g})"
-        else:
-            why = " (the next point failed)" if row["stop"] == "failed" else ""
-            upto = f"(a−b)/R1 = {row['limit']:g}{why}"
-        beyond = (f"; beyond, it {_sign_words(row['beyond'])}" if row["beyond"] else "")
-        parts.append(f"{at} up to {upto} and {inside} there{beyond}")
-    return (f"{head} is within {pct(level)} of the finite body's {'; '.join(parts)}; "
-            f"past these limits (heavier loads) design with a finite-body model{caveat}.")
+    lines = {b: sorted((p for p in points if p["b_over_R1"] == b), key=lambda p: p[X])
+             for b in sorted({p["b_over_R1"] for p in points})}
+    firsts: list[Any] = [line[0].get("peak_rel_error") for line in lines.values()]
+    every: list[Any] = [p.get("peak_rel_error") for line in lines.values() for p in line]
+    if all(finite(e) and abs(e) >= level for e in every):
+        lightest = ", ".join(f"{v:g}" for v in sorted({line[0][X] for line in lines.values()}))
+        return (f"{head} is off by {pct(min(firsts, key=abs))} to {pct(max(firsts, key=abs))} "
+                f"already at the lightest load swept, (a−b)/R1 = {lightest}, and more than "
+                f"{pct(level)} everywhere (it {_sign_words(every)}): over this whole range, "
+                f"design with a finite-body model{caveat}.")
+    parts = [_row(line, b, level, boundaries) for b, line in lines.items()]
+    return (f"{head} is within {pct(level)} of the finite body's {'; '.join(parts)}. Elsewhere "
+            f"design with a finite-body model{caveat}.")
 
 
 def _lines(ax: Any, x: Any, y: Any, z: Any, levels: Sequence[float]) -> Any:
@@ -161,7 +191,7 @@ def _lines(ax: Any, x: Any, y: Any, z: Any, levels: Sequence[float]) -> Any:
 
     try:
         tri = Triangulation(x, y)
-        inside = [lv for lv in levels if z.min() < lv < z.max()]
+        inside = sorted(lv for lv in levels if z.min() < lv < z.max())
         if not inside:
             return None
         return ax.tricontour(tri, z, levels=inside, colors="k",
