@@ -73,24 +73,35 @@ def one_run(workers: int, fake: float | None, root: Path) -> dict[str, Any]:
                    say=lambda m: print(f"    {m}", flush=True))
 
 
-def estimate_full(n: int, workers: int, crossings: float) -> int:
-    """Time ``n`` points spread over the full grid; print the full map's estimated wall time."""
+def estimate_full(n: int, workers: int, crossings: float, quick: bool = False) -> int:
+    """Time ``n`` points spread over the full grid; print the full map's estimated wall time.
+
+    Each point's wall time (``time_s``) and this process's CPU time are both
+    printed: on a machine that other jobs load, the CPU time is the better
+    estimate of the wall time on an idle one (each point is single-threaded;
+    run with ``OMP_NUM_THREADS=1``). ``quick`` times the same points on the
+    quick meshes.
+    """
     grid = validity.map_points(False)
     sample = grid[::max(1, len(grid) // n)][:n]
-    times = []
+    wall, cpu = [], []
     for p in sample:
-        r = validity.evaluate(p, False)
-        times.append(r["time_s"])
-        print(f"    {p.key()}  peak error {100 * r['peak_rel_error']:+.3g} %  {r['time_s']:.1f} s",
-              flush=True)
-    mean = sum(times) / len(times)
+        c0 = time.process_time()
+        r = validity.evaluate(p, quick)
+        cpu.append(time.process_time() - c0)
+        wall.append(r["time_s"])
+        print(f"    {p.key()}  peak error {100 * r['peak_rel_error']:+.3g} %  wall {r['time_s']:.1f} s, "
+              f"CPU {cpu[-1]:.1f} s", flush=True)
     curves = len({tuple(getattr(p, a) for a in CURVE_AXES) for p in grid})
     steps = curves * crossings * STEP_CAP["full"]
-    wall = mean * (len(grid) + steps) / workers
-    print(f"full grid: {len(grid)} points, {curves} curves; sample of {len(sample)}: mean "
-          f"{mean:.1f} s per point; with {crossings:g} crossings per curve x {STEP_CAP['full']} "
-          f"steps = {steps:.0f} bisection points: about {wall / 60:.0f} min on {workers} workers "
-          f"(without the control and its convergence study)")
+    for what, times in (("wall", wall), ("CPU", cpu)):
+        mean = sum(times) / len(times)
+        total = mean * (len(grid) + steps) / workers
+        print(f"full grid: {len(grid)} points, {curves} curves; {what} time of a sample of "
+              f"{len(sample)} on {'quick' if quick else 'default'} meshes: mean {mean:.1f} s per "
+              f"point; with {crossings:g} crossings per curve x {STEP_CAP['full']} steps = "
+              f"{steps:.0f} bisection points: about {total / 60:.0f} min on {workers} workers "
+              f"(without the control and its convergence study)")
     return 0
 
 

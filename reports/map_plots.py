@@ -94,56 +94,77 @@ def _sign_words(errors: Sequence[float]) -> str:
 
 
 def _crossing(boundaries: Sequence[dict[str, Any]], b: float, lo: float, hi: float,
-              level: float) -> dict[str, Any] | None:
-    """The located ``± level`` crossing of the curve ``b/R1`` between the grid overhangs ``lo`` and ``hi``."""
+              level: float, sign: int = 0) -> dict[str, Any] | None:
+    """The located ``± level`` crossing of the curve ``b/R1`` between the overhangs ``lo`` and ``hi``.
+
+    ``sign`` +1 or -1 picks the level ``+level`` or ``-level``; 0 either.
+    """
     found = [r for r in boundaries if r["b_over_R1"] == b and abs(r["level"]) == level
-             and r["status"] != "failed" and lo < r[X] < hi]
+             and (sign == 0 or r["level"] * sign > 0) and r["status"] != "failed"
+             and lo < r[X] < hi]
     return min(found, key=lambda r: r[X], default=None)
 
 
-def _end(boundaries: Sequence[dict[str, Any]], b: float, lo: float, hi: float, level: float) -> str:
-    """One end of a range within ``± level``: the located crossing with its band, or the grid bracket."""
-    r = _crossing(boundaries, b, lo, hi, level)
-    if r is None:
-        return f"between {lo:g} and {hi:g}"
+def _band(r: dict[str, Any]) -> str:
+    """A located crossing with its FEM band."""
     return f"≈ {r[X]:.3g} (FEM band {r['band'][0]:.3g}–{r['band'][1]:.3g})"
+
+
+def _end(boundaries: Sequence[dict[str, Any]], b: float, lo: float, hi: float, level: float) -> str:
+    """One end of a range within ``± level``: the located crossing with its band, or the bracket."""
+    r = _crossing(boundaries, b, lo, hi, level)
+    return f"between {lo:g} and {hi:g}" if r is None else _band(r)
 
 
 def _row(line: Sequence[dict[str, Any]], b: float, level: float,
          boundaries: Sequence[dict[str, Any]]) -> str:
-    """The designer's words for one curve ``b/R1``: where it is within ``± level``, and its sign."""
+    """The designer's words for one curve ``b/R1``: where it is within ``± level``, and its sign.
+
+    A range within ``± level`` is a run of points inside it, or a window
+    between two adjacent points that jump from above ``+level`` to below
+    ``-level`` (or back) with both crossings located between them.
+    """
     at = f"at b/R1 = {b:g}"
     xs = [p[X] for p in line]
     es: list[Any] = [p.get("peak_rel_error") for p in line]
     ok = [e is not None and finite(e) for e in es]
     if not any(ok):
         return f"unknown {at} (its points failed)"
-    inside = [i for i in range(len(line)) if ok[i] and abs(es[i]) < level]
-    if not inside:
-        return f"at no load swept {at} (it {_sign_words([e for e, k in zip(es, ok) if k])})"
-    runs: list[list[int]] = []
-    for i in inside:
-        if runs and runs[-1][-1] == i - 1:
-            runs[-1].append(i)
-        else:
-            runs.append([i])
-    ranges = []
-    for run in runs:
-        i, j = run[0], run[-1]
+    # (first, last) positions of each range in the points' indices (a window: i + 1/2)
+    spans: list[tuple[float, float, str]] = []
+    for i in range(len(line)):
+        if not (ok[i] and abs(es[i]) < level):
+            if (i + 1 < len(line) and ok[i] and ok[i + 1] and abs(es[i + 1]) >= level
+                    and es[i] * es[i + 1] < 0):
+                down = _crossing(boundaries, b, xs[i], xs[i + 1], level, +1)
+                up = _crossing(boundaries, b, xs[i], xs[i + 1], level, -1)
+                if down is not None and up is not None:
+                    a, c = sorted((down, up), key=lambda r: r[X])
+                    spans.append((i + 0.5, i + 0.5, f"(a−b)/R1 from {_band(a)} to {_band(c)} "
+                                  "(changing sign there: not conservative throughout)"))
+            continue
+        if spans and i <= spans[-1][1]:   # inside the run already written
+            continue
+        j = i
+        while j + 1 < len(line) and ok[j + 1] and abs(es[j + 1]) < level:
+            j += 1
         frm = (f"from the lightest load swept, {xs[0]:g}" if i == 0 else
                f"from {_end(boundaries, b, xs[i - 1], xs[i], level)}" if ok[i - 1] else
                f"from {xs[i]:g} (the point before failed)")
         to = (f"to the end of the sweep, {xs[-1]:g}" if j == len(line) - 1 else
               f"to {_end(boundaries, b, xs[j], xs[j + 1], level)}" if ok[j + 1] else
               f"to {xs[j]:g} (the next point failed)")
-        run_e = [es[k] for k in run]
+        run_e = es[i:j + 1]
         sign = ("conservative" if min(run_e) >= 0 else "not conservative" if max(run_e) <= 0
                 else "changing sign there: not conservative throughout")
-        ranges.append(f"(a−b)/R1 {frm} {to} ({sign})")
-    words = f"{at} for {' and '.join(ranges)}"
-    lighter = [es[k] for k in range(runs[0][0]) if ok[k]]
-    heavier = [es[k] for k in range(runs[-1][-1] + 1, len(line)) if ok[k]]
-    between = [es[k] for a, c in zip(runs, runs[1:]) for k in range(a[-1] + 1, c[0]) if ok[k]]
+        spans.append((i, j, f"(a−b)/R1 {frm} {to} ({sign})"))
+    if not spans:
+        return f"at no load swept {at} (it {_sign_words([e for e, k in zip(es, ok) if k])})"
+    words = f"{at} for {' and '.join(s[2] for s in spans)}"
+    lighter = [es[k] for k in range(len(line)) if ok[k] and k < spans[0][0]]
+    heavier = [es[k] for k in range(len(line)) if ok[k] and k > spans[-1][1]]
+    between = [es[k] for s, t in zip(spans, spans[1:]) for k in range(len(line))
+               if ok[k] and s[1] < k < t[0]]
     for errors, where in ((lighter, "at lighter loads"), (between, "in between"),
                           (heavier, "at heavier loads")):
         if errors:
@@ -151,14 +172,26 @@ def _row(line: Sequence[dict[str, Any]], b: float, level: float,
     return words
 
 
+def _curve(points: Sequence[dict[str, Any]], boundaries: Sequence[dict[str, Any]],
+           b: float) -> list[dict[str, Any]]:
+    """The curve ``b/R1`` of one group: its grid points and its bisection steps, by overhang."""
+    line = {p[X]: p for p in points if p["b_over_R1"] == b}
+    for r in boundaries:
+        if r["b_over_R1"] == b:
+            for s in r["steps"]:
+                line.setdefault(s[X], s)
+    return [line[x] for x in sorted(line)]
+
+
 def designer_sentence(points: Sequence[dict[str, Any]], R2_over_R1: float, H_over_b: float,
                       s_over_lift: float = 0.0, level: float = LIMIT,
                       boundaries: Sequence[dict[str, Any]] = ()) -> str:
     """What the contour map of ``points`` (one group) means for a designer, in one sentence.
 
-    For each ``b/R1``: over which ``(a-b)/R1`` the closed form's peak is
+    For each ``b/R1`` (the grid points and the bisection's steps of
+    ``boundaries``): over which ``(a-b)/R1`` the closed form's peak is
     within ``± level`` of the finite body's (each end the located boundary
-    with its FEM band where the map bisected it, else the grid bracket),
+    with its FEM band where the map bisected it, else the points' bracket),
     whether it is conservative there (a positive error: it over-predicts the
     peak), and by how much it over- or under-predicts the peak outside.
     """
@@ -170,17 +203,16 @@ def designer_sentence(points: Sequence[dict[str, Any]], R2_over_R1: float, H_ove
     lever = "s = 0" if s_over_lift == 0 else f"s = {s_over_lift:g} of the lift-off lever arm"
     head = (f"For R2/R1 = {R2_over_R1:g}, H/b = {H_over_b:g} and {lever}, the closed form's "
             "peak pressure")
-    lines = {b: sorted((p for p in points if p["b_over_R1"] == b), key=lambda p: p[X])
-             for b in sorted({p["b_over_R1"] for p in points})}
-    firsts: list[Any] = [line[0].get("peak_rel_error") for line in lines.values()]
-    every: list[Any] = [p.get("peak_rel_error") for line in lines.values() for p in line]
-    if all(finite(e) and abs(e) >= level for e in every):
+    lines = {b: _curve(points, boundaries, b) for b in sorted({p["b_over_R1"] for p in points})}
+    parts = [_row(line, b, level, boundaries) for b, line in lines.items()]
+    if all(p.startswith("at no load swept") for p in parts):
+        firsts: list[Any] = [line[0].get("peak_rel_error") for line in lines.values()]
+        every: list[Any] = [p.get("peak_rel_error") for line in lines.values() for p in line]
         lightest = ", ".join(f"{v:g}" for v in sorted({line[0][X] for line in lines.values()}))
         return (f"{head} is off by {pct(min(firsts, key=abs))} to {pct(max(firsts, key=abs))} "
                 f"already at the lightest load swept, (a−b)/R1 = {lightest}, and more than "
                 f"{pct(level)} everywhere (it {_sign_words(every)}): over this whole range, "
                 f"design with a finite-body model{caveat}.")
-    parts = [_row(line, b, level, boundaries) for b, line in lines.items()]
     return (f"{head} is within {pct(level)} of the finite body's {'; '.join(parts)}. Elsewhere "
             f"design with a finite-body model{caveat}.")
 
