@@ -336,7 +336,7 @@ def contour(points: Sequence[dict[str, Any]], R2_over_R1: float, H_over_b: float
                    marker="x", color="k", s=40, zorder=5)
     ys = sorted({p["b_over_R1"] for p in points})
     if _boundary_curves(ax, boundaries, ys):
-        ax.legend(fontsize=7, loc="lower left", framealpha=0.85)
+        ax.legend(fontsize=7, loc="best", framealpha=0.85)
     cb = fig.colorbar(filled if filled is not None else dots, ax=ax)
     cb.set_label("closed form − finite body, over its peak (+: conservative)")
     cb.ax.yaxis.set_major_formatter(lambda v, _pos: f"{100 * v:+g} %")
