@@ -214,10 +214,12 @@ def run_map(out: str | Path, *, quick: bool = False, scheduler: str | None = Non
                               "dask_version": dask.__version__}
     timings: dict[str, float] = {"startup_s": 0.0, "sweep_s": 0.0}
     with ExitStack() as stack:
-        engine_box: list[Any] = [None]
+        # the client (made on the first batch to compute, unless given a scheduler) and whether
+        # the engine line was said
+        live: dict[str, Any] = {"client": None, "said": False}
         if scheduler is not None:   # reached before `out` is touched: an unreachable one leaves nothing
             t1 = time.perf_counter()
-            engine_box[0], engine = stack.enter_context(open_engine(scheduler, 0, CONNECT_TIMEOUT))
+            live["client"], engine = stack.enter_context(open_engine(scheduler, 0, CONNECT_TIMEOUT))
             timings["startup_s"] = time.perf_counter() - t1
         rd = ResumableDir.open(out, command=COMMAND, mode=mode, force=force)
         stack.callback(rd.close)
@@ -236,15 +238,17 @@ def run_map(out: str | Path, *, quick: bool = False, scheduler: str | None = Non
         def run(batch: list[tuple[str, Callable[..., Any], tuple[Any, ...], Any]], done0: int,
                 of: int) -> None:
             nonlocal engine
-            if engine_box[0] is None:
+            if live["client"] is None:
                 t1 = time.perf_counter()
-                engine_box[0], engine = stack.enter_context(open_engine(
+                live["client"], engine = stack.enter_context(open_engine(
                     None, workers or DEFAULT_WORKERS, CONNECT_TIMEOUT))
                 timings["startup_s"] = time.perf_counter() - t1
+            if not live["said"]:
+                live["said"] = True
                 say(f"engine: {engine['kind']} at {engine['scheduler']}, {engine['workers']} "
                     f"workers (ready in {timings['startup_s']:.1f} s)")
             t2 = time.perf_counter()
-            for rec in sweep(engine_box[0], batch, log, mode, done0, of, say):
+            for rec in sweep(live["client"], batch, log, mode, done0, of, say):
                 records[rec["key"]] = rec
             timings["sweep_s"] += time.perf_counter() - t2
 
