@@ -867,3 +867,40 @@ def test_a_point_with_a_moment_is_loaded_at_its_overhang_and_half_its_lift_off_a
     force = half * np.sum(w * g)
     assert force == pytest.approx(P, rel=CENTROID_QUADRATURE)
     assert half * np.sum(w * g * x) / force == pytest.approx(s, abs=CENTROID_QUADRATURE * cf.width)
+
+
+KILLED_IN_BISECTION = """
+import sys
+from pathlib import Path
+from tests.test_map import SIGNED_POINTS, SignedEvaluate, fake_control
+from threepart.reports.map import run_map
+run_map(sys.argv[1], scheduler=sys.argv[2], evaluate=SignedEvaluate(Path(sys.argv[3]), sleep=0.1),
+        points=SIGNED_POINTS, control=fake_control, quick=True, say=lambda m: print(m, flush=True))
+"""
+
+
+def test_a_run_killed_in_the_bisection_resumes_with_its_finished_steps(tmp_path, counter, scheduler):
+    """SIGKILL once the grid is logged and the bisection's first steps are: nothing finished is redone."""
+    out = tmp_path / "map"
+    grid = {p.key() for p in SIGNED_POINTS}
+    proc = subprocess.Popen([sys.executable, "-c", KILLED_IN_BISECTION, str(out), scheduler, str(counter)],
+                            cwd=ROOT, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+    deadline = time.monotonic() + 120
+    while time.monotonic() < deadline and proc.poll() is None:
+        if (out / "points.jsonl").exists() and len(set(logged(out)) - grid) >= 2:
+            break
+        time.sleep(0.02)
+    proc.send_signal(signal.SIGKILL)
+    proc.communicate()
+    done = logged(out)
+    assert grid <= set(done) and len(set(done) - grid) >= 2, proc.stderr
+    time.sleep(0.5)                                             # the killed client's tasks drain
+    for f in counter.iterdir():
+        f.unlink()
+    doc = run_map(out, scheduler=scheduler, evaluate=SignedEvaluate(counter), quick=True,
+                  points=SIGNED_POINTS, control=fake_control, say=lambda m: None)
+    assert calls(counter) == sorted((grid | steps(doc)) - set(done))
+    assert set(done) - grid < steps(doc)                        # the finished steps were used
+    for r in doc["boundaries"]:                                 # and the crossings are exact
+        assert r["a_minus_b_over_R1"] == pytest.approx(
+            signed_crossing(r["b_over_R1"], r["s_over_lift"], r["level"]), rel=ROUND_OFF)
