@@ -904,3 +904,25 @@ def test_a_run_killed_in_the_bisection_resumes_with_its_finished_steps(tmp_path,
     for r in doc["boundaries"]:                                 # and the crossings are exact
         assert r["a_minus_b_over_R1"] == pytest.approx(
             signed_crossing(r["b_over_R1"], r["s_over_lift"], r["level"]), rel=ROUND_OFF)
+
+
+def test_the_errors_are_signed_closed_form_minus_finite_body():
+    """A heavier load presses harder: as the 'closed form' against a lighter 'finite body' every
+    error is positive, swapped every one is negative, and each magnitude is the comparator's."""
+    from threepart import closedform
+    from threepart.material import similar_pair
+    from threepart.reports import validity
+    from threepart.reports.compare import normal_figures
+
+    punch, A = validity._punch(MapPoint(0.5, 0.3, 0.1, 4.0)), similar_pair(validity.E, validity.NU)
+    light = closedform.solve_normal(punch, 0.1, 0.05, A=A, beyond_small_slopes=True)
+    heavy = closedform.solve_normal(punch, 0.12, 0.05, A=A, beyond_small_slopes=True)
+    for fe, cf, sign in ((light, heavy, 1.0), (heavy, light, -1.0)):
+        e = validity._errors(fe, cf)
+        fig = normal_figures(fe, cf)
+        for k, q in (("p_left_rel_error", "p_left"), ("p_right_rel_error", "p_right")):
+            assert e[k] * sign > 0 and abs(e[k]) == fig[q][2]
+        assert e["a_rel_error"] == (cf.a - fe.a) / fe.a and e["a_rel_error"] * sign > 0
+        assert e["c_rel_error"] == (cf.c - fe.c) / fe.c and e["c_rel_error"] * sign > 0
+        assert abs(e["alpha_error"]) == fig["alpha"][2]
+        assert e["peak_rel_error"] == max(e["p_left_rel_error"], e["p_right_rel_error"], key=abs)
