@@ -13,6 +13,12 @@ the tasks' own times (``time_s``), the overhead per task
 (``(sweep x workers - sum) / tasks``: dask, the workers' first imports and idle
 workers at the end) and the total with the plots; then the
 speed-up of the sweep and of the total. ``--workers 1,2,4`` times other counts.
+
+``python benchmarks/bench_map.py --estimate-full N`` estimates the full map
+without running it: it evaluates every ``len(grid)/N``-th point of the full
+grid (all axes represented) in this process, one after the other, and scales
+the mean ``time_s`` to the full grid plus its bisection steps (``--crossings``
+per curve, each at most ``STEP_CAP["full"]`` steps) on ``--workers`` workers.
 """
 from __future__ import annotations
 
@@ -25,6 +31,7 @@ from pathlib import Path
 from typing import Any
 
 from threepart.reports import validity
+from threepart.reports.map_boundary import CURVE_AXES, STEP_CAP
 from threepart.reports.map import exit_status, run_map
 from threepart.reports.validity import RESULT_KEYS
 
@@ -41,7 +48,7 @@ class SleepEvaluate:
         e = 0.003 * (point.a_minus_b_over_R1 / 0.01) * (point.b_over_R1 / 0.1)
         return {"peak_rel_error": e, "p_left_rel_error": e, "p_right_rel_error": e,
                 "a_rel_error": e / 3, "c_rel_error": e / 3, "alpha_error": e / 10,
-                "fem_error_estimate": 1e-4, "P": 1.0, "time_s": time.perf_counter() - t0}
+                "fem_error_estimate": 1e-4, "P": 1.0, "s": 0.0, "time_s": time.perf_counter() - t0}
 
 
 class SleepControl:
@@ -66,13 +73,53 @@ def one_run(workers: int, fake: float | None, root: Path) -> dict[str, Any]:
                    say=lambda m: print(f"    {m}", flush=True))
 
 
+def estimate_full(n: int, workers: int, crossings: float, quick: bool = False) -> int:
+    """Time ``n`` points spread over the full grid; print the full map's estimated wall time.
+
+    Each point's wall time (``time_s``) and this process's CPU time are both
+    printed: on a machine that other jobs load, the CPU time is the better
+    estimate of the wall time on an idle one (each point is single-threaded;
+    run with ``OMP_NUM_THREADS=1``). ``quick`` times the same points on the
+    quick meshes.
+    """
+    grid = validity.map_points(False)
+    sample = grid[::max(1, len(grid) // n)][:n]
+    wall, cpu = [], []
+    for p in sample:
+        c0 = time.process_time()
+        r = validity.evaluate(p, quick)
+        cpu.append(time.process_time() - c0)
+        wall.append(r["time_s"])
+        print(f"    {p.key()}  peak error {100 * r['peak_rel_error']:+.3g} %  wall {r['time_s']:.1f} s, "
+              f"CPU {cpu[-1]:.1f} s", flush=True)
+    curves = len({tuple(getattr(p, a) for a in CURVE_AXES) for p in grid})
+    steps = curves * crossings * STEP_CAP["full"]
+    for what, times in (("wall", wall), ("CPU", cpu)):
+        mean = sum(times) / len(times)
+        total = mean * (len(grid) + steps) / workers
+        print(f"full grid: {len(grid)} points, {curves} curves; {what} time of a sample of "
+              f"{len(sample)} on {'quick' if quick else 'default'} meshes: mean {mean:.1f} s per "
+              f"point; with {crossings:g} crossings per curve x {STEP_CAP['full']} steps = "
+              f"{steps:.0f} bisection points: about {total / 60:.0f} min on {workers} workers "
+              f"(without the control and its convergence study)")
+    return 0
+
+
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--fake", type=float, metavar="SECONDS",
                         help="a fake evaluate that sleeps SECONDS per point (times the engine alone)")
     parser.add_argument("--workers", default="1,2", metavar="N1,N2,...",
                         help="local worker counts to time, the first is the baseline (default: 1,2)")
+    parser.add_argument("--estimate-full", type=int, metavar="N",
+                        help="time N points spread over the full grid and estimate the full map")
+    parser.add_argument("--crossings", type=float, default=1.5,
+                        help="with --estimate-full: located crossings per curve (default 1.5)")
     args = parser.parse_args(argv)
+    if args.estimate_full is not None:
+        if args.estimate_full < 1:
+            parser.error(f"--estimate-full {args.estimate_full} must be >= 1")
+        return estimate_full(args.estimate_full, int(args.workers.split(",")[-1]), args.crossings)
     counts = [int(w) for w in args.workers.split(",")]
     if args.fake is not None and not (math.isfinite(args.fake) and args.fake >= 0):
         parser.error(f"--fake {args.fake} must be a number of seconds >= 0")

@@ -9,8 +9,15 @@ arrive (one JSON line per task, flushed and fsynced), so an interrupted sweep
 resumes where it stopped; a point whose ``evaluate`` raised is recorded with
 its error message and retried by the next run. At the end the map is written
 as ``map.json`` (valid against ``reports/map.schema.json``), ``map.csv`` (the
-same points, one row each) and ``plots/*.png``, one contour map of the
-peak-pressure error per ``R2/R1`` and ``H/b``.
+same points, one row each), ``boundaries.csv`` and ``plots/*.png``, one contour
+map of the signed peak-pressure error per ``R2/R1``, ``H/b`` and ``s/s_lift-off``.
+
+After the grid, the boundary (issue 23) is located: for each curve of the
+grid (the group axes and ``b/R1``) and each level of
+:data:`reports.map_boundary.LEVELS` bracketed by two adjacent grid points,
+a bisection in ``log((a - b)/R1)`` runs in waves (all curves' step ``k`` in
+parallel), each step one more point in ``points.jsonl`` with its own key, so
+that a resumed map reuses the finished steps.
 
 The output directory
 --------------------
@@ -38,6 +45,7 @@ map_schema -- the fields of a point (the design-space axes), the schema, ``map.c
 map_log    -- the sweep's log ``points.jsonl``: its records and the resume state
 map_engine -- dask.distributed: the cluster and the sweep
 map_plots  -- the designer's reading and the contour plots
+map_boundary -- the boundary: where the signed error crosses a level, by bisection
 
 Names
 -----
@@ -68,10 +76,11 @@ from threepart.tolerances import tolerance
 
 from . import validity
 from .map_engine import open_engine, sweep
+from .map_boundary import LEVELS, REL_WIDTH, STEP_CAP, X, Bisection, Sample, start
 from .map_log import CONTROL_KEY, POINTS_FILE, done, read_log
-from .map_plots import LEVELS, below_level, contour, designer_sentence
-from .map_schema import (COLUMNS, COORDINATES, GROUP_AXES, SCHEMA_FILE, SCHEMA_VERSION, csv_text,
-                         finite, groups, load_schema, plot_name, validate)
+from .map_plots import below_level, contour, designer_sentence
+from .map_schema import (COLUMNS, COORDINATES, GROUP_AXES, SCHEMA_FILE, SCHEMA_VERSION,
+                         boundaries_csv, csv_text, finite, groups, load_schema, plot_name, validate)
 from .validity import MapPoint
 
 __all__ = ["run_map", "main", "exit_status", "check_arguments", "below_level", "designer_sentence",
@@ -125,12 +134,19 @@ def _draw(rd: ResumableDir, doc: dict[str, Any], say: Say) -> None:
         where = dict(zip(GROUP_AXES, values))
         rel = plot_name(values)
         group = [p for p in points if all(p[a] == v for a, v in where.items())]
-        sentence = designer_sentence(group, **where)
-        rd.write(rel, lambda path: contour(group, **where, sentence=sentence, path=path))
+        lines = [b for b in doc["boundaries"] if all(b[a] == v for a, v in where.items())]
+        sentence = designer_sentence(group, **where, boundaries=lines)
+        rd.write(rel, lambda path: contour(group, **where, sentence=sentence, path=path,
+                                           boundaries=lines))
         doc["plots"].append({"file": rel, **where, "sentence": sentence,
                              "below_1_percent": [{k: row[k] for k in ("b_over_R1", "limit", "stop")}
                                                  for row in below_level(group)]})
         say(f"  {rel}: {sentence}")
+
+
+def _step_point(b: Bisection, x: float) -> MapPoint:
+    """The map point of a bisection step: the curve's coordinates at the overhang ``x``."""
+    return MapPoint(**b.curve, **{X: x})
 
 
 def exit_status(doc: dict[str, Any]) -> int:
@@ -198,10 +214,12 @@ def run_map(out: str | Path, *, quick: bool = False, scheduler: str | None = Non
                               "dask_version": dask.__version__}
     timings: dict[str, float] = {"startup_s": 0.0, "sweep_s": 0.0}
     with ExitStack() as stack:
-        client = None
+        # the client (made on the first batch to compute, unless given a scheduler) and whether
+        # the engine line was said
+        live: dict[str, Any] = {"client": None, "said": False}
         if scheduler is not None:   # reached before `out` is touched: an unreachable one leaves nothing
             t1 = time.perf_counter()
-            client, engine = stack.enter_context(open_engine(scheduler, 0, CONNECT_TIMEOUT))
+            live["client"], engine = stack.enter_context(open_engine(scheduler, 0, CONNECT_TIMEOUT))
             timings["startup_s"] = time.perf_counter() - t1
         rd = ResumableDir.open(out, command=COMMAND, mode=mode, force=force)
         stack.callback(rd.close)
@@ -213,23 +231,62 @@ def run_map(out: str | Path, *, quick: bool = False, scheduler: str | None = Non
         total = len(grid) + 1
         say(f"threepart map --{mode}: {len(grid)} points and the control -> {out} "
             f"({rd.action}; {total - len(tasks)} of {total} already done)")
-        if tasks:
-            if client is None:
+
+        def log(rec: dict[str, Any]) -> None:
+            rd.append(POINTS_FILE, strict_json(rec))
+
+        def run(batch: list[tuple[str, Callable[..., Any], tuple[Any, ...], Any]], done0: int,
+                of: int) -> None:
+            nonlocal engine
+            if live["client"] is None:
                 t1 = time.perf_counter()
-                client, engine = stack.enter_context(open_engine(None, workers or DEFAULT_WORKERS,
-                                                                    CONNECT_TIMEOUT))
+                live["client"], engine = stack.enter_context(open_engine(
+                    None, workers or DEFAULT_WORKERS, CONNECT_TIMEOUT))
                 timings["startup_s"] = time.perf_counter() - t1
-            say(f"engine: {engine['kind']} at {engine['scheduler']}, {engine['workers']} "
-                f"workers (ready in {timings['startup_s']:.1f} s)")
+            if not live["said"]:
+                live["said"] = True
+                say(f"engine: {engine['kind']} at {engine['scheduler']}, {engine['workers']} "
+                    f"workers (ready in {timings['startup_s']:.1f} s)")
             t2 = time.perf_counter()
-
-            def log(rec: dict[str, Any]) -> None:
-                rd.append(POINTS_FILE, strict_json(rec))
-
-            for rec in sweep(client, tasks, log, mode, total - len(tasks), total, say):
+            for rec in sweep(live["client"], batch, log, mode, done0, of, say):
                 records[rec["key"]] = rec
-            timings["sweep_s"] = time.perf_counter() - t2
-    computed = [records[t[0]] for t in tasks if t[0] != CONTROL_KEY]
+            timings["sweep_s"] += time.perf_counter() - t2
+
+        if tasks:
+            run(tasks, total - len(tasks), total)
+        # the boundary: every bracketed crossing bisected in waves, step k of every curve at once
+        grid_rows = [{k: records[key].get(k) for k in COLUMNS} for key in keys]
+        bisections = start(grid_rows)
+        cap = STEP_CAP[mode]
+        steps_done = 0
+        for wave in range(1, cap + 1):
+            want: dict[str, MapPoint] = {}
+            for b in bisections:
+                x = b.next_x(cap)
+                if x is not None:
+                    pt = _step_point(b, x)
+                    want.setdefault(pt.key(), pt)
+            if not want:
+                break
+            batch = [(k, evaluate, (p, quick), p) for k, p in want.items() if not done(records.get(k))]
+            say(f"boundary, wave {wave}: {len(want)} steps of {len(bisections)} crossings "
+                f"({len(want) - len(batch)} already done)")
+            if batch:
+                run(batch, len(want) - len(batch), len(want))
+                tasks += batch
+            steps_done += len(want)
+            for b in bisections:
+                x = b.next_x(cap)
+                if x is None:
+                    continue
+                rec = records[_step_point(b, x).key()]
+                if rec.get("error") is not None or not finite(rec.get("peak_rel_error")):
+                    b.fail(rec.get("error") or "no finite peak error")
+                else:
+                    b.take(Sample(x, rec["peak_rel_error"], rec.get("fem_error_estimate") or 0.0,
+                                  rec["key"]))
+    grid_keys = set(keys)
+    computed = [records[t[0]] for t in tasks if t[0] in grid_keys]
     ran = [records[t[0]].get("control", {}) if t[0] == CONTROL_KEY else records[t[0]] for t in tasks]
     task_s = sum(r["time_s"] for r in ran if finite(r.get("time_s")))
     timings["evaluate_s"] = task_s
@@ -238,12 +295,17 @@ def run_map(out: str | Path, *, quick: bool = False, scheduler: str | None = Non
             0.0, (timings["sweep_s"] * engine["workers"] - task_s) / len(tasks))
     ctl = records[CONTROL_KEY]
     mapped = [{k: records[key].get(k) for k in COLUMNS} for key in keys]
-    failed = sum(p["error"] is not None for p in mapped) + (ctl["error"] is not None)
+    boundaries = [b.result(cap) for b in bisections]
+    failed = (sum(p["error"] is not None for p in mapped) + (ctl["error"] is not None)
+              + sum(b["status"] == "failed" for b in boundaries))
     doc: dict[str, Any] = {
         "schema_version": SCHEMA_VERSION, "tool": "threepart map", "mode": mode, "engine": engine,
         "control_rel_error": ctl["control_rel_error"], "control_limit": CONTROL_LIMIT,
         "control": {**ctl["control"], "error": ctl["error"]},
-        "points": mapped, "timings": timings, "plots": [],
+        "points": mapped, "boundaries": boundaries,
+        "bisection": {"levels": list(LEVELS), "rel_width": REL_WIDTH, "step_cap": cap,
+                      "steps": steps_done},
+        "timings": timings, "plots": [],
         "summary": {"points": len(mapped), "failed": failed, "computed": len(computed),
                     "resumed": len(mapped) - len(computed), "run_time_s": 0.0},
     }
@@ -251,6 +313,7 @@ def run_map(out: str | Path, *, quick: bool = False, scheduler: str | None = Non
     _plan(rd, [plot_name(g) for g in groups(mapped)])
     _draw(rd, doc, say)
     rd.write("map.csv", csv_text(mapped))
+    rd.write("boundaries.csv", boundaries_csv(boundaries))
     timings["write_s"] = time.perf_counter() - t3
     timings["total_s"] = doc["summary"]["run_time_s"] = time.perf_counter() - t0
     doc = json_safe(doc)
@@ -289,12 +352,16 @@ def main(out: str | Path = "map", quick: bool = False, scheduler: str | None = N
     status = exit_status(doc)
     control = doc["control_rel_error"]
     say(f"{'DONE' if status == 0 else 'FAILED'}: {s['points'] - s['failed']}/{s['points']} points "
-        f"({s['computed']} computed now), control error "
+        f"({s['computed']} computed now), {len(doc['boundaries'])} boundaries "
+        f"({doc['bisection']['steps']} bisection steps), control error "
         f"{'n/a' if control is None else f'{control:.2e}'} (limit {CONTROL_LIMIT:g}), "
         f"{s['run_time_s']:.1f} s -> {Path(out) / 'map.json'}")
     for p in doc["points"]:
         if p["error"] is not None:
             say(f"  failed: {p['key']}: {p['error']}")
+    for b in doc["boundaries"]:
+        if b["status"] == "failed":
+            say(f"  failed: boundary {b['level']:+g} at b/R1 = {b['b_over_R1']:g}: {b['error']}")
     if doc["control"].get("error"):
         say(f"  failed: control: {doc['control']['error']}")
     return status

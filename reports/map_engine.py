@@ -92,8 +92,10 @@ def open_engine(scheduler: str | None, workers: int, timeout: float) -> Iterator
     cluster = None
     if scheduler is None:
         with _quiet_workers():
+            # the dashboard on a free port: another cluster on this machine may hold 8787, and
+            # distributed's warning about it would break the one-line stderr of an interrupt
             cluster = LocalCluster(n_workers=workers, threads_per_worker=1,
-                                   processes=True)
+                                   processes=True, dashboard_address=":0")
         try:
             client = Client(cluster)
         except BaseException:

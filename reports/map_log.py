@@ -17,7 +17,7 @@ from typing import Any
 
 from threepart.output import json_safe
 
-from .map_schema import COLUMNS, COORDINATES
+from .map_schema import COLUMNS, COORDINATES, SCHEMA_VERSION
 from .validity import RESULT_KEYS
 
 __all__ = ["POINTS_FILE", "CONTROL_KEY", "read_log", "point_record", "control_record", "done",
@@ -30,14 +30,19 @@ CONTROL_KEY = "control"
 
 
 def read_log(data: bytes, mode: str) -> dict[str, dict[str, Any]]:
-    """The last line of every key of this mode in the whole lines ``data`` of ``points.jsonl``."""
+    """The last line of every key of this mode in the whole lines ``data`` of ``points.jsonl``.
+
+    Lines of another layout (``SCHEMA_VERSION``: e.g. the unsigned errors of
+    1.0) are not resumed: their points are computed again.
+    """
     records: dict[str, dict[str, Any]] = {}
     for line in data.decode("utf-8").splitlines():
         try:
             rec = json.loads(line)
         except ValueError:
             continue
-        if isinstance(rec, dict) and rec.get("mode") == mode and isinstance(rec.get("key"), str):
+        if (isinstance(rec, dict) and rec.get("mode") == mode and isinstance(rec.get("key"), str)
+                and rec.get("layout") == SCHEMA_VERSION):
             records[rec["key"]] = rec
     return records
 
@@ -63,7 +68,7 @@ def point_record(point: Any, result: Any, error: str | None, mode: str) -> dict[
                 except (TypeError, ValueError):
                     error = "evaluate returned a value that is not a number"
                     rec.update({k: None for k in RESULT_KEYS})
-    return json_safe({**rec, "error": error, "mode": mode})
+    return json_safe({**rec, "error": error, "mode": mode, "layout": SCHEMA_VERSION})
 
 
 def control_record(result: Any, error: str | None, mode: str) -> dict[str, Any]:
@@ -75,7 +80,7 @@ def control_record(result: Any, error: str | None, mode: str) -> dict[str, Any]:
             error = "control returned no number `control_rel_error`"
     control = {k: v for k, v in result.items() if k != "control_rel_error"} if error is None else {}
     return json_safe({"key": CONTROL_KEY, "control_rel_error": value, "control": control,
-                      "error": error, "mode": mode})
+                      "error": error, "mode": mode, "layout": SCHEMA_VERSION})
 
 
 

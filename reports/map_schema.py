@@ -17,9 +17,11 @@ PLOT_AXES      -- the coordinates along x and y of each contour map
 FILE_LABELS    -- the short label of each group axis in a plot's file name
 COORDINATES    -- the coordinates of a point, in CSV order
 COLUMNS        -- the fields of every point in ``map.json`` and the columns of ``map.csv``
+BOUNDARY_COLUMNS -- the columns of ``boundaries.csv`` (one located crossing per row)
 load_schema    -- the JSON schema of ``map.json``
 validate       -- validate a document against ``map.schema.json``
 csv_text       -- ``map.csv`` of a list of points
+boundaries_csv -- ``boundaries.csv`` of a list of boundary records
 groups         -- the values of :data:`GROUP_AXES` that the points take, in plot order
 plot_name      -- the file of one group's contour map
 finite         -- whether a value is a finite number
@@ -39,20 +41,27 @@ from threepart.output import validate_json
 from .validity import RESULT_KEYS
 
 __all__ = ["SCHEMA_FILE", "SCHEMA_VERSION", "GROUP_AXES", "PLOT_AXES", "FILE_LABELS", "COORDINATES",
-           "COLUMNS", "load_schema", "validate", "csv_text", "groups", "plot_name", "finite", "pct"]
+           "COLUMNS", "BOUNDARY_COLUMNS", "load_schema", "validate", "csv_text", "boundaries_csv",
+           "groups", "plot_name", "finite", "pct"]
 
 SCHEMA_FILE = Path(__file__).with_name("map.schema.json")
-SCHEMA_VERSION = "1.0"
+#: 2.0 (issue 23): signed errors, the lever-arm axis s_over_lift, the located boundaries
+SCHEMA_VERSION = "2.0"
 #: one contour map per combination of these coordinates (R2/R1 descending, then ascending)
-GROUP_AXES = ("R2_over_R1", "H_over_b")
+GROUP_AXES = ("R2_over_R1", "H_over_b", "s_over_lift")
 #: the x and y of each contour map (both on log scales)
 PLOT_AXES = ("a_minus_b_over_R1", "b_over_R1")
 #: the short label of each group axis in a plot's file name
-FILE_LABELS = {"R2_over_R1": "R2R1", "H_over_b": "Hb"}
+FILE_LABELS = {"R2_over_R1": "R2R1", "H_over_b": "Hb", "s_over_lift": "sL"}
 #: the coordinates of a point (:class:`reports.validity.MapPoint`), in CSV order
 COORDINATES = (*GROUP_AXES, *reversed(PLOT_AXES))
 #: the fields of every point in ``map.json`` and the columns of ``map.csv``, in order
 COLUMNS = ("key", *COORDINATES, *RESULT_KEYS, "error")
+#: the columns of ``boundaries.csv``: the curve, the level, the crossing and its band, the
+#: final bracket, the number of steps, and whether the curve crosses the level once
+BOUNDARY_COLUMNS = (*GROUP_AXES, "b_over_R1", "level", "a_minus_b_over_R1", "band_lo", "band_hi",
+                    "bracket_lo", "bracket_hi", "fem_error_estimate", "steps", "crossed_once",
+                    "status")
 
 
 def load_schema() -> dict[str, Any]:
@@ -71,10 +80,25 @@ def csv_text(points: Sequence[dict[str, Any]]) -> str:
     w = csv.writer(buf, lineterminator="\n")
     w.writerow(COLUMNS)
     for p in points:
-        w.writerow(["" if p[k] is None else f"{p[k]:.17g}" if isinstance(p[k], float) else p[k]
-                    for k in COLUMNS])
+        w.writerow([_cell(p[k]) for k in COLUMNS])
     return buf.getvalue()
 
+
+def _cell(v: Any) -> Any:
+    """A CSV field: null empty, floats to 17 digits (they round-trip), the rest as they are."""
+    return "" if v is None else f"{v:.17g}" if isinstance(v, float) else v
+
+
+def boundaries_csv(boundaries: Sequence[dict[str, Any]]) -> str:
+    """``boundaries.csv``: :data:`BOUNDARY_COLUMNS` of every boundary record of ``map.json``."""
+    buf = io.StringIO()
+    w = csv.writer(buf, lineterminator="\n")
+    w.writerow(BOUNDARY_COLUMNS)
+    for b in boundaries:
+        flat = {**b, "band_lo": b["band"][0], "band_hi": b["band"][1], "bracket_lo": b["bracket"][0],
+                "bracket_hi": b["bracket"][1], "steps": len(b["steps"])}
+        w.writerow([_cell(flat[k]) for k in BOUNDARY_COLUMNS])
+    return buf.getvalue()
 
 
 def groups(points: Sequence[dict[str, Any]]) -> list[tuple[float, ...]]:
@@ -85,7 +109,7 @@ def groups(points: Sequence[dict[str, Any]]) -> list[tuple[float, ...]]:
 def plot_name(group: Sequence[float]) -> str:
     """The file of the contour map of ``group`` (values of :data:`GROUP_AXES`).
 
-    For example ``plots/peak_error_R2R1_1_Hb_4.png``.
+    For example ``plots/peak_error_R2R1_1_Hb_4_sL_0.5.png``.
     """
     labels = "_".join(f"{FILE_LABELS[a]}_{v:g}" for a, v in zip(GROUP_AXES, group))
     return f"plots/peak_error_{labels}.png"

@@ -2,12 +2,20 @@
 
 A point is a punch of real shape (central segment ``2b``, exact edge arcs of
 radius ``R1`` and ``R2``, straight flanks, height ``H``) pressed into a finite
-block by ``P`` at ``s = 0`` with the tilt free, solved by the finite-body FEM
-(:mod:`fem.finite`) and by the closed form at the same ``P``. The load is
-chosen so that the closed form's left overhang is ``a - b = (a_minus_b_over_R1) R1``.
-The map sweeps :class:`MapPoint` over :func:`map_points`; :func:`evaluate`
-returns the closed form's errors against the finite body, with the FEM's own
-discretisation-error estimate beside them.
+block by ``P`` at the lever arm ``s`` with the tilt free, solved by the
+finite-body FEM (:mod:`fem.finite`) and by the closed form at the same
+``(P, s)``. The lever arm is a fraction ``s_over_lift`` of the closed form's
+lift-off lever arm ``s_max(P)`` (eq. s_lift-off, :func:`closedform.lift_off`:
+the load towards the ``R2`` edge, at which the left edge reaches its join).
+The load is chosen so that the closed form's larger overhang,
+``max(a - b, c - b)``, is ``(a_minus_b_over_R1) R1`` (at ``s = 0`` and
+``R2 <= R1`` that is ``a - b``). The map sweeps :class:`MapPoint` over
+:func:`map_points`; :func:`evaluate` returns the closed form's SIGNED errors
+against the finite body, ``(closed form - finite body) / finite body`` (the
+peaks over the finite body's larger peak), with the FEM's own
+discretisation-error estimate, a magnitude, beside them. A positive peak
+error means that the closed form over-predicts the peak pressure: it is
+conservative for the contact stress there.
 """
 from __future__ import annotations
 
@@ -32,24 +40,31 @@ from .compare import normal_figures
 __all__ = ["MapPoint", "map_points", "evaluate", "control", "feasible", "convergence", "RESULT_KEYS",
            "GRID", "STUDY_POINTS"]
 
-#: what :func:`evaluate` returns for a point (all floats)
+#: what :func:`evaluate` returns for a point (all floats); every ``*_error`` but
+#: ``fem_error_estimate`` is signed, closed form minus finite body
 RESULT_KEYS = ("peak_rel_error", "p_left_rel_error", "p_right_rel_error", "a_rel_error",
-               "c_rel_error", "alpha_error", "fem_error_estimate", "P", "time_s")
+               "c_rel_error", "alpha_error", "fem_error_estimate", "P", "s", "time_s")
 
 
 @dataclass(frozen=True)
 class MapPoint:
-    """One point of the validity map (all ratios dimensionless; ``R1 = 10`` sets the scale)."""
+    """One point of the validity map (all ratios dimensionless; ``R1 = 10`` sets the scale).
+
+    ``a_minus_b_over_R1`` is the closed form's larger overhang ``max(a - b, c - b) / R1``;
+    ``s_over_lift`` the lever arm as a fraction of the lift-off lever arm ``s_max(P)``.
+    """
 
     R2_over_R1: float
     b_over_R1: float
     a_minus_b_over_R1: float
     H_over_b: float
+    s_over_lift: float = 0.0
 
     def key(self) -> str:
         """A stable identifier (for resuming an interrupted sweep)."""
         return (f"R2R1={self.R2_over_R1:.6g}_bR1={self.b_over_R1:.6g}_"
-                f"abR1={self.a_minus_b_over_R1:.6g}_Hb={self.H_over_b:.6g}")
+                f"abR1={self.a_minus_b_over_R1:.6g}_Hb={self.H_over_b:.6g}_"
+                f"sL={self.s_over_lift:.6g}")
 
     def as_dict(self) -> dict[str, float]:
         return asdict(self)
@@ -59,10 +74,10 @@ class MapPoint:
 R1, E, NU, THETA = 10.0, 1.0, 0.3, math.pi / 3
 #: the grid of each map mode (:func:`map_points` drops the points the punch cannot hold)
 GRID = {
-    "quick": dict(R2_over_R1=(1.0,), H_over_b=(4.0,), b_over_R1=(0.1, 0.3, 1.0),
-                  a_minus_b_over_R1=(0.01, 0.03, 0.1, 0.2, 0.3)),
-    "full": dict(R2_over_R1=(1.0, 0.5), H_over_b=(4.0, 16.0), b_over_R1=(0.1, 0.3, 1.0, 3.0),
-                 a_minus_b_over_R1=(0.01, 0.03, 0.1, 0.2, 0.35, 0.5)),
+    "quick": dict(R2_over_R1=(1.0, 0.5), H_over_b=(4.0,), s_over_lift=(0.0, 0.5),
+                  b_over_R1=(0.1, 0.3, 1.0), a_minus_b_over_R1=(0.01, 0.03, 0.1, 0.2, 0.3)),
+    "full": dict(R2_over_R1=(1.0, 0.5), H_over_b=(1.0, 4.0, 16.0), s_over_lift=(0.0, 0.5),
+                 b_over_R1=(0.1, 0.3, 1.0, 3.0), a_minus_b_over_R1=(0.01, 0.03, 0.1, 0.2, 0.35, 0.5)),
 }
 #: the FE meshes of a point in each map mode, fine and coarse (their difference is the FEM's
 #: error estimate)
@@ -83,13 +98,25 @@ def _closed_form(punch: Punch, P: float, s: float, *, A: float) -> Any:
     return closedform.solve_normal(punch, P, s, A=A, beyond_small_slopes=True)
 
 
+def _lever_arm(point: MapPoint, punch: Punch, P: float, A: float) -> float:
+    """``s = (s_over_lift) s_max(P)``: a fraction of the closed form's lift-off lever arm at ``P``."""
+    if point.s_over_lift == 0:
+        return 0.0
+    return point.s_over_lift * closedform.lift_off(punch, P, A).s_max
+
+
 def _load(point: MapPoint) -> float:
-    """The load at which the closed form's left overhang is ``a - b = (a_minus_b_over_R1) R1``."""
+    """The load at which the closed form's larger overhang is ``max(a, c) - b = (a_minus_b_over_R1) R1``.
+
+    The lever arm follows the load (:func:`_lever_arm`), so the pair ``(P, s)``
+    is solved together: ``s = (s_over_lift) s_max(P)`` inside the root function.
+    """
     punch, A = _punch(point), similar_pair(E, NU)
     target = point.a_minus_b_over_R1 * R1
 
     def overhang(P: float) -> float:
-        return _closed_form(punch, P, 0.0, A=A).a - punch.b - target
+        cf = _closed_form(punch, P, _lever_arm(point, punch, P, A), A=A)
+        return max(cf.a, cf.c) - punch.b - target
 
     hi = 1e-3
     while overhang(hi) < 0:
@@ -97,10 +124,16 @@ def _load(point: MapPoint) -> float:
     return float(brentq(overhang, hi / 4 if hi > 1e-3 else 1e-12, hi, xtol=1e-14, rtol=1e-13))
 
 
+def _load_case(point: MapPoint) -> tuple[Punch, float, float]:
+    """The punch, the load ``P`` and the lever arm ``s`` of ``point``."""
+    punch, P = _punch(point), _load(point)
+    return punch, P, _lever_arm(point, punch, P, similar_pair(E, NU))
+
+
 def feasible(point: MapPoint) -> bool:
     """Whether the punch's lower face and height hold the contact with a margin (before any FE)."""
-    punch = _punch(point)
-    ref = _closed_form(punch, _load(point), 0.0, A=similar_pair(E, NU))
+    punch, P, s = _load_case(point)
+    ref = _closed_form(punch, P, s, A=similar_pair(E, NU))
     H = point.H_over_b * punch.b
     # the solver's locate margin with 50 % to spare for the finite body's larger contact
     margin = 1.5 * zone_margin(punch.b, -ref.a, ref.c, 0.15) * ref.width
@@ -115,36 +148,52 @@ def feasible(point: MapPoint) -> bool:
 def map_points(quick: bool = False) -> list[MapPoint]:
     """The grid of the map (:data:`GRID`) less the points whose punch cannot hold the contact."""
     g = GRID[_mode(quick)]
-    return [pt for pt in (MapPoint(r, b, ab, hb) for r in g["R2_over_R1"] for hb in g["H_over_b"]
+    return [pt for pt in (MapPoint(r, b, ab, hb, sl) for r in g["R2_over_R1"]
+                          for hb in g["H_over_b"] for sl in g["s_over_lift"]
                           for b in g["b_over_R1"] for ab in g["a_minus_b_over_R1"])
             if feasible(pt)]
 
 
+def _signed(figure: tuple[float, float, float]) -> float:
+    """A ``(reference, obtained, normalised error)`` figure's error with the sign of obtained - reference."""
+    ref, got, err = figure
+    return math.copysign(err, got - ref) if got != ref else 0.0
+
+
 def _errors(fe: Any, cf: Any) -> dict[str, float]:
-    """The closed form's errors against the FEM (the reference here), as :func:`compare` measures them."""
+    """The closed form's signed errors against the FEM (the reference), as :func:`compare` measures them.
+
+    Closed form minus finite body: the peaks over the finite body's larger
+    peak and the tilt over its slope scale (:func:`reports.compare.normal_figures`),
+    ``a`` and ``c`` each over the finite body's own. ``peak_rel_error`` is the
+    one of the two peak errors with the larger magnitude, with its sign.
+    """
     fig = normal_figures(fe, cf)
-    return {"p_left_rel_error": fig["p_left"][2], "p_right_rel_error": fig["p_right"][2],
-            "peak_rel_error": max(fig["p_left"][2], fig["p_right"][2]),
-            "a_rel_error": abs(cf.a - fe.a) / fe.a, "c_rel_error": abs(cf.c - fe.c) / fe.c,
-            "alpha_error": fig["alpha"][2]}
+    left, right = _signed(fig["p_left"]), _signed(fig["p_right"])
+    return {"p_left_rel_error": left, "p_right_rel_error": right,
+            "peak_rel_error": left if abs(left) >= abs(right) else right,
+            "a_rel_error": (cf.a - fe.a) / fe.a, "c_rel_error": (cf.c - fe.c) / fe.c,
+            "alpha_error": _signed(fig["alpha"])}
 
 
 def evaluate(point: MapPoint, quick: bool = False) -> dict[str, Any]:
-    """The closed form's errors against the finite-body FEM at ``point`` (keys :data:`RESULT_KEYS`).
+    """The closed form's signed errors against the finite-body FEM at ``point`` (keys :data:`RESULT_KEYS`).
 
     The FEM runs on two meshes of one self-similar family (:data:`MESHES`);
     ``fem_error_estimate`` is the largest change of the compared figures from
-    the coarse to the fine one, an upper estimate of the fine mesh's error.
+    the coarse to the fine one, an upper estimate of the fine mesh's error
+    (a magnitude).
     """
     t0 = time.perf_counter()
-    punch, P = _punch(point), _load(point)
-    cf = _closed_form(punch, P, 0.0, A=similar_pair(E, NU))
+    punch, P, s = _load_case(point)
+    cf = _closed_form(punch, P, s, A=similar_pair(E, NU))
     name, coarse = MESHES[_mode(quick)]
-    runs = [fem.solve_finite(punch, P, 0.0, E=E, nu=NU, H=point.H_over_b * punch.b, theta=THETA,
+    runs = [fem.solve_finite(punch, P, s, E=E, nu=NU, H=point.H_over_b * punch.b, theta=THETA,
                              mesh=m) for m in (PRESETS[name].scaled(coarse), name)]
     fine, rough = _errors(runs[1], cf), _errors(runs[0], cf)
     estimate = max(abs(fine[k] - rough[k]) for k in fine)
-    return {**fine, "fem_error_estimate": estimate, "P": P, "time_s": time.perf_counter() - t0}
+    return {**fine, "fem_error_estimate": estimate, "P": P, "s": s,
+            "time_s": time.perf_counter() - t0}
 
 
 def control(quick: bool = False) -> dict[str, Any]:
@@ -152,7 +201,7 @@ def control(quick: bool = False) -> dict[str, Any]:
 
     The finite-body code with ``H = None`` (:func:`fem.solve_finite`) at one
     point of the grid; ``control_rel_error`` is the closed form's larger
-    peak-pressure error, which must be <= 1e-3.
+    peak-pressure error (a magnitude), which must be <= 1e-3.
     """
     t0 = time.perf_counter()
     point = MapPoint(1.0, 0.3, 0.1, 4.0)
@@ -161,7 +210,7 @@ def control(quick: bool = False) -> dict[str, Any]:
     fe = fem.solve_finite(punch, P, 0.0, E=E, nu=NU, H=None, mesh=MESHES[_mode(quick)][0])
     err = _errors(fe, cf)
     studies = [convergence(pt, STUDY_N[:-1] if quick else STUDY_N) for pt in STUDY_POINTS]
-    return {"control_rel_error": err["peak_rel_error"], **err, "point": point.as_dict(), "P": P,
+    return {"control_rel_error": abs(err["peak_rel_error"]), **err, "point": point.as_dict(), "P": P,
             "convergence": studies, "time_s": time.perf_counter() - t0}
 
 

@@ -28,6 +28,7 @@ from threepart.output import MARKER, OutputExistsError, atomic_dir, foreign_entr
 from threepart.reports import map as map_mod
 from threepart.reports.map import (COLUMNS, CONTROL_LIMIT, below_level, designer_sentence,
                                    exit_status, run_map)
+from threepart.reports.map_schema import BOUNDARY_COLUMNS
 from threepart.reports.validity import RESULT_KEYS, MapPoint
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -47,9 +48,19 @@ def expected(p: MapPoint) -> dict[str, float]:
     """What the fake evaluate returns at ``p`` (every key of RESULT_KEYS, distinct values)."""
     e = surface(p)
     return {"peak_rel_error": e, "p_left_rel_error": e, "p_right_rel_error": 0.5 * e,
-            "a_rel_error": e / 3, "c_rel_error": e / 7, "alpha_error": e / 11,
+            "a_rel_error": e / 3, "c_rel_error": -e / 7, "alpha_error": e / 11,
             "fem_error_estimate": 1e-4 * p.b_over_R1, "P": 100.0 * p.a_minus_b_over_R1,
-            "time_s": 0.01 + p.b_over_R1}
+            "s": 0.1 * p.s_over_lift, "time_s": 0.01 + p.b_over_R1}
+
+
+def steps(doc: dict) -> set[str]:
+    """The keys of the bisection's points of a map."""
+    return {s["key"] for b in doc["boundaries"] for s in b["steps"]}
+
+
+def everything(doc: dict) -> list[str]:
+    """Every point key a map evaluates: the grid and the bisection's steps (each once)."""
+    return sorted(set(KEYS) | steps(doc))
 
 
 #: the largest (a-b)/R1 below 1 % for each (R2/R1, b/R1), worked out by hand from surface()
@@ -140,18 +151,20 @@ def test_the_map_holds_the_fake_numbers_and_validates(finished, scheduler):
     assert [p["key"] for p in doc["points"]] == KEYS            # grid order, not arrival order
     for p, point in zip(doc["points"], POINTS):
         assert {k: p[k] for k in RESULT_KEYS} == expected(point)
-        assert (p["R2_over_R1"], p["b_over_R1"], p["a_minus_b_over_R1"], p["H_over_b"]) == (
-            point.R2_over_R1, point.b_over_R1, point.a_minus_b_over_R1, point.H_over_b)
+        assert (p["R2_over_R1"], p["b_over_R1"], p["a_minus_b_over_R1"], p["H_over_b"],
+                p["s_over_lift"]) == (point.R2_over_R1, point.b_over_R1, point.a_minus_b_over_R1,
+                                      point.H_over_b, point.s_over_lift)
         assert p["error"] is None
     assert doc["control_rel_error"] == CONTROL_ERROR and doc["control"]["P"] == 3.0
     assert doc["engine"] == {"kind": "dask.distributed", "scheduler": scheduler, "workers": 2,
                              "dask_version": __import__("dask").__version__}
     assert doc["summary"]["points"] == 18 and doc["summary"]["failed"] == 0
     assert doc["summary"]["computed"] == 18 and doc["summary"]["resumed"] == 0
-    assert evaluated == sorted(KEYS)                            # each point exactly once
+    assert evaluated == everything(doc)                         # each point exactly once
+    assert steps(doc) and not steps(doc) & set(KEYS)
     assert exit_status(doc) == 0
     progress = [m for m in lines if m.startswith("[")]
-    assert len(progress) == 19 and progress[-1].startswith("[19/19]")
+    assert len(progress) == 19 + len(steps(doc)) and progress[18].startswith("[19/19]")
     assert all("elapsed" in m and "ETA" in m for m in progress)
 
 
@@ -161,10 +174,11 @@ def test_the_output_directory_is_threepart_s_own_and_finished(finished):
     assert marker is not None and marker["command"] == "map" and marker["state"] == "complete"
     assert foreign_entries(out) == []
     names = sorted(str(p.relative_to(out)) for p in out.rglob("*") if p.is_file())
-    assert names == sorted([MARKER, "map.json", "map.csv", "points.jsonl",
-                            "plots/peak_error_R2R1_0.5_Hb_4.png", "plots/peak_error_R2R1_1_Hb_4.png"])
-    assert [p["file"] for p in doc["plots"]] == ["plots/peak_error_R2R1_1_Hb_4.png",
-                                                 "plots/peak_error_R2R1_0.5_Hb_4.png"]
+    assert names == sorted([MARKER, "map.json", "map.csv", "boundaries.csv", "points.jsonl",
+                            "plots/peak_error_R2R1_0.5_Hb_4_sL_0.png",
+                            "plots/peak_error_R2R1_1_Hb_4_sL_0.png"])
+    assert [p["file"] for p in doc["plots"]] == ["plots/peak_error_R2R1_1_Hb_4_sL_0.png",
+                                                 "plots/peak_error_R2R1_0.5_Hb_4_sL_0.png"]
     for p in doc["plots"]:
         assert (out / p["file"]).read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
 
@@ -183,40 +197,88 @@ def test_the_csv_matches_the_json(finished):
                 assert row[k] == p[k]
             else:
                 assert float(row[k]) == p[k]                    # exact: written with 17 digits
+    with open(out / "boundaries.csv", newline="") as fh:
+        rows = list(csv.DictReader(fh))
+    assert list(rows[0]) == list(BOUNDARY_COLUMNS) and len(rows) == len(doc["boundaries"])
+    for row, b in zip(rows, doc["boundaries"]):
+        assert float(row["a_minus_b_over_R1"]) == b["a_minus_b_over_R1"]
+        assert [float(row["band_lo"]), float(row["band_hi"])] == b["band"]
+        assert int(row["steps"]) == len(b["steps"]) and row["status"] == b["status"]
 
 
-def test_the_designer_sentence_gives_the_1_percent_boundary(finished):
+def test_the_designer_sentence_gives_the_1_percent_boundary_and_its_sign(finished):
+    import re
+
     _, doc, _, _ = finished
     for plot in doc["plots"]:
         r = plot["R2_over_R1"]
         got = {(r, row["b_over_R1"]): row["limit"] for row in plot["below_1_percent"]}
         assert got == {k: v for k, v in LIMITS_1PCT.items() if k[0] == r}
     one = next(p for p in doc["plots"] if p["R2_over_R1"] == 1.0)["sentence"]
-    assert "up to (a−b)/R1 = 0.03 at b/R1 = 0.1" in one
-    assert "up to (a−b)/R1 = 0.01 at b/R1 = 0.3" in one
-    assert "at no load swept at b/R1 = 1 (3 % already at (a−b)/R1 = 0.01)" in one
+    assert one.startswith("For R2/R1 = 1, H/b = 4 and s = 0, the closed form's peak pressure is "
+                          "within 1 % of the finite body's at b/R1 = 0.1 for (a−b)/R1 from the "
+                          "lightest load swept, 0.01 to ≈ ")
+    # the located +1 % crossings of surface() = 0.3 (b/R1 / 0.1) (a-b)/R1, to within the
+    # bisection's final bracket (3 steps from a grid bracket of a factor 10/3 or 3)
+    for b, exact in ((0.1, 1 / 30), (0.3, 1 / 90)):
+        got = float(re.search(rf"at b/R1 = {b:g} for \(a−b\)/R1 from the lightest load swept, "
+                              rf"0.01 to ≈ ([0-9.]+) \(FEM band [0-9.]+–[0-9.]+\) \(conservative\)",
+                              one).group(1))
+        assert abs(got / exact - 1) < BRACKET_3_STEPS - 1, (b, got)
+    assert "at heavier loads it over-predicts the peak by up to 3 %: conservative" in one
+    assert "at no load swept at b/R1 = 1 (it over-predicts the peak by up to 30 %: conservative)" in one
 
 
-def test_below_level_says_why_the_scan_stopped():
+#: the final bracket's ratio hi/lo after 3 halvings in log of a grid bracket of a factor 10/3
+BRACKET_3_STEPS = (10 / 3) ** (1 / 8)
+
+
+def test_below_level_says_why_the_scan_stopped_and_whether_it_is_conservative():
     def pt(b, ab, e):
         return {"b_over_R1": b, "a_minus_b_over_R1": ab, "peak_rel_error": e,
                 "fem_error_estimate": 0.02 if b == 3 else 1e-4}
 
     pts = [pt(1, 0.01, 0.001), pt(1, 0.1, 0.002),                    # below all the way
            pt(2, 0.01, 0.001), pt(2, 0.1, None), pt(2, 0.3, 0.001),  # a failed point stops it
-           pt(3, 0.01, None), pt(3, 0.1, 0.5)]                       # the first point failed
+           pt(3, 0.01, None), pt(3, 0.1, 0.5),                       # the first point failed
+           pt(4, 0.01, -0.004), pt(4, 0.1, -0.03),                   # under-predicts: |e| counts
+           pt(5, 0.01, 0.02), pt(5, 0.1, 0.004), pt(5, 0.3, -0.002),  # in, from a located crossing
+           pt(6, 0.01, 0.02), pt(6, 0.1, -0.03)]                     # a window between two points
     rows = {r["b_over_R1"]: (r["limit"], r["stop"]) for r in below_level(pts)}
-    assert rows == {1: (0.1, "end"), 2: (0.01, "failed"), 3: (None, "failed")}
-    text = designer_sentence(pts, 1.0, 4.0)
-    assert "over the whole sweep, (a−b)/R1 ≤ 0.1, at b/R1 = 1" in text
-    assert "up to (a−b)/R1 = 0.01 at b/R1 = 2 (the next point failed)" in text
-    assert "unknown at b/R1 = 3" in text
+    assert rows == {1: (0.1, "end"), 2: (0.01, "failed"), 3: (None, "failed"), 4: (0.01, "level"),
+                    5: (None, "level"), 6: (None, "level")}
+
+    def crossing(b, level, x, band):
+        return {"b_over_R1": b, "level": level, "a_minus_b_over_R1": x, "band": band,
+                "status": "converged", "steps": []}
+
+    text = designer_sentence(pts, 1.0, 4.0, boundaries=[
+        crossing(5, 0.01, 0.05, [0.04, 0.06]), crossing(6, -0.01, 0.05, [0.045, 0.055]),
+        crossing(6, 0.01, 0.03, [0.025, 0.035])])
+    assert ("at b/R1 = 1 for (a−b)/R1 from the lightest load swept, 0.01 to the end of the sweep, "
+            "0.1 (conservative)") in text
+    assert ("at b/R1 = 2 for (a−b)/R1 from the lightest load swept, 0.01 to 0.01 (the next point "
+            "failed) (conservative) and (a−b)/R1 from 0.3 (the point before failed) to the end of "
+            "the sweep, 0.3 (conservative)") in text
+    assert "at no load swept at b/R1 = 3 (it over-predicts the peak by up to 50 %: conservative)" in text
+    assert ("at b/R1 = 4 for (a−b)/R1 from the lightest load swept, 0.01 to between 0.01 and 0.1 "
+            "(not conservative); at heavier loads it under-predicts the peak by up to 3 %: not "
+            "conservative") in text
+    assert ("at b/R1 = 5 for (a−b)/R1 from ≈ 0.05 (FEM band 0.04–0.06) to the end of the sweep, 0.3 "
+            "(changing sign there: not conservative throughout); at lighter loads it over-predicts "
+            "the peak by up to 2 %: conservative") in text
+    assert ("at b/R1 = 6 for (a−b)/R1 from ≈ 0.03 (FEM band 0.025–0.035) to ≈ 0.05 (FEM band "
+            "0.045–0.055) (changing sign there: not conservative throughout); at lighter loads it "
+            "over-predicts the peak by up to 2 %: conservative; at heavier loads it under-predicts "
+            "the peak by up to 3 %: not conservative") in text
     assert "the FEM's own error estimate reaches 2 %" in text
-    everywhere = [pt(1, 0.01, 0.02), pt(1, 0.1, 0.5), pt(2, 0.01, 0.04), pt(2, 0.1, 0.01)]
-    assert designer_sentence(everywhere, 0.5, 1.0) == (
-        "For R2/R1 = 0.5 and H/b = 1, the closed form's peak pressure is off by 2 % to 4 % already "
-        "at the lightest load swept, (a−b)/R1 = 0.01, for every b/R1: over this whole range, design "
-        "with a finite-body model.")
+    everywhere = [pt(1, 0.01, 0.02), pt(1, 0.1, 0.5), pt(2, 0.01, -0.04), pt(2, 0.1, 0.01)]
+    assert designer_sentence(everywhere, 0.5, 1.0, 0.5) == (
+        "For R2/R1 = 0.5, H/b = 1 and s = 0.5 of the lift-off lever arm, the closed form's peak "
+        "pressure is off by 2 % to -4 % already at the lightest load swept, (a−b)/R1 = 0.01, and "
+        "more than 1 % everywhere (it over-predicts the peak by up to 50 % and under-predicts it by "
+        "up to 4 %: not conservative everywhere): over this whole range, design with a finite-body "
+        "model.")
 
 
 def test_the_schema_rejects_what_it_should(finished):
@@ -224,7 +286,9 @@ def test_the_schema_rejects_what_it_should(finished):
     doc = finished[1]
     map_mod.validate(doc)
     for broken in ({**doc, "points": [{k: v for k, v in doc["points"][0].items() if k != "peak_rel_error"}]},
-                   {**doc, "points": [{**doc["points"][0], "a_rel_error": -0.1}]},
+                   {**doc, "points": [{**doc["points"][0], "fem_error_estimate": -0.1}]},
+                   {**doc, "boundaries": [{**doc["boundaries"][0], "band": [0.1]}]},
+                   {k: v for k, v in doc.items() if k != "boundaries"},
                    {**doc, "engine": {**doc["engine"], "workers": "2"}},
                    {k: v for k, v in doc.items() if k != "control_rel_error"}):
         with pytest.raises(jsonschema.ValidationError):
@@ -274,7 +338,7 @@ def test_an_interrupted_sweep_resumes_with_the_same_numbers(tmp_path, counter, s
     for f in counter.iterdir():
         f.unlink()
     doc = sweep(out, scheduler, FakeEvaluate(counter))
-    assert calls(counter) == sorted(set(KEYS) - set(first))      # nothing finished is redone
+    assert calls(counter) == sorted(set(everything(doc)) - set(first))  # nothing finished is redone
     assert doc["summary"]["resumed"] == len(first)
     assert doc["points"] == finished[1]["points"]               # the uninterrupted numbers
     assert [{k: p[k] for k in RESULT_KEYS} for p in doc["points"]] == [expected(p) for p in POINTS]
@@ -310,7 +374,7 @@ def test_a_killed_run_resumes(tmp_path, counter, scheduler):
     for f in counter.iterdir():
         f.unlink()
     doc = sweep(out, scheduler, FakeEvaluate(counter))
-    assert calls(counter) == sorted(set(KEYS) - set(done))
+    assert calls(counter) == sorted(set(everything(doc)) - set(done))
     assert [{k: p[k] for k in RESULT_KEYS} for p in doc["points"]] == [expected(p) for p in POINTS]
     assert all(json.loads(x) for x in (out / "points.jsonl").read_text().splitlines())
 
@@ -374,8 +438,8 @@ def test_force_replaces_a_finished_map_only(tmp_path, counter, scheduler):
     for f in counter.iterdir():
         f.unlink()
     doc = sweep(out, scheduler, FakeEvaluate(counter), force=True)
-    assert calls(counter) == sorted(KEYS)                      # recomputed from scratch
-    assert doc["summary"]["resumed"] == 0 and len(logged(out)) == len(KEYS)
+    assert calls(counter) == everything(doc)                   # recomputed from scratch
+    assert doc["summary"]["resumed"] == 0 and len(logged(out)) == len(everything(doc))
     assert foreign_entries(out) == [] and read_marker(out)["state"] == "complete"
     # an unfinished map is resumed, even with --force: nothing finished is thrown away
     interrupted = tmp_path / "interrupted"
@@ -385,7 +449,7 @@ def test_force_replaces_a_finished_map_only(tmp_path, counter, scheduler):
     for f in counter.iterdir():
         f.unlink()
     doc = sweep(interrupted, scheduler, FakeEvaluate(counter), force=True)
-    assert calls(counter) == sorted(set(KEYS) - set(done))
+    assert calls(counter) == sorted(set(everything(doc)) - set(done))
     assert doc["summary"]["resumed"] == len(done)
 
 
@@ -402,7 +466,8 @@ def test_a_failed_point_is_recorded_exits_1_and_is_retried(tmp_path, counter, sc
     assert doc["summary"]["failed"] == 1 and exit_status(doc) == 1
     assert [q for q in doc["points"] if q["key"] != bad] == [
         {"key": k.key(), "R2_over_R1": k.R2_over_R1, "H_over_b": k.H_over_b,
-         "b_over_R1": k.b_over_R1, "a_minus_b_over_R1": k.a_minus_b_over_R1, **expected(k),
+         "s_over_lift": k.s_over_lift, "b_over_R1": k.b_over_R1,
+         "a_minus_b_over_R1": k.a_minus_b_over_R1, **expected(k),
          "error": None} for k in POINTS if k.key() != bad]
     with open(out / "map.csv", newline="") as fh:
         row = list(csv.DictReader(fh))[4]
@@ -410,8 +475,9 @@ def test_a_failed_point_is_recorded_exits_1_and_is_retried(tmp_path, counter, sc
     assert read_marker(out)["state"] == "writing"             # unfinished: the next run retries
     for f in counter.iterdir():
         f.unlink()
+    before = steps(doc)
     doc = sweep(out, scheduler, FakeEvaluate(counter))
-    assert calls(counter) == [bad]
+    assert calls(counter) == sorted({bad} | (steps(doc) - before))   # its curve's new steps only
     assert {k: doc["points"][4][k] for k in RESULT_KEYS} == expected(POINTS[4])
     assert exit_status(doc) == 0 and read_marker(out)["state"] == "complete"
 
@@ -481,7 +547,7 @@ def test_the_default_engine_is_a_local_cluster_of_its_own(tmp_path, counter):
                   control=fake_control, say=lines.append)
     assert doc["engine"]["workers"] == 1 and doc["engine"]["scheduler"].startswith("tcp://127.0.0.1:")
     assert [{k: p[k] for k in RESULT_KEYS} for p in doc["points"]] == [expected(p) for p in POINTS[:6]]
-    assert calls(counter) == sorted(KEYS[:6]) and exit_status(doc) == 0
+    assert calls(counter) == sorted(set(KEYS[:6]) | steps(doc)) and exit_status(doc) == 0
     assert doc["timings"]["startup_s"] > 0
 
 
@@ -526,7 +592,7 @@ def test_ctrl_c_prints_one_line_and_the_points_in_progress_are_rerun(tmp_path, c
     for f in counter.iterdir():
         f.unlink()
     doc = sweep(out, scheduler, FakeEvaluate(counter))
-    assert calls(counter) == sorted(set(KEYS) - set(done))       # nothing finished is redone ...
+    assert calls(counter) == sorted(set(everything(doc)) - set(done))   # nothing finished is redone ...
     assert in_progress <= set(calls(counter)) - {"control"}     # ... and nothing in progress is lost
     assert [{k: p[k] for k in RESULT_KEYS} for p in doc["points"]] == [expected(p) for p in POINTS]
 
@@ -560,6 +626,7 @@ def test_a_full_disk_while_the_map_is_written_leaves_nothing_half_written(tmp_pa
         f.unlink()
     doc = sweep(out, scheduler, FakeEvaluate(counter))           # resumes: every point was logged
     assert calls(counter) == [] and doc["summary"]["resumed"] == len(KEYS)
+    assert steps(doc)                                            # the bisection's steps resumed too
     assert read_marker(out)["state"] == "complete"
 
 
@@ -569,3 +636,293 @@ def test_the_help_counts_the_quick_grid(capsys):
     assert cli_main(["map", "--help"]) == 0
     text = " ".join(capsys.readouterr().out.split())
     assert f"the quick grid ({len(map_points(True))} points and the control" in text
+
+
+# ---------------------------------------------------------------------------------------
+# the boundary: bisection on synthetic curves (no FEM), in the map, and its resume
+# ---------------------------------------------------------------------------------------
+#: the grid of overhangs of the synthetic curves
+OVERHANGS = (0.01, 0.03, 0.1, 0.3)
+
+
+def grid_samples(f, xs=OVERHANGS):
+    from threepart.reports.map_boundary import Sample
+
+    return [Sample(x, *f(x), f"x={x:g}") for x in xs]
+
+
+def test_bisection_finds_the_exact_crossing_of_a_curve_linear_in_log_overhang():
+    """e = k ln(x / x0): the interpolation in log overhang is exact, and so is the band's width."""
+    import math
+
+    from threepart.reports.map_boundary import REL_WIDTH, locate
+
+    k, x0, u = 0.02, 0.02, 0.002
+    f = lambda x: (k * math.log(x / x0), u)                     # noqa: E731
+    for level in (-0.01, 0.01):
+        (r,) = locate(f, grid_samples(f), level, cap=10)
+        exact = x0 * math.exp(level / k)
+        assert r["a_minus_b_over_R1"] == pytest.approx(exact, rel=ROUND_OFF)
+        assert r["status"] == "converged" and r["bracket"][1] / r["bracket"][0] - 1 <= REL_WIDTH
+        assert r["bracket"][0] < exact < r["bracket"][1] and r["crossed_once"]
+        assert r["band"] == pytest.approx([x0 * math.exp((level - u) / k), x0 * math.exp((level + u) / k)],
+                                          rel=ROUND_OFF)
+        assert r["band_open"] == [False, False]
+
+
+#: the relative accuracy of an interpolation that is exact in real numbers (a few logs and exps)
+ROUND_OFF = 1e-12
+
+
+def test_bisection_of_a_monotone_curve_and_of_one_that_changes_sign():
+    """The crossings against the exact ones: inside the final bracket, within its relative width."""
+    import math
+
+    from threepart.reports.map_boundary import REL_WIDTH, locate
+
+    monotone = lambda x: (0.3 * x, 1e-4)                        # noqa: E731  (surface(), b/R1 = 0.1)
+    (r,) = locate(monotone, grid_samples(monotone), 0.01, cap=10)
+    assert r["bracket"][0] < 1 / 30 < r["bracket"][1]
+    assert abs(r["a_minus_b_over_R1"] / (1 / 30) - 1) <= REL_WIDTH
+    assert len(r["steps"]) == 4                                  # [0.03, 0.1]: 4 halvings to 10 %
+    capped = locate(monotone, grid_samples(monotone), 0.01, cap=2)[0]
+    assert capped["status"] == "capped" and len(capped["steps"]) == 2
+    assert capped["bracket"][0] < 1 / 30 < capped["bracket"][1]
+
+    # over-predicts at light loads and under-predicts at heavy ones (issue 23's curve):
+    # e = 0.012 - 0.024 t^2 with t = ln(x/0.01) / ln(30), zero at t^2 = 0.5
+    def turning(x):
+        t = math.log(x / 0.01) / math.log(30)
+        return 0.012 - 0.024 * t * t, 5e-4
+
+    def exact(level):
+        return 0.01 * 30 ** math.sqrt((0.012 - level) / 0.024)
+
+    for level in (-0.01, 0.01, 0.0):
+        (r,) = locate(turning, grid_samples(turning), level, cap=10)
+        assert r["bracket"][0] < exact(level) < r["bracket"][1], level
+        assert abs(r["a_minus_b_over_R1"] / exact(level) - 1) <= REL_WIDTH, level
+        lo, hi = r["band"]
+        assert lo < r["a_minus_b_over_R1"] < hi
+    # a curve that crosses +1 % twice: two records, each flagged, each at its exact crossing
+    hump = lambda x: (0.02 - 0.03 * (math.log(x / 0.05) / math.log(6)) ** 2, 1e-4)   # noqa: E731
+    twice = locate(hump, grid_samples(hump), 0.01, cap=10)
+    exact_twice = [0.05 * 6 ** (-math.sqrt(1 / 3)), 0.05 * 6 ** math.sqrt(1 / 3)]
+    assert [r["crossed_once"] for r in twice] == [False, False]
+    for r, x in zip(twice, exact_twice):
+        assert r["bracket"][0] < x < r["bracket"][1] and abs(r["a_minus_b_over_R1"] / x - 1) <= REL_WIDTH
+
+
+#: a signed grid: one R2/R1 and H/b, both lever arms, two b/R1
+SIGNED_POINTS = [MapPoint(1.0, b, ab, 4.0, sl) for sl in (0.0, 0.5) for b in (0.1, 0.3)
+                 for ab in OVERHANGS]
+#: the half-width of every signed point's FEM estimate
+SIGNED_U = 1e-3
+
+
+def signed_surface(p: MapPoint) -> float:
+    """+1.2 % at (a-b)/R1 = 0.01, falling linearly in log overhang, faster at larger b/R1 and s."""
+    import math
+
+    return 0.012 - 0.01 * (p.b_over_R1 / 0.1) ** 0.5 * (1 + p.s_over_lift) * math.log10(
+        p.a_minus_b_over_R1 / 0.01)
+
+
+def signed_crossing(b: float, sl: float, level: float) -> float:
+    """The exact overhang where signed_surface() equals ``level``."""
+    return 0.01 * 10 ** ((0.012 - level) / (0.01 * (b / 0.1) ** 0.5 * (1 + sl)))
+
+
+class SignedEvaluate(FakeEvaluate):
+    def __call__(self, point: MapPoint, quick: bool) -> dict[str, float]:
+        base = super().__call__(point, quick)
+        e = signed_surface(point)
+        return {**base, "peak_rel_error": e, "p_left_rel_error": e, "p_right_rel_error": e / 2,
+                "fem_error_estimate": SIGNED_U}
+
+
+def test_the_map_locates_each_signed_boundary_and_resumes_its_bisection(tmp_path, counter, scheduler):
+    """The boundaries in map.json against the exact crossings; a run stopped mid-bisection resumes."""
+    import math
+
+    from threepart.reports.map_boundary import LEVELS
+
+    def run(out, **kw):
+        kw.setdefault("say", lambda m: None)
+        return run_map(out, scheduler=scheduler, evaluate=SignedEvaluate(counter), quick=True,
+                       points=SIGNED_POINTS, control=fake_control, **kw)
+
+    doc = run(tmp_path / "whole")
+    found = {(b["b_over_R1"], b["s_over_lift"], b["level"]): b for b in doc["boundaries"]}
+    want = {(b, sl, lv) for b in (0.1, 0.3) for sl in (0.0, 0.5) for lv in LEVELS
+            if 0.01 < signed_crossing(b, sl, lv) < 0.3}
+    assert set(found) == want and len(want) >= 6
+    for (b, sl, lv), r in found.items():
+        x = signed_crossing(b, sl, lv)
+        assert r["a_minus_b_over_R1"] == pytest.approx(x, rel=ROUND_OFF)      # linear in log: exact
+        g = 0.01 * (b / 0.1) ** 0.5 * (1 + sl)                                # the slope per decade
+        band = [x * 10 ** (-SIGNED_U / g), x * 10 ** (SIGNED_U / g)]   # e falls with the overhang
+        ends = (OVERHANGS[0], OVERHANGS[-1])                           # an open end stops at the sweep's
+        assert r["band_open"] == [band[0] < ends[0], band[1] > ends[1]]
+        assert r["band"] == pytest.approx([max(band[0], ends[0]), min(band[1], ends[1])], rel=ROUND_OFF)
+        assert r["crossed_once"] and r["status"] in ("converged", "capped") and r["steps"]
+        assert all(math.isfinite(s["peak_rel_error"]) for s in r["steps"])
+    assert exit_status(doc) == 0
+    # stopped in the second wave of the bisection, then resumed: no step is computed twice
+    grid = len(SIGNED_POINTS) + 1
+    for f in counter.iterdir():
+        f.unlink()
+    out = tmp_path / "stopped"
+    with pytest.raises(KeyboardInterrupt):
+        run(out, say=StopAfter(grid + len(doc["boundaries"]) + 2))
+    first = logged(out)
+    assert len(first) > len(SIGNED_POINTS) and set(first) - set(p.key() for p in SIGNED_POINTS)
+    for f in counter.iterdir():
+        f.unlink()
+    again = run(out)
+    every = set(p.key() for p in SIGNED_POINTS) | steps(doc)
+    assert calls(counter) == sorted(every - set(first))
+    assert again["boundaries"] == doc["boundaries"]
+
+
+def test_signed_contours_do_not_fold_back_where_the_error_changes_sign():
+    """Issue 23: |error| folds the 1 % line back on itself across a sign change; the signed field does not.
+
+    The field over-predicts at light loads and under-predicts at heavy ones (as
+    at b/R1 = 0.1 in the finite-body map). On every horizontal line b/R1 =
+    const between the grid rows, a contour of the signed field at each level
+    crosses once; the same level of the magnitude crosses twice (its line
+    runs up one side of the zero line and back down the other).
+    """
+    import numpy as np
+
+    from threepart.reports.map_plots import level_paths
+
+    xs = np.geomspace(0.01, 0.5, 7)
+    bs = np.geomspace(0.1, 3.0, 5)
+    points = [{"a_minus_b_over_R1": x, "b_over_R1": b,
+               "peak_rel_error": 0.015 - 0.03 * np.log(x / 0.01) / np.log(50) * (1 + 0.2 * np.log10(b / 0.1))}
+              for x in xs for b in bs]
+    magnitude = [{**p, "peak_rel_error": abs(p["peak_rel_error"])} for p in points]
+    rows = np.log10(np.sqrt(bs[1:] * bs[:-1]))                    # between the grid rows
+
+    def crossings(paths, y):
+        n = 0
+        for v in paths:
+            dy = v[:, 1] - y
+            n += int(np.sum((dy[:-1] < 0) != (dy[1:] < 0)))
+        return n
+
+    signed = level_paths(points, levels=(-0.01, 0.0, 0.01))
+    folded = level_paths(magnitude, levels=(0.01,))
+    for level, paths in signed.items():
+        assert paths, level
+        for y in rows:
+            assert crossings(paths, y) == 1, (level, y)
+        for v in paths:                                            # each line monotone in b/R1
+            d = np.diff(v[:, 1])
+            assert np.all(d >= 0) or np.all(d <= 0), level
+    assert all(crossings(folded[0.01], y) == 2 for y in rows)      # the old failure, on |e|
+
+
+# ---------------------------------------------------------------------------------------
+# the lever-arm axis (no FEM)
+# ---------------------------------------------------------------------------------------
+#: the closed form's own root: the load's brentq closes to 1e-13 relative
+LOAD_ROOT = 1e-10
+#: Gauss-Chebyshev quadrature of the closed form's pressure, 4000 nodes: its slope has
+#: logarithmic singularities at the joins x = -b, b, which cost the rule its spectral accuracy
+#: (400 nodes: 2.5e-6)
+CENTROID_QUADRATURE = 1e-6
+
+
+@pytest.mark.parametrize("point", [MapPoint(1.0, 0.1, 0.03, 4.0, 0.5), MapPoint(0.5, 1.0, 0.2, 4.0, 0.5),
+                                   MapPoint(0.5, 0.3, 0.1, 16.0, 0.0)])
+def test_a_point_with_a_moment_is_loaded_at_its_overhang_and_half_its_lift_off_arm(point):
+    """s = s_over_lift * s_max(P) from the registry's lift-off capability; max(a, c) - b the overhang;
+    the centroid of the closed form's pressure (quadrature) is s and its integral is P."""
+    import numpy as np
+
+    from threepart import closedform, registry
+    from threepart.material import similar_pair
+    from threepart.reports import validity
+
+    punch, P, s = validity._load_case(point)
+    A = similar_pair(validity.E, validity.NU)
+    s_max = registry.lift_off("closedform", punch, P, A)[1]
+    assert s == point.s_over_lift * s_max
+    cf = closedform.solve_normal(punch, P, s, A=A, beyond_small_slopes=True)
+    assert max(cf.a, cf.c) - punch.b == pytest.approx(point.a_minus_b_over_R1 * validity.R1,
+                                                      rel=LOAD_ROOT)
+    if point.s_over_lift > 0:
+        assert cf.c > cf.a                                      # the load towards the R2 edge
+    # Gauss-Chebyshev of the second kind on [-a, c]: p(x) sqrt-vanishes at both ends
+    n = 4000
+    k = np.arange(1, n + 1)
+    t = np.cos(k * np.pi / (n + 1))
+    w = np.pi / (n + 1) * np.sin(k * np.pi / (n + 1)) ** 2
+    half, mid = (cf.a + cf.c) / 2, (cf.c - cf.a) / 2
+    x = mid + half * t
+    g = cf.pressure(x) / np.sqrt(1 - t**2)
+    force = half * np.sum(w * g)
+    assert force == pytest.approx(P, rel=CENTROID_QUADRATURE)
+    assert half * np.sum(w * g * x) / force == pytest.approx(s, abs=CENTROID_QUADRATURE * cf.width)
+
+
+KILLED_IN_BISECTION = """
+import sys
+from pathlib import Path
+from tests.test_map import SIGNED_POINTS, SignedEvaluate, fake_control
+from threepart.reports.map import run_map
+run_map(sys.argv[1], scheduler=sys.argv[2], evaluate=SignedEvaluate(Path(sys.argv[3]), sleep=0.1),
+        points=SIGNED_POINTS, control=fake_control, quick=True, say=lambda m: print(m, flush=True))
+"""
+
+
+def test_a_run_killed_in_the_bisection_resumes_with_its_finished_steps(tmp_path, counter, scheduler):
+    """SIGKILL once the grid is logged and the bisection's first steps are: nothing finished is redone."""
+    out = tmp_path / "map"
+    grid = {p.key() for p in SIGNED_POINTS}
+    proc = subprocess.Popen([sys.executable, "-c", KILLED_IN_BISECTION, str(out), scheduler, str(counter)],
+                            cwd=ROOT, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+    deadline = time.monotonic() + 120
+    while time.monotonic() < deadline and proc.poll() is None:
+        if (out / "points.jsonl").exists() and len(set(logged(out)) - grid) >= 2:
+            break
+        time.sleep(0.02)
+    proc.send_signal(signal.SIGKILL)
+    proc.communicate()
+    done = logged(out)
+    assert grid <= set(done) and len(set(done) - grid) >= 2, proc.stderr
+    time.sleep(0.5)                                             # the killed client's tasks drain
+    for f in counter.iterdir():
+        f.unlink()
+    doc = run_map(out, scheduler=scheduler, evaluate=SignedEvaluate(counter), quick=True,
+                  points=SIGNED_POINTS, control=fake_control, say=lambda m: None)
+    assert calls(counter) == sorted((grid | steps(doc)) - set(done))
+    assert set(done) - grid < steps(doc)                        # the finished steps were used
+    for r in doc["boundaries"]:                                 # and the crossings are exact
+        assert r["a_minus_b_over_R1"] == pytest.approx(
+            signed_crossing(r["b_over_R1"], r["s_over_lift"], r["level"]), rel=ROUND_OFF)
+
+
+def test_the_errors_are_signed_closed_form_minus_finite_body():
+    """A heavier load presses harder: as the 'closed form' against a lighter 'finite body' every
+    error is positive, swapped every one is negative, and each magnitude is the comparator's."""
+    from threepart import closedform
+    from threepart.material import similar_pair
+    from threepart.reports import validity
+    from threepart.reports.compare import normal_figures
+
+    punch, A = validity._punch(MapPoint(0.5, 0.3, 0.1, 4.0)), similar_pair(validity.E, validity.NU)
+    light = closedform.solve_normal(punch, 0.1, 0.05, A=A, beyond_small_slopes=True)
+    heavy = closedform.solve_normal(punch, 0.12, 0.05, A=A, beyond_small_slopes=True)
+    for fe, cf, sign in ((light, heavy, 1.0), (heavy, light, -1.0)):
+        e = validity._errors(fe, cf)
+        fig = normal_figures(fe, cf)
+        for k, q in (("p_left_rel_error", "p_left"), ("p_right_rel_error", "p_right")):
+            assert e[k] * sign > 0 and abs(e[k]) == fig[q][2]
+        assert e["a_rel_error"] == (cf.a - fe.a) / fe.a and e["a_rel_error"] * sign > 0
+        assert e["c_rel_error"] == (cf.c - fe.c) / fe.c and e["c_rel_error"] * sign > 0
+        assert abs(e["alpha_error"]) == fig["alpha"][2]
+        assert e["peak_rel_error"] == max(e["p_left_rel_error"], e["p_right_rel_error"], key=abs)
