@@ -572,9 +572,12 @@ def test_ctrl_c_prints_one_line_and_the_points_in_progress_are_rerun(tmp_path, c
     out = tmp_path / "map"
     script = tmp_path / "run.py"
     script.write_text(CTRL_C_RUN)
+    # SIGINT's default disposition, as a terminal's foreground job has (a background `pytest &`
+    # starts with it ignored, and its children would inherit that)
     proc = subprocess.Popen([sys.executable, str(script), str(out), str(counter)], cwd=ROOT,
                             env={**os.environ, "PYTHONPATH": str(ROOT)}, start_new_session=True,
-                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                            preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
     deadline = time.monotonic() + 120
     while time.monotonic() < deadline and proc.poll() is None:
         if (out / "points.jsonl").exists() and len(logged(out)) >= 2:
