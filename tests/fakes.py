@@ -150,7 +150,8 @@ def fake_solver(method: str) -> Method:
             fe = fem_normal(punch, P, s, A=A, tilt=tilt, mesh=mesh)
             return replace(_slip(fe, Q, f, method="fem", mesh=mesh), diagnostics=fe.diagnostics)
 
-        return Method("fem", fem_normal, fem_slip, options=("mesh",), default_nu=0.3)
+        return Method("fem", fem_normal, fem_slip, options=("mesh",), default_nu=0.3,
+                      comparison=_judged_as("fem"))
 
     def normal(punch, P, s, *, A, tilt="free", nu=None, n=64, scheme=None):
         return _normal(punch, P, s, A=A, tilt=tilt, method=method, n=n)
@@ -158,7 +159,13 @@ def fake_solver(method: str) -> Method:
     def slip(punch, P, s, *, A, tilt="free", nu=None, Q, f, normal=None, n=64):
         return _slip(normal, Q, f, method=method, n=n)
 
-    return Method(method, normal, slip, options=("n", "scheme"), lift_off=_lift_off)
+    return Method(method, normal, slip, options=("n", "scheme"), lift_off=_lift_off,
+                  comparison=_judged_as(method))
+
+
+def _judged_as(method: str):
+    """The tolerance group of the real ``method``: a fake is judged as what it stands in for."""
+    return registry.get(method).comparison
 
 
 def install_fakes(monkeypatch, **replacements: Method) -> None:
