@@ -329,6 +329,8 @@ def test_map_referee_points_and_missing_ccx(monkeypatch):
 PEAK_FIT = 2e-3
 #: the node count of the planted scatter's read: the largest nodal value is about that high
 PLANTED_SCATTER = 1e-2
+#: the plain maximum of the scattered nodes lies at least half the scatter above the peak
+PLANTED_BIAS = 5e-3
 
 
 def test_fitted_peak_reads_a_scattered_peak():
@@ -345,7 +347,7 @@ def test_fitted_peak_reads_a_scattered_peak():
     x = np.arange(0.0, cf.c, W / 200)           # vertex and midside nodes of h = W/100
     p = cf.pressure(x) * (1 + PLANTED_SCATTER * np.where(np.arange(x.size) % 3 == 0, 1.0, -0.5))
     exact = cf.peaks()[1]
-    assert p.max() / exact.p - 1 > 0.5 * PLANTED_SCATTER       # the plain maximum is biased
+    assert p.max() / exact.p - 1 > PLANTED_BIAS                 # the plain maximum is biased
     xp, pp = fitted_peak(x, p, PEAK_WINDOW * W)
     assert pp == pytest.approx(exact.p, rel=PEAK_FIT)
     assert xp == pytest.approx(exact.x, abs=PEAK_WINDOW * W)
