@@ -10,7 +10,7 @@ Decks
 -----
 DeckSettings    -- mesh size, penalty stiffness, punch stiffening, pair or stiff punch, block size
 build_model     -- the whole-model two-body gmsh mesh (second order) of a three-part punch
-build_finite_model -- the validity map's finite punch (exact arcs, flanks, height H) on its block
+build_finite_model -- the validity map's finite punch (exact arcs, flanks, height H) on its block, or its half
 write_deck      -- the deck of a model: sets, materials, contact, load at ``s``, free or suppressed tilt
 CONVENTIONS     -- the comment block every deck carries (units, conventions, pitfalls)
 parse_deck      -- a minimal keyword parser (``*KEYWORD, PARAM=...`` and data lines) for checks
