@@ -21,9 +21,18 @@ parabolas under which the contact is self-similar in the load).
 Names
 -----
 REFEREE_POINTS -- the two map points (issue 23): ``(a - b)/R1 = 0.03`` and ``0.1``, ``b/R1 = 0.1``, ``H/b = 4``
-REFEREE_N      -- CalculiX's elements across the contact width ``W`` (``h = W/n``)
+REFEREE_N      -- CalculiX's elements across the contact width ``W`` (``h = W/n``) on the whole model
+REFEREE_LEVELS -- the symmetric (half) model's study in ``h``: ``W/h`` of its levels, the finest last
+PEAK_WINDOW    -- the half-width of the fit that reads a peak, in ``W``
 referee        -- CalculiX at one point, with its signed differences from the FEM and the closed form
 read_run       -- CalculiX's ``p_left``, ``p_right``, ``a``, ``c`` from one run of the finite deck
+fitted_peak    -- a peak of nodal pressures: the maximum of a local quartic fit
+finite_deck    -- the CalculiX model and deck of one point (its half when the point is symmetric)
+
+Symmetric points (``R1 = R2``, ``s = 0``, both referee points) are modelled as
+their half ``x >= 0`` (``build_finite_model(..., half=True)``: ``u_x = 0`` on
+``x = 0``, the plate level): one peak, no mesh noise between two sides, and a
+finer mesh at the same cost.
 """
 from __future__ import annotations
 
@@ -40,13 +49,23 @@ from threepart.material import similar_pair
 
 from .validity import MESHES, NU, THETA, E, MapPoint, _closed_form, _load, _punch
 
-__all__ = ["REFEREE_POINTS", "REFEREE_N", "REFEREE_PENALTY", "REFEREE_INCREMENT", "referee", "read_run", "finite_deck"]
+__all__ = ["REFEREE_POINTS", "REFEREE_N", "REFEREE_LEVELS", "REFEREE_PENALTY", "REFEREE_INCREMENT",
+           "PEAK_WINDOW", "referee", "read_run", "finite_deck", "fitted_peak", "symmetric"]
 
 #: the issue's two points: the closed form's peak about 1 % too high at 0.03, 0.3-0.6 % too low at 0.1
 REFEREE_POINTS = (MapPoint(1.0, 0.1, 0.03, 4.0), MapPoint(1.0, 0.1, 0.1, 4.0))
 #: CalculiX's elements across the contact width: W/h = 100 (at 200 ccx stops with "nonpositive
 #: jacobian" in a block element, see docs/CALCULIX.md)
 REFEREE_N = 100.0
+#: the half model's levels (W/h): 100, 200, 300; the whole model stopped with "nonpositive
+#: jacobian" at 200, the half model does not (docs/CALCULIX.md)
+REFEREE_LEVELS = (100.0, 200.0, 300.0)
+#: the fit that reads a peak spans +-0.03 W about it: the nodal pressures scatter by about 1 %
+#: node to node (the master face's nodes, 1.37 h apart, against the slave's), so their largest
+#: value is biased high; the same fit on the closed form's pressure at the nodes of the three
+#: levels reads its peak to 1.3e-4 (at +-0.06 W to 6.5e-3: the window reaches the curvature's
+#: jump at x = b)
+PEAK_WINDOW = 0.03
 #: the penalty in E/h: 20 (at 200 E/h and W/h = 100 ccx needed 13 increments, at 50 E/h it left
 #: some penetrating slave nodes unpaired; 20 E/h converges in 4 increments of 1/4)
 REFEREE_PENALTY = 20.0
@@ -56,18 +75,46 @@ REFEREE_PENALTY = 20.0
 REFEREE_INCREMENT = (0.25, 1e-5)
 
 
-def finite_deck(point: MapPoint, *, n: float = REFEREE_N,
-                penalty_factor: float = REFEREE_PENALTY) -> tuple[calculix.Model, str, Any]:
+def symmetric(point: MapPoint) -> bool:
+    """Whether ``point`` is symmetric (``R2 = R1``; the map's load acts at ``s = 0``)."""
+    return point.R2_over_R1 == 1.0
+
+
+def fitted_peak(x: np.ndarray, p: np.ndarray, half_width: float) -> tuple[float, float]:
+    """The peak ``(x, p)`` of the nodal pressures ``p`` at ``x`` (sorted): the maximum of the
+    least-squares quartic over the nodes within ``half_width`` of it.
+
+    The fit is centred twice: first on the largest five-node moving average, then on the
+    first fit's maximum.
+    """
+    i = int(np.argmax(np.convolve(p, np.ones(5) / 5, "same")))
+    t = np.linspace(-half_width, half_width, 2001)
+    for _ in range(2):
+        m = np.abs(x - x[i]) < half_width
+        if np.count_nonzero(m) < 6:
+            raise ValueError(f"`half_width` = {half_width:g} holds {np.count_nonzero(m)} nodes; "
+                             "the quartic fit needs at least 6")
+        v = np.polyval(np.polyfit(x[m] - x[i], p[m], 4), t)
+        j = int(np.argmax(v))
+        x_peak, p_peak = float(x[i] + t[j]), float(v[j])
+        i = int(np.argmin(np.abs(x - x_peak)))
+    return x_peak, p_peak
+
+
+def finite_deck(point: MapPoint, *, n: float = REFEREE_N, penalty_factor: float = REFEREE_PENALTY,
+                half: bool | None = None) -> tuple[calculix.Model, str, Any]:
     """The CalculiX model and deck of ``point``, and the closed form that sized its mesh.
 
     The fine zone is laid over the closed form's contact ``[-a, c]`` with the
     deck's margin (the finite body's contact differs from it by about 1 %).
+    ``half``: model the half ``x >= 0`` (``None``: when the point is :func:`symmetric`).
     """
+    half = symmetric(point) if half is None else half
     punch, P = _punch(point), _load(point)
     cf = _closed_form(punch, P, 0.0, A=similar_pair(E, NU))
     settings = calculix.DeckSettings(n=n, penalty_factor=penalty_factor, pair=True)
     model = calculix.build_finite_model(punch, cf.a, cf.c, H=point.H_over_b * punch.b, theta=THETA,
-                                        settings=settings)
+                                        settings=settings, half=half)
     deck = calculix.write_deck(model, P=P, s=0.0, E=E, nu=NU, settings=settings, clamped=True,
                                increment=REFEREE_INCREMENT,
                                title=f"validity map point {point.key()}: finite punch, clamped block")
@@ -75,17 +122,27 @@ def finite_deck(point: MapPoint, *, n: float = REFEREE_N,
 
 
 def read_run(model: calculix.Model, stem: Path) -> dict[str, float]:
-    """CalculiX's ``p_left``, ``p_right`` (the largest fitted pressure on each side of ``x = 0``),
-    ``a``, ``c`` (from the gap) and the load the base carries, from one run of :func:`finite_deck`."""
+    """CalculiX's ``p_left``, ``p_right`` (each side's :func:`fitted_peak`, at ``x_left``,
+    ``x_right``), ``a``, ``c`` (from the gap) and the load the base and the contact forces carry,
+    from one run of :func:`finite_deck`. A half model's figures are the whole body's: its one
+    peak and end on both sides, twice its loads."""
     sp = calculix.surface_pressure(model, stem)
     # the peaks among the nodes the read-out fits (the loaded ones, DEALTERNATE_NODES in from
     # each end, where it keeps f / share, which alternates)
     on = np.flatnonzero(sp.f > 0)
     fitted = np.zeros(sp.x.size, bool)
     fitted[on[0] + calculix.DEALTERNATE_NODES:on[-1] + 1 - calculix.DEALTERNATE_NODES] = True
+    W = model.a + model.c
+    if "block_sym" in model.nsets:                 # the half x >= 0 of a symmetric point
+        fitted[on[0]:on[0] + calculix.DEALTERNATE_NODES] = True     # x = 0 is no end
+        x, p = fitted_peak(sp.x[fitted], sp.p[fitted], PEAK_WINDOW * W)
+        return {"p_left": p, "p_right": p, "x_left": -x, "x_right": x, "a": sp.c, "c": sp.c,
+                "P_base": 2 * sp.P, "P_forces": 2 * float(sp.f.sum())}
     left = sp.x < 0
-    return {"p_left": float(sp.p[left & fitted].max()), "p_right": float(sp.p[~left & fitted].max()),
-            "a": sp.a, "c": sp.c, "P_base": sp.P, "P_forces": float(sp.f.sum())}
+    xl, pl = fitted_peak(sp.x[left & fitted], sp.p[left & fitted], PEAK_WINDOW * W)
+    xr, pr = fitted_peak(sp.x[~left & fitted], sp.p[~left & fitted], PEAK_WINDOW * W)
+    return {"p_left": pl, "p_right": pr, "x_left": xl, "x_right": xr, "a": sp.a, "c": sp.c,
+            "P_base": sp.P, "P_forces": float(sp.f.sum())}
 
 
 def _signed(mine: dict[str, float], other: dict[str, float]) -> dict[str, float]:
@@ -93,19 +150,49 @@ def _signed(mine: dict[str, float], other: dict[str, float]) -> dict[str, float]
     return {q: (other[q] - mine[q]) / mine[q] for q in ("p_left", "p_right", "a", "c")}
 
 
+def _run(point: MapPoint, n: float, penalty_factor: float, half: bool, workdir: Path | None,
+         ) -> tuple[calculix.Model, dict[str, float], Any]:
+    """One CalculiX run at ``point``: its model, its read-out (with ``n``, ``h``, nodes, ``K``,
+    the CPU time of ccx) and the closed form."""
+    import resource
+
+    model, deck, cf = finite_deck(point, n=n, penalty_factor=penalty_factor, half=half)
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
+    with tempfile.TemporaryDirectory(prefix="threepart-ccx-map-") as tmp:
+        where = Path(workdir) / f"n{n:g}_K{penalty_factor:g}" if workdir else Path(tmp)
+        where.mkdir(parents=True, exist_ok=True)
+        stem = calculix.run_ccx(deck, where, "finite")
+        out = read_run(model, stem)
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    W = cf.a + cf.c
+    out.update(n=n, h=model.h0, nodes=model.n_nodes,
+               K=calculix.DeckSettings(n=n, penalty_factor=penalty_factor).K(E, W),
+               cpu_calculix_s=(after.ru_utime + after.ru_stime) - (before.ru_utime + before.ru_stime))
+    return model, out, cf
+
+
 def referee(point: MapPoint, *, n: float = REFEREE_N, penalty_factor: float = REFEREE_PENALTY,
-            workdir: Path | None = None) -> dict[str, Any]:
+            levels: tuple[float, ...] = REFEREE_LEVELS, workdir: Path | None = None) -> dict[str, Any]:
     """CalculiX at ``point``, against the finite-body FEM and the closed form.
+
+    A :func:`symmetric` point is run as its half model at each of ``levels``
+    (``W/h``, the finest last, which is CalculiX's answer), and once more at
+    the coarsest with the penalty doubled; any other point as the whole
+    model at ``W/h = n``.
 
     Returns
     -------
     dict
-        ``calculix``: its ``p_left``, ``p_right``, ``a``, ``c``; ``fem`` and
-        ``closed_form``: the same figures; ``fem_minus_calculix`` and
-        ``closed_form_minus_calculix``: signed differences over CalculiX's
-        (``(other - calculix) / calculix``); ``closed_form_minus_fem``: the
-        map's own figure; the mesh (``n``, ``h``, nodes), the penalty ``K``
-        and the times.
+        ``calculix``: its ``p_left``, ``p_right``, ``a``, ``c`` (and the peaks'
+        ``x``, the loads); ``fem`` and ``closed_form``: the same figures;
+        ``fem_minus_calculix`` and ``closed_form_minus_calculix``: signed
+        differences over CalculiX's (``(other - calculix) / calculix``);
+        ``closed_form_minus_fem``: the map's own figure; the mesh (``n``,
+        ``h``, nodes), the penalty ``K`` and the times; ``half``; for a
+        symmetric point ``study``: each level's read-out, the penalty's, and
+        ``peak_change`` (the peak's change between the two finest levels over
+        the finest's) and ``penalty_change`` (doubling ``K`` at the second
+        finest level).
 
     Raises
     ------
@@ -116,11 +203,20 @@ def referee(point: MapPoint, *, n: float = REFEREE_N, penalty_factor: float = RE
         raise calculix.CcxMissing("`ccx` (CalculiX) is not on the PATH: apt-get install calculix-ccx")
     from threepart import fem
 
+    half = symmetric(point)
     t0 = time.perf_counter()
-    model, deck, cf = finite_deck(point, n=n, penalty_factor=penalty_factor)
-    with tempfile.TemporaryDirectory(prefix="threepart-ccx-map-") as tmp:
-        stem = calculix.run_ccx(deck, Path(workdir or tmp), "finite")
-        ccx = read_run(model, stem)
+    study: dict[str, Any] = {}
+    if half:
+        runs = [_run(point, lv, penalty_factor, True, workdir) for lv in levels]
+        model, ccx, cf = runs[-1]
+        # K in E/h: its relative effect does not change with h, so the coarsest level shows it
+        stiff = _run(point, levels[0], 2 * penalty_factor, True, workdir)[1]
+        coarser, coarsest = runs[-2][1], runs[0][1]
+        study = {"levels": [r[1] for r in runs], "penalty": stiff,
+                 "peak_change": (ccx["p_right"] - coarser["p_right"]) / ccx["p_right"],
+                 "penalty_change": (stiff["p_right"] - coarsest["p_right"]) / coarsest["p_right"]}
+    else:
+        model, ccx, cf = _run(point, n, penalty_factor, False, workdir)
     t_ccx = time.perf_counter() - t0
     punch, P = _punch(point), _load(point)
     fe = fem.solve_finite(punch, P, 0.0, E=E, nu=NU, H=point.H_over_b * punch.b, theta=THETA,
@@ -129,22 +225,23 @@ def referee(point: MapPoint, *, n: float = REFEREE_N, penalty_factor: float = RE
     figs = {name: {"p_left": r.peaks()[0].p, "p_right": r.peaks()[1].p, "a": r.a, "c": r.c}
             for name, r in (("fem", fe), ("closed_form", cf))}
     W = cf.a + cf.c
-    return {"point": point.as_dict(), "P": P, "calculix": ccx, **figs,
+    return {"point": point.as_dict(), "P": P, "half": half, "calculix": ccx, **figs,
             "fem_minus_calculix": _signed(ccx, figs["fem"]),
             "closed_form_minus_calculix": _signed(ccx, figs["closed_form"]),
             "closed_form_minus_fem": _signed(figs["fem"], figs["closed_form"]),
-            "n": n, "h": model.h0, "W": W, "nodes": model.n_nodes,
-            "K": calculix.DeckSettings(n=n, penalty_factor=penalty_factor).K(E, W),
-            "time_calculix_s": t_ccx, "time_fem_s": t_fem}
+            "n": ccx["n"], "h": model.h0, "W": W, "nodes": model.n_nodes, "K": ccx["K"],
+            "study": study, "time_calculix_s": t_ccx, "time_fem_s": t_fem,
+            "cpu_calculix_s": sum(r["cpu_calculix_s"] for r in [*study.get("levels", [ccx]),
+                                                                 *([study["penalty"]] if study else [])])}
 
 
 def _main() -> None:  # pragma: no cover - a measurement, run by hand
     import json
     import sys
 
-    n = float(sys.argv[1]) if len(sys.argv) > 1 else REFEREE_N
-    for pt in REFEREE_POINTS:
-        print(json.dumps(referee(pt, n=n), indent=1, default=float), flush=True)
+    points = [REFEREE_POINTS[int(k)] for k in sys.argv[1:]] or list(REFEREE_POINTS)
+    for pt in points:
+        print(json.dumps(referee(pt), indent=1, default=float), flush=True)
 
 
 if __name__ == "__main__":  # pragma: no cover

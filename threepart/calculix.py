@@ -10,7 +10,7 @@ Decks
 -----
 DeckSettings    -- mesh size, penalty stiffness, punch stiffening, pair or stiff punch, block size
 build_model     -- the whole-model two-body gmsh mesh (second order) of a three-part punch
-build_finite_model -- the validity map's finite punch (exact arcs, flanks, height H) on its block
+build_finite_model -- the validity map's finite punch (exact arcs, flanks, height H) on its block, or its half
 write_deck      -- the deck of a model: sets, materials, contact, load at ``s``, free or suppressed tilt
 CONVENTIONS     -- the comment block every deck carries (units, conventions, pitfalls)
 parse_deck      -- a minimal keyword parser (``*KEYWORD, PARAM=...`` and data lines) for checks
@@ -604,7 +604,8 @@ def build_model(punch: Punch, a: float, c: float, settings: DeckSettings = DeckS
 
 
 def build_finite_model(punch: Punch, a: float, c: float, *, H: float, theta: float,
-                       settings: DeckSettings = DeckSettings(pair=True), block: float = 200.0) -> Model:
+                       settings: DeckSettings = DeckSettings(pair=True), block: float = 200.0,
+                       half: bool = False) -> Model:
     """Mesh the finite punch of :func:`fem.solve_finite` on its block (the validity map's model).
 
     The punch: the flat centre ``[-b, b]``, exact circular arcs of radius
@@ -619,6 +620,13 @@ def build_finite_model(punch: Punch, a: float, c: float, *, H: float, theta: flo
     ``y = 0``). :func:`write_deck` with ``clamped=True`` then clamps the
     block's base and welds the punch's top to a rigid plate (``u_x = 0``,
     ``u_y`` linear between its corners: free tilt), as :mod:`fem.finite` does.
+
+    ``half``: a symmetric problem (``R1 = R2``, ``a = c``, the load at
+    ``s = 0``) as its half ``x >= 0``, as :func:`build_half_mesh` does for the
+    small-slope benchmark: the block ``block * W / 2`` wide and ``block * W``
+    deep, the punch's flat ``[0, b]`` and its right arc; the node sets
+    ``"block_sym"`` and ``"punch_sym"`` on ``x = 0``, which :func:`write_deck`
+    holds at ``u_x = 0`` (and the plate level: its tilt is zero by symmetry).
     """
     import gmsh
 
@@ -631,15 +639,23 @@ def build_finite_model(punch: Punch, a: float, c: float, *, H: float, theta: flo
     h0 = settings.size(W)
     m = settings.margin * W
     xf0, xf1 = -a - m, c + m
-    half, depth = 0.5 * block * W, block * W
+    width, depth = 0.5 * block * W, block * W
     spec = PunchSpec(zone=SubstrateSpec(x_lo=xf0, x_hi=xf1, h=h0, L=depth), b=punch.b, R1=punch.R1,
                      R2=punch.R2, H=H, theta=theta)       # checks that the zone lies on the face
     if not (xf0 < -punch.b and punch.b < xf1):
         raise ValueError(f"the fine zone [{xf0:.6g}, {xf1:.6g}] must hold the flat centre [-b, b]")
+    if not isinstance(half, bool):
+        raise TypeError(f"`half` = {half!r} must be a bool")
+    if half:
+        if punch.R1 != punch.R2 or a != c:
+            raise ValueError(f"`half` needs a symmetric problem: R1 = {punch.R1:g} and R2 = {punch.R2:g}, "
+                             f"a = {a:g} and c = {c:g} must be equal")
+        return _finite_half_model(punch, c, spec, h0=h0, xf1=xf1, H=H, theta=theta, width=width,
+                                  depth=depth, settings=settings)
     with gmsh_session():
         occ = gmsh.model.occ
-        q = [occ.addPoint(-half, 0, 0), occ.addPoint(xf0, 0, 0), occ.addPoint(xf1 + 0.37 * h0, 0, 0),
-             occ.addPoint(half, 0, 0), occ.addPoint(half, -depth, 0), occ.addPoint(-half, -depth, 0)]
+        q = [occ.addPoint(-width, 0, 0), occ.addPoint(xf0, 0, 0), occ.addPoint(xf1 + 0.37 * h0, 0, 0),
+             occ.addPoint(width, 0, 0), occ.addPoint(width, -depth, 0), occ.addPoint(-width, -depth, 0)]
         lb = [occ.addLine(q[i], q[(i + 1) % 6]) for i in range(6)]
         s_block = occ.addPlaneSurface([occ.addCurveLoop(lb)])
 
@@ -693,6 +709,67 @@ def build_finite_model(punch: Punch, a: float, c: float, *, H: float, theta: flo
     return Model(punch, a, c, xy, elements, numbers, nsets, master, slave, h0, 0.0)
 
 
+def _finite_half_model(punch: Punch, c: float, spec: Any, *, h0: float, xf1: float, H: float,
+                       theta: float, width: float, depth: float, settings: DeckSettings) -> Model:
+    """The half ``x >= 0`` of :func:`build_finite_model`'s model (``half=True``), meshed alike."""
+    import gmsh
+
+    from .meshes import gmsh_session
+    from .meshes.substrate import size_field
+
+    with gmsh_session():
+        occ = gmsh.model.occ
+        # block: its top split where the fine zone ends (0.37 h beyond the punch's, as the whole model)
+        q = [occ.addPoint(0, 0, 0), occ.addPoint(xf1 + 0.37 * h0, 0, 0), occ.addPoint(width, 0, 0),
+             occ.addPoint(width, -depth, 0), occ.addPoint(0, -depth, 0)]
+        lb = [occ.addLine(q[i], q[(i + 1) % 5]) for i in range(5)]
+        s_block = occ.addPlaneSurface([occ.addCurveLoop(lb)])
+        # punch: the flat [0, b], the arc up to the fine zone's end and on, the flank, the top, x = 0
+        p0, pr = occ.addPoint(0, 0, 0), occ.addPoint(punch.b, 0, 0)
+        cr = occ.addPoint(punch.b, punch.R2, 0)
+        fr = occ.addPoint(xf1, float(spec.height(np.array([xf1]))[0]), 0)
+        xer = spec.edge_x("right")
+        ye = float(spec.height(np.array([xer]))[0])
+        er = occ.addPoint(xer, ye, 0)
+        fine = [occ.addLine(p0, pr), occ.addCircleArc(pr, cr, fr)]
+        curves = [*fine, occ.addCircleArc(fr, cr, er)]
+        if ye < H * (1 - 1e-12):              # a straight flank continues the arc's tangent
+            tr = occ.addPoint(xer + (H - ye) / math.tan(theta), H, 0)
+            curves.append(occ.addLine(er, tr))
+        else:                                 # the arc reaches the top first
+            tr = er
+        t0 = occ.addPoint(0, H, 0)
+        top = occ.addLine(tr, t0)
+        sym = occ.addLine(t0, p0)
+        s_punch = occ.addPlaneSurface([occ.addCurveLoop([*curves, top, sym])])
+        occ.synchronize()
+        groups = {"block": (2, [s_block]), "punch": (2, [s_punch]),
+                  "block_surface": (1, [lb[0]]), "block_base": (1, [lb[3]]), "block_sym": (1, [lb[4]]),
+                  "punch_profile": (1, fine), "punch_top": (1, [top]), "punch_sym": (1, [sym])}
+        tags = {name: gmsh.model.addPhysicalGroup(dim, ents, name=name)
+                for name, (dim, ents) in groups.items()}
+        size_field([lb[0], *fine], h=h0, growth=settings.growth,
+                   sampling=int(4 * xf1 / h0) + 10, size_max=depth / 8)
+        for f in fine:
+            length = gmsh.model.occ.getMass(1, f)
+            gmsh.model.mesh.setTransfiniteCurve(f, max(2, math.ceil(length / (MASTER_RATIO * h0)) + 1))
+        for name, value in [("Mesh.Algorithm", 8), ("Mesh.RecombineAll", 1),
+                            ("Mesh.RecombinationAlgorithm", 1), ("Mesh.SecondOrderIncomplete", 1)]:
+            gmsh.option.setNumber(name, value)
+        gmsh.model.mesh.generate(2)
+        gmsh.model.mesh.setOrder(2)
+        xy, elements, nsets = _collect(gmsh, {"block": s_block, "punch": s_punch}, tags,
+                                       ("block_surface", "block_base", "block_sym", "punch_profile",
+                                        "punch_top", "punch_sym"))
+    numbers, n = {}, 0
+    for body in ("block", "punch"):
+        numbers[body] = np.arange(n + 1, n + 1 + len(elements[body]))
+        n += len(elements[body])
+    master = _faces(elements["punch"], numbers["punch"], nsets["punch_profile"], xy, math.inf)
+    slave = _faces(elements["block"], numbers["block"], nsets["block_surface"], xy, math.inf)
+    return Model(punch, c, c, xy, elements, numbers, nsets, master, slave, h0, 0.0)
+
+
 def _collect(gmsh: Any, surfaces: dict[str, int], tags: dict[str, int],
              names: tuple[str, ...]) -> tuple[np.ndarray, dict[str, list[tuple[str, np.ndarray]]],
                                               dict[str, np.ndarray]]:
@@ -742,6 +819,11 @@ def write_deck(model: Model, *, P: float, s: float, E: float, nu: float,
     in ``x`` (the finite body of :func:`build_finite_model`, welded to its plate).
     One linear static step in one increment; ``increment`` = (first, smallest)
     increment of the step (CalculiX cuts an increment that does not converge).
+
+    A half model (``build_finite_model(..., half=True)``, ``clamped`` and
+    ``s = 0`` only) carries ``P / 2`` on its plate, which stays level (every top
+    node's ``u_y`` equals the corner's at ``x = 0``), and both bodies' nodes on
+    ``x = 0`` are held at ``u_x = 0`` (set NSYM).
     """
     P, s = positive("P", P, (1e-12, 1e15)), finite("s", s)
     E, nu = positive("E", E, (1e-6, 1e15)), finite("nu", nu)
@@ -749,7 +831,10 @@ def write_deck(model: Model, *, P: float, s: float, E: float, nu: float,
     K = settings.K(E, W)
     tl, tr = model.control_nodes()
     xL, xR = model.xy[tl - 1, 0], model.xy[tr - 1, 0]
-    if settings.tilt == "free" and not xL < s < xR:
+    half = "block_sym" in model.nsets
+    if half and not (s == 0.0 and clamped):
+        raise ValueError(f"a half model needs `s` = 0 (got {s:g}) and `clamped` (got {clamped})")
+    if not half and settings.tilt == "free" and not xL < s < xR:
         raise ValueError(f"`s` = {s:g} must lie on the punch's top, between {xL:g} and {xR:g}")
     top = model.nsets["punch_top"]
     base = model.nsets["block_base"]
@@ -778,21 +863,28 @@ def write_deck(model: Model, *, P: float, s: float, E: float, nu: float,
     rows = []
     for n in top:
         n = int(n)
-        if n in (tl, tr):
+        if n == tl or (n == tr and not half):
             continue
-        if settings.tilt == "free":
+        if half:                 # the plate's tilt is zero by symmetry
+            rows.append(f"2\n{n}, 2, 1., {tl}, 2, -1.")
+        elif settings.tilt == "free":
             t = (model.xy[n - 1, 0] - xL) / (xR - xL)
             rows.append(f"3\n{n}, 2, 1., {tl}, 2, {-(1 - t):.15g}, {tr}, 2, {-t:.15g}")
         else:
             rows.append(f"2\n{n}, 2, 1., {tl}, 2, -1.")
-    if settings.tilt == "suppressed":
+    if half:
+        loads = f"{tl}, 2, {-0.5 * P:.15g}\n"
+    elif settings.tilt == "suppressed":
         rows.append(f"2\n{tr}, 2, 1., {tl}, 2, -1.")
         loads = f"{tl}, 2, {-P:.15g}\n"
     else:
         F_R = P * (s - xL) / (xR - xL)
         loads = f"{tl}, 2, {-(P - F_R):.15g}\n{tr}, 2, {-F_R:.15g}\n"
     parts.append("*EQUATION\n" + "\n".join(rows) + "\n")
-    parts.append(boundary_text([("NBASE", 1), ("NBASE", 2), ("NTOP", 1)] if clamped else
+    if half:
+        parts.append(nset_text("NSYM", np.union1d(model.nsets["block_sym"], model.nsets["punch_sym"])))
+    parts.append(boundary_text([("NBASE", 1), ("NBASE", 2), ("NTOP", 1)] + [("NSYM", 1)] * half
+                               if clamped else
                                [("NBASE", 2), ("NMID", 1), (str(tl), 1)]))
     parts.append("*STEP, INC=1000\n*CONTROLS, PARAMETERS=TIME INCREMENTATION\n"
                  f"40, 60, 9, 200, 10, 4, 12, 40\n*STATIC\n{increment[0]:.15g}, 1., {increment[1]:.15g}, "
