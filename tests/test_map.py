@@ -124,8 +124,8 @@ def counter(tmp_path):
 
 def sweep(out, scheduler, evaluate, **kw):
     kw.setdefault("say", lambda m: None)
-    return run_map(out, scheduler=scheduler, evaluate=evaluate, points=POINTS, control=kw.pop(
-        "control", fake_control), **kw)
+    return run_map(out, scheduler=scheduler, evaluate=evaluate, points=kw.pop("points", POINTS),
+                   control=kw.pop("control", fake_control), **kw)
 
 
 @pytest.fixture(scope="module")
@@ -947,6 +947,8 @@ SLIP_POINTS = subset(POINTS, SLIP_SUBSET)
 SLOPE_POINTS = subset(POINTS, SLOPE_SUBSET)
 CURVES = slope_curves(POINTS)
 REFEREE = (POINTS[1], POINTS[2])
+#: a grid of one curve (R2/R1 = 1, b/R1 = 0.1), for the cheaper maps of the failure test
+ONE_CURVE = POINTS[:3]
 
 
 def fake_load_level(p: MapPoint) -> float:
@@ -1008,10 +1010,13 @@ class FakeStudy:
                 "referee": referee_expected}[self.kind](args[0])
 
 
-def fake_studies(calls: Path, fail: frozenset[str] = frozenset()) -> Studies:
+def fake_studies(calls: Path, fail: frozenset[str] = frozenset(), small: bool = False) -> Studies:
+    """The fake studies on the fake grid's subsets (``small``: partial slip and CalculiX on
+    :data:`ONE_CURVE` only)."""
     return Studies(*(FakeStudy(calls, k, fail) for k in ("slip", "slope", "crossing", "referee")),
-                   load_level=fake_load_level, slip_points=SLIP_POINTS, slope_points=SLOPE_POINTS,
-                   slope_curves=CURVES, referee_points=REFEREE)
+                   load_level=fake_load_level, slip_points=ONE_CURVE if small else SLIP_POINTS,
+                   slope_points=() if small else SLOPE_POINTS, slope_curves=() if small else CURVES,
+                   referee_points=REFEREE)
 
 
 def study_keys() -> list[str]:
@@ -1110,18 +1115,20 @@ def test_an_interrupted_map_recomputes_none_of_its_finished_studies(tmp_path, sc
 def test_a_failed_study_fails_the_map_and_is_retried_and_a_missing_ccx_is_a_note(tmp_path, scheduler):
     out, c = tmp_path / "map", tmp_path / "calls"
     c.mkdir()
-    bad = f"slip:{SLIP_POINTS[3].key()}"
-    doc = sweep(out, scheduler, FakeEvaluate(c), studies=fake_studies(c, frozenset({bad, "ccx"})))
+    bad = f"slip:{ONE_CURVE[2].key()}"
+    doc = sweep(out, scheduler, FakeEvaluate(c), points=ONE_CURVE,
+                studies=fake_studies(c, frozenset({bad, "ccx"}), small=True))
     map_mod.validate(doc)
-    assert doc["points"][3]["slip_error"] == f"RuntimeError: slip failed at {SLIP_POINTS[3].key()}"
-    assert doc["points"][3]["d_rel_error"] is None
+    assert doc["points"][2]["slip_error"] == f"RuntimeError: slip failed at {ONE_CURVE[2].key()}"
+    assert doc["points"][2]["d_rel_error"] is None
     assert doc["summary"]["failed"] == 1 and exit_status(doc) == 1      # the note is not a failure
     assert "not on the PATH" in doc["referee"]["note"]
     assert all(r["note"].startswith("CcxMissing") and r["error"] is None and r["calculix"] is None
                for r in doc["referee"]["points"])
     for f in c.iterdir():
         f.unlink()
-    doc = sweep(out, scheduler, FakeEvaluate(c), studies=fake_studies(c))   # ccx is there now
+    doc = sweep(out, scheduler, FakeEvaluate(c), points=ONE_CURVE,
+                studies=fake_studies(c, small=True))                   # ccx is there now
     assert calls(c) == sorted([bad, *(f"referee:{p.key()}" for p in REFEREE)])
-    assert doc["points"][3]["d_rel_error"] == slip_expected(SLIP_POINTS[3])["d_rel_error"]
+    assert doc["points"][2]["d_rel_error"] == slip_expected(ONE_CURVE[2])["d_rel_error"]
     assert exit_status(doc) == 0 and doc["referee"]["note"] is None
