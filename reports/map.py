@@ -165,7 +165,7 @@ def _step_point(b: Bisection, x: float) -> MapPoint:
 
 def _task_time(rec: dict[str, Any]) -> float:
     """The seconds a task's line records: a point's ``time_s``, a study's ``*time_s``."""
-    res = rec.get("result") if isinstance(rec.get("result"), dict) else rec
+    res: dict[str, Any] = rec["result"] if isinstance(rec.get("result"), dict) else rec
     times = [v for k, v in res.items() if k.startswith("time") or k.endswith("time_s")]
     return sum(v for v in times if finite(v))
 

@@ -160,7 +160,7 @@ def referee_section(st: Studies, records: dict[str, dict[str, Any]]) -> dict[str
     points = []
     for p in st.referee_points or ():
         r = records.get(task_key("referee", p.key()), {})
-        res = r.get("result") if isinstance(r.get("result"), dict) else {}
+        res: dict[str, Any] = r["result"] if isinstance(r.get("result"), dict) else {}
         points.append({"key": p.key(), **{k: float(p.as_dict()[k]) for k in COORDINATES},
                        **{k: _figures(res.get(k)) for k in REFEREE_KEYS},
                        "note": r.get("note"), "error": r.get("error") if r else "not run",

@@ -82,11 +82,12 @@ GRID = {
 #: the points of the grid that also get the partial-slip study (:mod:`reports.validity_slip`,
 #: issue 23: the stick zone at Q/fP = 0.4): the central load on the middle height, both R2/R1,
 #: every b/R1 and overhang (26 quick points, 33 full; about 3x a normal point each)
-SLIP_SUBSET = {"s_over_lift": (0.0,), "H_over_b": (4.0,)}
+SLIP_SUBSET: dict[str, tuple[float, ...]] = {"s_over_lift": (0.0,), "H_over_b": (4.0,)}
 #: the points (and the curves over b/R1) of the small-slope load axis
 #: (:mod:`reports.validity_slope`): its cost is a property of the load and the shape, so one
 #: shape family is enough: R2/R1 = 1, H/b = 4, central load
-SLOPE_SUBSET = {"s_over_lift": (0.0,), "H_over_b": (4.0,), "R2_over_R1": (1.0,)}
+SLOPE_SUBSET: dict[str, tuple[float, ...]] = {"s_over_lift": (0.0,), "H_over_b": (4.0,),
+                                              "R2_over_R1": (1.0,)}
 #: the FE meshes of a point in each map mode, fine and coarse (their difference is the FEM's
 #: error estimate)
 MESHES = {"quick": ("quick", 0.5), "full": ("default", 0.5)}
