@@ -415,8 +415,14 @@ def stick_sentence(points: Sequence[dict[str, Any]]) -> str:
                 "zones narrower, not conservative; −: the other way round, conservative)")
     blur = ("" if u is None else f"; the FEM's own estimate is up to {pct(u)}"
             + (", as large as the errors themselves" if u >= max(abs(lo), abs(hi)) else ""))
+    per_b = []
+    for b in sorted({p["b_over_R1"] for p in points if "b_over_R1" in p}):
+        db = [p["d_rel_error"] for p in points if p.get("b_over_R1") == b and finite(p.get("d_rel_error"))]
+        if db:
+            per_b.append(f"{100 * min(db):+.2g} % to {100 * max(db):+.2g} % at b/R1 = {b:g}")
+    where = f" ({'; '.join(per_b)})" if per_b else ""
     return (f"Partial slip at Q/fP = 0.4: the closed form's stick-zone half-width d is off by "
-            f"{100 * lo:+.2g} % to {100 * hi:+.2g} % of the finite body's, its offset e by "
+            f"{100 * lo:+.2g} % to {100 * hi:+.2g} % of the finite body's{where}, its offset e by "
             f"{100 * min(e):+.2g} % to {100 * max(e):+.2g} % of d; {sign}{blur}.")
 
 
