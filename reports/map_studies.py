@@ -99,10 +99,6 @@ def curve_name(curve: tuple[float, float, float]) -> str:
     return f"R2R1={r:.6g}_bR1={b:.6g}_Hb={h:.6g}"
 
 
-def _slope_keys() -> tuple[str, ...]:
-    return tuple(SLOPE_RESULT_KEYS)
-
-
 def study_tasks(st: Studies, quick: bool, records: dict[str, dict[str, Any]]) -> list[Task]:
     """The tasks of the studies that ``records`` (the log) does not hold finished.
 
@@ -122,13 +118,17 @@ def study_tasks(st: Studies, quick: bool, records: dict[str, dict[str, Any]]) ->
         tasks.append((k, st.slip, (p, quick), rec(task_record, k, "slip", keys=SLIP_RESULT_KEYS)))
     for p in st.slope_points or ():
         k = task_key("slope", p.key())
-        tasks.append((k, st.slope, (p, quick), rec(task_record, k, "slope", keys=_slope_keys())))
+        tasks.append((k, st.slope, (p, quick), rec(task_record, k, "slope", keys=tuple(SLOPE_RESULT_KEYS))))
     return [t for t in tasks if not done(records.get(t[0]))]
 
 
 def point_columns(st: Studies, point: MapPoint, records: dict[str, dict[str, Any]]) -> dict[str, Any]:
     """``load_level`` and the :data:`SLIP_COLUMNS` and :data:`SLOPE_COLUMNS` of ``point`` (null where not run)."""
-    out: dict[str, Any] = {"load_level": float(st.load_level(point))}
+    try:
+        level: float | None = float(st.load_level(point))
+    except (ValueError, ArithmeticError):   # the closed form has no load here: no level, no crash
+        level = None
+    out: dict[str, Any] = {"load_level": level}
     for kind, cols in (("slip", SLIP_COLUMNS), ("slope", SLOPE_COLUMNS)):
         r = records.get(task_key(kind, point.key()), {})
         out.update({c: r.get(c) for c in cols[:-1]})
