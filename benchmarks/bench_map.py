@@ -19,6 +19,12 @@ without running it: it evaluates every ``len(grid)/N``-th point of the full
 grid (all axes represented) in this process, one after the other, and scales
 the mean ``time_s`` to the full grid plus its bisection steps (``--crossings``
 per curve, each at most ``STEP_CAP["full"]`` steps) on ``--workers`` workers.
+It also times ``max(1, N // 4)`` points of each study of the full map
+(:mod:`reports.map_studies`: the partial slip and the small slope on their
+subsets) and adds them, the small-slope crossings (``--slope-evaluations``
+evaluations of a slope point each) and the CalculiX referee points
+(``--referee-s`` CPU seconds each, not timed here: ``python -m
+threepart.reports.map_referee`` times them).
 """
 from __future__ import annotations
 
@@ -33,7 +39,10 @@ from typing import Any
 from threepart.reports import validity
 from threepart.reports.map_boundary import CURVE_AXES, STEP_CAP
 from threepart.reports.map import exit_status, run_map
+from threepart.reports.map_referee import REFEREE_POINTS
 from threepart.reports.validity import RESULT_KEYS
+from threepart.reports.validity_slip import evaluate_slip
+from threepart.reports.validity_slope import evaluate_slope
 
 
 class SleepEvaluate:
@@ -73,7 +82,21 @@ def one_run(workers: int, fake: float | None, root: Path) -> dict[str, Any]:
                    say=lambda m: print(f"    {m}", flush=True))
 
 
-def estimate_full(n: int, workers: int, crossings: float, quick: bool = False) -> int:
+def _time_study(name: str, fn: Any, points: list[Any], k: int, quick: bool) -> tuple[float, float]:
+    """The mean wall and CPU seconds of ``fn(point, quick)`` over ``k`` points spread over ``points``."""
+    sample = points[::max(1, len(points) // k)][:k]
+    wall, cpu = [], []
+    for p in sample:
+        c0, t0 = time.process_time(), time.perf_counter()
+        fn(p, quick)
+        cpu.append(time.process_time() - c0)
+        wall.append(time.perf_counter() - t0)
+        print(f"    {name} {p.key()}  wall {wall[-1]:.1f} s, CPU {cpu[-1]:.1f} s", flush=True)
+    return sum(wall) / len(wall), sum(cpu) / len(cpu)
+
+
+def estimate_full(n: int, workers: int, crossings: float, quick: bool = False,
+                  slope_evaluations: float = 7.0, referee_s: float = 120.0) -> int:
     """Time ``n`` points spread over the full grid; print the full map's estimated wall time.
 
     Each point's wall time (``time_s``) and this process's CPU time are both
@@ -94,13 +117,25 @@ def estimate_full(n: int, workers: int, crossings: float, quick: bool = False) -
               f"CPU {cpu[-1]:.1f} s", flush=True)
     curves = len({tuple(getattr(p, a) for a in CURVE_AXES) for p in grid})
     steps = curves * crossings * STEP_CAP["full"]
-    for what, times in (("wall", wall), ("CPU", cpu)):
+    slips = validity.subset(grid, validity.SLIP_SUBSET)
+    slopes = validity.subset(grid, validity.SLOPE_SUBSET)
+    k = max(1, n // 4)
+    slip_t = _time_study("slip", evaluate_slip, slips, k, quick)
+    slope_t = _time_study("slope", evaluate_slope, slopes, k, quick)
+    n_cross = len(validity.slope_curves(grid))
+    for i, (what, times) in enumerate((("wall", wall), ("CPU", cpu))):
         mean = sum(times) / len(times)
-        total = mean * (len(grid) + steps) / workers
+        grid_s = mean * (len(grid) + steps)
+        study_s = (slip_t[i] * len(slips) + slope_t[i] * (len(slopes) + slope_evaluations * n_cross)
+                   + referee_s * len(REFEREE_POINTS))
         print(f"full grid: {len(grid)} points, {curves} curves; {what} time of a sample of "
               f"{len(sample)} on {'quick' if quick else 'default'} meshes: mean {mean:.1f} s per "
               f"point; with {crossings:g} crossings per curve x {STEP_CAP['full']} steps = "
-              f"{steps:.0f} bisection points: about {total / 60:.0f} min on {workers} workers "
+              f"{steps:.0f} bisection points: {grid_s / workers / 60:.0f} min on {workers} workers; "
+              f"studies: {len(slips)} slip x {slip_t[i]:.1f} s, {len(slopes)} slope points and "
+              f"{n_cross} crossings x {slope_evaluations:g} x {slope_t[i]:.1f} s, "
+              f"{len(REFEREE_POINTS)} CalculiX x {referee_s:g} s: {study_s / workers / 60:.0f} min; "
+              f"total about {(grid_s + study_s) / workers / 60:.0f} min "
               f"(without the control and its convergence study)")
     return 0
 
@@ -115,11 +150,16 @@ def main(argv: list[str] | None = None) -> int:
                         help="time N points spread over the full grid and estimate the full map")
     parser.add_argument("--crossings", type=float, default=1.5,
                         help="with --estimate-full: located crossings per curve (default 1.5)")
+    parser.add_argument("--slope-evaluations", type=float, default=7.0,
+                        help="with --estimate-full: slope points per small-slope crossing (default 7)")
+    parser.add_argument("--referee-s", type=float, default=120.0,
+                        help="with --estimate-full: CPU seconds per CalculiX point (default 120)")
     args = parser.parse_args(argv)
     if args.estimate_full is not None:
         if args.estimate_full < 1:
             parser.error(f"--estimate-full {args.estimate_full} must be >= 1")
-        return estimate_full(args.estimate_full, int(args.workers.split(",")[-1]), args.crossings)
+        return estimate_full(args.estimate_full, int(args.workers.split(",")[-1]), args.crossings,
+                             slope_evaluations=args.slope_evaluations, referee_s=args.referee_s)
     counts = [int(w) for w in args.workers.split(",")]
     if args.fake is not None and not (math.isfinite(args.fake) and args.fake >= 0):
         parser.error(f"--fake {args.fake} must be a number of seconds >= 0")

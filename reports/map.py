@@ -46,6 +46,7 @@ map_log    -- the sweep's log ``points.jsonl``: its records and the resume state
 map_engine -- dask.distributed: the cluster and the sweep
 map_plots  -- the designer's reading and the contour plots
 map_boundary -- the boundary: where the signed error crosses a level, by bisection
+map_studies  -- the studies on subsets: partial slip, the small-slope load axis, CalculiX
 
 Names
 -----
@@ -78,14 +79,15 @@ from . import validity
 from .map_engine import open_engine, sweep
 from .map_boundary import LEVELS, REL_WIDTH, STEP_CAP, X, Bisection, Sample, start
 from .map_log import CONTROL_KEY, POINTS_FILE, done, read_log
-from .map_plots import below_level, contour, designer_sentence
+from .map_plots import below_level, contour, designer_sentence, slope_plot, stick_sentence, stick_zone
+from .map_studies import Studies, failures, point_columns, referee_section, small_slope, study_tasks
 from .map_schema import (COLUMNS, COORDINATES, GROUP_AXES, SCHEMA_FILE, SCHEMA_VERSION,
                          boundaries_csv, csv_text, finite, groups, load_schema, plot_name, validate)
 from .validity import MapPoint
 
 __all__ = ["run_map", "main", "exit_status", "check_arguments", "below_level", "designer_sentence",
            "validate", "load_schema", "SCHEMA_FILE", "SCHEMA_VERSION", "COLUMNS", "COORDINATES",
-           "CONTROL_LIMIT", "LEVELS", "POINTS_FILE", "DEFAULT_WORKERS"]
+           "CONTROL_LIMIT", "LEVELS", "POINTS_FILE", "DEFAULT_WORKERS", "Studies"]
 
 #: the command recorded in the marker of a map directory
 COMMAND = "map"
@@ -142,11 +144,30 @@ def _draw(rd: ResumableDir, doc: dict[str, Any], say: Say) -> None:
                              "below_1_percent": [{k: row[k] for k in ("b_over_R1", "limit", "stop")}
                                                  for row in below_level(group)]})
         say(f"  {rel}: {sentence}")
+        slipped = [p for p in group if p["d_rel_error"] is not None]
+        if slipped:
+            rel = plot_name(values, "stick_zone")
+            sentence = stick_sentence(slipped)
+            rd.write(rel, lambda path: stick_zone(slipped, **where, sentence=sentence, path=path))
+            doc["stick_zone_plots"].append({"file": rel, **where, "sentence": sentence})
+            say(f"  {rel}: {sentence}")
+    sloped = [p for p in points if p["slope_peak_rel_error"] is not None]
+    if sloped:
+        rel = "plots/small_slope.png"
+        rd.write(rel, lambda path: slope_plot(sloped, doc["small_slope"], path=path))
+        doc["small_slope"]["plot"] = rel
 
 
 def _step_point(b: Bisection, x: float) -> MapPoint:
     """The map point of a bisection step: the curve's coordinates at the overhang ``x``."""
     return MapPoint(**b.curve, **{X: x})
+
+
+def _task_time(rec: dict[str, Any]) -> float:
+    """The seconds a task's line records: a point's ``time_s``, a study's ``*time_s``."""
+    res: dict[str, Any] = rec["result"] if isinstance(rec.get("result"), dict) else rec
+    times = [v for k, v in res.items() if k.startswith("time") or k.endswith("time_s")]
+    return sum(v for v in times if finite(v))
 
 
 def exit_status(doc: dict[str, Any]) -> int:
@@ -160,7 +181,7 @@ def run_map(out: str | Path, *, quick: bool = False, scheduler: str | None = Non
             workers: int | None = None, force: bool = False, evaluate: Evaluate = validity.evaluate,
             points: Sequence[MapPoint] | None = None,
             control: Callable[[bool], dict[str, Any]] = validity.control,
-            say: Say = print) -> dict[str, Any]:
+            studies: Studies | None = None, say: Say = print) -> dict[str, Any]:
     """Run (or resume) the validity map on dask.distributed and write it to ``out``.
 
     Parameters
@@ -184,6 +205,11 @@ def run_map(out: str | Path, *, quick: bool = False, scheduler: str | None = Non
         ``points`` the grid (default ``validity.map_points(quick)``), and
         ``control(quick)`` the control with ``control_rel_error``. Each runs
         on a worker, so it must be picklable (a module-level function).
+    studies
+        The studies on subsets of the grid (:class:`reports.map_studies.Studies`:
+        partial slip, small slope, its crossings, CalculiX) and the load level
+        of every point. Default: the real ones on the declared subsets of the
+        map's own grid; with ``points`` given, only the subsets ``studies`` names.
     say
         Where the progress lines go.
 
@@ -224,12 +250,18 @@ def run_map(out: str | Path, *, quick: bool = False, scheduler: str | None = Non
         rd = ResumableDir.open(out, command=COMMAND, mode=mode, force=force)
         stack.callback(rd.close)
         records = read_log(rd.log_lines(POINTS_FILE), mode)
+        st = (studies or Studies()).subsets(grid, points is None, quick)
+        n_studies = (len(st.slip_points or ()) + len(st.slope_points or ())
+                     + len(st.slope_curves or ()) + len(st.referee_points or ()))
         tasks: list[tuple[str, Callable[..., Any], tuple[Any, ...], Any]] = [
-            (p.key(), evaluate, (p, quick), p) for p in grid if not done(records.get(p.key()))]
+            *study_tasks(st, quick, records),
+            *((p.key(), evaluate, (p, quick), p) for p in grid if not done(records.get(p.key())))]
         if not done(records.get(CONTROL_KEY)):
             tasks.append((CONTROL_KEY, control, (quick,), None))
-        total = len(grid) + 1
-        say(f"threepart map --{mode}: {len(grid)} points and the control -> {out} "
+        total = len(grid) + 1 + n_studies
+        say(f"threepart map --{mode}: {len(grid)} points, the control and {n_studies} study tasks "
+            f"({len(st.slip_points or ())} partial slip, {len(st.slope_points or ())} small slope, "
+            f"{len(st.slope_curves or ())} crossings, {len(st.referee_points or ())} CalculiX) -> {out} "
             f"({rd.action}; {total - len(tasks)} of {total} already done)")
 
         def log(rec: dict[str, Any]) -> None:
@@ -288,16 +320,17 @@ def run_map(out: str | Path, *, quick: bool = False, scheduler: str | None = Non
     grid_keys = set(keys)
     computed = [records[t[0]] for t in tasks if t[0] in grid_keys]
     ran = [records[t[0]].get("control", {}) if t[0] == CONTROL_KEY else records[t[0]] for t in tasks]
-    task_s = sum(r["time_s"] for r in ran if finite(r.get("time_s")))
+    task_s = sum(_task_time(r) for r in ran)
     timings["evaluate_s"] = task_s
     if tasks and timings["sweep_s"] > 0 and engine["workers"]:
         timings["overhead_per_task_s"] = max(
             0.0, (timings["sweep_s"] * engine["workers"] - task_s) / len(tasks))
     ctl = records[CONTROL_KEY]
-    mapped = [{k: records[key].get(k) for k in COLUMNS} for key in keys]
+    mapped = [{k: {**records[p.key()], **point_columns(st, p, records)}.get(k) for k in COLUMNS}
+              for p in grid]
     boundaries = [b.result(cap) for b in bisections]
     failed = (sum(p["error"] is not None for p in mapped) + (ctl["error"] is not None)
-              + sum(b["status"] == "failed" for b in boundaries))
+              + sum(b["status"] == "failed" for b in boundaries) + failures(st, records))
     doc: dict[str, Any] = {
         "schema_version": SCHEMA_VERSION, "tool": "threepart map", "mode": mode, "engine": engine,
         "control_rel_error": ctl["control_rel_error"], "control_limit": CONTROL_LIMIT,
@@ -305,12 +338,14 @@ def run_map(out: str | Path, *, quick: bool = False, scheduler: str | None = Non
         "points": mapped, "boundaries": boundaries,
         "bisection": {"levels": list(LEVELS), "rel_width": REL_WIDTH, "step_cap": cap,
                       "steps": steps_done},
-        "timings": timings, "plots": [],
+        "small_slope": small_slope(st, records), "referee": referee_section(st, records),
+        "timings": timings, "plots": [], "stick_zone_plots": [],
         "summary": {"points": len(mapped), "failed": failed, "computed": len(computed),
                     "resumed": len(mapped) - len(computed), "run_time_s": 0.0},
     }
     t3 = time.perf_counter()
-    _plan(rd, [plot_name(g) for g in groups(mapped)])
+    _plan(rd, [*(plot_name(g, kind) for g in groups(mapped) for kind in ("peak_error", "stick_zone")),
+               "plots/small_slope.png"])
     _draw(rd, doc, say)
     rd.write("map.csv", csv_text(mapped))
     rd.write("boundaries.csv", boundaries_csv(boundaries))

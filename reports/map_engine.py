@@ -135,7 +135,13 @@ def connect(scheduler: str, timeout: float) -> Any:
 def sweep(client: Any, tasks: list[tuple[str, Callable[..., Any], tuple[Any, ...], Any]],
            log: Callable[[dict[str, Any]], None], mode: str, done0: int, total: int,
            say: Say) -> list[dict[str, Any]]:
-    """Submit every task, log each result as it arrives, and report progress; return the records."""
+    """Submit every task, log each result as it arrives, and report progress; return the records.
+
+    A task is ``(key, fn, args, what)``: ``what`` is the grid point (its line is
+    :func:`~reports.map_log.point_record`), ``None`` (the control), or a callable
+    ``what(result, exc, mode)`` that makes the line of a study task
+    (:func:`~reports.map_log.task_record`).
+    """
     futures = {}
     for key, fn, args, point in tasks:
         fut = client.submit(fn, *args, pure=False, key=f"threepart-map-{key}-{uuid.uuid4().hex[:8]}")
@@ -145,18 +151,24 @@ def sweep(client: Any, tasks: list[tuple[str, Callable[..., Any], tuple[Any, ...
     try:
         for fut in as_completed(list(futures)):
             key, point = futures[fut]
+            exc: BaseException | None = None
             try:
-                result, error = fut.result(), None
-            except (Exception, CancelledError) as exc:   # a failed point is recorded, never a crash
-                result, error = None, one_line(exc)
-            rec = (control_record(result, error, mode) if point is None
-                   else point_record(point, result, error, mode))
+                result = fut.result()
+            except (Exception, CancelledError) as e:   # a failed point is recorded, never a crash
+                result, exc = None, e
+            error = None if exc is None else one_line(exc)
+            if callable(point):   # a study task: it makes its own line
+                rec = point(result, exc, mode)
+            else:
+                rec = (control_record(result, error, mode) if point is None
+                       else point_record(point, result, error, mode))
             log(rec)
             records.append(rec)
             done = done0 + len(records)
             elapsed = time.perf_counter() - t0
             eta = elapsed / len(records) * (total - done)
             status = "FAILED " + rec["error"] if rec["error"] else (
+                rec.get("note") or "done" if callable(point) else
                 f"peak error {pct(rec.get('peak_rel_error'))}" if point is not None
                 else f"control error {rec['control_rel_error']:.2e}")
             say(f"[{done:>{len(str(total))}}/{total}] {key}  {status}  "

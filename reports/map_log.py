@@ -7,6 +7,8 @@ CONTROL_KEY    -- the key of the control's line
 read_log       -- the last line of every key of one mode
 point_record   -- the line of one point: coordinates, results and error
 control_record -- the line of the control
+task_record    -- the line of a study task (partial slip, small slope, crossing, referee)
+task_key       -- the key of a study task
 done           -- whether a line is a finished task
 one_line       -- an exception as one line
 """
@@ -17,11 +19,11 @@ from typing import Any
 
 from threepart.output import json_safe
 
-from .map_schema import COLUMNS, COORDINATES, SCHEMA_VERSION
+from .map_schema import COORDINATES, POINT_FIELDS, SCHEMA_VERSION
 from .validity import RESULT_KEYS
 
-__all__ = ["POINTS_FILE", "CONTROL_KEY", "read_log", "point_record", "control_record", "done",
-           "one_line"]
+__all__ = ["POINTS_FILE", "CONTROL_KEY", "read_log", "point_record", "control_record", "task_record",
+           "task_key", "done", "one_line"]
 
 #: the sweep's log: one JSON line per finished task, the resume state
 POINTS_FILE = "points.jsonl"
@@ -83,11 +85,52 @@ def control_record(result: Any, error: str | None, mode: str) -> dict[str, Any]:
                       "error": error, "mode": mode, "layout": SCHEMA_VERSION})
 
 
+def task_key(kind: str, name: str) -> str:
+    """The key of a study task of ``kind`` (``slip``, ``slope``, ``crossing``, ``referee``) on
+    ``name`` (a point's key or a curve's name): ``"slip:R2R1=1_..."``."""
+    return f"{kind}:{name}"
+
+
+def task_record(key: str, kind: str, result: Any, exc: BaseException | None, mode: str,
+                keys: tuple[str, ...] = (), absent: tuple[type[BaseException], ...] = ()
+                ) -> dict[str, Any]:
+    """The line of a study task: its ``keys`` as floats (or, with no ``keys``, the whole
+    ``result`` as JSON under ``"result"``), ``error`` and ``note``.
+
+    An exception of a type in ``absent`` (e.g. :class:`threepart.calculix.CcxMissing`) is a
+    ``note``, not a failure: the task could not run here. Neither such a line nor a failed one
+    is :func:`done`, so the next run tries the task again.
+    """
+    rec: dict[str, Any] = {"key": key, "kind": kind, **{k: None for k in keys}}
+    error = note = None
+    if exc is not None:
+        if isinstance(exc, absent):
+            note = one_line(exc)
+        else:
+            error = one_line(exc)
+    elif not isinstance(result, dict):
+        error = f"{kind} returned {type(result).__name__}, not a dict"
+    elif keys:
+        missing = [k for k in keys if k not in result]
+        if missing:
+            error = f"{kind} returned no {missing[0]!r}"
+        else:
+            try:
+                rec.update({k: float(result[k]) for k in keys})
+            except (TypeError, ValueError):
+                error = f"{kind} returned a value that is not a number"
+                rec.update({k: None for k in keys})
+    else:
+        rec["result"] = result
+    return json_safe({**rec, "error": error, "note": note, "mode": mode, "layout": SCHEMA_VERSION})
+
 
 def done(rec: dict[str, Any] | None) -> bool:
-    """Whether a log line is a finished task (no error, every field present)."""
-    if rec is None or rec.get("error") is not None:
+    """Whether a log line is a finished task (no error, no note, every field present)."""
+    if rec is None or rec.get("error") is not None or rec.get("note") is not None:
         return False
-    need = ("control_rel_error", "control") if rec["key"] == CONTROL_KEY else COLUMNS
+    if "kind" in rec:
+        return "error" in rec
+    need = ("control_rel_error", "control") if rec["key"] == CONTROL_KEY else POINT_FIELDS
     return all(k in rec for k in need)
 

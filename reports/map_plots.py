@@ -13,7 +13,10 @@ BANDS             -- the filled bands of the contour maps, symmetric about zero
 below_level       -- per ``b/R1``, the largest ``(a-b)/R1`` up to which ``|error|`` stays below a level
 designer_sentence -- the sentence that says what one contour map means for a designer
 level_paths       -- the contour lines of the signed field, as vertex arrays (what the plot draws)
-contour           -- draw one contour map
+contour           -- draw one contour map (with thin labelled iso-lines of the load level p0/E*)
+stick_sentence    -- the sentence that says what the partial-slip plot of a group means for a designer
+stick_zone        -- draw the stick zone's signed errors of one group against the overhang
+slope_plot        -- draw the small-slope cost against the load level p0/E*, with the 1 % line
 """
 from __future__ import annotations
 
@@ -24,7 +27,8 @@ from typing import Any, Sequence
 from .map_boundary import LEVELS, X
 from .map_schema import finite, pct
 
-__all__ = ["LEVELS", "LIMIT", "BANDS", "below_level", "designer_sentence", "level_paths", "contour"]
+__all__ = ["LEVELS", "LIMIT", "BANDS", "below_level", "designer_sentence", "level_paths", "contour",
+           "stick_sentence", "stick_zone", "slope_plot", "LOAD_LINES"]
 
 #: the designer's limit: the closed form within 1 % of the finite body's peak, either way
 LIMIT = 0.01
@@ -33,6 +37,8 @@ BANDS = (-0.5, -0.25, -0.1, -0.05, -0.025, -0.01, -0.005, -0.0025, 0.0,
          0.0025, 0.005, 0.01, 0.025, 0.05, 0.1, 0.25, 0.5)
 #: the diverging colour map, centred on zero: red where the closed form over-predicts the peak
 CMAP = "RdBu_r"
+#: the load levels p0/E* drawn as thin labelled iso-lines on each contour map (the load axis)
+LOAD_LINES = (0.003, 0.01, 0.03, 0.1, 0.3)
 
 
 def below_level(points: Sequence[dict[str, Any]], level: float = LIMIT) -> list[dict[str, Any]]:
@@ -334,6 +340,7 @@ def contour(points: Sequence[dict[str, Any]], R2_over_R1: float, H_over_b: float
     if bad:
         ax.scatter(np.log10([p[X] for p in bad]), np.log10([p["b_over_R1"] for p in bad]),
                    marker="x", color="k", s=40, zorder=5)
+    _load_lines(ax, points)
     ys = sorted({p["b_over_R1"] for p in points})
     if _boundary_curves(ax, boundaries, ys):
         ax.legend(fontsize=7, loc="best", framealpha=0.85)
@@ -351,8 +358,138 @@ def contour(points: Sequence[dict[str, Any]], R2_over_R1: float, H_over_b: float
     lever = "s = 0" if s_over_lift == 0 else f"s = {s_over_lift:g} s_lift-off"
     ax.set_title(f"Signed peak-pressure error of the closed form, R2/R1 = {R2_over_R1:g}, "
                  f"H/b = {H_over_b:g}, {lever}\nlines at "
-                 f"{', '.join(f'{100 * lv:+g} %' for lv in LEVELS)} and 0 (dotted); dots: the "
-                 f"points, signed error in %{'; ×: failed points' if bad else ''}", fontsize=9)
+                 f"{', '.join(f'{100 * lv:+g}' for lv in LEVELS)} % and 0 (dotted); dots: the "
+                 f"points, signed error in %{'; ×: failed' if bad else ''}; grey: load p0/E*",
+                 fontsize=9)
     ax.grid(True, color="0.85", lw=0.5)
     fig.supxlabel(textwrap.fill(sentence, 120), fontsize=7)
+    save(fig, path)
+
+
+def _load_lines(ax: Any, points: Sequence[dict[str, Any]]) -> None:
+    """Thin grey iso-lines of the load level ``p0/E*`` at :data:`LOAD_LINES`, labelled."""
+    import numpy as np
+    from matplotlib.tri import Triangulation
+
+    ok = [p for p in points if finite(p.get("load_level")) and p["load_level"] > 0]
+    if len(ok) < 3:
+        return
+    z = np.log10([p["load_level"] for p in ok])
+    inside = [lv for lv in LOAD_LINES if z.min() < np.log10(lv) < z.max()]
+    if not inside:
+        return
+    try:
+        cs = ax.tricontour(Triangulation(np.log10([p[X] for p in ok]),
+                                         np.log10([p["b_over_R1"] for p in ok])),
+                           z, levels=np.log10(inside), colors="0.45", linewidths=0.6, zorder=3)
+    except (ValueError, RuntimeError):   # collinear points: no triangulation, no lines
+        return
+    ax.clabel(cs, fmt=lambda v: f"p0/E* = {10 ** v:.3g}", fontsize=6, colors="0.35")
+
+
+def stick_sentence(points: Sequence[dict[str, Any]]) -> str:
+    """What the partial-slip plot of one group means for a designer, from its points.
+
+    ``d_rel_error > 0``: the closed form's stick zone is wider than the finite
+    body's, so its slip zones (where fretting cracks start, at their inner end,
+    the stick-slip boundary) are narrower: it under-predicts the slipping region
+    and places that boundary too far out, which is NOT conservative for where
+    cracks start. ``d_rel_error < 0`` is the other way round, conservative.
+    """
+    d = [p["d_rel_error"] for p in points if finite(p.get("d_rel_error"))]
+    e = [p["e_rel_error"] for p in points if finite(p.get("e_rel_error"))]
+    u = max((p["slip_fem_error_estimate"] for p in points if finite(p.get("slip_fem_error_estimate"))),
+            default=None)
+    if not d:
+        return "No partial-slip point of this group has a result."
+    lo, hi = min(d), max(d)
+    if lo > 0:
+        sign = ("the closed form's stick zone is WIDER than the finite body's at every point, so it "
+                "under-predicts the slip zones and places the stick-slip boundary (where fretting "
+                "cracks start) too far out: not conservative for the slip zones' extent")
+    elif hi < 0:
+        sign = ("the closed form's stick zone is NARROWER than the finite body's at every point, so "
+                "it over-predicts the slip zones: conservative for the slip zones' extent")
+    else:
+        sign = ("the sign changes over the points (+: the closed form's stick zone is wider, its slip "
+                "zones narrower, not conservative; −: the other way round, conservative)")
+    blur = ("" if u is None else f"; the FEM's own estimate is up to {pct(u)}"
+            + (", as large as the errors themselves" if u >= max(abs(lo), abs(hi)) else ""))
+    per_b = []
+    for b in sorted({p["b_over_R1"] for p in points if "b_over_R1" in p}):
+        db = [p["d_rel_error"] for p in points if p.get("b_over_R1") == b and finite(p.get("d_rel_error"))]
+        if db:
+            per_b.append(f"{100 * min(db):+.2g} % to {100 * max(db):+.2g} % at b/R1 = {b:g}")
+    where = f" ({'; '.join(per_b)})" if per_b else ""
+    return (f"Partial slip at Q/fP = 0.4: the closed form's stick-zone half-width d is off by "
+            f"{100 * lo:+.2g} % to {100 * hi:+.2g} % of the finite body's{where}, its offset e by "
+            f"{100 * min(e):+.2g} % to {100 * max(e):+.2g} % of d; {sign}{blur}.")
+
+
+def stick_zone(points: Sequence[dict[str, Any]], R2_over_R1: float, H_over_b: float, sentence: str,
+               path: Path, s_over_lift: float = 0.0) -> None:
+    """The stick zone's signed errors ``d_rel_error`` and ``e_rel_error`` against ``(a-b)/R1``.
+
+    One line per ``b/R1``, a zero line, the FEM's own estimate as error bars.
+    """
+    from .plots import new_figure, save
+
+    fig, axes = new_figure(ncols=2, size=(5.4, 4.8))
+    for ax, field, what in ((axes[0, 0], "d_rel_error", "d: (d_cf − d_fe)/|d_fe|"),
+                            (axes[0, 1], "e_rel_error", "e: (e_cf − e_fe)/|d_fe|")):
+        for b in sorted({p["b_over_R1"] for p in points}):
+            line = sorted((p for p in points if p["b_over_R1"] == b and finite(p.get(field))),
+                          key=lambda p: p[X])
+            if not line:
+                continue
+            ax.errorbar([p[X] for p in line], [100 * p[field] for p in line],
+                        yerr=[100 * (p.get("slip_fem_error_estimate") or 0.0) for p in line],
+                        marker="o", ms=4, capsize=3, label=f"b/R1 = {b:g}")
+        ax.axhline(0.0, color="k", lw=0.8)
+        ax.set_xscale("log")
+        ax.set_xlabel("(a − b)/R1 (log scale)")
+        ax.set_ylabel(f"closed form − finite body, % ({what})")
+        ax.grid(True, color="0.85", lw=0.5)
+        ax.legend(fontsize=7)
+    lever = "s = 0" if s_over_lift == 0 else f"s = {s_over_lift:g} s_lift-off"
+    fig.suptitle(f"Stick zone at Q/fP = 0.4: closed form against the finite body, R2/R1 = "
+                 f"{R2_over_R1:g}, H/b = {H_over_b:g}, {lever}\n+: the closed form's stick zone is "
+                 f"wider (its slip zones narrower); bars: the FEM's own estimate", fontsize=9)
+    fig.supxlabel(textwrap.fill(sentence, 140), fontsize=7)
+    save(fig, path)
+
+
+def slope_plot(points: Sequence[dict[str, Any]], section: dict[str, Any], path: Path) -> None:
+    """The small-slope cost of the peak ``|slope_peak_rel_error|`` against ``p0/E*`` (log-log).
+
+    One line per curve ``(R2/R1, b/R1, H/b)`` of the points, the level of
+    ``section`` (1 %) as a line, and each curve's located crossing as a star.
+    """
+    from .plots import new_figure, save
+
+    fig, axes = new_figure(size=(7.2, 5.0))
+    ax = axes[0, 0]
+    curves = sorted({(p["R2_over_R1"], p["b_over_R1"], p["H_over_b"]) for p in points})
+    for r, b, h in curves:
+        line = sorted((p for p in points if (p["R2_over_R1"], p["b_over_R1"], p["H_over_b"]) == (r, b, h)
+                       and finite(p.get("slope_peak_rel_error")) and finite(p.get("load_level"))),
+                      key=lambda p: p["load_level"])
+        if not line:
+            continue
+        got = ax.plot([p["load_level"] for p in line],
+                      [max(abs(p["slope_peak_rel_error"]), 1e-7) for p in line], "-o", ms=4,
+                      label=f"R2/R1 = {r:g}, b/R1 = {b:g}, H/b = {h:g}")
+        for c in section["curves"]:
+            if (c["R2_over_R1"], c["b_over_R1"], c["H_over_b"]) == (r, b, h) and finite(c["load_level"]):
+                ax.plot(c["load_level"], section["level"], "*", ms=12, color=got[0].get_color(),
+                        zorder=5)
+    ax.axhline(section["level"], color="k", lw=1.0, ls="--",
+               label=f"{100 * section['level']:g} % (stars: located crossings)")
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlabel("load level p0/E* of the closed form")
+    ax.set_ylabel("|small slope − first order| / first order, larger peak")
+    ax.set_title("What the small-slope kinematics cost the peak pressure (finite body)", fontsize=9)
+    ax.grid(True, which="both", color="0.9", lw=0.5)
+    ax.legend(fontsize=7)
     save(fig, path)

@@ -16,6 +16,9 @@ GROUP_AXES     -- the coordinates that make one contour map per combination
 PLOT_AXES      -- the coordinates along x and y of each contour map
 FILE_LABELS    -- the short label of each group axis in a plot's file name
 COORDINATES    -- the coordinates of a point, in CSV order
+POINT_FIELDS   -- the fields of a grid point's own line of ``points.jsonl``
+SLIP_COLUMNS   -- the partial-slip columns of a point (null where not run)
+SLOPE_COLUMNS  -- the small-slope columns of a point (null where not run)
 COLUMNS        -- the fields of every point in ``map.json`` and the columns of ``map.csv``
 BOUNDARY_COLUMNS -- the columns of ``boundaries.csv`` (one located crossing per row)
 load_schema    -- the JSON schema of ``map.json``
@@ -39,14 +42,18 @@ from typing import Any, Sequence
 from threepart.output import validate_json
 
 from .validity import RESULT_KEYS
+from .validity_slip import SLIP_RESULT_KEYS
+from .validity_slope import SLOPE_RESULT_KEYS
 
 __all__ = ["SCHEMA_FILE", "SCHEMA_VERSION", "GROUP_AXES", "PLOT_AXES", "FILE_LABELS", "COORDINATES",
-           "COLUMNS", "BOUNDARY_COLUMNS", "load_schema", "validate", "csv_text", "boundaries_csv",
+           "COLUMNS", "POINT_FIELDS", "SLIP_COLUMNS", "SLOPE_COLUMNS", "BOUNDARY_COLUMNS", "load_schema", "validate", "csv_text", "boundaries_csv",
            "groups", "plot_name", "finite", "pct"]
 
 SCHEMA_FILE = Path(__file__).with_name("map.schema.json")
-#: 2.0 (issue 23): signed errors, the lever-arm axis s_over_lift, the located boundaries
-SCHEMA_VERSION = "2.0"
+#: 2.0 (issue 23): signed errors, the lever-arm axis s_over_lift, the located boundaries;
+#: 3.0: the load level p0/E* of every point, the partial-slip and small-slope columns of a
+#: subset of points, the small-slope crossings and the CalculiX referee points
+SCHEMA_VERSION = "3.0"
 #: one contour map per combination of these coordinates (R2/R1 descending, then ascending)
 GROUP_AXES = ("R2_over_R1", "H_over_b", "s_over_lift")
 #: the x and y of each contour map (both on log scales)
@@ -55,8 +62,15 @@ PLOT_AXES = ("a_minus_b_over_R1", "b_over_R1")
 FILE_LABELS = {"R2_over_R1": "R2R1", "H_over_b": "Hb", "s_over_lift": "sL"}
 #: the coordinates of a point (:class:`reports.validity.MapPoint`), in CSV order
 COORDINATES = (*GROUP_AXES, *reversed(PLOT_AXES))
+#: the fields of a grid point's own line of ``points.jsonl`` (its normal problem)
+POINT_FIELDS = ("key", *COORDINATES, *RESULT_KEYS, "error")
+#: the partial-slip columns of a point (:mod:`reports.validity_slip`; null where not run)
+SLIP_COLUMNS = (*SLIP_RESULT_KEYS, "slip_error")
+#: the small-slope columns of a point (:mod:`reports.validity_slope`; null where not run;
+#: its ``load_level`` is the point's own column)
+SLOPE_COLUMNS = (*(k for k in SLOPE_RESULT_KEYS if k != "load_level"), "slope_error")
 #: the fields of every point in ``map.json`` and the columns of ``map.csv``, in order
-COLUMNS = ("key", *COORDINATES, *RESULT_KEYS, "error")
+COLUMNS = ("key", *COORDINATES, *RESULT_KEYS, "load_level", *SLIP_COLUMNS, *SLOPE_COLUMNS, "error")
 #: the columns of ``boundaries.csv``: the curve, the level, the crossing and its band, the
 #: final bracket, the number of steps, and whether the curve crosses the level once
 BOUNDARY_COLUMNS = (*GROUP_AXES, "b_over_R1", "level", "a_minus_b_over_R1", "band_lo", "band_hi",
@@ -106,13 +120,14 @@ def groups(points: Sequence[dict[str, Any]]) -> list[tuple[float, ...]]:
     return sorted({tuple(p[a] for a in GROUP_AXES) for p in points}, key=lambda g: (-g[0], *g[1:]))
 
 
-def plot_name(group: Sequence[float]) -> str:
-    """The file of the contour map of ``group`` (values of :data:`GROUP_AXES`).
+def plot_name(group: Sequence[float], kind: str = "peak_error") -> str:
+    """The file of the ``kind`` plot of ``group`` (values of :data:`GROUP_AXES`).
 
-    For example ``plots/peak_error_R2R1_1_Hb_4_sL_0.5.png``.
+    For example ``plots/peak_error_R2R1_1_Hb_4_sL_0.5.png`` (the contour map)
+    or ``plots/stick_zone_R2R1_1_Hb_4_sL_0.png`` (the partial slip).
     """
     labels = "_".join(f"{FILE_LABELS[a]}_{v:g}" for a, v in zip(GROUP_AXES, group))
-    return f"plots/peak_error_{labels}.png"
+    return f"plots/{kind}_{labels}.png"
 
 
 def finite(v: Any) -> bool:

@@ -28,7 +28,7 @@ from threepart.output import MARKER, OutputExistsError, atomic_dir, foreign_entr
 from threepart.reports import map as map_mod
 from threepart.reports.map import (COLUMNS, CONTROL_LIMIT, below_level, designer_sentence,
                                    exit_status, run_map)
-from threepart.reports.map_schema import BOUNDARY_COLUMNS
+from threepart.reports.map_schema import BOUNDARY_COLUMNS, POINT_FIELDS
 from threepart.reports.validity import RESULT_KEYS, MapPoint
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -124,8 +124,8 @@ def counter(tmp_path):
 
 def sweep(out, scheduler, evaluate, **kw):
     kw.setdefault("say", lambda m: None)
-    return run_map(out, scheduler=scheduler, evaluate=evaluate, points=POINTS, control=kw.pop(
-        "control", fake_control), **kw)
+    return run_map(out, scheduler=scheduler, evaluate=evaluate, points=kw.pop("points", POINTS),
+                   control=kw.pop("control", fake_control), **kw)
 
 
 @pytest.fixture(scope="module")
@@ -464,7 +464,7 @@ def test_a_failed_point_is_recorded_exits_1_and_is_retried(tmp_path, counter, sc
     assert p["error"] == f"RuntimeError: mesh failed at {bad}"
     assert all(p[k] is None for k in RESULT_KEYS)
     assert doc["summary"]["failed"] == 1 and exit_status(doc) == 1
-    assert [q for q in doc["points"] if q["key"] != bad] == [
+    assert [{k: q[k] for k in POINT_FIELDS} for q in doc["points"] if q["key"] != bad] == [
         {"key": k.key(), "R2_over_R1": k.R2_over_R1, "H_over_b": k.H_over_b,
          "s_over_lift": k.s_over_lift, "b_over_R1": k.b_over_R1,
          "a_minus_b_over_R1": k.a_minus_b_over_R1, **expected(k),
@@ -929,3 +929,206 @@ def test_the_errors_are_signed_closed_form_minus_finite_body():
         assert e["c_rel_error"] == (cf.c - fe.c) / fe.c and e["c_rel_error"] * sign > 0
         assert abs(e["alpha_error"]) == fig["alpha"][2]
         assert e["peak_rel_error"] == max(e["p_left_rel_error"], e["p_right_rel_error"], key=abs)
+
+
+# ---------------------------------------------------------------------------------------
+# the studies on subsets (issue 23): partial slip, the small-slope load axis, CalculiX
+# ---------------------------------------------------------------------------------------
+from threepart.calculix import CcxMissing  # noqa: E402
+from threepart.reports.map_schema import SLIP_COLUMNS, SLOPE_COLUMNS  # noqa: E402
+from threepart.reports.map_studies import FIGURES, Studies, curve_name  # noqa: E402
+from threepart.reports.validity import SLIP_SUBSET, SLOPE_SUBSET, slope_curves, subset  # noqa: E402
+from threepart.reports.validity_slip import SLIP_RESULT_KEYS  # noqa: E402
+from threepart.reports.validity_slope import SLOPE_RESULT_KEYS  # noqa: E402
+
+#: the fake grid's studies: slip on R2/R1 = 1 and 0.5 (SLIP_SUBSET: all of POINTS), small slope
+#: on R2/R1 = 1 (SLOPE_SUBSET), three crossings, two referee points
+SLIP_POINTS = subset(POINTS, SLIP_SUBSET)
+SLOPE_POINTS = subset(POINTS, SLOPE_SUBSET)
+CURVES = slope_curves(POINTS)
+REFEREE = (POINTS[1], POINTS[2])
+#: a grid of one curve (R2/R1 = 1, b/R1 = 0.1), for the cheaper maps of the failure test
+ONE_CURVE = POINTS[:3]
+
+
+def fake_load_level(p: MapPoint) -> float:
+    """The fake p0/E*: proportional to the overhang (as Hertz, p0/E* = a/(2R))."""
+    return 0.4 * p.a_minus_b_over_R1 * (1 + p.b_over_R1)
+
+
+def slip_expected(p: MapPoint) -> dict[str, float]:
+    """The fake stick zone: d error from -0.3 % to +0.6 % over the points, distinct values."""
+    return {"d_rel_error": 0.003 * (p.a_minus_b_over_R1 / 0.01) ** 0.5 - 0.006 * p.b_over_R1,
+            "e_rel_error": -1e-3 * p.b_over_R1, "slip_fem_error_estimate": 2e-4,
+            "d": 0.5 + p.a_minus_b_over_R1, "e": 0.01 * p.R2_over_R1, "slip_time_s": 0.02}
+
+
+def slope_expected(p: MapPoint) -> dict[str, float]:
+    """The fake small-slope cost: grows as the load level."""
+    return {"load_level": fake_load_level(p), "slope_peak_rel_error": 0.2 * fake_load_level(p),
+            "slope_a_rel_error": -0.1 * fake_load_level(p), "slope_time_s": 0.03}
+
+
+def crossing_expected(r: float, b: float, h: float) -> dict[str, object]:
+    """The fake crossing: within the grid but at b/R1 = 1."""
+    x = None if b == 1.0 else 0.05 + b / 10
+    return {"load_level": None if x is None else 0.05, "a_minus_b_over_R1": x,
+            "ends": [(0.01, 0.001), (0.5, 0.04 if x else 0.002)], "evaluations": 5, "time_s": 0.1}
+
+
+def referee_expected(p: MapPoint) -> dict[str, object]:
+    """A fake CalculiX run: CalculiX's peaks 0.4 % above the FEM's, the closed form 1 % above."""
+    fem = {"p_left": 1.0 + p.a_minus_b_over_R1, "p_right": 1.0 + p.a_minus_b_over_R1, "a": 1.2, "c": 1.2}
+    ccx = {q: v * 1.004 for q, v in fem.items()}
+    cf = {q: v * 1.01 for q, v in fem.items()}
+
+    def rel(mine, other):
+        return {q: (other[q] - mine[q]) / mine[q] for q in FIGURES}
+
+    return {"point": p.as_dict(), "calculix": {**ccx, "P_base": 3.0}, "fem": fem, "closed_form": cf,
+            "fem_minus_calculix": rel(ccx, fem), "closed_form_minus_calculix": rel(ccx, cf),
+            "closed_form_minus_fem": rel(fem, cf), "n": 100.0, "time_calculix_s": 60.0}
+
+
+class FakeStudy:
+    """One study's fake: touches ``calls/<kind>:<name>.<id>`` per call (the map's task key)."""
+
+    def __init__(self, calls: Path, kind: str, fail: frozenset[str] = frozenset()):
+        self.calls, self.kind, self.fail = calls, kind, fail
+
+    def __call__(self, *args):
+        name = curve_name(args[:3]) if self.kind == "crossing" else args[0].key()
+        key = f"{self.kind}:{name}"
+        (self.calls / f"{key}.{uuid.uuid4().hex}").touch()
+        if key in self.fail:
+            raise RuntimeError(f"{self.kind} failed at {name}")
+        if self.kind == "referee" and "ccx" in self.fail:
+            raise CcxMissing("`ccx` (CalculiX) is not on the PATH: apt-get install calculix-ccx")
+        if self.kind == "crossing":
+            return crossing_expected(*args[:3])
+        return {"slip": slip_expected, "slope": slope_expected,
+                "referee": referee_expected}[self.kind](args[0])
+
+
+def fake_studies(calls: Path, fail: frozenset[str] = frozenset(), small: bool = False) -> Studies:
+    """The fake studies on the fake grid's subsets (``small``: partial slip and CalculiX on
+    :data:`ONE_CURVE` only)."""
+    return Studies(*(FakeStudy(calls, k, fail) for k in ("slip", "slope", "crossing", "referee")),
+                   load_level=fake_load_level, slip_points=ONE_CURVE if small else SLIP_POINTS,
+                   slope_points=() if small else SLOPE_POINTS, slope_curves=() if small else CURVES,
+                   referee_points=REFEREE)
+
+
+def study_keys() -> list[str]:
+    return sorted([f"slip:{p.key()}" for p in SLIP_POINTS] + [f"slope:{p.key()}" for p in SLOPE_POINTS]
+                  + [f"crossing:{curve_name(c)}" for c in CURVES]
+                  + [f"referee:{p.key()}" for p in REFEREE])
+
+
+def only(keys: list[str], prefix: bool) -> list[str]:
+    """The study keys (``prefix``) or the point keys of a list of calls."""
+    return [k for k in keys if (":" in k) == prefix]
+
+
+@pytest.fixture(scope="module")
+def studied(tmp_path_factory, scheduler):
+    """One uninterrupted map with every study (fakes): its directory, document and calls."""
+    root = tmp_path_factory.mktemp("studied")
+    c = root / "calls"
+    c.mkdir()
+    doc = sweep(root / "map", scheduler, FakeEvaluate(c), studies=fake_studies(c))
+    return root / "map", doc, calls(c)
+
+
+def test_the_studies_are_columns_and_sections_of_the_map_and_validate(studied):
+    out, doc, made = studied
+    map_mod.validate(doc)
+    assert doc["schema_version"] == "3.0" and exit_status(doc) == 0
+    assert only(made, True) == study_keys()                    # each study task ran once
+    slipped, sloped = {p.key() for p in SLIP_POINTS}, {p.key() for p in SLOPE_POINTS}
+    for p, row in zip(POINTS, doc["points"]):
+        assert row["load_level"] == fake_load_level(p)
+        want = slip_expected(p) if p.key() in slipped else dict.fromkeys(SLIP_RESULT_KEYS)
+        assert {k: row[k] for k in SLIP_RESULT_KEYS} == want and row["slip_error"] is None
+        got = {k: row[k] for k in SLOPE_COLUMNS[:-1]}
+        assert got == ({k: slope_expected(p)[k] for k in got} if p.key() in sloped
+                       else dict.fromkeys(got))
+    with open(out / "map.csv", newline="") as fh:
+        rows = list(csv.DictReader(fh))
+    assert [float(r["d_rel_error"]) for r in rows] == [slip_expected(p)["d_rel_error"] for p in POINTS]
+    assert [r["slope_peak_rel_error"] == "" for r in rows] == [p.key() not in sloped for p in POINTS]
+    # the small-slope crossings: one per curve, "not within the grid" at b/R1 = 1
+    section = doc["small_slope"]
+    assert section["level"] == 0.01 and section["plot"] == "plots/small_slope.png"
+    for c, row in zip(CURVES, section["curves"]):
+        want = crossing_expected(*c)
+        assert (row["a_minus_b_over_R1"], row["within_grid"]) == (
+            want["a_minus_b_over_R1"], want["a_minus_b_over_R1"] is not None)
+    # the referee: each difference is the identity (other - CalculiX)/CalculiX of its own figures
+    assert doc["referee"]["note"] is None and len(doc["referee"]["points"]) == 2
+    for pt, row in zip(REFEREE, doc["referee"]["points"]):
+        assert row["key"] == pt.key() and row["a_minus_b_over_R1"] == pt.a_minus_b_over_R1
+        for q in FIGURES:
+            for other, diff in (("fem", "fem_minus_calculix"), ("closed_form", "closed_form_minus_calculix")):
+                ref = (row[other][q] - row["calculix"][q]) / row["calculix"][q]
+                assert row[diff][q] == pytest.approx(ref, rel=ROUND_OFF, abs=ROUND_OFF)
+    # the plots: a stick-zone plot for each group with slip points, the small-slope plot
+    files = {p["file"] for p in doc["stick_zone_plots"]}
+    assert files == {"plots/stick_zone_R2R1_1_Hb_4_sL_0.png", "plots/stick_zone_R2R1_0.5_Hb_4_sL_0.png"}
+    for f in (*files, "plots/small_slope.png"):
+        assert (out / f).read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    assert read_marker(out)["state"] == "complete"
+
+
+def test_the_stick_zone_sentence_states_what_the_sign_means():
+    from threepart.reports.map_plots import stick_sentence
+
+    def pts(*d):
+        return [{"d_rel_error": x, "e_rel_error": 0.0, "slip_fem_error_estimate": 1e-4} for x in d]
+
+    assert "WIDER" in stick_sentence(pts(0.002, 0.003)) and "not conservative" in stick_sentence(pts(0.002))
+    narrower = stick_sentence(pts(-0.002, -0.001))
+    assert "NARROWER" in narrower and "conservative" in narrower and "not conservative" not in narrower
+    assert "sign changes" in stick_sentence(pts(-0.002, 0.001))
+    assert "as large as the errors" in stick_sentence(
+        [{"d_rel_error": 1e-5, "e_rel_error": 0.0, "slip_fem_error_estimate": 1e-4}])
+
+
+def test_an_interrupted_map_recomputes_none_of_its_finished_studies(tmp_path, scheduler, studied):
+    out = tmp_path / "map"
+    first, second = tmp_path / "c1", tmp_path / "c2"
+    first.mkdir()
+    second.mkdir()
+    with pytest.raises(KeyboardInterrupt):
+        sweep(out, scheduler, FakeEvaluate(first), studies=fake_studies(first), say=StopAfter(12))
+    logged_first = {json.loads(x)["key"] for x in (out / "points.jsonl").read_text().splitlines()}
+    assert len(only(sorted(logged_first), True)) > 0           # some studies finished before the stop
+    doc = sweep(out, scheduler, FakeEvaluate(second), studies=fake_studies(second))
+    again = set(calls(second))
+    assert not again & logged_first                            # nothing finished is computed again
+    assert sorted(set(only(sorted(logged_first), True)) | set(only(sorted(again), True))) == study_keys()
+    for k in ("points", "small_slope", "referee"):
+        assert doc[k] == studied[1][k]                         # the uninterrupted numbers
+    assert exit_status(doc) == 0
+
+
+def test_a_failed_study_fails_the_map_and_is_retried_and_a_missing_ccx_is_a_note(tmp_path, scheduler):
+    out, c = tmp_path / "map", tmp_path / "calls"
+    c.mkdir()
+    bad = f"slip:{ONE_CURVE[2].key()}"
+    doc = sweep(out, scheduler, FakeEvaluate(c), points=ONE_CURVE,
+                studies=fake_studies(c, frozenset({bad, "ccx"}), small=True))
+    map_mod.validate(doc)
+    assert doc["points"][2]["slip_error"] == f"RuntimeError: slip failed at {ONE_CURVE[2].key()}"
+    assert doc["points"][2]["d_rel_error"] is None
+    assert doc["summary"]["failed"] == 1 and exit_status(doc) == 1      # the note is not a failure
+    assert "not on the PATH" in doc["referee"]["note"]
+    assert all(r["note"].startswith("CcxMissing") and r["error"] is None and r["calculix"] is None
+               for r in doc["referee"]["points"])
+    for f in c.iterdir():
+        f.unlink()
+    doc = sweep(out, scheduler, FakeEvaluate(c), points=ONE_CURVE,
+                studies=fake_studies(c, small=True))                   # ccx is there now
+    assert calls(c) == sorted([bad, *(f"referee:{p.key()}" for p in REFEREE)])
+    assert doc["points"][2]["d_rel_error"] == slip_expected(ONE_CURVE[2])["d_rel_error"]
+    assert exit_status(doc) == 0 and doc["referee"]["note"] is None
