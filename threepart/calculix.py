@@ -530,7 +530,6 @@ def build_model(punch: Punch, a: float, c: float, settings: DeckSettings = DeckS
     import gmsh
 
     from .meshes import gmsh_session
-    from .meshes.substrate import size_field
 
     a, c = positive("a", a, (1e-12, 1e12)), positive("c", c, (1e-12, 1e12))
     W = a + c
@@ -577,30 +576,9 @@ def build_model(punch: Punch, a: float, c: float, settings: DeckSettings = DeckS
         groups = {"block": (2, [s_block]), "punch": (2, [s_punch]),
                   "block_surface": (1, [lb[1]]), "block_base": (1, [lb[4]]),
                   "punch_profile": (1, face), "punch_top": (1, [top])}
-        tags = {name: gmsh.model.addPhysicalGroup(dim, ents, name=name)
-                for name, (dim, ents) in groups.items()}
-        size_field([lb[1], *fine], h=h0, growth=settings.growth,
-                   sampling=int(4 * (xf1 - xf0) / h0) + 10, size_max=depth / 8)
-        # the master face (the punch's) uniformly coarser than the slave (the block's), by a
-        # ratio that keeps the nodes of one off the other's: CalculiX's expansion of plane
-        # elements fails on coinciding nodes of two bodies ("nonpositive jacobian")
-        for f in face:
-            length = gmsh.model.occ.getMass(1, f)
-            gmsh.model.mesh.setTransfiniteCurve(f, max(2, math.ceil(length / (MASTER_RATIO * h0)) + 1))
-        for name, value in [("Mesh.Algorithm", 8), ("Mesh.RecombineAll", 1),
-                            ("Mesh.RecombinationAlgorithm", 1), ("Mesh.SecondOrderIncomplete", 1)]:
-            gmsh.option.setNumber(name, value)
-        gmsh.model.mesh.generate(2)
-        gmsh.model.mesh.setOrder(2)
-        xy, elements, nsets = _collect(gmsh, {"block": s_block, "punch": s_punch}, tags,
-                                       ("block_surface", "block_base", "punch_profile", "punch_top"))
-    numbers, n = {}, 0
-    for body in ("block", "punch"):
-        numbers[body] = np.arange(n + 1, n + 1 + len(elements[body]))
-        n += len(elements[body])
-    master = _faces(elements["punch"], numbers["punch"], nsets["punch_profile"], xy, math.inf)
-    slave = _faces(elements["block"], numbers["block"], nsets["block_surface"], xy, math.inf)
-    return Model(punch, a, c, xy, elements, numbers, nsets, master, slave, h0, lift)
+        xy, elements, nsets = _mesh_pair(gmsh, groups, [lb[1], *fine], face, h0=h0,
+                                         growth=settings.growth, span=xf1 - xf0, depth=depth)
+    return _model(punch, a, c, xy, elements, nsets, h0, lift)
 
 
 def build_finite_model(punch: Punch, a: float, c: float, *, H: float, theta: float,
@@ -632,7 +610,7 @@ def build_finite_model(punch: Punch, a: float, c: float, *, H: float, theta: flo
 
     from .meshes import gmsh_session
     from .meshes.punch import PunchSpec
-    from .meshes.substrate import SubstrateSpec, size_field
+    from .meshes.substrate import SubstrateSpec
 
     a, c = positive("a", a, (1e-12, 1e12)), positive("c", c, (1e-12, 1e12))
     W = a + c
@@ -686,27 +664,9 @@ def build_finite_model(punch: Punch, a: float, c: float, *, H: float, theta: flo
         groups = {"block": (2, [s_block]), "punch": (2, [s_punch]),
                   "block_surface": (1, [lb[1]]), "block_base": (1, [lb[4]]),
                   "punch_profile": (1, fine), "punch_top": (1, [top])}
-        tags = {name: gmsh.model.addPhysicalGroup(dim, ents, name=name)
-                for name, (dim, ents) in groups.items()}
-        size_field([lb[1], *fine], h=h0, growth=settings.growth,
-                   sampling=int(4 * (xf1 - xf0) / h0) + 10, size_max=depth / 8)
-        for f in fine:
-            length = gmsh.model.occ.getMass(1, f)
-            gmsh.model.mesh.setTransfiniteCurve(f, max(2, math.ceil(length / (MASTER_RATIO * h0)) + 1))
-        for name, value in [("Mesh.Algorithm", 8), ("Mesh.RecombineAll", 1),
-                            ("Mesh.RecombinationAlgorithm", 1), ("Mesh.SecondOrderIncomplete", 1)]:
-            gmsh.option.setNumber(name, value)
-        gmsh.model.mesh.generate(2)
-        gmsh.model.mesh.setOrder(2)
-        xy, elements, nsets = _collect(gmsh, {"block": s_block, "punch": s_punch}, tags,
-                                       ("block_surface", "block_base", "punch_profile", "punch_top"))
-    numbers, n = {}, 0
-    for body in ("block", "punch"):
-        numbers[body] = np.arange(n + 1, n + 1 + len(elements[body]))
-        n += len(elements[body])
-    master = _faces(elements["punch"], numbers["punch"], nsets["punch_profile"], xy, math.inf)
-    slave = _faces(elements["block"], numbers["block"], nsets["block_surface"], xy, math.inf)
-    return Model(punch, a, c, xy, elements, numbers, nsets, master, slave, h0, 0.0)
+        xy, elements, nsets = _mesh_pair(gmsh, groups, [lb[1], *fine], fine, h0=h0,
+                                         growth=settings.growth, span=xf1 - xf0, depth=depth)
+    return _model(punch, a, c, xy, elements, nsets, h0, 0.0)
 
 
 def _finite_half_model(punch: Punch, c: float, spec: Any, *, h0: float, xf1: float, H: float,
@@ -715,7 +675,6 @@ def _finite_half_model(punch: Punch, c: float, spec: Any, *, h0: float, xf1: flo
     import gmsh
 
     from .meshes import gmsh_session
-    from .meshes.substrate import size_field
 
     with gmsh_session():
         occ = gmsh.model.occ
@@ -746,28 +705,51 @@ def _finite_half_model(punch: Punch, c: float, spec: Any, *, h0: float, xf1: flo
         groups = {"block": (2, [s_block]), "punch": (2, [s_punch]),
                   "block_surface": (1, [lb[0]]), "block_base": (1, [lb[3]]), "block_sym": (1, [lb[4]]),
                   "punch_profile": (1, fine), "punch_top": (1, [top]), "punch_sym": (1, [sym])}
-        tags = {name: gmsh.model.addPhysicalGroup(dim, ents, name=name)
-                for name, (dim, ents) in groups.items()}
-        size_field([lb[0], *fine], h=h0, growth=settings.growth,
-                   sampling=int(4 * xf1 / h0) + 10, size_max=depth / 8)
-        for f in fine:
-            length = gmsh.model.occ.getMass(1, f)
-            gmsh.model.mesh.setTransfiniteCurve(f, max(2, math.ceil(length / (MASTER_RATIO * h0)) + 1))
-        for name, value in [("Mesh.Algorithm", 8), ("Mesh.RecombineAll", 1),
-                            ("Mesh.RecombinationAlgorithm", 1), ("Mesh.SecondOrderIncomplete", 1)]:
-            gmsh.option.setNumber(name, value)
-        gmsh.model.mesh.generate(2)
-        gmsh.model.mesh.setOrder(2)
-        xy, elements, nsets = _collect(gmsh, {"block": s_block, "punch": s_punch}, tags,
-                                       ("block_surface", "block_base", "block_sym", "punch_profile",
-                                        "punch_top", "punch_sym"))
+        xy, elements, nsets = _mesh_pair(gmsh, groups, [lb[0], *fine], fine, h0=h0,
+                                         growth=settings.growth, span=xf1, depth=depth)
+    return _model(punch, c, c, xy, elements, nsets, h0, 0.0)
+
+
+def _mesh_pair(gmsh: Any, groups: dict[str, tuple[int, list[int]]], refined: list[int],
+               master: list[int], *, h0: float, growth: float, span: float, depth: float
+               ) -> tuple[np.ndarray, dict[str, list[tuple[str, np.ndarray]]], dict[str, np.ndarray]]:
+    """Mesh the synchronised block and punch of ``groups`` (second order) and collect them.
+
+    ``groups`` maps each physical group to ``(dim, entities)``, with the two
+    surfaces ``"block"`` and ``"punch"``; ``h0`` along the ``refined`` curves
+    (over a zone ``span`` long), growing by ``growth`` to ``depth / 8``; the
+    punch's face (the ``master`` curves) uniformly ``MASTER_RATIO`` times
+    coarser, so that no node of one face lies on a node of the other
+    (CalculiX's expansion of plane elements fails on coinciding nodes).
+    """
+    from .meshes.substrate import size_field
+
+    tags = {name: gmsh.model.addPhysicalGroup(dim, ents, name=name)
+            for name, (dim, ents) in groups.items()}
+    size_field(refined, h=h0, growth=growth, sampling=int(4 * span / h0) + 10, size_max=depth / 8)
+    for f in master:
+        length = gmsh.model.occ.getMass(1, f)
+        gmsh.model.mesh.setTransfiniteCurve(f, max(2, math.ceil(length / (MASTER_RATIO * h0)) + 1))
+    for name, value in [("Mesh.Algorithm", 8), ("Mesh.RecombineAll", 1),
+                        ("Mesh.RecombinationAlgorithm", 1), ("Mesh.SecondOrderIncomplete", 1)]:
+        gmsh.option.setNumber(name, value)
+    gmsh.model.mesh.generate(2)
+    gmsh.model.mesh.setOrder(2)
+    surfaces = {body: groups[body][1][0] for body in ("block", "punch")}
+    return _collect(gmsh, surfaces, tags, tuple(n for n, (dim, _) in groups.items() if dim == 1))
+
+
+def _model(punch: Punch, a: float, c: float, xy: np.ndarray,
+           elements: dict[str, list[tuple[str, np.ndarray]]], nsets: dict[str, np.ndarray],
+           h0: float, lift: float) -> Model:
+    """The :class:`Model` of a meshed pair: elements numbered block first, the contact's faces."""
     numbers, n = {}, 0
     for body in ("block", "punch"):
         numbers[body] = np.arange(n + 1, n + 1 + len(elements[body]))
         n += len(elements[body])
     master = _faces(elements["punch"], numbers["punch"], nsets["punch_profile"], xy, math.inf)
     slave = _faces(elements["block"], numbers["block"], nsets["block_surface"], xy, math.inf)
-    return Model(punch, c, c, xy, elements, numbers, nsets, master, slave, h0, 0.0)
+    return Model(punch, a, c, xy, elements, numbers, nsets, master, slave, h0, lift)
 
 
 def _collect(gmsh: Any, surfaces: dict[str, int], tags: dict[str, int],
