@@ -141,6 +141,29 @@ def test_ctrl_c_prints_one_line_and_exits_130(capsys, monkeypatch):
     assert capsys.readouterr().err == "threepart solve: interrupted\n"
 
 
+def test_ctrl_c_that_a_c_extension_turns_into_another_error_is_still_an_interrupt(capsys, monkeypatch):
+    """numpy's import turns a Ctrl-C into an ImportError ("Importing the numpy C-extensions
+    failed"), losing the KeyboardInterrupt: still one line, exit status 130."""
+    import os
+    import signal
+    from dataclasses import replace
+
+    from threepart import registry
+
+    def import_interrupted(*a, **k):
+        try:
+            os.kill(os.getpid(), signal.SIGINT)
+        except KeyboardInterrupt:
+            pass
+        raise ImportError("Importing the numpy C-extensions failed.")
+
+    monkeypatch.setitem(registry._REGISTRY, "closedform", replace(registry.get("closedform"),
+                                                                  normal=import_interrupted))
+    assert main(["solve", *GEOM]) == 130
+    assert capsys.readouterr().err == "threepart solve: interrupted\n"
+    assert signal.getsignal(signal.SIGINT) is signal.default_int_handler   # restored
+
+
 #: 128 + SIGPIPE: the status a program killed by SIGPIPE reports (POSIX shells, git, coreutils)
 SIGPIPE_STATUS = 141
 

@@ -40,7 +40,9 @@ from __future__ import annotations
 import argparse
 import os
 import select
+import signal
 import sys
+import threading
 from typing import Any, NoReturn, Sequence
 
 __all__ = ["main", "build_parser", "UNITS", "NUMERIC_OPTIONS", "LIST_OPTIONS", "UsageError"]
@@ -1000,11 +1002,10 @@ def main(argv: Sequence[str] | None = None) -> int:
         stderr, no traceback), 130 interrupted (Ctrl-C), 141 (silently) when
         the reader of standard output has gone.
     """
-    from threepart.errors import ContactZoneError, NoConvergenceError
-
     argv = list(sys.argv[1:] if argv is None else argv)
     # named before parsing, so that Ctrl-C while the parser is built names the command too
     prog = f"threepart {argv[0]}" if argv and argv[0] in COMMANDS else "threepart"
+    interrupted, previous = _watch_interrupts()
     try:
         try:
             args, extra = build_parser().parse_known_args(_join_negative_numbers(argv))
@@ -1015,6 +1016,44 @@ def main(argv: Sequence[str] | None = None) -> int:
             raise UsageError(f"{prog}: error: unrecognized arguments: {' '.join(extra)} "
                              f"(see `{prog} --help`)")
         return int(args.func(args))
+    except BaseException as exc:
+        # Ctrl-C inside a C extension's import (numpy's) comes out as an ImportError, or any
+        # other error, with the KeyboardInterrupt lost: the flag, not the class, tells
+        if not (isinstance(exc, KeyboardInterrupt) or interrupted.is_set()):
+            return _error_status(exc, prog)
+        resume = "; run it again to resume" if prog == "threepart map" else ""
+        print(f"{prog}: interrupted{resume}", file=sys.stderr)
+        return 130
+    finally:
+        if previous is not None:
+            signal.signal(signal.SIGINT, previous)
+
+
+def _watch_interrupts() -> tuple[threading.Event, Any]:
+    """An event that SIGINT sets, and the handler it replaced (None: none replaced).
+
+    The new handler still raises KeyboardInterrupt, as Python's default does. It
+    is installed only where Python's own handler is (not where SIGINT is ignored,
+    nor off the main thread).
+    """
+    event = threading.Event()
+    if (threading.current_thread() is not threading.main_thread()
+            or signal.getsignal(signal.SIGINT) is not signal.default_int_handler):
+        return event, None
+
+    def on_sigint(signum: int, frame: Any) -> None:
+        event.set()
+        raise KeyboardInterrupt
+
+    return event, signal.signal(signal.SIGINT, on_sigint)
+
+
+def _error_status(exc: BaseException, prog: str) -> int:
+    """The exit status of an error that ended a command (its one line on stderr), or re-raise it."""
+    from threepart.errors import ContactZoneError, NoConvergenceError
+
+    try:
+        raise exc
     except UsageError as exc:
         print(exc, file=sys.stderr)
         return 2
@@ -1026,10 +1065,6 @@ def main(argv: Sequence[str] | None = None) -> int:
     except (ValueError, NoConvergenceError, ContactZoneError, OSError) as exc:
         print(f"{prog}: error: {_one_line(exc)}", file=sys.stderr)
         return 2
-    except KeyboardInterrupt:
-        resume = "; run it again to resume" if prog == "threepart map" else ""
-        print(f"{prog}: interrupted{resume}", file=sys.stderr)
-        return 130
 
 
 if __name__ == "__main__":
