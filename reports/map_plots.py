@@ -147,7 +147,7 @@ def _row(line: Sequence[dict[str, Any]], b: float, level: float,
                 if down is not None and up is not None:
                     a, c = sorted((down, up), key=lambda r: r[X])
                     spans.append((i + 0.5, i + 0.5, f"(a−b)/R1 from {_band(a)} to {_band(c)} "
-                                  "(changing sign there: not conservative throughout)"))
+                                  "(changing sign there: not conservative everywhere)"))
             continue
         if spans and i <= spans[-1][1]:   # inside the run already written
             continue
@@ -160,9 +160,11 @@ def _row(line: Sequence[dict[str, Any]], b: float, level: float,
         to = (f"to the end of the sweep, {xs[-1]:g}" if j == len(line) - 1 else
               f"to {_end(boundaries, b, xs[j], xs[j + 1], level)}" if ok[j + 1] else
               f"to {xs[j]:g} (the next point failed)")
-        run_e = es[i:j + 1]
+        # the run's signs: its points', and at each end the outside neighbour's (the error is
+        # continuous, so next to a crossing of +level it is positive, of -level negative)
+        run_e = es[i:j + 1] + [es[k] for k in (i - 1, j + 1) if 0 <= k < len(line) and ok[k]]
         sign = ("conservative" if min(run_e) >= 0 else "not conservative" if max(run_e) <= 0
-                else "changing sign there: not conservative throughout")
+                else "changing sign there: not conservative everywhere")
         spans.append((i, j, f"(a−b)/R1 {frm} {to} ({sign})"))
     if not spans:
         return f"at no load swept {at} (it {_sign_words([e for e, k in zip(es, ok) if k])})"

@@ -243,10 +243,11 @@ def test_below_level_says_why_the_scan_stopped_and_whether_it_is_conservative():
            pt(3, 0.01, None), pt(3, 0.1, 0.5),                       # the first point failed
            pt(4, 0.01, -0.004), pt(4, 0.1, -0.03),                   # under-predicts: |e| counts
            pt(5, 0.01, 0.02), pt(5, 0.1, 0.004), pt(5, 0.3, -0.002),  # in, from a located crossing
-           pt(6, 0.01, 0.02), pt(6, 0.1, -0.03)]                     # a window between two points
+           pt(6, 0.01, 0.02), pt(6, 0.1, -0.03),                     # a window between two points
+           pt(7, 0.01, 0.02), pt(7, 0.1, -0.005), pt(7, 0.3, -0.03)]  # + above, - inside and below
     rows = {r["b_over_R1"]: (r["limit"], r["stop"]) for r in below_level(pts)}
     assert rows == {1: (0.1, "end"), 2: (0.01, "failed"), 3: (None, "failed"), 4: (0.01, "level"),
-                    5: (None, "level"), 6: (None, "level")}
+                    5: (None, "level"), 6: (None, "level"), 7: (None, "level")}
 
     def crossing(b, level, x, band):
         return {"b_over_R1": b, "level": level, "a_minus_b_over_R1": x, "band": band,
@@ -254,7 +255,8 @@ def test_below_level_says_why_the_scan_stopped_and_whether_it_is_conservative():
 
     text = designer_sentence(pts, 1.0, 4.0, boundaries=[
         crossing(5, 0.01, 0.05, [0.04, 0.06]), crossing(6, -0.01, 0.05, [0.045, 0.055]),
-        crossing(6, 0.01, 0.03, [0.025, 0.035])])
+        crossing(6, 0.01, 0.03, [0.025, 0.035]), crossing(7, 0.01, 0.05, [0.04, 0.06]),
+        crossing(7, -0.01, 0.2, [0.15, 0.25])])
     assert ("at b/R1 = 1 for (a−b)/R1 from the lightest load swept, 0.01 to the end of the sweep, "
             "0.1 (conservative)") in text
     assert ("at b/R1 = 2 for (a−b)/R1 from the lightest load swept, 0.01 to 0.01 (the next point "
@@ -265,12 +267,15 @@ def test_below_level_says_why_the_scan_stopped_and_whether_it_is_conservative():
             "(not conservative); at heavier loads it under-predicts the peak by up to 3 %: not "
             "conservative") in text
     assert ("at b/R1 = 5 for (a−b)/R1 from ≈ 0.05 (FEM band 0.04–0.06) to the end of the sweep, 0.3 "
-            "(changing sign there: not conservative throughout); at lighter loads it over-predicts "
+            "(changing sign there: not conservative everywhere); at lighter loads it over-predicts "
             "the peak by up to 2 %: conservative") in text
     assert ("at b/R1 = 6 for (a−b)/R1 from ≈ 0.03 (FEM band 0.025–0.035) to ≈ 0.05 (FEM band "
-            "0.045–0.055) (changing sign there: not conservative throughout); at lighter loads it "
+            "0.045–0.055) (changing sign there: not conservative everywhere); at lighter loads it "
             "over-predicts the peak by up to 2 %: conservative; at heavier loads it under-predicts "
             "the peak by up to 3 %: not conservative") in text
+    # its one inside point under-predicts, but the run starts at the +1 % crossing: the sign changes
+    assert ("at b/R1 = 7 for (a−b)/R1 from ≈ 0.05 (FEM band 0.04–0.06) to ≈ 0.2 (FEM band "
+            "0.15–0.25) (changing sign there: not conservative everywhere)") in text
     assert "the FEM's own error estimate reaches 2 %" in text
     everywhere = [pt(1, 0.01, 0.02), pt(1, 0.1, 0.5), pt(2, 0.01, -0.04), pt(2, 0.1, 0.01)]
     assert designer_sentence(everywhere, 0.5, 1.0, 0.5) == (
