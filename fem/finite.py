@@ -27,10 +27,12 @@ and turns the contact force along the deformed face's normal, to first order in
 the slopes (:func:`fem.contact.first_order_compliance`): both bodies are
 condensed on both displacement components, and their compliances, each in its
 own orientation, sum to that of the relative displacement
-``u^block - u^punch``. The face's slope is that of the deformed interface, the
-block's surface slope ``d u_y/dx`` in contact (the punch's ``v'`` plus its own
-rotation), taken from a first solve with the punch's face slope ``v'`` and
-used in one more (:func:`fem.contact.solve_kinematic`).
+``u^block - u^punch``. The face's slope is that of the deformed punch face
+(in contact, the interface: half the punch's ``v'`` plus half the two faces'
+common deflection), taken from a first solve with the punch's face slope
+``v'`` and used in one more; ``v'`` enters as its secant over the relative
+tangential displacement, which keeps the spurious spike of a tangent off the
+joins ``x = +-b`` (:func:`fem.contact.solve_kinematic`).
 Both first-order terms act through the normal-tangential coupling of the
 relative compliance, which vanishes for two elastically similar half-planes
 (Dundurs' ``beta = 0``): with ``H = None`` (the mirrored block) the option
@@ -114,14 +116,15 @@ def _solve(punch: Punch, P: float, s: float, E: float, nu: float, tilt: str, max
         slope = (spec.height(S.x + e) - spec.height(S.x - e)) / (2 * e)
     n = len(S.x)
 
-    def face_slope(sol: ContactSolution) -> np.ndarray:
-        """The deformed contact face's slope: the block's surface slope ``d u_y / dx``."""
+    def face_common(sol: ContactSolution) -> np.ndarray:
+        """The faces' common vertical displacement ``u_y^block + u_y^punch`` at the nodes."""
         assert sol.slope is not None
-        u_y = (S.C @ np.concatenate([sol.slope * sol.f, -sol.f]))[n:]
-        return np.gradient(u_y, S.x)
+        F = np.concatenate([sol.slope * sol.f, -sol.f])
+        return (S.C @ F)[n:] - (B.C @ F)[n:]    # B.C holds the punch's in its own orientation
 
     sol = solve_kinematic(S.C + B.C, S.x, g0, slope, P, s, kinematics=kinematics,
-                          free_tilt=tilt == "free", max_iter=max_iter, face_slope=face_slope)
+                          free_tilt=tilt == "free", max_iter=max_iter, face_common=face_common,
+                          profile=punch.profile if H is None else spec.height)
     if sol.active[0] or sol.active[-1]:
         raise ContactZoneError(
             f"the contact reaches the candidate zone end [{S.x[0]:.6g}, {S.x[-1]:.6g}]")

@@ -108,7 +108,8 @@ def _contact(sc: SurfaceCompliance, punch: Punch, P: float, s: float, tilt: str,
     active = None if guess is None else (sc.x >= guess[0]) & (sc.x <= guess[1])
     sol = solve_kinematic(sc.C, sc.x, g0, punch.slope(sc.x), P, s, kinematics=kinematics,
                           free_tilt=tilt == "free", max_iter=max_iter,
-                          active=active if active is not None and active.any() else None)
+                          active=active if active is not None and active.any() else None,
+                          profile=punch.profile)
     if sol.active[0] or sol.active[-1]:
         raise ContactZoneError(
             f"the contact reaches the candidate zone end [{sc.x[0]:.6g}, {sc.x[-1]:.6g}]; "
