@@ -251,10 +251,10 @@ def run_map(out: str | Path, *, quick: bool = False, scheduler: str | None = Non
         stack.callback(rd.close)
         records = read_log(rd.log_lines(POINTS_FILE), mode)
         st = (studies or Studies()).subsets(grid, points is None, quick)
-        n_studies = (len(st.slip_points or ()) + len(st.slope_points or ())
-                     + len(st.slope_curves or ()) + len(st.referee_points or ()))
+        studied = study_tasks(st, quick)
+        n_studies = len(studied)
         tasks: list[tuple[str, Callable[..., Any], tuple[Any, ...], Any]] = [
-            *study_tasks(st, quick, records),
+            *(t for t in studied if not done(records.get(t[0]))),
             *((p.key(), evaluate, (p, quick), p) for p in grid if not done(records.get(p.key())))]
         if not done(records.get(CONTROL_KEY)):
             tasks.append((CONTROL_KEY, control, (quick,), None))
@@ -292,12 +292,10 @@ def run_map(out: str | Path, *, quick: bool = False, scheduler: str | None = Non
         cap = STEP_CAP[mode]
         steps_done = 0
         for wave in range(1, cap + 1):
-            want: dict[str, MapPoint] = {}
-            for b in bisections:
-                x = b.next_x(cap)
-                if x is not None:
-                    pt = _step_point(b, x)
-                    want.setdefault(pt.key(), pt)
+            # this wave's step of each open bisection (two levels of one curve may share a point)
+            steps = [(b, x, _step_point(b, x)) for b in bisections
+                     if (x := b.next_x(cap)) is not None]
+            want = {pt.key(): pt for _, _, pt in steps}
             if not want:
                 break
             batch = [(k, evaluate, (p, quick), p) for k, p in want.items() if not done(records.get(k))]
@@ -307,11 +305,8 @@ def run_map(out: str | Path, *, quick: bool = False, scheduler: str | None = Non
                 run(batch, len(want) - len(batch), len(want))
                 tasks += batch
             steps_done += len(want)
-            for b in bisections:
-                x = b.next_x(cap)
-                if x is None:
-                    continue
-                rec = records[_step_point(b, x).key()]
+            for b, x, pt in steps:
+                rec = records[pt.key()]
                 if rec.get("error") is not None or not finite(rec.get("peak_rel_error")):
                     b.fail(rec.get("error") or "no finite peak error")
                 else:

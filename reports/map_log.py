@@ -58,19 +58,22 @@ def point_record(point: Any, result: Any, error: str | None, mode: str) -> dict[
     rec: dict[str, Any] = {"key": point.key(), **{k: float(point.as_dict()[k]) for k in COORDINATES}}
     rec.update({k: None for k in RESULT_KEYS})
     if error is None:
-        if not isinstance(result, dict):
-            error = f"evaluate returned {type(result).__name__}, not a dict"
-        else:
-            missing = [k for k in RESULT_KEYS if k not in result]
-            if missing:
-                error = f"evaluate returned no {missing[0]!r}"
-            else:
-                try:
-                    rec.update({k: float(result[k]) for k in RESULT_KEYS})
-                except (TypeError, ValueError):
-                    error = "evaluate returned a value that is not a number"
-                    rec.update({k: None for k in RESULT_KEYS})
+        values, error = _numbers(result, RESULT_KEYS, "evaluate")
+        rec.update(values)
     return json_safe({**rec, "error": error, "mode": mode, "layout": SCHEMA_VERSION})
+
+
+def _numbers(result: Any, keys: tuple[str, ...], what: str) -> tuple[dict[str, float], str | None]:
+    """``keys`` of the dict ``result`` as floats, or ``({}, the one-line reason they are not)``."""
+    if not isinstance(result, dict):
+        return {}, f"{what} returned {type(result).__name__}, not a dict"
+    missing = [k for k in keys if k not in result]
+    if missing:
+        return {}, f"{what} returned no {missing[0]!r}"
+    try:
+        return {k: float(result[k]) for k in keys}, None
+    except (TypeError, ValueError):
+        return {}, f"{what} returned a value that is not a number"
 
 
 def control_record(result: Any, error: str | None, mode: str) -> dict[str, Any]:
@@ -108,18 +111,11 @@ def task_record(key: str, kind: str, result: Any, exc: BaseException | None, mod
             note = one_line(exc)
         else:
             error = one_line(exc)
+    elif keys:
+        values, error = _numbers(result, keys, kind)
+        rec.update(values)
     elif not isinstance(result, dict):
         error = f"{kind} returned {type(result).__name__}, not a dict"
-    elif keys:
-        missing = [k for k in keys if k not in result]
-        if missing:
-            error = f"{kind} returned no {missing[0]!r}"
-        else:
-            try:
-                rec.update({k: float(result[k]) for k in keys})
-            except (TypeError, ValueError):
-                error = f"{kind} returned a value that is not a number"
-                rec.update({k: None for k in keys})
     else:
         rec["result"] = result
     return json_safe({**rec, "error": error, "note": note, "mode": mode, "layout": SCHEMA_VERSION})

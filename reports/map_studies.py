@@ -24,7 +24,7 @@ Every grid point also gets its load level ``p0/E*``
 Names
 -----
 Studies        -- the studies' functions and subsets (the defaults run the real ones)
-study_tasks    -- the dask tasks of the studies that are not finished in the log
+study_tasks    -- the dask tasks of the studies
 point_columns  -- a point's load level, partial-slip and small-slope columns
 small_slope    -- the ``small_slope`` section of ``map.json``
 referee_section -- the ``referee`` section of ``map.json``
@@ -40,7 +40,7 @@ from typing import Any, Callable, Sequence
 from threepart.calculix import CcxMissing
 
 from . import validity
-from .map_log import done, task_key, task_record
+from .map_log import task_key, task_record
 from .map_referee import REFEREE_POINTS, referee
 from .map_schema import COORDINATES, SLIP_COLUMNS, SLOPE_COLUMNS
 from .validity import MapPoint
@@ -99,8 +99,8 @@ def curve_name(curve: tuple[float, float, float]) -> str:
     return f"R2R1={r:.6g}_bR1={b:.6g}_Hb={h:.6g}"
 
 
-def study_tasks(st: Studies, quick: bool, records: dict[str, dict[str, Any]]) -> list[Task]:
-    """The tasks of the studies that ``records`` (the log) does not hold finished.
+def study_tasks(st: Studies, quick: bool) -> list[Task]:
+    """The tasks of the studies, each ``(key, fn, args, line maker)``.
 
     The long ones (the crossings and the referee points) come first, so that
     they do not finish last alone on a worker.
@@ -119,7 +119,7 @@ def study_tasks(st: Studies, quick: bool, records: dict[str, dict[str, Any]]) ->
     for p in st.slope_points or ():
         k = task_key("slope", p.key())
         tasks.append((k, st.slope, (p, quick), rec(task_record, k, "slope", keys=tuple(SLOPE_RESULT_KEYS))))
-    return [t for t in tasks if not done(records.get(t[0]))]
+    return tasks
 
 
 def point_columns(st: Studies, point: MapPoint, records: dict[str, dict[str, Any]]) -> dict[str, Any]:
@@ -173,8 +173,4 @@ def referee_section(st: Studies, records: dict[str, dict[str, Any]]) -> dict[str
 
 def failures(st: Studies, records: dict[str, dict[str, Any]]) -> int:
     """The study tasks that failed (a missing ``ccx`` is a note, not a failure)."""
-    keys = ([task_key("slip", p.key()) for p in st.slip_points or ()]
-            + [task_key("slope", p.key()) for p in st.slope_points or ()]
-            + [task_key("crossing", curve_name(c)) for c in st.slope_curves or ()]
-            + [task_key("referee", p.key()) for p in st.referee_points or ()])
-    return sum(1 for k in keys if records.get(k, {}).get("error") is not None)
+    return sum(records.get(t[0], {}).get("error") is not None for t in study_tasks(st, False))

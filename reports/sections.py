@@ -524,8 +524,8 @@ def _map(map_link: str | None) -> Section:
         intro += ["It is written beside this report: ", Link(map_link, map_link), "."]
     else:
         intro += ["There is no map beside this report; make one with ", Code(MAP_COMMAND),
-                  " (about 10 minutes on 2 idle cores) or ", Code("threepart map"), " (the full grid "
-                  "with its studies and CalculiX points, about 45 minutes), run "
+                  " (7.5 minutes on 2 idle cores) or ", Code("threepart map"), " (the full grid "
+                  "with its studies and CalculiX points, 30 minutes), run "
                   "in the directory that holds this report's directory."]
     return Section("Where the half-plane formulas stop", "map", (tuple(intro),))
 
