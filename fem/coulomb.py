@@ -15,7 +15,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from threepart.errors import FullSlidingError, NoConvergenceError
+from threepart.coulomb import coulomb_state
 
 from .interface import Interface
 
@@ -67,6 +67,8 @@ def tangential(itf: Interface, fn: np.ndarray, w_prev: np.ndarray, w_fixed: np.n
     with ``w_fixed`` its part that does not depend on the shear (the normal
     forces' coupling ``C_tn fn`` and the bulk strain of the substrate). Stick
     nodes keep ``w_prev``; slip nodes carry ``t_i = ±mu fn_i``; ``sum t = Q``.
+    The active set is :func:`threepart.coulomb.coulomb_state`'s, on ``C_tt``
+    with the bounds ``mu fn``.
 
     Returns
     -------
@@ -81,49 +83,7 @@ def tangential(itf: Interface, fn: np.ndarray, w_prev: np.ndarray, w_fixed: np.n
         If the states do not settle within ``max_iter`` iterations or a shear
         exceeds Coulomb's bound after they settle.
     """
-    touch = fn > 0
-    bound = mu * fn
-    C = itf.C_tt
-    stick = stick0 & touch
-    sign = np.zeros(len(fn))
-    if not stick.any():   # start from the node that carries the most force
-        stick[np.argmax(fn)] = True
-    t = np.zeros(len(fn))
-    cpd = 1.0 / float(np.mean(np.diag(C)))
-    for it in range(1, max_iter + 1):
-        slip = touch & ~stick
-        S = np.flatnonzero(stick)
-        t_slip = np.where(slip, sign * bound, 0.0)
-        m = len(S)
-        M = np.zeros((m + 1, m + 1))
-        M[:m, :m] = -C[np.ix_(S, S)]
-        M[:m, m] = 1.0
-        M[m, :m] = 1.0
-        rhs = np.empty(m + 1)
-        rhs[:m] = w_prev[S] - w_fixed[S] + C[S] @ t_slip
-        rhs[m] = Q - t_slip.sum()
-        sol = np.linalg.solve(M, rhs)
-        t = t_slip.copy()
-        t[S] = sol[:m]
-        xi = float(sol[m])
-        dw = xi + w_fixed - C @ t - w_prev
-        z = t + cpd * dw
-        new_stick = touch & (np.abs(z) < bound)
-        new_sign = np.where(touch & ~new_stick, np.sign(z), 0.0)
-        if np.array_equal(new_stick, stick) and np.array_equal(new_sign[slip], sign[slip]):
-            break
-        stick, sign = new_stick, new_sign
-        if not stick.any():
-            raise FullSlidingError(
-                f"`Q` = {Q:.6g}: every node in contact slides (|Q| reached the discrete f P)")
-    else:
-        raise NoConvergenceError(
-            f"stick/slip states did not settle within `max_iter` = {max_iter} iterations")
-    scale = max(float(bound.max()), 1e-300)
-    over = float((np.abs(t) - bound).max()) / scale
-    if over > 1e-9:
-        raise NoConvergenceError(f"shear exceeds f p by {over:.3g} (relative) after {it} iterations")
-    return t, xi, stick, it, over
+    return coulomb_state(itf.C_tt, mu * fn, w_prev, w_fixed, Q, stick0, max_iter)
 
 
 def reversal(st: Step, branch: str, direction: int) -> Step:

@@ -504,3 +504,105 @@ def masing(Q_max: float, Q: float, branch: str) -> tuple[float, float, float]:
     if branch == "unloading":
         return 1.0, -2.0, min(max(0.5 * (Q_max - Q), 0.0), Q_max)
     return -1.0, 2.0, min(max(0.5 * (Q_max + Q), 0.0), Q_max)
+
+
+# --- load history (issue 31): the result of sie.load_history and fem.load_history ----------------
+
+__all__ += ["HistoryResult"]
+
+
+@dataclass(frozen=True)
+class HistoryResult:
+    """A contact marched through a load history ``(P, s, Q, sigma_bulk)_k`` with the memory of slip.
+
+    Attributes
+    ----------
+    punch, f
+        Geometry and coefficient of friction.
+    P, s, Q, sigma_bulk
+        The states, one value each.
+    normals
+        The normal solution of each state (contact ``[-a_k, c_k]``, ``alpha_k``, ``p_k``).
+    stick
+        Per state, the stick intervals ``((left, right), ...)``: where the contact
+        did not slip in the step to that state (the whole contact at a state
+        that repeats its predecessor).
+    energy
+        Friction work per completed cycle, per unit length (:meth:`History.cycles
+        <threepart.history.History.cycles>`, the cycles in :attr:`cycles`).
+    cycles
+        ``(start, end)`` state indices of each completed cycle.
+    work
+        Friction work of each step (``work[0]``: from the unloaded body to the first state).
+    method
+        ``"sie"`` or ``"fem"``.
+    x_nodes, q_nodes, slip_nodes
+        The points that carry the shear and the slip, and their values per state
+        (``(states, points)``): the SIE's element midpoints (the shear constant
+        over each element between ``edges``), the FEM's interface nodes (linear between them).
+    edges
+        The SIE's element edges; ``None`` for nodal values (the FEM).
+    diagnostics, info
+        Discretisation, iterations and timings; what is particular to the method.
+    """
+
+    punch: Punch
+    f: float
+    P: np.ndarray
+    s: np.ndarray
+    Q: np.ndarray
+    sigma_bulk: np.ndarray
+    normals: tuple[NormalResult, ...]
+    stick: tuple[tuple[tuple[float, float], ...], ...]
+    energy: np.ndarray
+    cycles: tuple[tuple[int, int], ...]
+    work: np.ndarray
+    method: str
+    x_nodes: np.ndarray = field(repr=False)
+    q_nodes: np.ndarray = field(repr=False)
+    slip_nodes: np.ndarray = field(repr=False)
+    edges: np.ndarray | None = field(default=None, repr=False)
+    diagnostics: Diagnostics = field(default_factory=Diagnostics)
+    info: Mapping[str, Any] = field(default_factory=dict)
+
+    def __len__(self) -> int:
+        return len(self.P)
+
+    def _state(self, k: int) -> int:
+        n = len(self.P)
+        if isinstance(k, bool) or not isinstance(k, (int, np.integer)) or not -n <= k < n:
+            raise ValueError(f"`k` = {k!r} must be a state index in [{-n}, {n - 1}]")
+        return int(k) % n
+
+    def _field(self, values: np.ndarray, x: ArrayLike, k: int) -> np.ndarray:
+        x = np.asarray(x, dtype=float)
+        if self.edges is not None:      # constant on each element, 0 outside the grid
+            i = np.searchsorted(self.edges, x, side="right") - 1
+            inside = (i >= 0) & (i < len(values))
+            return np.where(inside, values[np.clip(i, 0, len(values) - 1)], 0.0)
+        nrm = self.normals[k]           # linear between the nodes over the contact, 0 at its ends
+        inside = (self.x_nodes > -nrm.a) & (self.x_nodes < nrm.c)
+        xs = np.concatenate([[-nrm.a], self.x_nodes[inside], [nrm.c]])
+        vs = np.concatenate([[0.0], values[inside], [0.0]])
+        return np.interp(x, xs, vs, left=0.0, right=0.0)
+
+    def shear(self, x: ArrayLike, k: int) -> np.ndarray:
+        """Shear traction ``q(x)`` the punch exerts on the substrate in state ``k`` (0 out of contact)."""
+        k = self._state(k)
+        return self._field(self.q_nodes[k], x, k)
+
+    def slip(self, x: ArrayLike, k: int) -> np.ndarray:
+        """Accumulated relative slip (punch minus substrate) at ``x`` up to state ``k``.
+
+        The sum of the slip increments of the steps in which ``x`` was in
+        contact at both ends of the step; where ``q`` slips it has the sign of ``q``'s.
+        """
+        k = self._state(k)
+        return self._field(self.slip_nodes[k], x, k)
+
+    def stick_zone(self, k: int) -> tuple[float, float]:
+        """The widest stick interval of state ``k`` (``(nan, nan)`` if none)."""
+        zones = self.stick[self._state(k)]
+        if not zones:
+            return (float("nan"), float("nan"))
+        return max(zones, key=lambda z: z[1] - z[0])

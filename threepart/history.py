@@ -1,0 +1,172 @@
+"""Load histories: the states ``(P, s, Q, sigma_bulk)`` a contact is marched through, and their cycles.
+
+What the SIE and the FEM load histories (:func:`sie.load_history`,
+:func:`fem.load_history`) share: the one reader and check of a history
+(a sequence of states or a CSV file), the cycles it completes, and the
+friction work of one step.
+
+read_history    -- the states of a CSV file with the columns ``P, s, Q, sigma_bulk``
+check_history   -- a sequence of states (or a CSV path) as a checked :class:`History`
+History         -- the checked states, with their completed cycles
+step_work       -- the friction work of one step, ``Σ |Δslip| (f p_(k-1) + f p_k)/2``
+MAX_HISTORY     -- the most states of a history
+"""
+from __future__ import annotations
+
+import csv
+import math
+import os
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any, Sequence
+
+import numpy as np
+
+from .validate import show
+
+__all__ = ["History", "read_history", "check_history", "step_work", "MAX_HISTORY", "COLUMNS"]
+
+#: the columns of a history, in the order of a state tuple
+COLUMNS = ("P", "s", "Q", "sigma_bulk")
+#: the most states of a history (each costs a normal solve and a Coulomb state)
+MAX_HISTORY = 100_000
+#: two states are the same point of the cycle when all four values agree to this fraction
+#: of each column's largest magnitude (states typed in decimals, or computed by a sine)
+SAME_STATE = 1e-12
+
+
+@dataclass(frozen=True)
+class History:
+    """Checked load states, in order.
+
+    Attributes
+    ----------
+    P, s, Q, sigma_bulk
+        One value per state: normal load (> 0), its lever arm, the shear force
+        the punch exerts on the substrate along +x and the substrate's bulk stress.
+    """
+
+    P: np.ndarray
+    s: np.ndarray
+    Q: np.ndarray
+    sigma_bulk: np.ndarray
+
+    def __len__(self) -> int:
+        return len(self.P)
+
+    def state(self, k: int) -> tuple[float, float, float, float]:
+        """The ``k``-th state ``(P, s, Q, sigma_bulk)``."""
+        return float(self.P[k]), float(self.s[k]), float(self.Q[k]), float(self.sigma_bulk[k])
+
+    def cycles(self) -> tuple[tuple[int, int], ...]:
+        """The completed cycles ``(start, end)``: between successive visits of the last state.
+
+        A history closes its cycles where it ends (a flight cycle ends on the
+        ground, a fretting cycle at its turning point): every state equal to
+        the last one, to :data:`SAME_STATE` of each column's largest
+        magnitude, starts or ends a cycle. A history that visits its last
+        state once has no completed cycle.
+        """
+        cols = np.column_stack([self.P, self.s, self.Q, self.sigma_bulk])
+        scale = np.maximum(np.abs(cols).max(axis=0), 1e-300)
+        same = np.all(np.abs(cols - cols[-1]) <= SAME_STATE * scale, axis=1)
+        visits = np.flatnonzero(same)
+        return tuple((int(i), int(j)) for i, j in zip(visits[:-1], visits[1:]))
+
+
+def _value(where: str, column: str, text: Any) -> float:
+    """One entry as a float; ``ValueError`` naming where it is and the column."""
+    try:
+        v = float(text)
+    except (TypeError, ValueError):
+        raise ValueError(f"{where}, column `{column}`: {show(text)} is not a number") from None
+    if not math.isfinite(v):
+        raise ValueError(f"{where}, column `{column}`: {show(text)} must be a finite number")
+    if column == "P" and v <= 0:
+        raise ValueError(f"{where}, column `P`: {show(text)} must be > 0 (a compressive normal load)")
+    return v
+
+
+def read_history(path: str | os.PathLike[str]) -> History:
+    """The states of a CSV file with a header naming the columns ``P, s, Q, sigma_bulk`` (any order).
+
+    Other columns are ignored. Rows are counted as the file's lines (the header is row 1).
+
+    Raises
+    ------
+    ValueError
+        One line naming the file and, where it applies, the row and the column:
+        an unreadable file, a missing column, a short row, an entry that is not a
+        finite number, a ``P`` that is not > 0, no states, more than :data:`MAX_HISTORY`.
+    """
+    name = os.fspath(path)
+    try:
+        with open(name, newline="", encoding="utf-8") as fh:
+            rows = list(csv.reader(fh))
+    except (OSError, UnicodeDecodeError, csv.Error) as exc:
+        raise ValueError(f"history file {name!r} cannot be read: {exc}") from None
+    if not rows:
+        raise ValueError(f"history file {name!r} is empty: it needs a header {', '.join(COLUMNS)}")
+    header = [h.strip() for h in rows[0]]
+    missing = [c for c in COLUMNS if c not in header]
+    if missing:
+        raise ValueError(f"history file {name!r} has no column `{missing[0]}` (its header is "
+                         f"{', '.join(header)}; it needs {', '.join(COLUMNS)})")
+    index = [header.index(c) for c in COLUMNS]
+    states = []
+    for line, row in enumerate(rows[1:], start=2):
+        if not any(cell.strip() for cell in row):
+            continue                     # a blank line
+        where = f"history file {name!r}, row {line}"
+        if len(row) < len(header):
+            raise ValueError(f"{where}: {len(row)} entries, the header has {len(header)}")
+        states.append(tuple(_value(where, c, row[i]) for c, i in zip(COLUMNS, index)))
+    if not states:
+        raise ValueError(f"history file {name!r} has no states below its header")
+    return _history(states, f"history file {name!r}")
+
+
+def _history(states: Sequence[tuple[float, ...]], what: str) -> History:
+    if len(states) > MAX_HISTORY:
+        raise ValueError(f"{what} has {len(states)} states, more than MAX_HISTORY = {MAX_HISTORY}")
+    P, s, Q, sb = (np.array(col, dtype=float) for col in zip(*states))
+    return History(P=P, s=s, Q=Q, sigma_bulk=sb)
+
+
+def check_history(history: Any) -> History:
+    """``history`` as a :class:`History`: a sequence of ``(P, s, Q, sigma_bulk)`` states, a CSV path or a History.
+
+    Raises
+    ------
+    TypeError
+        ``history`` is none of these, or a state is not a sequence of four numbers.
+    ValueError
+        As :func:`read_history`, naming the state (counted from 0) and the column.
+    """
+    if isinstance(history, History):
+        return history
+    if isinstance(history, (str, Path)):
+        return read_history(history)
+    if not isinstance(history, (Sequence, np.ndarray)):
+        raise TypeError(f"`history` must be a sequence of (P, s, Q, sigma_bulk) states or a CSV path, "
+                        f"not {type(history).__name__}")
+    if len(history) == 0:
+        raise ValueError("`history` has no states")
+    states = []
+    for k, state in enumerate(history):
+        if isinstance(state, (str, bytes)) or not isinstance(state, (Sequence, np.ndarray)) \
+                or len(state) != len(COLUMNS):
+            raise TypeError(f"`history` state {k} = {show(state)} must be a ({', '.join(COLUMNS)}) tuple")
+        states.append(tuple(_value(f"`history` state {k}", c, v) for c, v in zip(COLUMNS, state)))
+    return _history(states, "`history`")
+
+
+def step_work(bound_prev: np.ndarray, bound: np.ndarray, dslip: np.ndarray) -> float:
+    """Friction work of one step, ``Σ_i |Δslip_i| (bound_(k-1),i + bound_k,i)/2``.
+
+    On a slipping point ``|q| = f p``, and the shear opposes the slip, so the
+    work ``q · Δslip`` is the slip times the Coulomb bound; the bound is
+    averaged over the step (the trapezoid rule in the state index). ``dslip``
+    must be zero where a point sticks or is out of contact at either state.
+    """
+    return float(np.sum(np.abs(dslip) * 0.5 * (bound_prev + bound)))
