@@ -6,6 +6,8 @@ solve_normal        -- load-controlled normal contact (tilt "free" or "suppresse
 FemResult           -- the shared result shape plus delta, nodal pressures and the stress field
 solve_partial_slip  -- two similar elastic bodies, P at s then Q (and a bulk stress) in steps, Coulomb friction
 fretting_cycle      -- the same model through Q: 0 -> Q_max -> -Q_max -> Q_max (energy per cycle)
+load_history        -- the same model through any history of (P, s, Q, sigma_bulk) states, meshed once,
+                       with the memory of slip (stick intervals, shear, slip, energy per cycle)
 FemSlipResult, FemFrettingResult -- their shared result shapes, with the per-step history
 solve_finite        -- a punch of real shape (exact arcs, flanks, height H) on a finite block
 solve_finite_slip   -- the same punch and block, P at s then Q in steps, Coulomb friction (two-body model)
@@ -58,6 +60,7 @@ from .elasticity import SurfaceCompliance, backends, choose_backend, condense
 from .export import Fields, to_meshio, write_fields
 from .coulomb import Step, tangential
 from .friction import FemFrettingResult, FemSlipResult, fretting_cycle, solve_partial_slip
+from .history import load_history
 from .interface import Interface, bulk_field, interface, mirror
 from .recovery import StressField
 from .finite import solve_finite
@@ -66,7 +69,7 @@ from .mesh import PRESETS, MeshPreset, Substrate, make_substrate, read_substrate
 from .solve import FemResult, locate_contact, solve_normal
 from .studies import convergence_study, domain_study
 
-__all__ = ["solve_normal", "FemResult", "solve_partial_slip", "fretting_cycle", "FemSlipResult",
+__all__ = ["solve_normal", "FemResult", "solve_partial_slip", "fretting_cycle", "FemSlipResult", "load_history",
            "FemFrettingResult", "solve_finite", "solve_finite_slip", "Interface", "interface", "mirror", "bulk_field", "Step", "tangential",
            "StressField", "NoConvergenceError", "ContactZoneError", "SeparationError",
            "MeshResolutionError", "locate_contact", "MeshPreset", "PRESETS", "Substrate", "read_substrate",

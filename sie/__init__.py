@@ -12,6 +12,8 @@ lift_off            -- lever arms at which a contact edge reaches a join x = ±b
 solve_partial_slip  -- stick zone (d, e) and shear q(x) by Ciavarella–Jäger, from the discretised equations,
                        also where the stick zone ends on the central segment
 fretting_cycle      -- Q: 0 -> Q_max -> -Q_max -> Q_max by Masing's rule on those stick zones: delta, energy
+load_history        -- any history of (P, s, Q, sigma_bulk) states, marched with the memory of slip on a
+                       log-kernel element grid: stick intervals, shear, slip, energy per cycle
 SieNormalResult     -- NormalResult with n, scheme and the interpolating pressure
 SieSlipResult       -- SlipResult with n, scheme, corrective pressure and shear
 SieFrettingResult   -- FrettingResult with n, scheme; shear, slip and slip amplitude at any Q of a branch
@@ -45,10 +47,11 @@ from threepart.errors import NoConvergenceError
 from .schemes import SCHEMES
 from .slip import SieSlipResult, solve_partial_slip
 from .fretting import SieFrettingResult, fretting_cycle
+from .history import load_history
 
 __all__ = [
     "solve_normal", "solve_partial_slip", "lift_off", "SieNormalResult", "SieSlipResult", "NoConvergenceError",
-    "fretting_cycle", "SieFrettingResult",
+    "fretting_cycle", "SieFrettingResult", "load_history",
     "gauss_chebyshev", "cauchy_matrix", "slope_coefficients", "SCHEMES",
     "convergence_study", "pressure_by_quadrature",
 ]

@@ -34,7 +34,7 @@ from threadpoolctl import threadpool_limits
 
 from threepart.coulomb import coulomb_state
 from threepart.errors import FullSlidingError
-from threepart.history import History, check_history, step_work
+from threepart.history import History, check_history, check_period, step_work, stuck
 from threepart.punch import Punch
 from threepart.results import Diagnostics, HistoryResult, NormalResult
 from threepart.validate import check_punch, integer, lever_arm, load_scale, positive, shear_load
@@ -92,7 +92,8 @@ def element_loads(normal: SieNormalResult, edges: np.ndarray) -> np.ndarray:
     return 0.5 * (th1 - th0) * np.sum(w[None, :] * p * h * np.sin(theta), axis=1)
 
 
-def _check(punch: Any, history: Any, f: Any, A: Any, n: Any) -> tuple[History, float, float, int]:
+def _check(punch: Any, history: Any, f: Any, A: Any, n: Any, period: Any
+           ) -> tuple[History, float, float, int, int | None]:
     """The checked input, every state's, before any numerics."""
     check_punch(punch)
     hist = check_history(history)
@@ -106,7 +107,7 @@ def _check(punch: Any, history: Any, f: Any, A: Any, n: Any) -> tuple[History, f
             shear_load(Q, f, P, what="the history cannot be marched past this state")
         except ValueError as exc:
             raise type(exc)(f"`history` state {k}: {exc}") from None
-    return hist, f, A, n
+    return hist, f, A, n, check_period(period, hist)
 
 
 def _stick_intervals(stick: np.ndarray, edges: np.ndarray) -> tuple[tuple[float, float], ...]:
@@ -117,7 +118,7 @@ def _stick_intervals(stick: np.ndarray, edges: np.ndarray) -> tuple[tuple[float,
 
 
 def load_history(punch: Punch, history: Any, f: float, *, A: float, n: int = DEFAULT_ELEMENTS,
-                 normal_n: int = DEFAULT_N) -> HistoryResult:
+                 normal_n: int = DEFAULT_N, period: int | None = None) -> HistoryResult:
     """March ``punch`` through a load history with the memory of slip.
 
     Parameters
@@ -138,6 +139,10 @@ def load_history(punch: Punch, history: Any, f: float, *, A: float, n: int = DEF
         Shear elements over the union of the contacts, in :data:`ELEMENTS`.
     normal_n
         Sine terms of each state's normal pressure (:func:`sie.solve_normal`).
+    period
+        States per cycle, the cycles ending at the last state; by default a
+        cycle ends at each return to the last state along the way it was reached
+        (:meth:`threepart.history.History.cycles`).
 
     Returns
     -------
@@ -158,7 +163,7 @@ def load_history(punch: Punch, history: Any, f: float, *, A: float, n: int = DEF
         As :func:`sie.solve_normal` for a state's contact; ``NoConvergenceError``
         also when a state's stick/slip sets do not settle.
     """
-    hist, f, A, n = _check(punch, history, f, A, n)
+    hist, f, A, n, period = _check(punch, history, f, A, n, period)
     t0 = time.perf_counter()
     cache: dict[tuple[float, float], SieNormalResult] = {}
     normals: list[NormalResult] = []
@@ -175,7 +180,7 @@ def load_history(punch: Punch, history: Any, f: float, *, A: float, n: int = DEF
     loads = {key: element_loads(r, edges) for key, r in cache.items()}
     march = _march(hist, f, A, C, x, edges, [loads[float(P), float(s)] for P, s in zip(hist.P, hist.s)])
     q, slip, stick, work, its, res = march
-    cycles = hist.cycles()
+    cycles = hist.cycles(period)
     energy = np.array([work[i + 1:j + 1].sum() for i, j in cycles])
     total = time.perf_counter() - t0
     diag = Diagnostics(n=n, iterations=its, residual=res, steps=len(hist),
@@ -216,7 +221,7 @@ def _march(hist: History, f: float, A: float, C: np.ndarray, x: np.ndarray, edge
             acc = acc + dslip
             work[k] = step_work(bound_prev, bound, dslip)
             q[k], slip[k] = t / h, acc
-            sticks.append(_stick_intervals(stick & (bound > 0), edges))
+            sticks.append(_stick_intervals(stuck(stick, bound > 0, w, w - w_prev), edges))
             w_prev, bound_prev, stick_prev = w, bound, stick | (bound == 0)
             sign_prev = np.sign(t)
             its_total, res_max = its_total + its, max(res_max, res)

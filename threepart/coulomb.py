@@ -26,6 +26,8 @@ from .errors import FullSlidingError, NoConvergenceError
 
 __all__ = ["coulomb_state", "RETRIES"]
 
+#: a slip point stays one while ``sign z`` is within this fraction below its bound (rounding)
+HYSTERESIS = 1e-9
 #: retries of a state whose active set does not settle, each with a ten times smaller ``c``
 RETRIES = 2
 
@@ -124,7 +126,10 @@ def _active_set(C: np.ndarray, bound: np.ndarray, w_prev: np.ndarray, w_fixed: n
         t[S] = sol[:m]
         xi = float(sol[m])
         z = t + c * (xi + w_fixed - C @ t - w_prev)
-        new_stick = touch & (np.abs(z) < bound)
+        # a slip point whose |z| falls below its bound only by rounding stays a slip point: such a
+        # point (t at the bound, no slip increment) otherwise toggles with the rounding
+        held = slip & (sign * z > (1.0 - HYSTERESIS) * bound)
+        new_stick = touch & (np.abs(z) < bound) & ~held
         new_sign = np.where(touch & ~new_stick, np.sign(z), 0.0)
         if np.array_equal(new_stick, stick) and np.array_equal(new_sign[slip], sign[slip]):
             return t, xi, stick, it

@@ -7,7 +7,9 @@ friction work of one step.
 
 read_history    -- the states of a CSV file with the columns ``P, s, Q, sigma_bulk``
 check_history   -- a sequence of states (or a CSV path) as a checked :class:`History`
+check_period    -- the states per cycle, when a history gives them
 History         -- the checked states, with their completed cycles
+stuck           -- the points that did not slip in a step (the stick intervals' points)
 step_work       -- the friction work of one step, ``Σ |Δslip| (f p_(k-1) + f p_k)/2``
 MAX_HISTORY     -- the most states of a history
 """
@@ -22,9 +24,9 @@ from typing import Any, Sequence
 
 import numpy as np
 
-from .validate import show
+from .validate import integer, show
 
-__all__ = ["History", "read_history", "check_history", "step_work", "MAX_HISTORY", "COLUMNS"]
+__all__ = ["History", "read_history", "check_history", "check_period", "stuck", "step_work", "MAX_HISTORY", "COLUMNS"]
 
 #: the columns of a history, in the order of a state tuple
 COLUMNS = ("P", "s", "Q", "sigma_bulk")
@@ -58,20 +60,32 @@ class History:
         """The ``k``-th state ``(P, s, Q, sigma_bulk)``."""
         return float(self.P[k]), float(self.s[k]), float(self.Q[k]), float(self.sigma_bulk[k])
 
-    def cycles(self) -> tuple[tuple[int, int], ...]:
-        """The completed cycles ``(start, end)``: between successive visits of the last state.
+    def cycles(self, period: int | None = None) -> tuple[tuple[int, int], ...]:
+        """The completed cycles ``(start, end)`` of state indices.
 
         A history closes its cycles where it ends (a flight cycle ends on the
-        ground, a fretting cycle at its turning point): every state equal to
-        the last one, to :data:`SAME_STATE` of each column's largest
-        magnitude, starts or ends a cycle. A history that visits its last
-        state once has no completed cycle.
+        ground, a fretting cycle at its turning point). With ``period`` the
+        cycles are the blocks of ``period`` steps that end at the last state.
+        Without it a cycle ends at each state equal to the last one (to
+        :data:`SAME_STATE` of each column's largest magnitude) that is reached
+        the way the last one is, from a state equal to the last one's
+        predecessor; the first state starts one if it equals the last (a
+        history that starts where it ends). A state passed twice in a cycle
+        (a zero crossing, up and then down) closes it once.
         """
-        cols = np.column_stack([self.P, self.s, self.Q, self.sigma_bulk])
-        scale = np.maximum(np.abs(cols).max(axis=0), 1e-300)
-        same = np.all(np.abs(cols - cols[-1]) <= SAME_STATE * scale, axis=1)
-        visits = np.flatnonzero(same)
-        return tuple((int(i), int(j)) for i, j in zip(visits[:-1], visits[1:]))
+        K = len(self.P)
+        if period is not None:
+            ends = np.arange(K - 1, -1, -period)[::-1]
+        else:
+            cols = np.column_stack([self.P, self.s, self.Q, self.sigma_bulk])
+            scale = np.maximum(np.abs(cols).max(axis=0), 1e-300)
+
+            def same(i: int, j: int) -> bool:
+                return bool(np.all(np.abs(cols[i] - cols[j]) <= SAME_STATE * scale))
+
+            ends = np.array([k for k in range(K) if same(k, K - 1)
+                             and (k == 0 or (K > 1 and same(k - 1, K - 2)))], dtype=int)
+        return tuple((int(i), int(j)) for i, j in zip(ends[:-1], ends[1:]))
 
 
 def _value(where: str, column: str, text: Any) -> float:
@@ -159,6 +173,25 @@ def check_history(history: Any) -> History:
             raise TypeError(f"`history` state {k} = {show(state)} must be a ({', '.join(COLUMNS)}) tuple")
         states.append(tuple(_value(f"`history` state {k}", c, v) for c, v in zip(COLUMNS, state)))
     return _history(states, "`history`")
+
+
+def check_period(period: Any, history: History) -> int | None:
+    """``period`` (states per cycle) as an int in ``[1, len(history) - 1]``, or None."""
+    if period is None:
+        return None
+    return integer("period", period, 1, max(1, len(history) - 1))
+
+
+#: a point whose slip increment is below this fraction of the largest ``|w|`` has not slipped
+#: (a point held at its bound with no increment slips by rounding, ~1e-12 of ``|w|``)
+STUCK = 1e-9
+
+
+def stuck(stick: np.ndarray, touch: np.ndarray, w: np.ndarray, dw: np.ndarray) -> np.ndarray:
+    """The points in contact that did not slip in a step: the active set's stick points and the
+    slip points whose increment ``dw`` is rounding (below :data:`STUCK` of the largest ``|w|``)."""
+    scale = float(np.abs(w[touch]).max(initial=0.0))
+    return touch & (stick | (np.abs(dw) <= STUCK * scale))
 
 
 def step_work(bound_prev: np.ndarray, bound: np.ndarray, dslip: np.ndarray) -> float:
