@@ -142,7 +142,7 @@ def load_history(punch: Punch, history: Any, f: float, *, E: float, nu: float,
         them); ``diagnostics`` hold ``h``, ``dofs``, the active-set ``iterations``, the
         largest Coulomb ``residual``, ``steps`` (states) and the timings
         (``locate``, ``mesh``, ``condense``, ``normal``, ``friction``, ``total``);
-        ``info`` holds ``normal_solves``.
+        ``info`` holds ``normal_solves`` and the nodes' lumped ``weights`` (force = traction × weight).
 
     Raises
     ------
@@ -183,7 +183,8 @@ def load_history(punch: Punch, history: Any, f: float, *, E: float, nu: float,
     return HistoryResult(punch=punch, f=f, P=hist.P, s=hist.s, Q=hist.Q, sigma_bulk=hist.sigma_bulk,
                          normals=tuple(s[1] for s in sols), stick=stick, energy=energy, cycles=cycles,
                          work=work, method="fem", x_nodes=model.itf.x, q_nodes=q, slip_nodes=slip,
-                         diagnostics=diag, info={"normal_solves": len(cache)})
+                         diagnostics=diag, info={"normal_solves": len(cache),
+                                                             "weights": model.itf.weights})
 
 
 def _march(model: TwoBodyModel, hist: History, f: float, sols: list[ContactSolution],

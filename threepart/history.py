@@ -68,8 +68,8 @@ class History:
         cycles are the blocks of ``period`` steps that end at the last state.
         Without it a cycle ends at each state equal to the last one (to
         :data:`SAME_STATE` of each column's largest magnitude) that is reached
-        the way the last one is, from a state equal to the last one's
-        predecessor; the first state starts one if it equals the last (a
+        the way the last one is (each column rising, falling or held as in the
+        last step); the first state starts one if it equals the last (a
         history that starts where it ends). A state passed twice in a cycle
         (a zero crossing, up and then down) closes it once.
         """
@@ -80,11 +80,14 @@ class History:
             cols = np.column_stack([self.P, self.s, self.Q, self.sigma_bulk])
             scale = np.maximum(np.abs(cols).max(axis=0), 1e-300)
 
+            step = np.diff(cols, axis=0)
+            way = np.where(np.abs(step) <= SAME_STATE * scale, 0.0, np.sign(step))   # up, down or held
+
             def same(i: int, j: int) -> bool:
                 return bool(np.all(np.abs(cols[i] - cols[j]) <= SAME_STATE * scale))
 
             ends = np.array([k for k in range(K) if same(k, K - 1)
-                             and (k == 0 or (K > 1 and same(k - 1, K - 2)))], dtype=int)
+                             and (k == 0 or np.array_equal(way[k - 1], way[K - 2]))], dtype=int)
         return tuple((int(i), int(j)) for i, j in zip(ends[:-1], ends[1:]))
 
 
