@@ -26,7 +26,7 @@ import numpy as np
 from threadpoolctl import threadpool_limits
 
 from threepart.coulomb import coulomb_state
-from threepart.errors import FullSlidingError
+from threepart.errors import ContactZoneError, FullSlidingError
 from threepart.history import History, check_history, check_period, step_work, stuck
 from threepart.material import similar_pair
 from threepart.meshes import SubstrateSpec
@@ -87,6 +87,10 @@ def _normal(model: TwoBodyModel, P: float, s: float, E: float, nu: float,
     itf, punch = model.itf, model.punch
     sol = solve_contact(itf.C_nn, itf.x, model.gap(itf.x), P, s, free_tilt=True,
                         max_iter=model.max_iter)
+    if sol.active[0] or sol.active[-1]:
+        raise ContactZoneError(f"the contact of `P` = {P:.6g} at `s` = {s:.6g} reaches the end of the "
+                               f"meshed contact zone [{itf.x[0]:.6g}, {itf.x[-1]:.6g}] (meshed for the "
+                               "history's largest load and extreme lever arms): give a mesh that covers it")
     p = sol.f / itf.weights
     left, right = contact_ends(itf.x, p, sol.active, (-punch.b, punch.b))
     check_contact(punch, -left, right, sol.alpha)

@@ -80,16 +80,22 @@ def element_loads(normal: SieNormalResult, edges: np.ndarray) -> np.ndarray:
     """``∫ p dx`` over each element: Gauss–Legendre in ``θ`` (``x = m + h cos θ``) on its part of the contact.
 
     ``p`` is a sine series in ``θ`` and ``dx = -h sin θ dθ``: the integrand is
-    smooth, also at the contact's square-root ends.
+    smooth, also at the contact's square-root ends; an element is split at the
+    joins ``x = ±b``, where the pressure has its log kinks.
     """
     m, h = 0.5 * (normal.c - normal.a), 0.5 * (normal.a + normal.c)
-    lo = np.clip((edges[:-1] - m) / h, -1.0, 1.0)
-    hi = np.clip((edges[1:] - m) / h, -1.0, 1.0)
+    b = normal.punch.b
+    joins = [j for j in sorted({-b, b}) if edges[0] < j < edges[-1] and not np.any(edges == j)]
+    cuts = np.sort(np.concatenate([edges, joins]))
+    owner = np.searchsorted(edges, cuts[:-1], side="right") - 1       # the element of each piece
+    lo = np.clip((cuts[:-1] - m) / h, -1.0, 1.0)
+    hi = np.clip((cuts[1:] - m) / h, -1.0, 1.0)
     th0, th1 = np.arccos(hi), np.arccos(lo)           # θ falls as x rises
     s, w = np.polynomial.legendre.leggauss(PRESSURE_POINTS)
     theta = th0[:, None] + (th1 - th0)[:, None] * 0.5 * (s + 1)[None, :]
     p = normal.pressure(m + h * np.cos(theta))
-    return 0.5 * (th1 - th0) * np.sum(w[None, :] * p * h * np.sin(theta), axis=1)
+    pieces = 0.5 * (th1 - th0) * np.sum(w[None, :] * p * h * np.sin(theta), axis=1)
+    return np.bincount(owner, weights=pieces, minlength=len(edges) - 1)
 
 
 def _check(punch: Any, history: Any, f: Any, A: Any, n: Any, period: Any

@@ -24,6 +24,7 @@ from threepart.punch import Punch
 from threepart.tolerances import tolerance
 
 CASES = {c.name: c.resolved() for c in load_cases("sie")}
+#: the coefficient of friction of every history here
 F = 0.5
 #: Hertz: R = 2, A = 0.01, P = 3 (a = 0.195, inside the arcs and the small-slope limit)
 HERTZ, A_H, P_H = Punch(2.0, 2.0, 0.0), 0.01, 3.0
@@ -76,6 +77,16 @@ def test_equilibrium_and_coulomb_in_every_state():
     for q, Q in zip(r.q_nodes, r.Q):
         assert abs(np.sum(q * h) - Q) <= tol("equilibrium") * Q_max
         assert np.all(np.abs(q) <= F * p_bar * (1 + tol("equilibrium")))
+
+
+@pytest.mark.parametrize("n", [7, 100, 400])
+def test_element_loads_sum_to_P(n):
+    """The elements' ∫p dx (the Coulomb bounds' pressure) sum to P, with joins inside elements."""
+    k = CASES["nd_A"]
+    normal = sie.solve_normal(k.punch, k.P, k.s, A=k.A)
+    edges = np.linspace(-normal.a - 0.1, normal.c + 0.05, n + 1)
+    total = sie.history.element_loads(normal, edges).sum()
+    assert abs(total / k.P - 1) <= tol("element_loads")
 
 
 def _drop_reversal_repeats(fc):
