@@ -5,7 +5,8 @@ tangential displacement ``w_i`` of the punch keeps its value of the previous
 step) or slip (``t_i = ±f fn_i`` with the sign of the slip increment). The
 states are found by a primal-dual active-set iteration on the complementarity
 function ``t_i = proj_[-f fn_i, f fn_i](t_i + c Δw_i)`` (Hüeber, Stadler &
-Wohlmuth 2008). Notation as in :mod:`fem.friction`: ``fn`` the normal nodal
+Wohlmuth 2008), :func:`threepart.coulomb.coulomb_state`, which the SIE's load
+history shares. Notation as in :mod:`fem.friction`: ``fn`` the normal nodal
 forces, ``t`` the shear nodal forces the punch drags the substrate with,
 ``f`` (here ``mu``) the coefficient of friction.
 """
