@@ -103,10 +103,15 @@ def cycle_nd_A():
     return k, Q_max, fc
 
 
-def test_fretting_cycle_against_masing(cycle_nd_A):
-    """(b) constant P: the stick zone of every state and the energy per cycle of closedform.fretting_cycle."""
+@pytest.mark.parametrize("sigma_bulk", [0.0, 0.03])
+def test_fretting_cycle_against_masing(cycle_nd_A, sigma_bulk):
+    """(b) constant P: the stick zone of every state and the energy per cycle of closedform.fretting_cycle
+    (under a bulk stress in phase with Q, the friction work of eq. B9)."""
     k, Q_max, fc = cycle_nd_A
-    r = sie.load_history(k.punch, fretting(k.P, k.s, Q_max), F, A=k.A, n=400)
+    if sigma_bulk:
+        fc = cf.fretting_cycle(cf.solve_normal(k.punch, k.P, k.s, A=k.A), Q_max, F, sigma_bulk=sigma_bulk)
+    states = [(P, s, Q, sigma_bulk * Q / Q_max) for P, s, Q, _ in fretting(k.P, k.s, Q_max)]
+    r = sie.load_history(k.punch, states, F, A=k.A, n=400)
     assert r.cycles == ((20, 60),)          # the turning point Q_max, reached on the way up
     assert abs(r.energy[0] / fc.energy - 1) <= tol("energy"), (r.energy, fc.energy)
     ref = _drop_reversal_repeats(fc)
