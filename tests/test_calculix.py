@@ -121,6 +121,28 @@ def test_deck_bad_input(tmp_path, capsys, argv, match):
     assert match in err and len(err.strip().splitlines()) == 1
 
 
+@pytest.mark.parametrize("h", ["1e-9", "1e-5", "2"])
+def test_deck_refuses_a_mesh_size_out_of_range_before_meshing(tmp_path, capsys, monkeypatch, h):
+    """``--h`` far below W/1000 (gmsh climbed to 3.7 GB at 1e-9) or above W/4 is refused in one
+    line naming ``--h`` and the range, exit 2, before gmsh starts; ``--help`` states the range."""
+    import gmsh
+
+    def no_gmsh(*args, **kwargs):
+        raise AssertionError("gmsh started for a refused --h")
+
+    monkeypatch.setattr(gmsh, "initialize", no_gmsh)
+    out = tmp_path / "x.inp"
+    assert main(["deck", "--case", "caseA_sym", "--h", h, "--out", str(out)]) == 2
+    err = capsys.readouterr().err
+    W = 2 * 2.010875491               # caseA_sym's contact width a + c (the deck prints a, c)
+    lo, hi = calculix.W_OVER_H
+    assert len(err.strip().splitlines()) == 1 and not out.exists()
+    assert f"`--h`) = {float(h):.4g}" in err and f"W/h from {lo:g} to {hi:g}" in err, err
+    assert f"h from {W / hi:.4g} to {W / lo:.4g}" in err, err
+    assert main(["deck", "--help"]) == 0
+    assert f"W/{hi:g}" in capsys.readouterr().out.replace("\n", " ")
+
+
 @pytest.mark.slow
 def test_ccx_default_deck_meets_the_issue_targets(tmp_path):
     """The deck at its defaults (W/h = 200, K = 200 E/h, punch 1000 x stiffer) on ``caseA_sym``
