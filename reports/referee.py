@@ -22,6 +22,9 @@ the known pitfalls of contact FE results, each with the number that shows it:
     A peak set by the mesh: the largest pressure at a node next to an end, or
     an element-scale (node-to-node) oscillation larger than :data:`OSCILLATION`
     of the peak.
+``increments``
+    A CalculiX run whose step took more than one increment (its ``.sta``):
+    the deck's model is one increment of the whole load.
 ``penalty``
     The penalty's overclosure ``p_max / K`` (a length; ``K`` read where the
     contact is closed) against the profile's rise over the contact: the peak
@@ -235,7 +238,8 @@ def _vertex_flags(counts: np.ndarray) -> np.ndarray:
 
 
 def _read_calculix(path: Path, suffix: str) -> tuple[np.ndarray, np.ndarray, dict[str, Any]]:
-    from threepart.calculix import force_pressure, nodal_forces, read_dat, read_frd, read_frd_nodes
+    from threepart.calculix import (force_pressure, nodal_forces, read_dat, read_frd, read_frd_nodes,
+                                    read_increments)
 
     stem = path.with_suffix("")
     if suffix == ".dat":
@@ -278,7 +282,7 @@ def _read_calculix(path: Path, suffix: str) -> tuple[np.ndarray, np.ndarray, dic
     x = x0 + np.array([disp[n][0] if n in disp else 0.0 for n in nodes])
     ks = list(copen)
     K = _penalty(np.array([copen[k][0] for k in ks]), np.array([cpress.get(k, math.nan) for k in ks]))
-    return x, p, {"source": suffix[1:], "forces": f, "penalty": K}
+    return x, p, {"source": suffix[1:], "forces": f, "penalty": K, "increments": read_increments(stem)}
 
 
 def _penalty(copen: np.ndarray, cpress: np.ndarray) -> float:
@@ -367,6 +371,14 @@ def diagnose(res: PointsResult, ref: NormalResult, *, penalty: float | None = No
                            f"∫p dx = {res.P:.6g} differs from P = {ref.P:.6g} by {load:.3g} of P: "
                            "analyse the first increment (a later one re-pairs the surfaces on the "
                            "deformed geometry), check the thickness and a half model's factor 2"))
+    steps = res.info.get("increments")
+    if steps is not None and steps > 1:
+        out.append(Pitfall("increments", float(steps), 1.0,
+                           f"the run took {steps} increments (its .sta): the whole load did not converge "
+                           "in one, and each later increment pairs the faces again on the deformed "
+                           "geometry; at large slopes or strains (the deck's header gives them) the "
+                           "closed form's model does not hold either: scale the radii up and the load "
+                           "down (docs/CALCULIX.md)"))
     margin = EDGE_FRACTION * W
     inside = p > 0
     for side, (lo, hi) in (("left", (-res.a, -res.a + margin)), ("right", (res.c - margin, res.c))):
@@ -453,7 +465,7 @@ def main(pressure: str | Path, ref: NormalResult, *, out: str | Path, alpha: flo
     """Read, judge and report; 0 when every check holds and no pitfall shows, else 1."""
     x, p, info = read_pressure(pressure)
     res = from_points(x, p, ref, alpha=alpha, info={k: v for k, v in info.items()
-                                                   if k in ("source", "penalty")})
+                                                   if k in ("source", "penalty", "increments")})
     doc = judge(res, ref, penalty=penalty, source=str(pressure))
     write_report(doc, out)
     failed = [c for c in doc["checks"] if not c["passed"]]
