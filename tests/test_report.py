@@ -403,6 +403,10 @@ SMALLEST_PT = 7
 MIN_TEXT_PX = 8
 #: the figure grid's gap (.6em of the browser's 16 px) between the two cells of a row
 GRID_GAP_PX = 9.6
+#: a plot wider than this many panels has more than one (widths are whole panels)
+MULTI_PANEL = 1.5
+#: a value printed to 4 significant digits against the document's: half a unit of the 4th digit
+ROUNDED = 1e-3
 #: bytes of the HTML per embedded plot (base64, with the page's text): 117 kB when the plots
 #: were RGBA PNGs at 110 dpi (5.7 MB for the quick report's 50); a palette PNG at 90 dpi
 #: measured 26 kB on this report
@@ -427,14 +431,14 @@ def test_every_plot_is_shown_at_a_size_whose_text_is_readable(report):
     figures = _figures((out / "report.html").read_text())
     assert len(figures) == (out / "report.html").read_text().count("<img")
     panel = 6.4 * plots.DPI                     # one panel's width in px (new_figure's 6.4 in)
-    wide = [png for spans, png in figures if render.png_width(png) > 1.5 * panel]
+    wide = [png for spans, png in figures if render.png_width(png) > MULTI_PANEL * panel]
     assert wide                                  # the partial-slip case's two-panel plots
     for spans, png in figures:
         w = render.png_width(png)
         cell = render.PAGE_PX if spans else (render.PAGE_PX - GRID_GAP_PX) / 2
         text = SMALLEST_PT * plots.DPI / 72 * min(1.0, cell / w)
         assert text >= MIN_TEXT_PX, (w, spans, text)
-        assert spans == (w > 1.5 * panel), w
+        assert spans == (w > MULTI_PANEL * panel), w
 
 
 def test_the_html_embeds_small_plots(report):
@@ -476,7 +480,7 @@ def test_the_hot_spot_tables_carry_units_and_four_significant_digits():
             for got, want in zip(m.groups(), (value, spot["x"], spot["z"])):
                 if got is not None:
                     assert _significant(got) <= SPOT_DIGITS, got
-                    assert float(got) == pytest.approx(want, rel=10.0 ** (1 - SPOT_DIGITS))
+                    assert float(got) == pytest.approx(want, rel=ROUNDED)
         assert all("MPa" not in c and "mm" not in c for c in nondim[2:]), nondim
     assert sig(0.00123456) == "0.001235" and sig(1.23456e7) == "1.235e+07"
     assert "c 300 MPa" in "".join(section.intro[1])
