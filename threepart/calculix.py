@@ -378,8 +378,9 @@ CONVENTIONS = """\
 **   surface >= 0 is compressive; the punch (set PUNCH) is pressed down onto the block (BLOCK)
 **   by P, whose line of action is x = s.
 ** Contact: frictionless node-to-surface penalty (PRESSURE-OVERCLOSURE=LINEAR, stiffness K).
-**   CPRESS at an open node is -K*COPEN (a tension that grows with the clearance), not zero:
-**   read the pressure where COPEN <= 0 only.
+**   CPRESS at an open node is a tension, not zero: -K*COPEN up to the law's sigma_inf (its
+**   second data item below), sigma_inf beyond: read the pressure where COPEN <= 0 only, and
+**   K as CPRESS/-COPEN at closed nodes.
 **   On quadratic faces CPRESS alternates between vertex and midside nodes by up to 2: it is
 **   the force over CalculiX's own nodal area (about h/2 at every node), not over the node's
 **   share of the face (h/3 at a vertex, 2h/3 at a midside node). The nodal force is
