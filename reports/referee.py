@@ -22,9 +22,13 @@ the known pitfalls of contact FE results, each with the number that shows it:
     A peak set by the mesh: the largest pressure at a node next to an end, or
     an element-scale (node-to-node) oscillation larger than :data:`OSCILLATION`
     of the peak.
+``increments``
+    A CalculiX run whose step took more than one increment (its ``.sta``):
+    the deck's model is one increment of the whole load.
 ``penalty``
-    The penalty's overclosure ``p_max / K`` against the profile's rise over
-    the contact: the peak error falls as ``1/K``.
+    The penalty's overclosure ``p_max / K`` (a length; ``K`` read where the
+    contact is closed) against the profile's rise over the contact: the peak
+    error falls as ``1/K``.
 
 Names
 -----
@@ -180,8 +184,8 @@ def read_pressure(path: str | Path) -> tuple[np.ndarray, np.ndarray, dict[str, A
     (deformed where the file holds their displacements: the ``.frd``'s DISP,
     the ``.dat``'s ``*NODE PRINT, NSET=NSURF`` U). A ``.frd`` without CELS
     gives CalculiX's CPRESS itself (not the pressure on quadratic faces: the
-    diagnosis names it). ``info`` holds the source, COPEN and, where the
-    contact is open, the penalty ``K = -CPRESS/COPEN``.
+    diagnosis names it). ``info`` holds the source, COPEN and the penalty
+    ``K = CPRESS / -COPEN`` at the closed nodes (:func:`_penalty`).
     """
     path = Path(path)
     if not path.is_file():
@@ -234,7 +238,8 @@ def _vertex_flags(counts: np.ndarray) -> np.ndarray:
 
 
 def _read_calculix(path: Path, suffix: str) -> tuple[np.ndarray, np.ndarray, dict[str, Any]]:
-    from threepart.calculix import force_pressure, nodal_forces, read_dat, read_frd, read_frd_nodes
+    from threepart.calculix import (force_pressure, nodal_forces, read_dat, read_frd, read_frd_nodes,
+                                    read_increments)
 
     stem = path.with_suffix("")
     if suffix == ".dat":
@@ -275,9 +280,22 @@ def _read_calculix(path: Path, suffix: str) -> tuple[np.ndarray, np.ndarray, dic
     vertex = _vertex_flags(np.array([forces[n][1] for n in nodes]))
     p = force_pressure(x0, f, vertex, cut=True)
     x = x0 + np.array([disp[n][0] if n in disp else 0.0 for n in nodes])
-    ks = [k for k in copen if k in cpress and copen[k][0] > 0 and cpress[k] < 0]
-    K = float(np.median([-cpress[k] / copen[k][0] for k in ks])) if len(ks) >= 3 else math.nan
-    return x, p, {"source": suffix[1:], "forces": f, "penalty": K}
+    ks = list(copen)
+    K = _penalty(np.array([copen[k][0] for k in ks]), np.array([cpress.get(k, math.nan) for k in ks]))
+    return x, p, {"source": suffix[1:], "forces": f, "penalty": K, "increments": read_increments(stem)}
+
+
+def _penalty(copen: np.ndarray, cpress: np.ndarray) -> float:
+    """The penalty stiffness ``K = CPRESS / -COPEN`` at the closed nodes (NaN if fewer than 3).
+
+    ``PRESSURE-OVERCLOSURE=LINEAR`` is linear where the contact is closed
+    (``COPEN < 0``); at an open node CalculiX writes the tension ``sigma_inf``
+    of the law's second data item instead (``threepart deck``: 1e-6 of the mean
+    pressure), so ``-CPRESS / COPEN`` there is ``sigma_inf / COPEN``, not ``K``
+    (on caseA_sym it read 86 MPa/mm for the deck's 2.09e9).
+    """
+    closed = (copen < 0) & (cpress > 0)
+    return float(np.median(cpress[closed] / -copen[closed])) if np.count_nonzero(closed) >= 3 else math.nan
 
 
 def _read_cpress(path: Path, blocks: dict[str, dict[int, np.ndarray]], xyz: dict[int, np.ndarray],
@@ -297,9 +315,7 @@ def _read_cpress(path: Path, blocks: dict[str, dict[int, np.ndarray]], xyz: dict
     xs = np.array(sorted(by_x))
     cp = np.array([np.mean([t[0] for t in by_x[k]]) for k in xs])
     co = np.array([np.mean([t[1] for t in by_x[k]]) for k in xs])
-    open_ = co > 0
-    K = float(np.median(-cp[open_] / co[open_])) if np.count_nonzero(open_ & (cp < 0)) >= 3 else math.nan
-    return xs, cp, {"source": "frd CPRESS (no CELS)", "copen": co, "penalty": K}
+    return xs, cp, {"source": "frd CPRESS (no CELS)", "copen": co, "penalty": _penalty(co, cp)}
 
 
 @dataclass(frozen=True)
@@ -355,6 +371,14 @@ def diagnose(res: PointsResult, ref: NormalResult, *, penalty: float | None = No
                            f"∫p dx = {res.P:.6g} differs from P = {ref.P:.6g} by {load:.3g} of P: "
                            "analyse the first increment (a later one re-pairs the surfaces on the "
                            "deformed geometry), check the thickness and a half model's factor 2"))
+    steps = res.info.get("increments")
+    if steps is not None and steps > 1:
+        out.append(Pitfall("increments", float(steps), 1.0,
+                           f"the run took {steps} increments (its .sta): the whole load did not converge "
+                           "in one, and each later increment pairs the faces again on the deformed "
+                           "geometry; at large slopes or strains (the deck's header gives them) the "
+                           "closed form's model does not hold either: scale the radii up and the load "
+                           "down (docs/CALCULIX.md)"))
     margin = EDGE_FRACTION * W
     inside = p > 0
     for side, (lo, hi) in (("left", (-res.a, -res.a + margin)), ("right", (res.c - margin, res.c))):
@@ -383,7 +407,8 @@ def diagnose(res: PointsResult, ref: NormalResult, *, penalty: float | None = No
         pen = float(p.max()) / K / rise if rise > 0 else math.inf
         if pen > PENETRATION:
             out.append(Pitfall("penalty", pen, PENETRATION,
-                               f"the penalty's overclosure p_max/K = {float(p.max()) / K:.3g} is "
+                               f"the penalty's overclosure p_max/K = {float(p.max()) / K:.3g} (a length, "
+                               f"K = {K:.4g} read at the closed nodes) is "
                                f"{pen:.3g} of the profile's rise over the contact ({rise:.3g}); "
                                "the peak error falls as 1/K: rerun with 10 K and compare"))
     return out
@@ -440,7 +465,7 @@ def main(pressure: str | Path, ref: NormalResult, *, out: str | Path, alpha: flo
     """Read, judge and report; 0 when every check holds and no pitfall shows, else 1."""
     x, p, info = read_pressure(pressure)
     res = from_points(x, p, ref, alpha=alpha, info={k: v for k, v in info.items()
-                                                   if k in ("source", "penalty")})
+                                                   if k in ("source", "penalty", "increments")})
     doc = judge(res, ref, penalty=penalty, source=str(pressure))
     write_report(doc, out)
     failed = [c for c in doc["checks"] if not c["passed"]]

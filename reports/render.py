@@ -18,7 +18,7 @@ from typing import Any
 from .sections import (Block, Bullets, Code, Document, Figure, Link, Section, Status, Table,
                        Verdict, build, fmt)
 
-__all__ = ["markdown", "html", "fmt"]
+__all__ = ["markdown", "html", "fmt", "png_width", "WIDE_PX", "PAGE_PX"]
 
 
 # -- Markdown --------------------------------------------------------------------------------
@@ -88,8 +88,10 @@ def markdown(doc: dict[str, Any], map_link: str | None = None) -> str:
 
 
 # -- HTML ------------------------------------------------------------------------------------
+#: the page's width (px): a two-panel plot (1152 px at the plots' 90 dpi) is shown at its own size
+PAGE_PX = 1180
 _CSS = """
-body{font-family:system-ui,-apple-system,'Segoe UI',sans-serif;max-width:1150px;margin:1em auto;
+body{font-family:system-ui,-apple-system,'Segoe UI',sans-serif;max-width:%dpx;margin:1em auto;
      padding:0 1em;color:#222;line-height:1.35}
 h1{font-size:1.5em;margin:.3em 0} h2{font-size:1.2em;margin:1.1em 0 .3em} h3{font-size:1.05em}
 p,ul{font-size:.9em} li{margin:.1em 0}
@@ -102,9 +104,9 @@ th{background:#f0f0f0} td.text{text-align:left}
 .banner.pass{background:#e6f4ea} .banner.fail{background:#fce8e6}
 details{margin:.3em 0} summary{cursor:pointer;font-weight:600}
 .figs{display:grid;grid-template-columns:repeat(auto-fill,minmax(480px,1fr));gap:.6em}
-figure{margin:0} figcaption{font-size:.8em;color:#444}
-img{max-width:100%;border:1px solid #eee;margin:.3em 0}
-"""
+figure{margin:0} figure.wide{grid-column:1/-1} figcaption{font-size:.8em;color:#444}
+img{max-width:100%%;border:1px solid #eee;margin:.3em 0}
+""" % PAGE_PX
 _CLASS = {Status.PASS: "pass", Status.FAIL: "fail"}
 
 
@@ -160,9 +162,17 @@ def _h_table(t: Table) -> str:
     return f"<details><summary>{e(t.summary)}</summary>{table}</details>" if t.fold else table
 
 
-def _img(root: Path, rel: str) -> str:
-    data = base64.b64encode((root / rel).read_bytes()).decode("ascii")
-    return f"<img alt='{_html.escape(rel)}' src='data:image/png;base64,{data}'>"
+#: a plot wider than this (px) spans the whole row of the figure grid: a multi-panel plot
+#: (1152 px at the plots' 90 dpi; a one-panel plot is 576 px) squeezed into a half-row cell
+#: (about 560 px) showed its text about 5 px high
+WIDE_PX = 800
+
+
+def png_width(data: bytes) -> int:
+    """The width in pixels of a PNG, from its IHDR chunk (bytes 16-20)."""
+    if data[:8] != b"\x89PNG\r\n\x1a\n":
+        raise ValueError("not a PNG file")
+    return int.from_bytes(data[16:20], "big")
 
 
 def _h_figures(figures: tuple[Figure, ...], root: Path) -> str:
@@ -170,11 +180,14 @@ def _h_figures(figures: tuple[Figure, ...], root: Path) -> str:
         return ""
     out = []
     for f in figures:
-        img = _img(root, f.path)
+        data = (root / f.path).read_bytes()
+        img = (f"<img alt='{_html.escape(f.path)}' "
+               f"src='data:image/png;base64,{base64.b64encode(data).decode('ascii')}'>")
         if f.link:
             img = f"<a href='{_html.escape(f.link)}'>{img}</a>"
         status = (f"<span class='{_CLASS[f.status]}'>{f.status.value}</span> " if f.status else "")
-        out.append(f"<figure>{img}<figcaption>{status}{_html.escape(f.caption)}</figcaption></figure>")
+        wide = " class='wide'" if png_width(data) > WIDE_PX else ""
+        out.append(f"<figure{wide}>{img}<figcaption>{status}{_html.escape(f.caption)}</figcaption></figure>")
     return f"<div class='figs'>{''.join(out)}</div>"
 
 

@@ -46,11 +46,6 @@ PLOT_KINDS = {
     "stress": "surface stress σxx of every method, along the contact and beyond its ends",
     "von_mises": "von Mises stress under the contact: the reference filled, every method's contours",
 }
-#: the stress quantities of a hot spot, as the report names them
-HOT_SPOTS = {"sxx": "largest surface σxx", "von_mises": "largest von Mises", "max_shear": "largest Tresca shear"}
-#: the fatigue parameters of a fretting case's hot spots, as the report names them
-FATIGUE_NAMES = {"von_mises_range": "von Mises range", "swt": "SWT", "findley": "Findley",
-                 "ruiz_ffdp": "Ruiz FFDP"}
 
 
 # -- the typed pieces -----------------------------------------------------------------------
@@ -467,53 +462,6 @@ def _studies(doc: dict[str, Any]) -> Section:
     return Section("Convergence studies", "studies", (intro,), children=tuple(children))
 
 
-def _stress(doc: dict[str, Any]) -> tuple[Section | None, set[str]]:
-    """Hot spots of the stress field by each method, and the stress plots of every partial-slip case."""
-    cases = [c for c in doc["cases"] if "stress" in c]
-    if not cases:
-        return None, set()
-    rows = []
-    for c in cases:
-        for m, spots in c["stress"]["hot_spots"].items():
-            rows.append((c["name"], METHOD_NAMES.get(m, m),
-                         *(f"{fmt(h['value'])} at x = {fmt(h['x'])}"
-                           + (f", z = {fmt(h['z'])}" if q != "sxx" else "") for q, h in spots.items())))
-    units = " [MPa; x, z in mm]" if any(physical(c) for c in cases) else ""
-    head = ("case", "method", *(HOT_SPOTS[q] for q in ("sxx", "von_mises", "max_shear")))
-    figs = tuple(Figure(p, f"{c['name']}: {PLOT_KINDS[_kind(p, c['name'])]}", f"#{c['name']}",
-                        Status.of(c["passed"]))
-                 for c in cases for p in c["plots"] if _kind(p, c["name"]) in ("stress", "von_mises"))
-    bulk = ", ".join(f"{c['name']} {fmt(c['stress']['sigma_bulk'])}" for c in cases)
-    intro: tuple[Block, ...] = (
-        ("The stress in the substrate under every partial-slip case, by each method from its own "
-         "tractions (the FEM from its displacement field): x along the surface, z the depth, "
-         "tension positive, plane strain. The comparison checks the surface σxx, its peak at the "
-         "trailing edge and the stresses at depth (rows sxx_surface, sxx_peak and stress_depth of "
-         "each case); the hot spots below are where a designer looks for crack nucleation.",),
-        (f"Bulk stress σxx in the substrate: {bulk}.",),
-    )
-    tables = [Table(head, tuple(rows), f"hot spots{units}")]
-    cycles = [c for c in doc["cases"] if "fatigue" in c]
-    if cycles:
-        fat_rows = []
-        for c in cycles:
-            for m, spots in c["fatigue"]["hot_spots"].items():
-                fat_rows.append((c["name"], METHOD_NAMES.get(m, m),
-                                 *(f"{fmt(spots[q]['value'])} at x = {fmt(spots[q]['x'])}, "
-                                   f"z = {fmt(spots[q]['z'])}" for q in FATIGUE_NAMES)))
-        fat_units = (" [MPa; FFDP MPa²·mm; x, z in mm]" if any(physical(c) for c in cycles) else "")
-        tables.append(Table(("case", "method", *FATIGUE_NAMES.values()),
-                            tuple(fat_rows), f"fatigue hot spots over the fretting cycle{fat_units}"))
-        intro = (*intro, (
-            "Fretting fatigue: over each fretting cycle, from the stress history at the cycle's "
-            "states, the von Mises range, Smith–Watson–Topper and Findley on the critical plane, and "
-            "Ruiz's FFDP σxx·q·δ at the surface, by each method on the same points and states (",
-            Code("threepart fatigue"), ", ", Code("docs/FATIGUE.md"), ").",))
-    return (Section("Stress and fatigue", "stress", intro, tuple(tables), figs,
-                    Status.of(all(c["passed"] for c in cases))),
-            {f.path for f in figs})
-
-
 def _map(map_link: str | None) -> Section:
     intro: list[Inline] = [
         "Every check above compares idealisations of one model: a parabolic profile on "
@@ -579,8 +527,10 @@ def build(doc: dict[str, Any], map_link: str | None = None) -> Document:
         The report-relative path of the validity map, linked only when given
         (it exists); otherwise the section says how to make one.
     """
+    from .stress_section import stress_section
+
     overlays, shown = _overlays(doc)
-    stress, stress_plots = _stress(doc)
+    stress, stress_plots = stress_section(doc)
     shown |= stress_plots
     inside = [c for c in doc["cases"] if c.get("reference") != "sie"]
     beyond = [c for c in doc["cases"] if c.get("reference") == "sie"]

@@ -10,7 +10,12 @@ against the closed form.
 """
 from __future__ import annotations
 
+import json
+import os
+import re
+import shlex
 import shutil
+import subprocess
 from pathlib import Path
 
 import numpy as np
@@ -30,6 +35,8 @@ ROUND_OFF = tolerance("closedform", "round_off").limit
 PRINTED = 1e-5
 #: ccx's base reaction against the applied P: its Newton solve's convergence
 REACTION = 1e-9
+#: the README, whose CalculiX walkthrough the slow test runs as written
+README = Path(__file__).resolve().parents[1] / "README.md"
 
 
 
@@ -121,6 +128,28 @@ def test_deck_bad_input(tmp_path, capsys, argv, match):
     assert match in err and len(err.strip().splitlines()) == 1
 
 
+@pytest.mark.parametrize("h", ["1e-9", "1e-5", "2"])
+def test_deck_refuses_a_mesh_size_out_of_range_before_meshing(tmp_path, capsys, monkeypatch, h):
+    """``--h`` far below W/1000 (gmsh climbed to 3.7 GB at 1e-9) or above W/4 is refused in one
+    line naming ``--h`` and the range, exit 2, before gmsh starts; ``--help`` states the range."""
+    import gmsh
+
+    def no_gmsh(*args, **kwargs):
+        raise AssertionError("gmsh started for a refused --h")
+
+    monkeypatch.setattr(gmsh, "initialize", no_gmsh)
+    out = tmp_path / "x.inp"
+    assert main(["deck", "--case", "caseA_sym", "--h", h, "--out", str(out)]) == 2
+    err = capsys.readouterr().err
+    W = 2 * 2.010875491               # caseA_sym's contact width a + c (the deck prints a, c)
+    lo, hi = calculix.W_OVER_H
+    assert len(err.strip().splitlines()) == 1 and not out.exists()
+    assert f"`--h`) = {float(h):.4g}" in err and f"W/h from {lo:g} to {hi:g}" in err, err
+    assert f"h from {W / hi:.4g} to {W / lo:.4g}" in err, err
+    assert main(["deck", "--help"]) == 0
+    assert f"W/{hi:g}" in capsys.readouterr().out.replace("\n", " ")
+
+
 @pytest.mark.slow
 def test_ccx_default_deck_meets_the_issue_targets(tmp_path):
     """The deck at its defaults (W/h = 200, K = 200 E/h, punch 1000 x stiffer) on ``caseA_sym``
@@ -166,3 +195,38 @@ def test_verify_column_without_ccx_says_so(monkeypatch):
     validate(doc)
     md = render.markdown(doc)
     assert "CalculiX convergence in h" in md and "apt-get install calculix-ccx" in md
+
+
+def _walkthrough() -> list[str]:
+    """The README's CalculiX walkthrough: the three lines from ``threepart deck`` on."""
+    lines = README.read_text(encoding="utf-8").splitlines()
+    i = next(k for k, ln in enumerate(lines) if ln.strip().startswith("threepart deck --"))
+    return [ln.strip() for ln in lines[i:i + 3]]
+
+
+@pytest.mark.slow
+def test_the_readme_calculix_walkthrough_passes(tmp_path, monkeypatch, capsys):
+    """The README's three lines run as written (``<the A deck printed>`` replaced by the A the
+    deck printed): ccx converges in one increment, as the deck's header says it must, and
+    ``compare`` passes every check of the tolerance table's ``referee`` rows against the closed
+    form with no pitfall (6.5 s of ccx CPU, about a minute on a loaded machine)."""
+    if shutil.which("ccx") is None:
+        pytest.skip("ccx (CalculiX) is not on the PATH: apt-get install calculix-ccx")
+    deck, ccx, compare = _walkthrough()
+    assert deck.startswith("threepart deck ") and compare.startswith("threepart compare "), (deck, compare)
+    monkeypatch.chdir(tmp_path)
+    assert main(shlex.split(deck)[1:]) == 0
+    A = re.search(r"compliance A = (\S+) ", capsys.readouterr().out)
+    assert A is not None
+    words = shlex.split(ccx)
+    env = dict(os.environ, **dict(w.split("=", 1) for w in words if "=" in w))
+    subprocess.run([w for w in words if "=" not in w], env=env, cwd=tmp_path, check=True,
+                   capture_output=True, timeout=1800, start_new_session=True)
+    assert calculix.read_increments(tmp_path / "job") == 1
+    argv = shlex.split(compare.replace("<the A deck printed>", A.group(1)))
+    assert main(argv[1:]) == 0
+    doc = json.loads((tmp_path / "compare" / "report.json").read_text())
+    assert doc["passed"] and not doc["pitfalls"]
+    assert {"a", "c", "P", "p_left", "p_right"} <= {c["quantity"] for c in doc["checks"]}
+    for c in doc["checks"]:
+        assert c["error"] < tolerance("referee", c["quantity"]).limit, c

@@ -7,6 +7,7 @@ named), and a real CalculiX result (``tests/data``, see its README).
 """
 from __future__ import annotations
 
+import shutil
 from pathlib import Path
 
 import numpy as np
@@ -15,6 +16,7 @@ import pytest
 from threepart.catalogue import get_case
 from threepart.cli import main
 from threepart.methods import solve
+from threepart.punch import Punch
 from threepart.reports.referee import (END_NODES, LOAD, NEGATIVE, OSCILLATION, _oscillation, diagnose,
                                        from_points, judge, read_pressure)
 
@@ -247,6 +249,42 @@ def test_dat_and_frd_of_one_run_agree():
     # the nodal forces sum to the applied load in both
     assert info_d["forces"].sum() == pytest.approx(SMALL_P, rel=FORCE_SUM)
     assert info_f["forces"].sum() == pytest.approx(SMALL_P, rel=FRD_DIGITS)
+
+
+#: the stored small-slope run's deck: K = 200 E/h (its defaults) at h = 0.16, E = 210000
+SMALL_K = 200 * 210000 / 0.16
+
+
+def test_the_penalty_is_read_where_the_contact_is_closed():
+    """``K`` from a run's CPRESS and COPEN is the deck's ``200 E/h``, from the .frd and the .dat:
+    read at the closed nodes. At the open ones CalculiX writes the law's tension ``sigma_inf``,
+    and ``-CPRESS/COPEN`` there had read K = 0.34 for 2.6e8 (the README's walkthrough on
+    caseA_sym: 86 for 2.09e9, and a penalty pitfall with an "overclosure p_max/K = 110")."""
+    c = Punch(R1=200.0, R2=200.0, b=1.0)
+    ref = solve(c, SMALL_P, 0.0, A=float(SMALL_ARGS[-1]))
+    for suffix in (".frd", ".dat"):
+        x, p, info = read_pressure(SMALL.with_suffix(suffix))
+        assert info["penalty"] == pytest.approx(SMALL_K, rel=FRD_DIGITS), suffix
+        # this coarse run's overclosure (h = 0.16, so K is soft) against the profile's rise
+        overclosure = p.max() / SMALL_K / float(c.profile(ref.c) - c.profile(0.0))
+        found = [q for q in diagnose(from_points(x, p, ref, info=info), ref) if q.name == "penalty"]
+        assert found and found[0].value == pytest.approx(overclosure, rel=FRD_DIGITS), suffix
+
+
+def test_a_run_of_more_than_one_increment_is_diagnosed(tmp_path):
+    """A run whose step ccx cut into increments (its .sta beside the .frd: the README's
+    walkthrough on caseA_sym took 21, the last row's INC) is named; one increment is not."""
+    c = Punch(R1=200.0, R2=200.0, b=1.0)
+    ref = solve(c, SMALL_P, 0.0, A=float(SMALL_ARGS[-1]))
+    for sta, expected in (("calculix_caseA_sym_n200.sta", None), ("calculix_small_slope_n200.sta", 1)):
+        rows = (DATA / sta).read_text().split("\n")
+        last = int(rows[-2].split()[1]) if expected is None else expected    # its INC column
+        shutil.copy(SMALL.with_suffix(".frd"), tmp_path / "job.frd")
+        shutil.copy(DATA / sta, tmp_path / "job.sta")
+        x, p, info = read_pressure(tmp_path / "job.frd")
+        assert info["increments"] == last, sta
+        found = [q for q in diagnose(from_points(x, p, ref, info=info), ref) if q.name == "increments"]
+        assert (found[0].value if found else 1) == last, sta
 
 
 def test_cli_compare_reads_a_dat(tmp_path):

@@ -275,7 +275,7 @@ def test_pass_and_fail_are_styled_from_the_status_not_from_the_words(report):
 def test_the_renderer_holds_no_catalogue_fact(report):
     doc, _ = report
     root = Path(sections.__file__).parent
-    source = (root / "render.py").read_text() + (root / "sections.py").read_text()
+    source = "".join((root / f).read_text() for f in ("render.py", "sections.py", "stress_section.py"))
     for case in catalogue.load_cases(None):
         if "_" in case.name:
             assert case.name not in source, case.name
@@ -393,3 +393,137 @@ def test_a_long_stage_says_it_is_still_running(tmp_path, monkeypatch, capsys):
     assert len(beats) >= 2, lines
     done = next(i for i, line in enumerate(lines) if re.search(r"caseA_sym\s+fem \d", line))
     assert lines.index(beats[-1]) < done
+
+
+# -- the page at its size -------------------------------------------------------------------------
+#: the plots' smallest text: legends at fontsize 7 (points)
+SMALLEST_PT = 7
+#: the smallest text height (px) read at the page's size: the report's plots had legends and
+#: ticks about 5 px high where a two-panel plot was squeezed into a half-row cell
+MIN_TEXT_PX = 8
+#: the figure grid's gap (.6em of the browser's 16 px) between the two cells of a row
+GRID_GAP_PX = 9.6
+#: a plot wider than this many panels has more than one (widths are whole panels)
+MULTI_PANEL = 1.5
+#: a value printed to 4 significant digits against the document's: half a unit of the 4th digit
+ROUNDED = 1e-3
+#: bytes of the HTML per embedded plot (base64, with the page's text): 117 kB when the plots
+#: were RGBA PNGs at 110 dpi (5.8 MB for the quick report's 50); palette PNGs at 90 dpi
+#: measured 27 kB on this report and 37 kB on the quick report (1.8 MB)
+HTML_PER_PLOT = 40_000
+
+
+def _figures(html: str) -> list[tuple[bool, bytes]]:
+    """Each figure of the page: whether it spans the row, and its PNG."""
+    import base64
+
+    return [(bool(wide), base64.b64decode(data)) for wide, data in
+            re.findall(r"<figure( class='wide')?>(?:<a [^>]*>)?<img alt='[^']*' src='data:image/png;base64,([^']+)'>",
+                       html)]
+
+
+def test_every_plot_is_shown_at_a_size_whose_text_is_readable(report):
+    """A multi-panel plot spans the page, a one-panel plot a half-row cell, and each is shown
+    at (nearly) its own size: its smallest text is at least MIN_TEXT_PX high on the page."""
+    from threepart.reports import plots
+
+    _, out = report
+    figures = _figures((out / "report.html").read_text())
+    assert len(figures) == (out / "report.html").read_text().count("<img")
+    panel = 6.4 * plots.DPI                     # one panel's width in px (new_figure's 6.4 in)
+    wide = [png for spans, png in figures if render.png_width(png) > MULTI_PANEL * panel]
+    assert wide                                  # the partial-slip case's two-panel plots
+    for spans, png in figures:
+        w = render.png_width(png)
+        cell = render.PAGE_PX if spans else (render.PAGE_PX - GRID_GAP_PX) / 2
+        text = SMALLEST_PT * plots.DPI / 72 * min(1.0, cell / w)
+        assert text >= MIN_TEXT_PX, (w, spans, text)
+        assert spans == (w > MULTI_PANEL * panel), w
+
+
+def test_the_html_embeds_small_plots(report):
+    """The page stays one self-contained file, its plots palette PNGs of a size it can carry."""
+    import io
+
+    from PIL import Image
+
+    _, out = report
+    html = (out / "report.html").read_text()
+    figures = _figures(html)
+    assert len(html.encode()) < HTML_PER_PLOT * len(figures), len(html.encode()) / len(figures)
+    for _, png in figures:
+        with Image.open(io.BytesIO(png)) as im:
+            assert im.mode == "P"
+
+
+def test_the_hot_spot_tables_carry_units_and_four_significant_digits():
+    """Stress and fatigue hot spots: each value with its unit (MPa; FFDP MPa²·mm) and its
+    position in mm, to SPOT_DIGITS significant digits of the document's figure; none for a
+    nondimensional case."""
+    from threepart.cli import FATIGUE_UNITS
+    from threepart.reports.stress_section import FATIGUE_NAMES, HOT_SPOTS, SPOT_DIGITS, sig, stress_section
+
+    spot = {"x": -1.2345678, "z": 0.012345678, "value": 1234.5678}
+    big = dict(spot, value=123456.78)
+    case = {"name": "c", "E": 210000.0, "passed": True, "plots": [],
+            "stress": {"sigma_bulk": 300.0, "hot_spots": {"closedform": {q: spot for q in HOT_SPOTS}}},
+            "fatigue": {"hot_spots": {"closedform": {q: big for q in FATIGUE_NAMES}}}}
+    section, _ = stress_section({"cases": [case, dict(case, name="nd", E=None)]})
+    stress, fatigue = section.tables
+    number = r"(-?[0-9.]+(?:e[+-][0-9]+)?)"
+    for table, value in ((stress, spot["value"]), (fatigue, big["value"])):
+        physical, nondim = table.rows
+        for k, cell in enumerate(physical[2:]):
+            unit = ("MPa" if table is stress else FATIGUE_UNITS[list(FATIGUE_NAMES)[k]].replace("^2 ", "²·"))
+            m = re.fullmatch(rf"{number} {re.escape(unit)} at x = {number}(?:, z = {number})? mm", cell)
+            assert m, cell
+            for got, want in zip(m.groups(), (value, spot["x"], spot["z"])):
+                if got is not None:
+                    assert _significant(got) <= SPOT_DIGITS, got
+                    assert float(got) == pytest.approx(want, rel=ROUNDED)
+        assert all("MPa" not in c and "mm" not in c for c in nondim[2:]), nondim
+    assert sig(0.00123456) == "0.001235" and sig(1.23456e7) == "1.235e+07"
+    assert "c 300 MPa" in "".join(section.intro[1])
+
+
+def _significant(number: str) -> int:
+    """The significant digits of a printed number (trailing zeros of an integer are not)."""
+    mantissa = number.lstrip("-").split("e")[0]
+    return len(mantissa.replace(".", "").lstrip("0") if "." in mantissa else mantissa.strip("0"))
+
+
+def test_no_plot_text_is_clipped(drawn):
+    """Every text of the stress plots, the overlay and the error curves of the case with the
+    longest name lies inside its figure (a von Mises title ran past the right edge)."""
+    from threepart.catalogue import get_case, load_cases
+    from threepart.reports import plots, solvers
+
+    case = get_case(max((c.name for c in load_cases(None) if c.Q_over_fP is not None
+                         and not c.cycle and not c.beyond), key=len)).resolved()
+    normal = solvers.normal("closedform", case)
+    slip = solvers.slip("closedform", case, normal)
+    results = {"closedform": slip, "sie": slip, "fem": slip}    # the titles name all three
+    nu = case.material[1] if case.material else 0.3
+    plots.von_mises(results, case.name, "x.png", nu=nu, physical=True)
+    plots.stress_surface(results, case.name, "x.png", nu=nu, physical=True)
+    plots.overlay(results, case.name, "x.png", physical=True)
+    for fig in drawn:
+        fig.canvas.draw()
+        renderer = fig.canvas.get_renderer()
+        box = fig.bbox
+        for t in _drawn_texts(fig):
+            e = t.get_window_extent(renderer)
+            assert box.x0 <= e.x0 and e.x1 <= box.x1 and box.y0 <= e.y0 and e.y1 <= box.y1, t.get_text()
+
+
+def _drawn_texts(fig):
+    """The texts a figure shows: titles, axis labels, legends, and the tick labels in view."""
+    out = []
+    for ax in fig.axes:
+        out += [ax.title, ax.xaxis.label, ax.yaxis.label]
+        legend = ax.get_legend()
+        out += list(legend.get_texts()) if legend else []
+        for axis in (ax.xaxis, ax.yaxis):
+            lo, hi = sorted(axis.get_view_interval())
+            out += [t.label1 for t in axis.get_major_ticks() if lo <= t.get_loc() <= hi]
+    return [t for t in out if t.get_visible() and t.get_text().strip()]

@@ -937,7 +937,10 @@ def build_parser() -> argparse.ArgumentParser:
     _problem_args(p, compliance_option=False)
     p.add_argument("--out", required=True, metavar="FILE.inp",
                    help="the deck to write (a new file, or one threepart wrote there, unchanged)")
-    p.add_argument("--h", type=float, help=_labelled("element size at the contact (default W/200)", "a"))
+    from threepart.calculix import W_OVER_H
+    p.add_argument("--h", type=float, help=_labelled(
+        f"element size at the contact (default W/200; from W/{W_OVER_H[1]:g} to W/{W_OVER_H[0]:g}, "
+        "W = a + c the contact width)", "a"))
     p.add_argument("--penalty", type=float, metavar="K",
                    help="penalty stiffness K [MPa/mm] (default 200 E/h)")
     p.add_argument("--pair", action="store_true",
