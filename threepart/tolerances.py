@@ -73,6 +73,9 @@ normalised error (``_level``: at the finest discretisation of a study).
     export-refs``, ``docs/REFERENCE_DATA.md``), checked by ``tests/test_refs.py``.
 ``convergence``
     The convergence tools (:mod:`threepart.convergence`) on manufactured sequences.
+``answer``
+    The one check of every method's answer (:mod:`threepart.answer`): the
+    least pressure (of the peak) and Coulomb's bound (of ``f p_max``).
 """
 from __future__ import annotations
 
@@ -317,6 +320,9 @@ TOLERANCES: dict[tuple[str, str], Tolerance] = {
     ("refs", "energy"): _T(1e-12, "closed-form energy per cycle vs the SIE's superposition of its own stick zones: measured 4.2e-16"),
     ("refs", "loop"): _T(1e-12, "the fretting cycle's hysteresis loop (of its largest value) and stick-zone ends (of d): closed form vs the SIE's Masing superposition measured <= 3e-14"),
     ("refs", "stress"): _T(1e-7, "Flamant quadrature of threepart.stress (1e-8 of p0, docs/STRESS.md) on the closed form, or past lift-off on the SIE at n = 1024 (pressure error 5e-8 of the peak); of the peak pressure"),
+    # --- the one check of every answer (threepart.answer), of every method -----------------------
+    ("answer", "p_min"): _T(1e-6, "the least pressure over the contact, of the peak: the closed form's is exact (rounding, 1e-15) and the SIE's (n = 1024) errs by <= 5e-8 of the peak (the table's 'refs' 'stress'); a separating concave centre dips by 1e-3 of the peak and more (the tester's case: -6e-4), so 1e-6 refuses it and no rounding"),
+    ("answer", "q_bound"): _T(1e-6, "|q| - f p, of f p_max: 0 in the slip zones by construction (q = f p), and in the stick zone as the corrective p*'s pointwise error, <= 5e-8 of the peak for the SIE at n = 1024 (as 'sie' 'q_bound'); the FEM holds |t_i| <= f f_i node by node (1e-12)"),
     # --- the convergence tools on manufactured sequences -----------------------------------------
     ("convergence", "exact"): _T(1e-12, "err = C h^p exactly: the fit and the extrapolation are exact up to rounding"),
     ("convergence", "iterated"): _T(1e-8, "the three-level fixed point stops when p moves by < 1e-10"),
