@@ -18,6 +18,7 @@ LENGTH_RANGE        -- magnitudes of lengths and loads, ``[1e-60, 1e60]``
 lever_arm           -- ``s`` inside the punch's footprint ``(-(b + R1), b + R2)``
 SLOPE_LIMIT         -- the small-slope limit of half-plane theory (tilt and profile slopes)
 check_contact       -- a solved contact: inside the arcs' extents and within SLOPE_LIMIT
+check_arcs          -- a contact inside the arcs' extents (ArcExtentError), the first half of that
 integer             -- a discretisation count (``n``, ``steps``) between bounds
 poisson             -- Poisson's ratio inside NU_RANGE, ``(-1, 0.5)``
 SLOPE_WARNING       -- the slope past which the measured small-slope error exceeds 5 %
@@ -43,7 +44,7 @@ __all__ = ["real", "finite", "positive", "check_finite", "check_positive", "TILT
            "LENGTH_RANGE", "show", "NU_RANGE", "poisson", "integer", "lever_arm", "SLOPE_LIMIT",
            "SLOPE_WARNING", "check_contact", "check_punch", "MAX_STATES", "check_states", "reals",
            "load_scale", "check_normal", "shear_load", "check_shear", "SLIP_RATIO_LIMIT", "coordinates",
-           "flag"]
+           "flag", "check_arcs"]
 
 #: tilt modes: the tilt ``alpha`` follows from the moment, or is held at zero
 TILTS = ("free", "suppressed")
@@ -207,7 +208,25 @@ def check_contact(punch: Any, a: float, c: float, alpha: float) -> float:
     SlopeLimitError
         If the slope exceeds :data:`SLOPE_LIMIT`.
     """
-    from .errors import ArcExtentError, SlopeLimitError
+    from .errors import SlopeLimitError
+
+    check_arcs(punch, a, c)
+    slope = punch.max_slope(a, c, alpha)
+    if not slope <= SLOPE_LIMIT:
+        raise SlopeLimitError(f"the contact's slope (tilt, profile or surface) reaches {slope:.3g} (tilt "
+                              f"alpha = {alpha:.3g} rad), past the small-slope limit "
+                              f"{SLOPE_LIMIT:g} of half-plane theory; reduce the load or the "
+                              "lever arm `s`")
+    return slope
+
+
+def check_arcs(punch: Any, a: float, c: float) -> None:
+    """``ArcExtentError`` if a contact end of ``[-a, c]`` runs past an arc's extent (``a > b + R1``, ``c > b + R2``).
+
+    The punch's profile ends there (eq. 2): half-plane theory has no answer.
+    Part of :func:`check_contact`; alone, it holds the lift-off contacts.
+    """
+    from .errors import ArcExtentError
 
     if a > punch.b + punch.R1:
         raise ArcExtentError(f"the contact end x = {-a:.6g} runs past the R1 arc's extent "
@@ -217,13 +236,6 @@ def check_contact(punch: Any, a: float, c: float, alpha: float) -> float:
         raise ArcExtentError(f"the contact end x = {c:.6g} runs past the R2 arc's extent "
                              f"b + R2 = {punch.b + punch.R2:g}: the punch's profile ends there, "
                              "half-plane theory has no answer")
-    slope = punch.max_slope(a, c, alpha)
-    if not slope <= SLOPE_LIMIT:
-        raise SlopeLimitError(f"the contact's slope (tilt, profile or surface) reaches {slope:.3g} (tilt "
-                              f"alpha = {alpha:.3g} rad), past the small-slope limit "
-                              f"{SLOPE_LIMIT:g} of half-plane theory; reduce the load or the "
-                              "lever arm `s`")
-    return slope
 
 
 #: the most recorded states per branch of a fretting cycle (each is a slip solve)
@@ -371,7 +383,8 @@ def coordinates(name: str, value: Any) -> Any:
     float array, the solvers' own calls, costs one ``isfinite`` pass.
     """
     if isinstance(value, np.ndarray) and value.dtype.kind == "f":
-        arr = value if value.dtype == np.float64 else value.astype(float)
+        with np.errstate(over="ignore"):      # a longdouble past float64's range becomes inf
+            arr = value if value.dtype == np.float64 else value.astype(float)
     elif isinstance(value, (numbers.Real, np.floating, np.integer)) and not isinstance(value, (bool, np.bool_)):
         return finite(name, value)
     elif isinstance(value, (list, tuple, np.ndarray)):
