@@ -351,7 +351,7 @@ def solve_normal_batch(punch: Punch, P: ArrayLike, s: ArrayLike = 0.0, *, A: flo
     return NormalBatch(punch, A, st.a, st.c, alpha, P_arr, s_out, tilt)
 
 
-def lift_off(punch: Punch, P: float, A: float) -> LiftOff:
+def lift_off(punch: Punch, P: float, A: float, *, beyond_small_slopes: bool = False) -> LiftOff:
     """Admissible lever arms for the load ``P`` (eqs. Pctob and s_lift-off).
 
     ``s_min`` is where the right edge reaches the join (``c -> b``): ``a_min``
@@ -361,7 +361,9 @@ def lift_off(punch: Punch, P: float, A: float) -> LiftOff:
     is one :func:`solve_normal` solves, but where the tilt there passes the
     small-slope limit (``SlopeLimitError``; the lift-off lever arms are still
     the geometry's) or a concave centre separates (``P`` below :func:`P_min` at
-    that ``s``).
+    that ``s``). ``beyond_small_slopes=True`` skips the arcs' check, as in
+    :func:`solve_normal`, for a study of the formulas past the arcs (the
+    validity map, :mod:`threepart.reports.validity`).
 
     Raises
     ------
@@ -376,7 +378,8 @@ def lift_off(punch: Punch, P: float, A: float) -> LiftOff:
     P = positive("P", P)
     A = _normal_iv(punch, np.array([P]), A, "free")
     lo, hi = _lift_off_states(punch, P, A, SCALAR)
-    for st, which in ((lo, "s_min (c = b)"), (hi, "s_max (a = b)")):
+    checked = () if flag("beyond_small_slopes", beyond_small_slopes) else (lo, hi)
+    for st, which in zip(checked, ("s_min (c = b)", "s_max (a = b)")):
         try:
             check_arcs(punch, st.a, st.c)
         except ValueError as exc:
