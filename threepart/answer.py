@@ -77,7 +77,11 @@ def check_pressure(result: Any) -> None:
     peak = float(p.max())
     tol = tolerance("answer", "p_min").limit
     i = int(np.argmin(p))
-    if p[i] < -tol * max(peak, 0.0) or peak <= 0:
+    if not peak > 0:
+        raise SeparationError(f"`P` = {result.P:.6g} with `s` = {result.s:.6g}: the "
+                              f"{result.method or 'answer'}'s pressure is nowhere compressive on "
+                              f"[{-result.a:.6g}, {result.c:.6g}] (max p = {peak:.4g}){_resolution(result)}")
+    if p[i] < -tol * peak:
         raise SeparationError(
             f"`P` = {result.P:.6g} with `s` = {result.s:.6g}: the {result.method or 'answer'}'s "
             f"pressure is tensile, min p = {p[i]:.4g} at x = {x[i]:.6g} ({p[i] / peak:.3g} of the "

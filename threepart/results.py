@@ -38,7 +38,8 @@ NU = 0.3
 PEAK_N = (2, 1_000_000)
 #: the least grid per side that :meth:`NormalResult.peaks` searches, whatever ``n``: a peak
 #: of a three-part punch lies within a few per cent of the contact from a join (eq. 2), so a
-#: coarser grid can bracket the wrong hump; 257 points put 6 inside any hump of 5 % of W
+#: coarser grid can bracket the wrong hump; 257 points a side (at most W long) put a dozen
+#: inside any hump 5 % of W wide
 PEAK_GRID = 257
 #: how many of a side's largest grid maxima :meth:`NormalResult.peaks` refines (two humps
 #: of one side, e.g. at a join and at the centre, plus one for a noisy FE field)
