@@ -220,7 +220,8 @@ class FrettingSolution(MasingCycle):
 
 def _fretting_iv(normal: NormalResult, Q_max: float, f: float, states: int
                  ) -> tuple[float, float, int]:
-    Q_max, f = check_shear(normal, Q_max, f, "Q_max", "there is no fretting cycle")
+    Q_max, f = check_shear(normal, Q_max, f, "Q_max", "there is no fretting cycle",
+                           argument="normal_solution")
     states = check_states(states)
     if not normal.within_paper:
         raise LiftOffError(f"`normal_solution` has its contact [{-normal.a:.6g}, {normal.c:.6g}] "

@@ -26,8 +26,8 @@ from scipy.optimize import minimize_scalar
 from threepart.errors import LiftOffError, SeparationError
 from threepart.punch import Punch
 from threepart.results import Diagnostics, NormalResult
-from threepart.validate import (LENGTH_RANGE, check_contact, check_punch, check_tilt, lever_arm, load_scale, positive,
-                                reals)
+from threepart.validate import (LENGTH_RANGE, check_arcs, check_contact, check_punch, check_tilt, flag, lever_arm, load_scale,
+                                positive, reals)
 
 from . import formulas
 from .newton import HALF_PI, SCALAR, State, _r_guess, ray_state, solve_phi, solve_r
@@ -272,7 +272,8 @@ def solve_normal(punch: Punch, P: float, s: float = 0.0, *, A: float,
         limit and the arcs' extents (no :func:`threepart.validate.check_contact`),
         for a study of the formulas' own error such as the validity map
         (:mod:`threepart.reports.validity`); such an answer lies outside the
-        theory. Default False: refused.
+        theory. Default False: refused. A bool (Python's or numpy's); anything
+        else is a ``TypeError``.
 
     Raises
     ------
@@ -294,6 +295,7 @@ def solve_normal(punch: Punch, P: float, s: float = 0.0, *, A: float,
     """
     check_punch(punch)
     P, s = positive("P", P), lever_arm(punch, s)
+    beyond_small_slopes = flag("beyond_small_slopes", beyond_small_slopes)
     t0 = time.perf_counter()
     if tilt == "suppressed" and s != 0:
         raise ValueError(f"`s` = {s!r} is an output when tilt='suppressed' (the lever arm s*); pass s=0")
@@ -304,7 +306,7 @@ def solve_normal(punch: Punch, P: float, s: float = 0.0, *, A: float,
                          np.array([above]))
     alpha, s = (st.alpha, s) if tilt == "free" else (0.0, st.T / st.AP)
     _check_separation(punch, np.array([st.a]), np.array([st.c]), A, np.array([P]), np.array([s]), tilt)
-    if beyond_small_slopes is not True:
+    if not beyond_small_slopes:
         check_contact(punch, st.a, st.c, alpha)
     return NormalSolution(punch, A, st.a, st.c, alpha, P, s, tilt,
                           diagnostics=Diagnostics(timings={"total": time.perf_counter() - t0}))
@@ -314,11 +316,16 @@ def solve_normal_batch(punch: Punch, P: ArrayLike, s: ArrayLike = 0.0, *, A: flo
                        tilt: str = "free") -> NormalBatch:
     """:func:`solve_normal` for many load cases at once (vectorised).
 
-    ``P`` and ``s`` broadcast against each other; the first inadmissible case
-    raises the same error :func:`solve_normal` would, with its values.
+    ``P`` and ``s`` broadcast against each other (arrays of equal length, or
+    one of length 1), else ``ValueError`` naming both shapes; the first
+    inadmissible case raises the same error :func:`solve_normal` would, with its values.
     """
     check_punch(punch)
-    P_arr, s_arr = np.broadcast_arrays(reals("P", P), reals("s", s))
+    P_in, s_in = reals("P", P), reals("s", s)
+    if P_in.size != s_in.size and 1 not in (P_in.size, s_in.size):
+        raise ValueError(f"`P` (shape {np.shape(P)}) and `s` (shape {np.shape(s)}) do not broadcast: "
+                         f"give arrays of one length, or one of them a single value")
+    P_arr, s_arr = np.broadcast_arrays(P_in, s_in)
     P_arr, s_arr = P_arr.copy(), s_arr.copy()
     A = _normal_iv(punch, P_arr, A, tilt)
     bad = ~((s_arr > -(punch.b + punch.R1)) & (s_arr < punch.b + punch.R2))
@@ -344,14 +351,38 @@ def solve_normal_batch(punch: Punch, P: ArrayLike, s: ArrayLike = 0.0, *, A: flo
     return NormalBatch(punch, A, st.a, st.c, alpha, P_arr, s_out, tilt)
 
 
-def lift_off(punch: Punch, P: float, A: float) -> LiftOff:
+def lift_off(punch: Punch, P: float, A: float, *, beyond_small_slopes: bool = False) -> LiftOff:
     """Admissible lever arms for the load ``P`` (eqs. Pctob and s_lift-off).
 
     ``s_min`` is where the right edge reaches the join (``c -> b``): ``a_min``
     solves ``P_lift-off(a) = P``. ``s_max`` is the mirror image (``a -> b``).
+    Both lift-off contacts must lie on the arcs (:func:`threepart.validate.check_arcs`),
+    as :func:`solve_normal`'s must, so that every ``s`` strictly between them
+    is one :func:`solve_normal` solves, but where the tilt there passes the
+    small-slope limit (``SlopeLimitError``; the lift-off lever arms are still
+    the geometry's) or a concave centre separates (``P`` below :func:`P_min` at
+    that ``s``). ``beyond_small_slopes=True`` skips the arcs' check, as in
+    :func:`solve_normal`, for a study of the formulas past the arcs (the
+    validity map, :mod:`threepart.reports.validity`).
+
+    Raises
+    ------
+    ArcExtentError
+        If a lift-off contact runs past an arc's extent (``a_min > b + R1`` or
+        ``c_max > b + R2``): before that edge lifts off the other has run off
+        its arc, so the punch never reaches that lift-off; the message names
+        ``P``, the lift-off and the arc's limit. Refused even if only one side
+        is past, as :func:`solve_normal` refuses the contacts near it.
     """
     check_punch(punch)
     P = positive("P", P)
     A = _normal_iv(punch, np.array([P]), A, "free")
     lo, hi = _lift_off_states(punch, P, A, SCALAR)
+    checked = () if flag("beyond_small_slopes", beyond_small_slopes) else (lo, hi)
+    for st, which in zip(checked, ("s_min (c = b)", "s_max (a = b)")):
+        try:
+            check_arcs(punch, st.a, st.c)
+        except ValueError as exc:
+            raise type(exc)(f"`P` = {P:.6g} has no lift-off lever arm {which} = {st.T / st.AP:.6g}: "
+                            f"{exc}") from None
     return LiftOff(P=P, s_min=lo.T / lo.AP, s_max=hi.T / hi.AP, a_min=lo.a, c_max=hi.c)

@@ -286,7 +286,7 @@ def solve_partial_slip(normal_solution: NormalResult, Q: float, f: float, *,
         (:func:`check_slip_direction`); the message gives the bound on ``|sigma_bulk|``.
     """
     normal = normal_solution
-    Q, f = check_shear(normal, Q, f)
+    Q, f = check_shear(normal, Q, f, argument="normal_solution")
     sigma_bulk = check_sigma_bulk(sigma_bulk, normal, Q)
     t0 = time.perf_counter()
     punch = normal.punch

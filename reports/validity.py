@@ -111,7 +111,7 @@ def _lever_arm(point: MapPoint, punch: Punch, P: float, A: float) -> float:
     """``s = (s_over_lift) s_max(P)``: a fraction of the closed form's lift-off lever arm at ``P``."""
     if point.s_over_lift == 0:
         return 0.0
-    return point.s_over_lift * closedform.lift_off(punch, P, A).s_max
+    return point.s_over_lift * closedform.lift_off(punch, P, A, beyond_small_slopes=True).s_max
 
 
 def _load(point: MapPoint) -> float:

@@ -29,8 +29,8 @@ from scipy.optimize import brentq
 
 from threepart.punch import Punch
 
-from threepart.validate import (check_contact, check_punch, check_tilt, lever_arm, load_scale,
-                                positive)
+from threepart.validate import (check_arcs, check_contact, check_punch, check_tilt, lever_arm,
+                                load_scale, positive)
 from threepart.errors import NoConvergenceError, SeparationError
 from threepart.results import Diagnostics, NormalResult
 
@@ -345,7 +345,9 @@ def lift_off(punch: Punch, P: float, A: float) -> tuple[float, float]:
     edge sits at ``+b`` (``c = b``). The contact width follows from the exact
     projected load equation along that family, so the closed form's
     admissible range (its edges on the outer segments) can be checked
-    independently. Beyond it :func:`solve_normal` still solves.
+    independently. Beyond it :func:`solve_normal` still solves. A lift-off
+    contact past an arc's extent is refused as :func:`solve_normal` refuses
+    it (``ArcExtentError`` naming ``P``).
     """
     check_punch(punch)
     P, A = positive("P", P), positive("A", A)
@@ -362,4 +364,9 @@ def lift_off(punch: Punch, P: float, A: float) -> tuple[float, float]:
         m = sign * (h - punch.b)
         G = sch.moments(punch, m, h)[0]
         out.append(m + 0.5 * k * h * h * float(G[2]))
+        try:   # on the arcs, as solve_normal's contacts and the closed form's lift_off
+            check_arcs(punch, h - m, h + m)
+        except ValueError as exc:
+            raise type(exc)(f"`P` = {P:.6g} has no lift-off lever arm {('s_min', 's_max')[sign > 0]} = "
+                            f"{out[-1]:.6g}: {exc}") from None
     return out[0], out[1]

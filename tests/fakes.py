@@ -23,6 +23,7 @@ from threepart.results import Diagnostics, NormalResult, Peak, SlipResult
 
 @dataclass(frozen=True)
 class FakeNormal(NormalResult):
+    checks_answer = False      # a fake to test the judge with: its faults are measured, not refused
     centre: float = 0.0
     half: float = 1.0
     bump: float = 0.0          # relative pressure bump at the centre (perturbs the field only)
@@ -74,6 +75,7 @@ def _hump(t, w):
 
 @dataclass(frozen=True)
 class FakeSlip(SlipResult):
+    checks_answer = False      # bound_bump breaks Coulomb's law on purpose, for the judge to measure
     d0: float = 1.0   # stick zone of the shear field (replace(d=...) perturbs the figure only)
     e0: float = 0.0
     bumps: float = 0.0        # opposite bumps at t = ∓BUMP_T of this fraction of max|q| (∫ unchanged)

@@ -441,7 +441,9 @@ def test_methods_agree_on_random_punches(R1, R2, b, s_frac, ratio):
 # -- (6) refusals --------------------------------------------------------------------------------
 @pytest.mark.parametrize("method", [0, 1], ids=["closedform", "sie"])
 def test_a_normal_that_is_not_a_result_is_a_type_error(method):
-    with pytest.raises(TypeError, match="`normal` must be a NormalResult .*, not str"):
+    # each names its own parameter: the closed form's normal_solution, the SIE's normal
+    name = ("normal_solution", "normal")[method]
+    with pytest.raises(TypeError, match=f"`{name}` must be a NormalResult .*, not str"):
         (cf, sie)[method].fretting_cycle("nope", 1.0, F)
 
 

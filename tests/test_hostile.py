@@ -130,8 +130,7 @@ def test_hostile_values_are_refused_by_name(data):
     exc = info.value
     assert in_family(exc), f"{name}({arg}={label}): {type(exc).__name__}: {exc}"
     assert "\n" not in str(exc).strip(), f"{name}({arg}={label}): a message of more than one line"
-    shown = "normal" if arg == "normal_solution" else arg
-    assert f"`{shown}`" in str(exc), f"{name}({arg}={label}) does not name `{shown}`: {exc}"
+    assert f"`{arg}`" in str(exc), f"{name}({arg}={label}) does not name `{arg}`: {exc}"
 
 
 REAL_ARGS = sorted((name, arg) for name, (_, valid, kinds) in ENTRIES.items() for arg in kinds
@@ -184,3 +183,125 @@ def test_batch_promotes_float16_to_float64():
     got = closedform.solve_normal_batch(PUNCH, np.array([400.0, 800.0], np.float16), A=A)
     ref = closedform.solve_normal(PUNCH, 800.0, A=A)
     assert got.a.dtype == np.float64 and got.a[1] == ref.a
+
+
+# --- issue 29: coordinates, flags, catalogue and batch shapes ---------------------------------------
+#: coordinates that every result's pressure/shear/slip_amplitude/stress refuses, with the error
+BAD_X: dict[str, tuple[Any, type[Exception]]] = {
+    "None": (None, TypeError), "str": ("0.5", TypeError), "bool": (True, TypeError),
+    "np.bool_": (np.True_, TypeError), "complex": (0.5 + 0j, TypeError),
+    "list with None": ([0.1, None], TypeError), "bool array": (np.array([True]), TypeError),
+    "nan": (math.nan, ValueError), "inf": (math.inf, ValueError), "-inf": (-math.inf, ValueError),
+    "10**400": (10**400, ValueError), "nan in array": (np.array([0.1, math.nan]), ValueError),
+    "longdouble 1e4000": (np.array([np.longdouble("1e4000")]), ValueError),
+}
+SLIP_CF = closedform.solve_partial_slip(NORMAL_CF, Q, F)
+SLIP_SIE = sie.solve_partial_slip(NORMAL_SIE, Q, F)
+CYCLE_CF = closedform.fretting_cycle(NORMAL_CF, Q, F, states=3)
+CYCLE_SIE = sie.fretting_cycle(NORMAL_SIE, Q, F, states=3)
+
+
+@pytest.fixture(scope="module")
+def fem_normal():
+    from threepart import fem
+    return fem.solve_normal(PUNCH, P, S, E=210e3, nu=0.3, mesh="quick")
+
+
+def _calls(result: Any) -> dict[str, Callable[[Any], Any]]:
+    """Each method of ``result`` that takes a coordinate, as a call of that coordinate alone."""
+    calls: dict[str, Callable[[Any], Any]] = {"pressure": getattr(result, "pressure", None),
+                                              "stress x": lambda v: result.stress(v, 0.1),
+                                              "stress z": lambda v: result.stress(0.1, v)}
+    if hasattr(result, "Q_max"):
+        calls = {"shear": lambda v: result.shear(v, Q, "loading"), "slip_amplitude": result.slip_amplitude,
+                 "stress x": lambda v: result.stress(v, 0.1, Q, "loading"),
+                 "stress z": lambda v: result.stress(0.1, v, Q, "loading")}
+    elif hasattr(result, "shear"):
+        calls["shear"] = result.shear
+    return {k: v for k, v in calls.items() if v is not None}
+
+
+RESULTS = {"closedform normal": NORMAL_CF, "sie normal": NORMAL_SIE, "closedform slip": SLIP_CF,
+           "sie slip": SLIP_SIE, "closedform cycle": CYCLE_CF, "sie cycle": CYCLE_SIE}
+
+
+@pytest.mark.parametrize("label", sorted(BAD_X))
+@pytest.mark.parametrize("which", [*sorted(RESULTS), "fem normal"])
+def test_every_result_refuses_a_bad_coordinate(which, label, request):
+    result = request.getfixturevalue("fem_normal") if which == "fem normal" else RESULTS[which]
+    value, error = BAD_X[label]
+    for call, fun in _calls(result).items():
+        name = "z" if call == "stress z" else "x"
+        with pytest.raises(error, match=f"`{name}`"):
+            fun(value)
+
+
+@pytest.mark.parametrize("which", sorted(RESULTS))
+def test_a_good_coordinate_is_computed_in_float64(which):
+    """An int, a float32, a list: the number given as a float64 (the reference), bit for bit."""
+    for call, fun in _calls(RESULTS[which]).items():
+        if call.startswith("stress"):
+            continue
+        ref = np.asarray(fun(np.array([1.0, 0.5])))
+        assert np.array_equal(np.asarray(fun([1, np.float32(0.5)])), ref), call
+        assert np.array_equal(np.asarray(fun(1)), ref[0]), call
+
+
+@pytest.mark.parametrize("value", [True, np.True_, False, np.False_])
+def test_beyond_small_slopes_takes_any_bool(value):
+    ref = closedform.solve_normal(PUNCH, P, S, A=A, beyond_small_slopes=bool(value))
+    assert closedform.solve_normal(PUNCH, P, S, A=A, beyond_small_slopes=value) == ref
+
+
+@pytest.mark.parametrize("value", [1, 0, None, "yes", 1.0])
+def test_beyond_small_slopes_refuses_what_is_not_a_bool(value):
+    with pytest.raises(TypeError, match=r"`beyond_small_slopes` = .* must be True or False"):
+        closedform.solve_normal(PUNCH, P, S, A=A, beyond_small_slopes=value)
+
+
+def test_an_unknown_case_is_a_value_error_listing_the_cases():
+    from threepart.catalogue import get_case
+    with pytest.raises(ValueError, match=r"`name` = 'nope' is not a case of cases\.json \(its cases: "
+                                         r"general, caseA_sym, "):
+        get_case("nope")
+
+
+def _catalogue(tmp_path, text: str) -> str:
+    path = tmp_path / "cases.json"
+    path.write_text(text, encoding="utf-8")
+    return str(path)
+
+
+_CASE = '{"name": "x", "suites": ["verify"], "punch": {"R1": 10, "R2": 5, "b": 1}%s}'
+
+
+@pytest.mark.parametrize("text, match", [
+    (None, r"`path` = '.*missing\.json' cannot be read: No such file"),
+    ("{", r"`path` = '.*cases\.json' is not a JSON case catalogue"),
+    ('{"material": {"E": 1, "nu": 0.3}}', r"`path` = '.*' has no field 'cases'"),
+    ('{"cases": [%s]}' % (_CASE % ""), r"`path` = '.*', case 'x' has no field 'P'"),
+    ('{"cases": [%s]}' % (_CASE % ', "P": NaN, "A": 1'), r"`path` = '.*', case 'x': `P` = nan must be"),
+    ('{"cases": [%s]}' % (_CASE % ', "P": 1, "A": 1, "f": Infinity'), r"case 'x': `f` = inf must be"),
+    ('{"cases": [%s]}' % (_CASE % ', "P": -1, "A": 1'), r"case 'x': `P` = -1.0 must be > 0"),
+])
+def test_a_bad_catalogue_file_is_a_value_error_naming_path_and_field(tmp_path, text, match):
+    from threepart.catalogue import load_cases
+    path = str(tmp_path / "missing.json") if text is None else _catalogue(tmp_path, text)
+    with pytest.raises(ValueError, match=match):
+        load_cases(path=path)
+
+
+def test_batch_arrays_of_unequal_length_are_named():
+    with pytest.raises(ValueError, match=r"`P` \(shape \(3,\)\) and `s` \(shape \(2,\)\) do not broadcast"):
+        closedform.solve_normal_batch(PUNCH, [400.0, 500.0, 600.0], [0.0, 0.1], A=A)
+
+
+@pytest.mark.parametrize("fun", [threepart.similar_pair, threepart.rigid_punch])
+@pytest.mark.parametrize("arg, value, match", [
+    ("E", -1.0, r"`E` = -1\.0 must be > 0"), ("nu", 0.7, r"`nu` = 0\.7 must lie in"),
+    ("nu", math.nan, r"`nu` = nan"), ("E", "1", r"`E` = '1' must be a real number"),
+])
+def test_material_messages_name_the_argument(fun, arg, value, match):
+    kwargs = {"E": 210e3, "nu": 0.3, arg: value}
+    with pytest.raises((TypeError, ValueError), match=match):
+        fun(**kwargs)

@@ -71,6 +71,7 @@ ContactZoneError    -- the FE contact reached the end of its mesh zone (RuntimeE
 MeshResolutionError -- a contact end too close to a join for the FE mesh (a ContactZoneError)
 SlopeLimitError     -- the contact's slope is past half-plane theory's small-slope limit (ValueError)
 ArcExtentError      -- a contact end runs past an edge arc's extent (ValueError)
+CoulombError        -- an answer's shear breaks |q| <= f p (a StickZoneError; threepart.answer)
 """
 from __future__ import annotations
 
@@ -88,6 +89,7 @@ _HOMES = {
     "StickZoneError": "errors", "StickSeparationError": "errors",
     "NoConvergenceError": "errors", "ContactZoneError": "errors",
     "MeshResolutionError": "errors", "SlopeLimitError": "errors", "ArcExtentError": "errors",
+    "CoulombError": "errors",
     "solve": "methods", "METHODS": "methods", "CHOICES": "methods",
     "Stress": "stress",
     "hilbert": "stress",
@@ -99,8 +101,8 @@ _SUBPACKAGES = ("closedform", "sie", "fem", "meshes", "reports")
 __all__ = list(_HOMES)
 
 if TYPE_CHECKING:   # pragma: no cover - for type checkers and IDEs only
-    from .errors import (ArcExtentError, ContactZoneError, FullSlidingError, LiftOffError,
-                         MeshResolutionError, NoConvergenceError, SeparationError,
+    from .errors import (ArcExtentError, ContactZoneError, CoulombError, FullSlidingError,
+                         LiftOffError, MeshResolutionError, NoConvergenceError, SeparationError,
                          SlopeLimitError, StickSeparationError, StickZoneError)
     from .material import compliance, rigid_punch, similar_pair
     from .methods import CHOICES, METHODS, solve

@@ -22,6 +22,7 @@ from typing import Any
 from .material import rigid_punch
 from .punch import Punch
 from .registry import lift_off
+from .validate import finite, positive, show
 
 __all__ = ["Case", "CASES_FILE", "SUITES", "LIFT_OFF_METHOD", "load_cases", "get_case", "slip_loads"]
 
@@ -165,8 +166,40 @@ class Case:
 
 
 def _read(path: str | Path | None) -> dict[str, Any]:
-    data: dict[str, Any] = json.loads(Path(path or CASES_FILE).read_text(encoding="utf-8"))
+    """The catalogue file as a dict; ``ValueError`` naming ``path`` if it cannot be read or is not one."""
+    where = f"`path` = {str(path or CASES_FILE)!r}"
+    try:
+        data = json.loads(Path(path or CASES_FILE).read_text(encoding="utf-8"))
+    except OSError as exc:
+        raise ValueError(f"{where} cannot be read: {exc.strerror or exc}") from None
+    except (UnicodeDecodeError, json.JSONDecodeError) as exc:
+        raise ValueError(f"{where} is not a JSON case catalogue: {exc}") from None
+    if not isinstance(data, dict) or not isinstance(data.get("cases"), list):
+        raise ValueError(f"{where} has no field 'cases' (a list of cases)")
     return data
+
+
+def _checked_case(c: Any, default_material: Any, path: str | Path | None, i: int) -> Case:
+    """:func:`_case` with every missing or bad field named, with the file and the case."""
+    name = c.get("name", f"#{i}") if isinstance(c, dict) else f"#{i}"
+    where = f"`path` = {str(path or CASES_FILE)!r}, case {name!r}"
+    try:
+        case = _case(c, default_material)
+        positive("P", case.P)
+        finite("s", case.s if case.s is not None else 0.0)
+        for key, value in (("f", case.f), ("Q_over_fP", case.Q_over_fP), ("A", case.compliance),
+                           ("s_lift_off_fraction", case.s_lift_off_fraction)):
+            if value is not None:
+                finite(key, value)
+        finite("sigma_bulk", case.sigma_bulk)
+        if case.material is not None:
+            positive("E", case.material[0])
+            finite("nu", case.material[1])
+    except KeyError as exc:
+        raise ValueError(f"{where} has no field {exc.args[0]!r}") from None
+    except (TypeError, ValueError, AttributeError) as exc:
+        raise ValueError(f"{where}: {exc}") from None
+    return case
 
 
 def _case(c: dict[str, Any], default_material: dict[str, float]) -> Case:
@@ -193,7 +226,7 @@ def load_cases(suite: str | None = "verify", path: str | Path | None = None) -> 
     if suite is not None and suite not in SUITES:
         raise ValueError(f"`suite` = {suite!r} is not one of {SUITES}")
     data = _read(path)
-    cases = [_case(c, data["material"]) for c in data["cases"]]
+    cases = [_checked_case(c, data.get("material"), path, i) for i, c in enumerate(data["cases"])]
     names = [c.name for c in cases]
     if len(set(names)) != len(names):
         raise ValueError(f"case names in {path or CASES_FILE} are not unique: {names}")
@@ -204,11 +237,19 @@ def load_cases(suite: str | None = "verify", path: str | Path | None = None) -> 
 
 
 def get_case(name: str, path: str | Path | None = None) -> Case:
-    """The catalogue case called ``name``, whatever its suites."""
-    for c in load_cases(None, path):
+    """The catalogue case called ``name``, whatever its suites.
+
+    Raises
+    ------
+    ValueError
+        If there is no such case; the message lists the catalogue's names.
+    """
+    cases = load_cases(None, path)
+    for c in cases:
         if c.name == name:
             return c
-    raise KeyError(f"no case {name!r} in the catalogue")
+    raise ValueError(f"`name` = {show(name)} is not a case of {path or CASES_FILE.name} "
+                     f"(its cases: {', '.join(c.name for c in cases)})")
 
 
 def slip_loads(suite: str = "sie", path: str | Path | None = None) -> tuple[tuple[float, float], ...]:

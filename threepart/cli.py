@@ -779,11 +779,10 @@ def _problem(args: argparse.Namespace) -> dict[str, Any]:
         if given:
             raise ValueError(f"give `--case` or the punch and loads, not both (also got "
                              f"`--{given[0]}`)")
-        try:
-            case = get_case(args.case).resolved()
-        except KeyError:
+        if args.case not in {c.name for c in load_cases(None)}:
             names = ", ".join(c.name for c in load_cases(None))
-            raise ValueError(f"`--case` = {args.case!r} is not in the catalogue ({names})") from None
+            raise ValueError(f"`--case` = {args.case!r} is not in the catalogue ({names})")
+        case = get_case(args.case).resolved()
         if case.material is None and (args.E is None or args.nu is None):
             raise ValueError(f"case {case.name!r} gives only A; add `--E` and `--nu`")
         E, nu = case.material if case.material is not None else (args.E, args.nu)

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 __all__ = ["NoConvergenceError", "LiftOffError", "FullSlidingError", "StickZoneError",
            "SeparationError", "ContactZoneError", "MeshResolutionError", "SlopeLimitError",
-           "ArcExtentError", "StickSeparationError", "SlipReversalError", "full_sliding"]
+           "ArcExtentError", "StickSeparationError", "SlipReversalError", "CoulombError", "full_sliding"]
 
 
 class NoConvergenceError(RuntimeError):
@@ -48,6 +48,16 @@ class SlipReversalError(StickZoneError):
     slips in the direction that opposes ``q`` (docs/BULK_STRESS.md). Past that,
     one end slips backwards (a reversed slip zone, or a second stick zone
     appears); the closed form refuses, and ``method="auto"`` falls back.
+    """
+
+
+class CoulombError(StickZoneError):
+    """A partial-slip answer's shear breaks Coulomb's law: ``|q| > f p`` somewhere in the contact.
+
+    Raised by the one check of every answer (:func:`threepart.answer.check_answer`)
+    whatever the method: the stick zone found is not one that friction can
+    hold (too coarse a discretisation, or too near full sliding for it). A
+    ``StickZoneError``, so that ``method="auto"`` falls back from the closed form.
     """
 
 

@@ -25,6 +25,12 @@ with ``Q`` and ``f``, the partial-slip problem, by the method asked for:
 
 Every method is reached through :mod:`threepart.registry`; the solvers are
 imported only when called: importing :mod:`threepart` loads none of them.
+
+Whatever the method, and whether it is called here or directly, its answer
+has passed one check when it was built (:mod:`threepart.answer`, from the
+results' ``__post_init__``): a compressive pressure, else
+``SeparationError``, and for partial slip ``|q| <= f p``, else
+``CoulombError`` (a ``StickZoneError``, on which ``auto`` falls back).
 """
 from __future__ import annotations
 

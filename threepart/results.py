@@ -11,25 +11,39 @@ of the load, positive to the right, and equals the centroid of the pressure;
 """
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Any, Mapping, Self
+from typing import TYPE_CHECKING, Any, Callable, ClassVar, Mapping, Self
 
 import numpy as np
 from numpy.typing import ArrayLike
 from scipy.optimize import minimize_scalar
 
+from .answer import check_answer
 from .punch import Punch
-from .validate import finite
+from .validate import coordinates, finite, integer
 
 if TYPE_CHECKING:
     from .stress import Stress
 
 __all__ = ["NormalResult", "SlipResult", "FrettingResult", "MasingCycle", "Peak", "Diagnostics", "SEGMENTS",
-           "BRANCHES", "NU", "masing", "segments_in_contact"]
+           "BRANCHES", "NU", "masing", "segments_in_contact", "PEAK_N", "PEAK_GRID"]
 
 #: Poisson's ratio that ``stress()`` assumes for a half-plane result (closed form, SIE),
 #: which knows only the compliance ``A``; the FEM's results use their own.
 NU = 0.3
+
+#: the bounds of ``n``, the grid points per side, of :meth:`NormalResult.peaks`: two points
+#: (the side's ends) at least; at most a million (8 MB a side; 10**9 would allocate 7.5 GiB)
+PEAK_N = (2, 1_000_000)
+#: the least grid per side that :meth:`NormalResult.peaks` searches, whatever ``n``: a peak
+#: of a three-part punch lies within a few per cent of the contact from a join (eq. 2), so a
+#: coarser grid can bracket the wrong hump; 257 points a side (at most W long) put a dozen
+#: inside any hump 5 % of W wide
+PEAK_GRID = 257
+#: how many of a side's largest grid maxima :meth:`NormalResult.peaks` refines (two humps
+#: of one side, e.g. at a join and at the centre, plus one for a noisy FE field)
+_PEAK_CANDIDATES = 3
 
 #: the punch's segments, left to right (eq. 2)
 SEGMENTS = ("R1", "centre", "R2")
@@ -121,8 +135,58 @@ def _kinks(b: float, lo: float, hi: float, *more: float) -> list[float]:
     return sorted({float(k) for k in (-b, b, *more) if lo < k < hi})
 
 
+def _checked(method: Callable[..., Any], names: tuple[str, ...]) -> Callable[..., Any]:
+    """``method`` with its first ``len(names)`` arguments checked by :func:`~threepart.validate.coordinates`."""
+    if getattr(method, "_coordinates", False):
+        return method
+
+    @functools.wraps(method)
+    def call(self: Any, *args: Any, **kwargs: Any) -> Any:
+        given = [coordinates(name, v) for name, v in zip(names, args)]
+        return method(self, *given, *args[len(names):], **kwargs)
+    call._coordinates = True  # type: ignore[attr-defined]
+    return call
+
+
+#: the methods of a result that take coordinates, and the names of those arguments
+_COORDINATES = {"pressure": ("x",), "shear": ("x",), "slip": ("x",), "slip_amplitude": ("x",),
+                "stress": ("x", "z")}
+
+
+def _check_coordinates(cls: type) -> None:
+    """Wrap every method of ``cls`` (not inherited) that takes coordinates (:data:`_COORDINATES`)."""
+    for name, args in _COORDINATES.items():
+        if name in cls.__dict__:
+            setattr(cls, name, _checked(cls.__dict__[name], args))
+
+
+class _Answer:
+    """What every result shares: coordinates checked in every method, and the answer checked once built.
+
+    A subclass's ``pressure``, ``shear``, ``slip``, ``slip_amplitude`` and
+    ``stress`` are wrapped when the class is made, so their ``x`` (and ``z``)
+    pass :func:`threepart.validate.coordinates` in every method, the
+    closed form's, the SIE's, the FEM's and any registered since. A normal or
+    slip result is checked when it is built (:func:`threepart.answer.check_answer`):
+    a tensile pressure or a shear past Coulomb's bound is refused by name. A
+    result that wraps someone else's numbers to be judged (the pytest plugin's,
+    the referee's) sets ``checks_answer = False``: the comparison measures
+    what it gets wrong instead.
+    """
+
+    checks_answer: ClassVar[bool] = True
+
+    def __init_subclass__(cls, **kwargs: Any) -> None:
+        super().__init_subclass__(**kwargs)
+        _check_coordinates(cls)
+
+    def __post_init__(self) -> None:
+        if self.checks_answer:
+            check_answer(self)
+
+
 @dataclass(frozen=True)
-class NormalResult:
+class NormalResult(_Answer):
     """Solution of the normal problem on the contact ``[-a, c]``.
 
     Attributes
@@ -199,29 +263,49 @@ class NormalResult:
     def peaks(self, n: int = 2001) -> tuple[Peak, Peak]:
         """Largest pressure left and right of ``x = 0``, each refined by a bounded search.
 
-        For a single-humped distribution (Hertz, case C) both may be the same
-        point or one may sit at ``x = 0``. A contact that does not straddle
-        ``x = 0`` (the punch on one corner) is split at its middle instead.
+        Each side is sampled on ``n`` points (at least :data:`PEAK_GRID`, and
+        the joins ``x = ±b``, where the pressure has a kink); each of its
+        largest grid maxima is refined by a bounded Brent search between its
+        neighbours, so the peaks do not depend on ``n`` beyond rounding. For a
+        single-humped distribution (Hertz, case C) both may be the same point
+        or one may sit at ``x = 0``. A contact that does not straddle ``x = 0``
+        (the punch on one corner) is split at its middle instead.
+
+        Raises
+        ------
+        TypeError, ValueError
+            ``n`` not an integer (a bool is not one), or outside :data:`PEAK_N`.
         """
+        n = integer("n", n, *PEAK_N)
         mid = 0.0 if -self.a < 0.0 < self.c else 0.5 * (self.c - self.a)
         out = []
         step = 1e-6 * self.width   # a peak at the split is a true one only if p falls beyond it
         for side, (lo, hi) in enumerate(((-self.a, mid), (mid, self.c))):
-            x = np.linspace(lo, hi, n)
-            p = self.pressure(x)
-            i = int(np.argmax(p))
-            left, right = x[max(i - 1, 0)], x[min(i + 1, n - 1)]
-            best = Peak(float(x[i]), float(p[i]))
-            if right > left:
-                r = minimize_scalar(lambda t: -float(self.pressure(t)), bounds=(left, right),
-                                    method="bounded", options={"xatol": 1e-12 * self.width})
-                if -r.fun > best.p:
-                    best = Peak(float(r.x), float(-r.fun))
+            best = self._side_peak(lo, hi, max(n, PEAK_GRID))
             beyond = best.x + step if side == 0 else best.x - step
             if abs(best.x - mid) <= 2 * step and float(self.pressure(beyond)) > best.p:
                 best = Peak(best.x, best.p, interior=False)
             out.append(best)
         return out[0], out[1]
+
+    def _side_peak(self, lo: float, hi: float, n: int) -> Peak:
+        """The largest pressure on ``[lo, hi]``: the grid's largest maxima, each refined by Brent."""
+        x = np.union1d(np.linspace(lo, hi, n), _kinks(self.punch.b, lo, hi))
+        p = self.pressure(x)
+        pad = np.concatenate([[-np.inf], p, [-np.inf]])
+        maxima = np.flatnonzero((pad[1:-1] >= pad[:-2]) & (pad[1:-1] >= pad[2:]))
+        best = Peak(float(x[maxima[0]]), float(p[maxima[0]]))
+        for i in maxima[np.argsort(p[maxima])[::-1][:_PEAK_CANDIDATES]]:
+            left, right = x[max(i - 1, 0)], x[min(i + 1, x.size - 1)]
+            found = Peak(float(x[i]), float(p[i]))
+            if right > left:
+                r = minimize_scalar(lambda t: -float(self.pressure(t)), bounds=(left, right),
+                                    method="bounded", options={"xatol": 1e-12 * self.width})
+                if -r.fun > found.p:
+                    found = Peak(float(r.x), float(-r.fun))
+            if found.p > best.p:
+                best = found
+        return best
 
     @property
     def slope(self) -> float:
@@ -235,7 +319,7 @@ class NormalResult:
 
 
 @dataclass(frozen=True)
-class SlipResult:
+class SlipResult(_Answer):
     """Partial-slip solution: stick zone ``[-(d+e), d-e]`` inside the contact.
 
     Attributes
@@ -327,7 +411,7 @@ class SlipResult:
 
 
 @dataclass(frozen=True)
-class FrettingResult:
+class FrettingResult(_Answer):
     """One fretting cycle at constant ``P`` and ``s``: ``Q`` from 0 to ``Q_max``, to ``-Q_max`` and back.
 
     The states are recorded along the load path, branch by branch (:data:`BRANCHES`).

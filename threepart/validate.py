@@ -18,6 +18,7 @@ LENGTH_RANGE        -- magnitudes of lengths and loads, ``[1e-60, 1e60]``
 lever_arm           -- ``s`` inside the punch's footprint ``(-(b + R1), b + R2)``
 SLOPE_LIMIT         -- the small-slope limit of half-plane theory (tilt and profile slopes)
 check_contact       -- a solved contact: inside the arcs' extents and within SLOPE_LIMIT
+check_arcs          -- a contact inside the arcs' extents (ArcExtentError), the first half of that
 integer             -- a discretisation count (``n``, ``steps``) between bounds
 poisson             -- Poisson's ratio inside NU_RANGE, ``(-1, 0.5)``
 SLOPE_WARNING       -- the slope past which the measured small-slope error exceeds 5 %
@@ -28,6 +29,8 @@ check_normal        -- the ``normal`` argument of a slip or fretting solve: a No
 shear_load          -- ``Q`` (or ``Q_max``) and ``f`` for a load ``P``: ``|Q| < f P`` (FullSlidingError)
 check_shear         -- the same on a normal result (a half-plane slip or fretting solve)
 SLIP_RATIO_LIMIT    -- the largest ``|Q|/(fP)`` a numerical stick zone is solved for (1 - 1e-6)
+coordinates         -- the ``x`` (``z``) of a result's pressure, shear, slip or stress: finite reals
+flag                -- a yes/no option (``beyond_small_slopes``): a Python or numpy bool
 """
 from __future__ import annotations
 
@@ -40,7 +43,8 @@ import numpy as np
 __all__ = ["real", "finite", "positive", "check_finite", "check_positive", "TILTS", "check_tilt",
            "LENGTH_RANGE", "show", "NU_RANGE", "poisson", "integer", "lever_arm", "SLOPE_LIMIT",
            "SLOPE_WARNING", "check_contact", "check_punch", "MAX_STATES", "check_states", "reals",
-           "load_scale", "check_normal", "shear_load", "check_shear", "SLIP_RATIO_LIMIT"]
+           "load_scale", "check_normal", "shear_load", "check_shear", "SLIP_RATIO_LIMIT", "coordinates",
+           "flag", "check_arcs"]
 
 #: tilt modes: the tilt ``alpha`` follows from the moment, or is held at zero
 TILTS = ("free", "suppressed")
@@ -204,7 +208,25 @@ def check_contact(punch: Any, a: float, c: float, alpha: float) -> float:
     SlopeLimitError
         If the slope exceeds :data:`SLOPE_LIMIT`.
     """
-    from .errors import ArcExtentError, SlopeLimitError
+    from .errors import SlopeLimitError
+
+    check_arcs(punch, a, c)
+    slope = punch.max_slope(a, c, alpha)
+    if not slope <= SLOPE_LIMIT:
+        raise SlopeLimitError(f"the contact's slope (tilt, profile or surface) reaches {slope:.3g} (tilt "
+                              f"alpha = {alpha:.3g} rad), past the small-slope limit "
+                              f"{SLOPE_LIMIT:g} of half-plane theory; reduce the load or the "
+                              "lever arm `s`")
+    return slope
+
+
+def check_arcs(punch: Any, a: float, c: float) -> None:
+    """``ArcExtentError`` if a contact end of ``[-a, c]`` runs past an arc's extent (``a > b + R1``, ``c > b + R2``).
+
+    The punch's profile ends there (eq. 2): half-plane theory has no answer.
+    Part of :func:`check_contact`; alone, it holds the lift-off contacts.
+    """
+    from .errors import ArcExtentError
 
     if a > punch.b + punch.R1:
         raise ArcExtentError(f"the contact end x = {-a:.6g} runs past the R1 arc's extent "
@@ -214,13 +236,6 @@ def check_contact(punch: Any, a: float, c: float, alpha: float) -> float:
         raise ArcExtentError(f"the contact end x = {c:.6g} runs past the R2 arc's extent "
                              f"b + R2 = {punch.b + punch.R2:g}: the punch's profile ends there, "
                              "half-plane theory has no answer")
-    slope = punch.max_slope(a, c, alpha)
-    if not slope <= SLOPE_LIMIT:
-        raise SlopeLimitError(f"the contact's slope (tilt, profile or surface) reaches {slope:.3g} (tilt "
-                              f"alpha = {alpha:.3g} rad), past the small-slope limit "
-                              f"{SLOPE_LIMIT:g} of half-plane theory; reduce the load or the "
-                              "lever arm `s`")
-    return slope
 
 
 #: the most recorded states per branch of a fretting cycle (each is a slip solve)
@@ -301,12 +316,16 @@ def load_scale(punch: Any, P: Any, A: float, name: str = "P") -> None:
             f"outside [{lo:g}, {hi:g}] (length^2), the range this library computes in double precision")
 
 
-def check_normal(normal: Any) -> Any:
-    """``normal`` if it is a :class:`threepart.results.NormalResult`, else ``TypeError``."""
+def check_normal(normal: Any, argument: str = "normal") -> Any:
+    """``normal`` if it is a :class:`threepart.results.NormalResult`, else ``TypeError``.
+
+    ``argument`` is the parameter's name in the caller (``"normal_solution"``
+    in the closed form), which the message names.
+    """
     from .results import NormalResult
 
     if not isinstance(normal, NormalResult):
-        raise TypeError(f"`normal` must be a NormalResult (from a solve_normal), not "
+        raise TypeError(f"`{argument}` must be a NormalResult (from a solve_normal), not "
                         f"{type(normal).__name__}")
     return normal
 
@@ -344,6 +363,67 @@ def shear_load(Q: Any, f: Any, P: float, name: str = "Q", what: str = "there is 
 
 
 def check_shear(normal: Any, Q: Any, f: Any, name: str = "Q", what: str = "there is no stick zone",
-                limit: float = 1.0) -> tuple[float, float]:
-    """:func:`shear_load` on a normal result: ``normal`` must be a NormalResult (else ``TypeError``)."""
-    return shear_load(Q, f, check_normal(normal).P, name, what, limit)
+                limit: float = 1.0, argument: str = "normal") -> tuple[float, float]:
+    """:func:`shear_load` on a normal result: ``normal`` must be a NormalResult (else ``TypeError``).
+
+    ``argument`` is the normal result's parameter name in the caller, for the message.
+    """
+    return shear_load(Q, f, check_normal(normal, argument).P, name, what, limit)
+
+
+def coordinates(name: str, value: Any) -> Any:
+    """``value``, a coordinate or an array of them, as finite float64 (the same shape).
+
+    Every result's ``pressure(x)``, ``shear(x)``, ``slip_amplitude(x)`` and
+    ``stress(x, z)`` pass their coordinates through here (wrapped once in
+    :class:`threepart.results.NormalResult`), so every method refuses alike:
+    ``None``, a string, bytes, a bool or a complex number (alone or in an
+    array) is a ``TypeError`` naming ``name``; NaN, an infinity or a number
+    outside float64's range (``10**400``) is a ``ValueError`` naming it. A
+    float array, the solvers' own calls, costs one ``isfinite`` pass.
+    """
+    if isinstance(value, np.ndarray) and value.dtype.kind == "f":
+        with np.errstate(over="ignore"):      # a longdouble past float64's range becomes inf
+            arr = value if value.dtype == np.float64 else value.astype(float)
+    elif isinstance(value, (numbers.Real, np.floating, np.integer)) and not isinstance(value, (bool, np.bool_)):
+        return finite(name, value)
+    elif isinstance(value, (list, tuple, np.ndarray)):
+        arr = _coordinate_array(name, value)
+    else:
+        raise TypeError(f"`{name}` = {show(value)} must be a real number or an array of them, not "
+                        f"{type(value).__name__}")
+    bad = ~np.isfinite(arr)
+    if bad.any():
+        i = int(np.argmax(bad.ravel()))
+        raise ValueError(f"`{name}` = {show(arr.ravel()[i])} (element {i}) must be a finite coordinate")
+    return arr
+
+
+def _coordinate_array(name: str, value: Any) -> np.ndarray:
+    """An array (or nested list) of coordinates as float64, element by element if it is not numeric."""
+    try:
+        arr = np.asarray(value, dtype=object if isinstance(value, (list, tuple)) else None)
+    except ValueError:
+        raise TypeError(f"`{name}` = {show(value)} must be a regular array of real numbers") from None
+    if arr.dtype.kind in "iu":
+        return arr.astype(float)
+    if arr.dtype.kind != "O":
+        raise TypeError(f"`{name}` must be real numbers, not an array of {arr.dtype}")
+    out = np.empty(arr.shape)
+    for i, v in enumerate(arr.ravel()):
+        try:
+            out.flat[i] = finite(name, v)
+        except (TypeError, ValueError) as exc:
+            raise type(exc)(f"{exc} (element {i})") from None
+    return out
+
+
+def flag(name: str, value: Any) -> bool:
+    """``value`` as a bool if it is one (Python's or numpy's), else ``TypeError`` naming ``name``.
+
+    A yes/no option such as ``beyond_small_slopes``: ``1``, ``"yes"`` or
+    ``None`` are refused rather than read by their truth value.
+    """
+    if not isinstance(value, (bool, np.bool_)):
+        raise TypeError(f"`{name}` = {show(value)} must be True or False, not {type(value).__name__}")
+    return bool(value)

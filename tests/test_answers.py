@@ -1,0 +1,225 @@
+"""Every answer of every half-plane method obeys the contact laws, and each method refuses the rest.
+
+* The property test draws a few hundred cases as ``tests/test_robustness.py``
+  does (radii ``0.03 b`` to ``1000 b``, loads from just above their threshold
+  to ``10^4`` times it, lever arms across the lift-off range, both tilt
+  modes), and a shear load on each: every answer of the closed form and of
+  the SIE, normal and partial slip, must have ``p >= 0`` and ``|q| <= f p``
+  on a 4001-point grid of its contact and stick zone (not the points the
+  code checks itself), or be one of the named refusals. The reference is
+  the laws themselves.
+* The tester's findings of issue 29: ``method="auto"`` passed on an SIE
+  contact whose pressure is tensile (the separation load, an exact root of
+  the closed form, lies above the load); the SIE at ``n = 2`` broke
+  Coulomb's law; ``lift_off`` answered past an arc's extent; ``peaks(n)``
+  was wrong for small ``n`` (against a dense evaluation of the closed-form
+  pressure, eq. pressure_abbreviated).
+"""
+from __future__ import annotations
+
+import math
+import re
+
+import numpy as np
+import pytest
+from hypothesis import HealthCheck, assume, given, settings
+from hypothesis import strategies as st
+
+import threepart
+from threepart import Punch, closedform, rigid_punch, sie
+from threepart.closedform import formulas
+from threepart.closedform.normal import _lift_off_states
+from threepart.closedform.newton import SCALAR
+from threepart.errors import (ArcExtentError, CoulombError, FullSlidingError, LiftOffError,
+                              NoConvergenceError, SeparationError, SlopeLimitError, StickZoneError)
+from threepart.tolerances import tolerance
+from threepart.validate import SLOPE_LIMIT
+from tests.test_robustness import cases
+
+A = rigid_punch(210e3, 0.3)
+#: the named refusals a half-plane method may answer with on admissible input
+REFUSALS = (LiftOffError, SeparationError, StickZoneError, FullSlidingError, ArcExtentError,
+            SlopeLimitError, NoConvergenceError)
+#: p >= -P_MIN p_max and |q| - f p <= Q_BOUND f p_max: the table's limits of every answer
+P_MIN = tolerance("answer", "p_min").limit
+Q_BOUND = tolerance("answer", "q_bound").limit
+#: cases of the property test: a few hundred, within about 30 s on one idle core
+EXAMPLES = 300
+#: uniform grid points of the contact (and of the stick zone) on which an answer is judged
+GRID = 4001
+
+
+def _lever_arm(punch: Punch, P: float, frac: float) -> float:
+    """A lever arm ``frac`` of the way to lift-off (the SIE's range); 0 where lift-off is refused."""
+    if punch.b == 0:
+        return frac * math.sqrt(2 * P * A * min(punch.R1, punch.R2) / math.pi)
+    try:
+        s_min, s_max = sie.lift_off(punch, P, A)
+    except (ArcExtentError, SlopeLimitError):
+        return 0.0      # that lift-off lies past the arcs or the slopes: a central load
+    return frac * s_max if frac > 0 else -frac * s_min
+
+
+def _grid(lo: float, hi: float) -> np.ndarray:
+    return np.linspace(lo, hi, GRID)[1:-1]
+
+
+def _assert_compressive(r) -> None:
+    x = _grid(-r.a, r.c)
+    p = r.pressure(x)
+    assert p.min() >= -P_MIN * p.max(), \
+        f"{r.method}: p = {p.min():.4g} at x = {x[np.argmin(p)]:.6g} (peak {p.max():.4g}) for {r}"
+
+
+def _assert_coulomb(r) -> None:
+    lo, hi = r.stick_zone
+    x = np.concatenate([_grid(-r.a, r.c), _grid(max(lo, -r.a), min(hi, r.c))])
+    p, q = r.pressure(x), r.shear(x)
+    excess = np.abs(q) - r.f * p
+    assert excess.max() <= Q_BOUND * r.f * p.max(), \
+        f"{r.method}: |q| - f p = {excess.max():.4g} at x = {x[np.argmax(excess)]:.6g} for {r}"
+
+
+@pytest.mark.filterwarnings("ignore::RuntimeWarning")
+@settings(max_examples=EXAMPLES, deadline=None, derandomize=True,
+          suppress_health_check=[HealthCheck.too_slow, HealthCheck.filter_too_much])
+@given(cases(), st.floats(1e-3, 1 - 1e-6), st.floats(0.05, 2.0), st.booleans())
+def test_every_answer_is_compressive_and_obeys_coulomb(case, ratio, f, negative):
+    punch, P, frac, tilt = case
+    s = 0.0 if tilt == "suppressed" else _lever_arm(punch, P, frac)
+    assume(-(punch.b + punch.R1) < s < punch.b + punch.R2)
+    Q = (-1 if negative else 1) * ratio * f * P
+    for method in (closedform, sie):
+        try:
+            normal = method.solve_normal(punch, P, s, A=A, tilt=tilt)
+        except REFUSALS:
+            continue
+        _assert_compressive(normal)
+        try:
+            slip = method.solve_partial_slip(normal, Q, f)
+        except REFUSALS:
+            continue
+        _assert_coulomb(slip)
+
+
+# --- item 1: auto passed on a tensile SIE contact --------------------------------------------
+#: the tester's case: a sharp R1 corner and a concave centre, loaded just below separation
+TENSILE = dict(punch=Punch(R1=0.0370489869606223, R2=109.15631315882291, b=1, R=-4311.852827280567),
+               P=22.63675790703573, s=0.08332458301910572, A=1.7333e-5)
+
+
+def test_auto_refuses_a_contact_below_its_separation_load():
+    punch, P, s, A_ = TENSILE["punch"], TENSILE["P"], TENSILE["s"], TENSILE["A"]
+    # the reference: the closed form's separation load at this s, an exact root, lies above P
+    assert closedform.P_min(punch, A_, s) > P
+    for method in ("auto", "sie"):
+        with pytest.raises(SeparationError, match=r"`P` = 22\.6368 with `s` = 0\.0833246: the sie's "
+                                                  r"pressure is tensile, min p = -0\.01"):
+            threepart.solve(punch, P, s, A=A_, method=method)
+
+
+# --- item 2: the SIE broke Coulomb's law at a small n --------------------------------------------
+PUNCH = Punch(10.0, 5.0, 1.0)
+NORMAL = closedform.solve_normal(PUNCH, 400.0, 0.1, A=A)
+
+
+@pytest.mark.parametrize("n", [2, 4])
+def test_the_sie_refuses_a_stick_zone_its_n_does_not_resolve(n):
+    with pytest.raises(CoulombError, match=rf"the sie's shear breaks Coulomb's law, \|q\| exceeds f p "
+                                           rf".*with `n` = {n} the discretisation may not resolve"):
+        sie.solve_partial_slip(NORMAL, 100.0, 0.5, n=n)
+
+
+def test_an_sie_stick_zone_that_is_resolved_obeys_coulomb_and_the_closed_form():
+    got = sie.solve_partial_slip(NORMAL, 100.0, 0.5, n=8)
+    ref = closedform.solve_partial_slip(NORMAL, 100.0, 0.5)
+    _assert_coulomb(got)
+    assert abs(got.d - ref.d) <= tolerance("sie", "d").limit * ref.d
+    assert abs(got.e - ref.e) <= tolerance("sie", "e").limit * ref.d
+
+
+# --- item 3: lift_off answered past an arc's extent -------------------------------------------------
+def test_lift_off_past_an_arc_is_refused_like_solve_normal():
+    with pytest.raises(ArcExtentError, match=r"`P` = 1e\+06 has no lift-off lever arm s_min .* runs past "
+                                             r"the R1 arc's extent -\(b \+ R1\) = -11"):
+        closedform.lift_off(PUNCH, 1e6, A)
+    with pytest.raises(ArcExtentError, match=r"`P` = 1e\+06 has no lift-off lever arm s_min"):
+        sie.lift_off(PUNCH, 1e6, A)
+    with pytest.raises(ArcExtentError, match="runs past the R2 arc's extent b \\+ R2 = 6"):
+        closedform.solve_normal(PUNCH, 1e6, 0.0, A=A)
+
+
+@st.composite
+def lift_off_cases(draw):
+    """A convex or flat centre (``b = 1``) and a load from ``P_min`` to far past the arcs."""
+    R1, R2 = (10 ** draw(st.floats(math.log10(0.03), 3)) for _ in range(2))
+    R = math.inf if draw(st.booleans()) else 10 ** draw(st.floats(math.log10(0.03), 4))
+    punch = Punch(R1, R2, 1.0, R)
+    P = max(closedform.P_min(punch, A), 1e-3 / A) * 10 ** draw(st.floats(1e-6, 6))
+    return punch, P, draw(st.floats(0.0, 1.0))
+
+
+#: how far outside (of W) and inside (of the range) the lift-off range s is taken
+OUTSIDE, INSIDE = 1e-6, 1e-9
+
+
+@settings(max_examples=100, deadline=None, derandomize=True, suppress_health_check=[HealthCheck.too_slow])
+@given(lift_off_cases())
+def test_every_lever_arm_inside_the_lift_off_range_solves(case):
+    punch, P, t = case
+    lo, hi = _lift_off_states(punch, P, A, SCALAR)
+    # the reference: the arcs' geometric extents (eq. 2), against the lift-off contacts
+    past = lo.a > punch.b + punch.R1 or hi.c > punch.b + punch.R2
+    try:
+        lim = closedform.lift_off(punch, P, A)
+    except ArcExtentError:
+        assert past
+        with pytest.raises(ArcExtentError, match=re.escape(f"`P` = {P:.6g} has no lift-off lever arm")):
+            sie.lift_off(punch, P, A)
+        return
+    assert not past
+    s_min, s_max = sie.lift_off(punch, P, A)
+    assert abs(s_min - lim.s_min) <= tolerance("catalogue", "stored_lift_off").limit * (lim.a_min + punch.b)
+    width = lim.s_max - lim.s_min
+    s = lim.s_min + (INSIDE + (1 - 2 * INSIDE) * t) * width
+    try:
+        got = closedform.solve_normal(punch, P, s, A=A)
+    except SlopeLimitError:
+        # the reference: the same contact's slope by the formulas, past the limit
+        got = closedform.solve_normal(punch, P, s, A=A, beyond_small_slopes=True)
+        assert got.slope > SLOPE_LIMIT
+    assert got.a >= punch.b and got.c >= punch.b
+    W = lim.c_max + punch.b
+    for beyond in (lim.s_min - OUTSIDE * W, lim.s_max + OUTSIDE * W):
+        with pytest.raises(LiftOffError, match=r"`s` = .* the lift-off lever arm"):
+            closedform.solve_normal(punch, P, beyond, A=A)
+
+
+# --- item 4: peaks(n) was wrong for small n ---------------------------------------------------------
+#: a dense grid of the closed-form pressure: its maxima lie within p'' h^2/2 ~ 1e-11 of the
+#: peaks (h = W/2e6), and their positions within h plus the flat top's sqrt(1e-16) W
+DENSE = 2_000_001
+PEAK_P, PEAK_X = 1e-9, 1e-5
+
+
+@pytest.mark.parametrize("n", [2, 3, 17, 2001])
+def test_peaks_do_not_depend_on_n(n):
+    x = np.linspace(-NORMAL.a, NORMAL.c, DENSE)
+    p = formulas.pressure(PUNCH, NORMAL.a, NORMAL.c, A, x)
+    W = NORMAL.width
+    for peak, side in zip(NORMAL.peaks(n), (x < 0, x > 0)):
+        i = int(np.argmax(np.where(side, p, -np.inf)))
+        assert abs(peak.p - p[i]) <= PEAK_P * p[i], (n, peak, p[i])
+        assert abs(peak.x - x[i]) <= PEAK_X * W, (n, peak, x[i])
+
+
+@pytest.mark.parametrize("n, error, match", [
+    (True, TypeError, r"`n` = True must be an integer, not bool"),
+    (2.0, TypeError, r"`n` = 2\.0 must be an integer, not float"),
+    (1, ValueError, r"`n` = 1 must lie in \[2, 1000000\]"),
+    (0, ValueError, r"`n` = 0 must lie in \[2, 1000000\]"),
+    (10**9, ValueError, r"`n` = 1000000000 must lie in \[2, 1000000\]"),
+])
+def test_peaks_refuse_a_bad_n(n, error, match):
+    with pytest.raises(error, match=match):
+        NORMAL.peaks(n)
