@@ -10,7 +10,8 @@ from __future__ import annotations
 
 __all__ = ["NoConvergenceError", "LiftOffError", "FullSlidingError", "StickZoneError",
            "SeparationError", "ContactZoneError", "MeshResolutionError", "SlopeLimitError",
-           "ArcExtentError", "StickSeparationError", "SlipReversalError", "full_sliding"]
+           "ArcExtentError", "StickSeparationError", "SlipReversalError", "CycleSlipReversalError",
+           "OneSidedSlipError", "full_sliding"]
 
 
 class NoConvergenceError(RuntimeError):
@@ -48,6 +49,27 @@ class SlipReversalError(StickZoneError):
     slips in the direction that opposes ``q`` (docs/BULK_STRESS.md). Past that,
     one end slips backwards (a reversed slip zone, or a second stick zone
     appears); the closed form refuses, and ``method="auto"`` falls back.
+    """
+
+
+class CycleSlipReversalError(SlipReversalError):
+    """In the steady state of a cycle some point would slip against the half-cycle's direction.
+
+    The steady-state superposition (docs/STEADY_STATE.md, eq. S4) holds only
+    while, on each half-cycle, the stick zone shrinks from the whole contact to
+    the permanent one and every point of the slip zones slips in the sense of
+    ``ΔQ`` (eq. S10): a change of the normal load, of the tilt or of the bulk
+    stress can reverse the slip at one end. Past that the closed form and the
+    SIE refuse; ``method="auto"`` falls back, and only a marched history answers.
+    """
+
+
+class OneSidedSlipError(StickZoneError):
+    """The permanent stick zone of a cycle would reach one edge of the smaller contact but not the other.
+
+    Then one end slips and the other has shaken down: the stick zone runs to the
+    contact's edge, which the bounded corrective pressure of the steady state
+    (docs/STEADY_STATE.md, eq. S12) does not model.
     """
 
 

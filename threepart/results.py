@@ -504,3 +504,123 @@ def masing(Q_max: float, Q: float, branch: str) -> tuple[float, float, float]:
     if branch == "unloading":
         return 1.0, -2.0, min(max(0.5 * (Q_max - Q), 0.0), Q_max)
     return -1.0, 2.0, min(max(0.5 * (Q_max + Q), 0.0), Q_max)
+
+
+# --- the periodic steady state of in-phase loading (docs/STEADY_STATE.md) -------------------------
+__all__ += ["SteadyStateResult"]
+
+
+@dataclass(frozen=True)
+class SteadyStateResult:
+    """The periodic steady state of a cycle between two states, the loads moving linearly, in phase.
+
+    Attributes
+    ----------
+    normals
+        The normal solutions at the two ends of the cycle.
+    states
+        The two ends, each ``(P, s, Q, sigma_bulk)``.
+    f
+        Coefficient of friction.
+    d, e
+        The permanent stick zone ``[-(d+e), d-e]`` (eq. S5, S6); in shakedown the
+        smaller contact (the intersection of the two).
+    energy
+        Friction work dissipated per cycle and unit length, N·mm/mm (eq. S11); 0 in shakedown.
+    shakedown
+        True when nothing slips in the steady state (eq. S12).
+
+    A subclass gives the corrective pressure ``p*`` of the stick zone
+    (:meth:`corrective`) and the gaps of the corrective and the two normal contacts
+    (:meth:`gap`); the shear and the slip amplitude follow.
+    """
+
+    normals: tuple[NormalResult, NormalResult]
+    states: tuple[tuple[float, float, float, float], tuple[float, float, float, float]]
+    f: float
+    d: float
+    e: float
+    energy: float
+    shakedown: bool
+    method: str = ""
+    diagnostics: Diagnostics = field(default_factory=Diagnostics, compare=False)
+    info: dict[str, Any] = field(default_factory=dict, compare=False)
+
+    @property
+    def stick_zone(self) -> tuple[float, float]:
+        """``(-(d+e), d-e)``."""
+        return -(self.d + self.e), self.d - self.e
+
+    @property
+    def sign(self) -> float:
+        """``sign(ΔQ)``, ``ΔQ = Q_1 - Q_0``: the direction of slip from state 0 to state 1 (+1 at ``ΔQ = 0``)."""
+        return 1.0 if self.states[1][2] >= self.states[0][2] else -1.0
+
+    @property
+    def P_star(self) -> float:
+        """Load of the corrective contact, ``[f (P_0 + P_1) - |ΔQ|]/(2 f)`` (eq. S6)."""
+        (P0, _, Q0, _), (P1, _, Q1, _) = self.states
+        return (self.f * (P0 + P1) - abs(Q1 - Q0)) / (2 * self.f)
+
+    def corrective(self, x: ArrayLike) -> np.ndarray:
+        """Corrective pressure ``p*`` on the stick zone (0 outside)."""
+        raise NotImplementedError
+
+    def gap(self, x: ArrayLike, which: str | int) -> np.ndarray:
+        """Gap of the corrective contact (``which="stick"``) or of the normal contact 0 or 1, 0 inside it."""
+        raise NotImplementedError
+
+    def _state(self, state: Any) -> int:
+        if isinstance(state, bool) or state not in (0, 1):
+            raise ValueError(f"`state` = {state!r} must be 0 or 1 (an end of the cycle)")
+        return int(state)
+
+    def shear(self, x: ArrayLike, state: int) -> np.ndarray:
+        """Shear ``q(x)`` at the end ``state`` of the cycle; integrates to that state's ``Q``.
+
+        In the slip zones ``q_0 = -sign(ΔQ) f p_0`` and ``q_1 = sign(ΔQ) f p_1``
+        (eq. S3). In the stick zone the steady state fixes only the change (eq. S4);
+        the part locked in depends on the load history. This returns the one
+        proportional to ``p*``: ``q_0 = sign(ΔQ) f (k_0 p* - p_0)``,
+        ``q_1 = sign(ΔQ) f (p_1 - k_1 p*)``, ``k_0 + k_1 = 2`` (eq. S13): at
+        ``P_0 = P_1`` without a mean shear, Masing's states at ``∓Q_max``.
+
+        Raises
+        ------
+        ValueError
+            In shakedown: the locked-in shear is all history, nothing of the steady state fixes it.
+        """
+        k = self._state(state)
+        if self.shakedown:
+            raise ValueError("the cycle has shaken down: its shear is locked in by the load history, "
+                             "the steady state does not determine it (only energy = 0 and the stick zone)")
+        x = np.asarray(x, dtype=float)
+        P, _, Q, _ = self.states[k]
+        sgn, Ps = self.sign, self.P_star
+        p = self.normals[k].pressure(x)
+        if k == 0:
+            return sgn * self.f * ((sgn * Q + self.f * P) / (self.f * Ps) * self.corrective(x) - p)
+        return sgn * self.f * (p - (self.f * P - sgn * Q) / (self.f * Ps) * self.corrective(x))
+
+    def slip_amplitude(self, x: ArrayLike) -> np.ndarray:
+        """Half the change of the relative surface displacement over the half-cycle (eq. S7).
+
+        ``f |gap* - (gap_0 + gap_1)/2|`` inside the larger contact, 0 outside it;
+        in the smaller contact ``f gap*``. 0 in shakedown.
+        """
+        x = np.asarray(x, dtype=float)
+        if self.shakedown:
+            return np.zeros(x.shape)
+        lo = min(-n.a for n in self.normals)
+        hi = max(n.c for n in self.normals)
+        amp = self.f * np.abs(self.gap(x, "stick") - 0.5 * (self.gap(x, 0) + self.gap(x, 1)))
+        return np.where((x > lo) & (x < hi), amp, 0.0)
+
+    def stress(self, x: ArrayLike, z: ArrayLike, state: int, *, nu: float = NU) -> Stress:
+        """Stresses in the substrate at ``(x, z)`` at the end ``state``: pressure, :meth:`shear`, ``sigma_bulk``."""
+        from .stress import stress
+        k = self._state(state)
+        n = self.normals[k]
+        return stress(x, z, pressure=n.pressure, shear=lambda t: self.shear(t, k), ends=(-n.a, n.c),
+                      sigma_bulk=self.states[k][3], nu=nu,
+                      kinks=_kinks(n.punch.b, -n.a, n.c, *self.stick_zone))
