@@ -32,7 +32,7 @@ from threepart.errors import (CycleSlipReversalError, LiftOffError, OneSidedSlip
                               StickSeparationError, StickZoneError)
 from threepart.punch import Punch
 from threepart.results import Diagnostics, SteadyStateResult
-from threepart.steady import (WORK_NODES, Path, State, _gauss, check_cycle_states, corrective_load, corrective_tilt_cycle,
+from threepart.steady import (WORK_NODES, Path, State, _nodes, check_cycle_states, corrective_load, corrective_tilt_cycle,
                               cycle_margin, half_cycle_work, ramp, tilt_rate)
 from threepart.validate import check_punch
 
@@ -162,10 +162,11 @@ class _Cycle:
                 gl, gr = cycle_margin(z["left"], z["right"], z["a"], z["c"], self.A, self.f, z["dP_star"],
                                       z["dalpha_star"])
                 # a stick zone past the contact's end is a reversal too (its end moved outwards)
-                flag = -abs(self.f * z["dP_star"]) / math.pi
-                out.append((np.where(z["left"] < -z["a"], flag, gl), np.where(z["right"] > z["c"], flag, gr)))
+                flag, tol = -abs(self.f * z["dP_star"]) / math.pi, 1e-12 * (z["a"] + z["c"])
+                out.append((np.where(z["left"] < -z["a"] - tol, flag, gl),
+                            np.where(z["right"] > z["c"] + tol, flag, gr)))
             return out
-        lam = np.linspace(0.0, 1.0, MARGIN_GRID)[1:]
+        lam = np.linspace(0.0, 1.0, MARGIN_GRID)      # lam = 0: the stick zone is the contact
         found = margins(lam)
         best = min(((float(g.min()), float(lam[int(np.argmin(g))]), j, end)
                     for j, pair in enumerate(found) for g, end in zip(pair, ("left", "right"))),
@@ -262,8 +263,8 @@ def steady_state(punch: Punch, states: Any, f: float, *, A: float) -> SteadySolu
     batch = solve_normal_batch(punch, [st0[0], st1[0]], [st0[1], st1[1]], A=A)
     normals = (batch[0], batch[1])
     cycle = _Cycle(punch, batch.A, f, (st0, st1), normals)
-    grid = np.linspace(0.0, 1.0, MARGIN_GRID)[1:]
-    first = [0.5 * (1 - np.cos(math.pi * _gauss(n)[0])) for n in (WORK_NODES, 2 * WORK_NODES)]
+    grid = np.linspace(0.0, 1.0, MARGIN_GRID)
+    first = [_nodes(n, ())[0] for n in (WORK_NODES, 2 * WORK_NODES)]
     cycle.prime(grid[-1:], grid, *first)          # one call of each root finder for the whole cycle
     left, right, shakedown = _permanent(cycle)
     info: dict[str, Any] = {"P_star": (f * (st0[0] + st1[0]) - abs(st1[2] - st0[2])) / (2 * f)}

@@ -12,9 +12,12 @@ lift_off            -- lever arms at which a contact edge reaches a join x = ±b
 solve_partial_slip  -- stick zone (d, e) and shear q(x) by Ciavarella–Jäger, from the discretised equations,
                        also where the stick zone ends on the central segment
 fretting_cycle      -- Q: 0 -> Q_max -> -Q_max -> Q_max by Masing's rule on those stick zones: delta, energy
+steady_state        -- periodic steady state of an in-phase cycle between two (P, s, Q, sigma_bulk), also
+                       where the permanent stick zone ends on the central segment (docs/STEADY_STATE.md)
 SieNormalResult     -- NormalResult with n, scheme and the interpolating pressure
 SieSlipResult       -- SlipResult with n, scheme, corrective pressure and shear
 SieFrettingResult   -- FrettingResult with n, scheme; shear, slip and slip amplitude at any Q of a branch
+SieSteadyResult     -- SteadyStateResult with n, scheme and the corrective pressure p*
 NoConvergenceError  -- raised when a root iteration fails (never a silent NaN)
 
 Discretisation
@@ -45,10 +48,11 @@ from threepart.errors import NoConvergenceError
 from .schemes import SCHEMES
 from .slip import SieSlipResult, solve_partial_slip
 from .fretting import SieFrettingResult, fretting_cycle
+from .steady import SieSteadyResult, steady_state
 
 __all__ = [
     "solve_normal", "solve_partial_slip", "lift_off", "SieNormalResult", "SieSlipResult", "NoConvergenceError",
-    "fretting_cycle", "SieFrettingResult",
+    "fretting_cycle", "SieFrettingResult", "steady_state", "SieSteadyResult",
     "gauss_chebyshev", "cauchy_matrix", "slope_coefficients", "SCHEMES",
     "convergence_study", "pressure_by_quadrature",
 ]

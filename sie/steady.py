@@ -22,6 +22,7 @@ from typing import Any, Callable
 
 import numpy as np
 from numpy.typing import ArrayLike
+from scipy.optimize import brentq
 
 from threepart.errors import (CycleSlipReversalError, NoConvergenceError, OneSidedSlipError,
                               StickSeparationError)
@@ -97,6 +98,9 @@ class _SieCycle:
     def zone(self, j: int, lam: float) -> tuple[float, float]:
         """``(m*, h*)`` of the stick zone at the fraction ``lam`` of the half-cycle ``j``."""
         key = (j, lam)
+        if lam == 0:         # the stick zone starts as the whole contact (eqs. S5, S6 at lam = 0)
+            m, h, _ = self.normal(float(j))
+            return m, h
         if key not in self._zone:
             start, end = (self.states, self.states[::-1])[j]
             _, _, Q, sigma = (float(v) for v in ramp(start, end, lam))
@@ -163,6 +167,30 @@ def _stick_ends(punch: Punch, A: float, sch: Plain | Projected, P_star: float, a
     return m, h
 
 
+def _crossings(cycle: _SieCycle, j: int) -> tuple[float, ...]:
+    """Fractions of the half-cycle ``j`` at which a stick-zone or contact end crosses a join ``±b``.
+
+    Each end moves monotonically on the half-cycle (eq. S10 holds), so a change
+    of side between ``lam = 0`` and 1 has one root, found by Brent's method.
+    """
+    b = cycle.punch.b
+    if b == 0:
+        return ()
+
+    def ends(lam: float) -> np.ndarray:
+        m, h, _ = cycle.normal(lam if j == 0 else 1.0 - lam)
+        zm, zh = cycle.zone(j, lam) if lam > 0 else (m, h)
+        return np.array([zm - zh, zm + zh, m - h, m + h])
+
+    out = []
+    e0, e1 = ends(0.0), ends(1.0)
+    for k in range(4):
+        for join in (-b, b):
+            if (e0[k] - join) * (e1[k] - join) < 0:
+                out.append(brentq(lambda t: float(ends(t)[k]) - join, 0.0, 1.0, xtol=1e-14, rtol=1e-13))
+    return tuple(sorted(out))
+
+
 def _classify(cycle: _SieCycle) -> tuple[float, float, bool]:
     """``(m*, h*, shakedown)`` of the permanent stick zone (eq. S12), or :class:`OneSidedSlipError`."""
     e0, e1 = cycle.ends
@@ -182,20 +210,21 @@ def _classify(cycle: _SieCycle) -> tuple[float, float, bool]:
 
 
 def _check_direction(cycle: _SieCycle) -> float:
-    """Least slip-direction margin (eq. S10) at :data:`PATH_STATES` fractions of each half-cycle.
+    """Least slip-direction margin (eq. S10) at :data:`PATH_STATES` fractions of each half-cycle (0 and 1 included).
 
     Raises
     ------
     CycleSlipReversalError
         Where it is negative, or a stick zone leaves its contact.
     """
-    lam = np.linspace(0.0, 1.0, PATH_STATES)[1:]
+    lam = np.linspace(0.0, 1.0, PATH_STATES)
     least = math.inf
     for j in (0, 1):
         z = cycle.half(j, lam)
         gl, gr = cycle_margin(z["left"], z["right"], z["a"], z["c"], cycle.A, cycle.f, z["dP_star"],
                               z["dalpha_star"])
-        outside = (z["left"] < -z["a"]) | (z["right"] > z["c"])
+        tol = 1e-12 * (z["a"] + z["c"])
+        outside = (z["left"] < -z["a"] - tol) | (z["right"] > z["c"] + tol)
         g = np.minimum(gl, gr)
         k = int(np.argmin(g))
         scale = abs(cycle.f * z["dP_star"]) / math.pi
@@ -229,7 +258,8 @@ def _check_coulomb(cycle: _SieCycle, m: float, h: float) -> None:
                 "not this single interval")
 
 
-def steady_state(punch: Punch, states: Any, f: float, *, A: float, n: int | None = None) -> SieSteadyResult:
+def steady_state(punch: Punch, states: Any, f: float, *, A: float, n: int | None = None,
+                 scheme: str | None = None) -> SieSteadyResult:
     """The periodic steady state of the cycle between ``states[0]`` and ``states[1]``, by the SIE.
 
     Parameters
@@ -237,8 +267,9 @@ def steady_state(punch: Punch, states: Any, f: float, *, A: float, n: int | None
     punch, states, f, A
         As :func:`threepart.closedform.steady_state`: the two ends ``(P, s, Q, sigma_bulk)``
         of the cycle, the loads linear in between, ``|Q| < f P`` at both.
-    n
-        Sine terms of the projected scheme (default ``sie.normal.DEFAULT_N``).
+    n, scheme
+        Discretisation (defaults ``sie.normal.DEFAULT_N`` and ``DEFAULT_SCHEME``,
+        the projected scheme), as :func:`sie.solve_normal`.
 
     Returns
     -------
@@ -263,11 +294,11 @@ def steady_state(punch: Punch, states: Any, f: float, *, A: float, n: int | None
     check_punch(punch)
     (st0, st1), f = check_cycle_states(states, f)
     n = DEFAULT_N if n is None else n
-    sch = check_scheme(DEFAULT_SCHEME, n)
+    sch = check_scheme(DEFAULT_SCHEME if scheme is None else scheme, n)
     t0 = time.perf_counter()
-    ends = (solve_normal(punch, st0[0], st0[1], A=A, n=n), solve_normal(punch, st1[0], st1[1], A=A, n=n))
+    ends = tuple(solve_normal(punch, P, s, A=A, n=sch.n, scheme=sch.name) for P, s, _, _ in (st0, st1))
     A = ends[0].A
-    cycle = _SieCycle(punch, A, f, (st0, st1), ends, sch)
+    cycle = _SieCycle(punch, A, f, (st0, st1), (ends[0], ends[1]), sch)
     m, h, shakedown = _classify(cycle)
     sign = cycle.sign[0]
     alpha_star = float(corrective_tilt_cycle(ends[0].alpha, ends[1].alpha, A, sign, st1[3] - st0[3], f))
@@ -277,10 +308,11 @@ def steady_state(punch: Punch, states: Any, f: float, *, A: float, n: int | None
     if not shakedown:
         _check_coulomb(cycle, m, h)
         info["margin"] = _check_direction(cycle)
-        works = [half_cycle_work(cycle.path(j), A, f, punch.b, rtol=WORK_RTOL) for j in (0, 1)]
+        works = [half_cycle_work(cycle.path(j), A, f, punch.b, rtol=WORK_RTOL, breaks=_crossings(cycle, j))
+                 for j in (0, 1)]
         energy, info["energy_nodes"] = works[0][0] + works[1][0], max(works[0][1], works[1][1])
         stick = cycle.density(m, h)
     diagnostics = Diagnostics(n=sch.n, scheme=sch.name, iterations=cycle.solves,
                               timings={"total": time.perf_counter() - t0})
-    return SieSteadyResult(normals=ends, states=(st0, st1), f=f, d=h, e=-m, energy=energy,
+    return SieSteadyResult(normals=(ends[0], ends[1]), states=(st0, st1), f=f, d=h, e=-m, energy=energy,
                            shakedown=shakedown, diagnostics=diagnostics, info=info, stick=stick)

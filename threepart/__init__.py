@@ -34,6 +34,8 @@ Solving
 -------
 solve               -- normal or partial-slip solution by method "auto" (closed form where it
                        holds, else SIE), "closedform", "sie" or "fem"
+steady_state        -- the periodic steady state of an in-phase cycle between two states
+                       (P, s, Q, sigma_bulk), by method "auto", "closedform" or "sie"
 METHODS, CHOICES    -- the three methods; what `method` may be
 
 Results
@@ -86,7 +88,7 @@ _HOMES = {
     "StickZoneError": "errors", "StickSeparationError": "errors",
     "NoConvergenceError": "errors", "ContactZoneError": "errors",
     "MeshResolutionError": "errors", "SlopeLimitError": "errors", "ArcExtentError": "errors",
-    "solve": "methods", "METHODS": "methods", "CHOICES": "methods",
+    "solve": "methods", "steady_state": "methods", "METHODS": "methods", "CHOICES": "methods",
     "Stress": "stress",
     "hilbert": "stress",
     "stress_history": "fatigue", "von_mises_range": "fatigue",
@@ -101,7 +103,7 @@ if TYPE_CHECKING:   # pragma: no cover - for type checkers and IDEs only
                          MeshResolutionError, NoConvergenceError, SeparationError,
                          SlopeLimitError, StickSeparationError, StickZoneError)
     from .material import compliance, rigid_punch, similar_pair
-    from .methods import CHOICES, METHODS, solve
+    from .methods import CHOICES, METHODS, solve, steady_state
     from .punch import Punch
     from .results import NormalResult, Peak, SlipResult
     from .fatigue import HotSpot, findley, ruiz, stress_history, swt, von_mises_range

@@ -161,11 +161,18 @@ Path = Callable[[np.ndarray], tuple[Callable[[np.ndarray], np.ndarray], np.ndarr
                                      np.ndarray, np.ndarray, float, np.ndarray]]
 
 
-def _work(path: Path, A: float, f: float, b: float, n: int) -> float:
-    """:func:`half_cycle_work` on ``n`` nodes in ``lam`` and per slip-zone panel."""
+def _nodes(n: int, breaks: tuple[float, ...]) -> tuple[np.ndarray, np.ndarray]:
+    """Fractions ``lam`` and weights: ``n`` Gauss nodes per panel between the ``breaks``, in ``(1 - cos πt)/2``."""
     t, wt = _gauss(n)
-    lam = 0.5 * (1 - np.cos(math.pi * t))              # smooth at both ends of the half-cycle
-    wl = wt * 0.5 * math.pi * np.sin(math.pi * t)
+    edges = np.array(sorted({0.0, 1.0, *breaks}))
+    lo, span = edges[:-1, None], np.diff(edges)[:, None]
+    lam = lo + span * 0.5 * (1 - np.cos(math.pi * t))     # smooth at both ends of each panel
+    return lam.ravel(), (span * wt * 0.5 * math.pi * np.sin(math.pi * t)).ravel()
+
+
+def _work(path: Path, A: float, f: float, b: float, n: int, breaks: tuple[float, ...] = ()) -> float:
+    """:func:`half_cycle_work` on ``n`` nodes per panel in ``lam`` and per slip-zone panel."""
+    lam, wl = _nodes(n, breaks)
     pressure, a, c, left, right, dP, dalpha = path(lam)
     theta, wth = _gauss(n)
     theta, wth = theta * math.pi, wth * math.pi
@@ -181,7 +188,8 @@ def _work(path: Path, A: float, f: float, b: float, n: int) -> float:
     return float(2 * f * f * np.sum(wl * total))
 
 
-def half_cycle_work(path: Path, A: float, f: float, b: float, rtol: float = WORK_RTOL) -> tuple[float, int]:
+def half_cycle_work(path: Path, A: float, f: float, b: float, rtol: float = WORK_RTOL,
+                    breaks: tuple[float, ...] = ()) -> tuple[float, int]:
     """Friction work of one half-cycle, ``2 f^2 ∫_0^1 dlam ∫ p_lam(x) d gap*/d lam dx`` (eq. S11).
 
     A point of a slip zone slips by ``2 f d gap*`` (eq. S7) under ``|q| = f p_lam``.
@@ -190,7 +198,9 @@ def half_cycle_work(path: Path, A: float, f: float, b: float, rtol: float = WORK
     the stick-zone ends ``left, right``, ``dP*/dlam`` and ``d alpha*/dlam``.
     Gauss–Legendre in ``lam = (1 - cos πt)/2`` and, over each slip zone cut at the
     joins ``±b``, in ``θ`` with ``x = lo + (hi - lo)(1 - cos θ)/2``; the nodes are
-    doubled from :data:`WORK_NODES` until the work settles to ``rtol``.
+    doubled from :data:`WORK_NODES` until the work settles to ``rtol``. ``breaks`` are
+    fractions where a stick-zone or contact end crosses a join (the SIE past the
+    closed form): the ``lam`` quadrature is composite, with panel ends there.
 
     Returns
     -------
@@ -203,7 +213,7 @@ def half_cycle_work(path: Path, A: float, f: float, b: float, rtol: float = WORK
     """
     n, previous = WORK_NODES, math.nan
     while n <= MAX_WORK_NODES:
-        W = _work(path, A, f, b, n)
+        W = _work(path, A, f, b, n, breaks)
         if abs(W - previous) <= rtol * abs(W):
             return W, n
         previous, n = W, 2 * n

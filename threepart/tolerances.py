@@ -71,6 +71,9 @@ normalised error (``_level``: at the finest discretisation of a study).
 ``refs``
     The precision each quantity of the reference dataset claims (``threepart
     export-refs``, ``docs/REFERENCE_DATA.md``), checked by ``tests/test_refs.py``.
+``steady``
+    The periodic steady state of in-phase loading (``tests/test_steady_state.py``,
+    docs/STEADY_STATE.md): reductions, Hertz, closed form vs SIE, brute quadrature.
 ``convergence``
     The convergence tools (:mod:`threepart.convergence`) on manufactured sequences.
 """
@@ -317,6 +320,13 @@ TOLERANCES: dict[tuple[str, str], Tolerance] = {
     ("refs", "energy"): _T(1e-12, "closed-form energy per cycle vs the SIE's superposition of its own stick zones: measured 4.2e-16"),
     ("refs", "loop"): _T(1e-12, "the fretting cycle's hysteresis loop (of its largest value) and stick-zone ends (of d): closed form vs the SIE's Masing superposition measured <= 3e-14"),
     ("refs", "stress"): _T(1e-7, "Flamant quadrature of threepart.stress (1e-8 of p0, docs/STRESS.md) on the closed form, or past lift-off on the SIE at n = 1024 (pressure error 5e-8 of the peak); of the peak pressure"),
+    # --- steady state: the periodic steady state of in-phase loading (docs/STEADY_STATE.md) --------
+    ("steady", "round_off"): _T(1e-12, "P, s constant against cf.fretting_cycle (stick-zone ends of W, energy relative, shear of its peak), and the cycle's symmetries: the same roots and quadratures, measured <= 1.4e-14"),
+    ("steady", "hertz_zone"): _T(1e-8, "Hertz's stick zone from c'^2 = 2ARP*/π and the offset of eq. S15, both methods, of W (the issue's target; measured <= 2e-16)"),
+    ("steady", "hertz_energy"): _T(1e-10, "the closed form's energy against eq. S16 by quad (epsrel 1e-13): measured <= 2e-15"),
+    ("steady", "zone"): _T(1e-8, "closed form vs SIE (n = 1024): stick-zone ends of W (measured <= 5e-16), shear and slip amplitude of their peaks, stress of p_max; the SIE's steady state vs its fretting cycle past the closed form"),
+    ("steady", "energy"): _T(1e-6, "energy per cycle: closed form vs SIE (measured <= 1e-9: the SIE's quadrature settles to 1e-8), vs the brute quadrature of the differenced slip (step 1e-6: measured <= ...), ∫q = Q by quad"),
+    ("steady", "rate"): _T(1e-7, "eqs. S8, S9 against central differences with step 1e-4 of the load path: truncation ~1e-8"),
     # --- the convergence tools on manufactured sequences -----------------------------------------
     ("convergence", "exact"): _T(1e-12, "err = C h^p exactly: the fit and the extrapolation are exact up to rounding"),
     ("convergence", "iterated"): _T(1e-8, "the three-level fixed point stops when p moves by < 1e-10"),
