@@ -32,13 +32,13 @@ from threepart.errors import (CycleSlipReversalError, LiftOffError, OneSidedSlip
                               StickSeparationError, StickZoneError)
 from threepart.punch import Punch
 from threepart.results import Diagnostics, SteadyStateResult
-from threepart.steady import (WORK_NODES, Path, State, _nodes, check_cycle_states, corrective_load, corrective_tilt_cycle,
+from threepart.steady import (WORK_NODES, LoadState, Path, _nodes, check_cycle_states, corrective_load, corrective_tilt_cycle,
                               cycle_margin, half_cycle_work, ramp, tilt_rate)
 from threepart.validate import check_punch
 
 from . import formulas
 from .fretting import stick_gap
-from .newton import ray_state, solve_phi
+from .newton import State, ray_state, solve_phi
 from .normal import NormalSolution, _check_separation, _solve, solve_normal_batch
 from .slip import _least, stick_zone_leaves
 
@@ -66,6 +66,49 @@ class SteadySolution(SteadyStateResult):
         return stick_gap(punch, n.a, n.c, x)
 
 
+#: Newton steps of the warm-started ends before the bracketed roots take over
+NEWTON_STEPS = 12
+
+
+def _newton_ends(punch: Punch, AP: np.ndarray, target: str, value: np.ndarray, h: np.ndarray,
+                 m: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Ends ``(a, c)`` of the bounded contact of load ``AP/A`` with ``target`` (``"tilt"`` or ``"moment"``) = ``value``.
+
+    Newton's method in ``(h, m)`` on eq. (equilibrium_condition_1) and eq.
+    (consistency_condition) or (equilibrium_condition_2), with the exact
+    derivatives of :class:`closedform.newton.State`, from a close start ``(h, m)``
+    (the states of a cycle lie between known ones). Returns a flag of the
+    elements that converged with both ends on the outer segments; the others go
+    to :func:`closedform.newton.solve_phi` (also the judge of an end on the centre).
+    """
+    b = punch.b
+    h, m = h.astype(float), m.astype(float)
+    ok = np.zeros(h.shape, dtype=bool)
+    for _ in range(NEWTON_STEPS):
+        a, c = h - m, h + m
+        inside = (a > b) & (c > b)
+        st = State(punch, np.sqrt(np.where(inside, a - b, 1.0)), np.sqrt(np.where(inside, c - b, 1.0)), np)
+        g, g_h, g_m = (st.alpha, st.alpha_h, st.alpha_m) if target == "tilt" else (st.T, st.T_h, st.T_m)
+        r1, r2 = st.AP - AP, g - value
+        det = st.AP_h * g_m - st.AP_m * g_h
+        with np.errstate(divide="ignore", invalid="ignore"):
+            dh = -(r1 * g_m - st.AP_m * r2) / det
+            dm = -(st.AP_h * r2 - g_h * r1) / det
+        for _ in range(8):      # a step that would put an end on the centre, or jump, is halved
+            bad = (h + dh - m - dm <= b) | (h + dh + m + dm <= b) | (np.abs(dh) >= 0.5 * h)
+            if not np.any(bad):
+                break
+            dh, dm = np.where(bad, 0.5 * dh, dh), np.where(bad, 0.5 * dm, dm)
+        good = inside & np.isfinite(dh) & np.isfinite(dm) & ~bad
+        # a step below 1e-12 h leaves an error ~1e-24 h after it (quadratic convergence)
+        ok = good & (np.abs(dh) <= 1e-12 * h) & (np.abs(dm) <= 1e-12 * h)
+        h, m = np.where(good, h + dh, h), np.where(good, m + dm, m)
+        if np.all(ok | ~good):
+            break
+    a, c = h - m, h + m
+    return a, c, ok & (a > b) & (c > b)
+
+
 class _Cycle:
     """Both half-cycles at once: normals and stick zones at fractions ``lam`` (vectorised).
 
@@ -75,7 +118,7 @@ class _Cycle:
     the same at both ends the normal is the same throughout and is not solved again.
     """
 
-    def __init__(self, punch: Punch, A: float, f: float, states: tuple[State, State],
+    def __init__(self, punch: Punch, A: float, f: float, states: tuple[LoadState, LoadState],
                  ends: tuple[NormalSolution, NormalSolution]) -> None:
         self.punch, self.A, self.f, self.states, self.ends = punch, A, f, states, ends
         (P0, s0, Q0, _), (P1, s1, Q1, _) = states
@@ -84,6 +127,7 @@ class _Cycle:
                              for b, e in (states, states[::-1]))
         self.fixed = P0 == P1 and s0 == s1
         self._memo: dict[bytes, tuple[dict[str, Any], dict[str, Any]]] = {}
+        self._permanent: tuple[float, float] | None = None
 
     def prime(self, *lams: np.ndarray) -> None:
         """Solve the states at several sets of fractions in one call of the root finders, for :meth:`__call__`."""
@@ -108,6 +152,12 @@ class _Cycle:
         if self.fixed:
             n, one = self.ends[0], np.ones_like(lam)
             return n.a * one, n.c * one, n.alpha * one, P, s
+        (h0, m0), (h1, m1) = ((0.5 * (n.a + n.c), 0.5 * (n.c - n.a)) for n in self.ends)
+        a, c, ok = _newton_ends(punch, A * P, "moment", A * P * s, h0 + lam * (h1 - h0), m0 + lam * (m1 - m0))
+        if np.all(ok):
+            st = State(punch, np.sqrt(a - punch.b), np.sqrt(c - punch.b), np)
+            _check_separation(punch, st.a, st.c, A, P, s, "free")
+            return st.a, st.c, st.alpha, P, s
         st, below, above = _solve(punch, P, s, A, "free", np)
         if np.any(below | above):
             i = int(np.argmax(below | above))
@@ -133,15 +183,52 @@ class _Cycle:
                            "dalpha_star": 0.5 * rate - self.sign[j] * A * (end[3] - start[3]) / (8 * f),
                            "dP_star": self.dP_star[j]})
         P_star = np.concatenate([h["P_star"] for h in halves])
-        dAP = A * P_star - 0.5 * math.pi * punch.kappa0 * punch.b**2
-        out = ~(dAP > 0)
-        r, phi, lo, hi = solve_phi(punch, np.where(out, A * np.concatenate([h["P"] for h in halves]), dAP),
-                                   "tilt", np.concatenate([h["alpha_star"] for h in halves]), np, sign=-1.0)
-        zs = ray_state(punch, r, phi, np, full=False)
+        alpha_star = np.concatenate([h["alpha_star"] for h in halves])
+        # Newton from h*^2 and m* interpolated between the contact (lam = 0) and the permanent zone
+        (hp, mp), lam2 = self.permanent(), np.concatenate([lam, lam])
+        start = np.repeat([[0.5 * (n.a + n.c), 0.5 * (n.c - n.a)] for n in self.ends], k, axis=0)
+        a_s, c_s, ok = _newton_ends(punch, A * P_star, "tilt", alpha_star,
+                                    np.sqrt(start[:, 0] ** 2 + lam2 * (hp * hp - start[:, 0] ** 2)),
+                                    start[:, 1] + lam2 * (mp - start[:, 1]))
+        a_s, c_s, out = self._bracketed(P_star, alpha_star, a_s, c_s, ok)
         for j, h in enumerate(halves):
             idx = slice(j * k, (j + 1) * k)
-            h.update(left=-zs.a[idx], right=zs.c[idx], out=(out | lo | hi)[idx])
+            h.update(left=-a_s[idx], right=c_s[idx], out=out[idx])
         return halves[0], halves[1]
+
+    def _bracketed(self, P_star: np.ndarray, alpha_star: np.ndarray, a_s: np.ndarray, c_s: np.ndarray,
+                   ok: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """The stick zones Newton did not settle, by the bracketed roots; flags an end on the centre."""
+        punch, A = self.punch, self.A
+        dAP = A * P_star - 0.5 * math.pi * punch.kappa0 * punch.b**2
+        out = ~(dAP > 0)
+        todo = ~ok | out
+        if np.any(todo):
+            r, phi, lo, hi = solve_phi(punch, np.where(out, A * max(n.P for n in self.ends), dAP)[todo],
+                                       "tilt", alpha_star[todo], np, sign=-1.0)
+            zs = ray_state(punch, r, phi, np, full=False)
+            a_s, c_s = a_s.copy(), c_s.copy()
+            a_s[todo], c_s[todo] = zs.a, zs.c
+            out = out.copy()
+            out[todo] |= lo | hi
+        return a_s, c_s, out
+
+    def permanent(self) -> tuple[float, float]:
+        """``(h*, m*)`` of the permanent stick zone (``lam = 1``), by Newton from the smaller contact scaled."""
+        if self._permanent is None:
+            (P0, _, Q0, g0), (P1, _, Q1, g1) = self.states
+            P_star = np.array([(self.f * (P0 + P1) - abs(Q1 - Q0)) / (2 * self.f)])
+            alpha_star = corrective_tilt_cycle(self.ends[0].alpha, self.ends[1].alpha, self.A, self.sign[0],
+                                               g1 - g0, self.f)
+            n = min(self.ends, key=lambda e: e.P)
+            # the excess half-width over b scales as P^(1/2) (Hertz) to P^(2/3) (flat centre)
+            ratio = max(P_star[0], 0.0) / n.P
+            h = self.punch.b + (0.5 * (n.a + n.c) - self.punch.b) * ratio ** (0.5 if self.punch.b == 0 else 2 / 3)
+            a_s, c_s, ok = _newton_ends(self.punch, self.A * P_star, "tilt", np.atleast_1d(alpha_star),
+                                        np.array([h]), np.array([0.5 * (n.c - n.a)]))
+            a_s, c_s, _ = self._bracketed(P_star, np.atleast_1d(alpha_star), a_s, c_s, ok)
+            self._permanent = (0.5 * float(a_s[0] + c_s[0]), 0.5 * float(c_s[0] - a_s[0]))
+        return self._permanent
 
     def path(self, j: int) -> Path:
         """The pieces :func:`threepart.steady.half_cycle_work` integrates, on the half-cycle ``j``."""

@@ -28,7 +28,7 @@ from threepart.errors import (CycleSlipReversalError, NoConvergenceError, OneSid
                               StickSeparationError)
 from threepart.punch import Punch
 from threepart.results import Diagnostics, SteadyStateResult
-from threepart.steady import (Path, State, check_cycle_states, corrective_load, corrective_tilt_cycle,
+from threepart.steady import (LoadState, Path, check_cycle_states, corrective_load, corrective_tilt_cycle,
                               cycle_margin, half_cycle_work, ramp, tilt_rate)
 from threepart.validate import check_punch
 
@@ -68,7 +68,7 @@ class SieSteadyResult(SteadyStateResult):
 class _SieCycle:
     """Normals and stick zones of both half-cycles at fractions ``lam``, each solved once (memoised)."""
 
-    def __init__(self, punch: Punch, A: float, f: float, states: tuple[State, State],
+    def __init__(self, punch: Punch, A: float, f: float, states: tuple[LoadState, LoadState],
                  ends: tuple[SieNormalResult, SieNormalResult], sch: Plain | Projected) -> None:
         self.punch, self.A, self.f, self.states, self.ends, self.sch = punch, A, f, states, ends, sch
         (P0, s0, Q0, _), (P1, s1, Q1, _) = states

@@ -41,10 +41,10 @@ WORK_NODES = 16
 #: the most nodes tried before NoConvergenceError
 MAX_WORK_NODES = 1024
 
-State = tuple[float, float, float, float]
+LoadState = tuple[float, float, float, float]
 
 
-def check_cycle_states(states: Any, f: Any) -> tuple[tuple[State, State], float]:
+def check_cycle_states(states: Any, f: Any) -> tuple[tuple[LoadState, LoadState], float]:
     """``states`` as two ``(P, s, Q, sigma_bulk)`` float tuples and ``f`` as a float > 0.
 
     ``P`` must be > 0 and ``|Q| < f P`` at both ends (``FullSlidingError``
@@ -70,7 +70,7 @@ def check_cycle_states(states: Any, f: Any) -> tuple[tuple[State, State], float]
     return (out[0], out[1]), f
 
 
-def ramp(start: State, end: State, lam: ArrayLike) -> tuple[np.ndarray, ...]:
+def ramp(start: LoadState, end: LoadState, lam: ArrayLike) -> tuple[np.ndarray, ...]:
     """``(P, s, Q, sigma_bulk)`` at the fractions ``lam`` from ``start`` to ``end`` (each linear in ``lam``)."""
     lam = np.asarray(lam, dtype=float)
     return tuple(a + lam * (b - a) for a, b in zip(start, end))
