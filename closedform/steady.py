@@ -186,10 +186,10 @@ class _Cycle:
         alpha_star = np.concatenate([h["alpha_star"] for h in halves])
         # Newton from h*^2 and m* interpolated between the contact (lam = 0) and the permanent zone
         (hp, mp), lam2 = self.permanent(), np.concatenate([lam, lam])
-        start = np.repeat([[0.5 * (n.a + n.c), 0.5 * (n.c - n.a)] for n in self.ends], k, axis=0)
+        first = np.repeat([[0.5 * (n.a + n.c), 0.5 * (n.c - n.a)] for n in self.ends], k, axis=0)
         a_s, c_s, ok = _newton_ends(punch, A * P_star, "tilt", alpha_star,
-                                    np.sqrt(start[:, 0] ** 2 + lam2 * (hp * hp - start[:, 0] ** 2)),
-                                    start[:, 1] + lam2 * (mp - start[:, 1]))
+                                    np.sqrt(first[:, 0] ** 2 + lam2 * (hp * hp - first[:, 0] ** 2)),
+                                    first[:, 1] + lam2 * (mp - first[:, 1]))
         a_s, c_s, out = self._bracketed(P_star, alpha_star, a_s, c_s, ok)
         for j, h in enumerate(halves):
             idx = slice(j * k, (j + 1) * k)

@@ -35,7 +35,7 @@ from threepart.steady import gap_rate, tilt_rate
 from threepart.tolerances import tolerance
 
 A = rigid_punch(210e3, 0.3)
-F = 0.5
+F = 0.5            # the coefficient of friction of every case (an input, not a limit)
 R = 10.0
 HERTZ = Punch(R, R, 0.0)
 CASE_A = Punch(10.0, 5.0, 1.0)

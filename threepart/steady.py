@@ -28,6 +28,7 @@ from typing import Any, Callable
 import numpy as np
 from numpy.typing import ArrayLike
 
+from .bulk import _psi
 from .errors import FullSlidingError, NoConvergenceError, full_sliding
 from .validate import finite, positive
 
@@ -120,15 +121,6 @@ def gap_rate(x: ArrayLike, left: ArrayLike, right: ArrayLike, A: float, dP: Arra
             + side * np.asarray(dalpha) * h * np.sqrt(xi * xi - 1.0))
 
 
-def _psi(xi: np.ndarray) -> np.ndarray:
-    """``arccosh ξ / sqrt(ξ^2 - 1)`` (1 at ``ξ = 1``), free of cancellation."""
-    t = np.maximum(np.asarray(xi, dtype=float) - 1.0, 0.0)
-    root = np.sqrt(t * (t + 2.0))
-    with np.errstate(invalid="ignore", divide="ignore"):
-        exact = np.log1p(t + root) / root
-    return np.where(t < 1e-8, 1.0 - t / 3.0, exact)
-
-
 def cycle_margin(left: ArrayLike, right: ArrayLike, a: ArrayLike, c: ArrayLike, A: float, f: float,
                  dP_star: float, dalpha_star: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
     """Margins ``(g_left, g_right)`` (N/mm) of the slip direction at the contact ends ``-a``, ``c`` (eq. S10).
@@ -146,7 +138,8 @@ def cycle_margin(left: ArrayLike, right: ArrayLike, a: ArrayLike, c: ArrayLike, 
     h, m = 0.5 * (right - left), 0.5 * (right + left)
     lead = -f * dP_star / math.pi
     tail = f / A * np.asarray(dalpha_star) * h
-    return (lead * _psi((m + np.asarray(a)) / h) - tail, lead * _psi((np.asarray(c) - m) / h) + tail)
+    # ψ(ξ) = arccosh ξ/sqrt(ξ^2 - 1), as threepart.bulk's (of ξ - 1)
+    return (lead * _psi((m + np.asarray(a)) / h - 1.0) - tail, lead * _psi((np.asarray(c) - m) / h - 1.0) + tail)
 
 
 @functools.lru_cache(maxsize=16)
