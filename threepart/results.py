@@ -516,23 +516,16 @@ class SteadyStateResult:
 
     Attributes
     ----------
-    normals
-        The normal solutions at the two ends of the cycle.
-    states
-        The two ends, each ``(P, s, Q, sigma_bulk)``.
-    f
-        Coefficient of friction.
+    normals, states, f
+        The normal solutions at the two ends, the ends ``(P, s, Q, sigma_bulk)``, the friction coefficient.
     d, e
-        The permanent stick zone ``[-(d+e), d-e]`` (eq. S5, S6); in shakedown the
-        smaller contact (the intersection of the two).
+        The permanent stick zone ``[-(d+e), d-e]`` (eqs. S5, S6); in shakedown the smaller contact.
     energy
         Friction work dissipated per cycle and unit length, N·mm/mm (eq. S11); 0 in shakedown.
     shakedown
         True when nothing slips in the steady state (eq. S12).
 
-    A subclass gives the corrective pressure ``p*`` of the stick zone
-    (:meth:`corrective`) and the gaps of the corrective and the two normal contacts
-    (:meth:`gap`); the shear and the slip amplitude follow.
+    A subclass gives ``p*`` (:meth:`corrective`) and the gaps (:meth:`gap`); the shear and slip follow.
     """
 
     normals: tuple[NormalResult, NormalResult]
@@ -548,19 +541,12 @@ class SteadyStateResult:
 
     @property
     def stick_zone(self) -> tuple[float, float]:
-        """``(-(d+e), d-e)``."""
-        return -(self.d + self.e), self.d - self.e
+        return -(self.d + self.e), self.d - self.e      # (-(d+e), d-e)
 
     @property
     def sign(self) -> float:
-        """``sign(ΔQ)``, ``ΔQ = Q_1 - Q_0``: the direction of slip from state 0 to state 1 (+1 at ``ΔQ = 0``)."""
+        """``sign(ΔQ)``, ``ΔQ = Q_1 - Q_0``: the sense of slip from state 0 to state 1 (+1 at ``ΔQ = 0``)."""
         return 1.0 if self.states[1][2] >= self.states[0][2] else -1.0
-
-    @property
-    def P_star(self) -> float:
-        """Load of the corrective contact, ``[f (P_0 + P_1) - |ΔQ|]/(2 f)`` (eq. S6)."""
-        (P0, _, Q0, _), (P1, _, Q1, _) = self.states
-        return (self.f * (P0 + P1) - abs(Q1 - Q0)) / (2 * self.f)
 
     def corrective(self, x: ArrayLike) -> np.ndarray:
         """Corrective pressure ``p*`` on the stick zone (0 outside)."""
@@ -576,51 +562,37 @@ class SteadyStateResult:
         return int(state)
 
     def shear(self, x: ArrayLike, state: int) -> np.ndarray:
-        """Shear ``q(x)`` at the end ``state`` of the cycle; integrates to that state's ``Q``.
+        """Shear ``q(x)`` at the end ``state``; integrates to its ``Q`` (eqs. S3, S13).
 
-        In the slip zones ``q_0 = -sign(ΔQ) f p_0`` and ``q_1 = sign(ΔQ) f p_1``
-        (eq. S3). In the stick zone the steady state fixes only the change (eq. S4);
-        the part locked in depends on the load history. This returns the one
-        proportional to ``p*``: ``q_0 = sign(ΔQ) f (k_0 p* - p_0)``,
-        ``q_1 = sign(ΔQ) f (p_1 - k_1 p*)``, ``k_0 + k_1 = 2`` (eq. S13): at
-        ``P_0 = P_1`` without a mean shear, Masing's states at ``∓Q_max``.
-
-        Raises
-        ------
-        ValueError
-            In shakedown: the locked-in shear is all history, nothing of the steady state fixes it.
+        ``∓sign(ΔQ) f p`` in the slip zones. The steady state fixes only the change in
+        the stick zone (eq. S4); of the shear locked in there, which the load history
+        sets, this is the part proportional to ``p*``: ``q_0 = sign f (k_0 p* - p_0)``,
+        ``q_1 = sign f (p_1 - k_1 p*)``, ``k_0 + k_1 = 2`` (Masing's states at ``P``, ``s``
+        constant without a mean). In shakedown a ``ValueError``: the shear is all history.
         """
         k = self._state(state)
         if self.shakedown:
             raise ValueError("the cycle has shaken down: its shear is locked in by the load history, "
                              "the steady state does not determine it (only energy = 0 and the stick zone)")
-        x = np.asarray(x, dtype=float)
-        P, _, Q, _ = self.states[k]
-        sgn, Ps = self.sign, self.P_star
-        p = self.normals[k].pressure(x)
+        (P0, _, Q0, _), (P1, _, Q1, _), (P, _, Q, _) = *self.states, self.states[k]
+        sgn, f, f_star = self.sign, self.f, 0.5 * (self.f * (P0 + P1) - abs(Q1 - Q0))   # f P* (eq. S6)
+        p, p_star = self.normals[k].pressure(x), self.corrective(x)
         if k == 0:
-            return sgn * self.f * ((sgn * Q + self.f * P) / (self.f * Ps) * self.corrective(x) - p)
-        return sgn * self.f * (p - (self.f * P - sgn * Q) / (self.f * Ps) * self.corrective(x))
+            return sgn * f * ((sgn * Q + f * P) / f_star * p_star - p)
+        return sgn * f * (p - (f * P - sgn * Q) / f_star * p_star)
 
     def slip_amplitude(self, x: ArrayLike) -> np.ndarray:
-        """Half the change of the relative surface displacement over the half-cycle (eq. S7).
-
-        ``f |gap* - (gap_0 + gap_1)/2|`` inside the larger contact, 0 outside it;
-        in the smaller contact ``f gap*``. 0 in shakedown.
-        """
+        """Half the slip over a half-cycle (eq. S7), ``f |gap* - (gap_0 + gap_1)/2|``; 0 outside the larger contact."""
         x = np.asarray(x, dtype=float)
         if self.shakedown:
             return np.zeros(x.shape)
-        lo = min(-n.a for n in self.normals)
-        hi = max(n.c for n in self.normals)
+        lo, hi = min(-n.a for n in self.normals), max(n.c for n in self.normals)
         amp = self.f * np.abs(self.gap(x, "stick") - 0.5 * (self.gap(x, 0) + self.gap(x, 1)))
         return np.where((x > lo) & (x < hi), amp, 0.0)
 
     def stress(self, x: ArrayLike, z: ArrayLike, state: int, *, nu: float = NU) -> Stress:
         """Stresses in the substrate at ``(x, z)`` at the end ``state``: pressure, :meth:`shear`, ``sigma_bulk``."""
         from .stress import stress
-        k = self._state(state)
-        n = self.normals[k]
+        n = self.normals[k := self._state(state)]
         return stress(x, z, pressure=n.pressure, shear=lambda t: self.shear(t, k), ends=(-n.a, n.c),
-                      sigma_bulk=self.states[k][3], nu=nu,
-                      kinks=_kinks(n.punch.b, -n.a, n.c, *self.stick_zone))
+                      sigma_bulk=self.states[k][3], nu=nu, kinks=_kinks(n.punch.b, -n.a, n.c, *self.stick_zone))

@@ -29,7 +29,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from .bulk import _psi
-from .errors import FullSlidingError, NoConvergenceError, full_sliding
+from .errors import NoConvergenceError, full_sliding
 from .validate import finite, positive
 
 __all__ = ["check_cycle_states", "ramp", "corrective_load", "corrective_tilt_cycle", "tilt_rate",
@@ -65,8 +65,7 @@ def check_cycle_states(states: Any, f: Any) -> tuple[tuple[LoadState, LoadState]
         P = positive(f"states[{k}].P", st[0])
         s, Q, sigma = (finite(f"states[{k}].{n}", v) for n, v in zip(("s", "Q", "sigma_bulk"), st[1:]))
         if abs(Q) >= f * P:
-            exc = full_sliding(f"states[{k}].Q", Q, f, P, "there is no steady state with a stick zone")
-            raise FullSlidingError(str(exc))
+            raise full_sliding(f"states[{k}].Q", Q, f, P, "there is no steady state with a stick zone")
         out.append((P, s, Q, sigma))
     return (out[0], out[1]), f
 
