@@ -51,6 +51,10 @@ ZONE = tolerance("steady", "zone").limit
 ENERGY = tolerance("steady", "energy").limit
 #: the SIE's shear (its pressures at n = 1024) against the closed form's, of the peak (measured 5.5e-7)
 SIE_SHEAR = tolerance("sie", "q_interior_max").limit
+#: the marched history (tests/steady_march.py) against the steady state: its energy (relative)
+MARCH_ENERGY = tolerance("steady", "march_energy").limit
+#: ... and its never-slipping panels' ends, in panel widths there
+MARCH_PANELS = tolerance("steady", "march_panels").limit
 #: the rate formulas against central differences
 RATE = tolerance("steady", "rate").limit
 
@@ -258,6 +262,38 @@ def test_closed_form_and_sie_agree_on_a_general_cycle():
         inner = np.linspace(-n.a + 0.05 * (n.a + n.c), n.c - 0.05 * (n.a + n.c), 2001)
         q = a.shear(inner, k)
         assert np.max(np.abs(q - b.shear(inner, k))) <= SIE_SHEAR * np.max(np.abs(q))
+
+
+def march_grid(r, band: int = 150, middle: int = 100) -> np.ndarray:
+    """Panel edges for :func:`tests.steady_march.history`: fine over the slip zones, coarse in between.
+
+    The closed form's stick zone and contacts only place the panels; each band runs
+    from the stick zone into it by the slip zone's width and out past the larger contact.
+    """
+    lo, hi = min(-n.a for n in r.normals), max(n.c for n in r.normals)
+    left, right = r.stick_zone
+    m1, m2 = 2 * left - lo, 2 * right - hi
+    out = 0.02 * (hi - lo)
+    return np.concatenate([np.linspace(lo - out, m1, band + 1), np.linspace(m1, m2, middle + 1)[1:],
+                           np.linspace(m2, hi + out, band + 1)[1:]])
+
+
+@pytest.mark.parametrize("punch, states", [(CASE_A, GENERAL), (HERTZ, HERTZ_CASES["bulk"])])
+def test_a_marched_history_settles_on_the_steady_state(punch, states):
+    """First loading, then three cycles marched by Coulomb's law on a grid (tests/steady_march.py).
+
+    Its last cycle's friction work and the panels that never slip in it are the
+    steady state's energy and permanent stick zone, to the grid's resolution.
+    """
+    from .steady_march import history
+    r = cf.steady_state(punch, states, F, A=A)
+    x, h, work, slipped = history(punch, states, F, A, march_grid(r))
+    assert abs(work - r.energy) <= MARCH_ENERGY * r.energy
+    lo, hi = max(-n.a for n in r.normals), min(n.c for n in r.normals)
+    held = np.flatnonzero(~slipped & (x > lo) & (x < hi))
+    first, last = held[0], held[-1]
+    assert abs(x[first] - 0.5 * h[first] - r.stick_zone[0]) <= MARCH_PANELS * h[first]
+    assert abs(x[last] + 0.5 * h[last] - r.stick_zone[1]) <= MARCH_PANELS * h[last]
 
 
 # -- (iv) signs ---------------------------------------------------------------------------------------
