@@ -204,8 +204,9 @@ def _classify(cycle: _SieCycle) -> tuple[float, float, bool]:
         side = "left" if left <= lo + tol else "right"
         raise OneSidedSlipError(
             f"the permanent stick zone [{left:.6g}, {right:.6g}] would reach the {side} edge of the "
-            f"smaller contact [{lo:.6g}, {hi:.6g}] but not the other: one end slips, the other has "
-            "shaken down, which the steady-state superposition does not model")
+            f"smaller contact [{lo:.6g}, {hi:.6g}] but not the other: one end slips and the other has "
+            "shaken down, or the two slip in opposite senses, which the steady-state superposition "
+            "(one sense of slip a half-cycle) does not model")
     return m, h, False
 
 

@@ -80,5 +80,8 @@ def _step(K, x, h, p, Q, g, f, A, u_ref, stick, sign):
         back = ~stick & (p > 0) & (du * sign > 1e-15 * max(float(np.abs(du).max()), 1e-300))
         if not over.any() and not back.any():
             return q, u, stick, sign
-        stick, sign = stick & ~over | back, np.where(over, np.sign(q), sign)
+        if over.any():      # first free the overloaded panels, then re-stick the wrong slips
+            stick, sign = stick & ~over, np.where(over, np.sign(q), sign)
+        else:
+            stick = stick | back
     raise RuntimeError("the marched history's active set did not settle in 500 iterations")

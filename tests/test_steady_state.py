@@ -55,6 +55,8 @@ SIE_SHEAR = tolerance("sie", "q_interior_max").limit
 MARCH_ENERGY = tolerance("steady", "march_energy").limit
 #: ... and its never-slipping panels' ends, in panel widths there
 MARCH_PANELS = tolerance("steady", "march_panels").limit
+#: ... and the friction work of its shaken-down cycle, of a slipping cycle's
+MARCH_STILL = tolerance("steady", "march_shakedown").limit
 #: the rate formulas against central differences
 RATE = tolerance("steady", "rate").limit
 
@@ -145,6 +147,18 @@ def test_shakedown_below_f_delta_P(punch, s):
         r = cf.steady_state(punch, [(P1, s, -0.5 * dQ, 0.0), (P2, s, 0.5 * dQ, 0.0)], F, A=A)
         assert not r.shakedown
         assert abs(r.energy - hertz_energy(P1, P2, dQ)) <= HERTZ_ENERGY * r.energy
+
+
+def test_the_marched_history_shakes_down_too():
+    """The history marched by Coulomb's law (tests/steady_march.py) on the symmetric punch at
+    |ΔQ| = 0.9 f ΔP: its last cycle does no friction work (of the work of the same ΔQ at P held)."""
+    from .steady_march import history
+    states = [(300.0, 0.0, -45.0, 0.0), (500.0, 0.0, 45.0, 0.0)]
+    assert cf.steady_state(SYMMETRIC, states, F, A=A).shakedown
+    L = 1.03 * cf.solve_normal(SYMMETRIC, 500.0, 0.0, A=A).c
+    _, _, work, _ = history(SYMMETRIC, states, F, A, np.linspace(-L, L, 301), steps=30)
+    scale = cf.steady_state(SYMMETRIC, [(300.0, 0.0, -45.0, 0.0), (300.0, 0.0, 45.0, 0.0)], F, A=A).energy
+    assert work <= MARCH_STILL * scale
 
 
 def test_a_changing_tilt_shifts_the_shakedown_stick_zone_to_one_edge():

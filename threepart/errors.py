@@ -67,9 +67,11 @@ class CycleSlipReversalError(SlipReversalError):
 class OneSidedSlipError(StickZoneError):
     """The permanent stick zone of a cycle would reach one edge of the smaller contact but not the other.
 
-    Then one end slips and the other has shaken down: the stick zone runs to the
-    contact's edge, which the bounded corrective pressure of the steady state
-    (docs/STEADY_STATE.md, eq. S12) does not model.
+    Then one end slips and the other has shaken down (a tilt that changes with
+    the load), or the two ends slip in opposite senses (a bulk stress that
+    changes more than the shear): neither is the steady-state superposition
+    (docs/STEADY_STATE.md, eq. S12), whose bounded corrective pressure needs a
+    stick zone inside the contact and one sense of slip a half-cycle.
     """
 
 
