@@ -156,7 +156,7 @@ def test_the_marched_history_shakes_down_too():
     states = [(300.0, 0.0, -45.0, 0.0), (500.0, 0.0, 45.0, 0.0)]
     assert cf.steady_state(SYMMETRIC, states, F, A=A).shakedown
     L = 1.03 * cf.solve_normal(SYMMETRIC, 500.0, 0.0, A=A).c
-    _, _, work, _ = history(SYMMETRIC, states, F, A, np.linspace(-L, L, 301), steps=30)
+    _, _, work, _ = history(SYMMETRIC, states, F, A, np.linspace(-L, L, 201), steps=20, cycles=2)
     scale = cf.steady_state(SYMMETRIC, [(300.0, 0.0, -45.0, 0.0), (300.0, 0.0, 45.0, 0.0)], F, A=A).energy
     assert work <= MARCH_STILL * scale
 
