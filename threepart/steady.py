@@ -168,16 +168,16 @@ def _work(path: Path, A: float, f: float, b: float, n: int, breaks: tuple[float,
     pressure, a, c, left, right, dP, dalpha = path(lam)
     theta, wth = _gauss(n)
     theta, wth = theta * math.pi, wth * math.pi
-    total = np.zeros_like(lam)
+    xs, ws = [], []                     # the six panels side by side, one evaluation of each factor
     for lo, hi in ((-a, left), (right, c)):
         cuts = [lo, np.clip(-b, lo, hi), np.clip(b, lo, hi), hi]
         for p0, p1 in zip(cuts[:-1], cuts[1:]):
             span = np.maximum(p1 - p0, 0.0)[:, None]
-            x = p0[:, None] + span * 0.5 * (1 - np.cos(theta))
-            jac = 0.5 * span * np.sin(theta)
-            rate = gap_rate(x, left[:, None], right[:, None], A, dP, dalpha[:, None])
-            total += np.sum(wth * jac * pressure(x) * rate, axis=1)
-    return float(2 * f * f * np.sum(wl * total))
+            xs.append(p0[:, None] + span * 0.5 * (1 - np.cos(theta)))
+            ws.append(wth * 0.5 * span * np.sin(theta))
+    x, w = np.hstack(xs), np.hstack(ws)
+    rate = gap_rate(x, left[:, None], right[:, None], A, dP, dalpha[:, None])
+    return float(2 * f * f * np.sum(wl * np.sum(w * pressure(x) * rate, axis=1)))
 
 
 def half_cycle_work(path: Path, A: float, f: float, b: float, rtol: float = WORK_RTOL,
