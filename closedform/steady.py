@@ -12,11 +12,13 @@ same punch on the stick zone, of load ``P* = [f (P_i + P_lam) - |ΔQ|]/(2f)``
 (eq. S6, horizontal equilibrium) at the tilt
 ``alpha* = (alpha_i + alpha_lam)/2 - sign(ΔQ) A Δsigma_bulk/(8 f)`` (eq. S5, the
 stick condition of the change). The permanent stick zone is that of
-``lam = 1``; its ends follow from the bracketed roots of :mod:`closedform.newton`
-with a target tilt, as the partial-slip stick zone does. The energy per cycle
-is the friction work of the two half-cycles (eq. S11,
-:func:`threepart.steady.half_cycle_work`), with the normal solutions and the
-stick zones at the quadrature's ``lam`` solved vectorised.
+``lam = 1``. Every contact and stick zone on the path is solved vectorised:
+Newton's method on the closed forms of eqs. (equilibrium_condition_1,
+equilibrium_condition_2, consistency_condition), warm-started between the
+known states, and the bracketed roots of :mod:`closedform.newton` (with a
+target tilt, as the partial-slip stick zone) where it does not settle. The
+energy per cycle is the friction work of the two half-cycles (eq. S11,
+:func:`threepart.steady.half_cycle_work`).
 """
 from __future__ import annotations
 
@@ -32,8 +34,8 @@ from threepart.errors import (CycleSlipReversalError, LiftOffError, OneSidedSlip
                               StickSeparationError, StickZoneError)
 from threepart.punch import Punch
 from threepart.results import Diagnostics, SteadyStateResult
-from threepart.steady import (WORK_NODES, LoadState, Path, _nodes, check_cycle_states, corrective_load, corrective_tilt_cycle,
-                              cycle_margin, half_cycle_work, ramp, tilt_rate)
+from threepart.steady import (WORK_NODES, LoadState, Path, check_cycle_states, corrective_load,
+                              corrective_tilt_cycle, cycle_margin, half_cycle_work, lam_rule, ramp, tilt_rate)
 from threepart.validate import check_punch
 
 from . import formulas
@@ -135,8 +137,8 @@ class _Cycle:
         start = 0
         for lam in lams:
             idx = slice(start, start + lam.size)
-            self._memo[lam.tobytes()] = ({k: v[idx] if isinstance(v, np.ndarray) else v for k, v in both[0].items()},
-                                         {k: v[idx] if isinstance(v, np.ndarray) else v for k, v in both[1].items()})
+            parts = [{k: v[idx] if isinstance(v, np.ndarray) else v for k, v in half.items()} for half in both]
+            self._memo[lam.tobytes()] = (parts[0], parts[1])
             start += lam.size
 
     def __call__(self, lam: np.ndarray) -> tuple[dict[str, Any], dict[str, Any]]:
@@ -176,7 +178,8 @@ class _Cycle:
             idx = slice(j * k, (j + 1) * k)
             _, _, Q, sigma = ramp(start, end, lam)
             P_star = corrective_load(start[0], P[idx], Q - start[2], f)
-            alpha_star = corrective_tilt_cycle(self.ends[j].alpha, alpha[idx], A, self.sign[j], sigma - start[3], f)
+            alpha_star = corrective_tilt_cycle(self.ends[j].alpha, alpha[idx], A, self.sign[j],
+                                               sigma - start[3], f)
             dP, ds = end[0] - start[0], end[1] - start[1]
             rate = tilt_rate(A, a[idx], c[idx], dP, dP * s[idx] + P[idx] * ds)
             halves.append({"a": a[idx], "c": c[idx], "P": P[idx], "P_star": P_star, "alpha_star": alpha_star,
@@ -352,10 +355,12 @@ def steady_state(punch: Punch, states: Any, f: float, *, A: float) -> SteadySolu
     normals = (batch[0], batch[1])
     cycle = _Cycle(punch, batch.A, f, (st0, st1), normals)
     grid = np.linspace(0.0, 1.0, MARGIN_GRID)
-    first = [_nodes(n, ())[0] for n in (WORK_NODES, 2 * WORK_NODES)]
+    first = [lam_rule(n, ())[0] for n in (WORK_NODES, 2 * WORK_NODES)]
     cycle.prime(grid[-1:], grid, *first)          # one call of each root finder for the whole cycle
     left, right, shakedown = _permanent(cycle)
-    info: dict[str, Any] = {"P_star": (f * (st0[0] + st1[0]) - abs(st1[2] - st0[2])) / (2 * f)}
+    info: dict[str, Any] = {"P_star": (f * (st0[0] + st1[0]) - abs(st1[2] - st0[2])) / (2 * f),
+                            "alpha_star": float(corrective_tilt_cycle(normals[0].alpha, normals[1].alpha, cycle.A,
+                                                                      cycle.sign[0], st1[3] - st0[3], f))}
     energy, nodes = 0.0, 0
     if not shakedown:
         _check_coulomb(normals, left, right)

@@ -17,7 +17,8 @@ permanent stick zone is that of ``lam = 1``.
 * :func:`tilt_rate` -- ``d alpha/d lam`` of a normal solution on the path (S8);
 * :func:`gap_rate` -- ``d gap*/d lam`` of the corrective contact outside it (S9);
 * :func:`cycle_margin` -- the slip-direction margins at the two contact ends (S10);
-* :func:`half_cycle_work` -- the friction work of a half-cycle by quadrature (S11).
+* :func:`half_cycle_work` -- the friction work of a half-cycle by quadrature (S11);
+* :func:`lam_rule` -- its Gauss–Legendre fractions ``lam`` and weights.
 """
 from __future__ import annotations
 
@@ -33,7 +34,7 @@ from .errors import NoConvergenceError, full_sliding
 from .validate import finite, positive
 
 __all__ = ["check_cycle_states", "ramp", "corrective_load", "corrective_tilt_cycle", "tilt_rate",
-           "gap_rate", "cycle_margin", "half_cycle_work", "WORK_RTOL"]
+           "gap_rate", "cycle_margin", "half_cycle_work", "lam_rule", "WORK_RTOL", "WORK_NODES"]
 
 #: relative change of the friction work between two quadratures at which it has settled
 WORK_RTOL = 1e-12
@@ -153,7 +154,7 @@ Path = Callable[[np.ndarray], tuple[Callable[[np.ndarray], np.ndarray], np.ndarr
                                      np.ndarray, np.ndarray, float, np.ndarray]]
 
 
-def _nodes(n: int, breaks: tuple[float, ...]) -> tuple[np.ndarray, np.ndarray]:
+def lam_rule(n: int, breaks: tuple[float, ...]) -> tuple[np.ndarray, np.ndarray]:
     """Fractions ``lam`` and weights: ``n`` Gauss nodes per panel between the ``breaks``, in ``(1 - cos πt)/2``."""
     t, wt = _gauss(n)
     edges = np.array(sorted({0.0, 1.0, *breaks}))
@@ -164,7 +165,7 @@ def _nodes(n: int, breaks: tuple[float, ...]) -> tuple[np.ndarray, np.ndarray]:
 
 def _work(path: Path, A: float, f: float, b: float, n: int, breaks: tuple[float, ...] = ()) -> float:
     """:func:`half_cycle_work` on ``n`` nodes per panel in ``lam`` and per slip-zone panel."""
-    lam, wl = _nodes(n, breaks)
+    lam, wl = lam_rule(n, breaks)
     pressure, a, c, left, right, dP, dalpha = path(lam)
     theta, wth = _gauss(n)
     theta, wth = theta * math.pi, wth * math.pi
