@@ -292,7 +292,10 @@ def march_grid(r, band: int = 150, middle: int = 100) -> np.ndarray:
                            np.linspace(m2, hi + out, band + 1)[1:]])
 
 
-@pytest.mark.parametrize("punch, states", [(CASE_A, GENERAL), (HERTZ, HERTZ_CASES["bulk"])])
+@pytest.mark.parametrize("punch, states", [
+    (CASE_A, GENERAL), (HERTZ, HERTZ_CASES["bulk"]),
+    (CASE_A, [(400.0, -0.05, -60.0, 0.0), (400.0, 0.05, 60.0, 0.0)]),     # the contact moves: s changes alone
+])
 def test_a_marched_history_settles_on_the_steady_state(punch, states):
     """First loading, then three cycles marched by Coulomb's law on a grid (tests/steady_march.py).
 
