@@ -167,10 +167,20 @@ def test_the_marched_history_shakes_down_too(punch, states):
 
 def test_a_changing_tilt_shifts_the_shakedown_stick_zone_to_one_edge():
     """Case A (R1 != R2): the tilt changes with P, so at |ΔQ| just below f ΔP the stick zone of
-    load P* ~ P_0 sits at the mean tilt, off the smaller contact on one side (eq. S12)."""
+    load P* ~ P_0 sits at the mean tilt, off the smaller contact on one side (eq. S12).
+
+    The marched history (tests/steady_march.py) slips at the other end only: one end slips,
+    the other has shaken down, as the refusal says.
+    """
+    from .steady_march import history
     dQ = 0.999 * F * 200.0
-    with pytest.raises(OneSidedSlipError, match=r"would reach the \w+ edge of the smaller contact"):
-        cf.steady_state(CASE_A, [(300.0, 0.1, -0.5 * dQ, 0.0), (500.0, 0.1, 0.5 * dQ, 0.0)], F, A=A)
+    states = [(300.0, 0.1, -0.5 * dQ, 0.0), (500.0, 0.1, 0.5 * dQ, 0.0)]
+    for method in ("closedform", "sie"):
+        with pytest.raises(OneSidedSlipError, match=r"would reach the right edge of the smaller contact"):
+            threepart.steady_state(CASE_A, states, F, A=A, method=method)
+    L = 1.03 * max(max(n.a, n.c) for n in (cf.solve_normal(CASE_A, P, s, A=A) for P, s, _, _ in states))
+    x, _, work, slipped = history(CASE_A, states, F, A, np.linspace(-L, L, 301), steps=20, cycles=2)
+    assert work > 0 and slipped.any() and np.all(x[slipped] < 0)
 
 
 def test_a_bulk_stress_alone_slips_at_one_end():
