@@ -30,7 +30,7 @@ from threepart.closedform import formulas
 from threepart.closedform.fretting import stick_gap
 from threepart.closedform.steady import _Cycle
 from threepart.errors import (CycleSlipReversalError, FullSlidingError, LiftOffError, OneSidedSlipError,
-                              StickZoneError)
+                              SeparationError, StickSeparationError, StickZoneError)
 from threepart.steady import gap_rate, tilt_rate
 from threepart.tolerances import tolerance
 
@@ -446,6 +446,19 @@ def test_bad_input_is_refused_with_the_named_error(states, f, error, match):
 def test_a_state_past_lift_off_is_the_closed_forms_refusal():
     with pytest.raises(LiftOffError, match=r"`s` = 0.9 exceeds the lift-off lever arm"):
         cf.steady_state(CASE_A, [(400.0, 0.9, 0.0, 0.0), (400.0, 0.1, 10.0, 0.0)], F, A=A)
+
+
+@pytest.mark.parametrize("method", ["closedform", "sie"])
+def test_a_concave_centre_is_refused_where_it_separates(method):
+    """R = -50: at P = 400 the normal contact separates; at P = 8000 it holds but the permanent
+    stick zone's p* goes tensile on the dip (|Δq| <= f (p_0 + p_1) would break)."""
+    concave = Punch(10.0, 5.0, 1.0, -50.0)
+    with pytest.raises(SeparationError, match="separate"):
+        threepart.steady_state(concave, [(400.0, 0.1, -80.0, 0.0), (450.0, 0.15, 80.0, 0.0)], F, A=A,
+                               method=method)
+    with pytest.raises(StickSeparationError, match=r"breaks Coulomb's law: p\* < 0 at x = "):
+        threepart.steady_state(concave, [(8000.0, 0.1, -1600.0, -20.0), (9000.0, 0.15, 1600.0, 20.0)], F,
+                               A=A, method=method)
 
 
 def test_states_must_be_a_sequence():
