@@ -9,11 +9,11 @@ Solvers
 solve_normal        -- contact [-a, c], tilt and pressure under load control ("free"/"suppressed" tilt),
                        also past lift-off and on one corner; a contact in two zones: SeparationError
 lift_off            -- lever arms at which a contact edge reaches a join x = ±b (closed form's range)
+steady_state        -- periodic steady state of an in-phase cycle between two (P, s, Q, sigma_bulk), also
+                       where the permanent stick zone ends on the central segment (docs/STEADY_STATE.md)
 solve_partial_slip  -- stick zone (d, e) and shear q(x) by Ciavarella–Jäger, from the discretised equations,
                        also where the stick zone ends on the central segment
 fretting_cycle      -- Q: 0 -> Q_max -> -Q_max -> Q_max by Masing's rule on those stick zones: delta, energy
-steady_state        -- periodic steady state of an in-phase cycle between two (P, s, Q, sigma_bulk), also
-                       where the permanent stick zone ends on the central segment (docs/STEADY_STATE.md)
 SieNormalResult     -- NormalResult with n, scheme and the interpolating pressure
 SieSlipResult       -- SlipResult with n, scheme, corrective pressure and shear
 SieFrettingResult   -- FrettingResult with n, scheme; shear, slip and slip amplitude at any Q of a branch
@@ -47,14 +47,15 @@ from .reference import pressure_by_quadrature
 from threepart.errors import NoConvergenceError
 from .schemes import SCHEMES
 from .slip import SieSlipResult, solve_partial_slip
-from .fretting import SieFrettingResult, fretting_cycle
 from .steady import SieSteadyResult, steady_state
+from .fretting import SieFrettingResult, fretting_cycle
 
 __all__ = [
     "solve_normal", "solve_partial_slip", "lift_off", "SieNormalResult", "SieSlipResult", "NoConvergenceError",
-    "fretting_cycle", "SieFrettingResult", "steady_state", "SieSteadyResult",
+    "fretting_cycle", "SieFrettingResult",
     "gauss_chebyshev", "cauchy_matrix", "slope_coefficients", "SCHEMES",
     "convergence_study", "pressure_by_quadrature",
 ]
+__all__ += ["steady_state", "SieSteadyResult"]
 
 from . import method as _method  # registers this solver in threepart.registry

@@ -88,11 +88,12 @@ _HOMES = {
     "StickZoneError": "errors", "StickSeparationError": "errors",
     "NoConvergenceError": "errors", "ContactZoneError": "errors",
     "MeshResolutionError": "errors", "SlopeLimitError": "errors", "ArcExtentError": "errors",
-    "solve": "methods", "steady_state": "methods", "METHODS": "methods", "CHOICES": "methods",
+    "solve": "methods", "METHODS": "methods", "CHOICES": "methods",
     "Stress": "stress",
     "hilbert": "stress",
     "stress_history": "fatigue", "von_mises_range": "fatigue",
     "swt": "fatigue", "findley": "fatigue", "ruiz": "fatigue", "HotSpot": "fatigue",
+    "steady_state": "methods",
 }
 _SUBPACKAGES = ("closedform", "sie", "fem", "meshes", "reports")
 

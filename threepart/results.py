@@ -476,36 +476,6 @@ class MasingCycle(FrettingResult):
         return self._s_load(np.asarray(x, dtype=float), self.Q_max)
 
 
-def masing(Q_max: float, Q: float, branch: str) -> tuple[float, float, float]:
-    """``(c_max, c_u, u)``: the state at ``Q`` on ``branch`` is ``c_max X(Q_max) + c_u X(u)``.
-
-    ``X`` is the loading shear, slip or ``delta`` (Masing's rule, the
-    Mindlin–Deresiewicz superposition): unloading from ``Q_max`` subtracts twice
-    the loading state of ``(Q_max - Q)/2``, reloading from ``-Q_max`` adds twice
-    that of ``(Q_max + Q)/2``. Shared by every method that superposes loading
-    states (the closed form and the SIE).
-
-    Raises
-    ------
-    ValueError
-        For an unknown ``branch`` or a ``Q`` outside the branch's range.
-    """
-    if branch not in BRANCHES:
-        raise ValueError(f"`branch` = {branch!r} must be one of {BRANCHES}")
-    Q = finite("Q", Q)
-    lo = 0.0 if branch == "loading" else -Q_max
-    tol = 1e-12 * Q_max
-    if not lo - tol <= Q <= Q_max + tol:
-        raise ValueError(f"`Q` = {Q:g} lies outside [{lo:g}, {Q_max:g}], the range of the "
-                         f"{branch} branch for `Q_max` = {Q_max:g}")
-    Q = min(max(Q, lo), Q_max)
-    if branch == "loading":
-        return 0.0, 1.0, Q
-    if branch == "unloading":
-        return 1.0, -2.0, min(max(0.5 * (Q_max - Q), 0.0), Q_max)
-    return -1.0, 2.0, min(max(0.5 * (Q_max + Q), 0.0), Q_max)
-
-
 # --- the periodic steady state of in-phase loading (docs/STEADY_STATE.md) -------------------------
 __all__ += ["SteadyStateResult"]
 
@@ -596,3 +566,33 @@ class SteadyStateResult:
         n = self.normals[k := self._state(state)]
         return stress(x, z, pressure=n.pressure, shear=lambda t: self.shear(t, k), ends=(-n.a, n.c),
                       sigma_bulk=self.states[k][3], nu=nu, kinks=_kinks(n.punch.b, -n.a, n.c, *self.stick_zone))
+
+
+def masing(Q_max: float, Q: float, branch: str) -> tuple[float, float, float]:
+    """``(c_max, c_u, u)``: the state at ``Q`` on ``branch`` is ``c_max X(Q_max) + c_u X(u)``.
+
+    ``X`` is the loading shear, slip or ``delta`` (Masing's rule, the
+    Mindlin–Deresiewicz superposition): unloading from ``Q_max`` subtracts twice
+    the loading state of ``(Q_max - Q)/2``, reloading from ``-Q_max`` adds twice
+    that of ``(Q_max + Q)/2``. Shared by every method that superposes loading
+    states (the closed form and the SIE).
+
+    Raises
+    ------
+    ValueError
+        For an unknown ``branch`` or a ``Q`` outside the branch's range.
+    """
+    if branch not in BRANCHES:
+        raise ValueError(f"`branch` = {branch!r} must be one of {BRANCHES}")
+    Q = finite("Q", Q)
+    lo = 0.0 if branch == "loading" else -Q_max
+    tol = 1e-12 * Q_max
+    if not lo - tol <= Q <= Q_max + tol:
+        raise ValueError(f"`Q` = {Q:g} lies outside [{lo:g}, {Q_max:g}], the range of the "
+                         f"{branch} branch for `Q_max` = {Q_max:g}")
+    Q = min(max(Q, lo), Q_max)
+    if branch == "loading":
+        return 0.0, 1.0, Q
+    if branch == "unloading":
+        return 1.0, -2.0, min(max(0.5 * (Q_max - Q), 0.0), Q_max)
+    return -1.0, 2.0, min(max(0.5 * (Q_max + Q), 0.0), Q_max)
