@@ -19,18 +19,23 @@ lift_off            -- admissible lever arms s_min < s < s_max for a load P
 P_min               -- least load: both joins touched (convex centre), separation (concave)
 solve_partial_slip  -- Ciavarella-Jaeger stick zone [-(d+e), d-e] and shear q(x)
 fretting_cycle      -- Q: 0 -> Q_max -> -Q_max -> Q_max by Masing's rule: stick zones, delta, energy per cycle
+steady_state        -- periodic steady state of an in-phase cycle between two (P, s, Q, sigma_bulk):
+                       permanent stick zone, energy per cycle, shakedown (docs/STEADY_STATE.md)
 
 Errors (from :mod:`threepart.errors`)
 ------
 LiftOffError, FullSlidingError, StickZoneError, SeparationError -- ValueError subclasses
 StickSeparationError -- a StickZoneError: a stick zone on a concave centre would break |q| <= f p
+OneSidedSlipError   -- a StickZoneError: a cycle's permanent stick zone would reach one contact edge only
+CycleSlipReversalError -- a SlipReversalError: a point would slip backwards in a cycle's steady state
 ArcExtentError, SlopeLimitError -- a solved contact past an arc or past validate.SLOPE_LIMIT
 NoConvergenceError  -- a root did not close (never expected on admissible input)
 """
 from __future__ import annotations
 
-from threepart.errors import (ArcExtentError, FullSlidingError, LiftOffError, NoConvergenceError,
-                              SeparationError, SlopeLimitError, StickSeparationError, StickZoneError)
+from threepart.errors import (ArcExtentError, CycleSlipReversalError, FullSlidingError, LiftOffError,
+                              NoConvergenceError, OneSidedSlipError, SeparationError, SlopeLimitError,
+                              StickSeparationError, StickZoneError)
 from threepart.material import compliance, rigid_punch, similar_pair
 from threepart.punch import Punch
 from threepart.results import NormalResult, Peak, SlipResult
@@ -40,12 +45,14 @@ from .normal import (LiftOff, NormalBatch, NormalSolution, P_min, lift_off, solv
                      solve_normal_batch)
 from .slip import SlipSolution, solve_partial_slip
 from .fretting import FrettingSolution, fretting_cycle
+from .steady import SteadySolution, steady_state
 
 __all__ = [
     "Punch", "NormalResult", "SlipResult", "Peak",
     "compliance", "similar_pair", "rigid_punch",
     "formulas", "special",
     "solve_normal", "solve_normal_batch", "lift_off", "P_min", "solve_partial_slip", "fretting_cycle",
+    "steady_state", "SteadySolution", "CycleSlipReversalError", "OneSidedSlipError",
     "NormalSolution", "NormalBatch", "LiftOff", "SlipSolution", "FrettingSolution",
     "LiftOffError", "FullSlidingError", "StickZoneError", "SeparationError", "NoConvergenceError",
     "StickSeparationError", "ArcExtentError", "SlopeLimitError",

@@ -14,6 +14,7 @@ from threepart.results import FrettingResult, NormalResult, SlipResult
 from .fretting import fretting_cycle
 from .normal import lift_off, solve_normal
 from .slip import solve_partial_slip
+from .steady import steady_state
 
 __all__ = ["METHOD"]
 
@@ -45,4 +46,4 @@ def _lift_off(punch: Punch, P: float, A: float) -> tuple[float, float]:
 
 
 METHOD = register(Method("closedform", _normal, _slip, _fretting, framework_only=True,
-                         lift_off=_lift_off))
+                         lift_off=_lift_off, steady=steady_state))

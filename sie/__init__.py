@@ -9,6 +9,8 @@ Solvers
 solve_normal        -- contact [-a, c], tilt and pressure under load control ("free"/"suppressed" tilt),
                        also past lift-off and on one corner; a contact in two zones: SeparationError
 lift_off            -- lever arms at which a contact edge reaches a join x = ±b (closed form's range)
+steady_state        -- periodic steady state of an in-phase cycle between two (P, s, Q, sigma_bulk), also
+                       where the permanent stick zone ends on the central segment (docs/STEADY_STATE.md)
 solve_partial_slip  -- stick zone (d, e) and shear q(x) by Ciavarella–Jäger, from the discretised equations,
                        also where the stick zone ends on the central segment
 fretting_cycle      -- Q: 0 -> Q_max -> -Q_max -> Q_max by Masing's rule on those stick zones: delta, energy
@@ -17,6 +19,7 @@ load_history        -- any history of (P, s, Q, sigma_bulk) states, marched with
 SieNormalResult     -- NormalResult with n, scheme and the interpolating pressure
 SieSlipResult       -- SlipResult with n, scheme, corrective pressure and shear
 SieFrettingResult   -- FrettingResult with n, scheme; shear, slip and slip amplitude at any Q of a branch
+SieSteadyResult     -- SteadyStateResult with n, scheme and the corrective pressure p*
 NoConvergenceError  -- raised when a root iteration fails (never a silent NaN)
 
 Discretisation
@@ -46,6 +49,7 @@ from .reference import pressure_by_quadrature
 from threepart.errors import NoConvergenceError
 from .schemes import SCHEMES
 from .slip import SieSlipResult, solve_partial_slip
+from .steady import SieSteadyResult, steady_state
 from .fretting import SieFrettingResult, fretting_cycle
 from .history import load_history
 
@@ -55,5 +59,6 @@ __all__ = [
     "gauss_chebyshev", "cauchy_matrix", "slope_coefficients", "SCHEMES",
     "convergence_study", "pressure_by_quadrature",
 ]
+__all__ += ["steady_state", "SieSteadyResult"]
 
 from . import method as _method  # registers this solver in threepart.registry

@@ -13,6 +13,7 @@ from threepart.results import FrettingResult, NormalResult, SlipResult
 from .fretting import fretting_cycle
 from .normal import DEFAULT_N, DEFAULT_SCHEME, check_scheme, lift_off, solve_normal
 from .slip import solve_partial_slip
+from .steady import steady_state
 
 __all__ = ["METHOD"]
 
@@ -45,4 +46,4 @@ def _options_iv(options: dict[str, Any]) -> None:
 
 METHOD = register(Method("sie", _normal, _slip, _fretting, options=("n", "scheme"),
                          options_iv=_options_iv, lift_off=lift_off,
-                         comparison=lambda options: "sie"))
+                         comparison=lambda options: "sie", steady=steady_state))

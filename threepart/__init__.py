@@ -36,6 +36,8 @@ Solving
 -------
 solve               -- normal or partial-slip solution by method "auto" (closed form where it
                        holds, else SIE), "closedform", "sie" or "fem"
+steady_state        -- the periodic steady state of an in-phase cycle between two states
+                       (P, s, Q, sigma_bulk), by method "auto", "closedform" or "sie"
 METHODS, CHOICES    -- the three methods; what `method` may be
 
 Results
@@ -95,6 +97,7 @@ _HOMES = {
     "hilbert": "stress",
     "stress_history": "fatigue", "von_mises_range": "fatigue",
     "swt": "fatigue", "findley": "fatigue", "ruiz": "fatigue", "HotSpot": "fatigue",
+    "steady_state": "methods",
 }
 _SUBPACKAGES = ("closedform", "sie", "fem", "meshes", "reports")
 
@@ -105,7 +108,7 @@ if TYPE_CHECKING:   # pragma: no cover - for type checkers and IDEs only
                          LiftOffError, MeshResolutionError, NoConvergenceError, SeparationError,
                          SlopeLimitError, StickSeparationError, StickZoneError)
     from .material import compliance, rigid_punch, similar_pair
-    from .methods import CHOICES, METHODS, solve
+    from .methods import CHOICES, METHODS, solve, steady_state
     from .punch import Punch
     from .results import NormalResult, Peak, SlipResult
     from .fatigue import HotSpot, findley, ruiz, stress_history, swt, von_mises_range

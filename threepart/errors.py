@@ -111,3 +111,30 @@ class SlopeLimitError(ValueError):
 
 class ArcExtentError(ValueError):
     """A contact end runs past the geometric extent of an edge arc (``a > b + R1`` or ``c > b + R2``)."""
+
+
+# --- the steady state of in-phase loading (docs/STEADY_STATE.md) --------------------------------
+__all__ += ["CycleSlipReversalError", "OneSidedSlipError"]
+
+
+class CycleSlipReversalError(SlipReversalError):
+    """In the steady state of a cycle some point would slip against the half-cycle's direction.
+
+    The steady-state superposition (docs/STEADY_STATE.md, eq. S4) holds only
+    while, on each half-cycle, the stick zone shrinks from the whole contact to
+    the permanent one and every point of the slip zones slips in the sense of
+    ``ΔQ`` (eq. S10): a change of the normal load, of the tilt or of the bulk
+    stress can reverse the slip at one end. Past that the closed form and the
+    SIE refuse; ``method="auto"`` falls back, and only a marched history answers.
+    """
+
+
+class OneSidedSlipError(StickZoneError):
+    """The permanent stick zone of a cycle would reach one edge of the smaller contact but not the other.
+
+    Then one end slips and the other has shaken down (a tilt that changes with
+    the load), or the two ends slip in opposite senses (a bulk stress that
+    changes more than the shear): neither is the steady-state superposition
+    (docs/STEADY_STATE.md, eq. S12), whose bounded corrective pressure needs a
+    stick zone inside the contact and one sense of slip a half-cycle.
+    """

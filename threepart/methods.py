@@ -39,11 +39,11 @@ from typing import Any
 from . import registry
 from .errors import LiftOffError, SeparationError, StickZoneError
 from .punch import Punch
-from .results import NormalResult, SlipResult
+from .results import NormalResult, SlipResult, SteadyStateResult
 from .bulk import check_sigma_bulk
 from .validate import check_positive
 
-__all__ = ["METHODS", "CHOICES", "AUTO", "solve", "describe"]
+__all__ = ["METHODS", "CHOICES", "AUTO", "solve", "steady_state", "describe"]
 
 #: the three built-in solvers, in report order
 METHODS = tuple(registry.BUILTIN)
@@ -146,6 +146,68 @@ def solve(punch: Punch, P: float, s: float = 0.0, *, A: float, tilt: str = "free
     result.info["auto"] = why
     if isinstance(result, SlipResult):
         result.normal.info["auto"] = why
+    return result
+
+
+def _steady(name: str, punch: Punch, states: Any, f: float, A: float,
+            options: dict[str, Any]) -> SteadyStateResult:
+    m = registry.get(name)
+    m.check_options(options)
+    if m.steady is None:
+        raise ValueError(f"method {name!r} has no steady-state model of a cycle")
+    return m.steady(punch, states, f, A=A, **options)
+
+
+def steady_state(punch: Punch, states: Any, f: float, *, A: float, method: str = "auto",
+                 **options: Any) -> SteadyStateResult:
+    """The periodic steady state of an in-phase cycle between two states, by ``method``.
+
+    Parameters
+    ----------
+    punch
+        Three-part punch geometry (eq. 2).
+    states
+        The two ends of the cycle, each ``(P, s, Q, sigma_bulk)``; the four move
+        linearly between them, in phase (docs/STEADY_STATE.md).
+    f
+        Coefficient of friction, > 0.
+    A
+        Compliance of the elastically similar pair (eq. 4), > 0.
+    method
+        ``"auto"`` (default: the closed form, and the SIE where it refuses with
+        one of :data:`FALLBACK_ON`, as :func:`solve`), ``"closedform"``, ``"sie"``
+        or any registered method with a ``steady`` call.
+    **options
+        The method's discretisation (``n``, ``scheme`` for the SIE; with ``"auto"``
+        they go to the SIE).
+
+    Returns
+    -------
+    SteadyStateResult
+        ``d``, ``e``, ``energy``, ``shakedown``, ``normals``, ``shear(x, state)``,
+        ``slip_amplitude(x)``, ``stress(x, z, state)``; with ``"auto"`` and a
+        fallback, ``info["auto"]`` holds the closed form's refusal.
+
+    Raises
+    ------
+    ValueError
+        For invalid input and the named refusals of the method (with ``"auto"``,
+        those of the SIE): ``FullSlidingError``, ``OneSidedSlipError``,
+        ``CycleSlipReversalError``, ``SeparationError``, ...
+    """
+    if method != "auto":
+        registry.get(method, also=("auto",))
+    check_positive(A=A)
+    if method != "auto":
+        return _steady(method, punch, states, f, A, options)
+    first, fallback = AUTO
+    registry.get(fallback).check_options(options, called=repr("auto"))
+    try:
+        return _steady(first, punch, states, f, A, {})
+    except FALLBACK_ON as refusal:
+        why = f"the closed form does not hold here: {' '.join(str(refusal).split())}"
+    result = _steady(fallback, punch, states, f, A, options)
+    result.info["auto"] = why
     return result
 
 

@@ -32,6 +32,10 @@ discretisation options, named in :attr:`Method.options`.
     solves its own normal problem with the shear (the FEM) ignores it.
 ``fretting(punch, P, s, *, A, tilt, nu, Q_max, f, states, normal, **options)``
     One fretting cycle: a :class:`~threepart.results.FrettingResult`.
+``steady(punch, states, f, *, A, **options)``
+    The periodic steady state of a cycle between two states ``(P, s, Q,
+    sigma_bulk)``: a :class:`~threepart.results.SteadyStateResult`
+    (docs/STEADY_STATE.md); the adapter is the method's own ``steady_state``.
 ``lift_off(punch, P, A)``
     The lever arms ``(s_min, s_max)`` at which, with the tilt free, a contact
     end reaches a join ``x = -+b``: the range of ``s`` with both ends on the
@@ -55,7 +59,7 @@ from typing import TYPE_CHECKING, Any, Callable
 
 if TYPE_CHECKING:  # pragma: no cover
     from .punch import Punch
-    from .results import FrettingResult, NormalResult, SlipResult
+    from .results import FrettingResult, NormalResult, SlipResult, SteadyStateResult
 
 __all__ = ["Method", "register", "get", "names", "lift_off", "BUILTIN"]
 
@@ -91,6 +95,9 @@ class Method:
     lift_off
         The lift-off lever arms ``(s_min, s_max)`` at ``(punch, P, A)``, or
         None where the method does not compute them.
+    steady
+        The steady state of an in-phase cycle between two states, or None
+        where the method has none.
     comparison
         The row group of :data:`threepart.tolerances.TOLERANCES` that judges
         this method's results against the reference, from the options it was
@@ -108,6 +115,7 @@ class Method:
     options_iv: Callable[[dict[str, Any]], None] | None = None
     lift_off: Callable[[Punch, float, float], tuple[float, float]] | None = None
     comparison: Callable[[dict[str, Any]], str] | None = None
+    steady: Callable[..., SteadyStateResult] | None = None
 
     def check_options(self, options: dict[str, Any], called: str | None = None) -> None:
         """``ValueError`` naming the first option this method does not take; then the values.

@@ -560,6 +560,98 @@ class MasingCycle(FrettingResult):
         return self._s_load(np.asarray(x, dtype=float), self.Q_max)
 
 
+# --- the periodic steady state of in-phase loading (docs/STEADY_STATE.md) -------------------------
+__all__ += ["SteadyStateResult"]
+
+
+@dataclass(frozen=True)
+class SteadyStateResult:
+    """The periodic steady state of a cycle between two states, the loads moving linearly, in phase.
+
+    Attributes
+    ----------
+    normals, states, f
+        The normal solutions at the two ends, the ends ``(P, s, Q, sigma_bulk)``, the friction coefficient.
+    d, e
+        The permanent stick zone ``[-(d+e), d-e]`` (eqs. S5, S6); in shakedown the smaller contact.
+    energy
+        Friction work dissipated per cycle and unit length, N·mm/mm (eq. S11); 0 in shakedown.
+    shakedown
+        True when nothing slips in the steady state (eq. S12).
+
+    A subclass gives ``p*`` (:meth:`corrective`) and the gaps (:meth:`gap`); the shear and slip follow.
+    """
+
+    normals: tuple[NormalResult, NormalResult]
+    states: tuple[tuple[float, float, float, float], tuple[float, float, float, float]]
+    f: float
+    d: float
+    e: float
+    energy: float
+    shakedown: bool
+    method: str = ""
+    diagnostics: Diagnostics = field(default_factory=Diagnostics, compare=False)
+    info: dict[str, Any] = field(default_factory=dict, compare=False)
+
+    @property
+    def stick_zone(self) -> tuple[float, float]:
+        return -(self.d + self.e), self.d - self.e      # (-(d+e), d-e)
+
+    @property
+    def sign(self) -> float:
+        """``sign(ΔQ)``, ``ΔQ = Q_1 - Q_0``: the sense of slip from state 0 to state 1 (+1 at ``ΔQ = 0``)."""
+        return 1.0 if self.states[1][2] >= self.states[0][2] else -1.0
+
+    def corrective(self, x: ArrayLike) -> np.ndarray:
+        """Corrective pressure ``p*`` on the stick zone (0 outside)."""
+        raise NotImplementedError
+
+    def gap(self, x: ArrayLike, which: str | int) -> np.ndarray:
+        """Gap of the corrective contact (``which="stick"``) or of the normal contact 0 or 1, 0 inside it."""
+        raise NotImplementedError
+
+    def _state(self, state: Any) -> int:
+        if isinstance(state, bool) or state not in (0, 1):
+            raise ValueError(f"`state` = {state!r} must be 0 or 1 (an end of the cycle)")
+        return int(state)
+
+    def shear(self, x: ArrayLike, state: int) -> np.ndarray:
+        """Shear ``q(x)`` at the end ``state``; integrates to its ``Q`` (eqs. S3, S13).
+
+        ``∓sign(ΔQ) f p`` in the slip zones. The steady state fixes only the change in
+        the stick zone (eq. S4); of the shear locked in there, which the load history
+        sets, this is the part proportional to ``p*``: ``q_0 = sign f (k_0 p* - p_0)``,
+        ``q_1 = sign f (p_1 - k_1 p*)``, ``k_0 + k_1 = 2`` (Masing's states at ``P``, ``s``
+        constant without a mean). In shakedown a ``ValueError``: the shear is all history.
+        """
+        k = self._state(state)
+        if self.shakedown:
+            raise ValueError("the cycle has shaken down: its shear is locked in by the load history, "
+                             "the steady state does not determine it (only energy = 0 and the stick zone)")
+        (P0, _, Q0, _), (P1, _, Q1, _), (P, _, Q, _) = *self.states, self.states[k]
+        sgn, f, f_star = self.sign, self.f, 0.5 * (self.f * (P0 + P1) - abs(Q1 - Q0))   # f P* (eq. S6)
+        p, p_star = self.normals[k].pressure(x), self.corrective(x)
+        if k == 0:
+            return sgn * f * ((sgn * Q + f * P) / f_star * p_star - p)
+        return sgn * f * (p - (f * P - sgn * Q) / f_star * p_star)
+
+    def slip_amplitude(self, x: ArrayLike) -> np.ndarray:
+        """Half the slip over a half-cycle (eq. S7), ``f |gap* - (gap_0 + gap_1)/2|``; 0 outside the larger contact."""
+        x = np.asarray(x, dtype=float)
+        if self.shakedown:
+            return np.zeros(x.shape)
+        lo, hi = min(-n.a for n in self.normals), max(n.c for n in self.normals)
+        amp = self.f * np.abs(self.gap(x, "stick") - 0.5 * (self.gap(x, 0) + self.gap(x, 1)))
+        return np.where((x > lo) & (x < hi), amp, 0.0)
+
+    def stress(self, x: ArrayLike, z: ArrayLike, state: int, *, nu: float = NU) -> Stress:
+        """Stresses in the substrate at ``(x, z)`` at the end ``state``: pressure, :meth:`shear`, ``sigma_bulk``."""
+        from .stress import stress
+        n = self.normals[k := self._state(state)]
+        return stress(x, z, pressure=n.pressure, shear=lambda t: self.shear(t, k), ends=(-n.a, n.c),
+                      sigma_bulk=self.states[k][3], nu=nu, kinks=_kinks(n.punch.b, -n.a, n.c, *self.stick_zone))
+
+
 def masing(Q_max: float, Q: float, branch: str) -> tuple[float, float, float]:
     """``(c_max, c_u, u)``: the state at ``Q`` on ``branch`` is ``c_max X(Q_max) + c_u X(u)``.
 

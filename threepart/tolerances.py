@@ -71,6 +71,9 @@ normalised error (``_level``: at the finest discretisation of a study).
 ``refs``
     The precision each quantity of the reference dataset claims (``threepart
     export-refs``, ``docs/REFERENCE_DATA.md``), checked by ``tests/test_refs.py``.
+``steady``
+    The periodic steady state of in-phase loading (``tests/test_steady_state.py``,
+    docs/STEADY_STATE.md): reductions, Hertz, closed form vs SIE, brute quadrature.
 ``convergence``
     The convergence tools (:mod:`threepart.convergence`) on manufactured sequences.
 ``answer``
@@ -302,6 +305,16 @@ TOLERANCES: dict[tuple[str, str], Tolerance] = {
     ("closedform", "quadrature"): _T(1e-10, "closed-form P, P s, α, p and the special cases against adaptive quadrature of the paper's integrals (tests/quad_reference.py, epsrel 1e-13): the issue's acceptance bound"),
     ("closedform", "round_off"): _T(1e-12, "an identity, limit or symmetry of the cancellation-free closed form in double precision: rounding of a few dozen operations"),
     ("closedform", "exact"): _T(1e-14, "a figure exact by construction (a = c, e = 0, a conversion of moduli): rounding of a few operations"),
+    # --- steady state: the periodic steady state of in-phase loading (docs/STEADY_STATE.md) --------
+    ("steady", "round_off"): _T(1e-12, "P, s constant against cf.fretting_cycle (stick-zone ends of W, energy relative, shear and slip amplitude of their peaks), and the cycle's symmetries: the same roots and quadratures, measured <= 1.4e-14"),
+    ("steady", "hertz_zone"): _T(1e-8, "Hertz's stick zone from c'^2 = 2ARP*/π and the offset of eq. S15, both methods, of W (the issue's target; measured <= 5.4e-17)"),
+    ("steady", "hertz_energy"): _T(1e-10, "the closed form's energy against eq. S16 by quad (epsrel 1e-13): measured <= 2.2e-15"),
+    ("steady", "zone"): _T(1e-8, "closed form vs SIE (n = 1024): stick-zone ends of W (measured <= 2.1e-16), slip amplitude of its peak (8.7e-12); the SIE's steady state vs its fretting cycle past the closed form; the shear in the slip zones and the stress against the closed form's own fretting state"),
+    ("steady", "energy"): _T(1e-6, "energy per cycle: closed form vs SIE (measured <= 2.7e-10: the SIE's quadrature settles to 1e-8), vs the brute quadrature of the slip differenced with step 1e-6 (measured <= 1.0e-9), vs the SIE's fretting cycle past the closed form (3.3e-9); ∫q = Q by 400-node panels"),
+    ("steady", "march_energy"): _T(1e-2, "the history marched on 400 panels (5e-4 mm to 7e-4 mm over the slip zones, 40 steps a half-cycle, three cycles): its last cycle's friction work, measured 0.12 %, 0.18 % and 0.37 % (the panels' error: 80 steps give the same)"),
+    ("steady", "march_panels"): _T(1.0, "the ends of the marched history's never-slipping panels (slip below 1e-9 of the most), in panel widths there: measured <= 0.34"),
+    ("steady", "march_shakedown"): _T(1e-9, "the marched history's friction work in a shaken-down cycle, of the work of the same ΔQ at constant P: rounding of its dense solves (displacement changes ~1e-16 mm), measured 4e-12 (200 panels, 20 steps a half-cycle, two cycles)"),
+    ("steady", "rate"): _T(1e-7, "eqs. S8, S9 against central differences with step 1e-4 of the load path: truncation ~1e-8"),
     # --- numbers stored in the case catalogue ----------------------------------------------------
     ("catalogue", "stored_lift_off"): _T(1e-12, "a stored lift-off lever arm (the closed form's, an exact root) against sie.lift_off, another exact root (as sie-exact lift_off)"),
     ("catalogue", "paper_load"): _T(1e-4, "P = 28846 N/mm is the paper's 4PA/b = 1 rounded to five digits"),
