@@ -38,6 +38,7 @@ line on stderr), 130 interrupted (map: run it again to resume).
 from __future__ import annotations
 
 import argparse
+import math
 import os
 import select
 import signal
@@ -45,7 +46,9 @@ import sys
 import threading
 from typing import Any, NoReturn, Sequence
 
-__all__ = ["main", "build_parser", "UNITS", "NUMERIC_OPTIONS", "LIST_OPTIONS", "UsageError"]
+from threepart.__main__ import COMMANDS, INTERRUPTED, program
+
+__all__ = ["main", "build_parser", "real_arg", "UNITS", "NUMERIC_OPTIONS", "LIST_OPTIONS", "UsageError"]
 
 #: the unit printed with each quantity, by its key in the output ("1": dimensionless).
 #: The library is unit-agnostic; these are the labels of one consistent set.
@@ -73,8 +76,6 @@ LIST_OPTIONS = ("--x",)
 MAX_GRID = 1_000_000
 
 
-#: the sub-commands (kept in step with :func:`build_parser` by tests/test_cli.py)
-COMMANDS = ("solve", "slip", "verify", "figures", "map", "export-refs", "fatigue", "deck", "compare")
 
 
 class UsageError(Exception):
@@ -129,11 +130,11 @@ def _labelled(help_text: str, quantity: str) -> str:
 def _punch_args(p: argparse.ArgumentParser) -> None:
     """``--R1 --R2 --b --R``: the punch of eq. (2), for every command that takes one."""
     g = p.add_argument_group("punch geometry (eq. 2)")
-    g.add_argument("--R1", type=float, required=True, help=_labelled("left edge radius, > 0", "R1"))
-    g.add_argument("--R2", type=float, required=True, help=_labelled("right edge radius, > 0", "R2"))
-    g.add_argument("--b", type=float, required=True,
+    g.add_argument("--R1", type=real_arg, required=True, help=_labelled("left edge radius, > 0", "R1"))
+    g.add_argument("--R2", type=real_arg, required=True, help=_labelled("right edge radius, > 0", "R2"))
+    g.add_argument("--b", type=real_arg, required=True,
                    help=_labelled("half-width of the central segment, >= 0", "b"))
-    g.add_argument("--R", type=float, default=float("inf"),
+    g.add_argument("--R", type=real_arg, default=float("inf"),
                    help=_labelled("central radius: inf (flat, case A, default), negative for "
                                   "concave (case B)", "R"))
 
@@ -153,15 +154,15 @@ def _method_args(p: argparse.ArgumentParser) -> Any:
 def _geometry_args(p: argparse.ArgumentParser) -> None:
     _punch_args(p)
     m = p.add_argument_group("material (eq. 4, plane strain)")
-    m.add_argument("--A", type=float, help=_labelled("compliance A; or give --E/--nu", "A"))
-    m.add_argument("--E", type=float,
+    m.add_argument("--A", type=real_arg, help=_labelled("compliance A; or give --E/--nu", "A"))
+    m.add_argument("--E", type=real_arg,
                    help=_labelled("Young's modulus of the half-plane (and punch, see --rigid)", "E"))
-    m.add_argument("--nu", type=float, help="Poisson's ratio")
+    m.add_argument("--nu", type=real_arg, help="Poisson's ratio")
     m.add_argument("--rigid", action="store_true", help="rigid punch on an elastic half-plane")
     ld = p.add_argument_group("loads")
-    ld.add_argument("--P", type=float, required=True,
+    ld.add_argument("--P", type=real_arg, required=True,
                     help=_labelled("compressive normal load per unit length, > 0", "P"))
-    ld.add_argument("--s", type=float, default=0.0,
+    ld.add_argument("--s", type=real_arg, default=0.0,
                     help=_labelled("lever arm of P, positive to the right", "s"))
     ld.add_argument("--tilt", choices=("free", "suppressed"), default="free")
     mt = _method_args(p)
@@ -178,12 +179,39 @@ def _geometry_args(p: argparse.ArgumentParser) -> None:
                         "object; an infinite R (flat centre) is null")
 
 
-def _number_list(text: str) -> list[float]:
-    """``"1,-2.5,3e-1"`` as a list of floats (the type of ``--x``)."""
+def real_arg(text: str) -> float:
+    """The value of a number option (the type of every one): ``float(text)``, or a one-line refusal.
+
+    A number that double precision cannot hold is refused, not rounded: one that
+    underflows to 0 (``--b 1e-400`` would be solved as a punch without a flat) or
+    overflows to inf (``inf`` itself, where an option takes it, is given as such).
+    """
+    from decimal import Decimal, InvalidOperation
+
     try:
-        return [float(t) for t in text.split(",")]
+        v = float(text)
     except ValueError:
-        raise argparse.ArgumentTypeError(f"invalid list of numbers: {text!r} (write X1,X2,...)")
+        raise argparse.ArgumentTypeError(f"invalid float value: {text!r}") from None
+    try:
+        exact = Decimal(text.strip().replace("_", ""))
+    except InvalidOperation:   # a form float() reads and Decimal does not: nothing lost
+        return v
+    if v == 0.0 and exact.is_finite() and exact != 0:
+        raise argparse.ArgumentTypeError(f"{text} underflows to 0 in double precision (the smallest "
+                                         f"positive number is {math.ulp(0.0):.2g})")
+    if math.isinf(v) and exact.is_finite():
+        raise argparse.ArgumentTypeError(f"{text} overflows to inf in double precision (the largest "
+                                         f"number is {sys.float_info.max:.3g})")
+    return v
+
+
+def _number_list(text: str) -> list[float]:
+    """``"1,-2.5,3e-1"`` as a list of floats (the type of ``--x``), each read by :func:`real_arg`."""
+    try:
+        return [real_arg(t) for t in text.split(",")]
+    except argparse.ArgumentTypeError as exc:
+        raise argparse.ArgumentTypeError(f"invalid list of numbers: {text!r} ({exc}; write "
+                                         "X1,X2,...)") from None
 
 
 def _method(args: argparse.Namespace) -> Any:
@@ -437,6 +465,10 @@ def _cmd_export_refs(args: argparse.Namespace) -> int:
 
 #: the most grid points ``threepart fatigue`` evaluates (each state costs a stress evaluation)
 MAX_FATIGUE_POINTS = 100_000
+#: the most recorded states per branch ``threepart fatigue`` takes: each distinct state costs a
+#: stress evaluation at every grid point (the default grid: about 1 s a state on this project's
+#: 2-core machine at load 8, 20 states 29 s); 1000 ran past 5 minutes
+MAX_FATIGUE_STATES = 50
 #: units of the fatigue parameters in the command line's consistent set (mm, N/mm, MPa)
 FATIGUE_UNITS = {"von_mises_range": "MPa", "swt": "MPa", "findley": "MPa",
                  "ruiz_fdp": "MPa mm", "ruiz_ffdp": "MPa^2 mm", "theta": "deg"}
@@ -448,28 +480,29 @@ _FATIGUE_LABELS = {"von_mises_range": "von Mises range", "swt": "SWT (critical p
 def _fatigue_args(p: argparse.ArgumentParser) -> None:
     _punch_args(p)
     m = p.add_argument_group("material (two similar bodies, plane strain: A = 4(1 - nu^2)/E)")
-    m.add_argument("--E", type=float, required=True,
+    m.add_argument("--E", type=real_arg, required=True,
                    help=_labelled("Young's modulus (also for the SWT strains)", "E"))
-    m.add_argument("--nu", type=float, required=True, help="Poisson's ratio, in (-1, 0.5)")
-    m.add_argument("--k", type=float,   # None: threepart.fatigue.K_FINDLEY, read when used
+    m.add_argument("--nu", type=real_arg, required=True, help="Poisson's ratio, in (-1, 0.5)")
+    m.add_argument("--k", type=real_arg,   # None: threepart.fatigue.K_FINDLEY, read when used
                    help="Findley's constant, in [0, 10] (default {k_findley})")
     ld = p.add_argument_group("loads: P at s, then the cycle Q = 0 -> Q_max -> -Q_max -> Q_max")
-    ld.add_argument("--P", type=float, required=True,
+    ld.add_argument("--P", type=real_arg, required=True,
                     help=_labelled("compressive normal load per unit length, > 0", "P"))
-    ld.add_argument("--s", type=float, default=0.0,
+    ld.add_argument("--s", type=real_arg, default=0.0,
                     help=_labelled("lever arm of P, positive to the right", "s"))
-    ld.add_argument("--Q-max", dest="Q_max", type=float, required=True,
+    ld.add_argument("--Q-max", dest="Q_max", type=real_arg, required=True,
                     help=_labelled("amplitude of the shear force the punch exerts on the substrate "
                                    "along +x, 0 < Q_max < f P", "Q"))
-    ld.add_argument("--f", type=float, required=True, help="coefficient of friction, > 0")
-    ld.add_argument("--sigma-bulk", dest="sigma_bulk", type=float, default=0.0,
+    ld.add_argument("--f", type=real_arg, required=True, help="coefficient of friction, > 0")
+    ld.add_argument("--sigma-bulk", dest="sigma_bulk", type=real_arg, default=0.0,
                     help="bulk stress sigma_xx in the substrate at Q_max, tension positive, in "
                          "phase with Q [MPa] (default 0)")
     ld.add_argument("--tilt", choices=("free", "suppressed"), default="free")
     mt = _method_args(p)
     mt.add_argument("--states", type=int, default=5,
-                    help="recorded states per branch of the cycle, >= 2 (default 5; +-Q_max are "
-                         "always recorded); each distinct state costs one stress evaluation")
+                    help=f"recorded states per branch of the cycle, 2 to {MAX_FATIGUE_STATES} "
+                         "(default 5; +-Q_max are always recorded); each distinct state costs one "
+                         "stress evaluation")
     gr = p.add_argument_group("grid under the contact: x over [-a - W/4, c + W/4], z over [0, depth W]")
     gr.add_argument("--nx", type=int, default=41, help="points along x, >= 2 (default 41)")
     gr.add_argument("--nz", type=int, default=21, help="points in depth, >= 2 (default 21; the "
@@ -477,7 +510,7 @@ def _fatigue_args(p: argparse.ArgumentParser) -> None:
     gr.add_argument("--ns", type=int, default=201,
                     help="surface points over the contact for Ruiz's parameters, >= 2 (default "
                          "201, at the midpoints of equal parts, with the grid's surface row)")
-    gr.add_argument("--depth", type=float, default=1.0,
+    gr.add_argument("--depth", type=real_arg, default=1.0,
                     help="depth of the grid as a multiple of the contact width W = a + c, > 0 "
                          "(default 1)")
     out = p.add_argument_group("output files (each a new file, or one threepart wrote there and "
@@ -516,7 +549,7 @@ def _fatigue_iv(args: argparse.Namespace) -> None:
     poisson(args.nu)
     args.k = findley_k(K_FINDLEY if args.k is None else args.k)
     finite("--sigma-bulk", args.sigma_bulk)
-    integer("--states", args.states, 2, 1000)
+    integer("--states", args.states, 2, MAX_FATIGUE_STATES)
     integer("--nx", args.nx, 2, MAX_FATIGUE_POINTS // 2)
     integer("--nz", args.nz, 2, MAX_FATIGUE_POINTS // 2)
     integer("--ns", args.ns, 2, MAX_FATIGUE_POINTS)
@@ -596,12 +629,21 @@ def _cmd_fatigue(args: argparse.Namespace) -> int:
     punch = Punch(R1=args.R1, R2=args.R2, b=args.b, R=args.R)
     _fatigue_iv(args)
     A = similar_pair(args.E, args.nu)
-    cycle = _fretting(args, punch, A)
+    # a long run says it is still running every 15 s on stderr, as the verification run does
+    from threepart.reports.verify import _heartbeat
+
+    def say(msg: str) -> None:
+        print(f"threepart fatigue: {msg}", file=sys.stderr, flush=True)
+
+    with _heartbeat(say, lambda: f"the fretting cycle ({args.states} states per branch)"):
+        cycle = _fretting(args, punch, A)
     x, z = _fatigue_grid(args, cycle.normal)
     a, c = cycle.normal.a, cycle.normal.c
     line = -a + (a + c) * (np.arange(args.ns) + 0.5) / args.ns   # inside: never on a contact end
-    res = fatigue(cycle, x, z, E=args.E, nu=args.nu, k=args.k,
-                  surface=np.union1d(np.ravel(x), line))
+    with _heartbeat(say, lambda: f"the stresses of {cycle.Q.size} recorded states at "
+                                 f"{args.nx * args.nz + args.ns} points"):
+        res = fatigue(cycle, x, z, E=args.E, nu=args.nu, k=args.k,
+                      surface=np.union1d(np.ravel(x), line))
     if args.csv is not None:
         _fatigue_csv(args.csv, res)
     if args.vtu is not None:
@@ -754,15 +796,15 @@ def _problem_args(p: argparse.ArgumentParser, *, compliance_option: bool) -> Non
     g.add_argument("--case", metavar="NAME", help="a case of the catalogue (threepart/cases.json)")
     for name, text in (("--R1", "left edge radius"), ("--R2", "right edge radius"),
                        ("--b", "half-width of the central segment")):
-        g.add_argument(name, type=float, help=_labelled(text, name[2:]))
-    g.add_argument("--R", type=float, default=None,
+        g.add_argument(name, type=real_arg, help=_labelled(text, name[2:]))
+    g.add_argument("--R", type=real_arg, default=None,
                    help=_labelled("central radius (default inf: flat)", "R"))
-    g.add_argument("--P", type=float, help=_labelled("normal load per unit length", "P"))
-    g.add_argument("--s", type=float, default=None, help=_labelled("lever arm of P (default 0)", "s"))
-    g.add_argument("--E", type=float, help=_labelled("Young's modulus of the block", "E"))
-    g.add_argument("--nu", type=float, help="Poisson's ratio of the block")
+    g.add_argument("--P", type=real_arg, help=_labelled("normal load per unit length", "P"))
+    g.add_argument("--s", type=real_arg, default=None, help=_labelled("lever arm of P (default 0)", "s"))
+    g.add_argument("--E", type=real_arg, help=_labelled("Young's modulus of the block", "E"))
+    g.add_argument("--nu", type=real_arg, help="Poisson's ratio of the block")
     if compliance_option:
-        g.add_argument("--A", type=float,
+        g.add_argument("--A", type=real_arg,
                        help=_labelled("compliance of the model judged (eq. 4); default: the case's, "
                                       "or 2(1 - nu^2)/E (a rigid punch)", "A"))
     g.add_argument("--tilt", choices=("free", "suppressed"), default=None,
@@ -832,11 +874,24 @@ def _cmd_compare(args: argparse.Namespace) -> int:
     from threepart.reports.referee import main as referee_main
     from threepart.results import NormalResult
 
+    _compare_iv(args)
     pr = _problem(args)
     A = args.A if args.A is not None else pr["A"] if pr["A"] is not None else rigid_punch(pr["E"], pr["nu"])
     ref = solve(pr["punch"], pr["P"], pr["s"], A=A, tilt=pr["tilt"])
     assert isinstance(ref, NormalResult)           # no Q: the normal problem
     return int(referee_main(args.pressure, ref, out=args.out, alpha=args.alpha, penalty=args.penalty))
+
+
+def _compare_iv(args: argparse.Namespace) -> None:
+    """Check ``compare``'s own options before any numerics or any file is written."""
+    from threepart.validate import SLOPE_LIMIT, finite, positive
+
+    if args.alpha is not None and not abs(finite("--alpha", args.alpha)) <= SLOPE_LIMIT:
+        raise ValueError(f"`--alpha` = {args.alpha!r} rad exceeds the small-slope limit "
+                         f"{SLOPE_LIMIT:g} of half-plane theory in magnitude: no model judged "
+                         "against it tilts that far")
+    if args.penalty is not None:
+        positive("--penalty", args.penalty)
 
 
 _FORCE_HELP = ("no longer needed: a rerun replaces threepart's own earlier output in --out (its "
@@ -846,7 +901,7 @@ _FORCE_HELP = ("no longer needed: a rerun replaces threepart's own earlier outpu
 
 
 class _MapHelp(argparse.HelpFormatter):
-    """The help of ``map``: the quick grid's size counted from the grid, only when help is shown."""
+    """The help of ``map``: the quick grid's size and the CPUs counted, only when help is shown."""
 
     def _get_help_string(self, action: argparse.Action) -> str | None:
         text = super()._get_help_string(action)
@@ -854,6 +909,10 @@ class _MapHelp(argparse.HelpFormatter):
             from threepart.reports.validity import map_points
 
             text = text.replace("{quick_points}", str(len(map_points(True))))
+        if text and "{max_workers}" in text:
+            from threepart.reports.map import MAX_WORKERS
+
+            text = text.replace("{max_workers}", str(MAX_WORKERS))
         return text
 
 
@@ -871,9 +930,9 @@ def build_parser() -> argparse.ArgumentParser:
     p = sub.add_parser("slip", help="partial slip (Ciavarella-Jaeger; closed form or SIE)",
                        epilog="Units: mm, N/mm, MPa, 1/MPa, rad, or any consistent set.")
     _geometry_args(p)
-    p.add_argument("--Q", type=float, required=True, help=_labelled("shear force, |Q| < f P", "Q"))
-    p.add_argument("--f", type=float, required=True, help="coefficient of friction, > 0")
-    p.add_argument("--sigma-bulk", type=float, default=0.0, dest="sigma_bulk",
+    p.add_argument("--Q", type=real_arg, required=True, help=_labelled("shear force, |Q| < f P", "Q"))
+    p.add_argument("--f", type=real_arg, required=True, help="coefficient of friction, > 0")
+    p.add_argument("--sigma-bulk", type=real_arg, default=0.0, dest="sigma_bulk",
                    help=_labelled("bulk stress along x in the substrate at Q, MPa, tension positive; "
                                   "rises with Q in proportion (default 0)", "sigma_bulk"))
     p.set_defaults(func=_cmd_slip)
@@ -905,7 +964,8 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--scheduler", metavar="ADDRESS",
                    help="a running dask scheduler, e.g. tcp://host:8786 (default: a local cluster)")
     p.add_argument("--workers", type=int, metavar="N",
-                   help="worker processes of the local cluster, >= 1 (default: 2)")
+                   help="worker processes of the local cluster, 1 to the CPUs of this machine "
+                        "({max_workers} here) (default: 2)")
     p.add_argument("--force", action="store_true",
                    help="replace a finished map in --out (a map is expensive: never without "
                         "--force; only one threepart wrote, unchanged); an unfinished map of the "
@@ -937,12 +997,12 @@ def build_parser() -> argparse.ArgumentParser:
     _problem_args(p, compliance_option=False)
     p.add_argument("--out", required=True, metavar="FILE.inp",
                    help="the deck to write (a new file, or one threepart wrote there, unchanged)")
-    p.add_argument("--h", type=float, help=_labelled("element size at the contact (default W/200)", "a"))
-    p.add_argument("--penalty", type=float, metavar="K",
+    p.add_argument("--h", type=real_arg, help=_labelled("element size at the contact (default W/200)", "a"))
+    p.add_argument("--penalty", type=real_arg, metavar="K",
                    help="penalty stiffness K [MPa/mm] (default 200 E/h)")
     p.add_argument("--pair", action="store_true",
                    help="two similar elastic bodies instead of a stiff punch")
-    p.add_argument("--stiffening", type=float,
+    p.add_argument("--stiffening", type=real_arg,
                    help="the stiff punch's modulus over the block's (default 1000)")
     p.set_defaults(func=_cmd_deck)
 
@@ -950,8 +1010,8 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--pressure", required=True, metavar="FILE",
                    help="a CSV of x, p (p >= 0 compressive), or CalculiX's .frd or .dat (with the deck .inp beside it) holding the contact output CDIS, CSTR, CELS")
     _problem_args(p, compliance_option=True)
-    p.add_argument("--alpha", type=float, help=_labelled("the model's tilt, if known", "alpha"))
-    p.add_argument("--penalty", type=float, metavar="K",
+    p.add_argument("--alpha", type=real_arg, help=_labelled("the model's tilt, if known", "alpha"))
+    p.add_argument("--penalty", type=real_arg, metavar="K",
                    help="the model's penalty stiffness [MPa/mm], for the penalty diagnosis")
     p.add_argument("--out", default="compare",
                    help="report directory: new, empty, or threepart's own earlier report "
@@ -1004,8 +1064,9 @@ def main(argv: Sequence[str] | None = None) -> int:
     """
     argv = list(sys.argv[1:] if argv is None else argv)
     # named before parsing, so that Ctrl-C while the parser is built names the command too
-    prog = f"threepart {argv[0]}" if argv and argv[0] in COMMANDS else "threepart"
+    prog = program(argv)
     interrupted, previous = _watch_interrupts()
+    args = None
     try:
         try:
             args, extra = build_parser().parse_known_args(_join_negative_numbers(argv))
@@ -1020,10 +1081,10 @@ def main(argv: Sequence[str] | None = None) -> int:
         # Ctrl-C inside a C extension's import (numpy's) comes out as an ImportError, or any
         # other error, with the KeyboardInterrupt lost: the flag, not the class, tells
         if not (isinstance(exc, KeyboardInterrupt) or interrupted.is_set()):
-            return _error_status(exc, prog)
+            return _error_status(_units_hint(exc, args), prog)
         resume = "; run it again to resume" if prog == "threepart map" else ""
         print(f"{prog}: interrupted{resume}", file=sys.stderr)
-        return 130
+        return INTERRUPTED
     finally:
         if previous is not None:
             signal.signal(signal.SIGINT, previous)
@@ -1046,6 +1107,30 @@ def _watch_interrupts() -> tuple[threading.Event, Any]:
         raise KeyboardInterrupt
 
     return event, signal.signal(signal.SIGINT, on_sigint)
+
+
+#: a modulus below this (MPa) with a contact past the slope limit is likely given in GPa
+#: (the metals' moduli lie between about 45 and 410 GPa; steel's is 210 GPa = 210000 MPa)
+GPA_SUSPECT_E = 1000.0
+
+
+def _units_hint(exc: BaseException, args: argparse.Namespace | None) -> BaseException:
+    """``exc``, or for a slope past the limit (or a contact past an arc) with a small ``--E``,
+    the same error pointing at the modulus and its units.
+
+    ``--E 210`` (steel in GPa, not MPa) makes the contact a thousand times too
+    compliant and its slope absurd; the slope-limit error alone would send the
+    user to the load or the lever arm.
+    """
+    from threepart.errors import ArcExtentError, SlopeLimitError
+
+    E = getattr(args, "E", None)
+    if (not isinstance(exc, (SlopeLimitError, ArcExtentError)) or E is None
+            or getattr(args, "A", None) is not None or not 0 < E < GPA_SUSPECT_E):
+        return exc
+    what = _one_line(exc).replace("; reduce the load or the lever arm `s`", "")
+    return type(exc)(f"is `--E` = {E:g} in MPa (steel: 210000, not 210)? With it, {what}; "
+                     "else reduce the load or the lever arm `s`")
 
 
 def _error_status(exc: BaseException, prog: str) -> int:

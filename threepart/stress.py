@@ -58,7 +58,7 @@ from numpy.typing import ArrayLike
 from .validate import show, finite
 
 __all__ = ["Stress", "stress", "hilbert", "flamant_normal", "flamant_tangential",
-           "kernel_primitives", "RULE"]
+           "kernel_primitives", "RULE", "POINTS_PER_CHUNK"]
 
 Traction = Callable[[np.ndarray], Any]
 
@@ -70,6 +70,11 @@ Traction = Callable[[np.ndarray], Any]
 RULE = {"n": 12, "ratio": 0.35, "levels": 11, "min_levels": 2}
 #: points per block of the vectorised quadrature (memory: blocks of about 2e6 nodes)
 _NODES_PER_BLOCK = 2_000_000
+#: points per chunk of :func:`stress` and :func:`hilbert`: each chunk's grading depths, break-point
+#: distances and integrals are made and dropped in turn, so that the working memory stays about
+#: 100 MB beside the result's own 5 arrays of the points, whatever their number (1e7 points
+#: took 1.9 GB in one piece); each point's integrals do not depend on the chunk it falls in
+POINTS_PER_CHUNK = 100_000
 
 
 def _kernels(s: np.ndarray, z: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
@@ -305,6 +310,20 @@ def _integrals(x: np.ndarray, z: np.ndarray, funcs: dict[str, Traction], lo: flo
     return out
 
 
+def _chunked(x: np.ndarray, z: np.ndarray, funcs: dict[str, Traction], lo: float, hi: float,
+             kinks: np.ndarray, rule: dict[str, Any],
+             chunk: int | None = None) -> dict[str, tuple[np.ndarray, ...]]:
+    """:func:`_integrals` over the points in chunks of ``chunk`` (default :data:`POINTS_PER_CHUNK`)."""
+    size = POINTS_PER_CHUNK if chunk is None else chunk
+    out = {name: tuple(np.empty(x.size) for _ in range(4)) for name in funcs}
+    for start in range(0, x.size, size):
+        part = _integrals(x[start:start + size], z[start:start + size], funcs, lo, hi, kinks, rule)
+        for name in funcs:
+            for k in range(4):
+                out[name][k][start:start + size] = part[name][k]
+    return out
+
+
 def _halves(left: np.ndarray, right: np.ndarray, U: np.ndarray,
             Wu: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Each interval ``[left, right]`` halved, each half mapped by ``t = E + h u²`` from its end ``E``.
@@ -433,7 +452,7 @@ def stress(x: ArrayLike, z: ArrayLike, *, pressure: Traction, shear: Traction | 
         raise ValueError(f"`x` of shape {xa.shape} and `z` of shape {za.shape} do not broadcast "
                          "against each other") from None
     funcs = {"pressure": p_fn} if q_fn is None else {"pressure": p_fn, "shear": q_fn}
-    I = _integrals(xb.ravel(), zb.ravel(), funcs, lo, hi, k, RULE)
+    I = _chunked(xb.ravel(), zb.ravel(), funcs, lo, hi, k, RULE)
     c = -2.0 / math.pi
     pxx, pzz, pxz, _ = I["pressure"]
     sxx, szz, sxz = c * pxx, c * pzz, c * pxz
@@ -463,7 +482,7 @@ def hilbert(func: Traction, x: ArrayLike, *, ends: tuple[float, float], kinks: A
     fn = _traction("func", func)
     lo, hi, k = _ends_kinks(ends, kinks)
     flat = xa.ravel()
-    val = -_integrals(flat, np.zeros_like(flat), {"func": fn}, lo, hi, k, RULE)["func"][3] / math.pi
+    val = -_chunked(flat, np.zeros_like(flat), {"func": fn}, lo, hi, k, RULE)["func"][3] / math.pi
     if not np.all(np.isfinite(val)):
         where = flat[int(np.argmax(~np.isfinite(val)))]
         raise ValueError(f"the Hilbert transform is infinite at x = {where:.6g}, a contact end where "
