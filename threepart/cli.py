@@ -466,8 +466,8 @@ def _cmd_export_refs(args: argparse.Namespace) -> int:
 #: the most grid points ``threepart fatigue`` evaluates (each state costs a stress evaluation)
 MAX_FATIGUE_POINTS = 100_000
 #: the most recorded states per branch ``threepart fatigue`` takes: each distinct state costs a
-#: stress evaluation at every grid point (the default grid: about 1 s a state on this project's
-#: 2-core machine at load 8, 20 states 29 s); 1000 ran past 5 minutes
+#: stress evaluation at every grid point (README's example on its default grid, this project's
+#: 2-core machine: 50 states 31 s at load 3, 20 states 29 s at load 8); 1000 ran past 5 minutes
 MAX_FATIGUE_STATES = 50
 #: units of the fatigue parameters in the command line's consistent set (mm, N/mm, MPa)
 FATIGUE_UNITS = {"von_mises_range": "MPa", "swt": "MPa", "findley": "MPa",
