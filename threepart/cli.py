@@ -44,7 +44,7 @@ import select
 import signal
 import sys
 import threading
-from typing import Any, NoReturn, Sequence
+from typing import Any, Iterator, NoReturn, Sequence
 
 from threepart.__main__ import COMMANDS, INTERRUPTED, program
 
@@ -130,11 +130,11 @@ def _labelled(help_text: str, quantity: str) -> str:
 def _punch_args(p: argparse.ArgumentParser) -> None:
     """``--R1 --R2 --b --R``: the punch of eq. (2), for every command that takes one."""
     g = p.add_argument_group("punch geometry (eq. 2)")
-    g.add_argument("--R1", type=real_arg, required=True, help=_labelled("left edge radius, > 0", "R1"))
-    g.add_argument("--R2", type=real_arg, required=True, help=_labelled("right edge radius, > 0", "R2"))
-    g.add_argument("--b", type=real_arg, required=True,
+    g.add_argument("--R1", type=float, required=True, help=_labelled("left edge radius, > 0", "R1"))
+    g.add_argument("--R2", type=float, required=True, help=_labelled("right edge radius, > 0", "R2"))
+    g.add_argument("--b", type=float, required=True,
                    help=_labelled("half-width of the central segment, >= 0", "b"))
-    g.add_argument("--R", type=real_arg, default=float("inf"),
+    g.add_argument("--R", type=float, default=float("inf"),
                    help=_labelled("central radius: inf (flat, case A, default), negative for "
                                   "concave (case B)", "R"))
 
@@ -154,15 +154,15 @@ def _method_args(p: argparse.ArgumentParser) -> Any:
 def _geometry_args(p: argparse.ArgumentParser) -> None:
     _punch_args(p)
     m = p.add_argument_group("material (eq. 4, plane strain)")
-    m.add_argument("--A", type=real_arg, help=_labelled("compliance A; or give --E/--nu", "A"))
-    m.add_argument("--E", type=real_arg,
+    m.add_argument("--A", type=float, help=_labelled("compliance A; or give --E/--nu", "A"))
+    m.add_argument("--E", type=float,
                    help=_labelled("Young's modulus of the half-plane (and punch, see --rigid)", "E"))
-    m.add_argument("--nu", type=real_arg, help="Poisson's ratio")
+    m.add_argument("--nu", type=float, help="Poisson's ratio")
     m.add_argument("--rigid", action="store_true", help="rigid punch on an elastic half-plane")
     ld = p.add_argument_group("loads")
-    ld.add_argument("--P", type=real_arg, required=True,
+    ld.add_argument("--P", type=float, required=True,
                     help=_labelled("compressive normal load per unit length, > 0", "P"))
-    ld.add_argument("--s", type=real_arg, default=0.0,
+    ld.add_argument("--s", type=float, default=0.0,
                     help=_labelled("lever arm of P, positive to the right", "s"))
     ld.add_argument("--tilt", choices=("free", "suppressed"), default="free")
     mt = _method_args(p)
@@ -480,21 +480,21 @@ _FATIGUE_LABELS = {"von_mises_range": "von Mises range", "swt": "SWT (critical p
 def _fatigue_args(p: argparse.ArgumentParser) -> None:
     _punch_args(p)
     m = p.add_argument_group("material (two similar bodies, plane strain: A = 4(1 - nu^2)/E)")
-    m.add_argument("--E", type=real_arg, required=True,
+    m.add_argument("--E", type=float, required=True,
                    help=_labelled("Young's modulus (also for the SWT strains)", "E"))
-    m.add_argument("--nu", type=real_arg, required=True, help="Poisson's ratio, in (-1, 0.5)")
-    m.add_argument("--k", type=real_arg,   # None: threepart.fatigue.K_FINDLEY, read when used
+    m.add_argument("--nu", type=float, required=True, help="Poisson's ratio, in (-1, 0.5)")
+    m.add_argument("--k", type=float,   # None: threepart.fatigue.K_FINDLEY, read when used
                    help="Findley's constant, in [0, 10] (default {k_findley})")
     ld = p.add_argument_group("loads: P at s, then the cycle Q = 0 -> Q_max -> -Q_max -> Q_max")
-    ld.add_argument("--P", type=real_arg, required=True,
+    ld.add_argument("--P", type=float, required=True,
                     help=_labelled("compressive normal load per unit length, > 0", "P"))
-    ld.add_argument("--s", type=real_arg, default=0.0,
+    ld.add_argument("--s", type=float, default=0.0,
                     help=_labelled("lever arm of P, positive to the right", "s"))
-    ld.add_argument("--Q-max", dest="Q_max", type=real_arg, required=True,
+    ld.add_argument("--Q-max", dest="Q_max", type=float, required=True,
                     help=_labelled("amplitude of the shear force the punch exerts on the substrate "
                                    "along +x, 0 < Q_max < f P", "Q"))
-    ld.add_argument("--f", type=real_arg, required=True, help="coefficient of friction, > 0")
-    ld.add_argument("--sigma-bulk", dest="sigma_bulk", type=real_arg, default=0.0,
+    ld.add_argument("--f", type=float, required=True, help="coefficient of friction, > 0")
+    ld.add_argument("--sigma-bulk", dest="sigma_bulk", type=float, default=0.0,
                     help="bulk stress sigma_xx in the substrate at Q_max, tension positive, in "
                          "phase with Q [MPa] (default 0)")
     ld.add_argument("--tilt", choices=("free", "suppressed"), default="free")
@@ -510,7 +510,7 @@ def _fatigue_args(p: argparse.ArgumentParser) -> None:
     gr.add_argument("--ns", type=int, default=201,
                     help="surface points over the contact for Ruiz's parameters, >= 2 (default "
                          "201, at the midpoints of equal parts, with the grid's surface row)")
-    gr.add_argument("--depth", type=real_arg, default=1.0,
+    gr.add_argument("--depth", type=float, default=1.0,
                     help="depth of the grid as a multiple of the contact width W = a + c, > 0 "
                          "(default 1)")
     out = p.add_argument_group("output files (each a new file, or one threepart wrote there and "
@@ -796,15 +796,15 @@ def _problem_args(p: argparse.ArgumentParser, *, compliance_option: bool) -> Non
     g.add_argument("--case", metavar="NAME", help="a case of the catalogue (threepart/cases.json)")
     for name, text in (("--R1", "left edge radius"), ("--R2", "right edge radius"),
                        ("--b", "half-width of the central segment")):
-        g.add_argument(name, type=real_arg, help=_labelled(text, name[2:]))
-    g.add_argument("--R", type=real_arg, default=None,
+        g.add_argument(name, type=float, help=_labelled(text, name[2:]))
+    g.add_argument("--R", type=float, default=None,
                    help=_labelled("central radius (default inf: flat)", "R"))
-    g.add_argument("--P", type=real_arg, help=_labelled("normal load per unit length", "P"))
-    g.add_argument("--s", type=real_arg, default=None, help=_labelled("lever arm of P (default 0)", "s"))
-    g.add_argument("--E", type=real_arg, help=_labelled("Young's modulus of the block", "E"))
-    g.add_argument("--nu", type=real_arg, help="Poisson's ratio of the block")
+    g.add_argument("--P", type=float, help=_labelled("normal load per unit length", "P"))
+    g.add_argument("--s", type=float, default=None, help=_labelled("lever arm of P (default 0)", "s"))
+    g.add_argument("--E", type=float, help=_labelled("Young's modulus of the block", "E"))
+    g.add_argument("--nu", type=float, help="Poisson's ratio of the block")
     if compliance_option:
-        g.add_argument("--A", type=real_arg,
+        g.add_argument("--A", type=float,
                        help=_labelled("compliance of the model judged (eq. 4); default: the case's, "
                                       "or 2(1 - nu^2)/E (a rigid punch)", "A"))
     g.add_argument("--tilt", choices=("free", "suppressed"), default=None,
@@ -930,9 +930,9 @@ def build_parser() -> argparse.ArgumentParser:
     p = sub.add_parser("slip", help="partial slip (Ciavarella-Jaeger; closed form or SIE)",
                        epilog="Units: mm, N/mm, MPa, 1/MPa, rad, or any consistent set.")
     _geometry_args(p)
-    p.add_argument("--Q", type=real_arg, required=True, help=_labelled("shear force, |Q| < f P", "Q"))
-    p.add_argument("--f", type=real_arg, required=True, help="coefficient of friction, > 0")
-    p.add_argument("--sigma-bulk", type=real_arg, default=0.0, dest="sigma_bulk",
+    p.add_argument("--Q", type=float, required=True, help=_labelled("shear force, |Q| < f P", "Q"))
+    p.add_argument("--f", type=float, required=True, help="coefficient of friction, > 0")
+    p.add_argument("--sigma-bulk", type=float, default=0.0, dest="sigma_bulk",
                    help=_labelled("bulk stress along x in the substrate at Q, MPa, tension positive; "
                                   "rises with Q in proportion (default 0)", "sigma_bulk"))
     p.set_defaults(func=_cmd_slip)
@@ -997,12 +997,12 @@ def build_parser() -> argparse.ArgumentParser:
     _problem_args(p, compliance_option=False)
     p.add_argument("--out", required=True, metavar="FILE.inp",
                    help="the deck to write (a new file, or one threepart wrote there, unchanged)")
-    p.add_argument("--h", type=real_arg, help=_labelled("element size at the contact (default W/200)", "a"))
-    p.add_argument("--penalty", type=real_arg, metavar="K",
+    p.add_argument("--h", type=float, help=_labelled("element size at the contact (default W/200)", "a"))
+    p.add_argument("--penalty", type=float, metavar="K",
                    help="penalty stiffness K [MPa/mm] (default 200 E/h)")
     p.add_argument("--pair", action="store_true",
                    help="two similar elastic bodies instead of a stiff punch")
-    p.add_argument("--stiffening", type=real_arg,
+    p.add_argument("--stiffening", type=float,
                    help="the stiff punch's modulus over the block's (default 1000)")
     p.set_defaults(func=_cmd_deck)
 
@@ -1010,14 +1010,26 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--pressure", required=True, metavar="FILE",
                    help="a CSV of x, p (p >= 0 compressive), or CalculiX's .frd or .dat (with the deck .inp beside it) holding the contact output CDIS, CSTR, CELS")
     _problem_args(p, compliance_option=True)
-    p.add_argument("--alpha", type=real_arg, help=_labelled("the model's tilt, if known", "alpha"))
-    p.add_argument("--penalty", type=real_arg, metavar="K",
+    p.add_argument("--alpha", type=float, help=_labelled("the model's tilt, if known", "alpha"))
+    p.add_argument("--penalty", type=float, metavar="K",
                    help="the model's penalty stiffness [MPa/mm], for the penalty diagnosis")
     p.add_argument("--out", default="compare",
                    help="report directory: new, empty, or threepart's own earlier report "
                         "(default: ./compare)")
     p.set_defaults(func=_cmd_compare)
+    for action in _actions(parser):   # one reader of numbers: every `type=float` option's
+        if action.type is float:
+            action.type = real_arg
     return parser
+
+
+def _actions(parser: argparse.ArgumentParser) -> Iterator[argparse.Action]:
+    """Every option of ``parser`` and of its sub-commands."""
+    for action in parser._actions:
+        yield action
+        if isinstance(action, argparse._SubParsersAction):
+            for sub in action.choices.values():
+                yield from _actions(sub)
 
 
 def _one_line(exc: BaseException) -> str:
