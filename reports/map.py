@@ -87,7 +87,7 @@ from .validity import MapPoint
 
 __all__ = ["run_map", "main", "exit_status", "check_arguments", "below_level", "designer_sentence",
            "validate", "load_schema", "SCHEMA_FILE", "SCHEMA_VERSION", "COLUMNS", "COORDINATES",
-           "CONTROL_LIMIT", "LEVELS", "POINTS_FILE", "DEFAULT_WORKERS", "Studies"]
+           "CONTROL_LIMIT", "LEVELS", "POINTS_FILE", "DEFAULT_WORKERS", "MAX_WORKERS", "Studies"]
 
 #: the command recorded in the marker of a map directory
 COMMAND = "map"
@@ -96,6 +96,10 @@ COMMAND = "map"
 CONTROL_LIMIT = tolerance("map", "control").limit
 #: local worker processes when none are asked for
 DEFAULT_WORKERS = 2
+#: the most worker processes of a local cluster: the CPUs this process may run on. Each worker
+#: is a CPU-bound FE solve of its own (up to about 1 GB); more only share the cores and multiply
+#: the memory (`--workers 50` started 52 processes on 2 cores)
+MAX_WORKERS = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count() or 1
 #: seconds to wait for an existing scheduler to answer
 CONNECT_TIMEOUT = 20
 
@@ -109,8 +113,9 @@ def check_arguments(workers: int | None, scheduler: str | None) -> None:
     if workers is not None:
         if isinstance(workers, bool) or not isinstance(workers, int):
             raise ValueError(f"`--workers` = {workers!r} must be an integer >= 1")
-        if workers < 1:
-            raise ValueError(f"`--workers` = {workers} must be >= 1")
+        if not 1 <= workers <= MAX_WORKERS:
+            raise ValueError(f"`--workers` = {workers} must lie in [1, {MAX_WORKERS}], the CPUs of "
+                             "this machine (each worker is a process that keeps a core busy)")
         if scheduler is not None:
             raise ValueError("give `--workers` (a local cluster) or `--scheduler` (an existing "
                              "cluster, which has its own workers), not both")

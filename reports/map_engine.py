@@ -8,11 +8,12 @@ sweep       -- submit every task, log each result as it arrives, report progress
 from __future__ import annotations
 
 import gc
+import logging
 import os
 import time
 import uuid
 from asyncio import CancelledError
-from contextlib import contextmanager, nullcontext
+from contextlib import ExitStack, contextmanager, nullcontext
 from typing import Any, Callable, Iterator, Sequence
 
 import dask
@@ -78,6 +79,34 @@ def _silenced(loggers: Sequence[str] = ("distributed", "dask", "tornado", "async
             logging.getLogger(name).setLevel(level)
 
 
+class _ExpectedAtClose:
+    """A logging filter that drops the nanny's warning that it killed a worker at the cluster's close.
+
+    Closing the map's own cluster stops its workers; a worker still busy (a
+    loaded machine, a study's thread) after the nanny's grace is killed, which
+    is what the close asks for, not a fault. Every other record passes:
+    errors, and a worker restarted mid-run ("Restarting worker").
+    """
+
+    def filter(self, record: logging.LogRecord) -> bool:
+        return not str(record.msg).startswith(_KILLED_AT_CLOSE)
+
+
+#: the start of the warning ``distributed.nanny`` logs when it kills a worker slow to stop
+_KILLED_AT_CLOSE = "Worker process still alive after"
+
+
+@contextmanager
+def _own_cluster_logs() -> Iterator[None]:
+    """For the life of the map's own cluster: no nanny warning about killing its workers at close."""
+    nanny, expected = logging.getLogger("distributed.nanny"), _ExpectedAtClose()
+    nanny.addFilter(expected)
+    try:
+        yield
+    finally:
+        nanny.removeFilter(expected)
+
+
 @contextmanager
 def open_engine(scheduler: str | None, workers: int, timeout: float) -> Iterator[tuple[Any, dict[str, Any]]]:
     """A dask client on a new local cluster of ``workers`` or on ``scheduler``; closed on exit.
@@ -90,16 +119,22 @@ def open_engine(scheduler: str | None, workers: int, timeout: float) -> Iterator
     command line's.
     """
     cluster = None
+    stack = ExitStack()
     if scheduler is None:
-        with _quiet_workers():
-            # the dashboard on a free port: another cluster on this machine may hold 8787, and
-            # distributed's warning about it would break the one-line stderr of an interrupt
-            cluster = LocalCluster(n_workers=workers, threads_per_worker=1,
-                                   processes=True, dashboard_address=":0")
+        stack.enter_context(_own_cluster_logs())
+        try:
+            with _quiet_workers():
+                # the dashboard on a free port: another cluster on this machine may hold 8787, and
+                # distributed's warning about it would break the one-line stderr of an interrupt
+                cluster = LocalCluster(n_workers=workers, threads_per_worker=1,
+                                       processes=True, dashboard_address=":0")
+        except BaseException:
+            stack.close()
+            raise
         try:
             client = Client(cluster)
         except BaseException:
-            with _silenced():
+            with stack, _silenced():
                 cluster.close()
             raise
     else:
@@ -113,7 +148,7 @@ def open_engine(scheduler: str | None, workers: int, timeout: float) -> Iterator
         interrupted = True
         raise
     finally:
-        with _silenced() if interrupted else nullcontext():
+        with stack, _silenced() if interrupted else nullcontext():
             client.close()
             if cluster is not None:
                 cluster.close()

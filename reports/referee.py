@@ -151,6 +151,7 @@ def from_points(x: ArrayLike, p: ArrayLike, ref: NormalResult, *, alpha: float |
         raise ValueError(f"the pressure has {x.size} points; at least 8 are needed")
     if not (np.all(np.isfinite(x)) and np.all(np.isfinite(p))):
         raise ValueError("the pressure holds a non-finite x or p (NaN or inf)")
+    _in_range(x, p, alpha)
     order = np.argsort(x, kind="stable")
     x, p = x[order], p[order]
     if np.any(np.diff(x) <= 0):
@@ -171,6 +172,26 @@ def from_points(x: ArrayLike, p: ArrayLike, ref: NormalResult, *, alpha: float |
                         diagnostics=Diagnostics(h=float(np.median(np.diff(x))), dofs=int(x.size)),
                         info=dict(info or {}, alpha_given=alpha is not None),
                         x_nodes=x, p_nodes=p)
+
+
+def _in_range(x: np.ndarray, p: np.ndarray, alpha: float | None) -> None:
+    """Refuse points whose load or centroid overflows, and a tilt that is no small slope.
+
+    ``x`` and ``p`` stay within :data:`threepart.validate.LENGTH_RANGE` in magnitude
+    (lengths and loads, so that ``∫p dx`` and ``∫x p dx`` stay finite); ``alpha``
+    is finite and within :data:`threepart.validate.SLOPE_LIMIT`.
+    """
+    from threepart.validate import LENGTH_RANGE, SLOPE_LIMIT, finite
+
+    hi = LENGTH_RANGE[1]
+    for name, v in (("x", x), ("p", p)):
+        if v.size and not float(np.max(np.abs(v))) <= hi:
+            raise ValueError(f"the pressure's `{name}` reaches {float(np.max(np.abs(v))):.3g} in "
+                             f"magnitude, past {hi:g}, the range this library computes in double "
+                             "precision (its load and centroid would overflow)")
+    if alpha is not None and not abs(finite("alpha", alpha)) <= SLOPE_LIMIT:
+        raise ValueError(f"`alpha` = {alpha!r} exceeds the small-slope limit {SLOPE_LIMIT:g} of "
+                         "half-plane theory in magnitude")
 
 
 def read_pressure(path: str | Path) -> tuple[np.ndarray, np.ndarray, dict[str, Any]]:

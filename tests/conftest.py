@@ -23,3 +23,21 @@ def threepart_state_dir():
             os.environ.pop("THREEPART_STATE_DIR", None)
         else:
             os.environ["THREEPART_STATE_DIR"] = saved
+
+
+@pytest.hookimpl(trylast=True)
+def pytest_sessionfinish(session: pytest.Session) -> None:
+    """Collect the session's garbage now, then freeze what is left, so the end of a worker is quick.
+
+    pytest's own clean-up at unconfigure collects five times over (to report unraisable
+    exceptions); in an xdist worker that holds dask, numpy and the solvers, on a loaded
+    machine, that took over 5 s, and execnet sends a worker still busy 5 s after the run's end
+    SIGINT, then SIGKILL (seen with strace: the worker in ``gc_collect_harder``). Here the run is
+    not over yet (xdist reports it finished after this hook): the collection runs, with the
+    unraisable-exception hook still installed, and unconfigure's collections find only what
+    came after.
+    """
+    import gc
+
+    gc.collect()
+    gc.freeze()

@@ -89,6 +89,13 @@ def _one_line_error(capsys, command="solve"):
     (["--P", "400", "--bogus", "1"], r"unrecognized arguments: --bogus 1"),
     (["--P", "400", "--tilt", "sideways"], r"argument --tilt: invalid choice: 'sideways'"),
     (["--P"], r"argument --P: expected one argument"),
+    # a number double precision cannot hold is refused, not rounded to 0 or inf
+    (["--P", "400", "--b", "1e-400"], r"argument --b: 1e-400 underflows to 0 in double precision "
+                                      r"\(the smallest positive number is 4\.9e-324\)"),
+    (["--P", "1e400"], r"argument --P: 1e400 overflows to inf in double precision \(the largest "
+                       r"number is 1\.8e\+308\)"),
+    (["--P", "400", "--x", "0.1,-1e-999"], r"argument --x: invalid list of numbers: '0\.1,-1e-999' "
+                                           r"\(-1e-999 underflows to 0"),
 ])
 def test_every_input_error_is_one_line_with_exit_status_2(capsys, args, match):
     base = ["--R1", "10", "--R2", "5", "--b", "1", "--E", "210000", "--nu", "0.3", "--rigid"]
@@ -141,35 +148,44 @@ def test_ctrl_c_prints_one_line_and_exits_130(capsys, monkeypatch):
     assert capsys.readouterr().err == "threepart solve: interrupted\n"
 
 
-def test_ctrl_c_that_a_c_extension_turns_into_another_error_is_still_an_interrupt(capsys, monkeypatch):
-    """numpy's import turns a Ctrl-C into an ImportError ("Importing the numpy C-extensions
-    failed"), losing the KeyboardInterrupt: still one line, exit status 130."""
-    import os
-    import signal
-    from dataclasses import replace
+#: a command whose solver's import is interrupted as numpy's is (the Ctrl-C comes out as an
+#: ImportError), in a process of its own that signals only itself
+C_EXTENSION_CTRL_C = """
+import os, signal, sys
+from dataclasses import replace
+from threepart import registry
+from threepart.cli import main
 
-    from threepart import registry
-
-    def import_interrupted(*a, **k):
-        try:
-            os.kill(os.getpid(), signal.SIGINT)
-        except KeyboardInterrupt:
-            pass
-        raise ImportError("Importing the numpy C-extensions failed.")
-
-    monkeypatch.setitem(registry._REGISTRY, "closedform", replace(registry.get("closedform"),
-                                                                  normal=import_interrupted))
-    # Python's own handler, as in a terminal's foreground job (a background `pytest &` starts
-    # with SIGINT ignored)
-    saved = signal.signal(signal.SIGINT, signal.default_int_handler)
+def import_interrupted(*a, **k):
     try:
-        status = main(["solve", *GEOM])
-        handler = signal.getsignal(signal.SIGINT)
-    finally:
-        signal.signal(signal.SIGINT, saved)
-    assert status == 130
-    assert capsys.readouterr().err == "threepart solve: interrupted\n"
-    assert handler is signal.default_int_handler   # restored
+        os.kill(os.getpid(), signal.SIGINT)
+    except KeyboardInterrupt:
+        pass
+    raise ImportError("Importing the numpy C-extensions failed.")
+
+registry._REGISTRY["closedform"] = replace(registry.get("closedform"), normal=import_interrupted)
+status = main(sys.argv[1:])
+if signal.getsignal(signal.SIGINT) is not signal.default_int_handler:
+    sys.exit("main() did not restore the SIGINT handler it replaced")
+sys.exit(status)
+"""
+
+
+def test_ctrl_c_that_a_c_extension_turns_into_another_error_is_still_an_interrupt():
+    """numpy's import turns a Ctrl-C into an ImportError ("Importing the numpy C-extensions
+    failed"), losing the KeyboardInterrupt: still one line, exit status 130, and the handler main()
+    replaced is restored. The SIGINT is sent in a child in its own session, to itself: never to
+    the test runner."""
+    import signal
+
+    # Python's own handler, as in a terminal's foreground job (a background `pytest &` starts
+    # with SIGINT ignored, and its children would inherit that)
+    proc = subprocess.run([sys.executable, "-c", C_EXTENSION_CTRL_C, "solve", *GEOM],
+                          cwd=Path(__file__).resolve().parents[1], capture_output=True, text=True,
+                          start_new_session=True,
+                          preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
+    assert proc.returncode == 130, proc.stderr
+    assert proc.stderr == "threepart solve: interrupted\n"
 
 
 #: 128 + SIGPIPE: the status a program killed by SIGPIPE reports (POSIX shells, git, coreutils)
@@ -243,11 +259,11 @@ def test_a_negative_number_may_follow_its_option(capsys, option, value):
 
 
 def test_every_number_option_accepts_a_negative_value():
-    from threepart.cli import NUMERIC_OPTIONS, build_parser
+    from threepart.cli import NUMERIC_OPTIONS, build_parser, real_arg
 
     parser = build_parser()
     subs = next(a for a in parser._actions if isinstance(a, argparse._SubParsersAction))
-    numeric = {o for p in subs.choices.values() for a in p._actions if a.type is float
+    numeric = {o for p in subs.choices.values() for a in p._actions if a.type is real_arg
                for o in a.option_strings}
     assert numeric == set(NUMERIC_OPTIONS)
 
@@ -419,15 +435,17 @@ def test_ctrl_c_while_loading_or_solving_prints_exactly_one_line(loaded, delay, 
     # child: give it the default disposition a terminal's foreground process has
     proc = subprocess.Popen([sys.executable, "-m", "threepart", "solve", *AGEOM, "--method", "fem",
                              "--mesh", "fine"], cwd=tmp_path, stdout=subprocess.PIPE,
-                            stderr=subprocess.PIPE, text=True,
+                            stderr=subprocess.PIPE, text=True, start_new_session=True,
                             preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
     maps = Path(f"/proc/{proc.pid}/maps")
-    deadline = time.monotonic() + 60
-    while loaded not in maps.read_text() and time.monotonic() < deadline:
+    t0 = time.monotonic()
+    while loaded not in maps.read_text():   # fails, never proceeds, if the moment does not come
+        assert proc.poll() is None, f"the child ended before {loaded} was loaded: {proc.stderr.read()}"
+        assert time.monotonic() - t0 < LINE_GUARD_S, f"{loaded} not loaded in {LINE_GUARD_S} s"
         time.sleep(0.005)
-    time.sleep(delay)
+    time.sleep(delay)   # into the FE solve, which takes far longer on the fine mesh (never shorter under load)
     proc.send_signal(signal.SIGINT)
-    out, err = proc.communicate(timeout=120)
+    out, err = proc.communicate(timeout=LINE_GUARD_S)
     assert proc.returncode == 130, err
     assert err.strip() == "threepart solve: interrupted", err
 
@@ -437,3 +455,165 @@ def test_the_command_list_names_every_sub_command():
 
     sub = next(a for a in build_parser()._actions if isinstance(a, argparse._SubParsersAction))
     assert set(sub.choices) == set(COMMANDS)
+
+
+def test_a_number_that_double_precision_holds_is_read_as_before(capsys):
+    """The float-argument parser against float(): the smallest subnormal, the largest double and
+    an infinite R (flat centre) are read as they are; only 0 and inf reached by rounding are refused."""
+    from threepart.cli import real_arg
+
+    for text in ("5e-324", "1.7976931348623157e308", "inf", "-inf", "0", "-0.0", "1_000.5", " 2.5 "):
+        assert real_arg(text) == float(text) or (math.isnan(float(text)))
+    assert main(["solve", *GEOM, "--R", "inf", "--json"]) == 0
+    assert json.loads(capsys.readouterr().out)["punch"]["R"] is None
+
+
+# ---------------------------------------------------------------------------------------
+# compare: its own options and the pressure refused before anything is written
+# ---------------------------------------------------------------------------------------
+COMPARE = ["compare", "--R1", "10", "--R2", "5", "--b", "1", "--P", "400", "--E", "210000", "--nu", "0.3"]
+
+
+def _pressure_csv(path: Path, x_scale: float = 1.0, p_scale: float = 1.0) -> Path:
+    """A square-root pressure on [-2, 2] at 21 points, its x and p scaled."""
+    x = np.linspace(-2.0, 2.0, 21)
+    p = np.sqrt(np.clip(4.0 - x ** 2, 0.0, None)) / 2.0
+    path.write_text("x,p\n" + "".join(f"{float(u * x_scale)!r},{float(v * p_scale)!r}\n"
+                                        for u, v in zip(x, p)))
+    return path
+
+
+@pytest.mark.parametrize("extra, match", [
+    (["--alpha", "nan"], r"`--alpha` = nan must be a finite number"),
+    (["--alpha", "inf"], r"`--alpha` = inf must be a finite number"),
+    (["--alpha", "1e300"], r"`--alpha` = 1e\+300 rad exceeds the small-slope limit 0\.5"),
+    (["--penalty", "-5"], r"`--penalty` = -5\.0 must be > 0"),
+    (["--penalty", "1e300"], r"`--penalty` = 1e\+300 is outside \[1e-60, 1e\+60\]"),
+])
+def test_compare_refuses_its_options_out_of_range_before_writing(capsys, tmp_path, extra, match):
+    out = tmp_path / "report"
+    argv = [*COMPARE, "--pressure", str(_pressure_csv(tmp_path / "p.csv")), "--out", str(out), *extra]
+    assert main(argv) == 2
+    assert re.search(match, _one_line_error(capsys, "compare"))
+    assert not out.exists()
+
+
+@pytest.mark.parametrize("x_scale, p_scale, match", [
+    (1.0, 1e308, r"the pressure's `p` reaches 1e\+308 in magnitude, past 1e\+60"),
+    (1e300, 1.0, r"the pressure's `x` reaches 2e\+300 in magnitude, past 1e\+60"),
+])
+def test_compare_refuses_a_pressure_whose_load_overflows_before_writing(capsys, tmp_path, x_scale,
+                                                                        p_scale, match):
+    """Its ∫p dx or ∫x p dx would be inf (the report's figures None): one line, exit 2, no report."""
+    out = tmp_path / "report"
+    csv = _pressure_csv(tmp_path / "p.csv", x_scale, p_scale)
+    assert main([*COMPARE, "--pressure", str(csv), "--out", str(out)]) == 2
+    assert re.search(match, _one_line_error(capsys, "compare"))
+    assert not out.exists()
+
+
+# ---------------------------------------------------------------------------------------
+# a modulus in GPa, unbounded work
+# ---------------------------------------------------------------------------------------
+def test_a_modulus_in_gpa_is_named_when_the_slope_is_past_the_limit(capsys):
+    """--E 210 (steel in GPa) at P = 400 makes the same contact as --E 210000 at P = 400000 (half-plane
+    theory depends on A P only): the same slope past the limit, but only the first names --E."""
+    base = ["solve", "--R1", "10", "--R2", "5", "--b", "1", "--nu", "0.3", "--rigid", "--s", "0.1"]
+    assert main([*base, "--E", "210", "--P", "400"]) == 2
+    gpa = _one_line_error(capsys)
+    assert main([*base, "--E", "210000", "--P", "400000"]) == 2
+    mpa = _one_line_error(capsys)
+    assert "is `--E` = 210 in MPa (steel: 210000, not 210)?" in gpa
+    slope = re.search(r"slope \(tilt, profile or surface\) reaches (\S+)", mpa).group(1)
+    assert f"reaches {slope}" in gpa and "`--E`" not in mpa
+
+
+FATIGUE = ["fatigue", "--R1", "10", "--R2", "10", "--b", "0", "--E", "210000", "--nu", "0.3", "--P", "100",
+           "--Q-max", "20", "--f", "0.5", "--nx", "3", "--nz", "2", "--ns", "3"]
+#: the longest a test waits for a line a thread of the command prints (a hang guard, not a timing:
+#: the wait ends as soon as the line is there)
+LINE_GUARD_S = 600
+
+
+def test_fatigue_states_are_bounded_and_the_bound_is_in_the_help(capsys):
+    from threepart.cli import MAX_FATIGUE_STATES
+
+    assert main([*FATIGUE, "--states", "1000"]) == 2
+    assert f"`--states` = 1000 must lie in [2, {MAX_FATIGUE_STATES}]" in _one_line_error(capsys, "fatigue")
+    assert main(["fatigue", "--help"]) == 0
+    help_text = " ".join(capsys.readouterr().out.split())
+    assert f"recorded states per branch of the cycle, 2 to {MAX_FATIGUE_STATES}" in help_text
+
+
+def test_a_long_fatigue_run_says_it_is_still_running(capsys, monkeypatch):
+    """The heartbeat every HEARTBEAT_S (15 s; here shortened): the stage and "still running" on stderr.
+    The cycle is held until the first such line is written, so no clock decides the outcome."""
+    import io
+    import threading
+
+    from threepart import cli
+    from threepart.reports import verify
+
+    class Stderr(io.StringIO):
+        beat = threading.Event()
+
+        def write(self, text: str) -> int:
+            if "still running" in text:
+                self.beat.set()
+            return super().write(text)
+
+    err = Stderr()
+    real = cli._fretting
+
+    def held(*args):
+        cycle = real(*args)
+        assert err.beat.wait(LINE_GUARD_S)
+        return cycle
+
+    monkeypatch.setattr(verify, "HEARTBEAT_S", 1e-3)
+    monkeypatch.setattr(cli, "_fretting", held)
+    monkeypatch.setattr(sys, "stderr", err)
+    assert main([*FATIGUE, "--states", "3"]) == 0
+    assert re.search(r"^threepart fatigue: the fretting cycle \(3 states per branch\) still running "
+                     r"\(\d+ s\)$", err.getvalue(), re.M), err.getvalue()
+
+
+# ---------------------------------------------------------------------------------------
+# Ctrl-C before main() watches SIGINT
+# ---------------------------------------------------------------------------------------
+#: the console script, as pip writes it from pyproject.toml's [project.scripts], in a process that
+#: sends itself SIGINT when the module named by argv[1] is first imported (the command line loading)
+EARLY_CTRL_C = """
+import os, signal, sys, tomllib
+
+loading = sys.argv[1]
+
+class CtrlC:
+    def find_spec(self, name, path=None, target=None):
+        if name == loading:
+            sys.meta_path.remove(self)
+            os.kill(os.getpid(), signal.SIGINT)
+        return None
+
+entry = tomllib.load(open("pyproject.toml", "rb"))["project"]["scripts"]["threepart"]
+module, attr = entry.split(":")
+sys.meta_path.insert(0, CtrlC())
+sys.argv = ["threepart", *sys.argv[2:]]
+main = getattr(__import__(module, fromlist=[attr]), attr)
+sys.exit(main())
+"""
+
+
+@pytest.mark.parametrize("loading", ["threepart.cli", "argparse", "gettext"])
+def test_ctrl_c_while_the_command_line_loads_is_one_line_and_130(loading):
+    """SIGINT while the command line, argparse or argparse's own imports load, before main() watches
+    SIGINT: one line, exit status 130, never a traceback. The child is in a session of its own and
+    signals only itself."""
+    import signal
+
+    root = Path(__file__).resolve().parents[1]
+    proc = subprocess.run([sys.executable, "-c", EARLY_CTRL_C, loading, "solve", *GEOM], cwd=root,
+                          capture_output=True, text=True, start_new_session=True,
+                          preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
+    assert proc.returncode == 130, proc.stderr
+    assert proc.stderr == "threepart solve: interrupted\n"

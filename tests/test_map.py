@@ -19,6 +19,7 @@ import sys
 import time
 import uuid
 from pathlib import Path
+from typing import Callable
 
 import jsonschema
 import pytest
@@ -26,8 +27,8 @@ import pytest
 from threepart.cli import main as cli_main
 from threepart.output import MARKER, OutputExistsError, atomic_dir, foreign_entries, read_marker
 from threepart.reports import map as map_mod
-from threepart.reports.map import (COLUMNS, CONTROL_LIMIT, below_level, designer_sentence,
-                                   exit_status, run_map)
+from threepart.reports.map import (COLUMNS, CONTROL_LIMIT, MAX_WORKERS, below_level,
+                                   designer_sentence, exit_status, run_map)
 from threepart.reports.map_schema import BOUNDARY_COLUMNS, POINT_FIELDS
 from threepart.reports.validity import RESULT_KEYS, MapPoint
 
@@ -99,6 +100,46 @@ def logged(out: Path) -> list[str]:
     """The point keys in points.jsonl (without the control)."""
     lines = (out / "points.jsonl").read_text().splitlines()
     return [json.loads(x)["key"] for x in lines if json.loads(x)["key"] != "control"]
+
+
+def logged_so_far(out: Path) -> list[str]:
+    """:func:`logged` of a file another process is writing: its complete lines only."""
+    if not (out / "points.jsonl").exists():
+        return []
+    text = (out / "points.jsonl").read_text()
+    lines = text[:text.rfind("\n") + 1].splitlines()
+    return [k for k in (json.loads(x)["key"] for x in lines) if k != "control"]
+
+
+def fresh(counter: Path) -> Path:
+    """A new, empty calls directory beside ``counter``, for the next run's calls.
+
+    A task of a stopped or killed run can still be running on the shared cluster (a client's
+    end does not stop its worker's task); it touches its own run's directory, never the new
+    one, so no clock has to let it drain first.
+    """
+    d = counter.parent / f"calls-{uuid.uuid4().hex[:8]}"
+    d.mkdir()
+    return d
+
+
+#: the longest a test waits for a child process to reach the state it polls for: a hang guard,
+#: not a timing (the wait ends once the state is reached, and fails, never proceeds, without it)
+REACH_GUARD_S = 900
+#: seconds between two looks at a child's files
+POLL_S = 0.02
+
+
+def wait_until(reached: Callable[[], bool], proc: subprocess.Popen, what: str) -> None:
+    """Poll until ``reached()``; fail if ``proc`` ends first or the guard runs out."""
+    t0 = time.monotonic()
+    while not reached():
+        if proc.poll() is not None:
+            pytest.fail(f"the child ended (status {proc.returncode}) before {what}: "
+                        f"{proc.stderr.read() if proc.stderr else ''}")
+        if time.monotonic() - t0 > REACH_GUARD_S:
+            pytest.fail(f"the child did not reach {what} within {REACH_GUARD_S} s")
+        time.sleep(POLL_S)
 
 
 def snapshot(d: Path) -> dict[str, bytes]:
@@ -340,8 +381,7 @@ def test_an_interrupted_sweep_resumes_with_the_same_numbers(tmp_path, counter, s
     assert len(lines) == 7                                      # every finished task, on disk
     first = logged(out)
     assert read_marker(out)["state"] == "writing" and not (out / "map.json").exists()
-    for f in counter.iterdir():
-        f.unlink()
+    counter = fresh(counter)
     doc = sweep(out, scheduler, FakeEvaluate(counter))
     assert calls(counter) == sorted(set(everything(doc)) - set(first))  # nothing finished is redone
     assert doc["summary"]["resumed"] == len(first)
@@ -364,20 +404,14 @@ def test_a_killed_run_resumes(tmp_path, counter, scheduler):
     out = tmp_path / "map"
     proc = subprocess.Popen([sys.executable, "-c", KILLED_RUN, str(out), scheduler, str(counter)],
                             cwd=ROOT, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
-    deadline = time.monotonic() + 60
-    while time.monotonic() < deadline and proc.poll() is None:
-        if (out / "points.jsonl").exists() and len(logged(out)) >= 3:
-            break
-        time.sleep(0.05)
+    wait_until(lambda: len(logged_so_far(out)) >= 3, proc, "3 logged points")
     proc.send_signal(signal.SIGKILL)
     proc.communicate()
     done = logged(out)
     assert 3 <= len(done) < len(KEYS), proc.stderr
     with open(out / "points.jsonl", "a") as fh:                 # a line torn by the kill
         fh.write('{"key": "R2R1=1_bR1=0.1_abR1=0.0')
-    time.sleep(0.5)                                             # the killed client's tasks drain
-    for f in counter.iterdir():
-        f.unlink()
+    counter = fresh(counter)
     doc = sweep(out, scheduler, FakeEvaluate(counter))
     assert calls(counter) == sorted(set(everything(doc)) - set(done))
     assert [{k: p[k] for k in RESULT_KEYS} for p in doc["points"]] == [expected(p) for p in POINTS]
@@ -440,8 +474,7 @@ def test_force_replaces_a_finished_map_only(tmp_path, counter, scheduler):
     with pytest.raises(OutputExistsError, match="holds a finished map; pass --force"):
         sweep(out, scheduler, FakeEvaluate(counter))
     assert snapshot(out) == before
-    for f in counter.iterdir():
-        f.unlink()
+    counter = fresh(counter)
     doc = sweep(out, scheduler, FakeEvaluate(counter), force=True)
     assert calls(counter) == everything(doc)                   # recomputed from scratch
     assert doc["summary"]["resumed"] == 0 and len(logged(out)) == len(everything(doc))
@@ -451,8 +484,7 @@ def test_force_replaces_a_finished_map_only(tmp_path, counter, scheduler):
     with pytest.raises(KeyboardInterrupt):
         sweep(interrupted, scheduler, FakeEvaluate(counter), say=StopAfter(5))
     done = logged(interrupted)
-    for f in counter.iterdir():
-        f.unlink()
+    counter = fresh(counter)
     doc = sweep(interrupted, scheduler, FakeEvaluate(counter), force=True)
     assert calls(counter) == sorted(set(everything(doc)) - set(done))
     assert doc["summary"]["resumed"] == len(done)
@@ -478,8 +510,7 @@ def test_a_failed_point_is_recorded_exits_1_and_is_retried(tmp_path, counter, sc
         row = list(csv.DictReader(fh))[4]
     assert row["error"] == p["error"] and row["peak_rel_error"] == ""
     assert read_marker(out)["state"] == "writing"             # unfinished: the next run retries
-    for f in counter.iterdir():
-        f.unlink()
+    counter = fresh(counter)
     before = steps(doc)
     doc = sweep(out, scheduler, FakeEvaluate(counter))
     assert calls(counter) == sorted({bad} | (steps(doc) - before))   # its curve's new steps only
@@ -511,8 +542,10 @@ def test_the_command_line_exit_status(tmp_path, counter, scheduler, monkeypatch,
 
 
 @pytest.mark.parametrize("args, match", [
-    (["--workers", "0"], r"`--workers` = 0 must be >= 1"),
-    (["--workers", "-3"], r"`--workers` = -3 must be >= 1"),
+    (["--workers", "0"], rf"`--workers` = 0 must lie in \[1, {MAX_WORKERS}\], the CPUs of this machine"),
+    (["--workers", "-3"], rf"`--workers` = -3 must lie in \[1, {MAX_WORKERS}\]"),
+    (["--workers", str(MAX_WORKERS + 1)], rf"`--workers` = {MAX_WORKERS + 1} must lie in \[1, {MAX_WORKERS}\]"),
+    (["--workers", "100000"], rf"`--workers` = 100000 must lie in \[1, {MAX_WORKERS}\], the CPUs"),
     (["--workers", "two"], r"argument --workers: invalid int value: 'two'"),
     (["--workers", "2", "--scheduler", "tcp://127.0.0.1:8786"], r"`--workers`.*`--scheduler`.*not both"),
     (["--scheduler", " "], r"`--scheduler` = ' ' must be a scheduler address"),
@@ -556,6 +589,41 @@ def test_the_default_engine_is_a_local_cluster_of_its_own(tmp_path, counter):
     assert doc["timings"]["startup_s"] > 0
 
 
+def busy_until_killed(started: str) -> None:
+    """A task that says it started (the dask Event ``started``), then keeps its worker busy."""
+    from dask.distributed import Event
+
+    Event(started).set()
+    time.sleep(BUSY_S)
+
+
+#: how long busy_until_killed keeps its worker: far past any close, which kills it first
+BUSY_S = 3600
+#: the longest a test waits for a task on a fresh local cluster to start (a hang guard, not a
+#: timing: the wait ends as soon as the task says so)
+START_GUARD_S = 600
+
+
+def test_killing_a_busy_worker_at_the_close_of_the_map_s_own_cluster_prints_nothing(caplog):
+    """A worker still busy when the map closes its own cluster is killed by its nanny, as the close
+    asks: no "distributed.nanny - WARNING" line; an error of the nanny still shows."""
+    import logging
+    import uuid as _uuid
+
+    from dask.distributed import Event
+
+    from threepart.reports.map_engine import open_engine
+
+    started = f"threepart-test-{_uuid.uuid4().hex}"
+    with open_engine(None, 1, map_mod.CONNECT_TIMEOUT) as (client, _):
+        task = client.submit(busy_until_killed, started, pure=False)
+        assert Event(started, client=client).wait(START_GUARD_S), task.status
+        logging.getLogger("distributed.nanny").error("a real fault")
+    nanny = [(r.levelname, r.getMessage()) for r in caplog.records if r.name == "distributed.nanny"]
+    assert ("ERROR", "a real fault") in nanny                    # errors still show
+    assert not [m for level, m in nanny if level == "WARNING"], nanny
+
+
 # ---------------------------------------------------------------------------------------
 # Ctrl-C, a full disk, the help
 # ---------------------------------------------------------------------------------------
@@ -567,7 +635,7 @@ from threepart.reports import map as map_mod
 from threepart.cli import main
 if __name__ == "__main__":
     map_mod.run_map = functools.partial(map_mod.run_map, points=POINTS, control=fake_control,
-                                        evaluate=FakeEvaluate(Path(sys.argv[2]), sleep=1.0))
+                                        evaluate=FakeEvaluate(Path(sys.argv[2]), sleep=5.0))
     sys.exit(main(["map", "--out", sys.argv[1], "--workers", "2"]))
 """
 
@@ -583,22 +651,19 @@ def test_ctrl_c_prints_one_line_and_the_points_in_progress_are_rerun(tmp_path, c
                             env={**os.environ, "PYTHONPATH": str(ROOT)}, start_new_session=True,
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
                             preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
-    deadline = time.monotonic() + 120
-    while time.monotonic() < deadline and proc.poll() is None:
-        if (out / "points.jsonl").exists() and len(logged(out)) >= 2:
-            break
-        time.sleep(0.05)
-    time.sleep(0.5)                                             # the next points are in progress
-    os.killpg(proc.pid, signal.SIGINT)
-    stdout, stderr = proc.communicate(timeout=120)
+    # two points done and a next one in progress (started, 5 s of fake work from done)
+    wait_until(lambda: len(logged_so_far(out)) >= 2
+               and bool(set(calls(counter)) - set(logged_so_far(out)) - {"control"}), proc,
+               "2 logged points and one in progress")
+    os.killpg(proc.pid, signal.SIGINT)                         # its own session: not the runner's
+    stdout, stderr = proc.communicate(timeout=REACH_GUARD_S)
     assert proc.returncode == 130, stderr
     assert stderr == "threepart map: interrupted; run it again to resume\n"
     done = logged(out)
     started = set(calls(counter))
     in_progress = started - set(done)
     assert 2 <= len(done) < len(KEYS) and in_progress, (done, started)
-    for f in counter.iterdir():
-        f.unlink()
+    counter = fresh(counter)
     doc = sweep(out, scheduler, FakeEvaluate(counter))
     assert calls(counter) == sorted(set(everything(doc)) - set(done))   # nothing finished is redone ...
     assert in_progress <= set(calls(counter)) - {"control"}     # ... and nothing in progress is lost
@@ -630,8 +695,7 @@ def test_a_full_disk_while_the_map_is_written_leaves_nothing_half_written(tmp_pa
         sweep(out, scheduler, FakeEvaluate(counter))
     assert [p.name for p in out.rglob("*.part")] == []           # no .threepart-output.json.part
     monkeypatch.undo()
-    for f in counter.iterdir():
-        f.unlink()
+    counter = fresh(counter)
     doc = sweep(out, scheduler, FakeEvaluate(counter))           # resumes: every point was logged
     assert calls(counter) == [] and doc["summary"]["resumed"] == len(KEYS)
     assert steps(doc)                                            # the bisection's steps resumed too
@@ -778,15 +842,13 @@ def test_the_map_locates_each_signed_boundary_and_resumes_its_bisection(tmp_path
     assert exit_status(doc) == 0
     # stopped in the second wave of the bisection, then resumed: no step is computed twice
     grid = len(SIGNED_POINTS) + 1
-    for f in counter.iterdir():
-        f.unlink()
+    counter = fresh(counter)
     out = tmp_path / "stopped"
     with pytest.raises(KeyboardInterrupt):
         run(out, say=StopAfter(grid + len(doc["boundaries"]) + 2))
     first = logged(out)
     assert len(first) > len(SIGNED_POINTS) and set(first) - set(p.key() for p in SIGNED_POINTS)
-    for f in counter.iterdir():
-        f.unlink()
+    counter = fresh(counter)
     again = run(out)
     every = set(p.key() for p in SIGNED_POINTS) | steps(doc)
     assert calls(counter) == sorted(every - set(first))
@@ -893,18 +955,12 @@ def test_a_run_killed_in_the_bisection_resumes_with_its_finished_steps(tmp_path,
     grid = {p.key() for p in SIGNED_POINTS}
     proc = subprocess.Popen([sys.executable, "-c", KILLED_IN_BISECTION, str(out), scheduler, str(counter)],
                             cwd=ROOT, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
-    deadline = time.monotonic() + 120
-    while time.monotonic() < deadline and proc.poll() is None:
-        if (out / "points.jsonl").exists() and len(set(logged(out)) - grid) >= 2:
-            break
-        time.sleep(0.02)
+    wait_until(lambda: len(set(logged_so_far(out)) - grid) >= 2, proc, "2 logged bisection steps")
     proc.send_signal(signal.SIGKILL)
     proc.communicate()
     done = logged(out)
     assert grid <= set(done) and len(set(done) - grid) >= 2, proc.stderr
-    time.sleep(0.5)                                             # the killed client's tasks drain
-    for f in counter.iterdir():
-        f.unlink()
+    counter = fresh(counter)
     doc = run_map(out, scheduler=scheduler, evaluate=SignedEvaluate(counter), quick=True,
                   points=SIGNED_POINTS, control=fake_control, say=lambda m: None)
     assert calls(counter) == sorted((grid | steps(doc)) - set(done))

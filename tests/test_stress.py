@@ -328,3 +328,65 @@ def test_case_a_slip_result_carries_q_and_Q_as_this_module_means_them(case_a):
     at, frac = math.atan(L / z), z * L / (L * L + z * z)
     assert abs(np.sum(S.sxz * wx) + slip.Q * 2 / math.pi * (at - frac)) <= TRUNCATED * abs(slip.Q)
     assert abs(np.sum(S.szz * wx) + n.P * 2 / math.pi * (at + frac)) <= TRUNCATED * n.P
+
+
+# --- many points: chunks ------------------------------------------------------------------------
+
+#: chunked against whole: the same quadrature per point, summed over other node subsets (blocks
+#: of other points keep other shared nodes, with zero weight for this one): rounding, of p0
+CHUNKED = 1e-13
+#: arrays of one double per point that stress() may hold beside its result: the inputs as floats
+#: (x and z), and as much again (measured: 1.5 per point; in one piece, 591)
+PER_POINT_ARRAYS = 4
+
+
+def _random_points(n, seed):
+    """``n`` seeded points: a fifth on the surface, depths 1e-9 to 10 a, a tenth near a contact end."""
+    rng = np.random.default_rng(seed)
+    x = rng.uniform(-3, 3, n) * A_H
+    z = np.where(rng.random(n) < 0.2, 0.0, 10 ** rng.uniform(-9, 1, n)) * A_H
+    k = n // 10
+    x[:k] = rng.choice([-1, 1], k) * A_H * (1 + rng.choice([-1, 1], k) * 10 ** rng.uniform(-10, -1, k))
+    return x, z
+
+
+def test_points_in_chunks_give_the_same_stresses(monkeypatch):
+    """2000 points in chunks of 7 (the last one short) and in one piece: the same to rounding, and
+    each within the module's accuracy of McEwen's closed form; hilbert alike."""
+    from threepart import stress as stress_mod
+
+    x, z = _random_points(2000, 3)
+    whole = stress(x, z, pressure=p_hertz, shear=q_hertz, ends=(-A_H, A_H))
+    h_whole = hilbert(p_hertz, x, ends=(-A_H, A_H))
+    monkeypatch.setattr(stress_mod, "POINTS_PER_CHUNK", 7)
+    chunked = stress(x, z, pressure=p_hertz, shear=q_hertz, ends=(-A_H, A_H))
+    h_chunked = hilbert(p_hertz, x, ends=(-A_H, A_H))
+    assert worst(chunked, (whole.sxx, whole.szz, whole.sxz)) <= CHUNKED * P0
+    assert float(np.max(np.abs(h_chunked - h_whole))) <= CHUNKED * P0
+    assert worst(chunked, mcewen(x, z)) <= TARGET * P0
+
+
+def test_the_working_memory_does_not_grow_with_the_points(monkeypatch):
+    """tracemalloc's peak (numpy's buffers included) less the result: 16 chunks of points need no
+    more than 4 of the same chunks (the points repeated), bar a few arrays of one double per point.
+    In one piece the quadrature's nodes (hundreds per point) grew with the points."""
+    import tracemalloc
+
+    from threepart import stress as stress_mod
+
+    chunk = 500
+    monkeypatch.setattr(stress_mod, "POINTS_PER_CHUNK", chunk)
+    x4, z4 = _random_points(4 * chunk, 4)
+
+    def working(copies):
+        x, z = np.tile(x4, copies), np.tile(z4, copies)
+        tracemalloc.start()
+        try:
+            S = stress(x, z, pressure=p_hertz, shear=q_hertz, ends=(-A_H, A_H))
+            peak = tracemalloc.get_traced_memory()[1]
+        finally:
+            tracemalloc.stop()
+        return peak - 5 * S.sxx.nbytes                          # x, z, sxx, szz, sxz of the result
+
+    small, large = working(1), working(4)
+    assert large - small <= PER_POINT_ARRAYS * 8 * (12 * chunk), (small, large)

@@ -38,14 +38,17 @@ line on stderr), 130 interrupted (map: run it again to resume).
 from __future__ import annotations
 
 import argparse
+import math
 import os
 import select
 import signal
 import sys
 import threading
-from typing import Any, NoReturn, Sequence
+from typing import Any, Iterator, NoReturn, Sequence
 
-__all__ = ["main", "build_parser", "UNITS", "NUMERIC_OPTIONS", "LIST_OPTIONS", "UsageError"]
+from threepart.__main__ import COMMANDS, INTERRUPTED, program
+
+__all__ = ["main", "build_parser", "real_arg", "UNITS", "NUMERIC_OPTIONS", "LIST_OPTIONS", "UsageError"]
 
 #: the unit printed with each quantity, by its key in the output ("1": dimensionless).
 #: The library is unit-agnostic; these are the labels of one consistent set.
@@ -73,8 +76,6 @@ LIST_OPTIONS = ("--x",)
 MAX_GRID = 1_000_000
 
 
-#: the sub-commands (kept in step with :func:`build_parser` by tests/test_cli.py)
-COMMANDS = ("solve", "slip", "verify", "figures", "map", "export-refs", "fatigue", "deck", "compare")
 
 
 class UsageError(Exception):
@@ -178,12 +179,39 @@ def _geometry_args(p: argparse.ArgumentParser) -> None:
                         "object; an infinite R (flat centre) is null")
 
 
-def _number_list(text: str) -> list[float]:
-    """``"1,-2.5,3e-1"`` as a list of floats (the type of ``--x``)."""
+def real_arg(text: str) -> float:
+    """The value of a number option (the type of every one): ``float(text)``, or a one-line refusal.
+
+    A number that double precision cannot hold is refused, not rounded: one that
+    underflows to 0 (``--b 1e-400`` would be solved as a punch without a flat) or
+    overflows to inf (``inf`` itself, where an option takes it, is given as such).
+    """
+    from decimal import Decimal, InvalidOperation
+
     try:
-        return [float(t) for t in text.split(",")]
+        v = float(text)
     except ValueError:
-        raise argparse.ArgumentTypeError(f"invalid list of numbers: {text!r} (write X1,X2,...)")
+        raise argparse.ArgumentTypeError(f"invalid float value: {text!r}") from None
+    try:
+        exact = Decimal(text.strip().replace("_", ""))
+    except InvalidOperation:   # a form float() reads and Decimal does not: nothing lost
+        return v
+    if v == 0.0 and exact.is_finite() and exact != 0:
+        raise argparse.ArgumentTypeError(f"{text} underflows to 0 in double precision (the smallest "
+                                         f"positive number is {math.ulp(0.0):.2g})")
+    if math.isinf(v) and exact.is_finite():
+        raise argparse.ArgumentTypeError(f"{text} overflows to inf in double precision (the largest "
+                                         f"number is {sys.float_info.max:.3g})")
+    return v
+
+
+def _number_list(text: str) -> list[float]:
+    """``"1,-2.5,3e-1"`` as a list of floats (the type of ``--x``), each read by :func:`real_arg`."""
+    try:
+        return [real_arg(t) for t in text.split(",")]
+    except argparse.ArgumentTypeError as exc:
+        raise argparse.ArgumentTypeError(f"invalid list of numbers: {text!r} ({exc}; write "
+                                         "X1,X2,...)") from None
 
 
 def _method(args: argparse.Namespace) -> Any:
@@ -437,6 +465,10 @@ def _cmd_export_refs(args: argparse.Namespace) -> int:
 
 #: the most grid points ``threepart fatigue`` evaluates (each state costs a stress evaluation)
 MAX_FATIGUE_POINTS = 100_000
+#: the most recorded states per branch ``threepart fatigue`` takes: each distinct state costs a
+#: stress evaluation at every grid point (README's example on its default grid, this project's
+#: 2-core machine: 50 states 31 s at load 3, 20 states 29 s at load 8); 1000 ran past 5 minutes
+MAX_FATIGUE_STATES = 50
 #: units of the fatigue parameters in the command line's consistent set (mm, N/mm, MPa)
 FATIGUE_UNITS = {"von_mises_range": "MPa", "swt": "MPa", "findley": "MPa",
                  "ruiz_fdp": "MPa mm", "ruiz_ffdp": "MPa^2 mm", "theta": "deg"}
@@ -468,8 +500,9 @@ def _fatigue_args(p: argparse.ArgumentParser) -> None:
     ld.add_argument("--tilt", choices=("free", "suppressed"), default="free")
     mt = _method_args(p)
     mt.add_argument("--states", type=int, default=5,
-                    help="recorded states per branch of the cycle, >= 2 (default 5; +-Q_max are "
-                         "always recorded); each distinct state costs one stress evaluation")
+                    help=f"recorded states per branch of the cycle, 2 to {MAX_FATIGUE_STATES} "
+                         "(default 5; +-Q_max are always recorded); each distinct state costs one "
+                         "stress evaluation")
     gr = p.add_argument_group("grid under the contact: x over [-a - W/4, c + W/4], z over [0, depth W]")
     gr.add_argument("--nx", type=int, default=41, help="points along x, >= 2 (default 41)")
     gr.add_argument("--nz", type=int, default=21, help="points in depth, >= 2 (default 21; the "
@@ -516,7 +549,7 @@ def _fatigue_iv(args: argparse.Namespace) -> None:
     poisson(args.nu)
     args.k = findley_k(K_FINDLEY if args.k is None else args.k)
     finite("--sigma-bulk", args.sigma_bulk)
-    integer("--states", args.states, 2, 1000)
+    integer("--states", args.states, 2, MAX_FATIGUE_STATES)
     integer("--nx", args.nx, 2, MAX_FATIGUE_POINTS // 2)
     integer("--nz", args.nz, 2, MAX_FATIGUE_POINTS // 2)
     integer("--ns", args.ns, 2, MAX_FATIGUE_POINTS)
@@ -596,12 +629,21 @@ def _cmd_fatigue(args: argparse.Namespace) -> int:
     punch = Punch(R1=args.R1, R2=args.R2, b=args.b, R=args.R)
     _fatigue_iv(args)
     A = similar_pair(args.E, args.nu)
-    cycle = _fretting(args, punch, A)
+    # a long run says it is still running every 15 s on stderr, as the verification run does
+    from threepart.reports.verify import _heartbeat
+
+    def say(msg: str) -> None:
+        print(f"threepart fatigue: {msg}", file=sys.stderr, flush=True)
+
+    with _heartbeat(say, lambda: f"the fretting cycle ({args.states} states per branch)"):
+        cycle = _fretting(args, punch, A)
     x, z = _fatigue_grid(args, cycle.normal)
     a, c = cycle.normal.a, cycle.normal.c
     line = -a + (a + c) * (np.arange(args.ns) + 0.5) / args.ns   # inside: never on a contact end
-    res = fatigue(cycle, x, z, E=args.E, nu=args.nu, k=args.k,
-                  surface=np.union1d(np.ravel(x), line))
+    with _heartbeat(say, lambda: f"the stresses of {cycle.Q.size} recorded states at "
+                                 f"{args.nx * args.nz + args.ns} points"):
+        res = fatigue(cycle, x, z, E=args.E, nu=args.nu, k=args.k,
+                      surface=np.union1d(np.ravel(x), line))
     if args.csv is not None:
         _fatigue_csv(args.csv, res)
     if args.vtu is not None:
@@ -831,11 +873,24 @@ def _cmd_compare(args: argparse.Namespace) -> int:
     from threepart.reports.referee import main as referee_main
     from threepart.results import NormalResult
 
+    _compare_iv(args)
     pr = _problem(args)
     A = args.A if args.A is not None else pr["A"] if pr["A"] is not None else rigid_punch(pr["E"], pr["nu"])
     ref = solve(pr["punch"], pr["P"], pr["s"], A=A, tilt=pr["tilt"])
     assert isinstance(ref, NormalResult)           # no Q: the normal problem
     return int(referee_main(args.pressure, ref, out=args.out, alpha=args.alpha, penalty=args.penalty))
+
+
+def _compare_iv(args: argparse.Namespace) -> None:
+    """Check ``compare``'s own options before any numerics or any file is written."""
+    from threepart.validate import SLOPE_LIMIT, finite, positive
+
+    if args.alpha is not None and not abs(finite("--alpha", args.alpha)) <= SLOPE_LIMIT:
+        raise ValueError(f"`--alpha` = {args.alpha!r} rad exceeds the small-slope limit "
+                         f"{SLOPE_LIMIT:g} of half-plane theory in magnitude: no model judged "
+                         "against it tilts that far")
+    if args.penalty is not None:
+        positive("--penalty", args.penalty)
 
 
 _FORCE_HELP = ("no longer needed: a rerun replaces threepart's own earlier output in --out (its "
@@ -845,7 +900,7 @@ _FORCE_HELP = ("no longer needed: a rerun replaces threepart's own earlier outpu
 
 
 class _MapHelp(argparse.HelpFormatter):
-    """The help of ``map``: the quick grid's size counted from the grid, only when help is shown."""
+    """The help of ``map``: the quick grid's size and the CPUs counted, only when help is shown."""
 
     def _get_help_string(self, action: argparse.Action) -> str | None:
         text = super()._get_help_string(action)
@@ -853,6 +908,10 @@ class _MapHelp(argparse.HelpFormatter):
             from threepart.reports.validity import map_points
 
             text = text.replace("{quick_points}", str(len(map_points(True))))
+        if text and "{max_workers}" in text:
+            from threepart.reports.map import MAX_WORKERS
+
+            text = text.replace("{max_workers}", str(MAX_WORKERS))
         return text
 
 
@@ -904,7 +963,8 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--scheduler", metavar="ADDRESS",
                    help="a running dask scheduler, e.g. tcp://host:8786 (default: a local cluster)")
     p.add_argument("--workers", type=int, metavar="N",
-                   help="worker processes of the local cluster, >= 1 (default: 2)")
+                   help="worker processes of the local cluster, 1 to the CPUs of this machine "
+                        "({max_workers} here) (default: 2)")
     p.add_argument("--force", action="store_true",
                    help="replace a finished map in --out (a map is expensive: never without "
                         "--force; only one threepart wrote, unchanged); an unfinished map of the "
@@ -959,7 +1019,19 @@ def build_parser() -> argparse.ArgumentParser:
                    help="report directory: new, empty, or threepart's own earlier report "
                         "(default: ./compare)")
     p.set_defaults(func=_cmd_compare)
+    for action in _actions(parser):   # one reader of numbers: every `type=float` option's
+        if action.type is float:
+            action.type = real_arg
     return parser
+
+
+def _actions(parser: argparse.ArgumentParser) -> Iterator[argparse.Action]:
+    """Every option of ``parser`` and of its sub-commands."""
+    for action in parser._actions:
+        yield action
+        if isinstance(action, argparse._SubParsersAction):
+            for sub in action.choices.values():
+                yield from _actions(sub)
 
 
 def _one_line(exc: BaseException) -> str:
@@ -1006,8 +1078,9 @@ def main(argv: Sequence[str] | None = None) -> int:
     """
     argv = list(sys.argv[1:] if argv is None else argv)
     # named before parsing, so that Ctrl-C while the parser is built names the command too
-    prog = f"threepart {argv[0]}" if argv and argv[0] in COMMANDS else "threepart"
+    prog = program(argv)
     interrupted, previous = _watch_interrupts()
+    args = None
     try:
         try:
             args, extra = build_parser().parse_known_args(_join_negative_numbers(argv))
@@ -1022,10 +1095,10 @@ def main(argv: Sequence[str] | None = None) -> int:
         # Ctrl-C inside a C extension's import (numpy's) comes out as an ImportError, or any
         # other error, with the KeyboardInterrupt lost: the flag, not the class, tells
         if not (isinstance(exc, KeyboardInterrupt) or interrupted.is_set()):
-            return _error_status(exc, prog)
+            return _error_status(_units_hint(exc, args), prog)
         resume = "; run it again to resume" if prog == "threepart map" else ""
         print(f"{prog}: interrupted{resume}", file=sys.stderr)
-        return 130
+        return INTERRUPTED
     finally:
         if previous is not None:
             signal.signal(signal.SIGINT, previous)
@@ -1048,6 +1121,30 @@ def _watch_interrupts() -> tuple[threading.Event, Any]:
         raise KeyboardInterrupt
 
     return event, signal.signal(signal.SIGINT, on_sigint)
+
+
+#: a modulus below this (MPa) with a contact past the slope limit is likely given in GPa
+#: (the metals' moduli lie between about 45 and 410 GPa; steel's is 210 GPa = 210000 MPa)
+GPA_SUSPECT_E = 1000.0
+
+
+def _units_hint(exc: BaseException, args: argparse.Namespace | None) -> BaseException:
+    """``exc``, or for a slope past the limit (or a contact past an arc) with a small ``--E``,
+    the same error pointing at the modulus and its units.
+
+    ``--E 210`` (steel in GPa, not MPa) makes the contact a thousand times too
+    compliant and its slope absurd; the slope-limit error alone would send the
+    user to the load or the lever arm.
+    """
+    from threepart.errors import ArcExtentError, SlopeLimitError
+
+    E = getattr(args, "E", None)
+    if (not isinstance(exc, (SlopeLimitError, ArcExtentError)) or E is None
+            or getattr(args, "A", None) is not None or not 0 < E < GPA_SUSPECT_E):
+        return exc
+    what = _one_line(exc).replace("; reduce the load or the lever arm `s`", "")
+    return type(exc)(f"is `--E` = {E:g} in MPa (steel: 210000, not 210)? With it, {what}; "
+                     "else reduce the load or the lever arm `s`")
 
 
 def _error_status(exc: BaseException, prog: str) -> int:

@@ -50,7 +50,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 from functools import cached_property
-from typing import Any, Callable
+from typing import Any, Callable, Iterator
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -58,7 +58,7 @@ from numpy.typing import ArrayLike
 from .validate import show, finite
 
 __all__ = ["Stress", "stress", "hilbert", "flamant_normal", "flamant_tangential",
-           "kernel_primitives", "RULE"]
+           "kernel_primitives", "RULE", "POINTS_PER_CHUNK"]
 
 Traction = Callable[[np.ndarray], Any]
 
@@ -70,6 +70,11 @@ Traction = Callable[[np.ndarray], Any]
 RULE = {"n": 12, "ratio": 0.35, "levels": 11, "min_levels": 2}
 #: points per block of the vectorised quadrature (memory: blocks of about 2e6 nodes)
 _NODES_PER_BLOCK = 2_000_000
+#: points per chunk of :func:`stress` and :func:`hilbert`: each chunk's grading depths, break-point
+#: distances and integrals are made and dropped in turn, so that the working memory stays about
+#: 100 MB beside the points and the result (5 arrays of them), whatever their number (1e7 points
+#: took 1.9 GB in one piece); each point's integrals do not depend on the chunk it falls in
+POINTS_PER_CHUNK = 100_000
 
 
 def _kernels(s: np.ndarray, z: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
@@ -305,6 +310,13 @@ def _integrals(x: np.ndarray, z: np.ndarray, funcs: dict[str, Traction], lo: flo
     return out
 
 
+def _chunks(n: int) -> Iterator[slice]:
+    """The points ``0..n-1`` in slices of :data:`POINTS_PER_CHUNK` (read when called)."""
+    size = POINTS_PER_CHUNK
+    for start in range(0, n, size):
+        yield slice(start, min(start + size, n))
+
+
 def _halves(left: np.ndarray, right: np.ndarray, U: np.ndarray,
             Wu: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Each interval ``[left, right]`` halved, each half mapped by ``t = E + h u²`` from its end ``E``.
@@ -433,14 +445,19 @@ def stress(x: ArrayLike, z: ArrayLike, *, pressure: Traction, shear: Traction | 
         raise ValueError(f"`x` of shape {xa.shape} and `z` of shape {za.shape} do not broadcast "
                          "against each other") from None
     funcs = {"pressure": p_fn} if q_fn is None else {"pressure": p_fn, "shear": q_fn}
-    I = _integrals(xb.ravel(), zb.ravel(), funcs, lo, hi, k, RULE)
+    xf, zf = xb.ravel(), zb.ravel()
+    sxx, szz, sxz = np.empty(xf.size), np.empty(xf.size), np.empty(xf.size)
     c = -2.0 / math.pi
-    pxx, pzz, pxz, _ = I["pressure"]
-    sxx, szz, sxz = c * pxx, c * pzz, c * pxz
-    if q_fn is not None:
-        qxz, _, qzz, qxx = I["shear"]
-        sxx, szz, sxz = sxx + c * qxx, szz + c * qzz, sxz + c * qxz
-    sxx = sxx + bulk
+    for part in _chunks(xf.size):   # each chunk's integrals made and dropped in turn
+        I = _integrals(xf[part], zf[part], funcs, lo, hi, k, RULE)
+        pxx, pzz, pxz, _ = I["pressure"]
+        sxx[part], szz[part], sxz[part] = c * pxx, c * pzz, c * pxz
+        if q_fn is not None:
+            qxz, _, qzz, qxx = I["shear"]
+            sxx[part] += c * qxx
+            szz[part] += c * qzz
+            sxz[part] += c * qxz
+    sxx += bulk
     if not np.all(np.isfinite(sxx)):
         where = int(np.argmax(~np.isfinite(sxx)))
         raise ValueError(f"σxx is infinite at the surface point x = {xb.ravel()[where]:.6g}, a contact "
@@ -463,7 +480,10 @@ def hilbert(func: Traction, x: ArrayLike, *, ends: tuple[float, float], kinks: A
     fn = _traction("func", func)
     lo, hi, k = _ends_kinks(ends, kinks)
     flat = xa.ravel()
-    val = -_integrals(flat, np.zeros_like(flat), {"func": fn}, lo, hi, k, RULE)["func"][3] / math.pi
+    val = np.empty(flat.size)
+    for part in _chunks(flat.size):
+        val[part] = -_integrals(flat[part], np.zeros(flat[part].size), {"func": fn}, lo, hi, k,
+                                RULE)["func"][3] / math.pi
     if not np.all(np.isfinite(val)):
         where = flat[int(np.argmax(~np.isfinite(val)))]
         raise ValueError(f"the Hilbert transform is infinite at x = {where:.6g}, a contact end where "

@@ -1,0 +1,33 @@
+"""The test command itself (`python -m pytest` with pyproject.toml's addopts) when a worker dies."""
+from __future__ import annotations
+
+import subprocess
+import sys
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+#: the longest the small run below may take: a hang guard (it takes seconds; pytest-xdist 3.8.0's
+#: replacement of a dead worker under --dist loadfile could instead wait forever)
+RUN_GUARD_S = 600
+
+FILES = {
+    "test_a.py": "def test_a1(): pass\ndef test_a2(): pass\n",
+    "test_b.py": "import os\ndef test_b1(): pass\ndef test_b2(): os._exit(1)\ndef test_b3(): pass\n",
+    "test_c.py": "def test_c1(): pass\n",
+}
+
+
+def test_a_worker_that_dies_ends_the_run_at_once_and_is_named(tmp_path):
+    """A test that kills its worker (os._exit) under the project's own options: the run ends,
+    status 1, naming the test and the worker once; no replacement worker is started (nor the
+    test run again on one)."""
+    for name, text in FILES.items():
+        (tmp_path / name).write_text(text)
+    run = subprocess.run([sys.executable, "-m", "pytest", "-c", str(ROOT / "pyproject.toml"),
+                          "--rootdir", str(tmp_path), "-p", "no:cacheprovider", "-q", *FILES],
+                         cwd=tmp_path, capture_output=True, text=True, timeout=RUN_GUARD_S,
+                         start_new_session=True)
+    out = run.stdout + run.stderr
+    assert run.returncode == 1, out                              # tests failed, not interrupted (2)
+    assert "replacing crashed worker" not in out, out
+    assert out.count("crashed while running 'test_b.py::test_b2'") == 1, out
