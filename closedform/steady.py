@@ -33,7 +33,8 @@ from numpy.typing import ArrayLike
 from threepart.errors import (CycleSlipReversalError, LiftOffError, OneSidedSlipError,
                               StickSeparationError, StickZoneError)
 from threepart.punch import Punch
-from threepart.results import Diagnostics, SteadyStateResult
+from threepart.cycles import SteadyStateResult
+from threepart.results import Diagnostics
 from threepart.steady import (WORK_NODES, LoadState, Path, check_cycle_states, corrective_load,
                               corrective_tilt_cycle, cycle_margin, half_cycle_work, lam_rule, ramp, tilt_rate)
 from threepart.validate import check_punch

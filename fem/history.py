@@ -31,7 +31,8 @@ from threepart.history import History, check_history, check_period, step_work, s
 from threepart.material import similar_pair
 from threepart.meshes import SubstrateSpec
 from threepart.punch import Punch
-from threepart.results import Diagnostics, HistoryResult
+from threepart.cycles import HistoryResult
+from threepart.results import Diagnostics
 from threepart.validate import check_contact, shear_load
 
 from ._boundary import boundary

@@ -36,7 +36,8 @@ from threepart.coulomb import coulomb_state
 from threepart.errors import FullSlidingError
 from threepart.history import History, check_history, check_period, step_work, stuck
 from threepart.punch import Punch
-from threepart.results import Diagnostics, HistoryResult, NormalResult
+from threepart.cycles import HistoryResult
+from threepart.results import Diagnostics, NormalResult
 from threepart.validate import check_punch, integer, lever_arm, load_scale, positive, shear_load
 
 from .normal import DEFAULT_N, SieNormalResult, solve_normal

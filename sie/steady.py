@@ -27,7 +27,8 @@ from scipy.optimize import brentq
 from threepart.errors import (CycleSlipReversalError, NoConvergenceError, OneSidedSlipError,
                               StickSeparationError)
 from threepart.punch import Punch
-from threepart.results import Diagnostics, SteadyStateResult
+from threepart.cycles import SteadyStateResult
+from threepart.results import Diagnostics
 from threepart.steady import (LoadState, Path, check_cycle_states, corrective_load, corrective_tilt_cycle,
                               cycle_margin, half_cycle_work, ramp, tilt_rate)
 from threepart.validate import check_punch

@@ -45,6 +45,8 @@ Results
 NormalResult        -- a, c, alpha, P, s, pressure(x), peaks(): the shape every solver returns
 SlipResult          -- adds Q, f, d, e, stick_zone and shear(x)
 Peak                -- a pressure maximum p at x
+SteadyStateResult   -- the periodic steady state of an in-phase cycle: d, e, energy, shakedown (threepart.cycles)
+HistoryResult       -- a load history marched with the memory of slip: stick, shear(x, k), energy (threepart.cycles)
 
 Stresses (threepart.stress)
 --------
@@ -87,6 +89,7 @@ _HOMES = {
     "Punch": "punch", "compliance": "material", "similar_pair": "material",
     "rigid_punch": "material", "TILTS": "validate",
     "NormalResult": "results", "SlipResult": "results", "Peak": "results",
+    "SteadyStateResult": "cycles", "HistoryResult": "cycles",
     "LiftOffError": "errors", "SeparationError": "errors", "FullSlidingError": "errors",
     "StickZoneError": "errors", "StickSeparationError": "errors",
     "NoConvergenceError": "errors", "ContactZoneError": "errors",
@@ -111,6 +114,7 @@ if TYPE_CHECKING:   # pragma: no cover - for type checkers and IDEs only
     from .methods import CHOICES, METHODS, solve, steady_state
     from .punch import Punch
     from .results import NormalResult, Peak, SlipResult
+    from .cycles import HistoryResult, SteadyStateResult
     from .fatigue import HotSpot, findley, ruiz, stress_history, swt, von_mises_range
     from .stress import Stress, hilbert
     from .validate import TILTS

@@ -2,10 +2,12 @@
 
 Every normal and partial-slip result, of every method (the closed form, the
 SIE, the FEM and any registered since), is checked here when it is built
-(:class:`threepart.results.NormalResult` calls :func:`check_answer` from its
-``__post_init__``), so that no solve returns a contact that pulls on the
-half-plane or a shear that exceeds friction, whatever the method's own checks
-missed (a tolerance too loose, a discretisation too coarse):
+(:class:`threepart.results.NormalResult` calls :func:`check_pressure` and
+:class:`~threepart.results.SlipResult` :func:`check_coulomb` from their
+``__post_init__``; :class:`~threepart.cycles.SteadyStateResult` checks both of
+its ends), so that no solve returns a contact that pulls on the half-plane or a
+shear that exceeds friction, whatever the method's own checks missed (a
+tolerance too loose, a discretisation too coarse):
 
 * normal: ``min p >= -TOL p_max`` over the contact, else :class:`SeparationError`;
 * partial slip: ``max (|q| - f p) <= TOL f p_max`` over the contact, else
@@ -27,7 +29,7 @@ import numpy as np
 from .errors import CoulombError, NoConvergenceError, SeparationError
 from .tolerances import tolerance
 
-__all__ = ["check_answer", "check_pressure", "check_coulomb", "ANSWER_POINTS"]
+__all__ = ["check_pressure", "check_coulomb", "ANSWER_POINTS"]
 
 #: Chebyshev points per interval (the contact, the stick zone) at which an answer is checked:
 #: they cluster at the interval's ends, where a series' error and the corrective pressure's
@@ -122,16 +124,3 @@ def check_coulomb(result: Any) -> None:
             f"{result.method or 'answer'}'s shear breaks Coulomb's law, |q| exceeds f p by "
             f"{excess[i]:.4g} at x = {x[i]:.6g} ({excess[i] / bound:.3g} of f p_max = {bound:.4g}, "
             f"past {tol:g}, threepart.tolerances 'answer' 'q_bound'){_resolution(result)}")
-
-
-def check_answer(result: Any) -> None:
-    """:func:`check_coulomb` for a slip answer, :func:`check_pressure` for a normal one; else nothing.
-
-    A slip answer's normal solution was checked when it was built.
-    """
-    from .results import NormalResult, SlipResult
-
-    if isinstance(result, SlipResult):
-        check_coulomb(result)
-    elif isinstance(result, NormalResult):
-        check_pressure(result)

@@ -54,7 +54,7 @@ class SlipReversalError(StickZoneError):
 class CoulombError(StickZoneError):
     """A partial-slip answer's shear breaks Coulomb's law: ``|q| > f p`` somewhere in the contact.
 
-    Raised by the one check of every answer (:func:`threepart.answer.check_answer`)
+    Raised by the one check of every answer (:func:`threepart.answer.check_coulomb`)
     whatever the method: the stick zone found is not one that friction can
     hold (too coarse a discretisation, or too near full sliding for it). A
     ``StickZoneError``, so that ``method="auto"`` falls back from the closed form.

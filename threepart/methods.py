@@ -39,7 +39,8 @@ from typing import Any
 from . import registry
 from .errors import LiftOffError, SeparationError, StickZoneError
 from .punch import Punch
-from .results import NormalResult, SlipResult, SteadyStateResult
+from .cycles import SteadyStateResult
+from .results import NormalResult, SlipResult
 from .bulk import check_sigma_bulk
 from .validate import check_positive
 

@@ -59,7 +59,8 @@ from typing import TYPE_CHECKING, Any, Callable
 
 if TYPE_CHECKING:  # pragma: no cover
     from .punch import Punch
-    from .results import FrettingResult, NormalResult, SlipResult, SteadyStateResult
+    from .cycles import SteadyStateResult
+    from .results import FrettingResult, NormalResult, SlipResult
 
 __all__ = ["Method", "register", "get", "names", "lift_off", "BUILTIN"]
 
