@@ -213,6 +213,34 @@ def test_fretting_energy_is_the_friction_work():
         cf.fretting_cycle(n, 80.0, 0.5, sigma_bulk=400.0, states=3)
 
 
+#: issue 29's fretting cycles under a bulk stress that raised NoConvergenceError (the SIE's first,
+#: the closed form's second): Punch(R1, R2, b), P, s, Q_max, f, sigma_bulk
+ISSUE_29_CYCLES = [
+    ((49.4934010282353, 0.2825961996877739, 1.0), 5.584701770900459, 0.24610735234337466,
+     0.2725210812042088, 0.7990407371374519, -0.12322886966690384),
+    ((30.38837913250566, 0.17691970571070678, 1.0), 51.47257162028746, 0.06276219312189446,
+     4.523667035968952, 0.7099020587588676, 2.0767242826415395),
+]
+#: issue 29: the friction work of the two methods under a bulk stress, with a slip zone of 3e-5 W:
+#: their gaps' rounding (1e-9 of the gap, a difference of O(1) terms) and the SIE's gap series
+#: (16384 terms, ~1/(N^2 φ) next to the zone's end) (measured <= 5e-10)
+TINY_SLIP_ENERGY = 1e-8
+
+
+@pytest.mark.parametrize("compliance", [rigid_punch(210e3, 0.3) * 2, rigid_punch(210e3, 0.3)])
+@pytest.mark.parametrize("case", ISSUE_29_CYCLES)
+def test_fretting_with_a_tiny_slip_zone_answers_and_agrees(case, compliance):
+    """Issue 29: the friction-work quadrature did not settle (rounding of the gap) and took minutes
+    (numpy's Gauss–Legendre at 4096 nodes); now both answer and agree on stick zones and energy."""
+    (R1, R2, b), P_, s, Q_max, f, sb = case
+    punch = Punch(R1=R1, R2=R2, b=b)
+    n = cf.solve_normal(punch, P_, s, A=compliance)
+    c = cf.fretting_cycle(n, Q_max, f, sigma_bulk=sb, states=3)
+    g = sie.fretting_cycle(n, Q_max, f, sigma_bulk=sb, states=3)
+    assert np.max(np.abs(c.stick - g.stick)) < ZONE_TOL * (n.a + n.c)
+    assert g.energy == pytest.approx(c.energy, rel=TINY_SLIP_ENERGY)
+
+
 def test_auto_falls_back_past_the_closed_form_and_refuses_a_reversal():
     """A stick zone ending on the centre under a bulk stress: auto answers by the SIE; a reversal: refused by name."""
     n = cf.solve_normal(CASE_A, 400.0, 0.1, A=A)
