@@ -241,6 +241,25 @@ def test_fretting_with_a_tiny_slip_zone_answers_and_agrees(case, compliance):
     assert g.energy == pytest.approx(c.energy, rel=TINY_SLIP_ENERGY)
 
 
+def test_stick_zone_end_on_a_join_is_refused_by_name():
+    """Issue 29: the bound in the StickZoneError bisects the path onto the load where the stick
+    zone's end reaches a join, phi = 0 of the closed form's angle; its bracket, closed only by a
+    relative width, never closed there and NoConvergenceError came out instead. The bound is the
+    SIE's: its stick zone at that Q covers the central segment, just past it it does not."""
+    punch = Punch(R1=950.7483640187323, R2=0.5821649540424728, b=1.0)
+    A_ = 2 * rigid_punch(210e3, 0.3)
+    n = cf.solve_normal(punch, 21474.37257521067, -10.086028220942035, A=A_)
+    f, Q = 0.9242996246887781, -13645.414310104517
+    sb = 1213.430630013706
+    with pytest.raises(StickZoneError, match=r"it holds for \|Q\|/\(f P\) < ") as info:
+        cf.solve_partial_slip(n, Q, f, sigma_bulk=sb)
+    bound = float(re.search(r"< ([0-9.e+-]+)", str(info.value)).group(1))
+    scale = bound * f * n.P / abs(Q)
+    inside = sie.solve_partial_slip(n, Q * scale * (1 - PRINTED), f, sigma_bulk=sb * scale * (1 - PRINTED))
+    past = sie.solve_partial_slip(n, Q * scale * (1 + PRINTED), f, sigma_bulk=sb * scale * (1 + PRINTED))
+    assert inside.within_paper and not past.within_paper
+
+
 def test_auto_falls_back_past_the_closed_form_and_refuses_a_reversal():
     """A stick zone ending on the centre under a bulk stress: auto answers by the SIE; a reversal: refused by name."""
     n = cf.solve_normal(CASE_A, 400.0, 0.1, A=A)

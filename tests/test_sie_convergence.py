@@ -123,6 +123,25 @@ def test_sharp_edge_agrees_with_closed_form():
         assert r.info["error_estimate"] <= tol("sie-target", "pressure")
 
 
+def test_sharp_edge_shear_and_stresses_agree_with_closed_form():
+    """Issue 29's measure: shear (of f p0) and substrate stresses (of p0) of the sharp-edge punch in
+    partial slip, SIE against the closed form, at the surface and below (before: 1.5e-4 and 5.2e-5)."""
+    from threepart import closedform
+    P, Q, f = 5.0, 1.5, 0.5
+    cf_slip = closedform.solve_partial_slip(closedform.solve_normal(SHARP, P, 0.0, A=SHARP_A), Q, f)
+    sie_slip = sie.solve_partial_slip(sie.solve_normal(SHARP, P, A=SHARP_A), Q, f)
+    w = cf_slip.a + cf_slip.c
+    x = np.linspace(-cf_slip.a, cf_slip.c, 801)[1:-1]
+    x = x[(x > -cf_slip.a + END_MARGIN * w) & (x < cf_slip.c - END_MARGIN * w)]
+    p0 = float(np.max(cf_slip.normal.pressure(x)))
+    q_err = np.abs(sie_slip.shear(x) - cf_slip.shear(x)).max() / (f * p0)
+    assert q_err <= tol("sie-target", "field"), f"shear {q_err:.2e} of f p0"
+    for z in (0.01 * w, 0.1 * w):
+        a, b = cf_slip.stress(x, z), sie_slip.stress(x, z)
+        err = max(float(np.abs(getattr(a, k) - getattr(b, k)).max()) for k in ("sxx", "szz", "sxz"))
+        assert err <= tol("sie-target", "field") * p0, f"z = {z:.3g}: {err / p0:.2e} of p0"
+
+
 def test_given_n_is_used_and_estimated():
     """A given n is kept; the plain scheme's estimate against n/2 brackets its true error (projected reference)."""
     k = CASES["nd_A"]
