@@ -159,7 +159,7 @@ def _guarded_ratio(num: Any, den: Any, xp: Any) -> Any:
 
 def bracketed_root(fun: Callable[[Any], tuple[Any, Any]], x: Any, lo: Any, hi: Any, xp: Any,
                    *, lo_known: Any = True, hi_known: Any = False,
-                   max_iter: int = MAX_ITER) -> tuple[Any, Any, Any]:
+                   max_iter: int = MAX_ITER, atol: float = 0.0) -> tuple[Any, Any, Any]:
     """Root of an increasing ``fun`` in ``[lo, hi]`` by Newton steps safeguarded by bisection.
 
     Parameters
@@ -175,6 +175,10 @@ def bracketed_root(fun: Callable[[Any], tuple[Any, Any]], x: Any, lo: Any, hi: A
         Whether ``f(lo) < 0`` (``f(hi) >= 0``) is known. An unknown end is
         evaluated when a step would leave the bracket; if its sign is wrong,
         the root lies outside ``[lo, hi]`` and the case is flagged.
+    atol
+        Absolute step or bracket width at which to stop, besides the relative
+        ``XTOL``: a root at ``x = 0`` (an angle ``phi`` at a join, where ``f`` is
+        rounding) has no relative width, and bisection towards it never closed.
 
     Returns
     -------
@@ -210,7 +214,7 @@ def bracketed_root(fun: Callable[[Any], tuple[Any, Any]], x: Any, lo: Any, hi: A
         # outside the bracket: bisect a closed bracket, else try the unknown end
         fallback = xp.where(lo_known & hi_known, 0.5 * (lo + hi),
                             xp.where(lo_known, xp.where(xp.isfinite(hi), hi, 2 * x + (x == 0)), lo))
-        tol = XTOL * xp.abs(x)
+        tol = xp.maximum(XTOL * xp.abs(x), atol)
         small = xp.abs(newton - x) <= tol          # a converged Newton step (NaN is not small)
         xn = xp.where(inside | small, newton, fallback)
         stop = below | above | (f == 0)
@@ -279,8 +283,9 @@ def solve_phi(punch: Punch, dAP: Any, target: str, value: Any, xp: Any = np,
         dg = g_m * r * r * sin2 + r * (g_h - cos2 * g_m) * r_phi
         return sign * (g - value), sign * dg
 
+    # an angle: its absolute XTOL closes a bracket on phi = 0 (a stick-zone end on a join, issue 29)
     phi, below, above = bracketed_root(fun, HALF_PI / 2 + 0.0 * dAP, 0.0 * dAP, HALF_PI + 0.0 * dAP,
-                                       xp, lo_known=False, hi_known=False)
+                                       xp, lo_known=False, hi_known=False, atol=XTOL)
     r = solve_r(punch, dAP, phi, radius[0], xp)
     return r, phi, below, above
 

@@ -19,6 +19,7 @@ returned). A damped Newton iteration with the exact Jacobian solves them.
 """
 from __future__ import annotations
 
+import dataclasses
 import math
 import time
 from dataclasses import dataclass, field
@@ -35,17 +36,25 @@ from threepart.errors import NoConvergenceError, SeparationError
 from threepart.results import Diagnostics, NormalResult
 
 from .projection import slope_coefficients
-from .quadrature import check_n
+from .quadrature import MAX_N, check_n
 from .roots import bracket_root, newton
 from .schemes import Plain, Projected, make_scheme
+from threepart.tolerances import tolerance
 from .series import ChebyshevPressure
 
 __all__ = ["SieNormalResult", "solve_normal", "solve_ends", "lift_off", "DEFAULT_N", "DEFAULT_SCHEME",
-           "check_scheme", "check_single_contact", "scan_ends"]
+           "check_scheme", "check_single_contact", "scan_ends", "two_level_estimate"]
 
-DEFAULT_N = 1024
+#: the first ``n`` of the two-level search when the user gives none (doubled until the estimate
+#: meets the target); the projected pressure is exact for any ``n``, so it stops at the first pair
+DEFAULT_N = 64
 DEFAULT_SCHEME = "projected"
 MAX_PLAIN_N = 4096
+#: angles of the two-level estimate: uniform in θ over the contact (the sqrt ends resolved)
+ESTIMATE_POINTS = 1025
+#: distances from a join, in half-widths, at which the two-level estimate also compares (the
+#: kink's (x - b) ln|x - b| is where a truncated series was coarsest)
+ESTIMATE_OFFSETS = (1e-2, 1e-3, 1e-4, 1e-5, 1e-6, 1e-7)
 
 
 @dataclass(frozen=True)
@@ -249,8 +258,29 @@ def scan_ends(punch: Punch, A: float, P: float, sch: Plain | Projected, *,
     return found
 
 
+def _estimate_points(res: SieNormalResult) -> np.ndarray:
+    """Where the two-level estimate compares: uniform in θ, and next to the joins inside the contact."""
+    m, h = 0.5 * (res.c - res.a), 0.5 * (res.a + res.c)
+    theta = np.linspace(0.0, np.pi, ESTIMATE_POINTS)[1:-1]
+    near = [j + side * h * d for j in (-res.punch.b, res.punch.b) for side in (-1.0, 1.0)
+            for d in ESTIMATE_OFFSETS]
+    x = np.concatenate([m + h * np.cos(theta), near])
+    return x[(x > -res.a) & (x < res.c)]
+
+
+def two_level_estimate(fine: SieNormalResult, coarse: SieNormalResult) -> float:
+    """``max |p_fine - p_coarse| / max p_fine`` at :func:`_estimate_points` of the fine contact.
+
+    The error estimate of the coarser of two solves (``n`` and ``2n``, or
+    ``n/2`` and ``n``), and so a bound for the finer one when the pressure converges.
+    """
+    x = _estimate_points(fine)
+    pf = fine.pressure(x)
+    return float(np.max(np.abs(pf - coarse.pressure(x))) / np.max(np.abs(pf)))
+
+
 def solve_normal(punch: Punch, P: float, s: float = 0.0, *, A: float, tilt: str = "free",
-                 n: int = DEFAULT_N, scheme: str = DEFAULT_SCHEME) -> SieNormalResult:
+                 n: int | None = None, scheme: str = DEFAULT_SCHEME) -> SieNormalResult:
     """Contact ``[-a, c]``, tilt ``α`` and pressure for load ``P`` at lever arm ``s``.
 
     Parameters
@@ -268,7 +298,10 @@ def solve_normal(punch: Punch, P: float, s: float = 0.0, *, A: float, tilt: str 
         ``"free"``: ``α`` follows from consistency, ``s`` is imposed.
         ``"suppressed"``: ``α = 0``, ``s`` is returned.
     n
-        Nodes (``"plain"``) or sine terms (``"projected"``), >= 2.
+        Nodes (``"plain"``) or sine terms (``"projected"``), >= 2. ``None``
+        (default): chosen by the two-level estimate, ``n`` and ``2n`` from
+        ``DEFAULT_N`` doubled until the estimate meets the target
+        ``tolerance("sie-target", "pressure")`` (1e-6 of the peak).
     scheme
         ``"projected"`` (kink-aware, default) or ``"plain"`` collocation;
         see :mod:`sie.schemes`.
@@ -277,8 +310,10 @@ def solve_normal(punch: Punch, P: float, s: float = 0.0, *, A: float, tilt: str 
     -------
     SieNormalResult
         ``method="sie"``; ``diagnostics`` hold ``n``, ``scheme``, the Newton
-        ``iterations`` and ``residual`` and the time; ``info`` holds, for the
-        projected scheme, ``pressure_bound`` (bound on the pointwise truncation error).
+        ``iterations`` and ``residual`` and the time; ``info`` holds
+        ``error_estimate`` (:func:`two_level_estimate`, of the peak, against
+        ``n/2`` when ``n`` is given, else against ``2n``) and, for the
+        projected scheme, ``pressure_bound`` (bound on its pointwise rounding).
 
     Raises
     ------
@@ -294,9 +329,39 @@ def solve_normal(punch: Punch, P: float, s: float = 0.0, *, A: float, tilt: str 
         The solved contact runs past an arc or past the small-slope limit
         (:func:`threepart.validate.check_contact`).
     NoConvergenceError
-        If the Newton iteration fails.
+        If the Newton iteration fails, or (``n`` not given) the estimate has not
+        met the target at the scheme's largest ``n``.
     """
-    P, s, A, sch = _check_normal(punch, P, s, A, tilt, n, scheme)
+    P, s, A, sch = _check_normal(punch, P, s, A, tilt, DEFAULT_N if n is None else n, scheme)
+    t0 = time.perf_counter()
+    if n is not None:
+        res = _solve_at(punch, P, s, A, tilt, sch)
+        est = two_level_estimate(res, _solve_at(punch, P, s, A, tilt, make_scheme(scheme, max(2, n // 2))))
+        return _with_estimate(res, est, t0)
+    target = tolerance("sie-target", "pressure").limit
+    largest = MAX_PLAIN_N if scheme == "plain" else MAX_N
+    coarse = _solve_at(punch, P, s, A, tilt, sch)
+    while 2 * sch.n <= largest:
+        sch = make_scheme(scheme, 2 * sch.n)
+        fine = _solve_at(punch, P, s, A, tilt, sch)
+        est = two_level_estimate(fine, coarse)
+        if est <= target:
+            return _with_estimate(fine, est, t0)
+        coarse = fine
+    raise NoConvergenceError(
+        f"sie.{scheme}: the pressure did not reach {target:g} of its peak by n = {sch.n} "
+        f"(two-level estimate {est:.2g} against n = {sch.n // 2}); pass `n` to accept a coarser result")
+
+
+def _with_estimate(res: SieNormalResult, est: float, t0: float) -> SieNormalResult:
+    """``res`` with ``info["error_estimate"]`` and the whole search's time."""
+    diagnostics = dataclasses.replace(res.diagnostics, timings={"total": time.perf_counter() - t0})
+    return dataclasses.replace(res, diagnostics=diagnostics, info={**res.info, "error_estimate": est})
+
+
+def _solve_at(punch: Punch, P: float, s: float, A: float, tilt: str,
+              sch: Plain | Projected) -> SieNormalResult:
+    """One solve with the scheme ``sch`` (validated input): the body of :func:`solve_normal`."""
     t0 = time.perf_counter()
     target: dict[str, float] = {"s": s} if tilt == "free" else {"alpha": 0.0}
     try:

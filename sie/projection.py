@@ -30,7 +30,8 @@ from numpy.typing import ArrayLike
 
 from threepart.punch import Punch
 
-__all__ = ["ramp_coefficients", "ramp_coefficients_dbeta", "slope_coefficients", "kinks"]
+__all__ = ["ramp_coefficients", "ramp_coefficients_dbeta", "slope_coefficients", "kinks",
+           "ramp_remainder"]
 
 
 def ramp_coefficients(beta: float, k: ArrayLike) -> np.ndarray:
@@ -124,3 +125,29 @@ def slope_coefficients(punch: Punch, m: float, h: float, kmax: int
         dm = dm + k1 * dr + k1 * e0
         dh = dh - k1 * (r - beta * dr) + k1 * e1
     return G, dm, dh
+
+
+def _remainder_kernel(phi: np.ndarray) -> np.ndarray:
+    """``F(φ) = Σ_{k>=2} cos kφ/(k(k^2-1)) = 2 sin^2(φ/2) ln|2 sin(φ/2)| + (3/4) cos φ - 1/2``.
+
+    From ``1/(k(k^2-1)) = 1/(2(k-1)) + 1/(2(k+1)) - 1/k`` and
+    ``Σ_{j>=1} cos jφ/j = -ln|2 sin(φ/2)|`` (the sine sums cancel); ``F(0) = 1/4``.
+    """
+    half = np.abs(np.sin(0.5 * phi))
+    with np.errstate(divide="ignore", invalid="ignore"):
+        log_part = np.where(half > 0, 2.0 * half * half * np.log(2.0 * half), 0.0)
+    return log_part + 0.75 * np.cos(phi) - 0.5
+
+
+def ramp_remainder(theta: ArrayLike, theta_b: float) -> np.ndarray:
+    """``Σ_{k>=2} sin kθ_b sin kθ/(k(k^2-1)) = [F(θ - θ_b) - F(θ + θ_b)]/2``, summed in closed form.
+
+    The part of a ramp's coefficients (:func:`ramp_coefficients`) that falls as
+    ``k^-3``, ``(2/π) cos θ_b sin kθ_b/(k(k^2-1))``, times ``sin kθ`` and summed:
+    with the log-singular leading part (:func:`sie.series.log_kink`) it makes a
+    ramp's pressure exact for any number of sine terms. The truncated sum
+    converged only as ``n^-2`` near the kink, slowly for a sharp edge radius or
+    a kink next to a contact end (issue 29).
+    """
+    theta = np.asarray(theta, dtype=float)
+    return 0.5 * (_remainder_kernel(theta - theta_b) - _remainder_kernel(theta + theta_b))

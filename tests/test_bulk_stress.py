@@ -19,7 +19,7 @@ import pytest
 from threepart import Punch, rigid_punch, solve
 from threepart import closedform as cf
 from threepart import sie
-from threepart.bulk import slip_direction_margin
+from threepart.bulk import corrective_tilt, slip_direction_margin
 from threepart.closedform.fretting import stick_gap
 from threepart.closedform.slip import stick_zones_on_path
 from threepart.errors import SlipReversalError, StickZoneError
@@ -211,6 +211,68 @@ def test_fretting_energy_is_the_friction_work():
         assert tuple(c.stick[2]) == pytest.approx(top, abs=ROUND_OFF)
     with pytest.raises(SlipReversalError, match="sigma_bulk"):
         cf.fretting_cycle(n, 80.0, 0.5, sigma_bulk=400.0, states=3)
+
+
+#: issue 29's fretting cycles under a bulk stress that raised NoConvergenceError (the SIE's first,
+#: the closed form's second), and one of the wide draw (tests/test_sie_wide.py) whose slip zone of
+#: 2.4e-5 W took the SIE's gap, a difference of O(1) terms, to 2e-7 of itself (energy 1.7e-8 off):
+#: Punch(R1, R2, b, R), P, s, Q_max, f, sigma_bulk
+ISSUE_29_CYCLES = [
+    ((49.4934010282353, 0.2825961996877739, 1.0, math.inf), 5.584701770900459, 0.24610735234337466,
+     0.2725210812042088, 0.7990407371374519, -0.12322886966690384),
+    ((30.38837913250566, 0.17691970571070678, 1.0, math.inf), 51.47257162028746, 0.06276219312189446,
+     4.523667035968952, 0.7099020587588676, 2.0767242826415395),
+    ((0.05099225595541035, 75.79212899937374, 1.0, -4940.466502463893), 53.20116066338697,
+     0.26044208760862564, 1.3582458125405603, 0.9669187723637189, 0.9543034215645737),
+]
+
+
+@pytest.mark.parametrize("compliance", [rigid_punch(210e3, 0.3) * 2, rigid_punch(210e3, 0.3)])
+@pytest.mark.parametrize("case", ISSUE_29_CYCLES)
+def test_fretting_with_a_tiny_slip_zone_answers_and_agrees(case, compliance):
+    """Issue 29: the friction-work quadrature did not settle (rounding of the gap) and took minutes
+    (numpy's Gauss–Legendre at 4096 nodes); now both answer and agree on stick zones and energy."""
+    (R1, R2, b, R), P_, s, Q_max, f, sb = case
+    punch = Punch(R1=R1, R2=R2, b=b, R=R)
+    n = cf.solve_normal(punch, P_, s, A=compliance)
+    c = cf.fretting_cycle(n, Q_max, f, sigma_bulk=sb, states=3)
+    g = sie.fretting_cycle(sie.solve_normal(punch, P_, s, A=compliance), Q_max, f, sigma_bulk=sb, states=3)
+    assert np.max(np.abs(c.stick - g.stick)) < ZONE_TOL * (n.a + n.c)
+    assert g.energy == pytest.approx(c.energy, rel=tolerance("sie-target", "bulk_energy").limit, abs=0)
+
+
+def test_sie_gap_outside_a_tiny_slip_zone_is_the_closed_forms():
+    """Issue 29: the SIE's gap of the corrective contact, summed without cancellation, against the
+    closed form's over a slip zone of 2.4e-5 W next to a sharp edge (R1 = 0.05 b)."""
+    (R1, R2, b, R), P_, s, Q_max, f, sb = ISSUE_29_CYCLES[2]
+    punch = Punch(R1=R1, R2=R2, b=b, R=R)
+    n = cf.solve_normal(punch, P_, s, A=2 * rigid_punch(210e3, 0.3))
+    left, right = cf.solve_partial_slip(n, Q_max, f, sigma_bulk=sb).stick_zone
+    alpha = float(corrective_tilt(n.alpha, n.A, Q_max, f, sb))
+    x = left - (left + n.a) * np.linspace(0.1, 1.0, 37)
+    from threepart.sie.fretting import stick_gap as sie_gap
+    got = sie_gap(punch, alpha, 0.5 * (left + right), 0.5 * (right - left), x)
+    want = stick_gap(punch, -left, right, x)
+    assert np.max(np.abs(got / want - 1)) < tolerance("sie-target", "gap").limit
+
+
+def test_stick_zone_end_on_a_join_is_refused_by_name():
+    """Issue 29: the bound in the StickZoneError bisects the path onto the load where the stick
+    zone's end reaches a join, phi = 0 of the closed form's angle; its bracket, closed only by a
+    relative width, never closed there and NoConvergenceError came out instead. The bound is the
+    SIE's: its stick zone at that Q covers the central segment, just past it it does not."""
+    punch = Punch(R1=950.7483640187323, R2=0.5821649540424728, b=1.0)
+    A_ = 2 * rigid_punch(210e3, 0.3)
+    n = cf.solve_normal(punch, 21474.37257521067, -10.086028220942035, A=A_)
+    f, Q = 0.9242996246887781, -13645.414310104517
+    sb = 1213.430630013706
+    with pytest.raises(StickZoneError, match=r"it holds for \|Q\|/\(f P\) < ") as info:
+        cf.solve_partial_slip(n, Q, f, sigma_bulk=sb)
+    bound = float(re.search(r"< ([0-9.e+-]+)", str(info.value)).group(1))
+    scale = bound * f * n.P / abs(Q)
+    inside = sie.solve_partial_slip(n, Q * scale * (1 - PRINTED), f, sigma_bulk=sb * scale * (1 - PRINTED))
+    past = sie.solve_partial_slip(n, Q * scale * (1 + PRINTED), f, sigma_bulk=sb * scale * (1 + PRINTED))
+    assert inside.within_paper and not past.within_paper
 
 
 def test_auto_falls_back_past_the_closed_form_and_refuses_a_reversal():
