@@ -256,8 +256,15 @@ class HistoryResult(_Answer):
         return self._field(self.slip_nodes[k], x, k)
 
     def stick_zone(self, k: int) -> tuple[float, float]:
-        """The widest stick interval of state ``k`` (``(nan, nan)`` if none)."""
-        zones = self.stick[self._state(k)]
+        """The widest stick interval of state ``k``.
+
+        Raises
+        ------
+        ValueError
+            If nothing stuck in the step to state ``k`` (every point of the contact slipped).
+        """
+        zones = self.stick[k := self._state(k)]
         if not zones:
-            return (float("nan"), float("nan"))
+            raise ValueError(f"state `k` = {k} has no stick interval: every point of its contact "
+                             "slipped in the step to it")
         return max(zones, key=lambda z: z[1] - z[0])
