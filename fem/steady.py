@@ -238,11 +238,11 @@ def steady_state(punch: Punch, states: Any, f: float, *, E: float, nu: float, me
         The energy has not settled after ``cycles`` cycles (naming the last two), or
         no node stuck through the last cycle; as :func:`fem.load_history` otherwise.
     """
-    st0, st1, f, E, nu, pre, cycles, steps, first, max_iter, progress = _check(
+    st0, st1, f, E, nu, pre, cycles, steps, path, max_iter, progress = _check(
         punch, states, f, E, nu, mesh, cycles, steps, first, max_iter, progress)
     say = Progress(progress)
     t0 = time.perf_counter()
-    loading = first_loading(st0, first, steps)
+    loading = first_loading(st0, path, steps)
     cycle = [*_path(st0, st1, steps), *_path(st1, st0, steps)]
     cycle[steps:] = [*cycle[steps - 2::-1], st0]       # the way back through the same states
     marcher = _Marcher(punch, [*loading, *cycle], f, E, nu, pre, max_iter, say)
