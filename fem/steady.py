@@ -28,7 +28,7 @@ from threepart.results import Diagnostics, SteadyStateResult
 from threepart.steady import LoadState, check_cycle_states, ramp
 from threepart.stress import Stress
 from threepart.tolerances import tolerance
-from threepart.validate import integer
+from threepart.validate import integer, shear_load
 
 from ._boundary import boundary
 from ._iv import mesh_arg, normal_iv
@@ -125,6 +125,10 @@ def _check(punch: Any, states: Any, f: Any, E: Any, nu: Any, mesh: Any, cycles: 
     else:
         try:
             first = check_history(first)
+            for k in range(len(first)):
+                P, s, Q, _ = first.state(k)
+                normal_iv(punch, P, s, E, nu, "free", max_iter, pair=True)
+                shear_load(Q, f, P, name=f"first[{k}].Q", what="the first loading cannot pass this state")
         except (TypeError, ValueError) as exc:
             raise type(exc)(f"`first`: {exc}") from None
     pre = mesh_arg(mesh, (MeshPreset, SubstrateSpec, Substrate))
@@ -138,7 +142,7 @@ def _path(start: LoadState, end: LoadState, steps: int) -> list[LoadState]:
     return [*out[:-1], end]   # type: ignore[list-item]
 
 
-def first_loading(st0: LoadState, first: str | History, steps: int) -> list[LoadState]:
+def _first_loading(st0: LoadState, first: str | History, steps: int) -> list[LoadState]:
     """The states from rest to ``st0``: all four loads together, ``P`` then the rest, or given states then a ramp."""
     P0, s0, Q0, sb0 = st0
     if isinstance(first, History):
@@ -242,7 +246,7 @@ def steady_state(punch: Punch, states: Any, f: float, *, E: float, nu: float, me
         punch, states, f, E, nu, mesh, cycles, steps, first, max_iter, progress)
     say = Progress(progress)
     t0 = time.perf_counter()
-    loading = first_loading(st0, path, steps)
+    loading = _first_loading(st0, path, steps)
     cycle = [*_path(st0, st1, steps), *_path(st1, st0, steps)]
     cycle[steps:] = [*cycle[steps - 2::-1], st0]       # the way back through the same states
     marcher = _Marcher(punch, [*loading, *cycle], f, E, nu, pre, max_iter, say)

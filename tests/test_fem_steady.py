@@ -168,6 +168,11 @@ def test_full_sliding_at_an_end_is_refused():
         run(CASE_A, [(0.04, 0.1, 0.0, 0.0), (0.04, 0.1, 0.03, 0.0)])
 
 
+def test_full_sliding_on_the_first_loading_is_refused_before_any_numerics():
+    with pytest.raises(FullSlidingError, match=r"`first`: .*first\[1\]\.Q"):
+        run(CASE_A, PQ, first=[(0.05, 0.1, 0.0, 0.0), (0.05, 0.1, 0.03, 0.0)])
+
+
 @pytest.mark.slow
 @pytest.mark.parametrize("states", [GENERAL, PQ])
 def test_the_issue_targets_on_the_default_mesh(states):
