@@ -231,7 +231,7 @@ def steady_state(punch: Punch, states: Any, f: float, *, E: float, nu: float, me
         the smaller contact), ``energy`` (its friction work), ``shakedown`` (the
         permanent stick zone covers the smaller contact and the work is rounding),
         ``normals`` (FE normal results of the two ends), ``energies`` of every cycle;
-        ``diagnostics`` hold ``h``, ``dofs``, ``steps`` (states marched) and timings;
+        ``diagnostics`` hold ``h``, ``dofs``, ``steps`` (the cycles' states marched) and timings;
         ``info`` holds ``cycles`` (marched) and ``first_work``.
 
     Raises
