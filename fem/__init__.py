@@ -8,7 +8,8 @@ solve_partial_slip  -- two similar elastic bodies, P at s then Q (and a bulk str
 fretting_cycle      -- the same model through Q: 0 -> Q_max -> -Q_max -> Q_max (energy per cycle)
 load_history        -- the same model through any history of (P, s, Q, sigma_bulk) states, meshed once,
                        with the memory of slip (stick intervals, shear, slip, energy per cycle)
-FemSlipResult, FemFrettingResult -- their shared result shapes, with the per-step history
+steady_state        -- the periodic steady state of an in-phase cycle between two states, marched until it repeats
+FemSlipResult, FemFrettingResult, FemSteadyResult -- their shared result shapes, with the per-step history
 solve_finite        -- a punch of real shape (exact arcs, flanks, height H) on a finite block
 solve_finite_slip   -- the same punch and block, P at s then Q in steps, Coulomb friction (two-body model)
 NoConvergenceError  -- the contact active-set iteration did not converge
@@ -67,9 +68,11 @@ from .finite import solve_finite
 from .finite_slip import solve_finite_slip
 from .mesh import PRESETS, MeshPreset, Substrate, make_substrate, read_substrate
 from .solve import FemResult, locate_contact, solve_normal
+from .steady import FemSteadyResult, steady_state
 from .studies import convergence_study, domain_study
 
 __all__ = ["solve_normal", "FemResult", "solve_partial_slip", "fretting_cycle", "FemSlipResult", "load_history",
+           "steady_state", "FemSteadyResult",
            "FemFrettingResult", "solve_finite", "solve_finite_slip", "Interface", "interface", "mirror", "bulk_field", "Step", "tangential",
            "StressField", "NoConvergenceError", "ContactZoneError", "SeparationError",
            "MeshResolutionError", "locate_contact", "MeshPreset", "PRESETS", "Substrate", "read_substrate",

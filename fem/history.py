@@ -20,7 +20,7 @@ from __future__ import annotations
 
 import math
 import time
-from typing import Any
+from typing import Any, NamedTuple
 
 import numpy as np
 from threadpoolctl import threadpool_limits
@@ -162,6 +162,29 @@ def load_history(punch: Punch, history: Any, f: float, *, E: float, nu: float,
                                                              progress, period)
     say = Progress(progress)
     t0 = time.perf_counter()
+    model, L, timings = _setup(punch, hist, E, nu, pre, max_iter, f, say)
+    cache: dict[tuple[float, float], tuple[ContactSolution, FemResult]] = {}
+    t2 = time.perf_counter()
+    sols = [_normal(model, float(P), float(s), E, nu, cache) for P, s in zip(hist.P, hist.s)]
+    t3 = time.perf_counter()
+    run = _march(model, hist, f, [s[0] for s in sols], say)
+    t4 = time.perf_counter()
+    cycles = hist.cycles(period)
+    energy = np.array([run.work[i + 1:j + 1].sum() for i, j in cycles])
+    timings.update({"normal": t3 - t2, "friction": t4 - t3, "total": t4 - t0})
+    diag = Diagnostics(h=model.itf.h, dofs=model.itf.dofs, L=L, iterations=run.iterations,
+                       residual=run.residual, steps=len(hist), timings=timings)
+    return HistoryResult(punch=punch, f=f, P=hist.P, s=hist.s, Q=hist.Q, sigma_bulk=hist.sigma_bulk,
+                         normals=tuple(s[1] for s in sols), stick=run.sticks, energy=energy,
+                         cycles=cycles, work=run.work, method="fem", x_nodes=model.itf.x,
+                         q_nodes=run.q, slip_nodes=run.slip, diagnostics=diag,
+                         info={"normal_solves": len(cache), "weights": model.itf.weights})
+
+
+def _setup(punch: Punch, hist: History, E: float, nu: float, pre: Any, max_iter: int, f: float,
+           say: Progress) -> tuple[TwoBodyModel, float, dict[str, float]]:
+    """The model meshed once around the contacts' union and condensed: model, block size ``L``, timings."""
+    t0 = time.perf_counter()
     ends = _union(punch, hist, E, nu, max_iter) if isinstance(pre, MeshPreset) else None
     t_locate = time.perf_counter() - t0
     lower, L, guess, _ = place_substrate(pre, punch, float(hist.P.max()), float(hist.s[0]), 0.5 * E,
@@ -174,35 +197,46 @@ def load_history(punch: Punch, history: Any, f: float, *, E: float, nu: float,
     t2 = time.perf_counter()
     say(f"mesh and condense: {model.itf.dofs} DOFs, {len(model.itf.x)} interface nodes "
         f"({t2 - t1:.1f} s)")
-    cache: dict[tuple[float, float], tuple[ContactSolution, FemResult]] = {}
-    sols = [_normal(model, float(P), float(s), E, nu, cache) for P, s in zip(hist.P, hist.s)]
-    t3 = time.perf_counter()
-    q, slip, stick, work, its, res = _march(model, hist, f, [s[0] for s in sols], say)
-    t4 = time.perf_counter()
-    cycles = hist.cycles(period)
-    energy = np.array([work[i + 1:j + 1].sum() for i, j in cycles])
-    timings = {"locate": t_locate, "mesh": t1 - t0 - t_locate, "condense": t2 - t1,
-               "normal": t3 - t2, "friction": t4 - t3, "total": t4 - t0}
-    diag = Diagnostics(h=model.itf.h, dofs=model.itf.dofs, L=L, iterations=its, residual=res,
-                       steps=len(hist), timings=timings)
-    return HistoryResult(punch=punch, f=f, P=hist.P, s=hist.s, Q=hist.Q, sigma_bulk=hist.sigma_bulk,
-                         normals=tuple(s[1] for s in sols), stick=stick, energy=energy, cycles=cycles,
-                         work=work, method="fem", x_nodes=model.itf.x, q_nodes=q, slip_nodes=slip,
-                         diagnostics=diag, info={"normal_solves": len(cache),
-                                                             "weights": model.itf.weights})
+    return model, L, {"locate": t_locate, "mesh": t1 - t0 - t_locate, "condense": t2 - t1}
+
+
+class Carry(NamedTuple):
+    """What a state passes to the next: ``w``, the Coulomb bound, the stick set, the shear's sign, the slip."""
+
+    w: np.ndarray
+    bound: np.ndarray
+    stick: np.ndarray
+    sign: np.ndarray
+    slip: np.ndarray
+
+
+class Marched(NamedTuple):
+    """The states marched: nodal shear, accumulated slip, stick intervals and nodes, work per step,
+    relative tangential displacement ``w``, iterations, residual, and the carry to a next state."""
+
+    q: np.ndarray
+    slip: np.ndarray
+    sticks: tuple
+    stuck: np.ndarray
+    work: np.ndarray
+    w: np.ndarray
+    iterations: int
+    residual: float
+    carry: Carry
 
 
 def _march(model: TwoBodyModel, hist: History, f: float, sols: list[ContactSolution],
-           say: Progress) -> tuple[np.ndarray, np.ndarray, tuple, np.ndarray, int, float]:
-    """The states in order: nodal shear, accumulated slip, stick intervals, work per step, iterations, residual."""
+           say: Progress, carry: Carry | None = None) -> Marched:
+    """The states in order, from rest or from ``carry`` (the last state of a previous march)."""
     itf = model.itf
     K, N = len(hist), len(itf.x)
-    q, slip = np.zeros((K, N)), np.zeros((K, N))
+    q, slip, ws = np.zeros((K, N)), np.zeros((K, N)), np.zeros((K, N))
+    masks = np.zeros((K, N), dtype=bool)
     work = np.zeros(K)
     sticks = []
-    w_prev, bound_prev, sign_prev = np.zeros(N), np.zeros(N), np.zeros(N)
-    stick_prev = np.ones(N, dtype=bool)
-    acc = np.zeros(N)
+    if carry is None:
+        carry = Carry(np.zeros(N), np.zeros(N), np.ones(N, dtype=bool), np.zeros(N), np.zeros(N))
+    w_prev, bound_prev, stick_prev, sign_prev, acc = carry
     its_total, res_max = 0, 0.0
     report = max(1, math.ceil(K / 10))
     with threadpool_limits(limits=1, user_api="blas"):
@@ -221,10 +255,12 @@ def _march(model: TwoBodyModel, hist: History, f: float, sols: list[ContactSolut
             dslip = np.where(both & ~stick, w - w_prev, 0.0)
             acc = acc + dslip
             work[k] = step_work(bound_prev, bound, dslip)
-            q[k], slip[k] = t / itf.weights, acc
-            sticks.append(_stick_intervals(stuck(stick, bound > 0, w, w - w_prev), itf.x))
+            q[k], slip[k], ws[k] = t / itf.weights, acc, w
+            masks[k] = stuck(stick, bound > 0, w, w - w_prev)
+            sticks.append(_stick_intervals(masks[k], itf.x))
             w_prev, bound_prev, stick_prev, sign_prev = w, bound, stick | (bound == 0), np.sign(t)
             its_total, res_max = its_total + its, max(res_max, r)
             if (k + 1) % report == 0:
                 say(f"state {k + 1}/{K}: {int(stick.sum())} nodes stick")
-    return q, slip, tuple(sticks), work, its_total, res_max
+    return Marched(q, slip, tuple(sticks), masks, work, ws, its_total, res_max,
+                   Carry(w_prev, bound_prev, stick_prev, sign_prev, acc))

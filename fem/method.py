@@ -5,7 +5,7 @@ ratio; the adapter converts the compliance ``A`` (eq. 4) at ``nu`` (default
 :data:`NU`): the normal problem is a rigid punch on a block of modulus
 ``2(1 - nu^2)/A``; partial slip and the fretting cycle are two similar bodies,
 each of modulus ``4(1 - nu^2)/A``, which solve their own normal problem with
-the shear. In half-plane theory the solution depends on the material only
+the shear; so is the steady state of an in-phase cycle (:func:`fem.steady_state`). In half-plane theory the solution depends on the material only
 through ``A``; ``nu`` affects only the finite block's far field.
 
 Option: ``mesh`` (a preset, see :func:`threepart.fem.solve_normal`).
@@ -16,12 +16,13 @@ from typing import Any
 
 from threepart.punch import Punch
 from threepart.registry import Method, register
-from threepart.results import FrettingResult, NormalResult, SlipResult
+from threepart.results import FrettingResult, NormalResult, SlipResult, SteadyStateResult
 from threepart.tolerances import fem_comparison
 from threepart.validate import poisson, positive
 
 from .friction import fretting_cycle, solve_partial_slip
 from .solve import solve_normal
+from .steady import steady_state
 
 __all__ = ["METHOD", "NU", "rigid_punch_modulus", "pair_modulus"]
 
@@ -69,6 +70,12 @@ def _fretting(punch: Punch, P: float, s: float, *, A: float, tilt: str = "free",
                           tilt=tilt, sigma_bulk=sigma_bulk, **extra, **options)
 
 
+def _steady(punch: Punch, states: Any, f: float, *, A: float, nu: float | None = None,
+            **options: Any) -> SteadyStateResult:
+    nu = _nu(nu)
+    return steady_state(punch, states, f, E=pair_modulus(A, nu), nu=nu, **options)
+
+
 METHOD = register(Method("fem", _normal, _slip, _fretting, options=("mesh", "progress"),
-                         default_nu=NU,
+                         default_nu=NU, steady=_steady,
                          comparison=lambda options: fem_comparison(options.get("mesh", "default"))))
