@@ -16,7 +16,8 @@ from typing import Any
 
 from threepart.punch import Punch
 from threepart.registry import Method, register
-from threepart.results import FrettingResult, NormalResult, SlipResult, SteadyStateResult
+from threepart.cycles import SteadyStateResult
+from threepart.results import FrettingResult, NormalResult, SlipResult
 from threepart.tolerances import fem_comparison
 from threepart.validate import poisson, positive
 

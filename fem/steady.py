@@ -24,7 +24,8 @@ from threepart.errors import NoConvergenceError
 from threepart.history import History, check_history
 from threepart.meshes import SubstrateSpec
 from threepart.punch import Punch
-from threepart.results import Diagnostics, SteadyStateResult
+from threepart.cycles import SteadyStateResult
+from threepart.results import Diagnostics
 from threepart.steady import LoadState, check_cycle_states, ramp
 from threepart.stress import Stress
 from threepart.tolerances import tolerance

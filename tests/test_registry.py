@@ -96,3 +96,10 @@ def test_nu_is_refused_by_a_half_plane_method_and_used_by_the_fem():
     assert pair_modulus(A, 0.3) == pytest.approx(420e3, rel=EXACT)
     with pytest.raises(ValueError, match=r"`nu` = 0.5 must lie in \(-1, 0.5\)"):
         rigid_punch_modulus(A, 0.5)
+
+
+def test_a_method_without_a_steady_state_model_is_refused_by_name(toy):
+    states = [(300.0, 0.0, 0.0, 0.0), (400.0, 0.0, 60.0, 0.0)]
+    with pytest.raises(ValueError, match="method 'toy' has no steady-state model of a cycle"):
+        threepart.steady_state(Punch(10.0, 10.0, 1.0), states, 0.5, A=rigid_punch(E=210e3, nu=0.3),
+                               method="toy")
