@@ -86,12 +86,16 @@ def solve_normal(case: Case, method: str, mode: Mode) -> Any:
 
 def solve(case: Case, method: str, mode: Mode,
           cache: dict[Any, Any] | None = None) -> tuple[Any, float]:
-    """Result of ``case`` by ``method`` and its wall time (s): normal, partial slip or a fretting cycle.
+    """Result of ``case`` by ``method`` and its wall time (s): normal, partial slip, a fretting cycle
+    or the steady state of a flight cycle.
 
     ``cache`` maps ``(method, case.normal_key())`` to a normal result already
     computed, so that the partial-slip cases share their normal problem.
     """
     t0 = time.perf_counter()
+    if case.kind == "steady":   # the cycle's own end states: no shared normal problem
+        steady = solvers.steady(method, case, **mode.options(method))
+        return steady, time.perf_counter() - t0
     key = (method, case.normal_key())
     if cache is not None and key in cache:
         normal, t_normal = cache[key]
@@ -166,6 +170,8 @@ def run_case(case: Case, mode: Mode, cache: dict[Any, Any] | None = None,
     except Exception as exc:  # noqa: BLE001 - recorded in the report
         run.errors["closedform"] = f"lift-off range: {type(exc).__name__}: {exc}"
         return run
+    if case.kind == "steady":   # only the methods with a steady state (Method.steady) take part
+        methods = tuple(m for m in methods if registry.get(m).steady is not None)
     for method in methods:
         reused = cache is not None and (method, case.normal_key()) in cache
         try:

@@ -85,7 +85,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 __all__ = ["Tolerance", "TOLERANCES", "COMPARISONS", "QUANTITIES", "NORMAL_QUANTITIES",
-           "SLIP_QUANTITIES", "STRESS_QUANTITIES", "FRETTING_QUANTITIES", "tolerance", "fem_comparison", "VALUE_UNITS", "ERROR_UNITS",
+           "SLIP_QUANTITIES", "STRESS_QUANTITIES", "FRETTING_QUANTITIES", "STEADY_QUANTITIES", "tolerance", "fem_comparison", "VALUE_UNITS", "ERROR_UNITS",
            "NORMALISATION"]
 
 
@@ -107,6 +107,8 @@ STRESS_QUANTITIES = ("sxx_surface", "sxx_peak", "stress_depth")
 QUANTITIES = NORMAL_QUANTITIES + SLIP_QUANTITIES + STRESS_QUANTITIES
 #: quantities compared for a fretting cycle (the cycle's own section of the report)
 FRETTING_QUANTITIES = ("energy", "stick", "loop", "q_states")
+#: quantities compared for the steady state of a flight cycle (the flight cycle's section of the report)
+STEADY_QUANTITIES = ("stick_ends", "cycle_energy", "q_extremes", "slip_amplitude")
 #: comparisons of the verification run (closed form against a solver)
 COMPARISONS = ("sie", "fem-quick", "fem-default", "fem-fine")
 
@@ -117,6 +119,7 @@ VALUE_UNITS: dict[str, str] = {
     "p_left": "MPa", "p_right": "MPa", "p_interior_max": "MPa", "q_interior_max": "MPa",
     "p_L2": "MPa·mm^½", "q_L2": "MPa·mm^½", "closedform": "1 = refused",
     "energy": "N·mm/mm", "stick": "mm", "loop": "mm", "q_states": "MPa",
+    "stick_ends": "mm", "cycle_energy": "N·mm/mm", "q_extremes": "MPa", "slip_amplitude": "mm",
     "q_integral": "N/mm", "q_bound": "1",
     "sxx_surface": "MPa", "sxx_peak": "MPa", "stress_depth": "MPa",
 }
@@ -127,6 +130,7 @@ ERROR_UNITS: dict[str, str] = {
     "p_left": "peak", "p_right": "peak", "p_interior_max": "peak", "p_L2": "L2",
     "d": "d", "e": "d", "q_interior_max": "max|q|", "q_L2": "L2", "closedform": "0/1",
     "energy": "energy", "stick": "d", "loop": "loop", "q_states": "max|q|",
+    "stick_ends": "W", "cycle_energy": "energy", "q_extremes": "max|q|", "slip_amplitude": "max δ",
     "q_integral": "Q", "q_bound": "f p_max",
     "sxx_surface": "peak", "sxx_peak": "max|σxx|", "stress_depth": "peak",
 }
@@ -148,6 +152,7 @@ NORMALISATION: dict[str, str] = {
     "f p_max": "f times the result's largest pressure: how far |q| exceeds f p anywhere",
     "max|σxx|": "the reference's largest |σxx| on the surface line (the contact and a quarter of W "
                 "beyond each end): the largest surface σxx, the tension at the trailing edge",
+    "max δ": "the largest slip amplitude δ of the reference over the smaller contact (a flight cycle)",
     "loop": "the largest |delta| of the reference's hysteresis loop (delta less the line "
             "through the loop's tips)",
 }
@@ -180,6 +185,11 @@ TOLERANCES: dict[tuple[str, str], Tolerance] = {
     ("sie", "stick"): _T(1e-8, "every stick zone of the cycle is a loading stick zone (Masing), as d, e; measured 5e-15"),
     ("sie", "loop"): _T(1e-8, "the loop is the loading curve by Masing's rule; measured 3e-14"),
     ("sie", "q_states"): _T(1e-6, "shear at Q_max, at Q = 0 after reversal and at -Q_max: as q_interior_max; measured 1.2e-7"),
+    # --- flight cycle: the steady state of an in-phase cycle, closed form vs SIE (fan_blade_flight_cycle) --
+    ("sie", "stick_ends"): _T(1e-8, "permanent stick zone's ends of the smaller contact's width: the same (S5)-(S6) roots on the SIE's normal solutions (measured 3.4e-16)"),
+    ("sie", "cycle_energy"): _T(1e-7, "energy per cycle (S11): both quadratures settle to 1e-8 of W, the SIE's pressure series leaving ~1e-9 (measured 7.9e-11)"),
+    ("sie", "q_extremes"): _T(1e-6, "shear (S13) at both end states, more than 5 % of W inside the contact: as q_states (measured 2.2e-7)"),
+    ("sie", "slip_amplitude"): _T(1e-8, "slip amplitude (S7) over the smaller contact, of its largest value: the corrective gap on both stick zones (measured 3.4e-12)"),
     # --- past the paper's framework: the closed form must refuse ---------------------------------
     ("refusal", "closedform"): _T(0.5, "past its framework the closed form must refuse with the named error (error 0), never answer or raise another (error 1)"),
     # --- closed form vs FEM, default mesh --------------------------------------------------------
