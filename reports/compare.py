@@ -105,7 +105,10 @@ def is_steady(result: Any) -> bool:
 
 
 def normal_of(result: Any) -> Any:
-    """The normal result inside a slip result or a fretting cycle, or the result itself."""
+    """The normal result inside a slip result or a fretting cycle, the wider of a steady cycle's two
+    end states, or the result itself."""
+    if is_steady(result):
+        return max(result.normals, key=lambda n: float(n.a + n.c))
     return result.normal if (is_slip(result) or is_fretting(result)) and hasattr(result, "normal") \
         else result
 

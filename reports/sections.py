@@ -43,6 +43,8 @@ PLOT_KINDS = {
     "overlay": "pressure (and shear) of every method, the reference as a line",
     "errors": "pointwise error of each method against the reference, as a fraction of its peak",
     "cycle": "fretting cycle: hysteresis loop and the shear at three states",
+    "steady": "flight cycle's steady state: the shear at both end states and the slip amplitude at "
+              "both contact ends, the permanent stick zone dotted",
     "stress": "surface stress σxx of every method, along the contact and beyond its ends",
     "von_mises": "von Mises stress under the contact: the reference filled, every method's contours",
 }
