@@ -190,6 +190,7 @@ TOLERANCES: dict[tuple[str, str], Tolerance] = {
     ("sie", "cycle_energy"): _T(1e-7, "energy per cycle (S11): both quadratures settle to 1e-8 of W, the SIE's pressure series leaving ~1e-9 (measured 7.9e-11)"),
     ("sie", "q_extremes"): _T(1e-6, "shear (S13) at both end states, more than 5 % of W inside the contact: as q_states (measured 2.2e-7)"),
     ("sie", "slip_amplitude"): _T(1e-8, "slip amplitude (S7) over the smaller contact, of its largest value: the corrective gap on both stick zones (measured 3.4e-12)"),
+    ("flight", "fatigue"): _T(1e-9, "fatigue parameters of a steady cycle at P, s constant against the fretting cycle's Masing states -Q_max, Q_max (eq. S14): the same stresses to rounding, the critical plane's zoom alike (measured 0: identical floats)"),
     # --- past the paper's framework: the closed form must refuse ---------------------------------
     ("refusal", "closedform"): _T(0.5, "past its framework the closed form must refuse with the named error (error 0), never answer or raise another (error 1)"),
     # --- closed form vs FEM, default mesh --------------------------------------------------------
