@@ -413,8 +413,26 @@ def _energy(case: dict[str, Any]) -> Para | None:
              + (f" ({ENERGY_UNIT_TEXT})." if unit else " (nondimensional).")),)
 
 
+def _cycle(case: dict[str, Any]) -> Para | None:
+    """A flight cycle's two end states and each method's permanent stick zone ``[-(d+e), d-e]``."""
+    if "states" not in case:
+        return None
+    L, F, S = _u(case, "b"), _u(case, "P"), (UNITS["E"] if physical(case) else "")
+    ends = "; ".join(f"state {k}: P = {_with_unit(P, F)}, s = {_with_unit(s, L)}, Q = {_with_unit(Q, F)}, "
+                     f"σ_bulk = {_with_unit(g, S)}" for k, (P, s, Q, g) in enumerate(case["states"]))
+    zones = ", ".join(
+        f"{METHOD_NAMES.get(m, m)} [{fmt(-(r['d'] + r['e']))}, {fmt(r['d'] - r['e'])}]"
+        + (" (shakedown)" if r.get("shakedown") else "")
+        for m, r in case["results"].items() if r.get("d") is not None)
+    return (f"The cycle moves linearly and in phase between {ends}. Permanent stick zone"
+            f"{f' ({L})' if L else ''}: {zones}.",)
+
+
 def _case_section(case: dict[str, Any], shown: set[str]) -> Section:
     intro: list[Block] = [(_load(case),)]
+    cycle = _cycle(case)
+    if cycle:
+        intro.append(cycle)
     energy = _energy(case)
     if energy:
         intro.append(energy)

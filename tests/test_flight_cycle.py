@@ -149,3 +149,36 @@ def test_a_perturbed_steady_state_fails_that_tolerance_only(quantity, flight):
     assert [c.quantity for c in bad if not c.passed] == [quantity]
     ok = compare(flight, _Moved(flight, quantity, UNDER * limit), "sie")
     assert all(c.passed for c in ok), [(c.quantity, c.error) for c in ok if not c.passed]
+
+
+@pytest.fixture(scope="module")
+def flight_report(tmp_path_factory):
+    """The report of the flight case alone, by every method with a steady state (closed form, SIE)."""
+    from threepart.reports import verify
+    from threepart.reports.runs import MODES, run_case
+
+    run = run_case(catalogue.get_case(CASE), MODES["quick"], methods=("closedform", "sie"))
+    out = tmp_path_factory.mktemp("flight")
+    doc = verify.write_report(out, MODES["quick"], [run], [], {}, lambda msg: None)   # validates the schema
+    return doc, out
+
+
+def test_the_report_has_the_flight_cycle_with_its_checks_plot_and_hot_spots(flight_report):
+    doc, out = flight_report
+    (case,) = doc["cases"]
+    assert case["kind"] == "steady" and case["passed"] and set(case["results"]) == {"closedform", "sie"}
+    assert [c["quantity"] for c in case["checks"]] == list(STEADY_QUANTITIES)
+    assert all(c["limit"] == tolerance("sie", c["quantity"]).limit for c in case["checks"])
+    # the tightest margins rank the flight cycle's checks with the rest
+    assert {(t["case"], t["quantity"]) for t in doc["summary"]["tightest"]} == \
+        {(CASE, q) for q in STEADY_QUANTITIES}
+    assert case["plots"] == [f"plots/{CASE}_steady.png"] and (out / case["plots"][0]).is_file()
+    spots = case["fatigue"]["hot_spots"]
+    assert set(spots) == {"closedform", "sie"} and case["fatigue"]["states"] == 2
+    # the hot spots lie at the slip zones' ends of the smaller contact, where the tractions jump
+    ref = case["results"]["closedform"]
+    left = -(ref["d"] + ref["e"])
+    assert spots["closedform"]["ruiz_ffdp"]["x"] < left
+    md = (out / "report.md").read_text(encoding="utf-8")
+    assert "Permanent stick zone (mm): closed form [" in md and "state 1: P = 1515 N/mm" in md
+    assert "MPa²·mm" in md     # Ruiz's FFDP with its unit
