@@ -318,14 +318,24 @@ def _stick_lines(ax: Any, res: Any, xscale: float) -> None:
         ax.axvline(xe / xscale, color="0.4", lw=0.8, ls=":")
 
 
+#: how a method's marched history is drawn over the steady states (its label: the method's, "history")
+HISTORY_STYLE = dict(color="tab:green", lw=1.0, ls="-.")
+
+
 def steady(results: dict[str, Any], title: str, path: str | Path,
-           reference: str = "closedform", physical: bool = False) -> Path:
+           reference: str = "closedform", physical: bool = False,
+           histories: dict[str, Any] | None = None) -> Path:
     """The steady state of a flight cycle by every method with one: the shear at both end states
     (eq. S13) and the slip amplitude (eq. S7) at both contact ends, the permanent stick zone dotted.
 
     Shears are scaled by ``f p_max`` of the reference's wider end state; the slip
-    amplitude is drawn over the slip zone at each end, widened threefold.
+    amplitude is drawn over the slip zone at each end, widened threefold. A
+    marched history (``histories``, :mod:`reports.flight`) is drawn at the two
+    end states of its last cycle, its slip amplitude half its slip's range there.
     """
+    from .flight import last_cycle, slip_amplitude
+
+    histories = histories or {}
     ref = results.get(reference) or next(iter(results.values()))
     name = REFERENCE_NAME.get(reference, reference)
     n = max(ref.normals, key=lambda m: float(m.a + m.c))
@@ -338,6 +348,10 @@ def steady(results: dict[str, Any], title: str, path: str | Path,
         x = np.linspace(-nk.a, nk.c, 801)
         for m, res in results.items():
             ax.plot(x / xscale, np.asarray(res.shear(x, k)) / scale, **STYLE[m])
+        for m, hist in histories.items():
+            at = last_cycle(hist)[-1 if k == 0 else len(last_cycle(hist)) // 2]
+            ax.plot(x / xscale, hist.shear(x, at) / scale, **HISTORY_STYLE,
+                    label=f"{STYLE[m]['label']} history, cycle {len(hist.cycles)}")
         _stick_lines(ax, ref, xscale)
         _joins(ax, n.punch.b, xscale)
         ax.set_xlabel(xlabel)
@@ -355,6 +369,9 @@ def steady(results: dict[str, Any], title: str, path: str | Path,
         x = x[(x >= lo) & (x <= hi)]
         for m, res in results.items():
             ax.plot(x / xscale, np.asarray(res.slip_amplitude(x)), **STYLE[m])
+        for m, hist in histories.items():
+            ax.plot(x / xscale, slip_amplitude(hist, x), **HISTORY_STYLE,
+                    label=f"{STYLE[m]['label']} history, cycle {len(hist.cycles)}")
         ax.axvline((left if side == "left" else right) / xscale, color="0.4", lw=0.8, ls=":")
         ax.set_xlim(x[0] / xscale, x[-1] / xscale)
         ax.set_xlabel(xlabel)

@@ -44,7 +44,9 @@ PLOT_KINDS = {
     "errors": "pointwise error of each method against the reference, as a fraction of its peak",
     "cycle": "fretting cycle: hysteresis loop and the shear at three states",
     "steady": "flight cycle's steady state: the shear at both end states and the slip amplitude at "
-              "both contact ends, the permanent stick zone dotted",
+              "both contact ends, the permanent stick zone dotted; the marched history's last cycle "
+              "(dash-dot) slips as the steady state, and in the permanent stick zone carries the shear "
+              "its load path locked in (the steady state fixes only the change, eq. S13)",
     "stress": "surface stress σxx of every method, along the contact and beyond its ends",
     "von_mises": "von Mises stress under the contact: the reference filled, every method's contours",
 }

@@ -316,7 +316,7 @@ def write_report(tmp: Path, mode: Mode, runs: Sequence[CaseRun], studies: Sequen
             name, ref, physical = r.case.name, r.case.reference, r.case.material is not None
             if r.case.kind == "steady":
                 plots.steady(r.results, name, tmp / plot_path(name, "steady"), reference=ref,
-                             physical=physical)
+                             physical=physical, histories=r.histories)
                 drawn[name] = [plot_path(name, "steady")]
                 tired[name] = fatigue_hot_spots(r.results, stress_nu(r.case.material), ref)
                 continue

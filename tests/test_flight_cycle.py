@@ -19,6 +19,7 @@ from threepart import catalogue
 from threepart.fatigue import fatigue
 from threepart.punch import Punch
 from threepart.reports.compare import compare
+from threepart.reports.flight import HISTORY_QUANTITIES, history_checks
 from threepart.tolerances import STEADY_QUANTITIES, tolerance
 
 #: the perturbation's factors on a tolerance, as tests/test_compare.py: over fails, under passes
@@ -152,12 +153,56 @@ def test_a_perturbed_steady_state_fails_that_tolerance_only(quantity, flight):
 
 
 @pytest.fixture(scope="module")
-def flight_report(tmp_path_factory):
-    """The report of the flight case alone, by every method with a steady state (closed form, SIE)."""
-    from threepart.reports import verify
+def flight_run():
+    """The flight case by every method with a steady state (closed form, SIE) and the SIE's march."""
     from threepart.reports.runs import MODES, run_case
 
-    run = run_case(catalogue.get_case(CASE), MODES["quick"], methods=("closedform", "sie"))
+    return run_case(catalogue.get_case(CASE), MODES["quick"], methods=("closedform", "sie"))
+
+
+@dataclass
+class _Shifted:
+    """A steady state whose left stick-zone end is moved by ``dl`` and whose energy is scaled by ``k``."""
+
+    base: Any
+    dl: float = 0.0
+    k: float = 1.0
+
+    @property
+    def stick_zone(self) -> tuple[float, float]:
+        left, right = self.base.stick_zone
+        return left + self.dl, right
+
+    @property
+    def d(self) -> float:
+        return self.base.d
+
+    @property
+    def energy(self) -> float:
+        return self.base.energy * self.k
+
+
+@pytest.mark.parametrize("quantity", HISTORY_QUANTITIES)
+def test_a_perturbed_history_check_fails_that_tolerance_only(quantity, flight_run):
+    """The marched history judged against a steady state moved by 3x (fails) and 0.3x (passes) a limit."""
+    hist, ref = flight_run.histories["sie"], flight_run.results["closedform"]
+    limit = tolerance("sie-history", quantity).limit
+    h = float(np.max(np.diff(hist.edges)))
+
+    def moved(by: float) -> _Shifted:
+        return _Shifted(ref, dl=by * h) if quantity == "stick_end" else _Shifted(ref, k=1 + by)
+
+    assert [c.quantity for c in history_checks(moved(OVER * limit), hist, "sie") if not c.passed] == [quantity]
+    assert all(c.passed for c in history_checks(moved(UNDER * limit), hist, "sie"))
+
+
+@pytest.fixture(scope="module")
+def flight_report(tmp_path_factory, flight_run):
+    """The report of the flight case alone."""
+    from threepart.reports import verify
+    from threepart.reports.runs import MODES
+
+    run = flight_run
     out = tmp_path_factory.mktemp("flight")
     doc = verify.write_report(out, MODES["quick"], [run], [], {}, lambda msg: None)   # validates the schema
     return doc, out
@@ -167,11 +212,11 @@ def test_the_report_has_the_flight_cycle_with_its_checks_plot_and_hot_spots(flig
     doc, out = flight_report
     (case,) = doc["cases"]
     assert case["kind"] == "steady" and case["passed"] and set(case["results"]) == {"closedform", "sie"}
-    assert [c["quantity"] for c in case["checks"]] == list(STEADY_QUANTITIES)
-    assert all(c["limit"] == tolerance("sie", c["quantity"]).limit for c in case["checks"])
+    judged = [(c["comparison"], c["quantity"]) for c in case["checks"]]
+    assert judged == [("sie", q) for q in STEADY_QUANTITIES] + [("sie-history", q) for q in HISTORY_QUANTITIES]
+    assert all(c["limit"] == tolerance(c["comparison"], c["quantity"]).limit for c in case["checks"])
     # the tightest margins rank the flight cycle's checks with the rest
-    assert {(t["case"], t["quantity"]) for t in doc["summary"]["tightest"]} == \
-        {(CASE, q) for q in STEADY_QUANTITIES}
+    assert {(t["comparison"], t["quantity"]) for t in doc["summary"]["tightest"]} == set(judged)
     assert case["plots"] == [f"plots/{CASE}_steady.png"] and (out / case["plots"][0]).is_file()
     spots = case["fatigue"]["hot_spots"]
     assert set(spots) == {"closedform", "sie"} and case["fatigue"]["states"] == 2
