@@ -227,3 +227,11 @@ def test_the_report_has_the_flight_cycle_with_its_checks_plot_and_hot_spots(flig
     md = (out / "report.md").read_text(encoding="utf-8")
     assert "Permanent stick zone (mm): closed form [" in md and "state 1: P = 1515 N/mm" in md
     assert "MPa²·mm" in md     # Ruiz's FFDP with its unit
+
+
+def test_the_reference_dataset_names_the_flight_cycle_it_does_not_hold():
+    from threepart.reports import refs
+
+    with pytest.raises(ValueError, match=r"case 'fan_blade_flight_cycle' is a steady case: the reference "
+                                         r"dataset holds normal, slip, fretting cases only"):
+        refs.reference(catalogue.get_case(CASE))
