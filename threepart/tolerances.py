@@ -41,6 +41,13 @@ energy              ``|ΔE| / E``, energy dissipated per fretting cycle
 stick               largest ``|Δ|`` of the stick-zone ends over a cycle's states, ``/ d`` at Q_max
 loop                largest ``|Δ|`` of the hysteresis loop, ``/`` its largest value
 q_states            ``q_interior_max`` at Q_max, at Q = 0 after reversal and at -Q_max
+stick_ends          flight cycle: largest ``|Δ|`` of the permanent stick zone's ends ``/ W`` of the
+                    smaller contact (the intersection of the two end states' contacts)
+cycle_energy        flight cycle: ``|ΔE| / E`` of the energy per cycle (eq. S11)
+q_extremes          flight cycle: ``q_interior_max`` at both end states (eq. S13)
+slip_amplitude      flight cycle: ``max |Δδ| / max δ`` over the smaller contact (eq. S7)
+stick_end           flight cycle, ``<method>-history``: the marched last cycle's permanent stick
+                    zone ends against the steady state's, in the march's elements ``h``
 ==================  ===========================================================
 
 Other comparisons (tests and benchmarks)
@@ -68,6 +75,9 @@ normalised error (``_level``: at the finest discretisation of a study).
     SIE past lift-off): the issue-22 targets.
 ``catalogue``
     Numbers stored in ``threepart/cases.json`` against what they stand for.
+``flight``
+    The fatigue parameters of a steady (flight) cycle against the fretting cycle's
+    Masing states at constant load (``tests/test_flight_cycle.py``).
 ``refs``
     The precision each quantity of the reference dataset claims (``threepart
     export-refs``, ``docs/REFERENCE_DATA.md``), checked by ``tests/test_refs.py``.
