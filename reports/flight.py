@@ -17,6 +17,7 @@ march            -- one method's marched history of a steady case
 history_figures  -- (reference, obtained, error) of the last cycle against a steady state
 history_checks   -- those figures judged against the tolerance table
 last_cycle       -- the state indices of the last completed cycle
+slip_amplitude   -- half the range of the slip over the last cycle
 """
 from __future__ import annotations
 
@@ -34,7 +35,7 @@ from threepart.tolerances import tolerance
 from .compare import Check
 
 __all__ = ["HISTORY_METHODS", "HISTORY_ELEMENTS", "HISTORY_STEPS", "HISTORY_CYCLES", "load_path", "march",
-           "history_figures", "history_checks", "last_cycle", "HISTORY_QUANTITIES"]
+           "history_figures", "history_checks", "last_cycle", "slip_amplitude", "HISTORY_QUANTITIES"]
 
 #: the methods whose marched history the verification run adds: the SIE's is seconds at
 #: :data:`HISTORY_ELEMENTS`; the FEM's (``fem.load_history``) is minutes a cycle on the quick
@@ -66,8 +67,9 @@ def load_path(case: Case, steps: int = HISTORY_STEPS, cycles: int = HISTORY_CYCL
 
 def march(method: str, case: Case) -> HistoryResult:
     """The history of ``case``'s cycle marched by ``method``'s ``load_history`` (its package's)."""
+    if case.f is None:
+        raise ValueError(f"case {case.name!r} has no coefficient of friction `f`")
     load_history = getattr(import_module(registry.BUILTIN[method]), "load_history")
-    assert case.f is not None   # a steady case has f (catalogue)
     return load_history(case.punch, load_path(case), case.f, A=case.A, n=HISTORY_ELEMENTS,
                         period=2 * HISTORY_STEPS)
 
