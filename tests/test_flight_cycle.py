@@ -235,3 +235,36 @@ def test_the_reference_dataset_names_the_flight_cycle_it_does_not_hold():
     with pytest.raises(ValueError, match=r"case 'fan_blade_flight_cycle' is a steady case: the reference "
                                          r"dataset holds normal, slip, fretting cases only"):
         refs.reference(catalogue.get_case(CASE))
+
+
+def test_the_flight_cycles_von_mises_range_and_ruiz_by_hand(flight):
+    """The two end states' stresses built from the closed-form tractions (threepart.stress.stress with
+    p_k, q_k of eq. S13 and sigma_bulk_k): the von Mises range of their difference, and Ruiz's FFDP
+    (max σxx⁺ of the two ends) x (larger |q|) x δ, against fatigue(steady)."""
+    from threepart.stress import stress
+
+    case = catalogue.get_case(CASE)
+    nu = case.nu
+    W = min(n.c for n in flight.normals) + min(n.a for n in flight.normals)
+    x = np.linspace(-1.1 * W / 2 - 0.1, 1.1 * W / 2 + 0.1, 23)
+    z = np.array([0.0, 0.01 * W, 0.1 * W])[:, None]
+    ends = []
+    for k, n in enumerate(flight.normals):
+        ends.append(stress(x, z, pressure=n.pressure, shear=lambda t, k=k: flight.shear(t, k), ends=(-n.a, n.c),
+                           sigma_bulk=case.states[k][3], nu=nu,
+                           kinks=(-case.punch.b, case.punch.b, *flight.stick_zone)))
+    dxx, dzz, dxz = (getattr(ends[1], c) - getattr(ends[0], c) for c in ("sxx", "szz", "sxz"))
+    dyy = nu * (dxx + dzz)
+    vm = np.sqrt(0.5 * ((dxx - dyy) ** 2 + (dyy - dzz) ** 2 + (dzz - dxx) ** 2) + 3 * dxz ** 2)
+    res = fatigue(flight, x, z, E=case.E, nu=nu)
+    limit = tolerance("flight", "fatigue").limit
+    assert np.max(np.abs(res.von_mises_range.value - vm)) <= limit * np.max(vm)
+    xs = res.ruiz.x
+    top = [stress(xs, 0 * xs, pressure=n.pressure, shear=lambda t, k=k: flight.shear(t, k), ends=(-n.a, n.c),
+                  sigma_bulk=case.states[k][3], nu=nu, kinks=(-case.punch.b, case.punch.b, *flight.stick_zone))
+           for k, n in enumerate(flight.normals)]
+    tension = np.maximum(np.maximum(top[0].sxx, top[1].sxx), 0.0)
+    q = np.maximum(np.abs(flight.shear(xs, 0)), np.abs(flight.shear(xs, 1)))
+    ffdp = tension * q * flight.slip_amplitude(xs)
+    assert np.max(np.abs(res.ruiz.ffdp.value - ffdp)) <= limit * np.max(ffdp)
+    assert np.max(ffdp) > 0    # both slip zones' tension is there to be judged
