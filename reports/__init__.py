@@ -17,6 +17,9 @@ MODES           -- discretisation settings of ``quick``, ``default`` and ``full`
 compare         -- method-agnostic comparison of two results, judged against the table
 Check           -- one compared quantity: values, normalised error, limit, reason, verdict
 
+A flight cycle (a case with two ``states``) is solved by every method with a
+steady state and marched as a load history (:mod:`reports.flight`).
+
 Studies
 -------
 sie_study       -- SIE convergence in n against the closed form (orders, Richardson)

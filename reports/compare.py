@@ -16,11 +16,12 @@ from typing import Any
 import numpy as np
 
 from threepart.output import json_safe
-from threepart.tolerances import (FRETTING_QUANTITIES, NORMAL_QUANTITIES, SLIP_QUANTITIES, STRESS_QUANTITIES,
-                                  tolerance)
+from threepart.tolerances import (FRETTING_QUANTITIES, NORMAL_QUANTITIES, SLIP_QUANTITIES, STEADY_QUANTITIES,
+                                  STRESS_QUANTITIES, tolerance)
 
 __all__ = ["Check", "FieldErrors", "compare", "field_errors", "sample_points", "is_slip", "normal_of",
            "normal_figures", "slip_figures", "fretting_figures", "is_fretting", "SHEAR_STATES",
+           "is_steady", "steady_figures", "SteadyEnd",
            "EDGE_FRACTION"]
 
 #: fraction of the contact width excluded at each end for the "interior" errors
@@ -98,8 +99,16 @@ def is_fretting(result: Any) -> bool:
     return hasattr(result, "energy") and hasattr(result, "loop")
 
 
+def is_steady(result: Any) -> bool:
+    """True for the steady state of a cycle between two states (it has both ends' normals and a shakedown)."""
+    return hasattr(result, "normals") and hasattr(result, "shakedown") and hasattr(result, "slip_amplitude")
+
+
 def normal_of(result: Any) -> Any:
-    """The normal result inside a slip result or a fretting cycle, or the result itself."""
+    """The normal result inside a slip result or a fretting cycle, the wider of a steady cycle's two
+    end states, or the result itself."""
+    if is_steady(result):
+        return max(result.normals, key=lambda n: float(n.a + n.c))
     return result.normal if (is_slip(result) or is_fretting(result)) and hasattr(result, "normal") \
         else result
 
@@ -302,8 +311,10 @@ def compare(ref: Any, other: Any, comparison: str) -> list[Check]:
     other
         The result to check. When both are partial-slip results the stick
         zone and the shear field are compared too, when both are fretting
-        cycles the cycle's figures (:func:`fretting_figures`); otherwise only
-        the normal problem is compared.
+        cycles the cycle's figures (:func:`fretting_figures`), when both are
+        steady states of a cycle between two states those of the steady
+        state alone (:func:`steady_figures`); otherwise only the normal
+        problem is compared.
     comparison
         Row group of :data:`threepart.tolerances.TOLERANCES`: ``"sie"``,
         ``"fem-quick"``, ``"fem-default"`` or ``"fem-fine"``.
@@ -313,6 +324,8 @@ def compare(ref: Any, other: Any, comparison: str) -> list[Check]:
     list of Check
         One per quantity, in the order of :data:`threepart.tolerances.QUANTITIES`.
     """
+    if is_steady(ref) and is_steady(other):
+        return _judge(steady_figures(ref, other), STEADY_QUANTITIES, comparison)
     figures = normal_figures(normal_of(ref), normal_of(other))
     quantities: tuple[str, ...] = NORMAL_QUANTITIES
     if is_slip(ref) and is_slip(other):
@@ -400,3 +413,68 @@ def fretting_figures(ref: Any, other: Any) -> dict[str, tuple[float, float, floa
     out["q_states"] = worst
     return out
 
+
+
+@dataclass(frozen=True)
+class SteadyEnd:
+    """One end state of a steady cycle, seen as a partial-slip result (for :func:`field_errors`)."""
+
+    steady: Any
+    state: int
+
+    @property
+    def normal(self) -> Any:
+        return self.steady.normals[self.state]
+
+    @property
+    def a(self) -> float:
+        return float(self.normal.a)
+
+    @property
+    def c(self) -> float:
+        return float(self.normal.c)
+
+    @property
+    def d(self) -> float:
+        return math.nan
+
+    def shear(self, x: Any) -> np.ndarray:
+        return np.asarray(self.steady.shear(x, self.state), float)
+
+
+def steady_figures(ref: Any, other: Any) -> dict[str, tuple[float, float, float]]:
+    """``quantity -> (reference, obtained, normalised error)`` for two steady states of one cycle.
+
+    ``stick_ends``: the larger difference of the permanent stick zone's ends
+    ``(-(d + e), d - e)`` in units of the width ``W`` of the smaller contact
+    (the intersection of the two ends' contacts); ``cycle_energy``: ``|ΔW|/W``
+    of the energy per cycle (eq. S11); ``q_extremes``: the largest interior shear
+    difference at the two end states (eq. S13) in units of the largest shear
+    there; ``slip_amplitude``: the largest difference of the slip amplitude
+    (eq. S7) over the smaller contact in units of its largest value. In
+    shakedown (eq. S12) the shear and the slip are zero or history: only the
+    stick zone and the energy are compared.
+    """
+    lo = max(-float(n.a) for n in ref.normals)
+    hi = min(float(n.c) for n in ref.normals)
+    W = hi - lo
+    (rl, rr), (ol, orr) = ref.stick_zone, other.stick_zone
+    out: dict[str, tuple[float, float, float]] = {}
+    out["stick_ends"] = (float(ref.d), float(other.d), max(abs(ol - rl), abs(orr - rr)) / W)
+    dE = abs(other.energy - ref.energy)
+    out["cycle_energy"] = (ref.energy, other.energy, dE / ref.energy if ref.energy > 0 else dE)
+    if ref.shakedown or other.shakedown:
+        out["q_extremes"] = out["slip_amplitude"] = (0.0, 0.0, 0.0 if ref.shakedown == other.shakedown
+                                                     else math.inf)
+        return out
+    worst = (0.0, 0.0, 0.0)
+    for k in (0, 1):
+        fe = field_errors(SteadyEnd(ref, k), SteadyEnd(other, k), "shear")
+        figure = (fe.interior_peak(fe.ref), fe.interior_peak(fe.other), fe.interior_max)
+        worst = max(worst, figure, key=lambda f: f[2])
+    out["q_extremes"] = worst
+    x = sample_points(other.normals[0], lo, hi)
+    dr, do = (np.asarray(r.slip_amplitude(x), float) for r in (ref, other))
+    scale = float(np.max(np.abs(dr))) or 1.0
+    out["slip_amplitude"] = (float(np.max(dr)), float(np.max(do)), float(np.max(np.abs(do - dr))) / scale)
+    return out

@@ -24,7 +24,7 @@ from .sections import ENERGY_UNIT, order_text
 from .studies import Study
 
 __all__ = ["new_figure", "save", "overlay", "error_curves", "stress_surface", "von_mises", "sie_convergence",
-           "fem_convergence", "step_convergence", "fretting", "STYLE"]
+           "fem_convergence", "step_convergence", "fretting", "steady", "STYLE"]
 
 #: how each method is drawn
 STYLE = {
@@ -309,6 +309,77 @@ def fretting(results: dict[str, Any], title: str, path: str | Path,
         ax.set_title(f"{title}: shear traction at {label} ({branch})", fontsize=10)
         ax.grid(True, color="0.9", lw=0.6)
         ax.legend(loc="lower center", fontsize=7)
+    return save(fig, path)
+
+
+def _stick_lines(ax: Any, res: Any, xscale: float) -> None:
+    """The permanent stick zone's ends of ``res`` as dotted vertical lines."""
+    for xe in res.stick_zone:
+        ax.axvline(xe / xscale, color="0.4", lw=0.8, ls=":")
+
+
+#: how a method's marched history is drawn over the steady states (its label: the method's, "history")
+HISTORY_STYLE = dict(color="tab:green", lw=1.0, ls="-.")
+
+
+def steady(results: dict[str, Any], title: str, path: str | Path,
+           reference: str = "closedform", physical: bool = False,
+           histories: dict[str, Any] | None = None) -> Path:
+    """The steady state of a flight cycle by every method with one: the shear at both end states
+    (eq. S13) and the slip amplitude (eq. S7) at both contact ends, the permanent stick zone dotted.
+
+    Shears are scaled by ``f p_max`` of the reference's wider end state; the slip
+    amplitude is drawn over the slip zone at each end, widened threefold. A
+    marched history (``histories``, :mod:`reports.flight`) is drawn at the two
+    end states of its last cycle, its slip amplitude half its slip's range there.
+    """
+    from .flight import last_cycle, slip_amplitude
+
+    histories = histories or {}
+    ref = results.get(reference) or next(iter(results.values()))
+    name = REFERENCE_NAME.get(reference, reference)
+    n = max(ref.normals, key=lambda m: float(m.a + m.c))
+    xscale, xlabel = _axis(n, physical)
+    scale = ref.f * max(p.p for p in n.peaks())
+    fig, axes = new_figure(2, 2)
+    for ax, k in zip(axes[0], (0, 1)):
+        P, _, Q, sigma = ref.states[k]
+        nk = ref.normals[k]
+        x = np.linspace(-nk.a, nk.c, 801)
+        for m, res in results.items():
+            ax.plot(x / xscale, np.asarray(res.shear(x, k)) / scale, **STYLE[m])
+        for m, hist in histories.items():
+            at = last_cycle(hist)[-1 if k == 0 else len(last_cycle(hist)) // 2]
+            ax.plot(x / xscale, hist.shear(x, at) / scale, **HISTORY_STYLE,
+                    label=f"{STYLE[m]['label']} history, cycle {len(hist.cycles)}")
+        _stick_lines(ax, ref, xscale)
+        _joins(ax, n.punch.b, xscale)
+        ax.set_xlabel(xlabel)
+        ax.set_ylabel(f"q / (f p_max)  (p_max of the {name})")
+        ax.set_title(f"{title}: shear at state {k}\n(P = {P:.5g}, Q = {Q:.5g}, σ_bulk = {sigma:.5g})",
+                     fontsize=10)
+        ax.grid(True, color="0.9", lw=0.6)
+        ax.legend(loc="lower center", fontsize=7)
+    lo, hi = max(-float(m.a) for m in ref.normals), min(float(m.c) for m in ref.normals)
+    left, right = ref.stick_zone
+    unit = f" ({UNITS['d']})" if physical else ""
+    for ax, (a, b), side in zip(axes[1], ((lo, left), (right, hi)), ("left", "right")):
+        w = max(b - a, 1e-12 * (hi - lo))
+        x = np.linspace(a - w, b + w, 401)
+        x = x[(x >= lo) & (x <= hi)]
+        for m, res in results.items():
+            ax.plot(x / xscale, np.asarray(res.slip_amplitude(x)), **STYLE[m])
+        for m, hist in histories.items():
+            ax.plot(x / xscale, slip_amplitude(hist, x), **HISTORY_STYLE,
+                    label=f"{STYLE[m]['label']} history, cycle {len(hist.cycles)}")
+        ax.axvline((left if side == "left" else right) / xscale, color="0.4", lw=0.8, ls=":")
+        ax.set_xlim(x[0] / xscale, x[-1] / xscale)
+        ax.set_xlabel(xlabel)
+        ax.set_ylabel("slip amplitude δ" + unit)
+        ax.set_title(f"{title}: slip amplitude at the {side} end\n(energy per cycle "
+                     f"{ref.energy:.4g}" + (f" {ENERGY_UNIT}" if physical else "") + ")", fontsize=10)
+        ax.grid(True, color="0.9", lw=0.6)
+        ax.legend(loc="upper center", fontsize=7)
     return save(fig, path)
 
 

@@ -180,6 +180,10 @@ def _inputs(case: Case) -> dict[str, Any]:
     return inputs
 
 
+#: the kinds of case the dataset holds (:attr:`Case.kind <threepart.catalogue.Case.kind>`)
+KINDS = ("normal", "slip", "fretting")
+
+
 def reference(case: Case) -> dict[str, Any]:
     """The JSON document of one catalogue case (see ``docs/REFERENCE_DATA.md``).
 
@@ -194,6 +198,9 @@ def reference(case: Case) -> dict[str, Any]:
         JSON-ready: inputs, solution, fields on :data:`GRID` points, subsurface
         stresses, the cycle (fretting) and the precision claimed per quantity.
     """
+    if case.kind not in KINDS:
+        raise ValueError(f"case {case.name!r} is a {case.kind} case: the reference dataset holds "
+                         f"{', '.join(KINDS)} cases only (a flight cycle's steady state is not yet in it)")
     case = case.resolved()
     src = _Source(case)
     n, res = src.normal, src.result
@@ -313,7 +320,8 @@ def export_refs(out: str | Path, cases: Sequence[Case] | None = None, force: boo
         export (replaced); anything else is refused before any work
         (:func:`threepart.output.atomic_dir`).
     cases
-        The cases to export (default: the whole catalogue, every suite).
+        The cases to export (default: the whole catalogue, every suite, but the kinds
+        the dataset does not hold, :data:`KINDS`).
     force
         Kept for the command line's signature; it changes nothing.
     progress
@@ -328,6 +336,8 @@ def export_refs(out: str | Path, cases: Sequence[Case] | None = None, force: boo
     with atomic_dir(out, force, command="export-refs") as tmp:
         docs = []
         for case in (load_cases(None) if cases is None else cases):
+            if cases is None and case.kind not in KINDS:
+                continue   # by default the catalogue's cases the dataset holds
             doc = reference(case)
             validate(doc)
             docs.append(doc)

@@ -30,6 +30,7 @@ from threepart.catalogue import Case
 from threepart.tolerances import tolerance
 
 from .compare import Check, compare
+from .flight import HISTORY_METHODS, history_checks, march
 from . import solvers
 from .solvers import METHODS
 
@@ -86,12 +87,16 @@ def solve_normal(case: Case, method: str, mode: Mode) -> Any:
 
 def solve(case: Case, method: str, mode: Mode,
           cache: dict[Any, Any] | None = None) -> tuple[Any, float]:
-    """Result of ``case`` by ``method`` and its wall time (s): normal, partial slip or a fretting cycle.
+    """Result of ``case`` by ``method`` and its wall time (s): normal, partial slip, a fretting cycle
+    or the steady state of a flight cycle.
 
     ``cache`` maps ``(method, case.normal_key())`` to a normal result already
     computed, so that the partial-slip cases share their normal problem.
     """
     t0 = time.perf_counter()
+    if case.kind == "steady":   # the cycle's own end states: no shared normal problem
+        steady = solvers.steady(method, case, **mode.options(method))
+        return steady, time.perf_counter() - t0
     key = (method, case.normal_key())
     if cache is not None and key in cache:
         normal, t_normal = cache[key]
@@ -116,7 +121,8 @@ class CaseRun:
     """Everything one case produced: results, times, errors and checks, by method.
 
     ``refusals`` holds the messages of the closed form's expected refusals
-    (a case past its framework); they are checked, not errors.
+    (a case past its framework); they are checked, not errors. ``histories``
+    holds a flight cycle's marched histories by method (:mod:`reports.flight`).
     """
 
     case: Case
@@ -125,6 +131,7 @@ class CaseRun:
     errors: dict[str, str] = field(default_factory=dict)
     checks: list[Check] = field(default_factory=list)
     refusals: dict[str, str] = field(default_factory=dict)
+    histories: dict[str, Any] = field(default_factory=dict)
 
     @property
     def passed(self) -> bool:
@@ -166,6 +173,8 @@ def run_case(case: Case, mode: Mode, cache: dict[Any, Any] | None = None,
     except Exception as exc:  # noqa: BLE001 - recorded in the report
         run.errors["closedform"] = f"lift-off range: {type(exc).__name__}: {exc}"
         return run
+    if case.kind == "steady":   # only the methods with a steady state (Method.steady) take part
+        methods = tuple(m for m in methods if registry.get(m).steady is not None)
     for method in methods:
         reused = cache is not None and (method, case.normal_key()) in cache
         try:
@@ -197,7 +206,24 @@ def run_case(case: Case, mode: Mode, cache: dict[Any, Any] | None = None,
             run.checks.extend(compare(ref, run.results[method], judged_by(mode.options(method))))
         except Exception as exc:  # noqa: BLE001
             run.errors[f"compare-{method}"] = f"{type(exc).__name__}: {exc}"
+    if case.kind == "steady":
+        _march(run, ref, methods, say)
     return run
+
+
+def _march(run: CaseRun, ref: Any, methods: tuple[str, ...], say: Callable[[str], None]) -> None:
+    """A flight cycle's marched histories (:data:`reports.flight.HISTORY_METHODS`), judged against ``ref``."""
+    for method in (m for m in HISTORY_METHODS if m in methods):
+        t0 = time.perf_counter()
+        try:
+            hist = march(method, run.case)
+            run.checks.extend(history_checks(ref, hist, method))
+        except Exception as exc:  # noqa: BLE001 - recorded in the report
+            run.errors[f"{method}-history"] = f"{type(exc).__name__}: {exc}"
+            say(f"{method} history FAILED ({type(exc).__name__}: {exc})")
+            continue
+        run.histories[method] = hist
+        say(f"{method} history, {len(hist.cycles)} cycles marched, {_fmt_time(time.perf_counter() - t0)}")
 
 
 def _fmt_time(dt: float) -> str:

@@ -43,6 +43,10 @@ PLOT_KINDS = {
     "overlay": "pressure (and shear) of every method, the reference as a line",
     "errors": "pointwise error of each method against the reference, as a fraction of its peak",
     "cycle": "fretting cycle: hysteresis loop and the shear at three states",
+    "steady": "flight cycle's steady state: the shear at both end states and the slip amplitude at "
+              "both contact ends, the permanent stick zone dotted; the marched history's last cycle "
+              "(dash-dot) slips as the steady state, and in the permanent stick zone carries the shear "
+              "its load path locked in (the steady state fixes only the change, eq. S13)",
     "stress": "surface stress σxx of every method, along the contact and beyond its ends",
     "von_mises": "von Mises stress under the contact: the reference filled, every method's contours",
 }
@@ -411,8 +415,26 @@ def _energy(case: dict[str, Any]) -> Para | None:
              + (f" ({ENERGY_UNIT_TEXT})." if unit else " (nondimensional).")),)
 
 
+def _cycle(case: dict[str, Any]) -> Para | None:
+    """A flight cycle's two end states and each method's permanent stick zone ``[-(d+e), d-e]``."""
+    if "states" not in case:
+        return None
+    L, F, S = _u(case, "b"), _u(case, "P"), (UNITS["E"] if physical(case) else "")
+    ends = "; ".join(f"state {k}: P = {_with_unit(P, F)}, s = {_with_unit(s, L)}, Q = {_with_unit(Q, F)}, "
+                     f"σ_bulk = {_with_unit(g, S)}" for k, (P, s, Q, g) in enumerate(case["states"]))
+    zones = ", ".join(
+        f"{METHOD_NAMES.get(m, m)} [{fmt(-(r['d'] + r['e']))}, {fmt(r['d'] - r['e'])}]"
+        + (" (shakedown)" if r.get("shakedown") else "")
+        for m, r in case["results"].items() if r.get("d") is not None)
+    return (f"The cycle moves linearly and in phase between {ends}. Permanent stick zone"
+            f"{f' ({L})' if L else ''}: {zones}.",)
+
+
 def _case_section(case: dict[str, Any], shown: set[str]) -> Section:
     intro: list[Block] = [(_load(case),)]
+    cycle = _cycle(case)
+    if cycle:
+        intro.append(cycle)
     energy = _energy(case)
     if energy:
         intro.append(energy)

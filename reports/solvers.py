@@ -10,12 +10,13 @@ from __future__ import annotations
 from typing import TYPE_CHECKING, Any
 
 from threepart import registry
+from threepart.cycles import SteadyStateResult
 from threepart.results import FrettingResult, NormalResult, SlipResult
 
 if TYPE_CHECKING:  # pragma: no cover
     from threepart.catalogue import Case
 
-__all__ = ["METHODS", "normal", "slip", "fretting"]
+__all__ = ["METHODS", "normal", "slip", "fretting", "steady"]
 
 #: the methods the verification run compares, in report order; the closed form is the
 #: reference of the others
@@ -59,3 +60,13 @@ def fretting(method: str, case: Case, base: NormalResult | None, states: int,
 def _bulk(case: Case) -> dict[str, float]:
     """``sigma_bulk`` for a case that has one (no keyword otherwise, so every adapter takes it)."""
     return {"sigma_bulk": case.sigma_bulk} if case.sigma_bulk else {}
+
+
+def steady(method: str, case: Case, **options: Any) -> SteadyStateResult:
+    """The periodic steady state of ``case``'s cycle between its two ``states`` by ``method``."""
+    if case.states is None or case.f is None:
+        raise ValueError(f"case {case.name!r} has no cycle (`states` and `f`)")
+    call = registry.get(method).steady
+    if call is None:
+        raise ValueError(f"method {method!r} has no steady state (Method.steady)")
+    return call(case.punch, case.states, case.f, A=case.A, **options)

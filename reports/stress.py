@@ -17,7 +17,7 @@ import numpy as np
 from threepart.fatigue import HotSpot
 from threepart.results import NU
 
-from .compare import STRESS_REACH, normal_of, surface_line
+from .compare import STRESS_REACH, is_steady, normal_of, surface_line
 
 __all__ = ["FIELD_GRID", "FATIGUE_GRID", "field_grid", "surface_line", "hot_spots", "case_hot_spots",
            "fatigue_states", "fatigue_hot_spots", "stress_nu"]
@@ -90,7 +90,8 @@ def fatigue_states(cycle: Any) -> np.ndarray:
 
 
 def fatigue_hot_spots(results: Mapping[str, Any], nu: float, reference: str) -> dict[str, Any]:
-    """``method -> parameter -> hot spot`` of the fretting cycles of one case (:mod:`threepart.fatigue`).
+    """``method -> parameter -> hot spot`` of the fretting cycles, or the steady flight cycles, of one
+    case (:mod:`threepart.fatigue`).
 
     Every method is evaluated on the reference's points and the same states;
     the substrate's Young's modulus for the SWT strains is that of the similar
@@ -104,8 +105,9 @@ def fatigue_hot_spots(results: Mapping[str, Any], nu: float, reference: str) -> 
     x, z = field_grid(ref, FATIGUE_GRID)
     nr = normal_of(ref)
     line = np.linspace(-nr.a, nr.c, 202)[1:-1]
-    idx = fatigue_states(ref)
-    out: dict[str, Any] = {"E": E, "nu": nu, "k": K_FINDLEY, "states": int(len(idx)), "hot_spots": {}}
+    idx = None if is_steady(ref) else fatigue_states(ref)   # a steady cycle: its two end states
+    out: dict[str, Any] = {"E": E, "nu": nu, "k": K_FINDLEY, "states": 2 if idx is None else int(len(idx)),
+                           "hot_spots": {}}
     for m, cycle in results.items():
         fat = fatigue(cycle, x, z, E=E, nu=nu, states=idx, surface=line)
         out["hot_spots"][m] = {p.name: {"x": p.hot.x, "z": p.hot.z, "value": p.hot.value}

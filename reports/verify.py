@@ -29,6 +29,7 @@ from threepart.output import atomic_dir, json_safe, strict_json, validate_json
 from . import render
 from .runs import FRETTING_STATES, MODES, CaseRun, Mode, run_case
 from .referee import CALCULIX_CASE, CALCULIX_K, CALCULIX_N, calculix_studies
+from .compare import is_steady, normal_of
 from .sections import MAP_JSON, plot_path, study_plot_path
 from .stress import case_hot_spots, fatigue_hot_spots, stress_nu
 from .solvers import METHODS
@@ -85,14 +86,16 @@ def _metadata(normal: Any) -> dict[str, Any]:
 
 
 def _result_dict(res: Any, dt: float) -> dict[str, Any]:
-    normal = getattr(res, "normal", res)
+    normal = normal_of(res)
     left, right = normal.peaks()
     d: dict[str, Any] = {"a": normal.a, "c": normal.c, "alpha": normal.alpha, "P": normal.P,
                          "s": normal.s, "tilt": normal.tilt,
                          "peak_left": {"x": left.x, "p": left.p},
                          "peak_right": {"x": right.x, "p": right.p},
                          "time_s": dt, "info": _metadata(normal)}
-    if hasattr(res, "energy"):   # a fretting cycle: its stick zone at Q_max
+    if is_steady(res):   # a flight cycle: its permanent stick zone, the wider end state's contact
+        d.update({"f": res.f, "energy": res.energy, "d": res.d, "e": res.e, "shakedown": res.shakedown})
+    elif hasattr(res, "energy"):   # a fretting cycle: its stick zone at Q_max
         left, right = res.stick[(res.branch == "loading")][-1]
         d.update({"Q_max": res.Q_max, "f": res.f, "energy": res.energy,
                   "d": 0.5 * (right - left), "e": -0.5 * (right + left)})
@@ -311,6 +314,12 @@ def write_report(tmp: Path, mode: Mode, runs: Sequence[CaseRun], studies: Sequen
     with _heartbeat(say, lambda: "[report] drawing the plots"):
         for r in todo:
             name, ref, physical = r.case.name, r.case.reference, r.case.material is not None
+            if r.case.kind == "steady":
+                plots.steady(r.results, name, tmp / plot_path(name, "steady"), reference=ref,
+                             physical=physical, histories=r.histories)
+                drawn[name] = [plot_path(name, "steady")]
+                tired[name] = fatigue_hot_spots(r.results, stress_nu(r.case.material), ref)
+                continue
             if r.case.kind == "fretting":
                 plots.fretting(r.results, name, tmp / plot_path(name, "cycle"), reference=ref,
                                physical=physical)

@@ -49,7 +49,11 @@ class Case:
     ``cycle`` the shear load is the amplitude ``Q_max`` of a fretting cycle
     ``0 -> Q_max -> -Q_max -> Q_max``. ``sigma_bulk`` is a bulk stress ``σxx``
     in the substrate (tension positive), applied with the shear load in
-    proportion (in phase over a cycle).
+    proportion (in phase over a cycle). With ``states``, two states
+    ``(P, s, Q, sigma_bulk)`` between which the four move linearly and in
+    phase, the case is the periodic steady state of that cycle (a flight
+    cycle, docs/STEADY_STATE.md); ``P``, ``s``, ``Q_over_fP`` and
+    ``sigma_bulk`` are then its running loads, for the record.
     """
 
     name: str
@@ -68,6 +72,7 @@ class Case:
     closedform_refuses: str | None = None
     cycle: bool = False
     sigma_bulk: float = 0.0
+    states: tuple[tuple[float, float, float, float], tuple[float, float, float, float]] | None = None
 
     @property
     def beyond(self) -> bool:
@@ -107,7 +112,10 @@ class Case:
 
     @property
     def kind(self) -> str:
-        """``"fretting"`` for a cycle, ``"slip"`` when a shear load is applied, else ``"normal"``."""
+        """``"steady"`` with two ``states``, ``"fretting"`` for a cycle, ``"slip"`` when a shear
+        load is applied, else ``"normal"``."""
+        if self.states is not None:
+            return "steady"
         if self.Q_over_fP is None:
             return "normal"
         return "fretting" if self.cycle else "slip"
@@ -162,7 +170,8 @@ class Case:
                 "s_lift_off_fraction": self.s_lift_off_fraction, "load_4PA_over_b":
                     None if math.isinf(self.load_4PA_over_b) else self.load_4PA_over_b,
                 "f": self.f, "Q_over_fP": self.Q_over_fP, "Q": self.Q,
-                "closedform_refuses": self.closedform_refuses, "sigma_bulk": self.sigma_bulk}
+                "closedform_refuses": self.closedform_refuses, "sigma_bulk": self.sigma_bulk,
+                **({} if self.states is None else {"states": [list(st) for st in self.states]})}
 
 
 def _read(path: str | Path | None) -> dict[str, Any]:
@@ -192,6 +201,8 @@ def _checked_case(c: Any, default_material: Any, path: str | Path | None, i: int
             if value is not None:
                 finite(key, value)
         finite("sigma_bulk", case.sigma_bulk)
+        if case.states is not None and case.f is None:
+            raise ValueError("`states` (a cycle) needs the coefficient of friction `f`")
         if case.material is not None:
             positive("E", case.material[0])
             finite("nu", case.material[1])
@@ -215,7 +226,23 @@ def _case(c: dict[str, Any], default_material: dict[str, float]) -> Case:
                 s_lift_off_fraction=c.get("s_lift_off_fraction"), s_max=c.get("s_max"),
                 f=c.get("f"), Q_over_fP=c.get("Q_over_fP"), suites=tuple(c["suites"]),
                 closedform_refuses=c.get("closedform_refuses"), cycle=bool(c.get("cycle", False)),
-                sigma_bulk=float(c.get("sigma_bulk", 0.0)))
+                sigma_bulk=float(c.get("sigma_bulk", 0.0)), states=_states(c.get("states")))
+
+
+def _states(states: Any) -> tuple[tuple[float, float, float, float], tuple[float, float, float, float]] | None:
+    """A case's ``states``: None, or two states ``(P, s, Q, sigma_bulk)`` of finite numbers, ``P > 0``."""
+    if states is None:
+        return None
+    if not isinstance(states, list) or len(states) != 2:
+        raise ValueError(f"`states` must be a list of 2 states [P, s, Q, sigma_bulk], not {show(states)}")
+    out = []
+    for k, st in enumerate(states):
+        if not isinstance(st, list) or len(st) != 4:
+            raise ValueError(f"`states[{k}]` must be a list [P, s, Q, sigma_bulk] of 4 numbers, not {show(st)}")
+        P, s, Q, sigma = (finite(f"states[{k}][{i}]", v) for i, v in enumerate(st))
+        positive(f"states[{k}][0] (P)", P)
+        out.append((float(P), float(s), float(Q), float(sigma)))
+    return out[0], out[1]
 
 
 def load_cases(suite: str | None = "verify", path: str | Path | None = None) -> list[Case]:

@@ -1,4 +1,4 @@
-"""Fretting-fatigue parameters from the stress history of a fretting cycle, for any method.
+"""Fretting-fatigue parameters from the stress history of a fretting or flight cycle, for any method.
 
 Every function here works on a :class:`~threepart.results.FrettingResult` of any
 method through the shared interface only: ``cycle.stress(x, z, Q, branch, nu=...)``,
@@ -45,6 +45,7 @@ from typing import Any, Callable, Sequence
 import numpy as np
 from numpy.typing import ArrayLike
 
+from .cycles import SteadyStateResult
 from .results import BRANCHES, NU, FrettingResult
 from .stress import Stress
 from .validate import finite, integer, poisson, positive, reals
@@ -208,11 +209,27 @@ def _history(history: Any) -> History:
                     f"{type(history).__name__}")
 
 
-def _check_cycle(cycle: Any) -> FrettingResult:
-    if not isinstance(cycle, FrettingResult):
-        raise TypeError(f"`cycle` must be a FrettingResult (from a fretting_cycle), not "
-                        f"{type(cycle).__name__}")
+#: a cycle whose stress history the parameters take: a fretting cycle, or the steady state of a
+#: cycle between two states (a flight cycle, docs/STEADY_STATE.md)
+Cycle = FrettingResult | SteadyStateResult
+
+
+def _check_cycle(cycle: Any) -> Cycle:
+    if not isinstance(cycle, (FrettingResult, SteadyStateResult)):
+        raise TypeError(f"`cycle` must be a FrettingResult (from a fretting_cycle) or a SteadyStateResult "
+                        f"(from a steady_state), not {type(cycle).__name__}")
     return cycle
+
+
+def _steady_history(cycle: SteadyStateResult, xb: np.ndarray, zb: np.ndarray, states: Any,
+                    nu: float) -> History:
+    """The steady cycle's stresses at its two end states (docs/FATIGUE.md, "The flight cycle")."""
+    if states is not None:
+        raise ValueError(f"`states` = {states!r} selects recorded states of a fretting cycle; a steady "
+                         "state's history is its two end states: leave `states` out")
+    stresses = [cycle.stress(xb, zb, k, nu=nu) for k in (0, 1)]
+    return History.from_stresses(stresses, Q=[cycle.states[0][2], cycle.states[1][2]],
+                                 branch=["state 0", "state 1"])
 
 
 def _points(x: ArrayLike, z: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
@@ -271,14 +288,16 @@ def _distinct(cycle: FrettingResult, idx: np.ndarray) -> np.ndarray:
     return np.array(kept, dtype=int)
 
 
-def stress_history(cycle: FrettingResult, x: ArrayLike, z: ArrayLike, *, states: Any = None,
+def stress_history(cycle: Cycle, x: ArrayLike, z: ArrayLike, *, states: Any = None,
                    nu: float = NU) -> History:
     """The stresses of a cycle's states at the points ``(x, z)``, ``z >= 0``.
 
     Parameters
     ----------
     cycle
-        A fretting cycle of any method.
+        A fretting cycle of any method, or the steady state of a cycle between two
+        states (:class:`~threepart.results.SteadyStateResult`): its history is its
+        two end states (docs/FATIGUE.md, "The flight cycle").
     x, z
         Points, broadcast against each other; ``z = 0`` is the surface.
     states
@@ -296,6 +315,8 @@ def stress_history(cycle: FrettingResult, x: ArrayLike, z: ArrayLike, *, states:
     cycle = _check_cycle(cycle)
     xb, zb = _points(x, z)
     nu = poisson(nu)
+    if isinstance(cycle, SteadyStateResult):
+        return _steady_history(cycle, xb, zb, states, nu)
     idx = _distinct(cycle, _states(cycle, states))
     stresses = [cycle.stress(xb, zb, float(cycle.Q[i]), str(cycle.branch[i]), nu=nu) for i in idx]
     return History.from_stresses(stresses, Q=cycle.Q[idx], branch=cycle.branch[idx])
@@ -489,12 +510,13 @@ class Ruiz:
     ffdp: Parameter
 
 
-def ruiz(cycle: FrettingResult, history: History) -> Ruiz:
+def ruiz(cycle: Cycle, history: History) -> Ruiz:
     """Ruiz's fretting parameters at the surface points of ``history``.
 
     With ``σxx⁺ = max(0, max over the history's states of σxx(x, 0))``,
-    ``τ = |q(x)|`` at ``Q_max`` and ``δ(x)`` the slip amplitude (half the
-    peak-to-peak relative slip over the cycle):
+    ``τ = |q(x)|`` at ``Q_max`` (of a steady cycle: the larger of ``|q|`` at its
+    two end states) and ``δ(x)`` the slip amplitude (half the peak-to-peak
+    relative slip over the cycle):
 
     - ``FDP = τ δ`` (Ruiz's first parameter, the frictional work, for wear);
     - ``FFDP = σxx⁺ τ δ`` (the fretting-fatigue damage parameter).
@@ -513,7 +535,10 @@ def ruiz(cycle: FrettingResult, history: History) -> Ruiz:
     s = _history(history).surface()
     x = s.x
     sxx_max = np.maximum(s.sxx.max(axis=0), 0.0)
-    q = np.abs(np.asarray(cycle.shear(x, cycle.Q_max, BRANCHES[0]), float))
+    if isinstance(cycle, SteadyStateResult):
+        q = np.maximum(*(np.abs(np.asarray(cycle.shear(x, k), float)) for k in (0, 1)))
+    else:
+        q = np.abs(np.asarray(cycle.shear(x, cycle.Q_max, BRANCHES[0]), float))
     delta = np.asarray(cycle.slip_amplitude(x), float)
     fdp = q * delta
     zero = np.zeros_like(x)
@@ -535,14 +560,15 @@ class Fatigue:
     states: int
 
 
-def fatigue(cycle: FrettingResult, x: ArrayLike, z: ArrayLike, *, E: float, nu: float = NU,
+def fatigue(cycle: Cycle, x: ArrayLike, z: ArrayLike, *, E: float, nu: float = NU,
             k: float = K_FINDLEY, states: Any = None, surface: ArrayLike | None = None) -> Fatigue:
     """The von Mises range, SWT, Findley and Ruiz parameters of ``cycle`` at ``(x, z)``.
 
     Parameters
     ----------
     cycle
-        A fretting cycle of any method.
+        A fretting cycle of any method, or the steady state of a cycle between two
+        states (a flight cycle; its history is its two end states).
     x, z
         Points, broadcast against each other, ``z >= 0``.
     E, nu

@@ -41,6 +41,13 @@ energy              ``|ΔE| / E``, energy dissipated per fretting cycle
 stick               largest ``|Δ|`` of the stick-zone ends over a cycle's states, ``/ d`` at Q_max
 loop                largest ``|Δ|`` of the hysteresis loop, ``/`` its largest value
 q_states            ``q_interior_max`` at Q_max, at Q = 0 after reversal and at -Q_max
+stick_ends          flight cycle: largest ``|Δ|`` of the permanent stick zone's ends ``/ W`` of the
+                    smaller contact (the intersection of the two end states' contacts)
+cycle_energy        flight cycle: ``|ΔE| / E`` of the energy per cycle (eq. S11)
+q_extremes          flight cycle: ``q_interior_max`` at both end states (eq. S13)
+slip_amplitude      flight cycle: ``max |Δδ| / max δ`` over the smaller contact (eq. S7)
+stick_end           flight cycle, ``<method>-history``: the marched last cycle's permanent stick
+                    zone ends against the steady state's, in the march's elements ``h``
 ==================  ===========================================================
 
 Other comparisons (tests and benchmarks)
@@ -71,6 +78,9 @@ normalised error (``_level``: at the finest discretisation of a study).
     SIE past lift-off): the issue-22 targets.
 ``catalogue``
     Numbers stored in ``threepart/cases.json`` against what they stand for.
+``flight``
+    The fatigue parameters of a steady (flight) cycle against the fretting cycle's
+    Masing states at constant load (``tests/test_flight_cycle.py``).
 ``refs``
     The precision each quantity of the reference dataset claims (``threepart
     export-refs``, ``docs/REFERENCE_DATA.md``), checked by ``tests/test_refs.py``.
@@ -91,7 +101,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 __all__ = ["Tolerance", "TOLERANCES", "COMPARISONS", "QUANTITIES", "NORMAL_QUANTITIES",
-           "SLIP_QUANTITIES", "STRESS_QUANTITIES", "FRETTING_QUANTITIES", "tolerance", "fem_comparison", "VALUE_UNITS", "ERROR_UNITS",
+           "SLIP_QUANTITIES", "STRESS_QUANTITIES", "FRETTING_QUANTITIES", "STEADY_QUANTITIES", "tolerance", "fem_comparison", "VALUE_UNITS", "ERROR_UNITS",
            "NORMALISATION"]
 
 
@@ -113,6 +123,8 @@ STRESS_QUANTITIES = ("sxx_surface", "sxx_peak", "stress_depth")
 QUANTITIES = NORMAL_QUANTITIES + SLIP_QUANTITIES + STRESS_QUANTITIES
 #: quantities compared for a fretting cycle (the cycle's own section of the report)
 FRETTING_QUANTITIES = ("energy", "stick", "loop", "q_states")
+#: quantities compared for the steady state of a flight cycle (the flight cycle's section of the report)
+STEADY_QUANTITIES = ("stick_ends", "cycle_energy", "q_extremes", "slip_amplitude")
 #: comparisons of the verification run (closed form against a solver)
 COMPARISONS = ("sie", "fem-quick", "fem-default", "fem-fine")
 
@@ -123,6 +135,8 @@ VALUE_UNITS: dict[str, str] = {
     "p_left": "MPa", "p_right": "MPa", "p_interior_max": "MPa", "q_interior_max": "MPa",
     "p_L2": "MPa·mm^½", "q_L2": "MPa·mm^½", "closedform": "1 = refused",
     "energy": "N·mm/mm", "stick": "mm", "loop": "mm", "q_states": "MPa",
+    "stick_ends": "mm", "cycle_energy": "N·mm/mm", "q_extremes": "MPa", "slip_amplitude": "mm",
+    "stick_end": "mm",
     "q_integral": "N/mm", "q_bound": "1",
     "sxx_surface": "MPa", "sxx_peak": "MPa", "stress_depth": "MPa",
 }
@@ -133,6 +147,8 @@ ERROR_UNITS: dict[str, str] = {
     "p_left": "peak", "p_right": "peak", "p_interior_max": "peak", "p_L2": "L2",
     "d": "d", "e": "d", "q_interior_max": "max|q|", "q_L2": "L2", "closedform": "0/1",
     "energy": "energy", "stick": "d", "loop": "loop", "q_states": "max|q|",
+    "stick_ends": "W", "cycle_energy": "energy", "q_extremes": "max|q|", "slip_amplitude": "max δ",
+    "stick_end": "h",
     "q_integral": "Q", "q_bound": "f p_max",
     "sxx_surface": "peak", "sxx_peak": "max|σxx|", "stress_depth": "peak",
 }
@@ -154,6 +170,9 @@ NORMALISATION: dict[str, str] = {
     "f p_max": "f times the result's largest pressure: how far |q| exceeds f p anywhere",
     "max|σxx|": "the reference's largest |σxx| on the surface line (the contact and a quarter of W "
                 "beyond each end): the largest surface σxx, the tension at the trailing edge",
+    "h": "the marched history's element (SIE) or node spacing (FEM): the permanent stick zone's ends "
+         "of its last cycle (a flight cycle)",
+    "max δ": "the largest slip amplitude δ of the reference over the smaller contact (a flight cycle)",
     "loop": "the largest |delta| of the reference's hysteresis loop (delta less the line "
             "through the loop's tips)",
 }
@@ -186,6 +205,12 @@ TOLERANCES: dict[tuple[str, str], Tolerance] = {
     ("sie", "stick"): _T(1e-8, "every stick zone of the cycle is a loading stick zone (Masing), as d, e; measured 5e-15"),
     ("sie", "loop"): _T(1e-8, "the loop is the loading curve by Masing's rule; measured 3e-14"),
     ("sie", "q_states"): _T(1e-6, "shear at Q_max, at Q = 0 after reversal and at -Q_max: as q_interior_max; measured 1.2e-7"),
+    # --- flight cycle: the steady state of an in-phase cycle, closed form vs SIE (fan_blade_flight_cycle) --
+    ("sie", "stick_ends"): _T(1e-8, "permanent stick zone's ends of the smaller contact's width: the same (S5)-(S6) roots on the SIE's normal solutions (measured 3.4e-16)"),
+    ("sie", "cycle_energy"): _T(1e-7, "energy per cycle (S11): both quadratures settle to 1e-8 of W, the SIE's pressure series leaving ~1e-9 (measured 7.9e-11)"),
+    ("sie", "q_extremes"): _T(1e-6, "shear (S13) at both end states, more than 5 % of W inside the contact: as q_states (measured 2.2e-7)"),
+    ("sie", "slip_amplitude"): _T(1e-8, "slip amplitude (S7) over the smaller contact, of its largest value: the corrective gap on both stick zones (measured 3.4e-12)"),
+    ("flight", "fatigue"): _T(1e-9, "fatigue parameters of a steady cycle at P, s constant against the fretting cycle's Masing states -Q_max, Q_max (eq. S14): the same stresses to rounding, the critical plane's zoom alike (measured 0: identical floats)"),
     # --- past the paper's framework: the closed form must refuse ---------------------------------
     ("refusal", "closedform"): _T(0.5, "past its framework the closed form must refuse with the named error (error 0), never answer or raise another (error 1)"),
     # --- closed form vs FEM, default mesh --------------------------------------------------------
@@ -351,6 +376,7 @@ TOLERANCES: dict[tuple[str, str], Tolerance] = {
     ("sie-history", "equilibrium"): _T(1e-12, "∑ q h = Q and |q| <= f p̄ of each state: the active set's linear solve, rounding"),
     ("sie-history", "shakedown"): _T(1e-9, "friction work of the cycles after the first, of the first's, and slip after the first cycle, of its largest: rounding (measured 4e-13, 1e-12)"),
     ("sie-history", "steady"): _T(1e-9, "two first-loading paths, the last cycle: energy, and the shear outside the permanent stick zone of f p_max: the same discrete states, rounding (measured 1e-15)"),
+    ("sie-history", "cycle_energy"): _T(5e-3, "flight cycle (fan_blade_flight_cycle): friction work of the third marched cycle, n = 1024, 10 steps a half-cycle, against the closed form's steady state (S11) (measured 9.3e-4; the slip zones are 2 and 6 elements wide)"),
     ("fem-history", "stick_end"): _T(3.0, "FEM on the quick mesh against the SIE at n = 400 over one in-phase cycle, stick-zone ends in the FEM's elements h (measured 0.3 h)"),
     ("fem-history", "energy_default"): _T(5e-3, "FEM on the default mesh against the SIE at n = 1600, energy of each of three in-phase cycles (measured 0.04 % on the first)"),
     ("fem-history", "energy"): _T(3e-2, "FEM on the quick mesh against the SIE at n = 400, energy per in-phase cycle (measured 0.7 %)"),
