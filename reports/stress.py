@@ -89,19 +89,21 @@ def fatigue_states(cycle: Any) -> np.ndarray:
     return np.unique(np.concatenate([np.arange(0, n, FATIGUE_STRIDE), ends]))
 
 
-def fatigue_hot_spots(results: Mapping[str, Any], nu: float, reference: str) -> dict[str, Any]:
+def fatigue_hot_spots(results: Mapping[str, Any], material: tuple[float, float] | None,
+                      reference: str) -> dict[str, Any]:
     """``method -> parameter -> hot spot`` of the fretting cycles, or the steady flight cycles, of one
     case (:mod:`threepart.fatigue`).
 
-    Every method is evaluated on the reference's points and the same states;
-    the substrate's Young's modulus for the SWT strains is that of the similar
-    pair of the cycle's compliance, ``E = 4(1 - ν²)/A``.
+    Every method is evaluated on the reference's points and the same states.
+    The substrate's Young's modulus for the SWT strains is the case's
+    ``material`` ``(E, nu)``; a case given by its compliance alone is read as a
+    similar pair, ``E = 4(1 - ν²)/A`` (eq. 4) with :data:`threepart.results.NU`.
     """
     from threepart.fatigue import K_FINDLEY, fatigue
 
     ref = results[reference]
-    A = normal_of(ref).A
-    E = 4.0 * (1.0 - nu**2) / A
+    nu = stress_nu(material)
+    E = float(material[0]) if material is not None else 4.0 * (1.0 - nu**2) / normal_of(ref).A
     x, z = field_grid(ref, FATIGUE_GRID)
     nr = normal_of(ref)
     line = np.linspace(-nr.a, nr.c, 202)[1:-1]

@@ -318,13 +318,13 @@ def write_report(tmp: Path, mode: Mode, runs: Sequence[CaseRun], studies: Sequen
                 plots.steady(r.results, name, tmp / plot_path(name, "steady"), reference=ref,
                              physical=physical, histories=r.histories)
                 drawn[name] = [plot_path(name, "steady")]
-                tired[name] = fatigue_hot_spots(r.results, stress_nu(r.case.material), ref)
+                tired[name] = fatigue_hot_spots(r.results, r.case.material, ref)
                 continue
             if r.case.kind == "fretting":
                 plots.fretting(r.results, name, tmp / plot_path(name, "cycle"), reference=ref,
                                physical=physical)
                 drawn[name] = [plot_path(name, "cycle")]
-                tired[name] = fatigue_hot_spots(r.results, stress_nu(r.case.material), ref)
+                tired[name] = fatigue_hot_spots(r.results, r.case.material, ref)
                 continue
             plots.overlay(r.results, name, tmp / plot_path(name, "overlay"), reference=ref,
                           physical=physical)

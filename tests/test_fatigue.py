@@ -457,3 +457,16 @@ def test_any_method_s_cycle_gives_the_same_parameters_sie_against_closed_form():
         scale = float(np.max(np.abs(want.value)))
         assert np.max(np.abs(got.value - want.value)) <= limit * scale, got.name
         assert (got.hot.x, got.hot.z) == (want.hot.x, want.hot.z), got.name
+
+
+def test_the_report_uses_the_case_s_own_modulus_not_the_similar_pair_of_its_compliance():
+    """The catalogue's A of a case with a material is a rigid punch's, 2(1 - ν²)/E: reading it as a
+    similar pair's, 4(1 - ν²)/A, doubled the E behind every SWT value of the report."""
+    from threepart import rigid_punch
+    from threepart.reports.stress import fatigue_hot_spots
+
+    E, nu = 115e3, 0.32                                   # the fan-blade flank's Ti-6Al-4V
+    normal = cf.solve_normal(Punch(10.0, 5.0, 1.0), 400.0, 0.1, A=rigid_punch(E=E, nu=nu))
+    cycle = cf.fretting_cycle(normal, 80.0, 0.5, states=9)
+    got = fatigue_hot_spots({"closedform": cycle}, (E, nu), "closedform")
+    assert (got["E"], got["nu"]) == (E, nu)
