@@ -21,7 +21,7 @@ from threepart.tolerances import (FRETTING_QUANTITIES, NORMAL_QUANTITIES, SLIP_Q
 
 __all__ = ["Check", "FieldErrors", "compare", "field_errors", "sample_points", "is_slip", "normal_of",
            "normal_figures", "slip_figures", "fretting_figures", "is_fretting", "SHEAR_STATES",
-           "is_steady", "steady_figures", "SteadyEnd",
+           "is_steady", "steady_figures", "SteadyRange",
            "EDGE_FRACTION"]
 
 #: fraction of the contact width excluded at each end for the "interior" errors
@@ -416,15 +416,21 @@ def fretting_figures(ref: Any, other: Any) -> dict[str, tuple[float, float, floa
 
 
 @dataclass(frozen=True)
-class SteadyEnd:
-    """One end state of a steady cycle, seen as a partial-slip result (for :func:`field_errors`)."""
+class SteadyRange:
+    """The shear range ``q_1 - q_0`` of a steady cycle, over its larger contact (eqs. S3, S4).
+
+    It is what the steady state fixes everywhere: ``±f (p_0 + p_1)`` in the slip
+    zones and ``f (p_0 + p_1) - 2 f p*`` in the permanent stick zone, where the
+    shear at either end alone carries a part locked in by the load history
+    (eq. S13; a marched method finds the history's, the superposition a choice).
+    Seen as a partial-slip result for :func:`field_errors`.
+    """
 
     steady: Any
-    state: int
 
     @property
     def normal(self) -> Any:
-        return self.steady.normals[self.state]
+        return max(self.steady.normals, key=lambda n: float(n.a + n.c))
 
     @property
     def a(self) -> float:
@@ -434,12 +440,8 @@ class SteadyEnd:
     def c(self) -> float:
         return float(self.normal.c)
 
-    @property
-    def d(self) -> float:
-        return math.nan
-
     def shear(self, x: Any) -> np.ndarray:
-        return np.asarray(self.steady.shear(x, self.state), float)
+        return np.asarray(self.steady.shear(x, 1), float) - np.asarray(self.steady.shear(x, 0), float)
 
 
 def steady_figures(ref: Any, other: Any) -> dict[str, tuple[float, float, float]]:
@@ -448,9 +450,8 @@ def steady_figures(ref: Any, other: Any) -> dict[str, tuple[float, float, float]
     ``stick_ends``: the larger difference of the permanent stick zone's ends
     ``(-(d + e), d - e)`` in units of the width ``W`` of the smaller contact
     (the intersection of the two ends' contacts); ``cycle_energy``: ``|ΔW|/W``
-    of the energy per cycle (eq. S11); ``q_extremes``: the largest interior shear
-    difference at the two end states (eq. S13) in units of the largest shear
-    there; ``slip_amplitude``: the largest difference of the slip amplitude
+    of the energy per cycle (eq. S11); ``q_range``: the largest interior difference of the shear
+    range ``q_1 - q_0`` (eq. S4, :class:`SteadyRange`) in units of its largest value; ``slip_amplitude``: the largest difference of the slip amplitude
     (eq. S7) over the smaller contact in units of its largest value. In
     shakedown (eq. S12) the shear and the slip are zero or history: only the
     stick zone and the energy are compared.
@@ -464,15 +465,11 @@ def steady_figures(ref: Any, other: Any) -> dict[str, tuple[float, float, float]
     dE = abs(other.energy - ref.energy)
     out["cycle_energy"] = (ref.energy, other.energy, dE / ref.energy if ref.energy > 0 else dE)
     if ref.shakedown or other.shakedown:
-        out["q_extremes"] = out["slip_amplitude"] = (0.0, 0.0, 0.0 if ref.shakedown == other.shakedown
+        out["q_range"] = out["slip_amplitude"] = (0.0, 0.0, 0.0 if ref.shakedown == other.shakedown
                                                      else math.inf)
         return out
-    worst = (0.0, 0.0, 0.0)
-    for k in (0, 1):
-        fe = field_errors(SteadyEnd(ref, k), SteadyEnd(other, k), "shear")
-        figure = (fe.interior_peak(fe.ref), fe.interior_peak(fe.other), fe.interior_max)
-        worst = max(worst, figure, key=lambda f: f[2])
-    out["q_extremes"] = worst
+    fe = field_errors(SteadyRange(ref), SteadyRange(other), "shear")
+    out["q_range"] = (fe.interior_peak(fe.ref), fe.interior_peak(fe.other), fe.interior_max)
     x = sample_points(other.normals[0], lo, hi)
     dr, do = (np.asarray(r.slip_amplitude(x), float) for r in (ref, other))
     scale = float(np.max(np.abs(dr))) or 1.0

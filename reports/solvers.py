@@ -29,10 +29,14 @@ def _args(method: str, case: Case, options: dict[str, Any]) -> dict[str, Any]:
     A half-plane method depends on the material only through ``A``; a method of
     finite bodies also takes the case's Poisson ratio.
     """
-    problem: dict[str, Any] = {"A": case.A, "tilt": case.tilt}
+    return {"A": case.A, "tilt": case.tilt, **_nu(method, case), **options}
+
+
+def _nu(method: str, case: Case) -> dict[str, Any]:
+    """``nu`` of ``case``'s material for a method of finite bodies; nothing for a half-plane method."""
     if registry.get(method).default_nu is not None and case.material is not None:
-        problem["nu"] = case.material[1]
-    return {**problem, **options}
+        return {"nu": case.material[1]}
+    return {}
 
 
 def normal(method: str, case: Case, **options: Any) -> NormalResult:
@@ -69,4 +73,4 @@ def steady(method: str, case: Case, **options: Any) -> SteadyStateResult:
     call = registry.get(method).steady
     if call is None:
         raise ValueError(f"method {method!r} has no steady state (Method.steady)")
-    return call(case.punch, case.states, case.f, A=case.A, **options)
+    return call(case.punch, case.states, case.f, A=case.A, **_nu(method, case), **options)

@@ -125,10 +125,13 @@ class _Moved:
 
     def shear(self, x: Any, state: int) -> np.ndarray:
         q = np.asarray(self.base.shear(x, state), float)
-        if self.quantity != "q_extremes":
+        if self.quantity != "q_range" or state == 0:
             return q
-        xs = np.linspace(-self.base.normals[state].a, self.base.normals[state].c, 4001)
-        return q + self.by * float(np.max(np.abs(self.base.shear(xs, state))))
+        # the range q_1 - q_0 moves by `by` of its largest value over the larger contact
+        big = max(self.base.normals, key=lambda n: n.a + n.c)
+        xs = np.linspace(-big.a, big.c, 4001)
+        scale = float(np.max(np.abs(self.base.shear(xs, 1) - self.base.shear(xs, 0))))
+        return q + self.by * scale
 
     def slip_amplitude(self, x: Any) -> np.ndarray:
         d = np.asarray(self.base.slip_amplitude(x), float)
