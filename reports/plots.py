@@ -322,11 +322,19 @@ def _stick_lines(ax: Any, res: Any, xscale: float) -> None:
 HISTORY_STYLE = dict(color="tab:green", lw=1.0, ls="-.")
 
 
+def _steady_shear(shear: Any, x: np.ndarray, k: int | None) -> np.ndarray:
+    """``shear(x, k)``, or the range ``shear(x, 1) - shear(x, 0)`` for ``k = None``."""
+    if k is None:
+        return np.asarray(shear(x, 1), float) - np.asarray(shear(x, 0), float)
+    return np.asarray(shear(x, k), float)
+
+
 def steady(results: dict[str, Any], title: str, path: str | Path,
            reference: str = "closedform", physical: bool = False,
            histories: dict[str, Any] | None = None) -> Path:
-    """The steady state of a flight cycle by every method with one: the shear at both end states
-    (eq. S13) and the slip amplitude (eq. S7) at both contact ends, the permanent stick zone dotted.
+    """The steady state of a flight cycle by every method with one: the shear range ``q_1 - q_0``
+    (eq. S4) and the shear at state 1 (eq. S13), and the slip amplitude (eq. S7) at both contact
+    ends, the permanent stick zone dotted.
 
     Shears are scaled by ``f p_max`` of the reference's wider end state; the slip
     amplitude is drawn over the slip zone at each end, widened threefold. A
@@ -342,22 +350,28 @@ def steady(results: dict[str, Any], title: str, path: str | Path,
     xscale, xlabel = _axis(n, physical)
     scale = ref.f * max(p.p for p in n.peaks())
     fig, axes = new_figure(2, 2)
-    for ax, k in zip(axes[0], (0, 1)):
-        P, _, Q, sigma = ref.states[k]
-        nk = ref.normals[k]
-        x = np.linspace(-nk.a, nk.c, 801)
+    x = np.linspace(-n.a, n.c, 801)
+    for ax, k in zip(axes[0], (None, 1)):
+        # k = None: the range q_1 - q_0, which the steady state fixes everywhere (eq. S4); the
+        # shear of an end state carries in the stick zone a part locked in by the history (S13)
         for m, res in results.items():
-            ax.plot(x / xscale, np.asarray(res.shear(x, k)) / scale, **STYLE[m])
+            ax.plot(x / xscale, _steady_shear(res.shear, x, k) / scale, **STYLE[m])
         for m, hist in histories.items():
-            at = last_cycle(hist)[-1 if k == 0 else len(last_cycle(hist)) // 2]
-            ax.plot(x / xscale, hist.shear(x, at) / scale, **HISTORY_STYLE,
-                    label=f"{STYLE[m]['label']} history, cycle {len(hist.cycles)}")
+            cyc = last_cycle(hist)
+            at = {0: cyc[-1], 1: cyc[len(cyc) // 2]}
+            ax.plot(x / xscale, _steady_shear(lambda t, j: hist.shear(t, at[j]), x, k) / scale,
+                    **HISTORY_STYLE, label=f"{STYLE[m]['label']} history, cycle {len(hist.cycles)}")
         _stick_lines(ax, ref, xscale)
         _joins(ax, n.punch.b, xscale)
         ax.set_xlabel(xlabel)
         ax.set_ylabel(f"q / (f p_max)  (p_max of the {name})")
-        ax.set_title(f"{title}: shear at state {k}\n(P = {P:.5g}, Q = {Q:.5g}, σ_bulk = {sigma:.5g})",
-                     fontsize=10)
+        if k is None:
+            ax.set_title(f"{title}: shear range q1 - q0 over the cycle\n(the same for any load history, "
+                         "eq. S4)", fontsize=10)
+        else:
+            P, _, Q, sigma = ref.states[k]
+            ax.set_title(f"{title}: shear at state {k} (P = {P:.5g}, Q = {Q:.5g}, σ_bulk = {sigma:.5g})"
+                         "\nin the stick zone partly locked in by the load history", fontsize=10)
         ax.grid(True, color="0.9", lw=0.6)
         ax.legend(loc="lower center", fontsize=7)
     lo, hi = max(-float(m.a) for m in ref.normals), min(float(m.c) for m in ref.normals)
