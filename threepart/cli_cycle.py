@@ -89,6 +89,9 @@ def add_parser(sub: Any) -> None:
                     help="auto (default): the closed form where it holds, else the SIE; a history: the SIE")
     mt.add_argument("--mesh", choices=("quick", "default", "fine"), default="default",
                     help="FE mesh preset for --method fem (default: default)")
+    mt.add_argument("--n", type=int, metavar="N",
+                    help="the SIE's elements: of the shear grid of a --history (default 400; 8 to "
+                         "4000; each cycle's energy converges as N grows), or of the SIE's steady state")
     p.add_argument("--out", metavar="DIR",
                    help="write cycle.csv (and for a history states.csv) and cycle.png into DIR: new, "
                         "empty, or threepart's own earlier output, which is replaced")
@@ -121,7 +124,7 @@ def _case(args: argparse.Namespace) -> dict[str, Any]:
     # the SWT strains use the case's own modulus; a compliance-only case is read as a similar pair
     E, nu = case.material if case.material is not None else (None, None)
     return {"name": case.name, "punch": case.punch, "A": A, "E": E, "nu": nu, "f": case.f,
-            "states": case.states}
+            "states": None if args.history is not None else case.states}
 
 
 def _given(args: argparse.Namespace) -> dict[str, Any]:
@@ -139,7 +142,11 @@ def _given(args: argparse.Namespace) -> dict[str, Any]:
         raise ValueError("the material needs `--A`, or both `--E` and `--nu`")
     punch = Punch(R1=args.R1, R2=args.R2, b=args.b, R=math.inf if args.R is None else args.R)
     nu = None if args.nu is None else poisson(args.nu)
-    A = positive("--A", args.A) if args.A is not None else similar_pair(positive("--E", args.E), nu)
+    if args.A is not None:
+        A = positive("--A", args.A)
+    else:
+        assert nu is not None      # both --E and --nu, checked above
+        A = similar_pair(positive("--E", args.E), nu)
     states = None
     if args.history is None:
         if args.state0 is None or args.state1 is None:
@@ -161,6 +168,8 @@ def _problem(args: argparse.Namespace) -> dict[str, Any]:
     if args.history is not None and args.method == "closedform":
         raise ValueError("`--history` is marched numerically: `--method closedform` has none; "
                          "use sie (auto) or fem")
+    if args.n is not None and args.method in ("closedform", "fem"):
+        raise ValueError(f"`--n` = {args.n} sets the SIE's elements: drop it with `--method {args.method}`")
     pr = _case(args) if args.case is not None else _given(args)
     if pr["nu"] is None:    # only A given: a similar pair of the default Poisson ratio
         pr["nu"] = NU
@@ -185,10 +194,12 @@ def _steady(args: argparse.Namespace, pr: dict[str, Any]) -> Any:
     """The steady state by ``--method`` (the FEM with the problem's Poisson ratio)."""
     from threepart import registry, steady_state
 
-    if args.method == "fem":
-        return registry.get("fem").steady(pr["punch"], pr["states"], pr["f"], A=pr["A"], nu=pr["nu"],
-                                          mesh=args.mesh)
-    return steady_state(pr["punch"], pr["states"], pr["f"], A=pr["A"], method=args.method)
+    if args.method == "fem":   # called as reports.solvers.steady does: with the problem's nu
+        call = registry.get("fem").steady
+        assert call is not None    # the FEM registers its steady state (fem/method.py)
+        return call(pr["punch"], pr["states"], pr["f"], A=pr["A"], nu=pr["nu"], mesh=args.mesh)
+    options = {} if args.n is None or args.method == "closedform" else {"n": args.n}
+    return steady_state(pr["punch"], pr["states"], pr["f"], A=pr["A"], method=args.method, **options)
 
 
 def _march(args: argparse.Namespace, pr: dict[str, Any]) -> Any:
@@ -199,7 +210,8 @@ def _march(args: argparse.Namespace, pr: dict[str, Any]) -> Any:
         return fem.load_history(pr["punch"], pr["history"], pr["f"], E=pr["E"], nu=pr["nu"], mesh=args.mesh)
     from threepart import sie
 
-    return sie.load_history(pr["punch"], pr["history"], pr["f"], A=pr["A"])
+    return sie.load_history(pr["punch"], pr["history"], pr["f"], A=pr["A"],
+                            **({} if args.n is None else {"n": args.n}))
 
 
 def run(args: argparse.Namespace) -> int:
@@ -292,6 +304,9 @@ def _print_slip(figures: dict[str, Any]) -> None:
     import numpy as np
 
     i = int(np.argmax(figures["slip"]))
+    if not figures["slip"][i] > 0:
+        print("slip amplitude  0 mm everywhere: nothing slips")
+        return
     print(f"slip amplitude  largest {figures['slip'][i]:.10g} mm at x = {figures['x'][i]:.10g} mm")
 
 
