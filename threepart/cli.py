@@ -9,6 +9,7 @@ figures  the paper's result figures, with the SIE solution as markers
 map      where the half-plane formulas stop: the finite-body validity map, on dask.distributed
 export-refs  the catalogue's reference solutions as a versioned dataset (JSON + CSV, JSON schema)
 fatigue  fretting-fatigue parameters of a fretting cycle: hot spots, CSV, VTU and a contour plot
+cycle    the flight cycle: steady state of an in-phase cycle (or a load history), CSV and plot
 deck     a ready-to-run CalculiX input deck of a catalogue case or of a punch and loads
 compare  judge another code's contact pressure (CSV x, p or CalculiX .frd/.dat) against threepart
 
@@ -46,6 +47,7 @@ import sys
 import threading
 from typing import Any, Iterator, NoReturn, Sequence
 
+from threepart import cli_cycle
 from threepart.__main__ import COMMANDS, INTERRUPTED, program
 
 __all__ = ["main", "build_parser", "real_arg", "UNITS", "NUMERIC_OPTIONS", "LIST_OPTIONS", "UsageError"]
@@ -988,7 +990,7 @@ def build_parser() -> argparse.ArgumentParser:
                               "Definitions: docs/FATIGUE.md.", formatter_class=_FatigueHelp)
     _fatigue_args(p)
     p.set_defaults(func=_cmd_fatigue)
-
+    cli_cycle.add_parser(sub)   # threepart cycle: its own module
 
     p = sub.add_parser("deck", help="write a ready-to-run CalculiX deck of a case or a punch",
                        epilog="Units: mm, N/mm, MPa, or any consistent set. See docs/CALCULIX.md.")
