@@ -16,12 +16,13 @@ from typing import Any
 
 from threepart.punch import Punch
 from threepart.registry import Method, register
-from threepart.cycles import SteadyStateResult
+from threepart.cycles import HistoryResult, SteadyStateResult
 from threepart.results import FrettingResult, NormalResult, SlipResult
 from threepart.tolerances import fem_comparison
 from threepart.validate import poisson, positive
 
 from .friction import fretting_cycle, solve_partial_slip
+from .history import load_history
 from .solve import solve_normal
 from .steady import steady_state
 
@@ -77,6 +78,12 @@ def _steady(punch: Punch, states: Any, f: float, *, A: float, nu: float | None =
     return steady_state(punch, states, f, E=pair_modulus(A, nu), nu=nu, **options)
 
 
+def _history(punch: Punch, history: Any, f: float, *, A: float, nu: float | None = None,
+             **options: Any) -> HistoryResult:
+    nu = _nu(nu)
+    return load_history(punch, history, f, E=pair_modulus(A, nu), nu=nu, **options)
+
+
 METHOD = register(Method("fem", _normal, _slip, _fretting, options=("mesh", "progress"),
-                         default_nu=NU, steady=_steady,
+                         default_nu=NU, steady=_steady, history=_history,
                          comparison=lambda options: fem_comparison(options.get("mesh", "default"))))

@@ -11,6 +11,7 @@ from threepart.registry import Method, register
 from threepart.results import FrettingResult, NormalResult, SlipResult
 
 from .fretting import fretting_cycle
+from .history import load_history
 from .normal import DEFAULT_N, DEFAULT_SCHEME, check_scheme, lift_off, solve_normal
 from .slip import solve_partial_slip
 from .steady import steady_state
@@ -46,4 +47,5 @@ def _options_iv(options: dict[str, Any]) -> None:
 
 METHOD = register(Method("sie", _normal, _slip, _fretting, options=("n", "scheme"),
                          options_iv=_options_iv, lift_off=lift_off,
-                         comparison=lambda options: "sie", steady=steady_state))
+                         comparison=lambda options: "sie", steady=steady_state,
+                         history=load_history))

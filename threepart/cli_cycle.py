@@ -204,14 +204,17 @@ def _steady(args: argparse.Namespace, pr: dict[str, Any]) -> Any:
 
 def _march(args: argparse.Namespace, pr: dict[str, Any]) -> Any:
     """The history marched by the SIE (``auto``, ``sie``) or the FEM."""
-    if args.method == "fem":
-        from threepart import fem
+    from threepart import registry
 
-        return fem.load_history(pr["punch"], pr["history"], pr["f"], E=pr["E"], nu=pr["nu"], mesh=args.mesh)
-    from threepart import sie
-
-    return sie.load_history(pr["punch"], pr["history"], pr["f"], A=pr["A"],
-                            **({} if args.n is None else {"n": args.n}))
+    m = registry.get("sie" if args.method == "auto" else args.method)
+    if m.history is None:
+        raise ValueError(f"`--method` = {args.method}: it marches no load history (sie and fem do)")
+    options: dict[str, Any] = {"nu": pr["nu"]} if m.default_nu is not None else {}
+    if "mesh" in m.options:
+        options["mesh"] = args.mesh
+    if "n" in m.options and args.n is not None:
+        options["n"] = args.n
+    return m.history(pr["punch"], pr["history"], pr["f"], A=pr["A"], **options)
 
 
 def run(args: argparse.Namespace) -> int:

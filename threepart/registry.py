@@ -59,7 +59,7 @@ from typing import TYPE_CHECKING, Any, Callable
 
 if TYPE_CHECKING:  # pragma: no cover
     from .punch import Punch
-    from .cycles import SteadyStateResult
+    from .cycles import HistoryResult, SteadyStateResult
     from .results import FrettingResult, NormalResult, SlipResult
 
 __all__ = ["Method", "register", "get", "names", "lift_off", "BUILTIN"]
@@ -99,6 +99,11 @@ class Method:
     steady
         The steady state of an in-phase cycle between two states, or None
         where the method has none.
+    history
+        ``history(punch, states, f, *, A, nu, **options)``: a load history of
+        ``(P, s, Q, sigma_bulk)`` states marched with the memory of slip
+        (:class:`~threepart.cycles.HistoryResult`), or None where the method
+        has none.
     comparison
         The row group of :data:`threepart.tolerances.TOLERANCES` that judges
         this method's results against the reference, from the options it was
@@ -117,6 +122,7 @@ class Method:
     lift_off: Callable[[Punch, float, float], tuple[float, float]] | None = None
     comparison: Callable[[dict[str, Any]], str] | None = None
     steady: Callable[..., SteadyStateResult] | None = None
+    history: Callable[..., HistoryResult] | None = None
 
     def check_options(self, options: dict[str, Any], called: str | None = None) -> None:
         """``ValueError`` naming the first option this method does not take; then the values.
