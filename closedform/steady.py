@@ -30,13 +30,14 @@ from typing import Any, Callable
 import numpy as np
 from numpy.typing import ArrayLike
 
-from threepart.errors import (CycleSlipReversalError, LiftOffError, OneSidedSlipError,
+from threepart.errors import (CycleSlipReversalError, LiftOffError,
                               StickSeparationError, StickZoneError)
 from threepart.punch import Punch
 from threepart.cycles import SteadyStateResult
 from threepart.results import Diagnostics
 from threepart.steady import (WORK_NODES, LoadState, Path, check_cycle_states, corrective_load,
-                              corrective_tilt_cycle, cycle_margin, half_cycle_work, lam_rule, ramp, tilt_rate)
+                              corrective_tilt_cycle, cycle_margin, half_cycle_work, lam_rule, ramp,
+                              shakes_down, tilt_rate)
 from threepart.validate import check_punch
 
 from . import formulas
@@ -285,13 +286,7 @@ def _permanent(cycle: _Cycle) -> tuple[float, float, bool]:
         raise StickZoneError(
             f"the permanent stick zone of the cycle (load P* = {float(z['P_star'][0]):.6g}) would "
             f"{stick_zone_leaves(cycle.punch.b)}, where the closed form does not hold")
-    if left <= lo + tol or right >= hi - tol:
-        side = "left" if left <= lo + tol else "right"
-        raise OneSidedSlipError(
-            f"the permanent stick zone [{left:.6g}, {right:.6g}] would reach the {side} edge of the "
-            f"smaller contact [{lo:.6g}, {hi:.6g}] but not the other: one end slips and the other has "
-            "shaken down, or the two slip in opposite senses, which the steady-state superposition "
-            "(one sense of slip a half-cycle) does not model")
+    shakes_down(left, right, lo, hi)     # OneSidedSlipError where it reaches one edge only
     return left, right, False
 
 

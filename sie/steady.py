@@ -24,13 +24,13 @@ import numpy as np
 from numpy.typing import ArrayLike
 from scipy.optimize import brentq
 
-from threepart.errors import (CycleSlipReversalError, NoConvergenceError, OneSidedSlipError,
+from threepart.errors import (CycleSlipReversalError, NoConvergenceError,
                               StickSeparationError)
 from threepart.punch import Punch
 from threepart.cycles import SteadyStateResult
 from threepart.results import Diagnostics
 from threepart.steady import (LoadState, Path, check_cycle_states, corrective_load, corrective_tilt_cycle,
-                              cycle_margin, half_cycle_work, ramp, tilt_rate)
+                              cycle_margin, half_cycle_work, ramp, shakes_down, tilt_rate)
 from threepart.validate import check_punch
 
 from .fretting import stick_gap
@@ -198,16 +198,8 @@ def _classify(cycle: _SieCycle) -> tuple[float, float, bool]:
     lo, hi = max(-e0.a, -e1.a), min(e0.c, e1.c)
     m, h = cycle.zone(0, 1.0)
     left, right = m - h, m + h
-    tol = 1e-12 * (hi - lo)
-    if left <= lo + tol and right >= hi - tol:
+    if shakes_down(left, right, lo, hi):
         return 0.5 * (lo + hi), 0.5 * (hi - lo), True
-    if left <= lo + tol or right >= hi - tol:
-        side = "left" if left <= lo + tol else "right"
-        raise OneSidedSlipError(
-            f"the permanent stick zone [{left:.6g}, {right:.6g}] would reach the {side} edge of the "
-            f"smaller contact [{lo:.6g}, {hi:.6g}] but not the other: one end slips and the other has "
-            "shaken down, or the two slip in opposite senses, which the steady-state superposition "
-            "(one sense of slip a half-cycle) does not model")
     return m, h, False
 
 

@@ -30,10 +30,10 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from .bulk import _psi
-from .errors import NoConvergenceError, full_sliding
+from .errors import NoConvergenceError, OneSidedSlipError, full_sliding
 from .validate import finite, positive
 
-__all__ = ["check_cycle_states", "ramp", "corrective_load", "corrective_tilt_cycle", "tilt_rate",
+__all__ = ["shakes_down", "check_cycle_states", "ramp", "corrective_load", "corrective_tilt_cycle", "tilt_rate",
            "gap_rate", "cycle_margin", "half_cycle_work", "lam_rule", "WORK_RTOL", "WORK_NODES"]
 
 #: relative change of the friction work between two quadratures at which it has settled
@@ -212,3 +212,30 @@ def half_cycle_work(path: Path, A: float, f: float, b: float, rtol: float = WORK
         previous, n = W, 2 * n
     raise NoConvergenceError(f"steady-state energy: the quadrature did not settle with {MAX_WORK_NODES} "
                              "nodes; no result is returned")
+
+
+def shakes_down(left: float, right: float, lo: float, hi: float) -> bool:
+    """Whether the permanent stick zone ``[left, right]`` covers the smaller contact ``[lo, hi]`` (eq. S12).
+
+    True: nothing slips in the steady state (shakedown). False: both ends slip.
+
+    Raises
+    ------
+    OneSidedSlipError
+        If the zone reaches one edge of the smaller contact but not the other:
+        one end slips and the other has shaken down (or the two slip in
+        opposite senses), which the superposition of one sense of slip a
+        half-cycle does not model.
+    """
+    tol = 1e-12 * (hi - lo)
+    at_lo, at_hi = left <= lo + tol, right >= hi - tol
+    if at_lo and at_hi:
+        return True
+    if at_lo or at_hi:
+        raise OneSidedSlipError(
+            f"the permanent stick zone [{left:.6g}, {right:.6g}] would reach the "
+            f"{'left' if at_lo else 'right'} edge of the smaller contact [{lo:.6g}, {hi:.6g}] but not "
+            "the other: one end slips and the other has shaken down, or the two slip in opposite "
+            "senses, which the steady-state superposition (one sense of slip a half-cycle) does not model")
+    return False
+
