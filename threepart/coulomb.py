@@ -76,7 +76,6 @@ def coulomb_state(C: np.ndarray, bound: np.ndarray, w_prev: np.ndarray, w_fixed:
         If the sets do not settle within ``max_iter`` iterations or a shear
         exceeds Coulomb's bound after they settle.
     """
-    touch = bound > 0
     if abs(Q) >= float(bound.sum()):
         raise FullSlidingError(
             f"`Q` = {Q:.6g}: every point in contact slides (|Q| reached the discrete f P = "
