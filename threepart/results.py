@@ -163,15 +163,13 @@ def _check_coordinates(cls: type) -> None:
 class _Answer:
     """What every result shares: coordinates checked in every method, and the answer checked once built.
 
-    A subclass's ``pressure``, ``shear``, ``slip``, ``slip_amplitude`` and
-    ``stress`` are wrapped when the class is made, so their ``x`` (and ``z``)
-    pass :func:`threepart.validate.coordinates` in every method, the
-    closed form's, the SIE's, the FEM's and any registered since. A normal or
-    slip result is checked when it is built (:meth:`check`, :mod:`threepart.answer`):
-    a tensile pressure or a shear past Coulomb's bound is refused by name. A
-    result that wraps someone else's numbers to be judged (the pytest plugin's,
-    the referee's) sets ``checks_answer = False``: the comparison measures
-    what it gets wrong instead.
+    A subclass's ``pressure``, ``shear``, ``slip``, ``slip_amplitude`` and ``stress``
+    are wrapped when the class is made, so their ``x`` (and ``z``) pass
+    :func:`threepart.validate.coordinates` in every method. Each result is checked
+    when built (:meth:`check`, :mod:`threepart.answer`): a tensile pressure or a shear
+    past Coulomb's bound is refused by name. A result that wraps someone else's
+    numbers to be judged (the pytest plugin's, the referee's) sets
+    ``checks_answer = False``: the comparison measures what it gets wrong instead.
     """
 
     checks_answer: ClassVar[bool] = True
