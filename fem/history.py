@@ -177,7 +177,7 @@ def load_history(punch: Punch, history: Any, f: float, *, E: float, nu: float,
     return HistoryResult(punch=punch, f=f, P=hist.P, s=hist.s, Q=hist.Q, sigma_bulk=hist.sigma_bulk,
                          normals=tuple(s[1] for s in sols), stick=run.sticks, energy=energy,
                          cycles=cycles, work=run.work, method="fem", x_nodes=model.itf.x,
-                         q_nodes=run.q, slip_nodes=run.slip, diagnostics=diag,
+                         q_nodes=run.q, slip_nodes=run.slip, delta=run.delta, diagnostics=diag,
                          info={"normal_solves": len(cache), "weights": model.itf.weights})
 
 
@@ -212,7 +212,8 @@ class Carry(NamedTuple):
 
 class Marched(NamedTuple):
     """The states marched: nodal shear, accumulated slip, stick intervals and nodes, work per step,
-    relative tangential displacement ``w``, iterations, residual, and the carry to a next state."""
+    relative tangential displacement ``w``, the rigid shift ``delta`` of each state, iterations,
+    residual, and the carry to a next state."""
 
     q: np.ndarray
     slip: np.ndarray
@@ -220,6 +221,7 @@ class Marched(NamedTuple):
     stuck: np.ndarray
     work: np.ndarray
     w: np.ndarray
+    delta: np.ndarray
     iterations: int
     residual: float
     carry: Carry
@@ -232,7 +234,7 @@ def _march(model: TwoBodyModel, hist: History, f: float, sols: list[ContactSolut
     K, N = len(hist), len(itf.x)
     q, slip, ws = np.zeros((K, N)), np.zeros((K, N)), np.zeros((K, N))
     masks = np.zeros((K, N), dtype=bool)
-    work = np.zeros(K)
+    work, delta = np.zeros(K), np.zeros(K)
     sticks = []
     if carry is None:
         carry = Carry(np.zeros(N), np.zeros(N), np.ones(N, dtype=bool), np.zeros(N), np.zeros(N))
@@ -255,12 +257,12 @@ def _march(model: TwoBodyModel, hist: History, f: float, sols: list[ContactSolut
             dslip = np.where(both & ~stick, w - w_prev, 0.0)
             acc = acc + dslip
             work[k] = step_work(bound_prev, bound, dslip)
-            q[k], slip[k], ws[k] = t / itf.weights, acc, w
+            q[k], slip[k], ws[k], delta[k] = t / itf.weights, acc, w, xi
             masks[k] = stuck(stick, bound > 0, w, w - w_prev)
             sticks.append(_stick_intervals(masks[k], itf.x))
             w_prev, bound_prev, stick_prev, sign_prev = w, bound, stick | (bound == 0), np.sign(t)
             its_total, res_max = its_total + its, max(res_max, r)
             if (k + 1) % report == 0:
                 say(f"state {k + 1}/{K}: {int(stick.sum())} nodes stick")
-    return Marched(q, slip, tuple(sticks), masks, work, ws, its_total, res_max,
+    return Marched(q, slip, tuple(sticks), masks, work, ws, delta, its_total, res_max,
                    Carry(w_prev, bound_prev, stick_prev, sign_prev, acc))

@@ -186,7 +186,7 @@ def load_history(punch: Punch, history: Any, f: float, *, A: float, n: int = DEF
     C = log_matrix(edges, A)
     loads = {key: element_loads(r, edges) for key, r in cache.items()}
     march = _march(hist, f, A, C, x, edges, [loads[float(P), float(s)] for P, s in zip(hist.P, hist.s)])
-    q, slip, stick, work, its, res = march
+    q, slip, stick, work, delta, its, res = march
     cycles = hist.cycles(period)
     energy = np.array([work[i + 1:j + 1].sum() for i, j in cycles])
     total = time.perf_counter() - t0
@@ -194,17 +194,17 @@ def load_history(punch: Punch, history: Any, f: float, *, A: float, n: int = DEF
                        timings={"normal": t_normal, "friction": total - t_normal, "total": total})
     return HistoryResult(punch=punch, f=f, P=hist.P, s=hist.s, Q=hist.Q, sigma_bulk=hist.sigma_bulk,
                          normals=tuple(normals), stick=stick, energy=energy, cycles=cycles, work=work,
-                         method="sie", x_nodes=x, q_nodes=q, slip_nodes=slip, edges=edges,
+                         method="sie", x_nodes=x, q_nodes=q, slip_nodes=slip, edges=edges, delta=delta,
                          diagnostics=diag, info={"normal_solves": len(cache), "h": h})
 
 
 def _march(hist: History, f: float, A: float, C: np.ndarray, x: np.ndarray, edges: np.ndarray,
-           loads: list[np.ndarray]) -> tuple[np.ndarray, np.ndarray, tuple, np.ndarray, int, float]:
-    """The states in order: shear, accumulated slip, stick intervals, work per step, iterations, residual."""
+           loads: list[np.ndarray]) -> tuple[np.ndarray, np.ndarray, tuple, np.ndarray, np.ndarray, int, float]:
+    """The states in order: shear, accumulated slip, stick intervals, work per step, rigid shift, iterations, residual."""
     K, N = len(hist), len(x)
     h = np.diff(edges)
     q, slip = np.zeros((K, N)), np.zeros((K, N))
-    work = np.zeros(K)
+    work, delta = np.zeros(K), np.zeros(K)
     sticks = []
     w_prev, bound_prev = np.zeros(N), np.zeros(N)
     stick_prev = np.ones(N, dtype=bool)
@@ -227,9 +227,9 @@ def _march(hist: History, f: float, A: float, C: np.ndarray, x: np.ndarray, edge
             dslip = np.where(both & ~stick, w - w_prev, 0.0)
             acc = acc + dslip
             work[k] = step_work(bound_prev, bound, dslip)
-            q[k], slip[k] = t / h, acc
+            q[k], slip[k], delta[k] = t / h, acc, xi
             sticks.append(_stick_intervals(stuck(stick, bound > 0, w, w - w_prev), edges))
             w_prev, bound_prev, stick_prev = w, bound, stick | (bound == 0)
             sign_prev = np.sign(t)
             its_total, res_max = its_total + its, max(res_max, res)
-    return q, slip, tuple(sticks), work, its_total, res_max
+    return q, slip, tuple(sticks), work, delta, its_total, res_max

@@ -236,3 +236,22 @@ def test_input_errors():
         sie.load_history(HERTZ, [(P_H, 0.0, 0.0, 0.0)] * 2, F, A=A_H, period=0)
     with pytest.raises(ValueError, match=r"`k` = 5 must be a state index"):
         sie.load_history(HERTZ, [(P_H, 0.0, 0.0, 0.0)], F, A=A_H, n=16).shear(0.0, 5)
+
+
+@pytest.mark.parametrize("dP", [0.0, 40.0])
+def test_the_loop_s_area_is_the_friction_work_of_the_cycle(dP):
+    """∮ Q dδ over a steady cycle is the energy dissipated: an identity independent of the march's work sum.
+
+    The normal load's work is conservative in the uncoupled problem, so a P cycling in phase
+    adds nothing to the loop's area; the shoelace area of (δ_k, Q_k) and the march's
+    Σ |Δslip| f p (trapezoidal in the states) then agree to the states' resolution.
+    """
+    punch, A_ = Punch(R1=10.0, R2=5.0, b=1.0), 4 * (1 - 0.3**2) / 420e3
+    ramp = [(400.0 * j / 4, 0.1, 0.0, 0.0) for j in range(1, 5)]
+    cycle = [(400.0 + dP * math.sin(t), 0.1, 80.0 * math.sin(t), 0.0)
+             for t in [2 * math.pi * k / 40 for k in range(1, 121)]]
+    h = sie.load_history(punch, ramp + cycle, 0.5, A=A_, period=40)
+    d, Q = h.loop()
+    assert d[0] == pytest.approx(d[-1], abs=tolerance("sie-history", "steady").limit * np.ptp(d))
+    area = 0.5 * abs(float(np.sum(d[:-1] * Q[1:] - d[1:] * Q[:-1])))
+    assert abs(area / h.energy[-1] - 1) <= tolerance("sie-history", "loop_area").limit

@@ -236,8 +236,36 @@ def run(args: argparse.Namespace) -> int:
             hot = None if res.shakedown else _hot_spots(res, pr)
         _print_steady(pr, res, figures, hot)
     if args.out is not None:
+        if history:
+            figures["loop"] = res.loop()
+        else:
+            with _heartbeat(_say, lambda: "the hysteresis loop (the cycle marched by the SIE)"):
+                figures["loop"] = _steady_loop(pr)
         _write_out(args.out, pr, res, figures)
     return 0
+
+
+#: load states of the first loading (from rest to state 0) and of each half-cycle, and the
+#: cycles marched, for the hysteresis loop of a steady state (the loop of the last cycle)
+LOOP_STEPS, LOOP_CYCLES = 20, 2
+
+
+def _steady_loop(pr: dict[str, Any]) -> Any:
+    """``(delta, Q)`` of the steady cycle, marched by the SIE's load history (the loop's only source)."""
+    import numpy as np
+
+    from threepart import registry
+    from threepart.steady import ramp
+
+    lam = np.linspace(0.0, 1.0, LOOP_STEPS + 1)[1:]
+    s0, s1 = pr["states"]
+    first = np.array(ramp((0.0, s0[1], 0.0, 0.0), s0, lam)).T
+    half = np.array(ramp(s0, s1, lam)).T
+    back = np.array(ramp(s1, s0, lam)).T
+    states = np.vstack([first, *([half, back] * LOOP_CYCLES)])
+    march = registry.get("sie").history
+    assert march is not None     # the SIE registers its load history (sie/method.py)
+    return march(pr["punch"], states, pr["f"], A=pr["A"], period=2 * LOOP_STEPS).loop()
 
 
 def _profile_x(normals: Any) -> Any:
@@ -398,7 +426,7 @@ def _write_out(out: str, pr: dict[str, Any], res: Any, figures: dict[str, Any]) 
 
 
 def _plot(path: Any, figures: dict[str, Any], res: Any, history: bool) -> None:
-    """The shear at both extreme states with the stick zone; the slip amplitude (no rigid displacement is given)."""
+    """The shear at both extreme states with the stick zone; the hysteresis loop Q against δ."""
     import matplotlib
 
     matplotlib.use("Agg")
@@ -417,12 +445,14 @@ def _plot(path: Any, figures: dict[str, Any], res: Any, history: bool) -> None:
         ax.axvspan(lo, hi, color="grey", alpha=0.2, label="stick zone" if n == 0 else None)
     ax.set_xlabel("x [mm]")
     ax.set_ylabel("q [MPa]")
-    ax.set_title("shear at the extreme states" + (" of the last cycle" if history else ""))
+    ax.set_title("shear at the extreme states" + (" of the last cycle" if history else
+                                                  "\n(in the stick zone partly locked in by the history)"))
     ax.legend(fontsize=8)
-    bx.plot(x, figures["slip"], "C2")
-    bx.set_xlabel("x [mm]")
-    bx.set_ylabel("slip amplitude [mm]")
-    bx.set_title("hysteresis: slip amplitude (the rigid tangential displacement is not given)")
+    delta, Q = figures["loop"]
+    bx.plot(delta, Q, "C2.-", ms=3)
+    bx.set_xlabel("rigid tangential shift δ of the punch [mm] (up to a constant)")
+    bx.set_ylabel("Q [N/mm]")
+    bx.set_title("hysteresis loop" + (" of the last cycle" if history else " (the cycle marched by the SIE)"))
     try:
         fig.savefig(path, format="png", dpi=110)
     finally:

@@ -197,6 +197,11 @@ class HistoryResult(_Answer):
         over each element between ``edges``), the FEM's interface nodes (linear between them).
     edges
         The SIE's element edges; ``None`` for nodal values (the FEM).
+    delta
+        The rigid tangential shift of each state, the punch against the substrate (the
+        relative tangential displacement of the points that stick, less the bulk strain's
+        share; the SIE's is defined up to a term linear in ``Q``, the log kernel's length
+        scale): ``Q`` against it is the hysteresis loop (:meth:`loop`).
     diagnostics, info
         Discretisation, iterations and timings; what is particular to the method.
     """
@@ -217,6 +222,7 @@ class HistoryResult(_Answer):
     q_nodes: np.ndarray = field(repr=False)
     slip_nodes: np.ndarray = field(repr=False)
     edges: np.ndarray | None = field(default=None, repr=False)
+    delta: np.ndarray | None = field(default=None, repr=False)
     diagnostics: Diagnostics = field(default_factory=Diagnostics)
     info: Mapping[str, Any] = field(default_factory=dict)
 
@@ -254,6 +260,22 @@ class HistoryResult(_Answer):
         """
         k = self._state(k)
         return self._field(self.slip_nodes[k], x, k)
+
+    def loop(self, cycle: int = -1) -> tuple[np.ndarray, np.ndarray]:
+        """``(delta, Q)`` over the states of a completed cycle (the last by default): the hysteresis loop.
+
+        Its area is the friction work of the cycle where no bulk stress changes
+        (``∮ Q dδ``; under a changing bulk stress the bulk stress works too, B9).
+
+        Raises
+        ------
+        ValueError
+            If the history has no completed cycle, or no rigid shift (``delta``).
+        """
+        if self.delta is None or not self.cycles:
+            raise ValueError("the history has no completed cycle with a rigid shift `delta` to draw a loop of")
+        i, j = self.cycles[cycle]
+        return self.delta[i:j + 1], self.Q[i:j + 1]
 
     def stick_zone(self, k: int) -> tuple[float, float]:
         """The widest stick interval of state ``k``.
