@@ -9,8 +9,8 @@ import numpy as np
 
 import pytest
 
-import closedform as cf
-from closedform import FrettingSolution
+from threepart import closedform as cf
+from threepart.closedform import FrettingSolution
 from threepart import catalogue, rigid_punch
 from threepart.punch import Punch
 from threepart.reports import verify

@@ -14,7 +14,7 @@ from typing import Any
 import numpy as np
 import pytest
 
-import closedform as cf
+from threepart import closedform as cf
 from threepart import catalogue
 from threepart.fatigue import fatigue
 from threepart.punch import Punch

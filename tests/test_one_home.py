@@ -78,3 +78,15 @@ def test_a_mode_passes_a_method_the_options_it_declares(monkeypatch):
                                                              options=declared))
         assert mode.options(name) == expected
     assert Mode("m", None, "fine", (), ()).options("toy_n_mesh") == {"mesh": "fine"}
+
+
+def test_no_test_imports_a_solver_folder_as_a_top_level_package():
+    """``import closedform`` from the repository's root loads the solver a second time, under another
+    name, whose import registers its method again: the registry then holds the copy's functions."""
+    offending = []
+    for path in sorted(Path(__file__).parent.glob("*.py")):
+        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+            names = ([a.name for a in node.names] if isinstance(node, ast.Import) else
+                     [node.module] if isinstance(node, ast.ImportFrom) and not node.level else [])
+            offending += [f"{path.name}: {n}" for n in names if n and n.split(".")[0] in SOLVERS]
+    assert offending == []
