@@ -131,11 +131,12 @@ def _heartbeat(say: Callable[[str], None], stage: Callable[[], str],
 
 
 def run(mode: Mode, cases: Sequence[Case], say: Callable[[str], None],
-        calculix: bool = False) -> tuple[list[CaseRun], list[Study], dict[str, float]]:
+        calculix: bool = False, robustness: bool = False) -> tuple[list[CaseRun], list[Study], dict[str, float]]:
     """Solve and compare every case, then the convergence studies; return the numbers.
 
     ``calculix`` adds the CalculiX column (:func:`reports.referee.calculix_studies`),
-    except in the quick mode.
+    except in the quick mode; ``robustness`` adds, in the full mode only, the
+    robustness study (:func:`reports.robustness.study`) as one more run of checks.
     """
     runs: list[CaseRun] = []
     cache: dict[Any, Any] = {}
@@ -165,6 +166,8 @@ def run(mode: Mode, cases: Sequence[Case], say: Callable[[str], None],
         say(f"{tag} {verdict}  ({time.perf_counter() - tc:.2f} s)")
         runs.append(r)
     timings["cases_s"] = time.perf_counter() - t0
+    if robustness and mode.name == "full":
+        _robustness(runs, timings, say)
     studies: list[Study] = []
     study_case = next((c for c in cases if c.name == STUDY_CASE), cases[0] if cases else None)
     if study_case is not None and mode.sie_study_n:
@@ -208,6 +211,21 @@ def run(mode: Mode, cases: Sequence[Case], say: Callable[[str], None],
                                           STEP_STATES, progress=lambda m: say(f"[study]   {m}")))
         timings["fem_step_study_s"] = time.perf_counter() - t1
     return runs, studies, timings
+
+
+def _robustness(runs: list[CaseRun], timings: dict[str, float], say: Callable[[str], None]) -> None:
+    """The robustness study (:mod:`reports.robustness`) as one more run of checks, timed."""
+    from . import robustness
+
+    t1 = time.perf_counter()
+    drawn = ", ".join(f"{n} {g}" for g, n in robustness.COUNTS.items())
+    say(f"[study] robustness: a seeded wide draw ({drawn}), the closed form against the SIE")
+    with _heartbeat(say, lambda: "[study]   robustness"):
+        r = robustness.study(say=lambda m: say(f"[study]   {m}"))
+    failed = r.failed()
+    say("[study] robustness " + ("PASS" if r.passed else "FAIL " + ", ".join(c.quantity for c in failed)))
+    runs.append(r)
+    timings["robustness_study_s"] = time.perf_counter() - t1
 
 
 def build_report(mode: Mode, runs: Sequence[CaseRun], studies: Sequence[Study],
@@ -407,7 +425,7 @@ def main(mode: str = "default", out: str | Path = "report", force: bool = False,
         whole = cases is None          # the CalculiX column goes with the whole catalogue
         cases = list(load_cases() if cases is None else cases)
         say(f"threepart verify --{mode}: {len(cases)} cases, FEM mesh {m.fem_mesh!r}, report -> {out}")
-        runs, studies, timings = run(m, cases, say, calculix=whole)
+        runs, studies, timings = run(m, cases, say, calculix=whole, robustness=whole)
         timings["solve_s"] = time.perf_counter() - t0
         doc = write_report(tmp, m, runs, studies, timings, say)
     s = doc["summary"]

@@ -139,6 +139,8 @@ VALUE_UNITS: dict[str, str] = {
     "stick_end": "mm",
     "q_integral": "N/mm", "q_bound": "1",
     "sxx_surface": "MPa", "sxx_peak": "MPa", "stress_depth": "MPa",
+    # robustness study (reports.robustness): the least pressure of an answer, and counts of draws
+    "p_min": "1", "wrong_refusals": "draws", "no_convergence": "draws",
 }
 #: what each error is a fraction of (its unit), by quantity; see :data:`NORMALISATION`
 ERROR_UNITS: dict[str, str] = {
@@ -151,6 +153,8 @@ ERROR_UNITS: dict[str, str] = {
     "stick_end": "h",
     "q_integral": "Q", "q_bound": "f p_max",
     "sxx_surface": "peak", "sxx_peak": "max|σxx|", "stress_depth": "peak",
+    # robustness study (reports.robustness)
+    "p_min": "peak", "wrong_refusals": "count", "no_convergence": "count",
 }
 #: the normalisations of :data:`ERROR_UNITS`, in words (stated once at the top of the report)
 NORMALISATION: dict[str, str] = {
@@ -175,6 +179,8 @@ NORMALISATION: dict[str, str] = {
     "max δ": "the largest slip amplitude δ of the reference over the smaller contact (a flight cycle)",
     "loop": "the largest |delta| of the reference's hysteresis loop (delta less the line "
             "through the loop's tips)",
+    # robustness study (reports.robustness)
+    "count": "a number of random draws that broke a rule of the robustness study (none may)",
 }
 
 _T = Tolerance
@@ -409,6 +415,26 @@ TOLERANCES: dict[tuple[str, str], Tolerance] = {
 # closed form vs FEM, fine mesh: every size of the default mesh halved, so the default's limits hold
 TOLERANCES.update({("fem-fine", q): _T(t.limit, f"as on the default mesh, which is coarser: {t.reason}")
                    for (comparison, q), t in list(TOLERANCES.items()) if comparison == "fem-default"})
+
+# --- robustness study (reports.robustness, `threepart verify --full`): the issue-29 property rules
+# on a wide seeded draw, each limit the table's entry that the default suite's tests assert ---------
+_COUNT = "a count of offending draws: none may (one breaks it)"
+TOLERANCES.update({("robustness", q): _T(TOLERANCES[key].limit, f"{why}: {TOLERANCES[key].reason}")
+                   for q, key, why in (
+    ("a", ("sie", "a"), "contact ends of the normal draw, as the SIE's entry"),
+    ("p_interior_max", ("sie-target", "field"), "pressure of the normal draw, as the wide-draw tests"),
+    ("d", ("sie", "d"), "stick-zone ends of the slip draw, as the SIE's entry"),
+    ("q_interior_max", ("sie-target", "field"), "shear of the slip draw, as the wide-draw tests"),
+    ("energy", ("sie-target", "bulk_energy"), "friction work of the fretting draw under a bulk stress"),
+    ("stick", ("sie", "stick"), "stick-zone ends over the fretting draw's cycles, as the SIE's entry"),
+    ("p_min", ("answer", "p_min"), "p >= 0 of every answer, as the answer check"),
+    ("q_bound", ("answer", "q_bound"), "|q| <= f p of every slip answer, as the answer check"))})
+TOLERANCES.update({
+    ("robustness", "wrong_refusals"): _T(0.5, f"{_COUNT}: where one method answers the other must too, "
+                                              "and refuse by the named error the SIE's within_paper implies"),
+    ("robustness", "no_convergence"): _T(0.5, f"{_COUNT}: NoConvergenceError or an unnamed error is never "
+                                              "an answer on admissible input (issue 29)"),
+})
 
 
 def tolerance(comparison: str, quantity: str) -> Tolerance:
