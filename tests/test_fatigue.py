@@ -26,6 +26,7 @@ from threepart.cli import main
 from threepart import registry
 from threepart.registry import Method, register
 from threepart.stress import Stress
+from threepart.tolerances import tolerance
 
 NU, E, K = 0.3, 2.0e5, 0.3
 #: the analytic references hold to rounding: 1e-12 of the value
@@ -470,3 +471,36 @@ def test_the_report_uses_the_case_s_own_modulus_not_the_similar_pair_of_its_comp
     cycle = cf.fretting_cycle(normal, 80.0, 0.5, states=9)
     got = fatigue_hot_spots({"closedform": cycle}, (E, nu), "closedform")
     assert (got["E"], got["nu"]) == (E, nu)
+
+
+# --- the flight cycle at the command line (issue 31): --state0 and --state1 ---------------------
+FLIGHT_BASE = ["fatigue", "--R1", "10", "--R2", "5", "--b", "1", "--E", str(CLI_E), "--nu", str(CLI_NU),
+               "--f", "0.5", "--nx", "11", "--nz", "4", "--ns", "21", "--json"]
+
+
+def test_a_flight_cycle_at_constant_load_is_the_fretting_cycle_at_the_command_line(capsys):
+    """At P and s constant the steady cycle between -Q_max and Q_max is the fretting cycle's (eq. S14):
+    the hot spots of ``--state0/--state1`` are those of ``--P --Q-max`` on the same grid."""
+    assert main([*FLIGHT_BASE, "--state0", "400,0.1,-80,0", "--state1", "400,0.1,80,0"]) == 0
+    flight = json.loads(capsys.readouterr().out)
+    assert main([*FLIGHT_BASE, "--P", "400", "--s", "0.1", "--Q-max", "80", "--states", "2"]) == 0
+    fretting = json.loads(capsys.readouterr().out)
+    assert flight["shakedown"] is False and flight["energy"] > 0
+    for name, spot in fretting["hot_spots"].items():
+        got = flight["hot_spots"][name]
+        assert (got["x"], got["z"]) == (spot["x"], spot["z"]), name
+        assert abs(got["value"] - spot["value"]) <= tolerance("flight", "fatigue").limit * abs(spot["value"]), name
+
+
+@pytest.mark.parametrize("extra, match", [
+    (["--state0", "400,0.1,-80,0"], r"a flight cycle needs both ends: `--state1` is missing"),
+    (["--state0", "400,0.1,-80,0", "--state1", "400,0.1,80,0", "--P", "400"],
+     r"give a fretting cycle .* or a flight cycle's ends .*, not both"),
+    (["--P", "400"], r"give `--Q-max` \(a fretting cycle\), or `--state0` and `--state1`"),
+    (["--state0", "400,0.1", "--state1", "400,0.1,80,0"], r"must be 4 numbers P,s,Q,sigma_bulk"),
+])
+def test_a_flight_cycle_s_bad_input_is_one_line(capsys, extra, match):
+    import re
+
+    assert main([*FLIGHT_BASE, *extra]) == 2
+    assert re.search(match, _err(capsys))

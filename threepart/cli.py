@@ -167,6 +167,11 @@ def _geometry_args(p: argparse.ArgumentParser) -> None:
     ld.add_argument("--s", type=float, default=0.0,
                     help=_labelled("lever arm of P, positive to the right", "s"))
     ld.add_argument("--tilt", choices=("free", "suppressed"), default="free")
+    for k in (0, 1):
+        ld.add_argument(f"--state{k}", type=cli_cycle.state_arg, metavar="P,s,Q,SIGMA",
+                        help=f"end {k} of an in-phase flight cycle (N/mm, mm, N/mm, MPa), instead of "
+                             "--P, --s, --Q-max and --sigma-bulk: the fatigue of its periodic steady "
+                             "state at its two ends (docs/STEADY_STATE.md, docs/FATIGUE.md)")
     mt = _method_args(p)
     pt = p.add_argument_group("fields at points")
     pt.add_argument("--x", type=_number_list, metavar="X1,X2,...",
@@ -487,12 +492,13 @@ def _fatigue_args(p: argparse.ArgumentParser) -> None:
     m.add_argument("--nu", type=float, required=True, help="Poisson's ratio, in (-1, 0.5)")
     m.add_argument("--k", type=float,   # None: threepart.fatigue.K_FINDLEY, read when used
                    help="Findley's constant, in [0, 10] (default {k_findley})")
-    ld = p.add_argument_group("loads: P at s, then the cycle Q = 0 -> Q_max -> -Q_max -> Q_max")
-    ld.add_argument("--P", type=float, required=True,
+    ld = p.add_argument_group("loads: P at s, then the cycle Q = 0 -> Q_max -> -Q_max -> Q_max; or "
+                              "a flight cycle's two ends, --state0 and --state1")
+    ld.add_argument("--P", type=float,
                     help=_labelled("compressive normal load per unit length, > 0", "P"))
     ld.add_argument("--s", type=float, default=0.0,
                     help=_labelled("lever arm of P, positive to the right", "s"))
-    ld.add_argument("--Q-max", dest="Q_max", type=float, required=True,
+    ld.add_argument("--Q-max", dest="Q_max", type=float,
                     help=_labelled("amplitude of the shear force the punch exerts on the substrate "
                                    "along +x, 0 < Q_max < f P", "Q"))
     ld.add_argument("--f", type=float, required=True, help="coefficient of friction, > 0")
@@ -500,6 +506,11 @@ def _fatigue_args(p: argparse.ArgumentParser) -> None:
                     help="bulk stress sigma_xx in the substrate at Q_max, tension positive, in "
                          "phase with Q [MPa] (default 0)")
     ld.add_argument("--tilt", choices=("free", "suppressed"), default="free")
+    for k in (0, 1):
+        ld.add_argument(f"--state{k}", type=cli_cycle.state_arg, metavar="P,s,Q,SIGMA",
+                        help=f"end {k} of an in-phase flight cycle (N/mm, mm, N/mm, MPa), instead of "
+                             "--P, --s, --Q-max and --sigma-bulk: the fatigue of its periodic steady "
+                             "state at its two ends (docs/STEADY_STATE.md, docs/FATIGUE.md)")
     mt = _method_args(p)
     mt.add_argument("--states", type=int, default=5,
                     help=f"recorded states per branch of the cycle, 2 to {MAX_FATIGUE_STATES} "
@@ -549,6 +560,7 @@ def _fatigue_iv(args: argparse.Namespace) -> None:
 
     positive("--E", args.E)
     poisson(args.nu)
+    _fatigue_loads_iv(args)
     args.k = findley_k(K_FINDLEY if args.k is None else args.k)
     finite("--sigma-bulk", args.sigma_bulk)
     integer("--states", args.states, 2, MAX_FATIGUE_STATES)
@@ -611,6 +623,39 @@ def _fretting(args: argparse.Namespace, punch: Any, A: float) -> Any:
     return cycle
 
 
+def _fatigue_loads_iv(args: argparse.Namespace) -> None:
+    """A fretting cycle (``--P`` and ``--Q-max``) or a flight cycle (``--state0`` and ``--state1``), not both."""
+    flight = [f"--state{k}" for k in (0, 1) if getattr(args, f"state{k}") is not None]
+    fretting = [o for o, v in (("--P", args.P), ("--Q-max", args.Q_max)) if v is not None]
+    if flight and (fretting or args.sigma_bulk != 0.0 or args.s != 0.0):
+        raise ValueError("give a fretting cycle (`--P`, `--s`, `--Q-max`, `--sigma-bulk`) or a flight "
+                         "cycle's ends (`--state0`, `--state1`), not both")
+    if flight and len(flight) < 2:
+        raise ValueError(f"a flight cycle needs both ends: `--state{1 if flight == ['--state0'] else 0}` "
+                         "is missing")
+    if not flight and len(fretting) < 2:
+        missing = " and ".join(f"`{o}`" for o in ("--P", "--Q-max") if o not in fretting)
+        raise ValueError(f"give {missing} (a fretting cycle), or `--state0` and `--state1` (a flight cycle)")
+
+
+def _flight(args: argparse.Namespace, punch: Any, A: float) -> Any:
+    """The steady state of the flight cycle ``--state0`` -> ``--state1`` by ``--method`` (``auto``: falls back)."""
+    from threepart import registry, steady_state
+
+    if args.method == "auto" or registry.get(args.method).default_nu is None:
+        return steady_state(punch, (args.state0, args.state1), args.f, A=A, method=args.method)
+    call = registry.get(args.method).steady      # a method of finite bodies takes the material's nu
+    if call is None:
+        raise ValueError(f"`--method` = {args.method}: it has no steady state of a cycle")
+    return call(punch, (args.state0, args.state1), args.f, A=A, nu=args.nu, mesh=args.mesh)
+
+
+def _wider_normal(cycle: Any) -> Any:
+    """The normal solution of a fretting cycle, or the wider of a steady cycle's two ends."""
+    normals = getattr(cycle, "normals", None)
+    return cycle.normal if normals is None else max(normals, key=lambda n: float(n.a + n.c))
+
+
 def _fatigue_grid(args: argparse.Namespace, normal: Any) -> tuple[Any, Any]:
     import numpy as np
 
@@ -637,13 +682,16 @@ def _cmd_fatigue(args: argparse.Namespace) -> int:
     def say(msg: str) -> None:
         print(f"threepart fatigue: {msg}", file=sys.stderr, flush=True)
 
-    with _heartbeat(say, lambda: f"the fretting cycle ({args.states} states per branch)"):
-        cycle = _fretting(args, punch, A)
-    x, z = _fatigue_grid(args, cycle.normal)
-    a, c = cycle.normal.a, cycle.normal.c
+    steady = args.state0 is not None
+    with _heartbeat(say, lambda: "the flight cycle's steady state" if steady else
+                    f"the fretting cycle ({args.states} states per branch)"):
+        cycle = _flight(args, punch, A) if steady else _fretting(args, punch, A)
+    normal = _wider_normal(cycle)
+    x, z = _fatigue_grid(args, normal)
+    a, c = normal.a, normal.c
     line = -a + (a + c) * (np.arange(args.ns) + 0.5) / args.ns   # inside: never on a contact end
-    with _heartbeat(say, lambda: f"the stresses of {cycle.Q.size} recorded states at "
-                                 f"{args.nx * args.nz + args.ns} points"):
+    with _heartbeat(say, lambda: f"the stresses of {2 if steady else cycle.Q.size} recorded states "
+                                 f"at {args.nx * args.nz + args.ns} points"):
         res = fatigue(cycle, x, z, E=args.E, nu=args.nu, k=args.k,
                       surface=np.union1d(np.ravel(x), line))
     if args.csv is not None:
@@ -670,24 +718,36 @@ def _hot_spots(res: Any) -> dict[str, dict[str, Any]]:
 
 
 def _fatigue_print(args: argparse.Namespace, res: Any, cycle: Any, A: float, headline: str) -> None:
-    normal = cycle.normal
+    normal = _wider_normal(cycle)
     hot = _hot_spots(res)
+    steady = args.state0 is not None
+    loads: dict[str, Any] = (
+        {"states": [list(args.state0), list(args.state1)], "stick_zone": list(cycle.stick_zone),
+         "energy": cycle.energy, "shakedown": cycle.shakedown} if steady else
+        {"P": args.P, "s": args.s, "Q_max": args.Q_max, "sigma_bulk": args.sigma_bulk})
     doc = {"method": cycle.method, "A": A, "E": args.E, "nu": args.nu, "k": args.k,
-           "P": args.P, "s": args.s, "Q_max": args.Q_max, "f": args.f,
-           "sigma_bulk": args.sigma_bulk, "a": normal.a, "c": normal.c,
+           **loads, "f": args.f, "a": normal.a, "c": normal.c,
            "states": res.states, "grid": {"nx": args.nx, "nz": args.nz, "depth_W": args.depth},
            "hot_spots": hot}
     if args.json:
         from threepart.output import strict_json
 
         units = {"A": "1/MPa", "E": "MPa", "P": "N/mm", "s": "mm", "Q_max": "N/mm", "a": "mm",
-                 "c": "mm", "sigma_bulk": "MPa", "x": "mm", "z": "mm", **FATIGUE_UNITS}
+                 "c": "mm", "sigma_bulk": "MPa", "x": "mm", "z": "mm", "states": "N/mm, mm, N/mm, MPa",
+                 "stick_zone": "mm", "energy": "N*mm/mm", **FATIGUE_UNITS}
         print(strict_json({**doc, "units": units}, indent=2))
         return
     print(headline)
     print(f"contact    [{-normal.a:.6g}, {normal.c:.6g}] mm (a = {normal.a:.6g}, c = {normal.c:.6g})")
-    print(f"cycle      Q_max {args.Q_max:g} N/mm, f {args.f:g}, sigma_bulk {args.sigma_bulk:g} MPa, "
-          f"{res.states} distinct states")
+    if steady:
+        (P0, s0, Q0, g0), (P1, s1, Q1, g1) = args.state0, args.state1
+        print(f"cycle      in phase between (P, s, Q, sigma_bulk) = ({P0:g}, {s0:g}, {Q0:g}, {g0:g}) and "
+              f"({P1:g}, {s1:g}, {Q1:g}, {g1:g}) [N/mm, mm, N/mm, MPa], f {args.f:g}; its steady state: "
+              f"stick zone [{cycle.stick_zone[0]:.6g}, {cycle.stick_zone[1]:.6g}] mm, energy "
+              f"{cycle.energy:.6g} N*mm/mm per cycle" + (", shaken down" if cycle.shakedown else ""))
+    else:
+        print(f"cycle      Q_max {args.Q_max:g} N/mm, f {args.f:g}, sigma_bulk {args.sigma_bulk:g} MPa, "
+              f"{res.states} distinct states")
     print(f"grid       {args.nx} x {args.nz} points, x over [-a - W/4, c + W/4], z over "
           f"[0, {args.depth:g} W]; Ruiz also at {args.ns} surface points over the contact")
     print("hot spots (units: mm, N/mm, MPa, or any consistent set):")
@@ -761,7 +821,7 @@ def _fatigue_plot(path: str, res: Any, cycle: Any) -> None:
 
     from threepart.output import write_file
 
-    normal = cycle.normal
+    normal = _wider_normal(cycle)
     fig, axes = plt.subplots(2, 2, figsize=(11, 8), constrained_layout=True)
     for ax, par in zip(axes.flat, (res.von_mises_range, res.swt, res.findley)):
         cs = ax.contourf(par.x, par.z, par.value, levels=20, cmap="viridis")
