@@ -213,15 +213,21 @@ def _refused(res: Any) -> bool:
     return isinstance(res, BaseException)
 
 
+def _judged(t: Tally, case: Case, solve: Callable[[str], Any]) -> dict[str, Any] | None:
+    """Both methods' answers of ``case`` (or their refusals), each answer held to p >= 0 and |q| <= f p."""
+    got = _solve(t, case, solve)
+    for m, r in (got or {}).items():
+        if not _refused(r):
+            _laws(t, case, r, m)
+    return got
+
+
 def _normal_rules(t: Tally, case: Case) -> dict[str, Any] | None:
     """The normal problem of ``case`` by both methods, judged; both answers, or None."""
-    got = _solve(t, case, lambda m: solvers.normal(m, case))
+    got = _judged(t, case, lambda m: solvers.normal(m, case))
     if got is None:
         return None
     c, g = got["closedform"], got["sie"]
-    for m, r in got.items():
-        if not _refused(r):
-            _laws(t, case, r, m)
     if _refused(g) or not g.within_paper:
         if not _refused(c):
             why = f"SIE refused ({type(g).__name__})" if _refused(g) else \
@@ -257,13 +263,10 @@ def _edge_refusal(c: BaseException, g: Any, case: Case) -> bool:
 
 def _slip_rules(t: Tally, case: Case, normals: dict[str, Any]) -> dict[str, Any] | None:
     """Partial slip of ``case`` by both methods on their normal answers, judged; both answers, or None."""
-    got = _solve(t, case, lambda m: solvers.slip(m, case, normals[m]))
+    got = _judged(t, case, lambda m: solvers.slip(m, case, normals[m]))
     if got is None:
         return None
     c, g = got["closedform"], got["sie"]
-    for m, r in got.items():
-        if not _refused(r):
-            _laws(t, case, r, m)
     if _refused(g) or not g.within_paper:
         if not (_refused(c) and (_refused(g) or isinstance(c, StickZoneError))):
             why = f"the SIE refused ({type(g).__name__})" if _refused(g) else \
