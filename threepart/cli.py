@@ -642,12 +642,10 @@ def _flight(args: argparse.Namespace, punch: Any, A: float) -> Any:
     """The steady state of the flight cycle ``--state0`` -> ``--state1`` by ``--method`` (``auto``: falls back)."""
     from threepart import registry, steady_state
 
-    if args.method == "auto" or registry.get(args.method).default_nu is None:
-        return steady_state(punch, (args.state0, args.state1), args.f, A=A, method=args.method)
-    call = registry.get(args.method).steady      # a method of finite bodies takes the material's nu
-    if call is None:
-        raise ValueError(f"`--method` = {args.method}: it has no steady state of a cycle")
-    return call(punch, (args.state0, args.state1), args.f, A=A, nu=args.nu, mesh=args.mesh)
+    m = None if args.method == "auto" else registry.get(args.method)
+    finite = m is not None and m.default_nu is not None      # the FEM: the material's nu, its mesh
+    return steady_state(punch, (args.state0, args.state1), args.f, A=A, method=args.method,
+                        **({"nu": args.nu, "mesh": args.mesh} if finite else {}))
 
 
 def _wider_normal(cycle: Any) -> Any:

@@ -194,11 +194,12 @@ def _steady(args: argparse.Namespace, pr: dict[str, Any]) -> Any:
     """The steady state by ``--method`` (the FEM with the problem's Poisson ratio)."""
     from threepart import registry, steady_state
 
-    if args.method == "fem":   # called as reports.solvers.steady does: with the problem's nu
-        call = registry.get("fem").steady
-        assert call is not None    # the FEM registers its steady state (fem/method.py)
-        return call(pr["punch"], pr["states"], pr["f"], A=pr["A"], nu=pr["nu"], mesh=args.mesh)
-    options = {} if args.n is None or args.method == "closedform" else {"n": args.n}
+    m = None if args.method == "auto" else registry.get(args.method)
+    options: dict[str, Any] = {}
+    if m is not None and m.default_nu is not None:     # the FEM: the problem's nu, its mesh
+        options = {"nu": pr["nu"], "mesh": args.mesh}
+    elif args.n is not None and args.method != "closedform":
+        options = {"n": args.n}
     return steady_state(pr["punch"], pr["states"], pr["f"], A=pr["A"], method=args.method, **options)
 
 

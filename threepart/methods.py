@@ -34,7 +34,7 @@ results' ``__post_init__``): a compressive pressure, else
 """
 from __future__ import annotations
 
-from typing import Any
+from typing import Any, Callable
 
 from . import registry
 from .errors import LiftOffError, SeparationError, StickZoneError
@@ -61,9 +61,7 @@ def _one(name: str, punch: Punch, P: float, s: float, A: float, tilt: str, Q: fl
          sigma_bulk: float = 0.0) -> NormalResult | SlipResult:
     m = registry.get(name)
     m.check_options(options)
-    if nu is not None and m.default_nu is None:
-        raise ValueError(f"`nu` is not used by method {name!r}: a half-plane solution depends on "
-                         "the material only through `A`")
+    _check_nu(m, nu)
     if Q is None or f is None:
         return m.normal(punch, P, s, A=A, tilt=tilt, nu=nu, **options)
     if m.slip is None:
@@ -137,30 +135,46 @@ def solve(punch: Punch, P: float, s: float = 0.0, *, A: float, tilt: str = "free
     check_positive(A=A)
     if method != "auto":
         return _one(method, punch, P, s, A, tilt, Q, f, nu, options, sigma_bulk)
-    first, fallback = AUTO
-    registry.get(fallback).check_options(options, called=repr("auto"))
-    try:
-        return _one(first, punch, P, s, A, tilt, Q, f, nu, {}, sigma_bulk)
-    except FALLBACK_ON as refusal:
-        why = f"the closed form does not hold here: {' '.join(str(refusal).split())}"
-    result = _one(fallback, punch, P, s, A, tilt, Q, f, nu, options, sigma_bulk)
-    result.info["auto"] = why
-    if isinstance(result, SlipResult):
-        result.normal.info["auto"] = why
+    result = _auto(lambda name, opts: _one(name, punch, P, s, A, tilt, Q, f, nu, opts, sigma_bulk),
+                   options)
+    if isinstance(result, SlipResult) and "auto" in result.info:
+        result.normal.info["auto"] = result.info["auto"]
     return result
 
 
-def _steady(name: str, punch: Punch, states: Any, f: float, A: float,
+def _check_nu(m: registry.Method, nu: float | None) -> None:
+    """``nu`` only for a method of finite bodies: a half-plane method depends on the material only through ``A``."""
+    if nu is not None and m.default_nu is None:
+        raise ValueError(f"`nu` is not used by method {m.name!r}: a half-plane solution depends on "
+                         "the material only through `A`")
+
+
+def _auto(call: Callable[[str, dict[str, Any]], Any], options: dict[str, Any]) -> Any:
+    """``method="auto"``: ``call`` by the closed form, or by the SIE (with ``options``) where it refuses
+    with one of :data:`FALLBACK_ON`; the SIE's result says why in ``info["auto"]``."""
+    first, fallback = AUTO
+    registry.get(fallback).check_options(options, called=repr("auto"))
+    try:
+        return call(first, {})
+    except FALLBACK_ON as refusal:
+        why = f"the closed form does not hold here: {' '.join(str(refusal).split())}"
+    result = call(fallback, options)
+    result.info["auto"] = why
+    return result
+
+
+def _steady(name: str, punch: Punch, states: Any, f: float, A: float, nu: float | None,
             options: dict[str, Any]) -> SteadyStateResult:
     m = registry.get(name)
     m.check_options(options)
+    _check_nu(m, nu)
     if m.steady is None:
         raise ValueError(f"method {name!r} has no steady-state model of a cycle")
-    return m.steady(punch, states, f, A=A, **options)
+    return m.steady(punch, states, f, A=A, **({} if nu is None else {"nu": nu}), **options)
 
 
 def steady_state(punch: Punch, states: Any, f: float, *, A: float, method: str = "auto",
-                 **options: Any) -> SteadyStateResult:
+                 nu: float | None = None, **options: Any) -> SteadyStateResult:
     """The periodic steady state of an in-phase cycle between two states, by ``method``.
 
     Parameters
@@ -178,9 +192,12 @@ def steady_state(punch: Punch, states: Any, f: float, *, A: float, method: str =
         ``"auto"`` (default: the closed form, and the SIE where it refuses with
         one of :data:`FALLBACK_ON`, as :func:`solve`), ``"closedform"``, ``"sie"``
         or any registered method with a ``steady`` call.
+    nu
+        Poisson's ratio, for a method that models bodies of finite size (the
+        FEM; default 0.3 there). A half-plane method refuses it, as in :func:`solve`.
     **options
-        The method's discretisation (``n``, ``scheme`` for the SIE; with ``"auto"``
-        they go to the SIE).
+        The method's discretisation (``n``, ``scheme`` for the SIE, ``mesh`` for the
+        FEM; with ``"auto"`` they go to the SIE).
 
     Returns
     -------
@@ -200,16 +217,8 @@ def steady_state(punch: Punch, states: Any, f: float, *, A: float, method: str =
         registry.get(method, also=("auto",))
     check_positive(A=A)
     if method != "auto":
-        return _steady(method, punch, states, f, A, options)
-    first, fallback = AUTO
-    registry.get(fallback).check_options(options, called=repr("auto"))
-    try:
-        return _steady(first, punch, states, f, A, {})
-    except FALLBACK_ON as refusal:
-        why = f"the closed form does not hold here: {' '.join(str(refusal).split())}"
-    result = _steady(fallback, punch, states, f, A, options)
-    result.info["auto"] = why
-    return result
+        return _steady(method, punch, states, f, A, nu, options)
+    return _auto(lambda name, opts: _steady(name, punch, states, f, A, nu, opts), options)
 
 
 def describe(result: NormalResult | SlipResult) -> str:
