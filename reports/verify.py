@@ -15,15 +15,14 @@ import json
 import platform
 import subprocess
 import sys
-import threading
 import time
-from contextlib import contextmanager
 from dataclasses import fields
 from importlib import metadata
 from pathlib import Path
-from typing import Any, Callable, Iterator, Sequence
+from typing import Any, Callable, Sequence
 
 from threepart.catalogue import Case, load_cases
+from threepart.progress import heartbeat
 from threepart.output import atomic_dir, json_safe, strict_json, validate_json
 
 from . import render
@@ -49,8 +48,6 @@ SLIP_STUDY_CASE = "slip_Q0.4"
 SIE_SCHEMES = ("plain", "projected")
 #: how many of the tightest checks (error/limit, worst first) the report lists on top
 TIGHTEST = 10
-#: seconds between the lines that say a long stage is still running
-HEARTBEAT_S = 15.0
 PACKAGES = ("threepart", "numpy", "scipy", "matplotlib", "scikit-fem", "gmsh", "meshio",
             "threadpoolctl")
 
@@ -104,32 +101,6 @@ def _result_dict(res: Any, dt: float) -> dict[str, Any]:
     return d
 
 
-@contextmanager
-def _heartbeat(say: Callable[[str], None], stage: Callable[[], str],
-               every: float | None = None) -> Iterator[None]:
-    """Say ``"<stage> still running (N s)"`` every ``every`` seconds until the block ends.
-
-    A stage such as the FE fretting cycle (over a minute on the default mesh)
-    reports nothing of its own until it is done; these lines, in the run's
-    one-line-per-stage style, show that it is still working.
-    """
-    stop = threading.Event()
-    t0 = time.perf_counter()
-    period = HEARTBEAT_S if every is None else every
-
-    def beat() -> None:
-        while not stop.wait(period):
-            say(f"{stage()} still running ({time.perf_counter() - t0:.0f} s)")
-
-    thread = threading.Thread(target=beat, name="threepart-progress", daemon=True)
-    thread.start()
-    try:
-        yield
-    finally:
-        stop.set()
-        thread.join()
-
-
 def run(mode: Mode, cases: Sequence[Case], say: Callable[[str], None],
         calculix: bool = False, robustness: bool = False) -> tuple[list[CaseRun], list[Study], dict[str, float]]:
     """Solve and compare every case, then the convergence studies; return the numbers.
@@ -158,7 +129,7 @@ def run(mode: Mode, cases: Sequence[Case], say: Callable[[str], None],
         def running(tag: str = tag, pending: list[str] = pending) -> str:
             return f"{tag}   {pending[0] if pending else 'comparison'}"
 
-        with _heartbeat(say, running):
+        with heartbeat(say, running):
             r = run_case(case, mode, cache, progress=progress)
         failed = r.failed()
         verdict = "PASS" if r.passed else (
@@ -174,14 +145,14 @@ def run(mode: Mode, cases: Sequence[Case], say: Callable[[str], None],
         t1 = time.perf_counter()
         for scheme in SIE_SCHEMES:
             say(f"[study] SIE ({scheme}) convergence in n on {study_case.name}: n = {list(mode.sie_study_n)}")
-            with _heartbeat(say, lambda: f"[study]   SIE ({scheme})"):
+            with heartbeat(say, lambda: f"[study]   SIE ({scheme})"):
                 studies.append(sie_study(study_case, mode.sie_study_n, scheme=scheme,
                                          progress=lambda m: say(f"[study]   {m}")))
         timings["sie_study_s"] = time.perf_counter() - t1
     if study_case is not None and mode.fem_study_n:
         t1 = time.perf_counter()
         say(f"[study] FEM convergence in h on {study_case.name}: W/h = {list(mode.fem_study_n)}")
-        with _heartbeat(say, lambda: "[study]   FEM"):
+        with heartbeat(say, lambda: "[study]   FEM"):
             studies.append(fem_study(study_case, mode.fem_study_n,
                                      progress=lambda m: say(f"[study]   {m}")))
         timings["fem_study_s"] = time.perf_counter() - t1
@@ -190,7 +161,7 @@ def run(mode: Mode, cases: Sequence[Case], say: Callable[[str], None],
         t1 = time.perf_counter()
         say(f"[study] two-body friction FEM convergence in h on {slip_case.name}: "
             f"W/h = {list(mode.fem_study_n)}")
-        with _heartbeat(say, lambda: "[study]   two-body friction FEM"):
+        with heartbeat(say, lambda: "[study]   two-body friction FEM"):
             studies.append(fem_slip_study(slip_case, mode.fem_study_n,
                                           progress=lambda m: say(f"[study]   {m}")))
         timings["fem_slip_study_s"] = time.perf_counter() - t1
@@ -198,7 +169,7 @@ def run(mode: Mode, cases: Sequence[Case], say: Callable[[str], None],
         t1 = time.perf_counter()
         say(f"[study] CalculiX convergence in h (W/h = {list(CALCULIX_N)}) and in the penalty "
             f"(K = {list(CALCULIX_K)} E/h) on {CALCULIX_CASE}, scaled to small slopes")
-        with _heartbeat(say, lambda: "[study]   CalculiX"):
+        with heartbeat(say, lambda: "[study]   CalculiX"):
             studies.extend(calculix_studies(say))
         timings["calculix_study_s"] = time.perf_counter() - t1
     cycle = next((r for r in runs if r.case.kind == "fretting" and "closedform" in r.results), None)
@@ -206,7 +177,7 @@ def run(mode: Mode, cases: Sequence[Case], say: Callable[[str], None],
         t1 = time.perf_counter()
         say(f"[study] FEM fretting energy in the load step on {cycle.case.name} (quick mesh): "
             f"states per branch = {list(STEP_STATES)}")
-        with _heartbeat(say, lambda: "[study]   FEM fretting cycle"):
+        with heartbeat(say, lambda: "[study]   FEM fretting cycle"):
             studies.append(fem_step_study(cycle.case, cycle.results["closedform"], "quick",
                                           STEP_STATES, progress=lambda m: say(f"[study]   {m}")))
         timings["fem_step_study_s"] = time.perf_counter() - t1
@@ -220,7 +191,7 @@ def _robustness(runs: list[CaseRun], timings: dict[str, float], say: Callable[[s
     t1 = time.perf_counter()
     drawn = ", ".join(f"{n} {g}" for g, n in robustness.COUNTS.items())
     say(f"[study] robustness: a seeded wide draw ({drawn}), the closed form against the SIE")
-    with _heartbeat(say, lambda: "[study]   robustness"):
+    with heartbeat(say, lambda: "[study]   robustness"):
         r = robustness.study(say=lambda m: say(f"[study]   {m}"))
     failed = r.failed()
     say("[study] robustness " + ("PASS" if r.passed else "FAIL " + ", ".join(c.quantity for c in failed)))
@@ -329,7 +300,7 @@ def write_report(tmp: Path, mode: Mode, runs: Sequence[CaseRun], studies: Sequen
     tired: dict[str, dict[str, Any]] = {}
     todo = [r for r in runs if r.case.reference in r.results]
     say(f"[report] drawing the plots of {len(todo)} cases and {len(studies)} studies ...")
-    with _heartbeat(say, lambda: "[report] drawing the plots"):
+    with heartbeat(say, lambda: "[report] drawing the plots"):
         for r in todo:
             name, ref, physical = r.case.name, r.case.reference, r.case.material is not None
             if r.case.kind == "steady":

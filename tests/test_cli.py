@@ -551,8 +551,7 @@ def test_a_long_fatigue_run_says_it_is_still_running(capsys, monkeypatch):
     import io
     import threading
 
-    from threepart import cli
-    from threepart.reports import verify
+    from threepart import cli, progress
 
     class Stderr(io.StringIO):
         beat = threading.Event()
@@ -570,7 +569,7 @@ def test_a_long_fatigue_run_says_it_is_still_running(capsys, monkeypatch):
         assert err.beat.wait(LINE_GUARD_S)
         return cycle
 
-    monkeypatch.setattr(verify, "HEARTBEAT_S", 1e-3)
+    monkeypatch.setattr(progress, "HEARTBEAT_S", 1e-3)
     monkeypatch.setattr(cli, "_fretting", held)
     monkeypatch.setattr(sys, "stderr", err)
     assert main([*FATIGUE, "--states", "3"]) == 0

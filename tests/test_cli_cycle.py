@@ -226,8 +226,8 @@ def test_the_closed_forms_refusal_is_one_line_and_auto_falls_back_to_the_sie_say
 
 
 def test_the_numerical_methods_say_they_are_still_running(capsys, tmp_path, monkeypatch):
-    """The SIE's march runs inside the heartbeat of the verification run (its stage named)."""
-    import threepart.reports.verify as verify
+    """The SIE's march runs inside the heartbeat (threepart.progress), its stage named."""
+    from threepart import cli_cycle
 
     stages: list[str] = []
 
@@ -236,7 +236,7 @@ def test_the_numerical_methods_say_they_are_still_running(capsys, tmp_path, monk
         stages.append(stage())
         yield
 
-    monkeypatch.setattr(verify, "_heartbeat", record)
+    monkeypatch.setattr(cli_cycle, "heartbeat", record)
     path = tmp_path / "h.csv"
     _write_history(path, _history_rows(catalogue.get_case(CASE).states, steps=2, cycles=1))
     _run(capsys, ["--case", CASE, "--history", str(path)])

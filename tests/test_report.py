@@ -14,7 +14,7 @@ from pathlib import Path
 
 import pytest
 
-from threepart import catalogue
+from threepart import catalogue, progress
 from threepart.convergence import is_monotone
 from threepart.errors import LiftOffError
 from threepart.reports import render, sections, verify
@@ -383,7 +383,7 @@ def test_a_long_stage_says_it_is_still_running(tmp_path, monkeypatch, capsys):
         return slow.normal(*args, **options)
 
     install_fakes(monkeypatch, fem=replace(slow, normal=sleepy))
-    monkeypatch.setattr(verify, "HEARTBEAT_S", 0.1)
+    monkeypatch.setattr(progress, "HEARTBEAT_S", 0.1)
     monkeypatch.setattr(verify, "write_report", lambda tmp, *a: verify.build_report(
         a[0], a[1], a[2], a[3], {}))
     case = catalogue.get_case("caseA_sym")

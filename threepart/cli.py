@@ -49,24 +49,11 @@ from typing import Any, Iterator, NoReturn, Sequence
 
 from threepart import cli_cycle
 from threepart.__main__ import COMMANDS, INTERRUPTED, program
+from threepart.progress import heartbeat
+from threepart.units import UNITS
 
 __all__ = ["main", "build_parser", "real_arg", "UNITS", "NUMERIC_OPTIONS", "LIST_OPTIONS", "UsageError"]
 
-#: the unit printed with each quantity, by its key in the output ("1": dimensionless).
-#: The library is unit-agnostic; these are the labels of one consistent set.
-UNITS: dict[str, str] = {
-    "R1": "mm", "R2": "mm", "b": "mm", "R": "mm",     # punch geometry
-    "A": "1/MPa", "E": "MPa",                         # compliance, eq. (4); modulus
-    "P": "N/mm", "Q": "N/mm",                         # loads per unit length
-    "s": "mm", "s_min": "mm", "s_max": "mm",          # lever arms
-    "a": "mm", "c": "mm", "x": "mm",                  # contact edges, peak positions
-    "d": "mm", "e": "mm", "left": "mm", "right": "mm",  # stick zone
-    "alpha": "rad",                                   # tilt, eq. (2)
-    "p": "MPa", "q": "MPa",                           # pressure, shear traction
-    "sigma_bulk": "MPa",                              # bulk stress in the substrate, tension > 0
-    "f": "1", "nu": "1",                              # friction coefficient, Poisson's ratio
-    "slope": "rad",                                   # Punch.max_slope: tilt, profile, surface
-}
 #: options that take a number; ``--s -1e-3`` is read as ``--s=-1e-3`` (argparse alone
 #: would take ``-1e-3`` for an option)
 NUMERIC_OPTIONS = ("--R1", "--R2", "--b", "--R", "--A", "--E", "--nu", "--P", "--s", "--Q", "--f",
@@ -675,20 +662,19 @@ def _cmd_fatigue(args: argparse.Namespace) -> int:
     _fatigue_iv(args)
     A = similar_pair(args.E, args.nu)
     # a long run says it is still running every 15 s on stderr, as the verification run does
-    from threepart.reports.verify import _heartbeat
 
     def say(msg: str) -> None:
         print(f"threepart fatigue: {msg}", file=sys.stderr, flush=True)
 
     steady = args.state0 is not None
-    with _heartbeat(say, lambda: "the flight cycle's steady state" if steady else
+    with heartbeat(say, lambda: "the flight cycle's steady state" if steady else
                     f"the fretting cycle ({args.states} states per branch)"):
         cycle = _flight(args, punch, A) if steady else _fretting(args, punch, A)
     normal = _wider_normal(cycle)
     x, z = _fatigue_grid(args, normal)
     a, c = normal.a, normal.c
     line = -a + (a + c) * (np.arange(args.ns) + 0.5) / args.ns   # inside: never on a contact end
-    with _heartbeat(say, lambda: f"the stresses of {2 if steady else cycle.Q.size} recorded states "
+    with heartbeat(say, lambda: f"the stresses of {2 if steady else cycle.Q.size} recorded states "
                                  f"at {args.nx * args.nz + args.ns} points"):
         res = fatigue(cycle, x, z, E=args.E, nu=args.nu, k=args.k,
                       surface=np.union1d(np.ravel(x), line))

@@ -18,6 +18,8 @@ import math
 import sys
 from typing import Any
 
+from threepart.progress import heartbeat
+
 __all__ = ["add_parser", "run", "state_arg"]
 
 #: grid of the fatigue hot spots, as ``threepart fatigue``'s defaults: x over [-a - W/4, c + W/4]
@@ -220,27 +222,26 @@ def _march(args: argparse.Namespace, pr: dict[str, Any]) -> Any:
 
 def run(args: argparse.Namespace) -> int:
     """Run ``threepart cycle``: check the input, solve, print, and write ``--out``; the exit status."""
-    from threepart.reports.verify import _heartbeat
 
     pr = _problem(args)
     history = "history" in pr
     what = (f"the load history ({len(pr['history'])} states, {args.method})" if history
             else f"the steady state ({args.method})")
-    with _heartbeat(_say, lambda: what):
+    with heartbeat(_say, lambda: what):
         res = _march(args, pr) if history else _steady(args, pr)
     if history:
         figures = _history_figures(res)
         _print_history(pr, res, figures)
     else:
         figures = _steady_figures(res)
-        with _heartbeat(_say, lambda: "the fatigue hot spots"):
+        with heartbeat(_say, lambda: "the fatigue hot spots"):
             hot = None if res.shakedown else _hot_spots(res, pr)
         _print_steady(pr, res, figures, hot)
     if args.out is not None:
         if history:
             figures["loop"] = res.loop()
         else:
-            with _heartbeat(_say, lambda: "the hysteresis loop (the cycle marched by the SIE)"):
+            with heartbeat(_say, lambda: "the hysteresis loop (the cycle marched by the SIE)"):
                 figures["loop"] = _steady_loop(pr)
         _write_out(args.out, pr, res, figures)
     return 0

@@ -1,0 +1,22 @@
+"""The unit of each quantity the command line and the report print, by its key.
+
+The library is unit-agnostic; these are the labels of one consistent set (mm, N/mm, MPa).
+"""
+from __future__ import annotations
+
+__all__ = ["UNITS"]
+
+#: the unit printed with each quantity, by its key in the output ("1": dimensionless)
+UNITS: dict[str, str] = {
+    "R1": "mm", "R2": "mm", "b": "mm", "R": "mm",     # punch geometry
+    "A": "1/MPa", "E": "MPa",                         # compliance, eq. (4); modulus
+    "P": "N/mm", "Q": "N/mm",                         # loads per unit length
+    "s": "mm", "s_min": "mm", "s_max": "mm",          # lever arms
+    "a": "mm", "c": "mm", "x": "mm",                  # contact edges, peak positions
+    "d": "mm", "e": "mm", "left": "mm", "right": "mm",  # stick zone
+    "alpha": "rad",                                   # tilt, eq. (2)
+    "p": "MPa", "q": "MPa",                           # pressure, shear traction
+    "sigma_bulk": "MPa",                              # bulk stress in the substrate, tension > 0
+    "f": "1", "nu": "1",                              # friction coefficient, Poisson's ratio
+    "slope": "rad",                                   # Punch.max_slope: tilt, profile, surface
+}
