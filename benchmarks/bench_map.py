@@ -1,7 +1,7 @@
 """Time the quick validity map on 1 and on 2 local dask workers, side by side, and the speed-up.
 
 Run ``python benchmarks/bench_map.py`` (the real finite-body ``evaluate`` of
-:mod:`reports.validity`; issue 12's budget is 15 minutes for the quick map on
+:mod:`reports.map.validity`; issue 12's budget is 15 minutes for the quick map on
 this 2-core machine) or ``python benchmarks/bench_map.py --fake 2`` (the same
 quick grid with a fake ``evaluate`` that sleeps 2 s per point, so that the
 engine itself is timed: dask's start-up and per-task overhead). Each run
@@ -20,11 +20,11 @@ grid (all axes represented) in this process, one after the other, and scales
 the mean ``time_s`` to the full grid plus its bisection steps (``--crossings``
 per curve, each at most ``STEP_CAP["full"]`` steps) on ``--workers`` workers.
 It also times ``max(1, N // 4)`` points of each study of the full map
-(:mod:`reports.map_studies`: the partial slip and the small slope on their
+(:mod:`reports.map.studies`: the partial slip and the small slope on their
 subsets) and adds them, the small-slope crossings (``--slope-evaluations``
 evaluations of a slope point each) and the CalculiX referee points
 (``--referee-s`` CPU seconds each, not timed here: ``python -m
-threepart.reports.map_referee`` times them).
+threepart.reports.map.referee`` times them).
 """
 from __future__ import annotations
 
@@ -36,13 +36,13 @@ import time
 from pathlib import Path
 from typing import Any
 
-from threepart.reports import validity
-from threepart.reports.map_boundary import CURVE_AXES, STEP_CAP
-from threepart.reports.map import exit_status, run_map
-from threepart.reports.map_referee import REFEREE_POINTS
-from threepart.reports.validity import RESULT_KEYS
-from threepart.reports.validity_slip import evaluate_slip
-from threepart.reports.validity_slope import evaluate_slope
+from threepart.reports.map import validity
+from threepart.reports.map.boundary import CURVE_AXES, STEP_CAP
+from threepart.reports.map.sweep import exit_status, run_map
+from threepart.reports.map.referee import REFEREE_POINTS
+from threepart.reports.map.validity import RESULT_KEYS
+from threepart.reports.map.validity_slip import evaluate_slip
+from threepart.reports.map.validity_slope import evaluate_slope
 
 
 class SleepEvaluate:

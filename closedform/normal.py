@@ -271,7 +271,7 @@ def solve_normal(punch: Punch, P: float, s: float = 0.0, *, A: float,
         Evaluate the paper's formulas even past half-plane theory's small-slope
         limit and the arcs' extents (no :func:`threepart.validate.check_contact`),
         for a study of the formulas' own error such as the validity map
-        (:mod:`threepart.reports.validity`); such an answer lies outside the
+        (:mod:`threepart.reports.map.validity`); such an answer lies outside the
         theory. Default False: refused. A bool (Python's or numpy's); anything
         else is a ``TypeError``.
 
@@ -363,7 +363,7 @@ def lift_off(punch: Punch, P: float, A: float, *, beyond_small_slopes: bool = Fa
     the geometry's) or a concave centre separates (``P`` below :func:`P_min` at
     that ``s``). ``beyond_small_slopes=True`` skips the arcs' check, as in
     :func:`solve_normal`, for a study of the formulas past the arcs (the
-    validity map, :mod:`threepart.reports.validity`).
+    validity map, :mod:`threepart.reports.map.validity`).
 
     Raises
     ------

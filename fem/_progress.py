@@ -1,6 +1,6 @@
 """One line per stage on stderr while a long FE solve runs.
 
-The lines look like the verification run's (``reports/verify.py``): the seconds
+The lines look like the verification run's (``reports/verify/report.py``): the seconds
 since the call began, then the stage, e.g.::
 
        1.2s  fem: locate: contact [-1.02, 1.05] (trial and locate meshes)

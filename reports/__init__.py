@@ -5,9 +5,9 @@ through :mod:`closedform`, :mod:`sie` and :mod:`fem` and compares them.
 
 The cases come from the one catalogue (:mod:`threepart.catalogue`) and the limits
 from the one tolerance table (:mod:`threepart.tolerances`). ``threepart verify``
-is :func:`reports.verify.main` and ``threepart figures`` :func:`reports.figures.main`;
-the report is one list of sections (:mod:`reports.sections`) rendered as
-Markdown and HTML (:mod:`reports.render`).
+is :func:`reports.verify.report.main` and ``threepart figures`` :func:`reports.figures.main`;
+the report is one list of sections (:mod:`reports.verify.sections`) rendered as
+Markdown and HTML (:mod:`reports.verify.render`).
 
 Runs and comparison
 -------------------
@@ -18,7 +18,7 @@ compare         -- method-agnostic comparison of two results, judged against the
 Check           -- one compared quantity: values, normalised error, limit, reason, verdict
 
 A flight cycle (a case with two ``states``) is solved by every method with a
-steady state and marched as a load history (:mod:`reports.flight`).
+steady state and marched as a load history (:mod:`reports.verify.flight`).
 
 Studies
 -------
@@ -32,10 +32,10 @@ load_refs       -- read a dataset back, every CSV checked against its JSON bit f
 """
 from __future__ import annotations
 
-from .runs import MODES, CaseRun, run_case
+from .verify.runs import MODES, CaseRun, run_case
 from .compare import Check, compare
 from .refs import export_refs, load_refs
-from .studies import fem_study, sie_study
+from .verify.studies import fem_study, sie_study
 
 __all__ = ["CaseRun", "run_case", "MODES", "compare", "Check", "sie_study", "fem_study",
            "export_refs", "load_refs"]

@@ -142,7 +142,7 @@ def figure_data(which: str, sie: bool = True) -> dict[str, list[float]]:
 
 
 def _draw(cs: list[Curve], which: str, field: str, path: Path) -> None:
-    from .plots import new_figure, save
+    from .verify.plots import new_figure, save
 
     b = GEOMETRY["b"]
     fig, axes = new_figure(size=(7.0, 4.6))

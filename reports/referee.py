@@ -60,7 +60,7 @@ from threepart.output import atomic_dir, json_safe, strict_json
 from threepart.results import Diagnostics, NormalResult
 
 from .compare import EDGE_FRACTION, Check, compare
-from .sections import Bullets, Document, Item, Section, Status, Table, Verdict, fmt, words
+from .verify.sections import Bullets, Document, Item, Section, Status, Table, Verdict, fmt, words
 
 __all__ = ["PointsResult", "from_points", "read_pressure", "Pitfall", "diagnose", "judge",
            "write_report", "calculix_result", "calculix_studies", "CALCULIX_CASE", "SLOPE_SCALE",
@@ -474,7 +474,7 @@ def _document(doc: dict[str, Any]) -> Document:
 
 def write_report(doc: dict[str, Any], out: str | Path) -> None:
     """Write ``report.md``, ``report.html`` and ``report.json`` into the new directory ``out``."""
-    from .render import render_html, render_markdown
+    from .verify.render import render_html, render_markdown
 
     with atomic_dir(out, command="compare") as tmp:
         d = _document(doc)

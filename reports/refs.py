@@ -51,7 +51,7 @@ from threepart.catalogue import Case, load_cases
 from threepart.output import atomic_dir, json_safe, strict_json, validate_json
 from threepart.tolerances import TOLERANCES
 
-from .runs import MODES, solve
+from .verify.runs import MODES, solve
 from .compare import normal_of
 
 __all__ = ["DATASET_VERSION", "SCHEMA_FILE", "GRID", "SUBSURFACE", "CONVENTIONS", "PRECISION_OF",

@@ -13,7 +13,7 @@ import pytest
 from threepart.catalogue import get_case, load_cases
 from threepart.reports import figures
 from threepart.reports.compare import normal_of
-from threepart.reports.runs import MODES, run_case
+from threepart.reports.verify.runs import MODES, run_case
 
 from .regression import check_baseline
 

@@ -182,10 +182,10 @@ def test_ccx_default_deck_meets_the_issue_targets(tmp_path):
 def test_verify_column_without_ccx_says_so(monkeypatch):
     """Without ccx the CalculiX column is one empty study whose note says so, and the report
     that carries it is valid against the schema and shows the note."""
-    from threepart.reports import render
-    from threepart.reports.runs import MODES
+    from threepart.reports.verify import render
+    from threepart.reports.verify.runs import MODES
     from threepart.reports.referee import calculix_studies
-    from threepart.reports.verify import build_report, validate
+    from threepart.reports.verify.report import build_report, validate
 
     monkeypatch.setattr(calculix, "ccx_available", lambda: False)
     studies = calculix_studies(say=lambda m: None)

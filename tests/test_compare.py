@@ -13,7 +13,7 @@ from threepart import closedform as cf
 from threepart.closedform import FrettingSolution
 from threepart import catalogue, rigid_punch
 from threepart.punch import Punch
-from threepart.reports import verify
+from threepart.reports.verify import report as verify
 from threepart.reports.compare import compare
 from threepart.tolerances import (COMPARISONS, FRETTING_QUANTITIES, NORMAL_QUANTITIES, QUANTITIES, STRESS_QUANTITIES,
                                   SLIP_QUANTITIES, TOLERANCES, tolerance)

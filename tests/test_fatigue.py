@@ -464,7 +464,7 @@ def test_the_report_uses_the_case_s_own_modulus_not_the_similar_pair_of_its_comp
     """The catalogue's A of a case with a material is a rigid punch's, 2(1 - ν²)/E: reading it as a
     similar pair's, 4(1 - ν²)/A, doubled the E behind every SWT value of the report."""
     from threepart import rigid_punch
-    from threepart.reports.stress import fatigue_hot_spots
+    from threepart.reports.verify.stress import fatigue_hot_spots
 
     E, nu = 115e3, 0.32                                   # the fan-blade flank's Ti-6Al-4V
     normal = cf.solve_normal(Punch(10.0, 5.0, 1.0), 400.0, 0.1, A=rigid_punch(E=E, nu=nu))

@@ -17,7 +17,7 @@ from threepart.fem.mesh import PRESETS
 from threepart.material import similar_pair
 from threepart.meshes.punch import PunchSpec
 from threepart.punch import Punch
-from threepart.reports import validity
+from threepart.reports.map import validity
 from threepart.reports.compare import normal_figures
 from threepart.tolerances import tolerance
 

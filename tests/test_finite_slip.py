@@ -20,7 +20,8 @@ from threepart.fem.twobody import TwoBodyModel
 from threepart.errors import FullSlidingError
 from threepart.material import similar_pair
 from threepart.punch import Punch
-from threepart.reports import validity, validity_slip
+from threepart.reports.map import validity
+from threepart.reports.map import validity_slip
 from threepart.tolerances import tolerance
 
 E, NU, F = 1.0, 0.3, 0.5

@@ -156,8 +156,8 @@ def test_the_map_point_costs_have_the_rigid_punchs_sign_and_the_load_level_is_p0
     peak, as against the rigid punch and CalculiX; ``load_level`` is the closed form's
     ``p0 A / 2`` (``A = 4 (1 - nu^2)/E``, eq. 4), computed here from its pressure."""
     from threepart.material import similar_pair
-    from threepart.reports import validity
-    from threepart.reports.validity_slope import SLOPE_RESULT_KEYS, evaluate_slope
+    from threepart.reports.map import validity
+    from threepart.reports.map.validity_slope import SLOPE_RESULT_KEYS, evaluate_slope
 
     point = validity.MapPoint(1.0, 0.1, 0.1, 4.0)
     out = evaluate_slope(point, quick=True)
@@ -202,7 +202,7 @@ def test_the_finite_punch_has_no_spike_where_its_centre_joins_its_edges(mesh):
     the interface's slope taken from the profile (fem.contact.solve_kinematic) keep the
     first-order pressure as smooth there as the small-slope one, its reference (b/R1 = 0.3,
     (a - b)/R1 = 0.3, H/b = 4: p0/E* = 0.12)."""
-    from threepart.reports import validity
+    from threepart.reports.map import validity
 
     point = validity.MapPoint(1.0, 0.3, 0.3, 4.0)
     punch, P = validity._punch(point), validity._load(point)

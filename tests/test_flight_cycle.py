@@ -19,7 +19,7 @@ from threepart import catalogue
 from threepart.fatigue import fatigue
 from threepart.punch import Punch
 from threepart.reports.compare import compare
-from threepart.reports.flight import HISTORY_QUANTITIES, history_checks
+from threepart.reports.verify.flight import HISTORY_QUANTITIES, history_checks
 from threepart.tolerances import STEADY_QUANTITIES, tolerance
 
 #: the perturbation's factors on a tolerance, as tests/test_compare.py: over fails, under passes
@@ -158,7 +158,7 @@ def test_a_perturbed_steady_state_fails_that_tolerance_only(quantity, flight):
 @pytest.fixture(scope="module")
 def flight_run():
     """The flight case by every method with a steady state (closed form, SIE) and the SIE's march."""
-    from threepart.reports.runs import MODES, run_case
+    from threepart.reports.verify.runs import MODES, run_case
 
     return run_case(catalogue.get_case(CASE), MODES["quick"], methods=("closedform", "sie"))
 
@@ -202,8 +202,8 @@ def test_a_perturbed_history_check_fails_that_tolerance_only(quantity, flight_ru
 @pytest.fixture(scope="module")
 def flight_report(tmp_path_factory, flight_run):
     """The report of the flight case alone."""
-    from threepart.reports import verify
-    from threepart.reports.runs import MODES
+    from threepart.reports.verify import report as verify
+    from threepart.reports.verify.runs import MODES
 
     run = flight_run
     out = tmp_path_factory.mktemp("flight")

@@ -1,4 +1,4 @@
-"""The sweep engine of the validity map (:mod:`reports.map`), on fake physics.
+"""The sweep engine of the validity map (:mod:`reports.map.sweep`), on fake physics.
 
 Every test injects a fake ``evaluate`` whose numbers are a known analytic
 surface of the point (:func:`expected`) and a fake control, so nothing here
@@ -26,11 +26,11 @@ import pytest
 
 from threepart.cli import main as cli_main
 from threepart.output import MARKER, OutputExistsError, atomic_dir, foreign_entries, read_marker
-from threepart.reports import map as map_mod
-from threepart.reports.map import (COLUMNS, CONTROL_LIMIT, MAX_WORKERS, below_level,
+from threepart.reports.map import sweep as map_mod
+from threepart.reports.map.sweep import (COLUMNS, CONTROL_LIMIT, MAX_WORKERS, below_level,
                                    designer_sentence, exit_status, run_map)
-from threepart.reports.map_schema import BOUNDARY_COLUMNS, POINT_FIELDS
-from threepart.reports.validity import RESULT_KEYS, MapPoint
+from threepart.reports.map.schema import BOUNDARY_COLUMNS, POINT_FIELDS
+from threepart.reports.map.validity import RESULT_KEYS, MapPoint
 
 ROOT = Path(__file__).resolve().parents[1]
 #: the fake grid: two R2/R1, one H/b, 3 x 3 in b/R1 and (a-b)/R1
@@ -185,7 +185,7 @@ def finished(tmp_path_factory, scheduler):
 # ---------------------------------------------------------------------------------------
 def test_the_map_holds_the_fake_numbers_and_validates(finished, scheduler):
     out, doc, evaluated, lines = finished
-    schema = json.loads((ROOT / "reports" / "map.schema.json").read_text())
+    schema = json.loads((ROOT / "reports" / "map" / "map.schema.json").read_text())
     on_disk = json.loads((out / "map.json").read_text())
     jsonschema.validate(on_disk, schema)
     assert on_disk == doc
@@ -344,10 +344,10 @@ def test_the_schema_rejects_what_it_should(finished):
 
 
 def test_the_design_space_is_declared_once_and_agrees_with_the_point_and_the_schema():
-    """A new map axis (issue 23) must appear in MapPoint, the axes of reports.map_schema and the schema."""
+    """A new map axis (issue 23) must appear in MapPoint, the axes of reports.map.schema and the schema."""
     import dataclasses
 
-    from threepart.reports.map_schema import COORDINATES, FILE_LABELS, GROUP_AXES, PLOT_AXES
+    from threepart.reports.map.schema import COORDINATES, FILE_LABELS, GROUP_AXES, PLOT_AXES
 
     fields = [f.name for f in dataclasses.fields(MapPoint)]
     assert sorted(COORDINATES) == sorted(fields) and len(set(COORDINATES)) == len(COORDINATES)
@@ -394,7 +394,7 @@ KILLED_RUN = """
 import sys
 from pathlib import Path
 from tests.test_map import POINTS, FakeEvaluate, fake_control
-from threepart.reports.map import run_map
+from threepart.reports.map.sweep import run_map
 run_map(sys.argv[1], scheduler=sys.argv[2], evaluate=FakeEvaluate(Path(sys.argv[3]), sleep=0.2),
         points=POINTS, control=fake_control, say=lambda m: print(m, flush=True))
 """
@@ -612,7 +612,7 @@ def test_killing_a_busy_worker_at_the_close_of_the_map_s_own_cluster_prints_noth
 
     from dask.distributed import Event
 
-    from threepart.reports.map_engine import open_engine
+    from threepart.reports.map.engine import open_engine
 
     started = f"threepart-test-{_uuid.uuid4().hex}"
     with open_engine(None, 1, map_mod.CONNECT_TIMEOUT) as (client, _):
@@ -631,7 +631,7 @@ CTRL_C_RUN = """
 import functools, sys
 from pathlib import Path
 from tests.test_map import POINTS, FakeEvaluate, fake_control
-from threepart.reports import map as map_mod
+from threepart.reports.map import sweep as map_mod
 from threepart.cli import main
 if __name__ == "__main__":
     map_mod.run_map = functools.partial(map_mod.run_map, points=POINTS, control=fake_control,
@@ -703,7 +703,7 @@ def test_a_full_disk_while_the_map_is_written_leaves_nothing_half_written(tmp_pa
 
 
 def test_the_help_counts_the_quick_grid(capsys):
-    from threepart.reports.validity import map_points
+    from threepart.reports.map.validity import map_points
 
     assert cli_main(["map", "--help"]) == 0
     text = " ".join(capsys.readouterr().out.split())
@@ -718,7 +718,7 @@ OVERHANGS = (0.01, 0.03, 0.1, 0.3)
 
 
 def grid_samples(f, xs=OVERHANGS):
-    from threepart.reports.map_boundary import Sample
+    from threepart.reports.map.boundary import Sample
 
     return [Sample(x, *f(x), f"x={x:g}") for x in xs]
 
@@ -727,7 +727,7 @@ def test_bisection_finds_the_exact_crossing_of_a_curve_linear_in_log_overhang():
     """e = k ln(x / x0): the interpolation in log overhang is exact, and so is the band's width."""
     import math
 
-    from threepart.reports.map_boundary import REL_WIDTH, locate
+    from threepart.reports.map.boundary import REL_WIDTH, locate
 
     k, x0, u = 0.02, 0.02, 0.002
     f = lambda x: (k * math.log(x / x0), u)                     # noqa: E731
@@ -750,7 +750,7 @@ def test_bisection_of_a_monotone_curve_and_of_one_that_changes_sign():
     """The crossings against the exact ones: inside the final bracket, within its relative width."""
     import math
 
-    from threepart.reports.map_boundary import REL_WIDTH, locate
+    from threepart.reports.map.boundary import REL_WIDTH, locate
 
     monotone = lambda x: (0.3 * x, 1e-4)                        # noqa: E731  (surface(), b/R1 = 0.1)
     (r,) = locate(monotone, grid_samples(monotone), 0.01, cap=10)
@@ -817,7 +817,7 @@ def test_the_map_locates_each_signed_boundary_and_resumes_its_bisection(tmp_path
     """The boundaries in map.json against the exact crossings; a run stopped mid-bisection resumes."""
     import math
 
-    from threepart.reports.map_boundary import LEVELS
+    from threepart.reports.map.boundary import LEVELS
 
     def run(out, **kw):
         kw.setdefault("say", lambda m: None)
@@ -866,7 +866,7 @@ def test_signed_contours_do_not_fold_back_where_the_error_changes_sign():
     """
     import numpy as np
 
-    from threepart.reports.map_plots import level_paths
+    from threepart.reports.map.plots import level_paths
 
     xs = np.geomspace(0.01, 0.5, 7)
     bs = np.geomspace(0.1, 3.0, 5)
@@ -915,7 +915,7 @@ def test_a_point_with_a_moment_is_loaded_at_its_overhang_and_half_its_lift_off_a
 
     from threepart import closedform, registry
     from threepart.material import similar_pair
-    from threepart.reports import validity
+    from threepart.reports.map import validity
 
     punch, P, s = validity._load_case(point)
     A = similar_pair(validity.E, validity.NU)
@@ -943,7 +943,7 @@ KILLED_IN_BISECTION = """
 import sys
 from pathlib import Path
 from tests.test_map import SIGNED_POINTS, SignedEvaluate, fake_control
-from threepart.reports.map import run_map
+from threepart.reports.map.sweep import run_map
 run_map(sys.argv[1], scheduler=sys.argv[2], evaluate=SignedEvaluate(Path(sys.argv[3]), sleep=0.1),
         points=SIGNED_POINTS, control=fake_control, quick=True, say=lambda m: print(m, flush=True))
 """
@@ -975,7 +975,7 @@ def test_the_errors_are_signed_closed_form_minus_finite_body():
     error is positive, swapped every one is negative, and each magnitude is the comparator's."""
     from threepart import closedform
     from threepart.material import similar_pair
-    from threepart.reports import validity
+    from threepart.reports.map import validity
     from threepart.reports.compare import normal_figures
 
     punch, A = validity._punch(MapPoint(0.5, 0.3, 0.1, 4.0)), similar_pair(validity.E, validity.NU)
@@ -996,11 +996,11 @@ def test_the_errors_are_signed_closed_form_minus_finite_body():
 # the studies on subsets (issue 23): partial slip, the small-slope load axis, CalculiX
 # ---------------------------------------------------------------------------------------
 from threepart.calculix import CcxMissing  # noqa: E402
-from threepart.reports.map_schema import SLIP_COLUMNS, SLOPE_COLUMNS  # noqa: E402
-from threepart.reports.map_studies import FIGURES, Studies, curve_name  # noqa: E402
-from threepart.reports.validity import SLIP_SUBSET, SLOPE_SUBSET, slope_curves, subset  # noqa: E402
-from threepart.reports.validity_slip import SLIP_RESULT_KEYS  # noqa: E402
-from threepart.reports.validity_slope import SLOPE_RESULT_KEYS  # noqa: E402
+from threepart.reports.map.schema import SLIP_COLUMNS, SLOPE_COLUMNS  # noqa: E402
+from threepart.reports.map.studies import FIGURES, Studies, curve_name  # noqa: E402
+from threepart.reports.map.validity import SLIP_SUBSET, SLOPE_SUBSET, slope_curves, subset  # noqa: E402
+from threepart.reports.map.validity_slip import SLIP_RESULT_KEYS  # noqa: E402
+from threepart.reports.map.validity_slope import SLOPE_RESULT_KEYS  # noqa: E402
 
 #: the fake grid's studies: slip on R2/R1 = 1 and 0.5 (SLIP_SUBSET: all of POINTS), small slope
 #: on R2/R1 = 1 (SLOPE_SUBSET), three crossings, two referee points
@@ -1142,7 +1142,7 @@ def test_the_studies_are_columns_and_sections_of_the_map_and_validate(studied):
 
 
 def test_the_stick_zone_sentence_states_what_the_sign_means():
-    from threepart.reports.map_plots import stick_sentence
+    from threepart.reports.map.plots import stick_sentence
 
     def pts(*d):
         return [{"d_rel_error": x, "e_rel_error": 0.0, "slip_fem_error_estimate": 1e-4} for x in d]

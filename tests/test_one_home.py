@@ -14,7 +14,7 @@ import pytest
 
 from threepart import catalogue, registry
 from threepart.registry import Method
-from threepart.reports.runs import Mode
+from threepart.reports.verify.runs import Mode
 from threepart.tolerances import tolerance
 
 SHARED = Path(catalogue.__file__).resolve().parent

@@ -15,7 +15,7 @@ from importlib import metadata
 
 import pytest
 
-import threepart.reports.runs  # noqa: F401 - loaded before pytester's in-process runs, which
+import threepart.reports.verify.runs  # noqa: F401 - loaded before pytester's in-process runs, which
 import threepart.sie  # noqa: F401      unload what they import (numpy's extensions load only once)
 import threepart.closedform  # noqa: F401
 from threepart import registry

@@ -334,8 +334,8 @@ def test_finite_deck_readers():
     """The finite deck's run read as ``compare`` reads it (readers, not physics): the .dat and
     the .frd agree, the contact's nodal forces carry the map's load, the symmetric point's
     two halves carry half each, and the loaded points lie between the closed form's ends."""
-    from threepart.reports.map_referee import REFEREE_POINTS
-    from threepart.reports.validity import R1, _load
+    from threepart.reports.map.referee import REFEREE_POINTS
+    from threepart.reports.map.validity import R1, _load
 
     P = _load(REFEREE_POINTS[0])
     xd, pd, info_d = read_pressure(FINITE.with_suffix(".dat"))
@@ -354,8 +354,8 @@ def test_finite_deck_readers():
 
 def test_map_referee_points_and_missing_ccx(monkeypatch):
     from threepart import calculix
-    from threepart.reports.map_referee import REFEREE_POINTS, referee
-    from threepart.reports.validity import MapPoint
+    from threepart.reports.map.referee import REFEREE_POINTS, referee
+    from threepart.reports.map.validity import MapPoint
 
     assert REFEREE_POINTS == (MapPoint(1.0, 0.1, 0.03, 4.0), MapPoint(1.0, 0.1, 0.1, 4.0))
     monkeypatch.setattr(calculix, "ccx_available", lambda: False)
@@ -379,8 +379,8 @@ def test_fitted_peak_reads_a_scattered_peak():
     exact pressure): its pressure sampled on W/h = 100's nodes with a planted alternating +-1 %
     scatter; the largest nodal value is off by about the scatter, the fit is not."""
     from threepart.material import similar_pair
-    from threepart.reports.map_referee import PEAK_WINDOW, REFEREE_POINTS, fitted_peak
-    from threepart.reports.validity import NU, E, _closed_form, _load, _punch
+    from threepart.reports.map.referee import PEAK_WINDOW, REFEREE_POINTS, fitted_peak
+    from threepart.reports.map.validity import NU, E, _closed_form, _load, _punch
 
     pt = REFEREE_POINTS[0]
     cf = _closed_form(_punch(pt), _load(pt), 0.0, A=similar_pair(E, NU))
@@ -401,8 +401,8 @@ def test_half_finite_deck():
     x = 0 held in x, half the load on the plate, whose nodes all follow one (no tilt), and
     the same model asked for a point that is not symmetric, or a load off x = 0, refused."""
     from threepart import calculix
-    from threepart.reports.map_referee import REFEREE_POINTS, finite_deck
-    from threepart.reports.validity import MapPoint, _load
+    from threepart.reports.map.referee import REFEREE_POINTS, finite_deck
+    from threepart.reports.map.validity import MapPoint, _load
 
     pt = REFEREE_POINTS[0]
     model, deck, cf = finite_deck(pt, n=50.0, half=True)
@@ -433,7 +433,7 @@ def test_map_point_refereed_by_calculix(tmp_path):
     converged one (an independent code, mesh and contact; the symmetric half model, its peak
     converged in h and K well inside that), and the base carries the load."""
     from threepart import calculix
-    from threepart.reports.map_referee import REFEREE_POINTS, referee
+    from threepart.reports.map.referee import REFEREE_POINTS, referee
 
     if not calculix.ccx_available():
         with pytest.raises(calculix.CcxMissing):

@@ -66,11 +66,11 @@ def test_a_toy_method_is_one_module_and_every_caller_finds_it(toy, capsys):
 
 
 def test_the_verification_run_judges_a_method_by_the_group_it_names(toy, monkeypatch):
-    """``reports.runs.run_case`` asks the method for its tolerance group: no method is special-cased."""
+    """``reports.verify.runs.run_case`` asks the method for its tolerance group: no method is special-cased."""
     from dataclasses import replace
 
     from threepart import catalogue
-    from threepart.reports.runs import MODES, run_case
+    from threepart.reports.verify.runs import MODES, run_case
     from threepart.tolerances import TOLERANCES, fem_comparison
 
     case = next(c for c in catalogue.load_cases() if c.name == "hertz")

@@ -17,8 +17,10 @@ import pytest
 from threepart import catalogue, progress
 from threepart.convergence import is_monotone
 from threepart.errors import LiftOffError
-from threepart.reports import render, sections, verify
-from threepart.reports.sections import Link, Status, Verdict
+from threepart.reports.verify import render
+from threepart.reports.verify import sections
+from threepart.reports.verify import report as verify
+from threepart.reports.verify.sections import Link, Status, Verdict
 from threepart.tolerances import ERROR_UNITS, NORMALISATION
 
 from threepart.cli import UNITS
@@ -312,7 +314,7 @@ def test_the_energy_per_cycle_carries_its_unit():
 @pytest.fixture
 def drawn(monkeypatch):
     """The figures the plot functions draw, kept instead of written."""
-    from threepart.reports import plots
+    from threepart.reports.verify import plots
 
     figs = []
     monkeypatch.setattr(plots, "save", lambda fig, path, dpi=110: figs.append(fig) or Path(path))
@@ -322,7 +324,7 @@ def drawn(monkeypatch):
 def test_every_curve_is_drawn_over_its_own_contact_to_its_ends_with_zero_pressure(drawn):
     """The punch on one corner: the contact [-a, c] lies right of x = 0 (a < 0)."""
     from threepart.punch import Punch
-    from threepart.reports import plots
+    from threepart.reports.verify import plots
 
     from .fakes import _normal
 
@@ -345,7 +347,7 @@ def test_every_curve_is_drawn_over_its_own_contact_to_its_ends_with_zero_pressur
 
 def test_a_nondimensional_overlay_is_scaled_by_the_peak_and_the_width(drawn):
     from threepart.punch import Punch
-    from threepart.reports import plots
+    from threepart.reports.verify import plots
 
     from .fakes import _normal
 
@@ -359,8 +361,8 @@ def test_a_nondimensional_overlay_is_scaled_by_the_peak_and_the_width(drawn):
 
 
 def test_a_convergence_legend_gives_an_order_only_for_a_monotone_curve(drawn):
-    from threepart.reports import plots
-    from threepart.reports.studies import Study
+    from threepart.reports.verify import plots
+    from threepart.reports.verify.studies import Study
 
     # c as in fem_caseA_moment_convergence (default run): falls, then rises again
     errors = {"a": [1.5e-3, 7.4e-5, 8.1e-6, 2.0e-6], "c": [1.1e-3, 8.5e-5, 2.8e-9, 1.1e-6]}
@@ -425,7 +427,7 @@ def _figures(html: str) -> list[tuple[bool, bytes]]:
 def test_every_plot_is_shown_at_a_size_whose_text_is_readable(report):
     """A multi-panel plot spans the page, a one-panel plot a half-row cell, and each is shown
     at (nearly) its own size: its smallest text is at least MIN_TEXT_PX high on the page."""
-    from threepart.reports import plots
+    from threepart.reports.verify import plots
 
     _, out = report
     figures = _figures((out / "report.html").read_text())
@@ -461,7 +463,7 @@ def test_the_hot_spot_tables_carry_units_and_four_significant_digits():
     position in mm, to SPOT_DIGITS significant digits of the document's figure; none for a
     nondimensional case."""
     from threepart.cli import FATIGUE_UNITS
-    from threepart.reports.stress_section import FATIGUE_NAMES, HOT_SPOTS, SPOT_DIGITS, sig, stress_section
+    from threepart.reports.verify.stress_section import FATIGUE_NAMES, HOT_SPOTS, SPOT_DIGITS, sig, stress_section
 
     spot = {"x": -1.2345678, "z": 0.012345678, "value": 1234.5678}
     big = dict(spot, value=123456.78)
@@ -496,7 +498,8 @@ def test_no_plot_text_is_clipped(drawn):
     """Every text of the stress plots, the overlay and the error curves of the case with the
     longest name lies inside its figure (a von Mises title ran past the right edge)."""
     from threepart.catalogue import get_case, load_cases
-    from threepart.reports import plots, solvers
+    from threepart.reports import solvers
+    from threepart.reports.verify import plots
 
     case = get_case(max((c.name for c in load_cases(None) if c.Q_over_fP is not None
                          and not c.cycle and not c.beyond), key=len)).resolved()

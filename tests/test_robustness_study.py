@@ -1,4 +1,4 @@
-"""The robustness study of ``threepart verify --full`` (:mod:`reports.robustness`, issue 29).
+"""The robustness study of ``threepart verify --full`` (:mod:`reports.verify.robustness`, issue 29).
 
 A small draw runs here and yields one check per rule, each against its row of the
 tolerance table; a planted wrong answer (the SIE's ``c`` moved by ten times the
@@ -14,8 +14,9 @@ from typing import Any
 
 import pytest
 
-from reports import render, robustness, verify
-from reports.runs import MODES
+from threepart.reports.verify import render, robustness
+from threepart.reports.verify import report as verify
+from threepart.reports.verify.runs import MODES
 from threepart import closedform
 from threepart.tolerances import tolerance
 

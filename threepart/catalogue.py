@@ -3,7 +3,7 @@
 Every test, benchmark and the verification run take their cases from here; a
 case's ``suites`` says who uses it (``"verify"``, ``"fem"``, ``"sie"``, see the
 file's ``"about"``). Inputs only, no solution: a case exposes its numbers, and
-the solvers are called elsewhere (:mod:`threepart.reports.runs`).
+the solvers are called elsewhere (:mod:`threepart.reports.verify.runs`).
 
 A case given as a fraction of its lift-off lever arm is resolved
 (:meth:`Case.resolved`) with the lift-off range of the method

@@ -430,7 +430,7 @@ def _cmd_slip(args: argparse.Namespace) -> int:
 
 
 def _cmd_verify(args: argparse.Namespace) -> int:
-    from threepart.reports.verify import main as verify_main
+    from threepart.reports.verify.report import main as verify_main
 
     mode = "quick" if args.quick else "full" if args.full else "default"
     return int(verify_main(mode=mode, out=args.out, force=args.force))
@@ -443,7 +443,7 @@ def _cmd_figures(args: argparse.Namespace) -> int:
 
 
 def _cmd_map(args: argparse.Namespace) -> int:
-    from threepart.reports.map import main as map_main
+    from threepart.reports.map.sweep import main as map_main
 
     return int(map_main(out=args.out, quick=args.quick, scheduler=args.scheduler,
                         workers=args.workers, force=args.force))
@@ -951,11 +951,11 @@ class _MapHelp(argparse.HelpFormatter):
     def _get_help_string(self, action: argparse.Action) -> str | None:
         text = super()._get_help_string(action)
         if text and "{quick_points}" in text:
-            from threepart.reports.validity import map_points
+            from threepart.reports.map.validity import map_points
 
             text = text.replace("{quick_points}", str(len(map_points(True))))
         if text and "{max_workers}" in text:
-            from threepart.reports.map import MAX_WORKERS
+            from threepart.reports.map.sweep import MAX_WORKERS
 
             text = text.replace("{max_workers}", str(MAX_WORKERS))
         return text

@@ -105,7 +105,7 @@ def threepart_case(request: pytest.FixtureRequest) -> Case:
 @lru_cache(maxsize=None)
 def reference(case: Case) -> Any:
     """The reference solution of ``case``: the closed form, or past its framework the SIE (cached)."""
-    from threepart.reports.runs import MODES, solve
+    from threepart.reports.verify.runs import MODES, solve
 
     case = case.resolved()
     return solve(case, case.reference, MODES["default"])[0]

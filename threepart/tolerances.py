@@ -139,7 +139,7 @@ VALUE_UNITS: dict[str, str] = {
     "stick_end": "mm",
     "q_integral": "N/mm", "q_bound": "1",
     "sxx_surface": "MPa", "sxx_peak": "MPa", "stress_depth": "MPa",
-    # robustness study (reports.robustness): the least pressure of an answer, and counts of draws
+    # robustness study (reports.verify.robustness): the least pressure of an answer, and counts of draws
     "p_min": "1", "wrong_refusals": "draws", "no_convergence": "draws",
 }
 #: what each error is a fraction of (its unit), by quantity; see :data:`NORMALISATION`
@@ -153,7 +153,7 @@ ERROR_UNITS: dict[str, str] = {
     "stick_end": "h",
     "q_integral": "Q", "q_bound": "f p_max",
     "sxx_surface": "peak", "sxx_peak": "max|σxx|", "stress_depth": "peak",
-    # robustness study (reports.robustness)
+    # robustness study (reports.verify.robustness)
     "p_min": "peak", "wrong_refusals": "count", "no_convergence": "count",
 }
 #: the normalisations of :data:`ERROR_UNITS`, in words (stated once at the top of the report)
@@ -179,7 +179,7 @@ NORMALISATION: dict[str, str] = {
     "max δ": "the largest slip amplitude δ of the reference over the smaller contact (a flight cycle)",
     "loop": "the largest |delta| of the reference's hysteresis loop (delta less the line "
             "through the loop's tips)",
-    # robustness study (reports.robustness)
+    # robustness study (reports.verify.robustness)
     "count": "a number of random draws that broke a rule of the robustness study (none may)",
 }
 
@@ -416,7 +416,7 @@ TOLERANCES: dict[tuple[str, str], Tolerance] = {
 TOLERANCES.update({("fem-fine", q): _T(t.limit, f"as on the default mesh, which is coarser: {t.reason}")
                    for (comparison, q), t in list(TOLERANCES.items()) if comparison == "fem-default"})
 
-# --- robustness study (reports.robustness, `threepart verify --full`): the issue-29 property rules
+# --- robustness study (reports.verify.robustness, `threepart verify --full`): the issue-29 property rules
 # on a wide seeded draw, each limit the table's entry that the default suite's tests assert ---------
 _COUNT = "a count of offending draws: none may (one breaks it)"
 TOLERANCES.update({("robustness", q): _T(TOLERANCES[key].limit, f"{why}: {TOLERANCES[key].reason}")

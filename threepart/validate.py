@@ -183,7 +183,7 @@ def lever_arm(punch: Any, s: Any) -> float:
 #: the peak pressure is too high by about 0.43 slope^1.1 (3.3 % at 0.1, 12 % at 0.3); an
 #: outside first-increment measurement put it at about 1 % at 0.1. The limit is 0.5, not
 #: lower, because the paper's own figure set b reaches 0.31 and the validity map
-#: (reports/validity.py) measures the formulas' error up to there; past 0.5 (27 degrees) an
+#: (reports/map/validity.py) measures the formulas' error up to there; past 0.5 (27 degrees) an
 #: answer is refused, e.g. a tilt of -0.8 rad. Past :data:`SLOPE_WARNING` the command line
 #: says that the small-slope error may exceed 5 %.
 SLOPE_LIMIT = 0.5

@@ -19,7 +19,7 @@ Each draw is a :class:`~threepart.catalogue.Case` solved through the registry
 answer they agree (contact ends, fields, stick zones, friction work); where one
 refuses, the other refuses too, by the named error the SIE's ``within_paper``
 implies; ``NoConvergenceError`` is never an answer; every answer has ``p >= 0``
-and ``|q| <= f p``. The outcome is a :class:`~reports.runs.CaseRun` whose checks
+and ``|q| <= f p``. The outcome is a :class:`~reports.verify.runs.CaseRun` whose checks
 (comparison ``"robustness"``) are judged against the tolerance table and listed
 with the catalogue's; a failed rule names its first offending draw.
 
@@ -47,9 +47,9 @@ from threepart.catalogue import Case
 from threepart.errors import NoConvergenceError, StickZoneError
 from threepart.tolerances import tolerance
 
-from .compare import Check
+from ..compare import Check
 from .runs import CaseRun
-from . import solvers
+from .. import solvers
 
 __all__ = ["SEED", "COUNTS", "RULES", "R_LOW", "R_HIGH", "Tally", "draw", "draws", "reproduce", "study"]
 

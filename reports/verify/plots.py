@@ -19,7 +19,7 @@ from matplotlib.figure import Figure
 from threepart.units import UNITS
 from threepart.convergence import ROUND_OFF
 
-from .compare import EDGE_FRACTION, field_errors, is_slip, normal_of
+from ..compare import EDGE_FRACTION, field_errors, is_slip, normal_of
 from .sections import ENERGY_UNIT, order_text
 from .studies import Study
 
@@ -338,7 +338,7 @@ def steady(results: dict[str, Any], title: str, path: str | Path,
 
     Shears are scaled by ``f p_max`` of the reference's wider end state; the slip
     amplitude is drawn over the slip zone at each end, widened threefold. A
-    marched history (``histories``, :mod:`reports.flight`) is drawn at the two
+    marched history (``histories``, :mod:`reports.verify.flight`) is drawn at the two
     end states of its last cycle, its slip amplitude half its slip's range there.
     """
     from .flight import last_cycle, slip_amplitude

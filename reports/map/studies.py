@@ -1,25 +1,25 @@
 """The map's studies on subsets of its points (issue 23): partial slip, the small-slope load axis, CalculiX.
 
 Each study is a set of dask tasks beside the grid's, each with its own key in
-``points.jsonl`` (:func:`reports.map_log.task_key`), so that a resumed map
+``points.jsonl`` (:func:`reports.map.log.task_key`), so that a resumed map
 computes none of the finished ones again:
 
-* ``slip:<point>`` -- :func:`reports.validity_slip.evaluate_slip` on the points
-  of :data:`reports.validity.SLIP_SUBSET`: the stick zone's ``d`` and ``e`` at
+* ``slip:<point>`` -- :func:`reports.map.validity_slip.evaluate_slip` on the points
+  of :data:`reports.map.validity.SLIP_SUBSET`: the stick zone's ``d`` and ``e`` at
   ``Q/fP = 0.4``, the closed form against the finite body's friction model;
-* ``slope:<point>`` -- :func:`reports.validity_slope.evaluate_slope` on the
-  points of :data:`reports.validity.SLOPE_SUBSET`: what the small-slope
+* ``slope:<point>`` -- :func:`reports.map.validity_slope.evaluate_slope` on the
+  points of :data:`reports.map.validity.SLOPE_SUBSET`: what the small-slope
   kinematics cost there, against the load level ``p0/E*``;
-* ``crossing:<curve>`` -- :func:`reports.validity_slope.slope_crossing` on each
+* ``crossing:<curve>`` -- :func:`reports.map.validity_slope.slope_crossing` on each
   curve ``(R2/R1, b/R1, H/b)`` of that subset: the overhang and ``p0/E*`` where
   that cost reaches 1 %;
-* ``referee:<point>`` -- :func:`reports.map_referee.referee` on
-  :data:`reports.map_referee.REFEREE_POINTS` (full map only): CalculiX against
+* ``referee:<point>`` -- :func:`reports.map.referee.referee` on
+  :data:`reports.map.referee.REFEREE_POINTS` (full map only): CalculiX against
   the finite-body FEM and the closed form. Without ``ccx`` the task leaves a
   note, not a failure, and is tried again by the next run.
 
 Every grid point also gets its load level ``p0/E*``
-(:func:`reports.validity_slope.load_level`: closed form only, no FE).
+(:func:`reports.map.validity_slope.load_level`: closed form only, no FE).
 
 Names
 -----
@@ -40,9 +40,9 @@ from typing import Any, Callable, Sequence
 from threepart.calculix import CcxMissing
 
 from . import validity
-from .map_log import task_key, task_record
-from .map_referee import REFEREE_POINTS, referee
-from .map_schema import COORDINATES, SLIP_COLUMNS, SLOPE_COLUMNS
+from .log import task_key, task_record
+from .referee import REFEREE_POINTS, referee
+from .schema import COORDINATES, SLIP_COLUMNS, SLOPE_COLUMNS
 from .validity import MapPoint
 from .validity_slip import SLIP_RESULT_KEYS, evaluate_slip
 from .validity_slope import SLOPE_LEVEL, SLOPE_RESULT_KEYS, evaluate_slope, load_level, slope_crossing
@@ -50,7 +50,7 @@ from .validity_slope import SLOPE_LEVEL, SLOPE_RESULT_KEYS, evaluate_slope, load
 __all__ = ["Studies", "study_tasks", "point_columns", "small_slope", "referee_section", "failures",
            "curve_name", "REFEREE_KEYS", "FIGURES"]
 
-#: the keys of :func:`reports.map_referee.referee`'s dict that the map reads (the rest is kept
+#: the keys of :func:`reports.map.referee.referee`'s dict that the map reads (the rest is kept
 #: as it is, opaque, in ``referee.points[].detail``)
 REFEREE_KEYS = ("calculix", "fem", "closed_form", "fem_minus_calculix", "closed_form_minus_calculix",
                 "closed_form_minus_fem")
@@ -65,8 +65,8 @@ class Studies:
     """The studies' functions and the points they run on.
 
     A subset left ``None`` is the declared subset of the map's own grid
-    (:data:`reports.validity.SLIP_SUBSET`, :data:`~reports.validity.SLOPE_SUBSET`,
-    :func:`~reports.validity.slope_curves`, and :data:`REFEREE_POINTS` in the
+    (:data:`reports.map.validity.SLIP_SUBSET`, :data:`~reports.map.validity.SLOPE_SUBSET`,
+    :func:`~reports.map.validity.slope_curves`, and :data:`REFEREE_POINTS` in the
     full map); with a grid of the caller's own (``run_map(points=...)``) it is
     empty. Each function runs on a worker, so it must be picklable.
     """

@@ -1,6 +1,6 @@
 """``threepart map``: the validity map of issue 12, swept point by point on dask.distributed.
 
-The physics is :mod:`reports.validity` (the grid, one point's errors, the
+The physics is :mod:`reports.map.validity` (the grid, one point's errors, the
 control); this module runs it. Every point is an independent task on a
 ``dask.distributed`` cluster: a :class:`~dask.distributed.LocalCluster` of
 single-threaded worker processes by default, or an existing cluster through
@@ -8,13 +8,13 @@ its scheduler's address. Results are appended to ``out/points.jsonl`` as they
 arrive (one JSON line per task, flushed and fsynced), so an interrupted sweep
 resumes where it stopped; a point whose ``evaluate`` raised is recorded with
 its error message and retried by the next run. At the end the map is written
-as ``map.json`` (valid against ``reports/map.schema.json``), ``map.csv`` (the
+as ``map.json`` (valid against ``reports/map/map.schema.json``), ``map.csv`` (the
 same points, one row each), ``boundaries.csv`` and ``plots/*.png``, one contour
 map of the signed peak-pressure error per ``R2/R1``, ``H/b`` and ``s/s_lift-off``.
 
 After the grid, the boundary (issue 23) is located: for each curve of the
 grid (the group axes and ``b/R1``) and each level of
-:data:`reports.map_boundary.LEVELS` bracketed by two adjacent grid points,
+:data:`reports.map.boundary.LEVELS` bracketed by two adjacent grid points,
 a bisection in ``log((a - b)/R1)`` runs in waves (all curves' step ``k`` in
 parallel), each step one more point in ``points.jsonl`` with its own key, so
 that a resumed map reuses the finished steps.
@@ -39,14 +39,14 @@ moment, even after a kill.
 
 With ``--scheduler``, the scheduler is reached before ``out`` is touched.
 
-Modules
+Modules (:mod:`reports.map`)
 -------
-map_schema -- the fields of a point (the design-space axes), the schema, ``map.csv``
-map_log    -- the sweep's log ``points.jsonl``: its records and the resume state
-map_engine -- dask.distributed: the cluster and the sweep
-map_plots  -- the designer's reading and the contour plots
-map_boundary -- the boundary: where the signed error crosses a level, by bisection
-map_studies  -- the studies on subsets: partial slip, the small-slope load axis, CalculiX
+schema   -- the fields of a point (the design-space axes), the schema, ``map.csv``
+log      -- the sweep's log ``points.jsonl``: its records and the resume state
+engine   -- dask.distributed: the cluster and the sweep
+plots    -- the designer's reading and the contour plots
+boundary -- the boundary: where the signed error crosses a level, by bisection
+studies  -- the studies on subsets: partial slip, the small-slope load axis, CalculiX
 
 Names
 -----
@@ -59,7 +59,7 @@ designer_sentence -- the sentence that says what one contour map means for a des
 validate          -- validate a document against ``map.schema.json``
 load_schema       -- the JSON schema of ``map.json``
 COLUMNS           -- the fields of every point, in CSV order
-COORDINATES       -- the coordinates of a point (:data:`reports.map_schema.GROUP_AXES` and ``PLOT_AXES``)
+COORDINATES       -- the coordinates of a point (:data:`reports.map.schema.GROUP_AXES` and ``PLOT_AXES``)
 CONTROL_LIMIT     -- the control's largest admissible peak-pressure error (issue 12: 1e-3)
 """
 from __future__ import annotations
@@ -76,12 +76,12 @@ from threepart.output import ResumableDir, json_safe, strict_json
 from threepart.tolerances import tolerance
 
 from . import validity
-from .map_engine import open_engine, sweep
-from .map_boundary import LEVELS, REL_WIDTH, STEP_CAP, X, Bisection, Sample, start
-from .map_log import CONTROL_KEY, POINTS_FILE, done, read_log
-from .map_plots import below_level, contour, designer_sentence, slope_plot, stick_sentence, stick_zone
-from .map_studies import Studies, failures, point_columns, referee_section, small_slope, study_tasks
-from .map_schema import (COLUMNS, COORDINATES, GROUP_AXES, SCHEMA_FILE, SCHEMA_VERSION,
+from .engine import open_engine, sweep
+from .boundary import LEVELS, REL_WIDTH, STEP_CAP, X, Bisection, Sample, start
+from .log import CONTROL_KEY, POINTS_FILE, done, read_log
+from .plots import below_level, contour, designer_sentence, slope_plot, stick_sentence, stick_zone
+from .studies import Studies, failures, point_columns, referee_section, small_slope, study_tasks
+from .schema import (COLUMNS, COORDINATES, GROUP_AXES, SCHEMA_FILE, SCHEMA_VERSION,
                          boundaries_csv, csv_text, finite, groups, load_schema, plot_name, validate)
 from .validity import MapPoint
 
@@ -134,7 +134,7 @@ def _plan(rd: ResumableDir, plots: Sequence[str]) -> None:
 def _draw(rd: ResumableDir, doc: dict[str, Any], say: Say) -> None:
     """Draw one contour map per group of points into ``out/plots`` and list them in ``doc``.
 
-    A group is one combination of values of :data:`reports.map_schema.GROUP_AXES`.
+    A group is one combination of values of :data:`reports.map.schema.GROUP_AXES`.
     """
     points = doc["points"]
     for values in groups(points):
@@ -211,7 +211,7 @@ def run_map(out: str | Path, *, quick: bool = False, scheduler: str | None = Non
         ``control(quick)`` the control with ``control_rel_error``. Each runs
         on a worker, so it must be picklable (a module-level function).
     studies
-        The studies on subsets of the grid (:class:`reports.map_studies.Studies`:
+        The studies on subsets of the grid (:class:`reports.map.studies.Studies`:
         partial slip, small slope, its crossings, CalculiX) and the load level
         of every point. Default: the real ones on the declared subsets of the
         map's own grid; with ``points`` given, only the subsets ``studies`` names.
@@ -221,7 +221,7 @@ def run_map(out: str | Path, *, quick: bool = False, scheduler: str | None = Non
     Returns
     -------
     dict
-        The ``map.json`` document (see ``reports/map.schema.json``).
+        The ``map.json`` document (see ``reports/map/map.schema.json``).
 
     Raises
     ------

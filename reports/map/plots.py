@@ -24,8 +24,8 @@ import textwrap
 from pathlib import Path
 from typing import Any, Sequence
 
-from .map_boundary import LEVELS, X
-from .map_schema import finite, pct
+from .boundary import LEVELS, X
+from .schema import finite, pct
 
 __all__ = ["LEVELS", "LIMIT", "BANDS", "below_level", "designer_sentence", "level_paths", "contour",
            "stick_sentence", "stick_zone", "slope_plot", "LOAD_LINES"]
@@ -249,7 +249,7 @@ def level_paths(points: Sequence[dict[str, Any]], levels: Sequence[float] = (*LE
     """
     import numpy as np
 
-    from .plots import new_figure
+    from ..verify.plots import new_figure
 
     _, axes = new_figure()
     ok = [p for p in points if finite(p.get(field))]
@@ -312,7 +312,7 @@ def contour(points: Sequence[dict[str, Any]], R2_over_R1: float, H_over_b: float
     import numpy as np
     from matplotlib.colors import BoundaryNorm
 
-    from .plots import new_figure, save
+    from ..verify.plots import new_figure, save
 
     fig, axes = new_figure(size=(7.6, 5.6))
     ax = axes[0, 0]
@@ -434,7 +434,7 @@ def stick_zone(points: Sequence[dict[str, Any]], R2_over_R1: float, H_over_b: fl
 
     One line per ``b/R1``, a zero line, the FEM's own estimate as error bars.
     """
-    from .plots import new_figure, save
+    from ..verify.plots import new_figure, save
 
     fig, axes = new_figure(ncols=2, size=(5.4, 4.8))
     for ax, field, what in ((axes[0, 0], "d_rel_error", "d: (d_cf − d_fe)/|d_fe|"),
@@ -467,7 +467,7 @@ def slope_plot(points: Sequence[dict[str, Any]], section: dict[str, Any], path: 
     One line per curve ``(R2/R1, b/R1, H/b)`` of the points, the level of
     ``section`` (1 %) as a line, and each curve's located crossing as a star.
     """
-    from .plots import new_figure, save
+    from ..verify.plots import new_figure, save
 
     fig, axes = new_figure(size=(7.2, 5.0))
     ax = axes[0, 0]

@@ -15,8 +15,8 @@ from threepart.catalogue import Case
 from threepart.convergence import Study, fitted_order, run_study
 
 from .runs import Mode, solve_normal
-from .compare import normal_figures, slip_figures
-from . import solvers
+from ..compare import normal_figures, slip_figures
+from .. import solvers
 
 __all__ = ["Study", "sie_study", "fem_study", "fem_slip_study", "fem_step_study",
            "STUDY_QUANTITIES", "SLIP_STUDY_QUANTITIES", "STEP_STATES"]

@@ -19,8 +19,8 @@ from typing import Any, Callable, Iterator, Sequence
 import dask
 from dask.distributed import Client, LocalCluster, as_completed
 
-from .map_log import control_record, one_line, point_record
-from .map_schema import pct
+from .log import control_record, one_line, point_record
+from .schema import pct
 
 __all__ = ["open_engine", "sweep"]
 
@@ -173,9 +173,9 @@ def sweep(client: Any, tasks: list[tuple[str, Callable[..., Any], tuple[Any, ...
     """Submit every task, log each result as it arrives, and report progress; return the records.
 
     A task is ``(key, fn, args, what)``: ``what`` is the grid point (its line is
-    :func:`~reports.map_log.point_record`), ``None`` (the control), or a callable
+    :func:`~reports.map.log.point_record`), ``None`` (the control), or a callable
     ``what(result, exc, mode)`` that makes the line of a study task
-    (:func:`~reports.map_log.task_record`).
+    (:func:`~reports.map.log.task_record`).
     """
     futures = {}
     for key, fn, args, point in tasks:

@@ -2,7 +2,7 @@
 
 A steady case of the catalogue (two ``states``, :attr:`Case.kind
 <threepart.catalogue.Case.kind>` ``"steady"``) is solved by every method with
-a steady state (:mod:`reports.runs`); this module adds the independent
+a steady state (:mod:`reports.verify.runs`); this module adds the independent
 reference of docs/STEADY_STATE.md §6: the load history marched with the memory
 of slip over a few cycles (``sie.load_history``), whose last cycle must have
 settled on the steady state. Its checks (the permanent stick zone's ends in
@@ -32,7 +32,7 @@ from threepart.catalogue import Case
 from threepart.cycles import HistoryResult
 from threepart.tolerances import tolerance
 
-from .compare import Check
+from ..compare import Check
 
 __all__ = ["HISTORY_METHODS", "HISTORY_ELEMENTS", "HISTORY_STEPS", "HISTORY_CYCLES", "load_path", "march",
            "history_figures", "history_checks", "last_cycle", "slip_amplitude", "HISTORY_QUANTITIES"]

@@ -3,7 +3,7 @@
 :func:`build` turns a ``report.json`` document into a :class:`Document`: a
 title, the verdict and an ordered list of :class:`Section` objects, each with
 its intro text, tables, figures and a typed :class:`Status`. Markdown and HTML
-(:mod:`reports.render`) are two renderings of that one list; neither holds a
+(:mod:`reports.verify.render`) are two renderings of that one list; neither holds a
 section of its own, and neither matches strings to decide what passed.
 
 Text is typed, not marked up: a paragraph is a tuple of plain strings,
@@ -544,7 +544,7 @@ def build(doc: dict[str, Any], map_link: str | None = None) -> Document:
     Parameters
     ----------
     doc
-        The ``report.json`` document (:func:`reports.verify.build_report`).
+        The ``report.json`` document (:func:`reports.verify.report.build_report`).
     map_link
         The report-relative path of the validity map, linked only when given
         (it exists); otherwise the section says how to make one.

@@ -1,6 +1,6 @@
 """The report's "Stress and fatigue" section: the hot spots by each method, and the stress plots.
 
-Part of :func:`reports.sections.build` (kept apart for its size): every number
+Part of :func:`reports.verify.sections.build` (kept apart for its size): every number
 is read from the ``report.json`` document, each with its unit (the report's
 :data:`threepart.cli.UNITS`; the fatigue parameters' :data:`threepart.cli.FATIGUE_UNITS`)
 and :data:`SPOT_DIGITS` significant digits.

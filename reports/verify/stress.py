@@ -4,7 +4,7 @@ The comparison (:func:`reports.compare.stress_figures`) judges each method's
 stress field against the reference's; this module gives the report what a
 designer reads off that field: where the surface tension and the von Mises
 stress peak, and how much, by each method, and the fields drawn in
-:func:`reports.plots.stress_surface` and :func:`reports.plots.von_mises`.
+:func:`reports.verify.plots.stress_surface` and :func:`reports.verify.plots.von_mises`.
 Every method's stresses come from its own ``stress(x, z)`` (one result shape;
 nothing here knows a method). Nothing here solves a contact.
 """
@@ -17,7 +17,7 @@ import numpy as np
 from threepart.fatigue import HotSpot
 from threepart.results import NU
 
-from .compare import STRESS_REACH, is_steady, normal_of, surface_line
+from ..compare import STRESS_REACH, is_steady, normal_of, surface_line
 
 __all__ = ["FIELD_GRID", "FATIGUE_GRID", "field_grid", "surface_line", "hot_spots", "case_hot_spots",
            "fatigue_states", "fatigue_hot_spots", "stress_nu"]

@@ -32,7 +32,7 @@ import math
 from dataclasses import dataclass, field
 from typing import Any, Callable, Sequence
 
-from .map_schema import GROUP_AXES, finite
+from .schema import GROUP_AXES, finite
 
 __all__ = ["LEVELS", "REL_WIDTH", "STEP_CAP", "CURVE_AXES", "X", "Sample", "curves", "brackets",
            "Bisection", "start", "locate", "interpolate"]

@@ -2,7 +2,7 @@
 
 The report directory holds ``report.md``, a self-contained ``report.html`` (the
 PNGs embedded as data URIs), ``report.json`` (valid against
-``reports/report.schema.json``) and ``plots/*.png``. It is written into a
+``reports/verify/report.schema.json``) and ``plots/*.png``. It is written into a
 temporary sibling directory and renamed into place only when complete, so a
 report is never half-written; an existing directory is replaced only if it is
 threepart's own unchanged earlier output (see :mod:`threepart.output`). The
@@ -27,11 +27,11 @@ from threepart.output import atomic_dir, json_safe, strict_json, validate_json
 
 from . import render
 from .runs import FRETTING_STATES, MODES, CaseRun, Mode, run_case
-from .referee import CALCULIX_CASE, CALCULIX_K, CALCULIX_N, calculix_studies
-from .compare import is_steady, normal_of
+from ..referee import CALCULIX_CASE, CALCULIX_K, CALCULIX_N, calculix_studies
+from ..compare import is_steady, normal_of
 from .sections import MAP_JSON, plot_path, study_plot_path
 from .stress import case_hot_spots, fatigue_hot_spots, stress_nu
-from .solvers import METHODS
+from ..solvers import METHODS
 from .studies import STEP_STATES, Study, fem_slip_study, fem_step_study, fem_study, sie_study
 
 __all__ = ["main", "run", "build_report", "write_report", "stress_record",
@@ -107,7 +107,7 @@ def run(mode: Mode, cases: Sequence[Case], say: Callable[[str], None],
 
     ``calculix`` adds the CalculiX column (:func:`reports.referee.calculix_studies`),
     except in the quick mode; ``robustness`` adds, in the full mode only, the
-    robustness study (:func:`reports.robustness.study`) as one more run of checks.
+    robustness study (:func:`reports.verify.robustness.study`) as one more run of checks.
     """
     runs: list[CaseRun] = []
     cache: dict[Any, Any] = {}
@@ -185,7 +185,7 @@ def run(mode: Mode, cases: Sequence[Case], say: Callable[[str], None],
 
 
 def _robustness(runs: list[CaseRun], timings: dict[str, float], say: Callable[[str], None]) -> None:
-    """The robustness study (:mod:`reports.robustness`) as one more run of checks, timed."""
+    """The robustness study (:mod:`reports.verify.robustness`) as one more run of checks, timed."""
     from . import robustness
 
     t1 = time.perf_counter()
@@ -203,12 +203,12 @@ def build_report(mode: Mode, runs: Sequence[CaseRun], studies: Sequence[Study],
                  timings: dict[str, float], plots: dict[str, list[str]],
                  stress: dict[str, dict[str, Any]] | None = None,
                  fatigue: dict[str, dict[str, Any]] | None = None) -> dict[str, Any]:
-    """The ``report.json`` document (see ``reports/report.schema.json``).
+    """The ``report.json`` document (see ``reports/verify/report.schema.json``).
 
     ``stress`` maps a partial-slip case to its stress record (Poisson's ratio,
     bulk stress, hot spots by method; :func:`stress_record`), ``fatigue`` a
     fretting case to its fatigue parameters' hot spots by method
-    (:func:`reports.stress.fatigue_hot_spots`).
+    (:func:`reports.verify.stress.fatigue_hot_spots`).
     """
     stress = stress or {}
     fatigue = fatigue or {}

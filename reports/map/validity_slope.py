@@ -20,7 +20,7 @@ punch's finite height, which couples the two bodies through its shape. The
 finite-deformation cost that CalculiX measures is larger and has another cause
 (``docs/SMALL_SLOPE.md``).
 
-:func:`evaluate_slope` evaluates one :class:`~reports.validity.MapPoint`
+:func:`evaluate_slope` evaluates one :class:`~reports.map.validity.MapPoint`
 (keys :data:`SLOPE_RESULT_KEYS`); :func:`slope_crossing` finds, along one curve
 of the map (fixed ``R2/R1``, ``b/R1``, ``H/b``), the load level at which the
 cost of the peak crosses a level (1 %).
@@ -73,7 +73,7 @@ def evaluate_slope(point: MapPoint, quick: bool = False) -> dict[str, float]:
     """The small-slope kinematics' cost at ``point`` (keys :data:`SLOPE_RESULT_KEYS`).
 
     The finite body of the map (:func:`fem.solve_finite`, the point's ``H``,
-    the map mode's fine mesh :data:`reports.validity.MESHES`) with both
+    the map mode's fine mesh :data:`reports.map.validity.MESHES`) with both
     kinematics at the point's load; ``slope_peak_rel_error`` and
     ``slope_a_rel_error`` are SIGNED, small minus first-order over
     first-order, of the larger peak and of the left half-width ``a``.
@@ -101,7 +101,7 @@ def slope_crossing(R2_over_R1: float, b_over_R1: float, H_over_b: float, quick: 
     it converges in a few steps; relative precision :data:`CROSSING_RTOL` of
     the overhang), each step one :func:`evaluate_slope` (two FEM solves). ``bracket = None``: :data:`SLOPE_BRACKET`, its upper end
     lowered to the largest overhang of the full grid that the curve's punch
-    holds (:func:`reports.validity.feasible`).
+    holds (:func:`reports.map.validity.feasible`).
 
     Returns
     -------

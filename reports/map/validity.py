@@ -35,7 +35,7 @@ from threepart.meshes import SubstrateSpec
 from threepart.meshes.punch import PunchSpec
 from threepart.punch import Punch
 
-from .compare import normal_figures
+from ..compare import normal_figures
 
 __all__ = ["MapPoint", "map_points", "evaluate", "control", "feasible", "convergence", "RESULT_KEYS",
            "GRID", "STUDY_POINTS", "SLIP_SUBSET", "SLOPE_SUBSET", "subset", "slope_curves"]
@@ -79,12 +79,12 @@ GRID = {
     "full": dict(R2_over_R1=(1.0, 0.5), H_over_b=(1.0, 4.0, 16.0), s_over_lift=(0.0, 0.5),
                  b_over_R1=(0.1, 0.3, 1.0, 3.0), a_minus_b_over_R1=(0.01, 0.03, 0.1, 0.2, 0.35, 0.5)),
 }
-#: the points of the grid that also get the partial-slip study (:mod:`reports.validity_slip`,
+#: the points of the grid that also get the partial-slip study (:mod:`reports.map.validity_slip`,
 #: issue 23: the stick zone at Q/fP = 0.4): the central load on the middle height, both R2/R1,
 #: every b/R1 and overhang (26 quick points, 33 full; about 3x a normal point each)
 SLIP_SUBSET: dict[str, tuple[float, ...]] = {"s_over_lift": (0.0,), "H_over_b": (4.0,)}
 #: the points (and the curves over b/R1) of the small-slope load axis
-#: (:mod:`reports.validity_slope`): its cost is a property of the load and the shape, so one
+#: (:mod:`reports.map.validity_slope`): its cost is a property of the load and the shape, so one
 #: shape family is enough: R2/R1 = 1, H/b = 4, central load
 SLOPE_SUBSET: dict[str, tuple[float, ...]] = {"s_over_lift": (0.0,), "H_over_b": (4.0,),
                                               "R2_over_R1": (1.0,)}
@@ -170,7 +170,7 @@ def subset(points: list[MapPoint], where: dict[str, tuple[float, ...]]) -> list[
 
 def slope_curves(points: list[MapPoint]) -> list[tuple[float, float, float]]:
     """The curves ``(R2/R1, b/R1, H/b)`` of :data:`SLOPE_SUBSET` among ``points``, for
-    :func:`reports.validity_slope.slope_crossing`."""
+    :func:`reports.map.validity_slope.slope_crossing`."""
     return sorted({(p.R2_over_R1, p.b_over_R1, p.H_over_b) for p in subset(points, SLOPE_SUBSET)})
 
 

@@ -3,14 +3,14 @@
 The map's design space is declared here once: :data:`GROUP_AXES` (one contour
 map per combination of their values) and :data:`PLOT_AXES` (the x and y of
 each contour map) make up a point's :data:`COORDINATES`, which are the fields
-of :class:`reports.validity.MapPoint`. A new axis is a new field of
+of :class:`reports.map.validity.MapPoint`. A new axis is a new field of
 ``MapPoint``, a name in one of these two tuples (with its short label in
 :data:`FILE_LABELS` if it groups the plots) and its entry in
 ``map.schema.json``; ``tests/test_map.py`` checks that the three agree.
 
 Names
 -----
-SCHEMA_FILE    -- ``reports/map.schema.json``
+SCHEMA_FILE    -- ``reports/map/map.schema.json``
 SCHEMA_VERSION -- the version of ``map.json``'s layout
 GROUP_AXES     -- the coordinates that make one contour map per combination
 PLOT_AXES      -- the coordinates along x and y of each contour map
@@ -60,13 +60,13 @@ GROUP_AXES = ("R2_over_R1", "H_over_b", "s_over_lift")
 PLOT_AXES = ("a_minus_b_over_R1", "b_over_R1")
 #: the short label of each group axis in a plot's file name
 FILE_LABELS = {"R2_over_R1": "R2R1", "H_over_b": "Hb", "s_over_lift": "sL"}
-#: the coordinates of a point (:class:`reports.validity.MapPoint`), in CSV order
+#: the coordinates of a point (:class:`reports.map.validity.MapPoint`), in CSV order
 COORDINATES = (*GROUP_AXES, *reversed(PLOT_AXES))
 #: the fields of a grid point's own line of ``points.jsonl`` (its normal problem)
 POINT_FIELDS = ("key", *COORDINATES, *RESULT_KEYS, "error")
-#: the partial-slip columns of a point (:mod:`reports.validity_slip`; null where not run)
+#: the partial-slip columns of a point (:mod:`reports.map.validity_slip`; null where not run)
 SLIP_COLUMNS = (*SLIP_RESULT_KEYS, "slip_error")
-#: the small-slope columns of a point (:mod:`reports.validity_slope`; null where not run;
+#: the small-slope columns of a point (:mod:`reports.map.validity_slope`; null where not run;
 #: its ``load_level`` is the point's own column)
 SLOPE_COLUMNS = (*(k for k in SLOPE_RESULT_KEYS if k != "load_level"), "slope_error")
 #: the fields of every point in ``map.json`` and the columns of ``map.csv``, in order

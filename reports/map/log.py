@@ -19,7 +19,7 @@ from typing import Any
 
 from threepart.output import json_safe
 
-from .map_schema import COORDINATES, POINT_FIELDS, SCHEMA_VERSION
+from .schema import COORDINATES, POINT_FIELDS, SCHEMA_VERSION
 from .validity import RESULT_KEYS
 
 __all__ = ["POINTS_FILE", "CONTROL_KEY", "read_log", "point_record", "control_record", "task_record",

@@ -5,7 +5,7 @@ A :class:`~threepart.catalogue.Case` of the one case catalogue
 case; :func:`run_case` solves it with each method of the registry
 (:mod:`threepart.registry`) and compares the others with the reference. Like
 scikit-fem's examples, a case exposes its numbers (a :class:`CaseRun` holds
-every result, time and check) and nothing is plotted here: :mod:`reports.plots`
+every result, time and check) and nothing is plotted here: :mod:`reports.verify.plots`
 draws only when a report is written.
 
 Names
@@ -29,10 +29,10 @@ from threepart import registry
 from threepart.catalogue import Case
 from threepart.tolerances import tolerance
 
-from .compare import Check, compare
+from ..compare import Check, compare
 from .flight import HISTORY_METHODS, history_checks, march
-from . import solvers
-from .solvers import METHODS
+from .. import solvers
+from ..solvers import METHODS
 
 __all__ = ["CaseRun", "Mode", "MODES", "run_case", "solve", "solve_normal", "METHODS",
            "FRETTING_STATES"]
@@ -122,7 +122,7 @@ class CaseRun:
 
     ``refusals`` holds the messages of the closed form's expected refusals
     (a case past its framework); they are checked, not errors. ``histories``
-    holds a flight cycle's marched histories by method (:mod:`reports.flight`).
+    holds a flight cycle's marched histories by method (:mod:`reports.verify.flight`).
     """
 
     case: Case
@@ -212,7 +212,7 @@ def run_case(case: Case, mode: Mode, cache: dict[Any, Any] | None = None,
 
 
 def _march(run: CaseRun, ref: Any, methods: tuple[str, ...], say: Callable[[str], None]) -> None:
-    """A flight cycle's marched histories (:data:`reports.flight.HISTORY_METHODS`), judged against ``ref``."""
+    """A flight cycle's marched histories (:data:`reports.verify.flight.HISTORY_METHODS`), judged against ``ref``."""
     for method in (m for m in HISTORY_METHODS if m in methods):
         t0 = time.perf_counter()
         try:

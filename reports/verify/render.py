@@ -1,9 +1,9 @@
 """Render a ``report.json`` document as Markdown and as self-contained HTML.
 
 Both are renderings of the one ordered list of sections that
-:func:`reports.sections.build` makes from the document: the same sections, in
+:func:`reports.verify.sections.build` makes from the document: the same sections, in
 the same order, with the same text. Pass and fail are styled from the typed
-:class:`~reports.sections.Status`, never from a cell's words. The HTML embeds
+:class:`~reports.verify.sections.Status`, never from a cell's words. The HTML embeds
 every PNG as a base64 data URI, so that it opens in a browser from a single
 file; its plots are visible without unfolding anything, while the long tables
 fold away (``<details>``) and stay complete in ``report.json``.
@@ -75,7 +75,7 @@ def _md_section(sec: Section, level: int) -> list[str]:
 
 
 def render_markdown(d: Document) -> str:
-    """A :class:`~reports.sections.Document` as Markdown (plots linked, not embedded)."""
+    """A :class:`~reports.verify.sections.Document` as Markdown (plots linked, not embedded)."""
     out = [f"# {d.title}", "", f"**{d.verdict}**", ""]
     for sec in d.sections:
         out += _md_section(sec, 2)
@@ -83,7 +83,7 @@ def render_markdown(d: Document) -> str:
 
 
 def markdown(doc: dict[str, Any], map_link: str | None = None) -> str:
-    """The report as Markdown (plots linked, not embedded); see :func:`reports.sections.build`."""
+    """The report as Markdown (plots linked, not embedded); see :func:`reports.verify.sections.build`."""
     return render_markdown(build(doc, map_link))
 
 
@@ -207,7 +207,7 @@ def _h_section(sec: Section, level: int, root: Path) -> str:
 
 
 def render_html(d: Document, root: Path) -> str:
-    """A :class:`~reports.sections.Document` as one HTML page, the PNGs under ``root`` embedded."""
+    """A :class:`~reports.verify.sections.Document` as one HTML page, the PNGs under ``root`` embedded."""
     e = _html.escape
     parts = [f"<!DOCTYPE html><html lang='en'><head><meta charset='utf-8'><title>{e(d.title)}</title>"
              f"<style>{_CSS}</style></head><body>", f"<h1>{e(d.title)}</h1>",
@@ -218,5 +218,5 @@ def render_html(d: Document, root: Path) -> str:
 
 
 def html(doc: dict[str, Any], root: Path, map_link: str | None = None) -> str:
-    """The report as one HTML file with the PNGs under ``root`` embedded; see :func:`reports.sections.build`."""
+    """The report as one HTML file with the PNGs under ``root`` embedded; see :func:`reports.verify.sections.build`."""
     return render_html(build(doc, map_link), root)

@@ -1,6 +1,6 @@
 """Partial slip on the validity map's points (issue 23): the closed form's stick zone against the finite body.
 
-At a point of the map (:class:`reports.validity.MapPoint`: the punch of real
+At a point of the map (:class:`reports.map.validity.MapPoint`: the punch of real
 shape on a finite block, ``P`` at ``s = 0`` with the tilt free, the load that
 gives the point's overhang) the punch is then sheared by ``Q = Q_OVER_FP f P``
 with the coefficient of friction :data:`F`, by the finite-body friction model
@@ -9,7 +9,7 @@ coupling kept) and by the closed form (:func:`closedform.solve_partial_slip`
 on the closed form's own normal solution at the same ``P``).
 :func:`evaluate_slip` returns the closed form's signed errors in the stick
 zone's half-width ``d`` and offset ``e``, beside the FEM's own
-discretisation-error estimate, as :func:`reports.validity.evaluate` does for
+discretisation-error estimate, as :func:`reports.map.validity.evaluate` does for
 the normal problem.
 """
 from __future__ import annotations
@@ -22,7 +22,7 @@ from threepart import closedform, fem
 from threepart.fem.mesh import PRESETS
 from threepart.material import similar_pair
 
-from .compare import slip_figures
+from ..compare import slip_figures
 from .validity import E, MESHES, NU, THETA, MapPoint, _closed_form, _load, _mode, _punch
 
 __all__ = ["Q_OVER_FP", "F", "SLIP_RESULT_KEYS", "evaluate_slip"]
@@ -51,7 +51,7 @@ def evaluate_slip(point: MapPoint, quick: bool = False) -> dict[str, Any]:
     ``d_rel_error = (d_cf - d_fe) / |d_fe|`` and ``e_rel_error = (e_cf - e_fe) / |d_fe|``:
     signed, closed form minus finite body, normalised as
     :func:`reports.compare.slip_figures` normalises them. The FEM runs on the
-    two meshes of :data:`reports.validity.MESHES` (one self-similar family);
+    two meshes of :data:`reports.map.validity.MESHES` (one self-similar family);
     ``slip_fem_error_estimate`` is the larger change of the two errors from the
     coarse to the fine one. ``d`` and ``e`` are the finite body's (fine mesh).
 

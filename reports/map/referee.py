@@ -1,6 +1,6 @@
 """Two points of the validity map refereed by CalculiX: the finite body's FEM against an outside code.
 
-The validity map (:mod:`reports.validity`) judges the closed form against
+The validity map (:mod:`reports.map.validity`) judges the closed form against
 threepart's own finite-body FEM (:func:`fem.solve_finite`). Here an
 independent model of the same physical problem -- CalculiX's CPE8 elements,
 its node-to-surface penalty contact, its own gmsh mesh
