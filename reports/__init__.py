@@ -25,6 +25,9 @@ Studies
 sie_study       -- SIE convergence in n against the closed form (orders, Richardson)
 fem_study       -- FEM convergence in h against the closed form (orders, GCI)
 
+The pytest plugin (:mod:`reports.plugin`, entry point pytest11): fixtures ``threepart_case``
+and ``threepart_check`` that judge another code by the catalogue's references.
+
 Reference data (``threepart export-refs``, :mod:`reports.refs`)
 --------------
 export_refs     -- the catalogue's reference solutions as a versioned dataset (JSON, CSV, schema)

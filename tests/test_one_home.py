@@ -21,9 +21,13 @@ SHARED = Path(catalogue.__file__).resolve().parent
 SOLVERS = ("closedform", "sie", "fem")
 
 
-def _imports(path: Path) -> set[str]:
-    """Every module ``path`` imports, at any depth (lazy imports inside functions too), made absolute."""
-    package = ["threepart", *path.parent.relative_to(SHARED).parts]
+def _imports(path: Path, package: list[str] | None = None) -> set[str]:
+    """Every module ``path`` imports, at any depth (lazy imports inside functions too), made absolute.
+
+    ``package`` is the dotted package ``path`` belongs to (default: its place under ``threepart/``).
+    """
+    if package is None:
+        package = ["threepart", *path.parent.relative_to(SHARED).parts]
     found: set[str] = set()
     for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
         if isinstance(node, ast.Import):
@@ -35,14 +39,63 @@ def _imports(path: Path) -> set[str]:
     return found
 
 
-def test_the_shared_package_imports_no_solver():
-    """threepart/*.py (and threepart/output/) name no solver package, even lazily: they ask the registry."""
-    files = sorted(SHARED.rglob("*.py"))
+#: what sits above the core inside ``threepart/``: the command line and the foreign codes' toolkits
+#: (``__main__`` is the command line's entry)
+ABOVE_CORE = ("cli", "cli_cycle", "cli_match", "calculix", "readers", "__main__")
+#: the layers, bottom up: each folder's package may import those below it, never those above
+LAYERS = {"core": 0, "meshes": 1, "solvers": 1, "foreign": 2, "reports": 3, "cli": 4}
+
+
+def _layer(module: str) -> str | None:
+    """The layer of a threepart module (``None``: not threepart's)."""
+    parts = module.split(".")
+    if parts[0] != "threepart":
+        return None
+    top = parts[1] if len(parts) > 1 else ""
+    if top in SOLVERS:
+        return "solvers"
+    if top in ("meshes", "reports"):
+        return top
+    if top in ("calculix", "readers"):
+        return "foreign"
+    if top in ("cli", "cli_cycle", "cli_match", "__main__"):
+        return "cli"
+    return "core"
+
+
+def _core_files() -> list[Path]:
+    return [p for p in sorted(SHARED.rglob("*.py"))
+            if p.relative_to(SHARED).parts[0].removesuffix(".py") not in ABOVE_CORE]
+
+
+def test_the_core_imports_no_layer_above_it():
+    """threepart's core (its modules but the command line and CalculiX) names no solver, no mesh,
+    no report, no command line and no foreign code, even lazily: it asks the registry."""
+    files = _core_files()
     assert len(files) > 10
-    solvers = [f"threepart.{s}" for s in SOLVERS] + list(SOLVERS)
     offending = sorted(f"{path.relative_to(SHARED.parent)}: {name}" for path in files
-                       for name in _imports(path)
-                       if any(name == s or name.startswith(s + ".") for s in solvers))
+                       for name in _imports(path) if _layer(name) not in (None, "core"))
+    assert offending == []
+
+
+@pytest.mark.parametrize("folder, layer", [("closedform", "solvers"), ("sie", "solvers"),
+                                           ("fem", "solvers"), ("meshes", "meshes"),
+                                           ("reports", "reports")])
+def test_each_folder_imports_only_layers_below_it(folder, layer):
+    """A solver or the meshes import only the core (and the FEM the meshes); the reports never the
+    command line. Read from the syntax tree, imports inside functions included."""
+    root = SHARED.parent / folder
+    files = sorted(root.rglob("*.py"))
+    assert files
+    allowed = {"solvers": {"core", "meshes"}, "meshes": {"core"}, "reports": {"core", "meshes", "solvers", "foreign"}}[layer]
+    offending = []
+    for path in files:
+        own = "threepart." + ".".join(path.relative_to(SHARED.parent).with_suffix("").parts)
+        for name in _imports(path, package=own.rsplit(".", 1)[0].split(".")):
+            found = _layer(name)
+            same = found == layer and (layer != "solvers" or name.split(".")[1] == folder)
+            if found is not None and not same and found not in allowed:
+                offending.append(f"{path.relative_to(SHARED.parent)}: {name}")
     assert offending == []
 
 

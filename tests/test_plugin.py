@@ -1,4 +1,4 @@
-"""threepart's pytest plugin (``threepart/pytest_plugin.py``), run on toy codes through ``pytester``.
+"""threepart's pytest plugin (``reports/plugin.py``), run on toy codes through ``pytester``.
 
 The code under test in each inner run answers with the SIE (a method
 independent of the closed form that is the reference), or with a result
@@ -20,7 +20,7 @@ import threepart.sie  # noqa: F401      unload what they import (numpy's extensi
 import threepart.closedform  # noqa: F401
 from threepart import registry
 from threepart.catalogue import get_case
-from threepart.pytest_plugin import check
+from threepart.reports.plugin import check
 from threepart.tolerances import tolerance
 
 from .test_install import isolated, wheel  # noqa: F401 - fixtures: the fresh environment of test_install
@@ -46,7 +46,7 @@ def sie(case):
 
 def test_the_entry_point_loads_the_plugin(request):
     eps = [e for e in metadata.entry_points(group="pytest11") if e.name == "threepart"]
-    assert [e.value for e in eps] == ["threepart.pytest_plugin"]
+    assert [e.value for e in eps] == ["threepart.reports.plugin"]
     assert request.config.pluginmanager.has_plugin("threepart")
 
 

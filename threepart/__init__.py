@@ -22,7 +22,6 @@ validate            -- the input checks behind every entry point's ``_*_iv`` hel
 history             -- load histories (P, s, Q, sigma_bulk): the CSV reader, the cycles, a step's friction work
 coulomb             -- one load state's Coulomb stick/slip sets by an active set (SIE and FEM histories, FEM steps)
 cli                 -- the ``threepart`` command line
-pytest_plugin       -- pytest fixtures ``threepart_case`` and ``threepart_check`` (entry point pytest11)
 
 Problem
 -------

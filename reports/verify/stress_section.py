@@ -2,7 +2,7 @@
 
 Part of :func:`reports.verify.sections.build` (kept apart for its size): every number
 is read from the ``report.json`` document, each with its unit (the report's
-:data:`threepart.cli.UNITS`; the fatigue parameters' :data:`threepart.cli.FATIGUE_UNITS`)
+:data:`threepart.units.UNITS`; the fatigue parameters' :data:`threepart.cli.FATIGUE_UNITS`)
 and :data:`SPOT_DIGITS` significant digits.
 """
 from __future__ import annotations
