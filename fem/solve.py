@@ -17,7 +17,7 @@ import math
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Union
+from typing import Any, NamedTuple, Union
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -208,6 +208,50 @@ def place_substrate(mesh: MeshPreset | Path | SubstrateSpec | Substrate, punch: 
     return sub, L, guess, t_locate
 
 
+class _Refined(NamedTuple):
+    """The contact solved on the mesh that resolves its ends (:func:`_solve_refining`)."""
+
+    chosen: Any        # the mesh argument finally used (a preset refined at the ends, or as given)
+    sc: Any            # the condensed surface problem
+    sol: Any           # the contact solution on it
+    left: float
+    right: float
+    h_end: float       # the element size at the contact's ends
+    L: float           # the block's half-width
+    t_locate: float    # seconds spent placing the substrate (all attempts)
+    t_mesh: float      # seconds of meshing in the last attempt
+    t_contact: float   # perf_counter() when the last contact solve started
+
+
+def _solve_refining(pre: Any, punch: Punch, P: float, s: float, E: float, nu: float, tilt: str,
+                    max_iter: int, say: Progress, kinematics: str) -> _Refined:
+    """Mesh, condense and solve; refine a preset at the ends while an end lies near a join."""
+    components = ("u^2",) if kinematics == "small" else ("u^1", "u^2")
+    chosen, found, t_locate = pre, None, 0.0
+    for attempt in range(REFINE_ATTEMPTS + 1):
+        t0 = time.perf_counter()
+        sub, L, guess, t_loc = place_substrate(chosen, punch, P, s, E, nu, tilt, max_iter, say,
+                                               found)
+        t_locate += t_loc
+        t1 = time.perf_counter()
+        say(f"mesh: {sub.mesh.t.shape[1]} triangles ({t1 - t0 - t_loc:.1f} s)")
+        sc = condense(sub, E, nu, components)
+        t2 = time.perf_counter()
+        say(f"condense: {sc.dofs} DOFs onto {len(sc.x)} surface nodes ({t2 - t1:.1f} s)")
+        sol = _contact(sc, punch, P, s, tilt, max_iter, guess, kinematics)
+        p = sol.f / sc.weights
+        left, right = contact_ends(sc.x, p, sol.active, (-punch.b, punch.b))
+        h_end = end_size(sc.x, left, right)
+        say(f"contact: [{left:.6g}, {right:.6g}], {sol.iterations} iterations "
+            f"({time.perf_counter() - t2:.1f} s)")
+        finer = refined(punch, left, right, h_end, chosen, attempt, pre)
+        if finer is None:
+            break
+        say(f"refine: an end lies near a join, elements W / (n {finer.refine:g}) there")
+        chosen, found = finer, (left, right)   # refine at these ends and the joins, solve again
+    return _Refined(chosen, sc, sol, left, right, h_end, L, t_locate, t1 - t0 - t_loc, t2)
+
+
 @boundary
 def solve_normal(punch: Punch, P: float, s: float = 0.0, *, E: float, nu: float,
                  tilt: str = "free", mesh: MeshArg = "default",
@@ -284,52 +328,31 @@ def solve_normal(punch: Punch, P: float, s: float = 0.0, *, E: float, nu: float,
     if not isinstance(fields, (bool, np.bool_)):
         raise TypeError(f"`fields` must be a bool, not {type(fields).__name__}")
     kinematics = check_kinematics(kinematics)
-    components = ("u^2",) if kinematics == "small" else ("u^1", "u^2")
     say = Progress(progress_iv(progress))
     t_start = time.perf_counter()
-    chosen, found, t_locate = pre, None, 0.0
-    for attempt in range(REFINE_ATTEMPTS + 1):
-        t0 = time.perf_counter()
-        sub, L, guess, t_loc = place_substrate(chosen, punch, P, s, E, nu, tilt, max_iter, say,
-                                               found)
-        t_locate += t_loc
-        t1 = time.perf_counter()
-        say(f"mesh: {sub.mesh.t.shape[1]} triangles ({t1 - t0 - t_loc:.1f} s)")
-        sc = condense(sub, E, nu, components)
-        t2 = time.perf_counter()
-        say(f"condense: {sc.dofs} DOFs onto {len(sc.x)} surface nodes ({t2 - t1:.1f} s)")
-        sol = _contact(sc, punch, P, s, tilt, max_iter, guess, kinematics)
-        p = sol.f / sc.weights
-        left, right = contact_ends(sc.x, p, sol.active, (-punch.b, punch.b))
-        h_end = end_size(sc.x, left, right)
-        say(f"contact: [{left:.6g}, {right:.6g}], {sol.iterations} iterations "
-            f"({time.perf_counter() - t2:.1f} s)")
-        finer = refined(punch, left, right, h_end, chosen, attempt, pre)
-        if finer is None:
-            break
-        say(f"refine: an end lies near a join, elements W / (n {finer.refine:g}) there")
-        chosen, found = finer, (left, right)   # refine at these ends and the joins, solve again
+    run = _solve_refining(pre, punch, P, s, E, nu, tilt, max_iter, say, kinematics)
+    sc, sol, left, right, t2 = run.sc, run.sol, run.left, run.right, run.t_contact
     check_contact(punch, -left, right, sol.alpha)
     # the nodal forces on the block: downward f (small), or (v' f, -f) in the global directions
     F = sol.f if kinematics == "small" else np.concatenate([sol.slope * sol.f, -sol.f])
     flds = fields_of(*sc.displacement(F), E, nu) if fields else None
     t3 = time.perf_counter()
-    timings = {"locate": t_locate, "mesh": t1 - t0 - t_loc, **sc.timings, "contact": t3 - t2,
+    timings = {"locate": run.t_locate, "mesh": run.t_mesh, **sc.timings, "contact": t3 - t2,
                "total": t3 - t_start}
     s_out = float(np.sum(sc.x * sol.f) / np.sum(sol.f))
     info = {"n_candidates": len(sc.x), "backend": sc.backend,
             "mesh": mesh if isinstance(mesh, str) else type(mesh).__name__,
-            "refined": (float(chosen.refine / pre.refine) if isinstance(chosen, MeshPreset)
+            "refined": (float(run.chosen.refine / pre.refine) if isinstance(run.chosen, MeshPreset)
                         and isinstance(pre, MeshPreset) else 1.0)}
     if kinematics != "small":
         info["kinematics"] = kinematics
-    diag = Diagnostics(h=sc.h, h_end=h_end, dofs=sc.dofs, L=L, iterations=sol.iterations,
+    diag = Diagnostics(h=sc.h, h_end=run.h_end, dofs=sc.dofs, L=run.L, iterations=sol.iterations,
                        residual=sol.residual, timings=timings)
     basis, u = sc.displacement(F)
     return FemResult(punch=punch, A=rigid_punch(E, nu), a=-left, c=right,
                      alpha=sol.alpha, P=float(np.sum(sol.f)),
                      s=s_out, tilt=tilt, method="fem", diagnostics=diag, info=info,
-                     delta=sol.delta, x_nodes=sc.x, p_nodes=p, fields=flds,
+                     delta=sol.delta, x_nodes=sc.x, p_nodes=sol.f / sc.weights, fields=flds,
                      stress_field=StressField(basis=basis, u=u, E=E, nu=nu))
 
 
