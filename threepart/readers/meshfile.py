@@ -47,6 +47,10 @@ MESHIO_FORMATS = {
     "exodus": ("exodus", (".e", ".exo", ".ex2", ".exii"), "Exodus II (MOOSE; the last time step)"),
 }
 _OPTIONS = ("field", "surface", "shear", "component")
+#: what meshio's readers raise on a file they cannot read (a ReadError, or the parser's own
+#: error: XML's ParseError is a SyntaxError, HDF5's and netCDF's an OSError)
+_UNREADABLE: tuple[type[BaseException], ...] = (ValueError, OSError, KeyError, IndexError, SyntaxError,
+                                                 RuntimeError)
 
 
 def read_mesh_file(path: Path, *, arg: str = "path", file_format: str = "vtu",
@@ -92,11 +96,19 @@ def _load(path: Path, file_format: str, arg: str
     """The points, point fields (at the last time step) and point sets of a mesh file."""
     import meshio
 
+    if file_format == "exodus":
+        try:
+            import netCDF4  # noqa: F401
+        except ImportError:
+            raise ValueError(f"`{arg}` = {str(path)!r}: reading Exodus needs netCDF4 "
+                             "(pip install netCDF4)") from None
+    # the format's own reader: meshio.read prints and exits the process on a file it cannot read
     try:
-        mesh = meshio.read(path, file_format=file_format)
-    except meshio.ReadError as exc:
+        mesh = getattr(meshio, file_format).read(str(path))
+    except (meshio.ReadError, *_UNREADABLE) as exc:
         if file_format != "xdmf":
-            raise ValueError(f"`{arg}` = {str(path)!r}: meshio cannot read it as {file_format}: {exc}") from None
+            raise ValueError(f"`{arg}` = {str(path)!r}: meshio cannot read it as {file_format}: "
+                             f"{str(exc).splitlines()[0] if str(exc) else type(exc).__name__}") from None
         return _xdmf_last_step(path, arg)
     point_data = {k: np.asarray(v) for k, v in mesh.point_data.items()}
     if file_format == "exodus":
@@ -115,8 +127,9 @@ def _xdmf_last_step(path: Path, arg: str) -> tuple[np.ndarray, dict[str, np.ndar
             data: dict[str, np.ndarray] = {}
             for k in range(reader.num_steps):
                 _, data, _ = reader.read_data(k)
-    except (meshio.ReadError, KeyError, IndexError) as exc:
-        raise ValueError(f"`{arg}` = {str(path)!r}: meshio cannot read it as xdmf: {exc}") from None
+    except (meshio.ReadError, *_UNREADABLE) as exc:
+        raise ValueError(f"`{arg}` = {str(path)!r}: meshio cannot read it as xdmf: "
+                         f"{str(exc).splitlines()[0] if str(exc) else type(exc).__name__}") from None
     return np.asarray(points, dtype=float), {k: np.asarray(v) for k, v in data.items()}, {}
 
 
