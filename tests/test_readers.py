@@ -245,3 +245,44 @@ def test_csv_reads_an_optional_shear_column(tmp_path):
     np.savetxt(path, np.c_[x, hertz(x), 0.2 * hertz(x)], delimiter=",", header="x,p,q", comments="")
     rec = readers.read(path)
     assert rec.q is not None and np.max(np.abs(rec.q - 0.2 * hertz(x))) < READ_BACK * p0_H
+
+
+#: the command line sits above every layer (threepart/cli.py today, the package threepart/cli/
+#: after issue 30): it alone of threepart/*.py may reach CalculiX and the readers
+COMMAND_LINE = ("cli.py", "cli_cycle.py", "__main__.py", "cli")
+
+
+def _imported(source: str, package: list[str]) -> set[str]:
+    """Every module ``source`` (a module of ``package``) imports, lazily too, made absolute."""
+    import ast
+
+    found: set[str] = set()
+    for node in ast.walk(ast.parse(source)):
+        if isinstance(node, ast.Import):
+            found |= {a.name for a in node.names}
+        elif isinstance(node, ast.ImportFrom):
+            base = package[:len(package) - node.level + 1] if node.level else []
+            module = ".".join([*base, *(node.module.split(".") if node.module else [])])
+            found |= {module, *(f"{module}.{a.name}" for a in node.names)}
+    return found
+
+
+def _reaches(source: str, package: list[str]) -> set[str]:
+    """Which of threepart.calculix and threepart.readers ``source`` imports."""
+    layers = ("threepart.calculix", "threepart.readers")
+    return {m for name in _imported(source, package) for m in layers if name == m or name.startswith(m + ".")}
+
+
+def test_the_core_imports_neither_calculix_nor_the_readers():
+    """threepart/*.py and threepart/output/ (the core, the command line aside) never name
+    threepart.calculix or threepart.readers, not even inside a function (read as syntax trees)."""
+    root = Path(readers.__file__).parents[1]
+    core = [(p, ["threepart"]) for p in sorted(root.glob("*.py")) if p.name not in COMMAND_LINE]
+    core += [(p, ["threepart", "output"]) for p in sorted((root / "output").glob("*.py"))]
+    assert len(core) > 10
+    offending = sorted(f"{p.name}: {m}" for p, pkg in core for m in _reaches(p.read_text(encoding="utf-8"), pkg))
+    assert offending == []
+    # the scan sees lazy and relative imports
+    lazy = "def f():\n    from .calculix import read\n    import threepart.readers\n"
+    assert _reaches(lazy, ["threepart"]) == {"threepart.calculix", "threepart.readers"}
+    assert _reaches("def g():\n    from ..readers import read\n", ["threepart", "output"]) == {"threepart.readers"}
