@@ -15,6 +15,7 @@ import math
 import sys
 from pathlib import Path
 
+import meshio
 import numpy as np
 import pytest
 
@@ -22,7 +23,6 @@ from threepart import readers
 from threepart.cli import main
 from threepart.material import rigid_punch
 
-meshio = pytest.importorskip("meshio")
 
 #: Hertz: a cylinder of radius R under P on a steel half-plane (rigid punch compliance)
 R, P, E, NU = 10.0, 100.0, 210e3, 0.3
