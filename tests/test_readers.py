@@ -125,7 +125,7 @@ def test_the_last_time_step_is_read(tmp_path, monkeypatch):
         assert np.max(np.abs(rec.p - hertz(x_top))) < READ_BACK * p0_H, path.name
 
 
-def test_named_surface_and_shear(tmp_path):
+def test_named_surface_and_shear(tmp_path, capsys):
     """``surface=`` picks a node set (meshio turns it into a marker field for VTU), ``shear=``
     a second field: here the punch's own bottom nodes also lie at y = 0, so y = 0 alone is refused."""
     points, cells = plane_mesh()
@@ -143,6 +143,10 @@ def test_named_surface_and_shear(tmp_path):
     assert rec.q is not None
     assert np.max(np.abs(rec.p - hertz(rec.x))) < READ_BACK * p0_H
     assert np.max(np.abs(rec.q - 0.3 * hertz(rec.x))) < READ_BACK * p0_H
+    # the command line's --surface: judged, and refused without it (one line, status 2)
+    assert main(["compare", "--pressure", str(path), "--surface", "contact", *HERTZ_ARGS,
+                 "--out", str(tmp_path / "rep")]) == 0
+    assert main(["compare", "--pressure", str(path), *HERTZ_ARGS, "--out", str(tmp_path / "rep2")]) == 2
 
 
 def test_unknown_suffix_names_the_formats(tmp_path, capsys):
