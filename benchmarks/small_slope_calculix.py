@@ -20,8 +20,8 @@ linear run and to size the mesh and choose the loads.
 
 The deck is built by the small functions of :mod:`threepart.calculix` (the one
 home of threepart's CalculiX decks and readers) -- mesh to ``*NODE``/``*ELEMENT``
-text, node sets, surfaces, material, contact, constraints, step; this script
-keeps only the study.
+text, node sets, surfaces, material, contact, constraints, step -- and the runs
+are read by :mod:`threepart.calculix.read`; this script keeps only the study.
 
 Usage::
 
@@ -45,10 +45,11 @@ from pathlib import Path
 
 import numpy as np
 
-from threepart.calculix import Material, Mesh, centre_pressure, contact_edge, read_descent, \
-    read_frd, read_reaction, run_ccx
+from threepart.calculix import Material, Mesh, run_ccx
 from threepart.calculix import build_half_mesh as build_mesh
 from threepart.calculix import half_deck as write_deck
+from threepart.calculix.read import (centre_pressure, contact_edge, element_vertices, read_descent,
+                                     read_frd, read_reaction, surface_gap)
 from threepart.closedform import solve_normal
 from threepart.punch import Punch
 
@@ -103,19 +104,10 @@ def profile(mesh: Mesh, stem: Path) -> ContactProfile:
     midside nodes, so the peak is the mean of two fits, one over each kind.
     """
     frd = read_frd(stem)
-    U, S = frd["DISP"], frd["STRESS"]
     nb, npu = mesh.nsets["block_fine"], mesh.nsets["punch_fine"]
-    ub = np.array([U[n][:2] for n in nb])
-    up = np.array([U[n][:2] for n in npu])
-    xb, yb = (mesh.xy[nb - 1] + ub).T
-    xp, yp = (mesh.xy[npu - 1] + up).T
-    order = np.argsort(xp)
-    gap = np.interp(xb, xp[order], yp[order]) - yb
-    p = -np.array([S[n][1] for n in nb])
-    vertex = np.zeros(len(mesh.xy) + 1, bool)
-    for kind, conn in mesh.elements["block"]:
-        vertex[conn[:4 if kind == "CPE8" else 3]] = True
-    vertex = vertex[nb]
+    xb, gap = surface_gap(mesh.xy, frd["DISP"], nb, npu, spline=False)
+    p = -np.array([frd["STRESS"][n][1] for n in nb])
+    vertex = element_vertices(mesh.elements["block"], nb, len(mesh.xy))
     order = np.argsort(xb)
     x, p, gap, vertex = xb[order], p[order], gap[order], vertex[order]
     a = contact_edge(x, gap)

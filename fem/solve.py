@@ -212,8 +212,8 @@ class _Refined(NamedTuple):
     """The contact solved on the mesh that resolves its ends (:func:`_solve_refining`)."""
 
     chosen: Any        # the mesh argument finally used (a preset refined at the ends, or as given)
-    sc: Any            # the condensed surface problem
-    sol: Any           # the contact solution on it
+    sc: SurfaceCompliance  # the condensed surface problem
+    sol: ContactSolution   # the contact solution on it
     left: float
     right: float
     h_end: float       # the element size at the contact's ends

@@ -17,8 +17,8 @@ from threepart.catalogue import get_case
 from threepart.cli import main
 from threepart.methods import solve
 from threepart.punch import Punch
-from threepart.reports.referee import (END_NODES, LOAD, NEGATIVE, OSCILLATION, _oscillation, diagnose,
-                                       from_points, judge, read_pressure)
+from threepart.reports.referee import (END_NODES, LOAD, NEGATIVE, OSCILLATION, diagnose, from_points,
+                                       judge, oscillation, read_pressure)
 
 DATA = Path(__file__).parent / "data"
 FRD = DATA / "calculix_caseA_sym_h0.1.frd"
@@ -120,7 +120,7 @@ def test_end_resolved_by_too_few_nodes(ref):
     assert found and found[0].value < END_NODES and "right" in found[0].message
 
 
-def test_element_scale_oscillation(ref):
+def test_element_scaleoscillation(ref):
     x, p = grid(ref)
     pk = max(q.p for q in ref.peaks())
     wiggle = np.where(p > 0, 0.01 * pk * (-1) ** np.arange(x.size), 0.0)
@@ -205,16 +205,15 @@ def test_cpress_is_force_over_an_equal_area():
     ``-2 CELS/COPEN`` sums to the applied load, and CalculiX's area ``f / CPRESS`` is about
     ``h/2`` at vertex and midside nodes alike, while their shares of a quadratic face
     (``∫N_i dx``, from the node positions) are ``h/3`` and ``2h/3``."""
-    from threepart.calculix import nodal_areas, nodal_forces, read_dat
-    from threepart.reports.referee import _deck_nodes, _vertex_flags
+    from threepart.calculix.read import deck_nodes, nodal_areas, nodal_forces, read_dat, vertex_flags
 
     dat = read_dat(SMALL)
-    xy = _deck_nodes(SMALL.with_suffix(".inp"))
+    xy = deck_nodes(SMALL.with_suffix(".inp"))
     forces = nodal_forces(dat["relative contact displacement"], dat["contact print energy"], max(xy))
     assert sum(f for f, _ in forces.values()) == pytest.approx(SMALL_P, rel=FORCE_SUM)
     nodes = np.array(sorted(forces, key=lambda n: xy[n][0]))
     x = np.array([xy[n][0] for n in nodes])
-    vertex = _vertex_flags(np.array([forces[n][1] for n in nodes]))
+    vertex = vertex_flags(np.array([forces[n][1] for n in nodes]))
     share = nodal_areas(x, vertex)
     N = max(xy)
     cpress = {}
@@ -233,7 +232,7 @@ def test_cpress_is_force_over_an_equal_area():
     assert np.median(share[inner & ~vertex]) / np.median(share[inner & vertex]) == pytest.approx(2, rel=CCX_AREA)
     # the raw CPRESS alternates (the diagnosis names it); the forces over the shares do not
     p_ccx = np.array([np.mean(cpress[n]) if c else 0.0 for n, c in zip(nodes, closed)])
-    assert _oscillation(p_ccx[inner]) > 10 * _oscillation((np.where(closed, [forces[n][0] for n in nodes], 0) / np.where(share > 0, share, 1))[inner])
+    assert oscillation(p_ccx[inner]) > 10 * oscillation((np.where(closed, [forces[n][0] for n in nodes], 0) / np.where(share > 0, share, 1))[inner])
 
 
 def test_dat_and_frd_of_one_run_agree():

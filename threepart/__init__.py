@@ -11,6 +11,8 @@ sie                 -- independent Gauss-Chebyshev solver of the same integral e
 fem                 -- independent finite-element model (scikit-fem on gmsh meshes)
 meshes              -- gmsh mesh builders and the mesh manifest
 reports             -- the verification run: comparison, tolerance report, baselines
+calculix            -- CalculiX: meshes, decks, runs, the one reader of its output (not loaded here)
+readers             -- readers of other codes' contact results, registered by format (not loaded here)
 
 Shared modules
 --------------

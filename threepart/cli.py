@@ -11,7 +11,7 @@ export-refs  the catalogue's reference solutions as a versioned dataset (JSON + 
 fatigue  fretting-fatigue parameters of a fretting cycle: hot spots, CSV, VTU and a contour plot
 cycle    the flight cycle: steady state of an in-phase cycle (or a load history), CSV and plot
 deck     a ready-to-run CalculiX input deck of a catalogue case or of a punch and loads
-compare  judge another code's contact pressure (CSV x, p or CalculiX .frd/.dat) against threepart
+compare  judge another code's contact pressure (CSV, CalculiX .frd/.dat, VTU/XDMF/MED/Exodus) against threepart
 
 --method auto (default) uses the paper's closed form where it holds and the SIE
 where it does not (past lift-off, the punch on one corner, a stick zone that
@@ -924,7 +924,9 @@ def _cmd_compare(args: argparse.Namespace) -> int:
     A = args.A if args.A is not None else pr["A"] if pr["A"] is not None else rigid_punch(pr["E"], pr["nu"])
     ref = solve(pr["punch"], pr["P"], pr["s"], A=A, tilt=pr["tilt"])
     assert isinstance(ref, NormalResult)           # no Q: the normal problem
-    return int(referee_main(args.pressure, ref, out=args.out, alpha=args.alpha, penalty=args.penalty))
+    options = {k: v for k, v in (("field", args.field), ("surface", args.surface)) if v is not None}
+    return int(referee_main(args.pressure, ref, out=args.out, alpha=args.alpha, penalty=args.penalty,
+                            **options))
 
 
 def _compare_iv(args: argparse.Namespace) -> None:
@@ -1054,9 +1056,15 @@ def build_parser() -> argparse.ArgumentParser:
                    help="the stiff punch's modulus over the block's (default 1000)")
     p.set_defaults(func=_cmd_deck)
 
+    from threepart import readers
     p = sub.add_parser("compare", help="judge another code's contact pressure against threepart")
     p.add_argument("--pressure", required=True, metavar="FILE",
-                   help="a CSV of x, p (p >= 0 compressive), or CalculiX's .frd or .dat (with the deck .inp beside it) holding the contact output CDIS, CSTR, CELS")
+                   help="another code's contact pressure (p >= 0 compressive), read by its suffix: "
+                        + readers.describe() + "; a mesh file's field and surface: --field, --surface")
+    p.add_argument("--field", help="a mesh file's point field of the pressure (default: the first of "
+                                   "contact_pressure, CPRESS, pressure, ...)")
+    p.add_argument("--surface", help="a mesh file's node set (or marker field) of the contact surface "
+                                     "(default: the nodes at y = 0)")
     _problem_args(p, compliance_option=True)
     p.add_argument("--alpha", type=float, help=_labelled("the model's tilt, if known", "alpha"))
     p.add_argument("--penalty", type=float, metavar="K",

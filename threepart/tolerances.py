@@ -76,6 +76,11 @@ normalised error (``_level``: at the finest discretisation of a study).
     A pressure from another code (``threepart compare --pressure``) and the
     CalculiX column of the verification run, against the closed form (or the
     SIE past lift-off): the issue-22 targets.
+``referee-pitfall``
+    When the referee names a known pitfall of another code's pressure
+    (:mod:`threepart.reports.referee.pitfalls`): tension, load, the ends'
+    resolution (``end_nodes``: the fewest nodes, a lower bound), node-to-node
+    oscillation, the penalty's overclosure.
 ``catalogue``
     Numbers stored in ``threepart/cases.json`` against what they stand for.
 ``flight``
@@ -283,6 +288,12 @@ TOLERANCES: dict[tuple[str, str], Tolerance] = {
     ("referee", "x_right"): _T(1e-2, "as x_left"),
     ("referee", "p_interior_max"): _T(1e-2, "pointwise at the points, 5 % of W in from the ends: linear interpolation next to the log kinks at ±b"),
     ("referee", "p_L2"): _T(1e-2, "includes the sqrt edges, which the points resolve to their spacing"),
+    # --- the referee's pitfalls: when `threepart compare` names one (reports/referee/pitfalls.py) ---
+    ("referee-pitfall", "negative"): _T(1e-3, "tension (of the peak) past which negative pressures are named: CalculiX writes CPRESS = -K COPEN at open nodes, a tension; the points' own noise stays below"),
+    ("referee-pitfall", "load"): _T(1e-3, "|∫p dx - P| / P past which the load is named: as the referee's own P row; a second increment's 1.8e-2 overshoot is far past it"),
+    ("referee-pitfall", "end_nodes"): _T(3.0, "the fewest loaded nodes within EDGE_FRACTION W of a contact end (a lower bound on a count, not an error): the end is read by a fit of p^2 over the last four nodes, and fewer than three of them near it leave the end to the mesh"),
+    ("referee-pitfall", "oscillation"): _T(2e-3, "node-to-node (odd-even) oscillation of the peak past which the peak is the mesh's: twice the referee's 1e-3 peak target, as a peak read at one node carries it; CalculiX's raw CPRESS alternates by up to a factor 2 on quadratic faces"),
+    ("referee-pitfall", "penetration"): _T(1e-3, "the penalty's overclosure p_max/K over the profile's rise across the contact, past which the penalty is named: the peak's error falls as 1/K; 1e-3 as the referee's peak target"),
     # --- the finite-body validity map (issue 12) --------------------------------------------------
     ("map", "control"): _T(1e-3, "issue 12 target: the paper's model (eq. 2 profile, large bodies) in the finite-body code against the closed form, peak pressure; measured 1.9e-4 (quick)"),
     # --- FEM on the committed reference mesh and the slow Hertz study ----------------------------

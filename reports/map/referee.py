@@ -45,6 +45,7 @@ from typing import Any
 import numpy as np
 
 from threepart import calculix
+from threepart.calculix import read as ccx_read
 from threepart.material import similar_pair
 
 from .validity import MESHES, NU, THETA, E, MapPoint, _closed_form, _load, _punch
@@ -126,15 +127,15 @@ def read_run(model: calculix.Model, stem: Path) -> dict[str, float]:
     ``x_right``), ``a``, ``c`` (from the gap) and the load the base and the contact forces carry,
     from one run of :func:`finite_deck`. A half model's figures are the whole body's: its one
     peak and end on both sides, twice its loads."""
-    sp = calculix.surface_pressure(model, stem)
+    sp = ccx_read.surface_pressure(model, stem)
     # the peaks among the nodes the read-out fits (the loaded ones, DEALTERNATE_NODES in from
     # each end, where it keeps f / share, which alternates)
     on = np.flatnonzero(sp.f > 0)
     fitted = np.zeros(sp.x.size, bool)
-    fitted[on[0] + calculix.DEALTERNATE_NODES:on[-1] + 1 - calculix.DEALTERNATE_NODES] = True
+    fitted[on[0] + ccx_read.DEALTERNATE_NODES:on[-1] + 1 - ccx_read.DEALTERNATE_NODES] = True
     W = model.a + model.c
     if "block_sym" in model.nsets:                 # the half x >= 0 of a symmetric point
-        fitted[on[0]:on[0] + calculix.DEALTERNATE_NODES] = True     # x = 0 is no end
+        fitted[on[0]:on[0] + ccx_read.DEALTERNATE_NODES] = True     # x = 0 is no end
         x, p = fitted_peak(sp.x[fitted], sp.p[fitted], PEAK_WINDOW * W)
         return {"p_left": p, "p_right": p, "x_left": -x, "x_right": x, "a": sp.c, "c": sp.c,
                 "P_base": 2 * sp.P, "P_forces": 2 * float(sp.f.sum())}

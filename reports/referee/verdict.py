@@ -1,0 +1,94 @@
+"""The referee's verdict: another code's points compared and diagnosed, as a document and a report.
+
+Names
+-----
+COMPARISON   -- the tolerance table's rows a pressure from outside is judged by
+judge        -- compare and diagnose: the JSON-safe document of the report
+document     -- that document as the report's sections (checks, pitfalls)
+write_report -- the report directory (md, html, json) through threepart.output
+main         -- read, judge and report (``threepart compare``); 0 when all holds, else 1
+"""
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any, Callable
+
+from threepart.output import atomic_dir, json_safe, strict_json
+from threepart.results import NormalResult
+
+from ..compare import compare
+from ..verify.sections import Bullets, Document, Item, Section, Status, Table, Verdict, fmt, words
+from .pitfalls import diagnose
+from .points import PointsResult, from_points, read_pressure
+
+__all__ = ["COMPARISON", "judge", "document", "write_report", "main"]
+
+#: the tolerance table's rows a pressure from outside is judged by
+COMPARISON = "referee"
+
+
+def judge(res: PointsResult, ref: NormalResult, *, penalty: float | None = None,
+          source: str = "") -> dict[str, Any]:
+    """The comparison and the diagnosis of ``res`` against ``ref``, as a JSON-safe document."""
+    checks = [c for c in compare(ref, res, COMPARISON)
+              if c.quantity != "alpha" or res.info.get("alpha_given")]
+    pitfalls = diagnose(res, ref, penalty=penalty)
+    return json_safe({
+        "tool": "threepart compare", "source": source,
+        "reference": {"method": ref.method, "a": ref.a, "c": ref.c, "alpha": ref.alpha,
+                      "P": ref.P, "s": ref.s, "note": ref.info.get("auto", "")},
+        "obtained": {"a": res.a, "c": res.c, "P": res.P, "s": res.s, "points": int(res.x_nodes.size)},
+        "passed": all(c.passed for c in checks) and not pitfalls,
+        "checks": [c.as_dict() for c in checks],
+        "pitfalls": [q.as_dict() for q in pitfalls],
+    })
+
+
+def document(doc: dict[str, Any]) -> Document:
+    """The document of :func:`judge` as the report's two sections: the checks, the pitfalls."""
+    ok = bool(doc["passed"])
+    rows = tuple((c["quantity"], fmt(c["reference"]), fmt(c["obtained"]), fmt(c["error"]),
+                  fmt(c["limit"]), Verdict(Status.of(bool(c["passed"]))), words(c["reason"]))
+                 for c in doc["checks"])
+    table = Table(("quantity", "reference", "obtained", "error", "limit", "verdict", "reason"), rows)
+    items = tuple(Item(words(f"{q['name']}: {q['message']}")) for q in doc["pitfalls"]) or \
+        (Item(("none of the known pitfalls was found",)),)
+    ref = doc["reference"]
+    intro = (words(f"`{doc['source']}` ({doc['obtained']['points']} points) against the "
+                   f"{ref['method']} reference" + (f" ({ref['note']})" if ref["note"] else "") +
+                   "; errors normalised as in the verification report, limits from the tolerance "
+                   f"table's `{COMPARISON}` rows."),)
+    return Document("threepart compare", "PASSED" if ok else "FAILED", Status.of(ok), (
+        Section("Checks", "checks", intro, (table,), status=Status.of(all(c["passed"] for c in doc["checks"]))),
+        Section("Pitfalls", "pitfalls", (Bullets(items),), status=Status.of(not doc["pitfalls"]))))
+
+
+def write_report(doc: dict[str, Any], out: str | Path) -> None:
+    """Write ``report.md``, ``report.html`` and ``report.json`` into the new directory ``out``."""
+    from ..verify.render import render_html, render_markdown
+
+    with atomic_dir(out, command="compare") as tmp:
+        d = document(doc)
+        (tmp / "report.json").write_text(strict_json(doc, indent=1), encoding="utf-8")
+        (tmp / "report.md").write_text(render_markdown(d), encoding="utf-8")
+        (tmp / "report.html").write_text(render_html(d, tmp), encoding="utf-8")
+
+
+def main(pressure: str | Path, ref: NormalResult, *, out: str | Path, alpha: float | None = None,
+         penalty: float | None = None, say: Callable[[str], None] = print, **options: Any) -> int:
+    """Read (``options``: the reader's, :func:`threepart.readers.read`), judge and report;
+    0 when every check holds and no pitfall shows, else 1."""
+    x, p, info = read_pressure(pressure, **options)
+    res = from_points(x, p, ref, alpha=alpha, info={k: v for k, v in info.items()
+                                                   if k in ("source", "penalty", "increments")})
+    doc = judge(res, ref, penalty=penalty, source=str(pressure))
+    write_report(doc, out)
+    failed = [c for c in doc["checks"] if not c["passed"]]
+    say(f"{'PASSED' if doc['passed'] else 'FAILED'}: {len(doc['checks']) - len(failed)}/"
+        f"{len(doc['checks'])} checks within tolerance, {len(doc['pitfalls'])} pitfalls -> "
+        f"{Path(out) / 'report.html'}")
+    for c in failed:
+        say(f"  failed: {c['quantity']}: error {c['error']:.3g} > {c['limit']:.3g}")
+    for q in doc["pitfalls"]:
+        say(f"  pitfall {q['name']}: {q['message']}")
+    return 0 if doc["passed"] else 1
