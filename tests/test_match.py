@@ -11,10 +11,11 @@ References, each independent of the code under test:
 from __future__ import annotations
 
 import math
+import re
 
 import pytest
 
-from threepart import asymptotics, solve
+from threepart import Punch, asymptotics, similar_pair, solve
 from threepart.catalogue import get_case
 from threepart.errors import FullSlidingError
 from threepart.tolerances import tolerance
@@ -26,6 +27,8 @@ MULTIPLIERS = tolerance("match", "multipliers").limit
 SXX = tolerance("match", "sxx_slip").limit
 #: the fatigue parameters near the edge
 FATIGUE = tolerance("match", "fatigue").limit
+#: the command line prints 6 significant digits
+PRINTED = 1e-5
 
 
 def _flank(ratio: float = 0.02, sigma: float = 0.0, name: str = "caseA_moment"):
@@ -86,3 +89,49 @@ def test_refusals():
         asymptotics.match(flank, "left", R=-1.0)
     with pytest.raises(FullSlidingError, match="the pad of `R` = 1 would need"):
         asymptotics.match(_flank(0.2), "left", R=1.0)
+
+
+# --- the command line ---------------------------------------------------------------------------
+FLANK = ["--R1", "10", "--R2", "5", "--b", "1", "--E", "210000", "--nu", "0.3", "--P", "400", "--s", "0.1",
+         "--Q", "8", "--f", "0.5"]
+
+
+def test_command_line(capsys):
+    from threepart.cli import main
+    assert main(["match", *FLANK, "--edge", "left", "--pad-R", "10", "--no-fatigue"]) == 0
+    out = capsys.readouterr().out
+    flank = solve(Punch(10.0, 5.0, 1.0), 400.0, 0.1, A=similar_pair(210e3, 0.3), Q=8.0, f=F)
+    K_N = flank.edges()[0].K_N
+    line = next(s for s in out.splitlines() if s.strip().startswith("K_N"))
+    flank_K_N, pad_K_N = (float(v) for v in line.split()[1:3])
+    assert flank_K_N == pytest.approx(K_N, rel=PRINTED) and pad_K_N == pytest.approx(K_N, rel=PRINTED)
+    assert "pad: Punch(R1=R2=10, b=0)" in out
+
+
+@pytest.mark.parametrize("extra, match", [
+    (["--edge", "left", "--pad-R", "10", "--pad-P", "5"], r"give `--pad-R` or `--pad-P`"),
+    (["--edge", "left", "--pad-R", "-1"], r"`--pad-R` = -1.0 must be > 0"),
+    (["--edge", "left", "--pad-R", "0.5"], r"the pad of `R` = 0.5 would need \|Q\|"),
+    (["--edge", "left", "--case", "hertz"], r"give `--case` or the punch, material and loads, not both"),
+    (["--edge", "middle"], r"argument --edge: invalid choice"),
+])
+def test_bad_input_is_one_line_and_exit_status_2(capsys, extra, match):
+    from threepart.cli import main
+    assert main(["match", *FLANK, *extra]) == 2
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1 and re.search(match, err), err
+
+
+@pytest.mark.parametrize("argv, match", [
+    (["--case", "nowhere", "--edge", "left"], r"`--case` = 'nowhere' is not in the catalogue"),
+    (["--case", "hertz", "--edge", "left"], r"case 'hertz' has no partial-slip load"),
+    (["--R1", "10", "--R2", "5", "--b", "1", "--A", "1e-5", "--P", "400", "--Q", "300", "--f", "0.5",
+      "--edge", "left"], r"\|`Q`\| = 300"),
+    (["--R1", "10", "--R2", "5", "--b", "1", "--P", "400", "--Q", "8", "--f", "0.5", "--edge", "left"],
+     r"the material needs `--A`, or both `--E` and `--nu`"),
+])
+def test_bad_problem_is_one_line_and_exit_status_2(capsys, argv, match):
+    from threepart.cli import main
+    assert main(["match", *argv]) == 2
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1 and re.search(match, err), err

@@ -48,6 +48,7 @@ import threading
 from typing import Any, Iterator, NoReturn, Sequence
 
 from threepart import cli_cycle
+from threepart import cli_match
 from threepart.__main__ import COMMANDS, INTERRUPTED, program
 from threepart.progress import heartbeat
 from threepart.units import UNITS
@@ -1035,6 +1036,7 @@ def build_parser() -> argparse.ArgumentParser:
     _fatigue_args(p)
     p.set_defaults(func=_cmd_fatigue)
     cli_cycle.add_parser(sub)   # threepart cycle: its own module
+    cli_match.add_parser(sub)   # threepart match: its own module
 
     p = sub.add_parser("deck", help="write a ready-to-run CalculiX deck of a case or a punch",
                        epilog="Units: mm, N/mm, MPa, or any consistent set. See docs/CALCULIX.md.")
