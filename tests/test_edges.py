@@ -287,3 +287,31 @@ def test_refuses_a_method_without_edges():
 def test_refuses_other_objects():
     with pytest.raises(TypeError, match="`result` must be a normal, slip, fretting or steady-state result"):
         asymptotics.edges(3.0)
+
+
+# --- the report's section ------------------------------------------------------------------------
+def test_report_rows_and_section():
+    """The multipliers table: the SIE's K_N error against the closed form's, the FEM's covered by its fit error."""
+    from threepart.reports.edges import edge_rows, edges_section
+    from threepart.reports.runs import CaseRun
+    from threepart.reports.sections import Status
+
+    c = get_case("slip_Q0.2").resolved()
+    kw = dict(A=c.A, Q=c.Q, f=c.f)
+    run = CaseRun(c, results={m: solve(c.punch, c.P, c.s, method=m, **kw, **opt) for m, opt in
+                              (("closedform", {}), ("sie", {}), ("fem", {"mesh": "quick"}))})
+    rows = edge_rows([run])
+    assert [(r["method"], r["side"]) for r in rows] == [(m, s) for m in ("closedform", "sie", "fem")
+                                                        for s in ("left", "right")]
+    for r in rows:
+        exact = _exact_slip(run.results[r["method"]])[("left", "right").index(r["side"])]
+        assert r["exact_slip"] == pytest.approx(exact, rel=IDENTITY)
+        if r["method"] == "sie":
+            assert r["K_N_error"] <= EXACT
+        if r["method"] == "fem":
+            assert r["K_N_error"] <= min(r["fit_error"], FEM_QUICK)
+    doc = {"edges": rows, "cases": [{"name": c.name, "E": c.E}]}
+    section = edges_section(doc)
+    assert section is not None and section.status is Status.PASS
+    assert len(section.tables[0].rows) == len(rows)
+    assert edges_section({"edges": [], "cases": []}) is None
