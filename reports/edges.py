@@ -11,7 +11,7 @@ from __future__ import annotations
 
 from typing import Any, Sequence
 
-from .sections import METHOD_NAMES, Section, Status, Table, _head, _u, _with_unit, fmt, words
+from .sections import METHOD_NAMES, Cell, Section, Status, Table, _head, _u, _with_unit, fmt, words
 
 __all__ = ["edge_rows", "edges_section"]
 
@@ -64,7 +64,7 @@ def edges_section(doc: dict[str, Any]) -> Section | None:
     if not rows:
         return None
     cases = {c["name"]: c for c in doc["cases"]}
-    table = []
+    table: list[tuple[Cell, ...]] = []
     covered = True
     for r in rows:
         case = cases.get(r["case"], {})
