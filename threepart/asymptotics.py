@@ -131,9 +131,10 @@ def _normal_multipliers(normal: NormalResult) -> tuple[tuple[float, float | None
 
 
 def _edges_normal(result: NormalResult) -> tuple[Edge, Edge]:
-    mult = _normal_multipliers(result)
-    return tuple(Edge(side, x, K, fit_error=err, method=result.method)  # type: ignore[return-value]
-                 for side, x, (K, err) in zip(SIDES, (-result.a, result.c), mult))
+    """The two records of a normal result: ``K_N`` (and the FEM's fit error) only."""
+    (K_l, err_l), (K_r, err_r) = _normal_multipliers(result)
+    return (Edge("left", -result.a, K_l, fit_error=err_l, method=result.method),
+            Edge("right", result.c, K_r, fit_error=err_r, method=result.method))
 
 
 def _with_shear(normals: tuple[NormalResult, ...], K_T: tuple[float, float],

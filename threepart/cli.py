@@ -59,7 +59,7 @@ __all__ = ["main", "build_parser", "real_arg", "UNITS", "NUMERIC_OPTIONS", "LIST
 #: would take ``-1e-3`` for an option)
 NUMERIC_OPTIONS = ("--R1", "--R2", "--b", "--R", "--A", "--E", "--nu", "--P", "--s", "--Q", "--f",
                    "--Q-max", "--sigma-bulk", "--k", "--depth",   # --Q-max, --k, --depth: fatigue
-                   "--alpha", "--h", "--penalty", "--stiffening")   # deck and compare
+                   "--alpha", "--h", "--penalty", "--stiffening", "--pad-R", "--pad-P")   # deck, compare; match
 #: options that take a comma-separated list of numbers (``--x -0.5,0.2`` is read as ``--x=-0.5,0.2``)
 LIST_OPTIONS = ("--x",)
 #: the most points ``--grid`` prints
