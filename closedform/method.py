@@ -11,6 +11,7 @@ from threepart.punch import Punch
 from threepart.registry import Method, register
 from threepart.results import FrettingResult, NormalResult, SlipResult
 
+from .edges import edges
 from .fretting import fretting_cycle
 from .normal import lift_off, solve_normal
 from .slip import solve_partial_slip
@@ -46,4 +47,4 @@ def _lift_off(punch: Punch, P: float, A: float) -> tuple[float, float]:
 
 
 METHOD = register(Method("closedform", _normal, _slip, _fretting, framework_only=True,
-                         lift_off=_lift_off, steady=steady_state))
+                         lift_off=_lift_off, steady=steady_state, edges=edges))

@@ -21,6 +21,7 @@ from threepart.results import FrettingResult, NormalResult, SlipResult
 from threepart.tolerances import fem_comparison
 from threepart.validate import poisson, positive
 
+from .edges import edges
 from .friction import fretting_cycle, solve_partial_slip
 from .history import load_history
 from .solve import solve_normal
@@ -85,5 +86,5 @@ def _history(punch: Punch, history: Any, f: float, *, A: float, nu: float | None
 
 
 METHOD = register(Method("fem", _normal, _slip, _fretting, options=("mesh", "progress"),
-                         default_nu=NU, steady=_steady, history=_history,
+                         default_nu=NU, steady=_steady, history=_history, edges=edges,
                          comparison=lambda options: fem_comparison(options.get("mesh", "default"))))

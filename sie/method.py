@@ -10,6 +10,7 @@ from threepart.punch import Punch
 from threepart.registry import Method, register
 from threepart.results import FrettingResult, NormalResult, SlipResult
 
+from .edges import edges
 from .fretting import fretting_cycle
 from .history import load_history
 from .normal import DEFAULT_N, DEFAULT_SCHEME, check_scheme, lift_off, solve_normal
@@ -48,4 +49,4 @@ def _options_iv(options: dict[str, Any]) -> None:
 METHOD = register(Method("sie", _normal, _slip, _fretting, options=("n", "scheme"),
                          options_iv=_options_iv, lift_off=lift_off,
                          comparison=lambda options: "sie", steady=steady_state,
-                         history=load_history))
+                         history=load_history, edges=edges))

@@ -19,6 +19,7 @@ Shared modules
 catalogue           -- the one case catalogue (cases.json): verify, fem and sie suites
 tolerances          -- the one tolerance table, with a physical reason per entry
 convergence         -- fitted and three-level observed orders, GCI, Richardson step
+asymptotics         -- edge multipliers K_N, K_T, the asymptotic slip zone, the matching pad test
 output              -- atomic, marked output directories; strict JSON
 validate            -- the input checks behind every entry point's ``_*_iv`` helper
 history             -- load histories (P, s, Q, sigma_bulk): the CSV reader, the cycles, a step's friction work
@@ -126,10 +127,10 @@ def __getattr__(name: str) -> Any:
         value = getattr(importlib.import_module(f".{_HOMES[name]}", __name__), name)
         globals()[name] = value
         return value
-    if name in _SUBPACKAGES:
+    if name in _SUBPACKAGES or name == "asymptotics":
         return importlib.import_module(f".{name}", __name__)
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
 def __dir__() -> list[str]:
-    return sorted({*globals(), *_HOMES, *_SUBPACKAGES})
+    return sorted({*globals(), *_HOMES, *_SUBPACKAGES, "asymptotics"})

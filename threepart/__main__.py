@@ -19,7 +19,8 @@ from collections.abc import Sequence   # loaded with the interpreter: no import 
 __all__ = ["main", "COMMANDS", "INTERRUPTED", "program"]
 
 #: the sub-commands (kept in step with :func:`threepart.cli.build_parser` by tests/test_cli.py)
-COMMANDS = ("solve", "slip", "verify", "figures", "map", "export-refs", "fatigue", "cycle", "deck", "compare")
+COMMANDS = ("solve", "slip", "verify", "figures", "map", "export-refs", "fatigue", "cycle", "match", "deck",
+            "compare")
 #: the exit status of an interrupted command: 128 + SIGINT, as a shell reports a process it ended
 INTERRUPTED = 130
 

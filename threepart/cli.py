@@ -48,6 +48,7 @@ import threading
 from typing import Any, Iterator, NoReturn, Sequence
 
 from threepart import cli_cycle
+from threepart import cli_match
 from threepart.__main__ import COMMANDS, INTERRUPTED, program
 from threepart.progress import heartbeat
 from threepart.units import UNITS
@@ -58,7 +59,7 @@ __all__ = ["main", "build_parser", "real_arg", "UNITS", "NUMERIC_OPTIONS", "LIST
 #: would take ``-1e-3`` for an option)
 NUMERIC_OPTIONS = ("--R1", "--R2", "--b", "--R", "--A", "--E", "--nu", "--P", "--s", "--Q", "--f",
                    "--Q-max", "--sigma-bulk", "--k", "--depth",   # --Q-max, --k, --depth: fatigue
-                   "--alpha", "--h", "--penalty", "--stiffening")   # deck and compare
+                   "--alpha", "--h", "--penalty", "--stiffening", "--pad-R", "--pad-P")   # deck, compare; match
 #: options that take a comma-separated list of numbers (``--x -0.5,0.2`` is read as ``--x=-0.5,0.2``)
 LIST_OPTIONS = ("--x",)
 #: the most points ``--grid`` prints
@@ -1037,6 +1038,7 @@ def build_parser() -> argparse.ArgumentParser:
     _fatigue_args(p)
     p.set_defaults(func=_cmd_fatigue)
     cli_cycle.add_parser(sub)   # threepart cycle: its own module
+    cli_match.add_parser(sub)   # threepart match: its own module
 
     p = sub.add_parser("deck", help="write a ready-to-run CalculiX deck of a case or a punch",
                        epilog="Units: mm, N/mm, MPa, or any consistent set. See docs/CALCULIX.md.")

@@ -21,14 +21,14 @@ from numpy.typing import ArrayLike
 
 from .answer import check_coulomb
 from .punch import Punch
-from .results import NU, Diagnostics, NormalResult, _Answer, _kinks
+from .results import NU, Diagnostics, NormalResult, _Answer, _Edged, _kinks
 from .stress import Stress, stress
 
 __all__ = ["SteadyStateResult", "HistoryResult"]
 
 
 @dataclass(frozen=True)
-class SteadyStateResult(_Answer):
+class SteadyStateResult(_Edged, _Answer):
     """The periodic steady state of a cycle between two states, the loads moving linearly, in phase.
 
     Attributes

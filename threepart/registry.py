@@ -104,6 +104,11 @@ class Method:
         ``(P, s, Q, sigma_bulk)`` states marched with the memory of slip
         (:class:`~threepart.cycles.HistoryResult`), or None where the method
         has none.
+    edges
+        ``edges(normal)``: the pressure's edge multipliers ``((K_N, fit_error),
+        (K_N, fit_error))`` at ``-a`` and ``c`` of a normal result of this
+        method (:mod:`threepart.asymptotics`, docs/EDGES.md); ``fit_error`` is
+        None where ``K_N`` is exact. None where the method has none.
     comparison
         The row group of :data:`threepart.tolerances.TOLERANCES` that judges
         this method's results against the reference, from the options it was
@@ -123,6 +128,7 @@ class Method:
     comparison: Callable[[dict[str, Any]], str] | None = None
     steady: Callable[..., SteadyStateResult] | None = None
     history: Callable[..., HistoryResult] | None = None
+    edges: Callable[[NormalResult], tuple[tuple[float, float | None], tuple[float, float | None]]] | None = None
 
     def check_options(self, options: dict[str, Any], called: str | None = None) -> None:
         """``ValueError`` naming the first option this method does not take; then the values.

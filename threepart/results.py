@@ -20,6 +20,7 @@ from numpy.typing import ArrayLike
 from scipy.optimize import minimize_scalar
 
 from .answer import check_coulomb, check_pressure
+from .asymptotics import Edged as _Edged
 from .punch import Punch
 from .validate import coordinates, finite, integer
 
@@ -187,7 +188,7 @@ class _Answer:
 
 
 @dataclass(frozen=True)
-class NormalResult(_Answer):
+class NormalResult(_Edged, _Answer):
     """Solution of the normal problem on the contact ``[-a, c]``.
 
     Attributes
@@ -324,7 +325,7 @@ class NormalResult(_Answer):
 
 
 @dataclass(frozen=True)
-class SlipResult(_Answer):
+class SlipResult(_Edged, _Answer):
     """Partial-slip solution: stick zone ``[-(d+e), d-e]`` inside the contact.
 
     Attributes
@@ -420,7 +421,7 @@ class SlipResult(_Answer):
 
 
 @dataclass(frozen=True)
-class FrettingResult(_Answer):
+class FrettingResult(_Edged, _Answer):
     """One fretting cycle at constant ``P`` and ``s``: ``Q`` from 0 to ``Q_max``, to ``-Q_max`` and back.
 
     The states are recorded along the load path, branch by branch (:data:`BRANCHES`).

@@ -19,4 +19,7 @@ UNITS: dict[str, str] = {
     "sigma_bulk": "MPa",                              # bulk stress in the substrate, tension > 0
     "f": "1", "nu": "1",                              # friction coefficient, Poisson's ratio
     "slope": "rad",                                   # Punch.max_slope: tilt, profile, surface
+    "K_N": "MPa/√mm", "fit_error": "MPa/√mm",         # edge asymptotics: p ≈ K_N √r (docs/EDGES.md)
+    "K_T": "MPa·√mm", "K_sigma": "MPa·√mm",           # stuck shear q ≈ K_T/√r, the bulk stress's share
+    "slip_zone": "mm",                                # asymptotic slip zone at an edge
 }

@@ -213,6 +213,7 @@ def build_report(mode: Mode, runs: Sequence[CaseRun], studies: Sequence[Study],
     stress = stress or {}
     fatigue = fatigue or {}
     from threepart.tolerances import ERROR_UNITS, TOLERANCES
+    from .edges import edge_rows
 
     checks = [c for r in runs for c in r.checks]
     failed = [f"{r.case.name}/{c.comparison}/{c.quantity}" for r in runs for c in r.failed()]
@@ -263,6 +264,7 @@ def build_report(mode: Mode, runs: Sequence[CaseRun], studies: Sequence[Study],
         "cases": cases,
         "studies": [s.as_dict() for s in studies],
         "plots": plots.get("_studies", []),
+        "edges": edge_rows(runs),   # the edge multipliers by method (reports/verify/edges.py)
     }
     return json_safe(doc)
 

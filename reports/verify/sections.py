@@ -549,6 +549,7 @@ def build(doc: dict[str, Any], map_link: str | None = None) -> Document:
         The report-relative path of the validity map, linked only when given
         (it exists); otherwise the section says how to make one.
     """
+    from .edges import edges_section
     from .stress_section import stress_section
 
     overlays, shown = _overlays(doc)
@@ -567,6 +568,7 @@ def build(doc: dict[str, Any], map_link: str | None = None) -> Document:
         Section("Beyond the closed form", "beyond", (), (_case_lines(doc, True),),
                 status=Status.of(all(c["passed"] for c in beyond)) if beyond else None),
         *((stress,) if stress else ()),
+        *((edges,) if (edges := edges_section(doc)) else ()),
         Section("Details of each case", "details",
                 (("Each case's input, the results of each method, every check and the error "
                   "plots.",),), children=tuple(_case_section(c, shown) for c in doc["cases"])),

@@ -1,0 +1,137 @@
+"""The matching pad test (issue 32, docs/EDGES.md section 6): threepart.asymptotics.match and `threepart match`.
+
+References, each independent of the code under test:
+
+* Hertz's formulas for the pad: ``a² = 2 A R P/π``, ``p0 = 2P/(πa)``, ``K_N = p0 √(2/a)``
+  and the stuck shear's ``K_T = (Q/π ± sigma_bulk a/4)/√(2a)``: the pad's loads give back the
+  flank edge's multipliers;
+* the flank's own surface σxx (threepart.stress) and fatigue parameters (threepart.fatigue),
+  against the pad's, over the slip zone.
+"""
+from __future__ import annotations
+
+import math
+import re
+
+import pytest
+
+from threepart import Punch, asymptotics, similar_pair, solve
+from threepart.catalogue import get_case
+from threepart.errors import FullSlidingError
+from threepart.tolerances import tolerance
+
+F = 0.5            # the coefficient of friction (an input, not a limit)
+#: the pad's multipliers against the flank's (issue target 1e-6)
+MULTIPLIERS = tolerance("match", "multipliers").limit
+#: the surface σxx over the slip zone (issue target 5 %)
+SXX = tolerance("match", "sxx_slip").limit
+#: the fatigue parameters near the edge
+FATIGUE = tolerance("match", "fatigue").limit
+#: the command line prints 6 significant digits
+PRINTED = 1e-5
+
+
+def _flank(ratio: float = 0.02, sigma: float = 0.0, name: str = "caseA_moment"):
+    c = get_case(name).resolved()
+    return solve(c.punch, c.P, c.s, A=c.A, Q=ratio * F * c.P, f=F, sigma_bulk=sigma, method="closedform")
+
+
+def _hertz_edge(A: float, R: float, P: float, Q: float, sigma: float, side: str) -> tuple[float, float]:
+    """``(K_N, K_T)`` of a Hertzian pad at an edge, from Hertz's formulas alone."""
+    a = math.sqrt(2 * A * R * P / math.pi)
+    p0 = 2 * P / (math.pi * a)
+    bulk = sigma * a / 4 if side == "left" else -sigma * a / 4
+    return p0 * math.sqrt(2 / a), (Q / math.pi + bulk) / math.sqrt(2 * a)
+
+
+@pytest.mark.parametrize("side", ["left", "right"])
+@pytest.mark.parametrize("size", [{"R": 10.0}, {"P": 5000.0}, {}])
+@pytest.mark.parametrize("sigma", [0.0, 20.0])
+def test_pad_reproduces_the_edge(side, size, sigma):
+    flank = _flank(sigma=sigma)
+    m = asymptotics.match(flank, side, **size, fatigue=False)
+    target = flank.edges()[("left", "right").index(side)]
+    K_N, K_T = _hertz_edge(m.A, m.R, m.P, m.Q, m.sigma_bulk, side)
+    assert K_N == pytest.approx(target.K_N, rel=MULTIPLIERS)
+    assert K_T == pytest.approx(target.K_T, rel=MULTIPLIERS)
+    assert m.pad.slip_zone == pytest.approx(target.slip_zone, rel=MULTIPLIERS)
+    assert m.sigma_bulk == flank.sigma_bulk and m.f == flank.f and m.punch.b == 0.0
+    for key, value in size.items():
+        assert getattr(m, key) == value
+
+
+@pytest.mark.parametrize("side", ["left", "right"])
+def test_surface_stress_and_fatigue_agree(side):
+    """A pad of the flank's width: σxx within 5 % over the slip zone, the fatigue parameters within 1 %."""
+    m = asymptotics.match(_flank(0.05), side)
+    assert m.sxx_error <= SXX, f"{side}: {m.sxx_error:.3e}"
+    for name, (flank, pad) in m.fatigue.items():
+        assert abs(pad - flank) <= FATIGUE * abs(flank), f"{name}: {flank:.6g} against {pad:.6g}"
+
+
+def test_surface_stress_agreement_falls_with_the_slip_zone():
+    """With R fixed the match is first order: σxx's disagreement shrinks with Q/fP, within 5 % at 0.02."""
+    errors = [asymptotics.match(_flank(ratio), "left", R=50.0, fatigue=False).sxx_error
+              for ratio in (0.05, 0.02, 0.005)]
+    assert errors[0] > errors[1] > errors[2]
+    assert errors[1] <= SXX
+
+
+def test_refusals():
+    flank = _flank()
+    with pytest.raises(TypeError, match="`flank_result` must be a partial-slip result"):
+        asymptotics.match(flank.normal, "left", R=50.0)
+    with pytest.raises(ValueError, match="`edge` = 'middle' must be 'left' or 'right'"):
+        asymptotics.match(flank, "middle", R=50.0)
+    with pytest.raises(ValueError, match="give at most one of `R`"):
+        asymptotics.match(flank, "left", R=50.0, P=100.0)
+    with pytest.raises(ValueError, match="`R` = -1.0 must be > 0"):
+        asymptotics.match(flank, "left", R=-1.0)
+    with pytest.raises(FullSlidingError, match="the pad of `R` = 1 would need"):
+        asymptotics.match(_flank(0.2), "left", R=1.0)
+
+
+# --- the command line ---------------------------------------------------------------------------
+FLANK = ["--R1", "10", "--R2", "5", "--b", "1", "--E", "210000", "--nu", "0.3", "--P", "400", "--s", "0.1",
+         "--Q", "8", "--f", "0.5"]
+
+
+def test_command_line(capsys):
+    from threepart.cli import main
+    assert main(["match", *FLANK, "--edge", "left", "--pad-R", "10", "--no-fatigue"]) == 0
+    out = capsys.readouterr().out
+    flank = solve(Punch(10.0, 5.0, 1.0), 400.0, 0.1, A=similar_pair(210e3, 0.3), Q=8.0, f=F)
+    K_N = flank.edges()[0].K_N
+    line = next(s for s in out.splitlines() if s.strip().startswith("K_N"))
+    flank_K_N, pad_K_N = (float(v) for v in line.split()[1:3])
+    assert flank_K_N == pytest.approx(K_N, rel=PRINTED) and pad_K_N == pytest.approx(K_N, rel=PRINTED)
+    assert "pad: Punch(R1=R2=10, b=0)" in out
+
+
+@pytest.mark.parametrize("extra, match", [
+    (["--edge", "left", "--pad-R", "10", "--pad-P", "5"], r"give `--pad-R` or `--pad-P`"),
+    (["--edge", "left", "--pad-R", "-1"], r"`--pad-R` = -1.0 must be > 0"),
+    (["--edge", "left", "--pad-R", "0.5"], r"the pad of `R` = 0.5 would need \|Q\|"),
+    (["--edge", "left", "--case", "hertz"], r"give `--case` or the punch, material and loads, not both"),
+    (["--edge", "middle"], r"argument --edge: invalid choice"),
+])
+def test_bad_input_is_one_line_and_exit_status_2(capsys, extra, match):
+    from threepart.cli import main
+    assert main(["match", *FLANK, *extra]) == 2
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1 and re.search(match, err), err
+
+
+@pytest.mark.parametrize("argv, match", [
+    (["--case", "nowhere", "--edge", "left"], r"`--case` = 'nowhere' is not in the catalogue"),
+    (["--case", "hertz", "--edge", "left"], r"case 'hertz' has no partial-slip load"),
+    (["--R1", "10", "--R2", "5", "--b", "1", "--A", "1e-5", "--P", "400", "--Q", "300", "--f", "0.5",
+      "--edge", "left"], r"\|`Q`\| = 300"),
+    (["--R1", "10", "--R2", "5", "--b", "1", "--P", "400", "--Q", "8", "--f", "0.5", "--edge", "left"],
+     r"the material needs `--A`, or both `--E` and `--nu`"),
+])
+def test_bad_problem_is_one_line_and_exit_status_2(capsys, argv, match):
+    from threepart.cli import main
+    assert main(["match", *argv]) == 2
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1 and re.search(match, err), err
