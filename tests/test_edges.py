@@ -293,7 +293,7 @@ def test_refuses_other_objects():
 def test_report_rows_and_section():
     """The multipliers table: the SIE's K_N error against the closed form's, the FEM's covered by its fit error."""
     from threepart.reports.verify.edges import edge_rows, edges_section
-    from threepart.reports.runs import CaseRun
+    from threepart.reports.verify.runs import CaseRun
     from threepart.reports.sections import Status
 
     c = get_case("slip_Q0.2").resolved()
