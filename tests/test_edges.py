@@ -294,7 +294,7 @@ def test_report_rows_and_section():
     """The multipliers table: the SIE's K_N error against the closed form's, the FEM's covered by its fit error."""
     from threepart.reports.verify.edges import edge_rows, edges_section
     from threepart.reports.verify.runs import CaseRun
-    from threepart.reports.sections import Status
+    from threepart.reports.verify.sections import Status
 
     c = get_case("slip_Q0.2").resolved()
     kw = dict(A=c.A, Q=c.Q, f=c.f)
