@@ -17,6 +17,7 @@ from threepart.catalogue import get_case
 from threepart.cli import main
 from threepart.methods import solve
 from threepart.punch import Punch
+from threepart.tolerances import tolerance
 from threepart.reports.referee import (END_NODES, LOAD, NEGATIVE, OSCILLATION, diagnose, from_points,
                                        judge, oscillation, read_pressure)
 
@@ -446,3 +447,28 @@ def test_map_point_refereed_by_calculix(tmp_path):
     assert abs(r["study"]["penalty_change"]) < CCX_PENALTY, r["study"]
     assert abs(r["fem_minus_calculix"]["p_right"]) < MAP_PEAK, r["fem_minus_calculix"]
     assert abs(r["fem_minus_calculix"]["p_left"]) < MAP_PEAK, r["fem_minus_calculix"]
+
+
+def test_an_outside_pressure_s_edges_are_judged_by_their_own_K_N():
+    """Hertz's pressure sampled at nodes: each edge's fitted K_N within the referee's limit of
+    Hertz's p0 sqrt(2/a) (E2), an independent closed form; the same points with a linear edge
+    (p rising as r, not sqrt r, over the last tenth: a mesh that misses the square root) are named
+    at that edge while the other stays right."""
+    R, P, A = 10.0, 100.0, 1e-5
+    hertz = solve(Punch(R, R, 0.0), P, 0.0, A=A)
+    a = hertz.a
+    p0 = 2 * P / (np.pi * a)
+    K_hertz = p0 * np.sqrt(2 / a)
+    x = np.linspace(-1.05 * a, 1.05 * a, 801)
+    p = p0 * np.sqrt(np.clip(1 - (x / a) ** 2, 0, None))
+    doc = judge(from_points(x, p, hertz), hertz, source="hertz")
+    limit = tolerance("referee", "K_N").limit
+    assert [e["side"] for e in doc["edges"]] == ["left", "right"]
+    for e in doc["edges"]:
+        assert e["obtained"] == pytest.approx(K_hertz, rel=limit), e
+        assert e["passed"], e
+    flat = (x > 0.9 * a) & (x < a)
+    p_bad = p.copy()
+    p_bad[flat] = p0 * np.sqrt(1 - 0.9 ** 2) * (a - x[flat]) / (0.1 * a)
+    bad = judge(from_points(x, p_bad, hertz), hertz, source="linear edge")["edges"]
+    assert bad[0]["passed"] and not bad[1]["passed"], bad

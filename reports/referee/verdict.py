@@ -13,18 +13,47 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any, Callable
 
+from threepart.asymptotics import SIDES
+from threepart.errors import MeshResolutionError
+from threepart.nodal import edge_multipliers
 from threepart.output import atomic_dir, json_safe, strict_json
 from threepart.results import NormalResult
+from threepart.tolerances import tolerance
 
 from ..compare import compare
 from ..verify.sections import Bullets, Document, Item, Section, Status, Table, Verdict, fmt, words
 from .pitfalls import diagnose
 from .points import PointsResult, from_points, read_pressure
 
-__all__ = ["COMPARISON", "judge", "document", "write_report", "main"]
+__all__ = ["COMPARISON", "judge", "edges", "document", "write_report", "main"]
 
 #: the tolerance table's rows a pressure from outside is judged by
 COMPARISON = "referee"
+
+
+def edges(res: PointsResult, ref: NormalResult) -> list[dict[str, Any]]:
+    """Each edge's ``K_N`` (docs/EDGES.md) of the points, fitted over their nodes
+    (:func:`threepart.nodal.edge_multipliers`), against the reference's own.
+
+    An edge agrees when its relative error is within the tolerance table's
+    ``("referee", "K_N")`` limit widened by the fit's own error. Too few points near
+    an edge for the fit: the record says so instead of a number.
+    """
+    limit = tolerance(COMPARISON, "K_N").limit
+    reference = ref.edges()
+    try:
+        fitted = edge_multipliers(res.x_nodes, res.p_nodes, res.a, res.c, ref.punch.b)
+    except MeshResolutionError as exc:
+        return [{"side": side, "reference": e.K_N, "obtained": None, "fit_error": None,
+                 "error": None, "limit": limit, "passed": False, "note": str(exc)}
+                for side, e in zip(SIDES, reference)]
+    out = []
+    for side, (K, fit_error), e in zip(SIDES, fitted, reference):
+        error = (K - e.K_N) / e.K_N
+        out.append({"side": side, "reference": e.K_N, "obtained": K, "fit_error": fit_error,
+                    "error": error, "limit": limit,
+                    "passed": bool(abs(error) <= limit + fit_error / e.K_N), "note": ""})
+    return out
 
 
 def judge(res: PointsResult, ref: NormalResult, *, penalty: float | None = None,
@@ -41,6 +70,7 @@ def judge(res: PointsResult, ref: NormalResult, *, penalty: float | None = None,
         "passed": all(c.passed for c in checks) and not pitfalls,
         "checks": [c.as_dict() for c in checks],
         "pitfalls": [q.as_dict() for q in pitfalls],
+        "edges": edges(res, ref),
     })
 
 
@@ -60,7 +90,24 @@ def document(doc: dict[str, Any]) -> Document:
                    f"table's `{COMPARISON}` rows."),)
     return Document("threepart compare", "PASSED" if ok else "FAILED", Status.of(ok), (
         Section("Checks", "checks", intro, (table,), status=Status.of(all(c["passed"] for c in doc["checks"]))),
-        Section("Pitfalls", "pitfalls", (Bullets(items),), status=Status.of(not doc["pitfalls"]))))
+        Section("Pitfalls", "pitfalls", (Bullets(items),), status=Status.of(not doc["pitfalls"])),
+        _edges_section(doc["edges"])))
+
+
+def _edges_section(records: list[dict[str, Any]]) -> Section:
+    """The edges' ``K_N``, fitted against the reference's: informative, not part of the verdict."""
+    rows = tuple((r["side"], fmt(r["reference"]), fmt(r["obtained"]), fmt(r["fit_error"]),
+                  fmt(r["error"]), fmt(r["limit"]), Verdict(Status.of(bool(r["passed"]))),
+                  words(r["note"])) for r in records)
+    table = Table(("edge", "K_N reference [MPa/√mm]", "K_N obtained", "fit error", "error",
+                   "limit", "verdict", "note"), rows)
+    intro = (words("The bounded pressure's multiplier K_N at each edge (p ≈ K_N √r at r inside "
+                   "it, docs/EDGES.md), fitted over the points near the edge; it agrees when its "
+                   "error is within the limit widened by the fit's own error. Shown so that an "
+                   "edge that is wrong while the peak is right (or the reverse) is seen; it does "
+                   "not change the verdict."),)
+    return Section("Edges", "edges", intro, (table,),
+                   status=Status.of(all(r["passed"] for r in records)))
 
 
 def write_report(doc: dict[str, Any], out: str | Path) -> None:
@@ -91,4 +138,8 @@ def main(pressure: str | Path, ref: NormalResult, *, out: str | Path, alpha: flo
         say(f"  failed: {c['quantity']}: error {c['error']:.3g} > {c['limit']:.3g}")
     for q in doc["pitfalls"]:
         say(f"  pitfall {q['name']}: {q['message']}")
+    for e in doc["edges"]:
+        say(f"  {e['side']} edge K_N: " + (f"{e['obtained']:.6g} against {e['reference']:.6g}, error "
+            f"{e['error']:.3g} (fit {e['fit_error'] / e['reference']:.2g})"
+            if e["obtained"] is not None else f"not fitted: {e['note']}"))
     return 0 if doc["passed"] else 1
