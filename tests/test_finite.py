@@ -115,3 +115,17 @@ def test_a_point_is_evaluated_at_the_overhang_it_names():
     P = validity._load(pt)
     ref = closedform.solve_normal(validity._punch(pt), P, 0.0, A=similar_pair(E, NU))
     assert math.isclose(ref.a - ref.punch.b, pt.a_minus_b_over_R1 * validity.R1, rel_tol=OVERHANG)
+
+
+def test_the_control_s_edges_are_the_closed_form_s():
+    """Issue 32 on the map's zero line (the paper's model on large bodies, H = None): each edge's
+    K_N fitted over the finite body's nodes against the closed form's (E1), within the FEM's
+    quick-mesh K_N limit; a tall punch's edges carry the map's K_N columns as numbers."""
+    point = validity.MapPoint(1.0, 0.3, 0.1, 4.0)
+    punch, P = validity._punch(point), validity._load(point)
+    cf = closedform.solve_normal(punch, P, 0.0, A=similar_pair(E, NU))
+    fe = fem.solve_finite(punch, P, 0.0, E=E, nu=NU, H=None, mesh=validity.MESHES["quick"][0])
+    errors = validity.edge_errors(fe, cf)
+    assert set(errors) == set(validity.EDGE_KEYS)
+    assert all(e is not None and abs(e) < tolerance("edges", "fem_quick").limit
+               for e in errors.values()), errors

@@ -30,7 +30,7 @@ from threepart.reports.map import sweep as map_mod
 from threepart.reports.map.sweep import (COLUMNS, CONTROL_LIMIT, MAX_WORKERS, below_level,
                                    designer_sentence, exit_status, run_map)
 from threepart.reports.map.schema import BOUNDARY_COLUMNS, POINT_FIELDS
-from threepart.reports.map.validity import RESULT_KEYS, MapPoint
+from threepart.reports.map.validity import EDGE_KEYS, RESULT_KEYS, MapPoint
 
 ROOT = Path(__file__).resolve().parents[1]
 #: the fake grid: two R2/R1, one H/b, 3 x 3 in b/R1 and (a-b)/R1
@@ -46,12 +46,13 @@ def surface(p: MapPoint) -> float:
 
 
 def expected(p: MapPoint) -> dict[str, float]:
-    """What the fake evaluate returns at ``p`` (every key of RESULT_KEYS, distinct values)."""
+    """What the fake evaluate returns at ``p`` (every key of RESULT_KEYS and EDGE_KEYS, distinct values)."""
     e = surface(p)
     return {"peak_rel_error": e, "p_left_rel_error": e, "p_right_rel_error": 0.5 * e,
             "a_rel_error": e / 3, "c_rel_error": -e / 7, "alpha_error": e / 11,
             "fem_error_estimate": 1e-4 * p.b_over_R1, "P": 100.0 * p.a_minus_b_over_R1,
-            "s": 0.1 * p.s_over_lift, "time_s": 0.01 + p.b_over_R1}
+            "s": 0.1 * p.s_over_lift, "time_s": 0.01 + p.b_over_R1,
+            "K_N_left_rel_error": e / 13, "K_N_right_rel_error": -e / 17}
 
 
 def steps(doc: dict) -> set[str]:
@@ -191,7 +192,7 @@ def test_the_map_holds_the_fake_numbers_and_validates(finished, scheduler):
     assert on_disk == doc
     assert [p["key"] for p in doc["points"]] == KEYS            # grid order, not arrival order
     for p, point in zip(doc["points"], POINTS):
-        assert {k: p[k] for k in RESULT_KEYS} == expected(point)
+        assert {k: p[k] for k in (*RESULT_KEYS, *EDGE_KEYS)} == expected(point)
         assert (p["R2_over_R1"], p["b_over_R1"], p["a_minus_b_over_R1"], p["H_over_b"],
                 p["s_over_lift"]) == (point.R2_over_R1, point.b_over_R1, point.a_minus_b_over_R1,
                                       point.H_over_b, point.s_over_lift)
@@ -386,7 +387,7 @@ def test_an_interrupted_sweep_resumes_with_the_same_numbers(tmp_path, counter, s
     assert calls(counter) == sorted(set(everything(doc)) - set(first))  # nothing finished is redone
     assert doc["summary"]["resumed"] == len(first)
     assert doc["points"] == finished[1]["points"]               # the uninterrupted numbers
-    assert [{k: p[k] for k in RESULT_KEYS} for p in doc["points"]] == [expected(p) for p in POINTS]
+    assert [{k: p[k] for k in (*RESULT_KEYS, *EDGE_KEYS)} for p in doc["points"]] == [expected(p) for p in POINTS]
     assert read_marker(out)["state"] == "complete" and exit_status(doc) == 0
 
 
@@ -414,7 +415,7 @@ def test_a_killed_run_resumes(tmp_path, counter, scheduler):
     counter = fresh(counter)
     doc = sweep(out, scheduler, FakeEvaluate(counter))
     assert calls(counter) == sorted(set(everything(doc)) - set(done))
-    assert [{k: p[k] for k in RESULT_KEYS} for p in doc["points"]] == [expected(p) for p in POINTS]
+    assert [{k: p[k] for k in (*RESULT_KEYS, *EDGE_KEYS)} for p in doc["points"]] == [expected(p) for p in POINTS]
     assert all(json.loads(x) for x in (out / "points.jsonl").read_text().splitlines())
 
 
@@ -514,7 +515,7 @@ def test_a_failed_point_is_recorded_exits_1_and_is_retried(tmp_path, counter, sc
     before = steps(doc)
     doc = sweep(out, scheduler, FakeEvaluate(counter))
     assert calls(counter) == sorted({bad} | (steps(doc) - before))   # its curve's new steps only
-    assert {k: doc["points"][4][k] for k in RESULT_KEYS} == expected(POINTS[4])
+    assert {k: doc["points"][4][k] for k in (*RESULT_KEYS, *EDGE_KEYS)} == expected(POINTS[4])
     assert exit_status(doc) == 0 and read_marker(out)["state"] == "complete"
 
 
@@ -584,7 +585,7 @@ def test_the_default_engine_is_a_local_cluster_of_its_own(tmp_path, counter):
     doc = run_map(tmp_path / "map", workers=1, evaluate=FakeEvaluate(counter), points=POINTS[:6],
                   control=fake_control, say=lines.append)
     assert doc["engine"]["workers"] == 1 and doc["engine"]["scheduler"].startswith("tcp://127.0.0.1:")
-    assert [{k: p[k] for k in RESULT_KEYS} for p in doc["points"]] == [expected(p) for p in POINTS[:6]]
+    assert [{k: p[k] for k in (*RESULT_KEYS, *EDGE_KEYS)} for p in doc["points"]] == [expected(p) for p in POINTS[:6]]
     assert calls(counter) == sorted(set(KEYS[:6]) | steps(doc)) and exit_status(doc) == 0
     assert doc["timings"]["startup_s"] > 0
 
@@ -667,7 +668,7 @@ def test_ctrl_c_prints_one_line_and_the_points_in_progress_are_rerun(tmp_path, c
     doc = sweep(out, scheduler, FakeEvaluate(counter))
     assert calls(counter) == sorted(set(everything(doc)) - set(done))   # nothing finished is redone ...
     assert in_progress <= set(calls(counter)) - {"control"}     # ... and nothing in progress is lost
-    assert [{k: p[k] for k in RESULT_KEYS} for p in doc["points"]] == [expected(p) for p in POINTS]
+    assert [{k: p[k] for k in (*RESULT_KEYS, *EDGE_KEYS)} for p in doc["points"]] == [expected(p) for p in POINTS]
 
 
 def test_a_full_disk_while_the_map_is_written_leaves_nothing_half_written(tmp_path, counter, scheduler,
@@ -1104,7 +1105,7 @@ def studied(tmp_path_factory, scheduler):
 def test_the_studies_are_columns_and_sections_of_the_map_and_validate(studied):
     out, doc, made = studied
     map_mod.validate(doc)
-    assert doc["schema_version"] == "3.0" and exit_status(doc) == 0
+    assert doc["schema_version"] == "3.1" and exit_status(doc) == 0
     assert only(made, True) == study_keys()                    # each study task ran once
     slipped, sloped = {p.key() for p in SLIP_POINTS}, {p.key() for p in SLOPE_POINTS}
     for p, row in zip(POINTS, doc["points"]):

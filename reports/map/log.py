@@ -20,7 +20,7 @@ from typing import Any
 from threepart.output import json_safe
 
 from .schema import COORDINATES, POINT_FIELDS, SCHEMA_VERSION
-from .validity import RESULT_KEYS
+from .validity import EDGE_KEYS, RESULT_KEYS
 
 __all__ = ["POINTS_FILE", "CONTROL_KEY", "read_log", "point_record", "control_record", "task_record",
            "task_key", "done", "one_line"]
@@ -56,10 +56,12 @@ def one_line(exc: BaseException) -> str:
 def point_record(point: Any, result: Any, error: str | None, mode: str) -> dict[str, Any]:
     """One line of the log (and one point of the map): coordinates, :data:`RESULT_KEYS`, error."""
     rec: dict[str, Any] = {"key": point.key(), **{k: float(point.as_dict()[k]) for k in COORDINATES}}
-    rec.update({k: None for k in RESULT_KEYS})
+    rec.update({k: None for k in (*RESULT_KEYS, *EDGE_KEYS)})
     if error is None:
         values, error = _numbers(result, RESULT_KEYS, "evaluate")
         rec.update(values)
+        if error is None:   # optional figures: a number or None (a fake evaluate may leave them out)
+            rec.update({k: None if result.get(k) is None else float(result[k]) for k in EDGE_KEYS})
     return json_safe({**rec, "error": error, "mode": mode, "layout": SCHEMA_VERSION})
 
 

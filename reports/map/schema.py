@@ -41,7 +41,7 @@ from typing import Any, Sequence
 
 from threepart.output import validate_json
 
-from .validity import RESULT_KEYS
+from .validity import EDGE_KEYS, RESULT_KEYS
 from .validity_slip import SLIP_RESULT_KEYS
 from .validity_slope import SLOPE_RESULT_KEYS
 
@@ -53,7 +53,7 @@ SCHEMA_FILE = Path(__file__).with_name("map.schema.json")
 #: 2.0 (issue 23): signed errors, the lever-arm axis s_over_lift, the located boundaries;
 #: 3.0: the load level p0/E* of every point, the partial-slip and small-slope columns of a
 #: subset of points, the small-slope crossings and the CalculiX referee points
-SCHEMA_VERSION = "3.0"
+SCHEMA_VERSION = "3.1"
 #: one contour map per combination of these coordinates (R2/R1 descending, then ascending)
 GROUP_AXES = ("R2_over_R1", "H_over_b", "s_over_lift")
 #: the x and y of each contour map (both on log scales)
@@ -63,14 +63,14 @@ FILE_LABELS = {"R2_over_R1": "R2R1", "H_over_b": "Hb", "s_over_lift": "sL"}
 #: the coordinates of a point (:class:`reports.map.validity.MapPoint`), in CSV order
 COORDINATES = (*GROUP_AXES, *reversed(PLOT_AXES))
 #: the fields of a grid point's own line of ``points.jsonl`` (its normal problem)
-POINT_FIELDS = ("key", *COORDINATES, *RESULT_KEYS, "error")
+POINT_FIELDS = ("key", *COORDINATES, *RESULT_KEYS, *EDGE_KEYS, "error")
 #: the partial-slip columns of a point (:mod:`reports.map.validity_slip`; null where not run)
 SLIP_COLUMNS = (*SLIP_RESULT_KEYS, "slip_error")
 #: the small-slope columns of a point (:mod:`reports.map.validity_slope`; null where not run;
 #: its ``load_level`` is the point's own column)
 SLOPE_COLUMNS = (*(k for k in SLOPE_RESULT_KEYS if k != "load_level"), "slope_error")
 #: the fields of every point in ``map.json`` and the columns of ``map.csv``, in order
-COLUMNS = ("key", *COORDINATES, *RESULT_KEYS, "load_level", *SLIP_COLUMNS, *SLOPE_COLUMNS, "error")
+COLUMNS = ("key", *COORDINATES, *RESULT_KEYS, *EDGE_KEYS, "load_level", *SLIP_COLUMNS, *SLOPE_COLUMNS, "error")
 #: the columns of ``boundaries.csv``: the curve, the level, the crossing and its band, the
 #: final bracket, the number of steps, and whether the curve crosses the level once
 BOUNDARY_COLUMNS = (*GROUP_AXES, "b_over_R1", "level", "a_minus_b_over_R1", "band_lo", "band_hi",
