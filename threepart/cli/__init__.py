@@ -47,7 +47,7 @@ import sys
 import threading
 from typing import Any, Iterator, NoReturn, Sequence
 
-from threepart import cli_cycle
+from threepart.cli import cycle as cli_cycle
 from threepart.__main__ import COMMANDS, INTERRUPTED, program
 from threepart.progress import heartbeat
 from threepart.units import UNITS
