@@ -59,9 +59,7 @@ FALLBACK_ON = (LiftOffError, StickZoneError, SeparationError)
 def _one(name: str, punch: Punch, P: float, s: float, A: float, tilt: str, Q: float | None,
          f: float | None, nu: float | None, options: dict[str, Any],
          sigma_bulk: float = 0.0) -> NormalResult | SlipResult:
-    m = registry.get(name)
-    m.check_options(options)
-    _check_nu(m, nu)
+    m = _checked(name, options, nu)
     if Q is None or f is None:
         return m.normal(punch, P, s, A=A, tilt=tilt, nu=nu, **options)
     if m.slip is None:
@@ -152,6 +150,14 @@ def solve(punch: Punch, P: float, s: float = 0.0, *, A: float, tilt: str = "free
     return result
 
 
+def _checked(name: str, options: dict[str, Any], nu: float | None) -> registry.Method:
+    """The method called ``name``, once its options and ``nu`` are checked."""
+    m = registry.get(name)
+    m.check_options(options)
+    _check_nu(m, nu)
+    return m
+
+
 def _check_nu(m: registry.Method, nu: float | None) -> None:
     """``nu`` only for a method of finite bodies: a half-plane method depends on the material only through ``A``."""
     if nu is not None and m.default_nu is None:
@@ -175,9 +181,7 @@ def _auto(call: Callable[[str, dict[str, Any]], Any], options: dict[str, Any]) -
 
 def _steady(name: str, punch: Punch, states: Any, f: float, A: float, nu: float | None,
             options: dict[str, Any]) -> SteadyStateResult:
-    m = registry.get(name)
-    m.check_options(options)
-    _check_nu(m, nu)
+    m = _checked(name, options, nu)
     if m.steady is None:
         raise ValueError(f"method {name!r} has no steady-state model of a cycle")
     return m.steady(punch, states, f, A=A, **({} if nu is None else {"nu": nu}), **options)
@@ -234,9 +238,7 @@ def steady_state(punch: Punch, states: Any, f: float, *, A: float, method: str =
 def _cycle(name: str, punch: Punch, P: float, s: float, A: float, tilt: str, Q_max: float, f: float,
            states: int | None, nu: float | None, sigma_bulk: float,
            options: dict[str, Any]) -> FrettingResult:
-    m = registry.get(name)
-    m.check_options(options)
-    _check_nu(m, nu)
+    m = _checked(name, options, nu)
     if m.fretting is None:
         raise ValueError(f"method {name!r} has no fretting cycle")
     bulk = _bulk(m, sigma_bulk, "fretting cycle")

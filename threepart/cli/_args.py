@@ -14,6 +14,7 @@ number_list         -- the type of ``--x``: a list of numbers
 state_arg           -- the type of ``--state0``/``--state1``: ``P,s,Q,sigma_bulk``
 labelled            -- an option's help text with the unit of its quantity
 punch_args          -- the option group ``--R1 --R2 --b --R`` (eq. 2)
+state_args          -- the options ``--state0 --state1``: a flight cycle's two ends
 method_args         -- the option group ``--method --mesh``
 problem_args, problem -- ``--case NAME`` or the punch, loads and material (deck, compare)
 FORCE_HELP          -- the help of the ``--force`` that an output directory no longer needs
@@ -28,7 +29,7 @@ from typing import Any, NoReturn, Sequence
 from threepart.units import UNITS
 
 __all__ = ["UsageError", "Parser", "NUMERIC_OPTIONS", "LIST_OPTIONS", "join_negative_numbers",
-           "real_arg", "number_list", "state_arg", "labelled", "punch_args", "method_args",
+           "real_arg", "number_list", "state_arg", "labelled", "punch_args", "state_args", "method_args",
            "problem_args", "problem", "FORCE_HELP"]
 
 #: options that take a number; ``--s -1e-3`` is read as ``--s=-1e-3`` (argparse alone
@@ -156,6 +157,15 @@ def punch_args(p: argparse.ArgumentParser) -> None:
     g.add_argument("--R", type=float, default=float("inf"),
                    help=labelled("central radius: inf (flat, case A, default), negative for "
                                  "concave (case B)", "R"))
+
+
+def state_args(group: Any) -> None:
+    """``--state0 --state1``: a flight cycle's two ends, instead of one load (``solve``, ``slip``, ``fatigue``)."""
+    for k in (0, 1):
+        group.add_argument(f"--state{k}", type=state_arg, metavar="P,s,Q,SIGMA",
+                           help=f"end {k} of an in-phase flight cycle (N/mm, mm, N/mm, MPa), instead of "
+                                "--P, --s, --Q-max and --sigma-bulk: the fatigue of its periodic steady "
+                                "state at its two ends (docs/STEADY_STATE.md, docs/FATIGUE.md)")
 
 
 def method_args(p: argparse.ArgumentParser) -> Any:

@@ -16,7 +16,7 @@ from typing import Any
 
 from threepart.progress import heartbeat
 
-from ._args import labelled, method_args, punch_args, state_arg
+from ._args import labelled, method_args, punch_args, state_args
 from ._output import print_json, write_csv, write_grid_vtu
 
 __all__ = ["add_parser", "run", "MAX_FATIGUE_POINTS", "MAX_FATIGUE_STATES", "FATIGUE_UNITS"]
@@ -69,11 +69,7 @@ def _fatigue_args(p: argparse.ArgumentParser) -> None:
                     help="bulk stress sigma_xx in the substrate at Q_max, tension positive, in "
                          "phase with Q [MPa] (default 0)")
     ld.add_argument("--tilt", choices=("free", "suppressed"), default="free")
-    for k in (0, 1):
-        ld.add_argument(f"--state{k}", type=state_arg, metavar="P,s,Q,SIGMA",
-                        help=f"end {k} of an in-phase flight cycle (N/mm, mm, N/mm, MPa), instead of "
-                             "--P, --s, --Q-max and --sigma-bulk: the fatigue of its periodic steady "
-                             "state at its two ends (docs/STEADY_STATE.md, docs/FATIGUE.md)")
+    state_args(ld)
     mt = method_args(p)
     mt.add_argument("--states", type=int, default=5,
                     help=f"recorded states per branch of the cycle, 2 to {MAX_FATIGUE_STATES} "

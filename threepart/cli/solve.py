@@ -11,7 +11,7 @@ from __future__ import annotations
 import argparse
 from typing import Any
 
-from ._args import labelled, method_args, number_list, punch_args, state_arg
+from ._args import labelled, method_args, number_list, punch_args, state_args
 from ._output import print_result, write_points_csv
 
 __all__ = ["add_parser", "run", "MAX_GRID"]
@@ -53,11 +53,7 @@ def _geometry_args(p: argparse.ArgumentParser) -> None:
     ld.add_argument("--s", type=float, default=0.0,
                     help=labelled("lever arm of P, positive to the right", "s"))
     ld.add_argument("--tilt", choices=("free", "suppressed"), default="free")
-    for k in (0, 1):
-        ld.add_argument(f"--state{k}", type=state_arg, metavar="P,s,Q,SIGMA",
-                        help=f"end {k} of an in-phase flight cycle (N/mm, mm, N/mm, MPa), instead of "
-                             "--P, --s, --Q-max and --sigma-bulk: the fatigue of its periodic steady "
-                             "state at its two ends (docs/STEADY_STATE.md, docs/FATIGUE.md)")
+    state_args(ld)
     method_args(p)
     pt = p.add_argument_group("fields at points")
     pt.add_argument("--x", type=number_list, metavar="X1,X2,...",
