@@ -22,7 +22,7 @@ from dataclasses import dataclass, field
 from enum import Enum
 from typing import Any, Sequence, Union
 
-from threepart.units import UNITS
+from threepart.cli import UNITS
 from threepart.tolerances import ERROR_UNITS, NORMALISATION, VALUE_UNITS
 
 __all__ = ["Status", "Verdict", "Code", "Link", "Item", "Bullets", "Table", "Figure", "Section",
