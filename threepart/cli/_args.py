@@ -16,6 +16,7 @@ labelled            -- an option's help text with the unit of its quantity
 punch_args          -- the option group ``--R1 --R2 --b --R`` (eq. 2)
 state_args          -- the options ``--state0 --state1``: a flight cycle's two ends
 method_args         -- the option group ``--method --mesh``
+method_options      -- the options ``--method`` declares, from the command line (``mesh``, ``n``, ``nu``)
 problem_args, problem -- ``--case NAME`` or the punch, loads and material (deck, compare)
 FORCE_HELP          -- the help of the ``--force`` that an output directory no longer needs
 """
@@ -29,7 +30,7 @@ from typing import Any, NoReturn, Sequence
 from threepart.units import UNITS
 
 __all__ = ["UsageError", "Parser", "NUMERIC_OPTIONS", "LIST_OPTIONS", "join_negative_numbers",
-           "real_arg", "number_list", "state_arg", "labelled", "punch_args", "state_args", "method_args",
+           "real_arg", "number_list", "state_arg", "labelled", "punch_args", "state_args", "method_args", "method_options",
            "problem_args", "problem", "FORCE_HELP"]
 
 #: options that take a number; ``--s -1e-3`` is read as ``--s=-1e-3`` (argparse alone
@@ -178,6 +179,23 @@ def method_args(p: argparse.ArgumentParser) -> Any:
     mt.add_argument("--mesh", choices=("quick", "default", "fine"), default="default",
                     help="FE mesh preset for --method fem (default: default)")
     return mt
+
+
+def method_options(args: argparse.Namespace, nu: float | None) -> dict[str, Any]:
+    """The options that ``--method`` declares (:attr:`threepart.registry.Method.options`), from the
+    command line: ``mesh`` (``--mesh``), ``n`` (``--n``, where the command has it and it is given),
+    and ``nu`` for a method of finite bodies. With ``auto`` they are the fallback's, the SIE's
+    (:data:`threepart.methods.AUTO`), as the library passes them."""
+    from threepart import registry
+    from threepart.methods import AUTO
+
+    m = registry.get(AUTO[1] if args.method == "auto" else args.method)
+    options: dict[str, Any] = {"mesh": args.mesh} if "mesh" in m.options else {}
+    if "n" in m.options and getattr(args, "n", None) is not None:
+        options["n"] = args.n
+    if m.default_nu is not None:     # a finite body needs Poisson's ratio besides A
+        options["nu"] = nu
+    return options
 
 
 def problem_args(p: argparse.ArgumentParser, *, compliance_option: bool) -> None:

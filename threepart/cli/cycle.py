@@ -20,7 +20,7 @@ from typing import Any
 
 from threepart.progress import heartbeat
 
-from ._args import labelled, state_arg
+from ._args import labelled, method_options, state_arg
 
 __all__ = ["add_parser", "run"]
 
@@ -176,30 +176,21 @@ def _problem(args: argparse.Namespace) -> dict[str, Any]:
 
 def _steady(args: argparse.Namespace, pr: dict[str, Any]) -> Any:
     """The steady state by ``--method`` (the FEM with the problem's Poisson ratio)."""
-    from threepart import registry, steady_state
+    from threepart import steady_state
 
-    m = None if args.method == "auto" else registry.get(args.method)
-    options: dict[str, Any] = {}
-    if m is not None and m.default_nu is not None:     # the FEM: the problem's nu, its mesh
-        options = {"nu": pr["nu"], "mesh": args.mesh}
-    elif args.n is not None and args.method != "closedform":
-        options = {"n": args.n}
-    return steady_state(pr["punch"], pr["states"], pr["f"], A=pr["A"], method=args.method, **options)
+    return steady_state(pr["punch"], pr["states"], pr["f"], A=pr["A"], method=args.method,
+                        **method_options(args, pr["nu"]))
 
 
 def _march(args: argparse.Namespace, pr: dict[str, Any]) -> Any:
     """The history marched by the SIE (``auto``, ``sie``) or the FEM."""
     from threepart import registry
+    from threepart.methods import AUTO
 
-    m = registry.get("sie" if args.method == "auto" else args.method)
+    m = registry.get(AUTO[1] if args.method == "auto" else args.method)
     if m.history is None:
         raise ValueError(f"`--method` = {args.method}: it marches no load history (sie and fem do)")
-    options: dict[str, Any] = {"nu": pr["nu"]} if m.default_nu is not None else {}
-    if "mesh" in m.options:
-        options["mesh"] = args.mesh
-    if "n" in m.options and args.n is not None:
-        options["n"] = args.n
-    return m.history(pr["punch"], pr["history"], pr["f"], A=pr["A"], **options)
+    return m.history(pr["punch"], pr["history"], pr["f"], A=pr["A"], **method_options(args, pr["nu"]))
 
 
 def run(args: argparse.Namespace) -> int:

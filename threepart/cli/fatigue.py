@@ -16,7 +16,7 @@ from typing import Any
 
 from threepart.progress import heartbeat
 
-from ._args import labelled, method_args, punch_args, state_args
+from ._args import labelled, method_args, method_options, punch_args, state_args
 from ._output import print_json, write_csv, write_grid_vtu
 
 __all__ = ["add_parser", "run", "MAX_FATIGUE_POINTS", "MAX_FATIGUE_STATES", "FATIGUE_UNITS"]
@@ -149,15 +149,11 @@ def _fatigue_iv(args: argparse.Namespace) -> None:
 
 def _fretting(args: argparse.Namespace, punch: Any, A: float) -> Any:
     """The fretting cycle by ``--method`` (:func:`threepart.fretting`: ``auto`` falls back to the SIE)."""
-    from threepart import registry
     from threepart.methods import fretting
 
-    m = None if args.method == "auto" else registry.get(args.method)
-    options: dict[str, Any] = {"mesh": args.mesh} if m is not None and "mesh" in m.options else {}
-    if m is not None and m.default_nu is not None:      # the FEM: the material's nu
-        options["nu"] = args.nu
     return fretting(punch, args.P, args.s, A=A, tilt=args.tilt, Q_max=args.Q_max, f=args.f,
-                    states=args.states, method=args.method, sigma_bulk=args.sigma_bulk, **options)
+                    states=args.states, method=args.method, sigma_bulk=args.sigma_bulk,
+                    **method_options(args, args.nu))
 
 
 def _bulk_stress_iv(args: argparse.Namespace) -> None:
@@ -187,12 +183,10 @@ def _fatigue_loads_iv(args: argparse.Namespace) -> None:
 
 def _flight(args: argparse.Namespace, punch: Any, A: float) -> Any:
     """The steady state of the flight cycle ``--state0`` -> ``--state1`` by ``--method`` (``auto``: falls back)."""
-    from threepart import registry, steady_state
+    from threepart import steady_state
 
-    m = None if args.method == "auto" else registry.get(args.method)
-    finite = m is not None and m.default_nu is not None      # the FEM: the material's nu, its mesh
     return steady_state(punch, (args.state0, args.state1), args.f, A=A, method=args.method,
-                        **({"nu": args.nu, "mesh": args.mesh} if finite else {}))
+                        **method_options(args, args.nu))
 
 
 def _wider_normal(cycle: Any) -> Any:

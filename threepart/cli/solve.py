@@ -11,7 +11,7 @@ from __future__ import annotations
 import argparse
 from typing import Any
 
-from ._args import labelled, method_args, number_list, punch_args, state_args
+from ._args import labelled, method_args, method_options, number_list, punch_args, state_args
 from ._output import print_result, write_points_csv
 
 __all__ = ["add_parser", "run", "MAX_GRID"]
@@ -108,17 +108,12 @@ def _compliance(args: argparse.Namespace) -> float:
 
 def _options(args: argparse.Namespace) -> tuple[dict[str, Any], str | None]:
     """The method's options from ``--mesh`` and ``--nu`` (a finite body's), and the note on an assumed nu."""
-    from threepart import registry
-
-    takes = () if args.method == "auto" else registry.get(args.method).options
-    options: dict[str, Any] = {"mesh": args.mesh} if "mesh" in takes else {}
-    finite_body, nu_note = _finite_body(args), None
-    if finite_body is not None:   # a finite body needs Poisson's ratio besides A
-        options["nu"] = finite_body.default_nu if args.nu is None else args.nu
-        if args.nu is None:
-            nu_note = (f"the FE model needs Poisson's ratio; nu = {finite_body.default_nu} "
-                       "assumed (give --nu to set it; in half-plane theory only A matters)")
-    return options, nu_note
+    finite_body = _finite_body(args)
+    if finite_body is None or args.nu is not None:
+        return method_options(args, args.nu), None
+    nu_note = (f"the FE model needs Poisson's ratio; nu = {finite_body.default_nu} "
+               "assumed (give --nu to set it; in half-plane theory only A matters)")
+    return method_options(args, finite_body.default_nu), nu_note
 
 
 def _figures(args: argparse.Namespace, slip: bool) -> dict[str, Any]:
