@@ -457,6 +457,31 @@ def test_the_command_list_names_every_sub_command():
     assert set(sub.choices) == set(COMMANDS)
 
 
+def test_every_sub_command_module_has_the_interface_and_its_command_is_in_the_help(capsys):
+    """Each public module of the package threepart/cli/, as found on disk (pkgutil, not the parser's
+    own tuple), has ``add_parser`` and ``run``; ``threepart --help`` lists its command (its name, ``-``
+    for ``_``), which runs its ``run``; and every command listed is run by one of those modules."""
+    import importlib
+    import pkgutil
+
+    import threepart.cli as package
+    from threepart.cli import build_parser
+
+    names = [m.name for m in pkgutil.iter_modules(package.__path__) if not m.name.startswith("_")]
+    assert "solve" in names and "cycle" in names
+    assert main(["--help"]) == 0
+    listed = re.search(r"\{([a-z,-]+)\}", capsys.readouterr().out).group(1).split(",")
+    sub = next(a for a in build_parser()._actions if isinstance(a, argparse._SubParsersAction))
+    for name in names:
+        module = importlib.import_module(f"threepart.cli.{name}")
+        assert callable(getattr(module, "add_parser", None)) and callable(getattr(module, "run", None)), name
+        command = name.replace("_", "-")
+        assert command in listed, f"`threepart --help` does not list {command} (threepart/cli/{name}.py)"
+        assert sub.choices[command].get_default("func") is module.run, name
+    runs = {sub.choices[c].get_default("func").__module__ for c in listed}
+    assert runs == {f"threepart.cli.{name}" for name in names}
+
+
 def test_a_number_that_double_precision_holds_is_read_as_before(capsys):
     """The float-argument parser against float(): the smallest subnormal, the largest double and
     an infinite R (flat centre) are read as they are; only 0 and inf reached by rounding are refused."""
@@ -536,7 +561,7 @@ LINE_GUARD_S = 600
 
 
 def test_fatigue_states_are_bounded_and_the_bound_is_in_the_help(capsys):
-    from threepart.cli import MAX_FATIGUE_STATES
+    from threepart.cli.fatigue import MAX_FATIGUE_STATES
 
     assert main([*FATIGUE, "--states", "1000"]) == 2
     assert f"`--states` = 1000 must lie in [2, {MAX_FATIGUE_STATES}]" in _one_line_error(capsys, "fatigue")
@@ -545,13 +570,30 @@ def test_fatigue_states_are_bounded_and_the_bound_is_in_the_help(capsys):
     assert f"recorded states per branch of the cycle, 2 to {MAX_FATIGUE_STATES}" in help_text
 
 
+def test_fatigue_auto_falls_back_past_lift_off_and_says_why_on_its_first_line(capsys):
+    """threepart.fretting's ``auto`` behind ``threepart fatigue``: past lift-off the SIE answers, and the
+    first line quotes the refusal the closed form raises when called directly (one auto fallback)."""
+    from threepart import Punch, registry, similar_pair
+    from threepart.errors import LiftOffError
+
+    with pytest.raises(LiftOffError) as refusal:
+        registry.get("closedform").fretting(Punch(10.0, 5.0, 1.0), 400.0, 0.9, A=similar_pair(210e3, 0.3),
+                                            Q_max=60.0, f=0.5, states=2)
+    argv = ["fatigue", *GEOM[:6], "--E", "210000", "--nu", "0.3", "--P", "400", "--s", "0.9",
+            "--Q-max", "60", "--f", "0.5", "--states", "2", "--nx", "3", "--nz", "2", "--ns", "3"]
+    assert main(argv) == 0
+    first = capsys.readouterr().out.splitlines()[0]
+    assert first == f"method: sie (the closed form does not hold here: {refusal.value})"
+
+
 def test_a_long_fatigue_run_says_it_is_still_running(capsys, monkeypatch):
     """The heartbeat every HEARTBEAT_S (15 s; here shortened): the stage and "still running" on stderr.
     The cycle is held until the first such line is written, so no clock decides the outcome."""
     import io
     import threading
 
-    from threepart import cli, progress
+    from threepart import progress
+    from threepart.cli import fatigue as cli_fatigue
 
     class Stderr(io.StringIO):
         beat = threading.Event()
@@ -562,7 +604,7 @@ def test_a_long_fatigue_run_says_it_is_still_running(capsys, monkeypatch):
             return super().write(text)
 
     err = Stderr()
-    real = cli._fretting
+    real = cli_fatigue._fretting
 
     def held(*args):
         cycle = real(*args)
@@ -570,7 +612,7 @@ def test_a_long_fatigue_run_says_it_is_still_running(capsys, monkeypatch):
         return cycle
 
     monkeypatch.setattr(progress, "HEARTBEAT_S", 1e-3)
-    monkeypatch.setattr(cli, "_fretting", held)
+    monkeypatch.setattr(cli_fatigue, "_fretting", held)
     monkeypatch.setattr(sys, "stderr", err)
     assert main([*FATIGUE, "--states", "3"]) == 0
     assert re.search(r"^threepart fatigue: the fretting cycle \(3 states per branch\) still running "

@@ -227,7 +227,7 @@ def test_the_closed_forms_refusal_is_one_line_and_auto_falls_back_to_the_sie_say
 
 def test_the_numerical_methods_say_they_are_still_running(capsys, tmp_path, monkeypatch):
     """The SIE's march runs inside the heartbeat (threepart.progress), its stage named."""
-    from threepart import cli_cycle
+    from threepart.cli import cycle as cli_cycle
 
     stages: list[str] = []
 

@@ -423,7 +423,7 @@ def test_cli_passes_sigma_bulk_to_the_method_or_refuses_in_one_line(capsys, monk
     """
     monkeypatch.setattr(registry, "_REGISTRY", dict(registry._REGISTRY))   # for this test only
     register(Method("bulk_toy", cf.solve_normal, fretting=_toy_fretting(True)))
-    register(Method("nobulk_toy", cf.solve_normal, fretting=_toy_fretting(False)))
+    register(Method("nobulk_toy", cf.solve_normal, fretting=_toy_fretting(False), bulk_stress=False))
     S = 300.0
     assert main([*ARGS, "--method", "bulk_toy", "--sigma-bulk", str(S), "--json"]) == 0
     out = json.loads(capsys.readouterr().out)

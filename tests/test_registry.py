@@ -7,8 +7,9 @@ import numpy as np
 import pytest
 
 import threepart
-from threepart import Punch, registry, rigid_punch
+from threepart import Punch, registry, rigid_punch, similar_pair
 from threepart.cli import main
+from threepart.errors import LiftOffError
 from threepart.tolerances import tolerance
 
 A = rigid_punch(210e3, 0.3)
@@ -103,3 +104,45 @@ def test_a_method_without_a_steady_state_model_is_refused_by_name(toy):
     with pytest.raises(ValueError, match="method 'toy' has no steady-state model of a cycle"):
         threepart.steady_state(Punch(10.0, 10.0, 1.0), states, 0.5, A=rigid_punch(E=210e3, nu=0.3),
                                method="toy")
+
+
+def test_fretting_auto_is_the_closed_form_inside_its_framework_and_the_sie_past_it_saying_why():
+    """threepart.fretting's ``auto`` (methods._auto, as solve's): inside the framework, the closed form's
+    own cycle; past lift-off (s = 0.9 beyond the closed form's lever arm), the SIE's own cycle, and
+    ``info["auto"]`` quotes the refusal the closed form raises when called directly."""
+    punch, loads = Punch(10.0, 5.0, 1.0), {"A": similar_pair(210e3, 0.3), "Q_max": 60.0, "f": 0.5,
+                                            "states": 3}
+    inside = threepart.fretting(punch, 400.0, 0.2, **loads)
+    own = registry.get("closedform").fretting(punch, 400.0, 0.2, **loads)
+    assert inside.method == "closedform" and "auto" not in inside.info
+    assert np.array_equal(inside.Q, own.Q) and np.array_equal(inside.stick, own.stick)
+    with pytest.raises(LiftOffError) as refusal:
+        registry.get("closedform").fretting(punch, 400.0, 0.9, **loads)
+    past = threepart.fretting(punch, 400.0, 0.9, **loads)
+    sie = registry.get("sie").fretting(punch, 400.0, 0.9, **loads)
+    assert past.method == "sie"
+    assert past.info["auto"] == f"the closed form does not hold here: {refusal.value}"
+    assert np.array_equal(past.Q, sie.Q) and np.array_equal(past.stick, sie.stick)
+
+
+def test_a_method_that_declares_no_bulk_stress_is_refused_one_by_name_before_it_is_called(monkeypatch):
+    """``Method.bulk_stress=False``: a nonzero ``sigma_bulk`` is refused by name (never a TypeError from
+    the call); at 0 the method is reached without one; a method without a fretting call is named."""
+    def never(*args, **kwargs):
+        raise AssertionError(f"called with {sorted(kwargs)}")
+
+    monkeypatch.setattr(registry, "_REGISTRY", dict(registry._REGISTRY))
+    registry.register(registry.Method("nobulk", never, slip=never, fretting=never, bulk_stress=False))
+    registry.register(registry.Method("normal_only", never))
+    cycle = {"A": A, "Q_max": 60.0, "f": 0.5}
+    with pytest.raises(ValueError, match=r"^`sigma_bulk` = 300: method 'nobulk' does not take a bulk "
+                                         r"stress in its fretting cycle; give sigma_bulk=0 or another method$"):
+        threepart.fretting(HERTZ, 400.0, 0.0, **cycle, method="nobulk", sigma_bulk=300.0)
+    with pytest.raises(ValueError, match=r"^`sigma_bulk` = -20: method 'nobulk' does not take a bulk "
+                                         r"stress in its partial slip"):
+        threepart.solve(HERTZ, 400.0, 0.0, A=A, Q=60.0, f=0.5, method="nobulk", sigma_bulk=-20.0)
+    with pytest.raises(AssertionError, match=r"called with \['A', 'Q_max', 'f', 'normal', 'nu', "
+                                             r"'states', 'tilt'\]"):
+        threepart.fretting(HERTZ, 400.0, 0.0, **cycle, method="nobulk")
+    with pytest.raises(ValueError, match=r"^method 'normal_only' has no fretting cycle$"):
+        threepart.fretting(HERTZ, 400.0, 0.0, **cycle, method="normal_only")

@@ -40,6 +40,8 @@ solve               -- normal or partial-slip solution by method "auto" (closed 
                        holds, else SIE), "closedform", "sie" or "fem"
 steady_state        -- the periodic steady state of an in-phase cycle between two states
                        (P, s, Q, sigma_bulk), by method "auto", "closedform" or "sie"
+fretting            -- one fretting cycle Q = 0 -> Q_max -> -Q_max -> Q_max at constant P, by
+                       method "auto" (closed form where it holds, else SIE), "closedform", "sie" or "fem"
 METHODS, CHOICES    -- the three methods; what `method` may be
 
 Results
@@ -102,7 +104,7 @@ _HOMES = {
     "hilbert": "stress",
     "stress_history": "fatigue", "von_mises_range": "fatigue",
     "swt": "fatigue", "findley": "fatigue", "ruiz": "fatigue", "HotSpot": "fatigue",
-    "steady_state": "methods",
+    "steady_state": "methods", "fretting": "methods",
 }
 _SUBPACKAGES = ("closedform", "sie", "fem", "meshes", "reports")
 
@@ -113,7 +115,7 @@ if TYPE_CHECKING:   # pragma: no cover - for type checkers and IDEs only
                          LiftOffError, MeshResolutionError, NoConvergenceError, SeparationError,
                          SlopeLimitError, StickSeparationError, StickZoneError)
     from .material import compliance, rigid_punch, similar_pair
-    from .methods import CHOICES, METHODS, solve, steady_state
+    from .methods import CHOICES, METHODS, fretting, solve, steady_state
     from .punch import Punch
     from .results import NormalResult, Peak, SlipResult
     from .cycles import HistoryResult, SteadyStateResult

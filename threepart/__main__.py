@@ -8,7 +8,8 @@ and exit status 130 too, never a traceback.
 Names
 -----
 main         -- run the command line; an interrupt at any moment after this module loads is one line
-COMMANDS     -- the sub-commands (one home: :mod:`threepart.cli` builds its parser from them)
+COMMANDS     -- the sub-commands' names, read before anything loads (tests/test_cli.py keeps them in step
+                with the modules of :data:`threepart.cli._main.SUBCOMMANDS`)
 INTERRUPTED  -- the exit status of an interrupted command, 128 + SIGINT
 """
 from __future__ import annotations
@@ -18,7 +19,8 @@ from collections.abc import Sequence   # loaded with the interpreter: no import 
 
 __all__ = ["main", "COMMANDS", "INTERRUPTED", "program"]
 
-#: the sub-commands (kept in step with :func:`threepart.cli.build_parser` by tests/test_cli.py)
+#: the sub-commands (kept in step with :func:`threepart.cli.build_parser` by tests/test_cli.py;
+#: one module each in threepart/cli/, ``solve`` and ``slip`` both in solve.py)
 COMMANDS = ("solve", "slip", "verify", "figures", "map", "export-refs", "fatigue", "cycle", "match", "deck",
             "compare")
 #: the exit status of an interrupted command: 128 + SIGINT, as a shell reports a process it ended

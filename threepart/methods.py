@@ -40,11 +40,11 @@ from . import registry
 from .errors import LiftOffError, SeparationError, StickZoneError
 from .punch import Punch
 from .cycles import SteadyStateResult
-from .results import NormalResult, SlipResult
+from .results import FrettingResult, NormalResult, SlipResult
 from .bulk import check_sigma_bulk
 from .validate import check_positive
 
-__all__ = ["METHODS", "CHOICES", "AUTO", "solve", "steady_state", "describe"]
+__all__ = ["METHODS", "CHOICES", "AUTO", "solve", "steady_state", "fretting", "describe"]
 
 #: the three built-in solvers, in report order
 METHODS = tuple(registry.BUILTIN)
@@ -59,16 +59,24 @@ FALLBACK_ON = (LiftOffError, StickZoneError, SeparationError)
 def _one(name: str, punch: Punch, P: float, s: float, A: float, tilt: str, Q: float | None,
          f: float | None, nu: float | None, options: dict[str, Any],
          sigma_bulk: float = 0.0) -> NormalResult | SlipResult:
-    m = registry.get(name)
-    m.check_options(options)
-    _check_nu(m, nu)
+    m = _checked(name, options, nu)
     if Q is None or f is None:
         return m.normal(punch, P, s, A=A, tilt=tilt, nu=nu, **options)
     if m.slip is None:
         raise ValueError(f"method {name!r} has no partial-slip model")
-    # a method that predates the bulk stress is still reached without one
-    bulk = {"sigma_bulk": sigma_bulk} if sigma_bulk else {}
-    return m.slip(punch, P, s, A=A, tilt=tilt, nu=nu, Q=Q, f=f, **bulk, **options)
+    return m.slip(punch, P, s, A=A, tilt=tilt, nu=nu, Q=Q, f=f, **_bulk(m, sigma_bulk, "partial slip"),
+                  **options)
+
+
+def _bulk(m: registry.Method, sigma_bulk: float, what: str) -> dict[str, float]:
+    """The keyword that passes ``sigma_bulk`` to ``m``: none at 0 (a method that predates the bulk
+    stress is still reached), and a refusal by name where ``m`` declares it takes none."""
+    if not sigma_bulk:
+        return {}
+    if not m.bulk_stress:
+        raise ValueError(f"`sigma_bulk` = {sigma_bulk:g}: method {m.name!r} does not take a bulk "
+                         f"stress in its {what}; give sigma_bulk=0 or another method")
+    return {"sigma_bulk": sigma_bulk}
 
 
 def solve(punch: Punch, P: float, s: float = 0.0, *, A: float, tilt: str = "free",
@@ -142,6 +150,14 @@ def solve(punch: Punch, P: float, s: float = 0.0, *, A: float, tilt: str = "free
     return result
 
 
+def _checked(name: str, options: dict[str, Any], nu: float | None) -> registry.Method:
+    """The method called ``name``, once its options and ``nu`` are checked."""
+    m = registry.get(name)
+    m.check_options(options)
+    _check_nu(m, nu)
+    return m
+
+
 def _check_nu(m: registry.Method, nu: float | None) -> None:
     """``nu`` only for a method of finite bodies: a half-plane method depends on the material only through ``A``."""
     if nu is not None and m.default_nu is None:
@@ -165,9 +181,7 @@ def _auto(call: Callable[[str, dict[str, Any]], Any], options: dict[str, Any]) -
 
 def _steady(name: str, punch: Punch, states: Any, f: float, A: float, nu: float | None,
             options: dict[str, Any]) -> SteadyStateResult:
-    m = registry.get(name)
-    m.check_options(options)
-    _check_nu(m, nu)
+    m = _checked(name, options, nu)
     if m.steady is None:
         raise ValueError(f"method {name!r} has no steady-state model of a cycle")
     return m.steady(punch, states, f, A=A, **({} if nu is None else {"nu": nu}), **options)
@@ -219,6 +233,72 @@ def steady_state(punch: Punch, states: Any, f: float, *, A: float, method: str =
     if method != "auto":
         return _steady(method, punch, states, f, A, nu, options)
     return _auto(lambda name, opts: _steady(name, punch, states, f, A, nu, opts), options)
+
+
+def _cycle(name: str, punch: Punch, P: float, s: float, A: float, tilt: str, Q_max: float, f: float,
+           states: int | None, nu: float | None, sigma_bulk: float,
+           options: dict[str, Any]) -> FrettingResult:
+    m = _checked(name, options, nu)
+    if m.fretting is None:
+        raise ValueError(f"method {name!r} has no fretting cycle")
+    bulk = _bulk(m, sigma_bulk, "fretting cycle")
+    return m.fretting(punch, P, s, A=A, tilt=tilt, nu=nu, Q_max=Q_max, f=f, states=states,
+                      normal=None, **bulk, **options)
+
+
+def fretting(punch: Punch, P: float, s: float = 0.0, *, A: float, Q_max: float, f: float,
+             tilt: str = "free", states: int | None = None, method: str = "auto",
+             nu: float | None = None, sigma_bulk: float = 0.0, **options: Any) -> FrettingResult:
+    """One fretting cycle ``Q = 0 -> Q_max -> -Q_max -> Q_max`` at constant ``P``, by ``method``.
+
+    Parameters
+    ----------
+    punch
+        Three-part punch geometry (eq. 2).
+    P, s
+        Compressive load, > 0, and its lever arm, held through the cycle.
+    A
+        Compliance of the elastically similar pair (eq. 4), > 0.
+    Q_max, f
+        Amplitude of the shear force, ``0 < Q_max < f P``, and the coefficient of friction.
+    tilt
+        ``"free"`` or ``"suppressed"``.
+    states
+        Recorded states per branch of the cycle (default: the method's).
+    method
+        ``"auto"`` (default: the closed form, and the SIE where it refuses with
+        one of :data:`FALLBACK_ON`, as :func:`solve`), ``"closedform"``,
+        ``"sie"``, ``"fem"`` or any registered method with a ``fretting`` call.
+    nu
+        Poisson's ratio, for a method that models bodies of finite size (the
+        FEM; default 0.3 there). A half-plane method refuses it, as in :func:`solve`.
+    sigma_bulk
+        Bulk stress ``σxx`` in the substrate at ``Q_max``, in phase with ``Q``
+        (docs/BULK_STRESS.md); refused by a method that declares
+        ``bulk_stress=False`` in :mod:`threepart.registry`.
+    **options
+        The method's discretisation (with ``"auto"`` they go to the SIE).
+
+    Returns
+    -------
+    FrettingResult
+        ``normal``, ``Q``, the stick zones of each recorded state, ``stress``;
+        with ``"auto"`` and a fallback, ``info["auto"]`` holds the closed form's refusal.
+
+    Raises
+    ------
+    ValueError
+        For invalid input and the named refusals of the method (with ``"auto"``,
+        those of the SIE).
+    """
+    if method != "auto":
+        registry.get(method, also=("auto",))
+    sigma_bulk = check_sigma_bulk(sigma_bulk)
+    check_positive(A=A)
+    if method != "auto":
+        return _cycle(method, punch, P, s, A, tilt, Q_max, f, states, nu, sigma_bulk, options)
+    return _auto(lambda name, opts: _cycle(name, punch, P, s, A, tilt, Q_max, f, states, nu,
+                                           sigma_bulk, opts), options)
 
 
 def describe(result: NormalResult | SlipResult) -> str:

@@ -32,6 +32,9 @@ discretisation options, named in :attr:`Method.options`.
     solves its own normal problem with the shear (the FEM) ignores it.
 ``fretting(punch, P, s, *, A, tilt, nu, Q_max, f, states, normal, **options)``
     One fretting cycle: a :class:`~threepart.results.FrettingResult`.
+    ``slip`` and ``fretting`` also take ``sigma_bulk`` (the bulk stress along
+    x, docs/BULK_STRESS.md), passed only when it is not 0, unless the method
+    declares ``bulk_stress=False``; a nonzero one is then refused by name.
 ``steady(punch, states, f, *, A, **options)``
     The periodic steady state of a cycle between two states ``(P, s, Q,
     sigma_bulk)``: a :class:`~threepart.results.SteadyStateResult`
@@ -99,6 +102,11 @@ class Method:
     steady
         The steady state of an in-phase cycle between two states, or None
         where the method has none.
+    bulk_stress
+        True (default) if ``slip`` and ``fretting`` take ``sigma_bulk``; False
+        for a method that predates the bulk stress, to which :func:`threepart.solve`
+        and :func:`threepart.fretting` (and the command line) refuse a nonzero
+        one by name before calling it.
     history
         ``history(punch, states, f, *, A, nu, **options)``: a load history of
         ``(P, s, Q, sigma_bulk)`` states marched with the memory of slip
@@ -129,6 +137,7 @@ class Method:
     steady: Callable[..., SteadyStateResult] | None = None
     history: Callable[..., HistoryResult] | None = None
     edges: Callable[[NormalResult], tuple[tuple[float, float | None], tuple[float, float | None]]] | None = None
+    bulk_stress: bool = True
 
     def check_options(self, options: dict[str, Any], called: str | None = None) -> None:
         """``ValueError`` naming the first option this method does not take; then the values.

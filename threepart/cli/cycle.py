@@ -20,7 +20,9 @@ from typing import Any
 
 from threepart.progress import heartbeat
 
-__all__ = ["add_parser", "run", "state_arg"]
+from ._args import labelled, method_options, state_arg
+
+__all__ = ["add_parser", "run"]
 
 #: grid of the fatigue hot spots, as ``threepart fatigue``'s defaults: x over [-a - W/4, c + W/4]
 #: (nx points), z over [0, W] (nz points), Ruiz on NS surface points over the contact
@@ -38,28 +40,8 @@ _HOT = {"von_mises_range": ("von Mises range", "MPa"), "swt": ("SWT (critical pl
         "ruiz_fdp": ("Ruiz FDP q delta", "MPa mm")}
 
 
-def state_arg(text: str) -> tuple[float, float, float, float]:
-    """``"P,s,Q,sigma_bulk"`` as a state (the type of ``--state0``/``--state1``), or a one-line refusal."""
-    from threepart.cli import real_arg
-
-    parts = text.split(",")
-    if len(parts) != 4:
-        raise argparse.ArgumentTypeError(f"{text!r} must be 4 numbers P,s,Q,sigma_bulk (got {len(parts)})")
-    try:
-        P, s, Q, sigma = (real_arg(t) for t in parts)
-    except argparse.ArgumentTypeError as exc:
-        raise argparse.ArgumentTypeError(f"{text!r} must be 4 numbers P,s,Q,sigma_bulk ({exc})") from None
-    if not all(math.isfinite(v) for v in (P, s, Q, sigma)):
-        raise argparse.ArgumentTypeError(f"{text!r} must hold finite numbers P,s,Q,sigma_bulk")
-    if not P > 0:
-        raise argparse.ArgumentTypeError(f"{text!r}: P = {P:g} must be > 0 (a compressive normal load)")
-    return P, s, Q, sigma
-
-
 def add_parser(sub: Any) -> None:
     """Add the ``cycle`` sub-command to ``sub`` (the sub-parsers of :func:`threepart.cli.build_parser`)."""
-    from threepart.cli import _labelled
-
     p = sub.add_parser("cycle", help="the flight cycle: steady state of an in-phase cycle, or a load "
                                      "history marched with the memory of slip",
                        description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter,
@@ -69,13 +51,13 @@ def add_parser(sub: Any) -> None:
     g.add_argument("--case", metavar="NAME",
                    help="a catalogue case with `states` (e.g. fan_blade_flight_cycle); with "
                         "--history, any case with a material or A and f")
-    g.add_argument("--R1", type=float, help=_labelled("left edge radius, > 0", "R1"))
-    g.add_argument("--R2", type=float, help=_labelled("right edge radius, > 0", "R2"))
-    g.add_argument("--b", type=float, help=_labelled("half-width of the central segment, >= 0", "b"))
-    g.add_argument("--R", type=float, default=None, help=_labelled("central radius (default inf: flat)", "R"))
-    g.add_argument("--E", type=float, help=_labelled("Young's modulus of both bodies", "E"))
+    g.add_argument("--R1", type=float, help=labelled("left edge radius, > 0", "R1"))
+    g.add_argument("--R2", type=float, help=labelled("right edge radius, > 0", "R2"))
+    g.add_argument("--b", type=float, help=labelled("half-width of the central segment, >= 0", "b"))
+    g.add_argument("--R", type=float, default=None, help=labelled("central radius (default inf: flat)", "R"))
+    g.add_argument("--E", type=float, help=labelled("Young's modulus of both bodies", "E"))
     g.add_argument("--nu", type=float, help="Poisson's ratio of both bodies")
-    g.add_argument("--A", type=float, help=_labelled("compliance of the similar pair, 4(1 - nu^2)/E "
+    g.add_argument("--A", type=float, help=labelled("compliance of the similar pair, 4(1 - nu^2)/E "
                                                      "(eq. 4); or give --E and --nu", "A"))
     g.add_argument("--f", type=float, help="coefficient of friction, > 0")
     ld = p.add_argument_group("loads: the two ends of the cycle, or a history")
@@ -194,30 +176,21 @@ def _problem(args: argparse.Namespace) -> dict[str, Any]:
 
 def _steady(args: argparse.Namespace, pr: dict[str, Any]) -> Any:
     """The steady state by ``--method`` (the FEM with the problem's Poisson ratio)."""
-    from threepart import registry, steady_state
+    from threepart import steady_state
 
-    m = None if args.method == "auto" else registry.get(args.method)
-    options: dict[str, Any] = {}
-    if m is not None and m.default_nu is not None:     # the FEM: the problem's nu, its mesh
-        options = {"nu": pr["nu"], "mesh": args.mesh}
-    elif args.n is not None and args.method != "closedform":
-        options = {"n": args.n}
-    return steady_state(pr["punch"], pr["states"], pr["f"], A=pr["A"], method=args.method, **options)
+    return steady_state(pr["punch"], pr["states"], pr["f"], A=pr["A"], method=args.method,
+                        **method_options(args, pr["nu"]))
 
 
 def _march(args: argparse.Namespace, pr: dict[str, Any]) -> Any:
     """The history marched by the SIE (``auto``, ``sie``) or the FEM."""
     from threepart import registry
+    from threepart.methods import AUTO
 
-    m = registry.get("sie" if args.method == "auto" else args.method)
+    m = registry.get(AUTO[1] if args.method == "auto" else args.method)
     if m.history is None:
         raise ValueError(f"`--method` = {args.method}: it marches no load history (sie and fem do)")
-    options: dict[str, Any] = {"nu": pr["nu"]} if m.default_nu is not None else {}
-    if "mesh" in m.options:
-        options["mesh"] = args.mesh
-    if "n" in m.options and args.n is not None:
-        options["n"] = args.n
-    return m.history(pr["punch"], pr["history"], pr["f"], A=pr["A"], **options)
+    return m.history(pr["punch"], pr["history"], pr["f"], A=pr["A"], **method_options(args, pr["nu"]))
 
 
 def run(args: argparse.Namespace) -> int:

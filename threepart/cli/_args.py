@@ -1,0 +1,249 @@
+"""What the sub-commands share in parsing: the parser, the number options, the option groups.
+
+Building the parser loads no numpy: every numerical import is inside a function.
+
+Names
+-----
+UsageError          -- a command-line usage error, already formatted as one line
+Parser              -- an argument parser whose usage errors raise UsageError
+NUMERIC_OPTIONS     -- the options that take a number (``--s -1e-3`` is read as ``--s=-1e-3``)
+LIST_OPTIONS        -- the options that take a comma-separated list of numbers
+join_negative_numbers -- ``--opt -1e-3`` as ``--opt=-1e-3`` for those options
+real_arg            -- the type of every number option: a float, or a one-line refusal
+number_list         -- the type of ``--x``: a list of numbers
+state_arg           -- the type of ``--state0``/``--state1``: ``P,s,Q,sigma_bulk``
+labelled            -- an option's help text with the unit of its quantity
+punch_args          -- the option group ``--R1 --R2 --b --R`` (eq. 2)
+state_args          -- the options ``--state0 --state1``: a flight cycle's two ends
+method_args         -- the option group ``--method --mesh``
+method_options      -- the options ``--method`` declares, from the command line (``mesh``, ``n``, ``nu``)
+problem_args, problem -- ``--case NAME`` or the punch, loads and material (deck, compare)
+FORCE_HELP          -- the help of the ``--force`` that an output directory no longer needs
+"""
+from __future__ import annotations
+
+import argparse
+import math
+import sys
+from typing import Any, NoReturn, Sequence
+
+from threepart.units import UNITS
+
+__all__ = ["UsageError", "Parser", "NUMERIC_OPTIONS", "LIST_OPTIONS", "join_negative_numbers",
+           "real_arg", "number_list", "state_arg", "labelled", "punch_args", "state_args", "method_args", "method_options",
+           "problem_args", "problem", "FORCE_HELP"]
+
+#: options that take a number; ``--s -1e-3`` is read as ``--s=-1e-3`` (argparse alone
+#: would take ``-1e-3`` for an option)
+NUMERIC_OPTIONS = ("--R1", "--R2", "--b", "--R", "--A", "--E", "--nu", "--P", "--s", "--Q", "--f",
+                   "--Q-max", "--sigma-bulk", "--k", "--depth",   # --Q-max, --k, --depth: fatigue
+                   "--alpha", "--h", "--penalty", "--stiffening", "--pad-R", "--pad-P")   # deck, compare; match
+#: options that take a comma-separated list of numbers (``--x -0.5,0.2`` is read as ``--x=-0.5,0.2``)
+LIST_OPTIONS = ("--x",)
+
+FORCE_HELP = ("no longer needed: a rerun replaces threepart's own earlier output in --out (its "
+              ".threepart-output.json lists every file with a checksum, and nothing else is there); "
+              "a directory holding anything else, or an edited file, is never replaced, with or "
+              "without --force")
+
+
+class UsageError(Exception):
+    """A command-line usage error, already formatted as one line."""
+
+
+class Parser(argparse.ArgumentParser):
+    """An argument parser whose usage errors are one line (raised, so that main returns 2)."""
+
+    def error(self, message: str) -> NoReturn:
+        msg = " ".join(message.split())
+        raise UsageError(f"{self.prog}: error: {msg} (see `{self.prog} --help`)")
+
+
+def _is_number(token: str) -> bool:
+    try:
+        float(token)
+    except ValueError:
+        return False
+    return True
+
+
+def _is_number_list(token: str) -> bool:
+    return all(_is_number(t) for t in token.split(","))
+
+
+def join_negative_numbers(argv: Sequence[str]) -> list[str]:
+    """Rewrite ``--opt -1e-3`` as ``--opt=-1e-3`` for the options in :data:`NUMERIC_OPTIONS`."""
+    out: list[str] = []
+    i = 0
+    while i < len(argv):
+        tok = argv[i]
+        if tok == "--":
+            out.extend(argv[i:])
+            break
+        nxt = argv[i + 1] if i + 1 < len(argv) else None
+        negative = nxt is not None and nxt.startswith("-")
+        if negative and ((tok in NUMERIC_OPTIONS and _is_number(nxt))            # type: ignore[arg-type]
+                         or (tok in LIST_OPTIONS and _is_number_list(nxt))):   # type: ignore[arg-type]
+            out.append(f"{tok}={nxt}")
+            i += 2
+        else:
+            out.append(tok)
+            i += 1
+    return out
+
+
+def real_arg(text: str) -> float:
+    """The value of a number option (the type of every one): ``float(text)``, or a one-line refusal.
+
+    A number that double precision cannot hold is refused, not rounded: one that
+    underflows to 0 (``--b 1e-400`` would be solved as a punch without a flat) or
+    overflows to inf (``inf`` itself, where an option takes it, is given as such).
+    """
+    from decimal import Decimal, InvalidOperation
+
+    try:
+        v = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"invalid float value: {text!r}") from None
+    try:
+        exact = Decimal(text.strip().replace("_", ""))
+    except InvalidOperation:   # a form float() reads and Decimal does not: nothing lost
+        return v
+    if v == 0.0 and exact.is_finite() and exact != 0:
+        raise argparse.ArgumentTypeError(f"{text} underflows to 0 in double precision (the smallest "
+                                         f"positive number is {math.ulp(0.0):.2g})")
+    if math.isinf(v) and exact.is_finite():
+        raise argparse.ArgumentTypeError(f"{text} overflows to inf in double precision (the largest "
+                                         f"number is {sys.float_info.max:.3g})")
+    return v
+
+
+def number_list(text: str) -> list[float]:
+    """``"1,-2.5,3e-1"`` as a list of floats (the type of ``--x``), each read by :func:`real_arg`."""
+    try:
+        return [real_arg(t) for t in text.split(",")]
+    except argparse.ArgumentTypeError as exc:
+        raise argparse.ArgumentTypeError(f"invalid list of numbers: {text!r} ({exc}; write "
+                                         "X1,X2,...)") from None
+
+
+def state_arg(text: str) -> tuple[float, float, float, float]:
+    """``"P,s,Q,sigma_bulk"`` as a state (the type of ``--state0``/``--state1``), or a one-line refusal."""
+    parts = text.split(",")
+    if len(parts) != 4:
+        raise argparse.ArgumentTypeError(f"{text!r} must be 4 numbers P,s,Q,sigma_bulk (got {len(parts)})")
+    try:
+        P, s, Q, sigma = (real_arg(t) for t in parts)
+    except argparse.ArgumentTypeError as exc:
+        raise argparse.ArgumentTypeError(f"{text!r} must be 4 numbers P,s,Q,sigma_bulk ({exc})") from None
+    if not all(math.isfinite(v) for v in (P, s, Q, sigma)):
+        raise argparse.ArgumentTypeError(f"{text!r} must hold finite numbers P,s,Q,sigma_bulk")
+    if not P > 0:
+        raise argparse.ArgumentTypeError(f"{text!r}: P = {P:g} must be > 0 (a compressive normal load)")
+    return P, s, Q, sigma
+
+
+def labelled(help_text: str, quantity: str) -> str:
+    """``help_text`` with the unit of ``quantity`` (:data:`threepart.units.UNITS`) in brackets."""
+    return f"{help_text} [{UNITS[quantity]}]"
+
+
+def punch_args(p: argparse.ArgumentParser) -> None:
+    """``--R1 --R2 --b --R``: the punch of eq. (2), for every command that takes one."""
+    g = p.add_argument_group("punch geometry (eq. 2)")
+    g.add_argument("--R1", type=float, required=True, help=labelled("left edge radius, > 0", "R1"))
+    g.add_argument("--R2", type=float, required=True, help=labelled("right edge radius, > 0", "R2"))
+    g.add_argument("--b", type=float, required=True,
+                   help=labelled("half-width of the central segment, >= 0", "b"))
+    g.add_argument("--R", type=float, default=float("inf"),
+                   help=labelled("central radius: inf (flat, case A, default), negative for "
+                                 "concave (case B)", "R"))
+
+
+def state_args(group: Any) -> None:
+    """``--state0 --state1``: a flight cycle's two ends, instead of one load (``solve``, ``slip``, ``fatigue``)."""
+    for k in (0, 1):
+        group.add_argument(f"--state{k}", type=state_arg, metavar="P,s,Q,SIGMA",
+                           help=f"end {k} of an in-phase flight cycle (N/mm, mm, N/mm, MPa), instead of "
+                                "--P, --s, --Q-max and --sigma-bulk: the fatigue of its periodic steady "
+                                "state at its two ends (docs/STEADY_STATE.md, docs/FATIGUE.md)")
+
+
+def method_args(p: argparse.ArgumentParser) -> Any:
+    """``--method`` (from the registry) and ``--mesh``, for every command that solves; the group."""
+    from threepart import registry
+
+    mt = p.add_argument_group("method")
+    mt.add_argument("--method", choices=("auto", *registry.names()), default="auto",
+                    help="auto (default): the closed form where it holds, else the SIE; or one method")
+    mt.add_argument("--mesh", choices=("quick", "default", "fine"), default="default",
+                    help="FE mesh preset for --method fem (default: default)")
+    return mt
+
+
+def method_options(args: argparse.Namespace, nu: float | None) -> dict[str, Any]:
+    """The options that ``--method`` declares (:attr:`threepart.registry.Method.options`), from the
+    command line: ``mesh`` (``--mesh``), ``n`` (``--n``, where the command has it and it is given),
+    and ``nu`` for a method of finite bodies. With ``auto`` they are the fallback's, the SIE's
+    (:data:`threepart.methods.AUTO`), as the library passes them."""
+    from threepart import registry
+    from threepart.methods import AUTO
+
+    m = registry.get(AUTO[1] if args.method == "auto" else args.method)
+    options: dict[str, Any] = {"mesh": args.mesh} if "mesh" in m.options else {}
+    if "n" in m.options and getattr(args, "n", None) is not None:
+        options["n"] = args.n
+    if m.default_nu is not None:     # a finite body needs Poisson's ratio besides A
+        options["nu"] = nu
+    return options
+
+
+def problem_args(p: argparse.ArgumentParser, *, compliance_option: bool) -> None:
+    """``--case NAME``, or the punch, the loads and the material on the command line."""
+    g = p.add_argument_group("the problem: --case NAME, or the punch and the loads (eq. 2)")
+    g.add_argument("--case", metavar="NAME", help="a case of the catalogue (threepart/cases.json)")
+    for name, text in (("--R1", "left edge radius"), ("--R2", "right edge radius"),
+                       ("--b", "half-width of the central segment")):
+        g.add_argument(name, type=float, help=labelled(text, name[2:]))
+    g.add_argument("--R", type=float, default=None,
+                   help=labelled("central radius (default inf: flat)", "R"))
+    g.add_argument("--P", type=float, help=labelled("normal load per unit length", "P"))
+    g.add_argument("--s", type=float, default=None, help=labelled("lever arm of P (default 0)", "s"))
+    g.add_argument("--E", type=float, help=labelled("Young's modulus of the block", "E"))
+    g.add_argument("--nu", type=float, help="Poisson's ratio of the block")
+    if compliance_option:
+        g.add_argument("--A", type=float,
+                       help=labelled("compliance of the model judged (eq. 4); default: the case's, "
+                                     "or 2(1 - nu^2)/E (a rigid punch)", "A"))
+    g.add_argument("--tilt", choices=("free", "suppressed"), default=None,
+                   help="free (default, or the case's) or suppressed")
+
+
+def problem(args: argparse.Namespace) -> dict[str, Any]:
+    """The punch, loads and material of ``--case`` or of the command line's options."""
+    from threepart.catalogue import get_case, load_cases
+    from threepart.punch import Punch
+
+    given = [o for o in ("R1", "R2", "b", "R", "P", "s") if getattr(args, o) is not None]
+    if args.case is not None:
+        if given:
+            raise ValueError(f"give `--case` or the punch and loads, not both (also got "
+                             f"`--{given[0]}`)")
+        if args.case not in {c.name for c in load_cases(None)}:
+            names = ", ".join(c.name for c in load_cases(None))
+            raise ValueError(f"`--case` = {args.case!r} is not in the catalogue ({names})")
+        case = get_case(args.case).resolved()
+        if case.material is None and (args.E is None or args.nu is None):
+            raise ValueError(f"case {case.name!r} gives only A; add `--E` and `--nu`")
+        E, nu = case.material if case.material is not None else (args.E, args.nu)
+        E = E if args.E is None else args.E
+        nu = nu if args.nu is None else args.nu
+        return {"name": case.name, "punch": case.punch, "P": case.P, "s": float(case.s or 0.0),
+                "E": E, "nu": nu, "A": case.A if args.E is None and args.nu is None else None,
+                "tilt": args.tilt or case.tilt}
+    missing = [o for o in ("R1", "R2", "b", "P", "E", "nu") if getattr(args, o) is None]
+    if missing:
+        raise ValueError(f"give `--case NAME`, or the punch and the loads: `--{missing[0]}` is missing")
+    punch = Punch(R1=args.R1, R2=args.R2, b=args.b, R=float("inf") if args.R is None else args.R)
+    return {"name": "", "punch": punch, "P": args.P, "s": 0.0 if args.s is None else args.s,
+            "E": args.E, "nu": args.nu, "A": None, "tilt": args.tilt or "free"}

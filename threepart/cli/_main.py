@@ -1,0 +1,223 @@
+"""The parser of every sub-command, and ``main``: the exit status and the one-line errors.
+
+:func:`build_parser` loops over :data:`SUBCOMMANDS`, one module per sub-command;
+:func:`main` runs the one asked for and turns what it raises into one line on
+stderr and an exit status (2 an error, 130 interrupted, 141 a closed pipe).
+"""
+from __future__ import annotations
+
+import argparse
+import os
+import select
+import signal
+import sys
+import threading
+from typing import Any, Iterator, Sequence
+
+from threepart.__main__ import INTERRUPTED, program
+
+from . import compare, cycle, deck, export_refs, fatigue, figures, match, solve, verify
+from . import map as map_   # the module, not the builtin
+from ._args import Parser, UsageError, join_negative_numbers, real_arg
+
+__all__ = ["build_parser", "main", "SUBCOMMANDS", "HELP"]
+
+#: the sub-command modules, in the order ``threepart --help`` lists them; each has
+#: ``add_parser(subparsers)`` (which sets ``func``) and ``run(args) -> int``
+SUBCOMMANDS = (solve, verify, figures, map_, export_refs, fatigue, cycle, match, deck, compare)
+
+#: the description ``threepart --help`` prints
+HELP = """The ``threepart`` command line.
+
+Sub-commands
+------------
+solve    normal problem: a, c, alpha, peak pressures, segments in contact, lift-off lever arms
+slip     partial slip: adds the stick zone for a shear load Q and friction f
+verify   verification run: closed form against SIE and FEM, tolerance report
+figures  the paper's result figures, with the SIE solution as markers
+map      where the half-plane formulas stop: the finite-body validity map, on dask.distributed
+export-refs  the catalogue's reference solutions as a versioned dataset (JSON + CSV, JSON schema)
+fatigue  fretting-fatigue parameters of a fretting cycle: hot spots, CSV, VTU and a contour plot
+cycle    the flight cycle: steady state of an in-phase cycle (or a load history), CSV and plot
+match    the Hertzian pad test that reproduces one edge of a flank: its K_N, K_T and slip zone
+deck     a ready-to-run CalculiX input deck of a catalogue case or of a punch and loads
+compare  judge another code's contact pressure (CSV, CalculiX .frd/.dat, VTU/XDMF/MED/Exodus) against threepart
+
+--method auto (default) uses the paper's closed form where it holds and the SIE
+where it does not (past lift-off, the punch on one corner, a stick zone that
+ends on the central segment), and says so on the first line of the output and
+as "method" in --json; closedform, sie or fem ask for one method. A contact
+that would separate into two zones is refused by every method.
+
+--x X1,X2,... or --grid N add the pressure p(x) (and the shear q(x) for slip)
+at those points, or at N points spread evenly over the contact; --csv FILE
+writes them to a new file, or over the file an earlier run wrote there if it is
+unchanged (never over anything else).
+
+Units: the library works in any consistent set of units. The command line
+labels lengths mm, loads per unit length N/mm, pressures and moduli MPa,
+compliance 1/MPa and the tilt rad; give the input in a consistent set and read
+the labels accordingly. Negative numbers may follow their option (--s -0.1).
+
+--json prints strict JSON: plain numbers, a top-level "units" object, and an
+infinite R (flat centre) as null.
+
+Exit status: 0 done (verify: every tolerance holds; map: every point done and
+the control within 1e-3), 1 a tolerance or a map point failed, 2 an error (one
+line on stderr), 130 interrupted (map: run it again to resume).
+"""
+
+
+def build_parser() -> argparse.ArgumentParser:
+    """The parser of every sub-command; its usage errors raise :class:`UsageError`."""
+    parser = Parser(prog="threepart", description=HELP,
+                    formatter_class=argparse.RawDescriptionHelpFormatter)
+    sub = parser.add_subparsers(dest="command", required=True, parser_class=Parser)
+    for module in SUBCOMMANDS:
+        module.add_parser(sub)
+    for action in _actions(parser):   # one reader of numbers: every `type=float` option's
+        if action.type is float:
+            action.type = real_arg
+    return parser
+
+
+def _actions(parser: argparse.ArgumentParser) -> Iterator[argparse.Action]:
+    """Every option of ``parser`` and of its sub-commands."""
+    for action in parser._actions:
+        yield action
+        if isinstance(action, argparse._SubParsersAction):
+            for sub in action.choices.values():
+                yield from _actions(sub)
+
+
+def _one_line(exc: BaseException) -> str:
+    return " ".join(str(exc).split()) or type(exc).__name__
+
+
+#: the exit status when the reader of standard output went away (``threepart slip | head``):
+#: 128 + SIGPIPE, what a program killed by the signal reports, and silent, as ``git`` and coreutils are
+PIPE_CLOSED = 141
+
+
+def _stdout_closed() -> bool:
+    """Whether standard output is a pipe whose reader has gone (then nothing more can be printed).
+
+    Its buffer is pointed at ``os.devnull`` so that the interpreter's flush at exit
+    does not fail a second time.
+    """
+    try:
+        fd = sys.stdout.fileno()
+        poll = select.poll()
+        poll.register(fd, select.POLLOUT)
+        closed = any(ev & select.POLLERR for _, ev in poll.poll(0))
+    except (OSError, ValueError, AttributeError):   # no file descriptor (a test's capture)
+        return False
+    if closed:
+        os.dup2(os.open(os.devnull, os.O_WRONLY), fd)
+    return closed
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """Entry point of the ``threepart`` console script.
+
+    Parameters
+    ----------
+    argv
+        The arguments after the program name (default: ``sys.argv[1:]``).
+
+    Returns
+    -------
+    int
+        0 done, 1 a verification tolerance failed, 2 an error (one line on
+        stderr, no traceback), 130 interrupted (Ctrl-C), 141 (silently) when
+        the reader of standard output has gone.
+    """
+    argv = list(sys.argv[1:] if argv is None else argv)
+    # named before parsing, so that Ctrl-C while the parser is built names the command too
+    prog = program(argv)
+    interrupted, previous = _watch_interrupts()
+    args = None
+    try:
+        try:
+            args, extra = build_parser().parse_known_args(join_negative_numbers(argv))
+        except SystemExit as exc:  # --help
+            return exc.code if isinstance(exc.code, int) else 0
+        prog = f"threepart {args.command}"
+        if extra:   # named here, so that the message names the sub-command
+            raise UsageError(f"{prog}: error: unrecognized arguments: {' '.join(extra)} "
+                             f"(see `{prog} --help`)")
+        return int(args.func(args))
+    except BaseException as exc:
+        # Ctrl-C inside a C extension's import (numpy's) comes out as an ImportError, or any
+        # other error, with the KeyboardInterrupt lost: the flag, not the class, tells
+        if not (isinstance(exc, KeyboardInterrupt) or interrupted.is_set()):
+            return _error_status(_units_hint(exc, args), prog)
+        resume = "; run it again to resume" if prog == "threepart map" else ""
+        print(f"{prog}: interrupted{resume}", file=sys.stderr)
+        return INTERRUPTED
+    finally:
+        if previous is not None:
+            signal.signal(signal.SIGINT, previous)
+
+
+def _watch_interrupts() -> tuple[threading.Event, Any]:
+    """An event that SIGINT sets, and the handler it replaced (None: none replaced).
+
+    The new handler still raises KeyboardInterrupt, as Python's default does. It
+    is installed only where Python's own handler is (not where SIGINT is ignored,
+    nor off the main thread).
+    """
+    event = threading.Event()
+    if (threading.current_thread() is not threading.main_thread()
+            or signal.getsignal(signal.SIGINT) is not signal.default_int_handler):
+        return event, None
+
+    def on_sigint(signum: int, frame: Any) -> None:
+        event.set()
+        raise KeyboardInterrupt
+
+    return event, signal.signal(signal.SIGINT, on_sigint)
+
+
+#: a modulus below this (MPa) with a contact past the slope limit is likely given in GPa
+#: (the metals' moduli lie between about 45 and 410 GPa; steel's is 210 GPa = 210000 MPa)
+GPA_SUSPECT_E = 1000.0
+
+
+def _units_hint(exc: BaseException, args: argparse.Namespace | None) -> BaseException:
+    """``exc``, or for a slope past the limit (or a contact past an arc) with a small ``--E``,
+    the same error pointing at the modulus and its units.
+
+    ``--E 210`` (steel in GPa, not MPa) makes the contact a thousand times too
+    compliant and its slope absurd; the slope-limit error alone would send the
+    user to the load or the lever arm.
+    """
+    from threepart.errors import ArcExtentError, SlopeLimitError
+
+    E = getattr(args, "E", None)
+    if (not isinstance(exc, (SlopeLimitError, ArcExtentError)) or E is None
+            or getattr(args, "A", None) is not None or not 0 < E < GPA_SUSPECT_E):
+        return exc
+    what = _one_line(exc).replace("; reduce the load or the lever arm `s`", "")
+    return type(exc)(f"is `--E` = {E:g} in MPa (steel: 210000, not 210)? With it, {what}; "
+                     "else reduce the load or the lever arm `s`")
+
+
+def _error_status(exc: BaseException, prog: str) -> int:
+    """The exit status of an error that ended a command (its one line on stderr), or re-raise it."""
+    from threepart.errors import ContactZoneError, NoConvergenceError
+
+    try:
+        raise exc
+    except UsageError as exc:
+        print(exc, file=sys.stderr)
+        return 2
+    except BrokenPipeError as exc:
+        if not _stdout_closed():
+            print(f"{prog}: error: {_one_line(exc)}", file=sys.stderr)
+            return 2
+        return PIPE_CLOSED
+    except (ValueError, NoConvergenceError, ContactZoneError, OSError) as exc:
+        print(f"{prog}: error: {_one_line(exc)}", file=sys.stderr)
+        return 2
+

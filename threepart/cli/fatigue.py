@@ -1,0 +1,375 @@
+"""``threepart fatigue``: fretting-fatigue parameters of a fretting cycle or of a flight cycle.
+
+A fretting cycle ``Q = 0 -> Q_max -> -Q_max -> Q_max`` at ``P`` (:func:`threepart.fretting`,
+its ``auto`` fallback), or the periodic steady state of an in-phase flight cycle
+between ``--state0`` and ``--state1`` (:func:`threepart.steady_state`); then the
+fatigue parameters on a grid under the contact (:func:`threepart.fatigue.fatigue`):
+their hot spots printed (or ``--json``), the fields as CSV (``--csv``), as a VTU
+grid for ParaView (``--vtu``) and as contour plots (``--plot``). Definitions:
+docs/FATIGUE.md.
+"""
+from __future__ import annotations
+
+import argparse
+import sys
+from typing import Any
+
+from threepart.progress import heartbeat
+
+from ._args import labelled, method_args, method_options, punch_args, state_args
+from ._output import print_json, write_csv, write_grid_vtu
+
+__all__ = ["add_parser", "run", "MAX_FATIGUE_POINTS", "MAX_FATIGUE_STATES", "FATIGUE_UNITS"]
+
+#: the most grid points ``threepart fatigue`` evaluates (each state costs a stress evaluation)
+MAX_FATIGUE_POINTS = 100_000
+#: the most recorded states per branch ``threepart fatigue`` takes: each distinct state costs a
+#: stress evaluation at every grid point (README's example on its default grid, this project's
+#: 2-core machine: 50 states 31 s at load 3, 20 states 29 s at load 8); 1000 ran past 5 minutes
+MAX_FATIGUE_STATES = 50
+#: units of the fatigue parameters in the command line's consistent set (mm, N/mm, MPa)
+FATIGUE_UNITS = {"von_mises_range": "MPa", "swt": "MPa", "findley": "MPa",
+                 "ruiz_fdp": "MPa mm", "ruiz_ffdp": "MPa^2 mm", "theta": "deg"}
+_FATIGUE_LABELS = {"von_mises_range": "von Mises range", "swt": "SWT (critical plane)",
+                   "findley": "Findley (critical plane)", "ruiz_ffdp": "Ruiz FFDP s_xx q delta",
+                   "ruiz_fdp": "Ruiz FDP q delta"}
+
+
+def add_parser(sub: Any) -> None:
+    """Add ``fatigue`` to ``sub`` (the sub-parsers of :func:`threepart.cli.build_parser`)."""
+    p = sub.add_parser("fatigue", help="fretting-fatigue parameters of a fretting cycle: hot spots, "
+                                       "CSV, VTU, contour plot",
+                       epilog="Units: mm, N/mm, MPa, 1/MPa, or any consistent set (the parameters "
+                              "then follow: SWT, Findley and the von Mises range in the stress "
+                              "unit, Ruiz's FDP in stress x length, FFDP in stress^2 x length). "
+                              "Definitions: docs/FATIGUE.md.", formatter_class=_FatigueHelp)
+    _fatigue_args(p)
+    p.set_defaults(func=run)
+
+
+def _fatigue_args(p: argparse.ArgumentParser) -> None:
+    punch_args(p)
+    m = p.add_argument_group("material (two similar bodies, plane strain: A = 4(1 - nu^2)/E)")
+    m.add_argument("--E", type=float, required=True,
+                   help=labelled("Young's modulus (also for the SWT strains)", "E"))
+    m.add_argument("--nu", type=float, required=True, help="Poisson's ratio, in (-1, 0.5)")
+    m.add_argument("--k", type=float,   # None: threepart.fatigue.K_FINDLEY, read when used
+                   help="Findley's constant, in [0, 10] (default {k_findley})")
+    ld = p.add_argument_group("loads: P at s, then the cycle Q = 0 -> Q_max -> -Q_max -> Q_max; or "
+                              "a flight cycle's two ends, --state0 and --state1")
+    ld.add_argument("--P", type=float,
+                    help=labelled("compressive normal load per unit length, > 0", "P"))
+    ld.add_argument("--s", type=float, default=0.0,
+                    help=labelled("lever arm of P, positive to the right", "s"))
+    ld.add_argument("--Q-max", dest="Q_max", type=float,
+                    help=labelled("amplitude of the shear force the punch exerts on the substrate "
+                                   "along +x, 0 < Q_max < f P", "Q"))
+    ld.add_argument("--f", type=float, required=True, help="coefficient of friction, > 0")
+    ld.add_argument("--sigma-bulk", dest="sigma_bulk", type=float, default=0.0,
+                    help="bulk stress sigma_xx in the substrate at Q_max, tension positive, in "
+                         "phase with Q [MPa] (default 0)")
+    ld.add_argument("--tilt", choices=("free", "suppressed"), default="free")
+    state_args(ld)
+    mt = method_args(p)
+    mt.add_argument("--states", type=int, default=5,
+                    help=f"recorded states per branch of the cycle, 2 to {MAX_FATIGUE_STATES} "
+                         "(default 5; +-Q_max are always recorded); each distinct state costs one "
+                         "stress evaluation")
+    gr = p.add_argument_group("grid under the contact: x over [-a - W/4, c + W/4], z over [0, depth W]")
+    gr.add_argument("--nx", type=int, default=41, help="points along x, >= 2 (default 41)")
+    gr.add_argument("--nz", type=int, default=21, help="points in depth, >= 2 (default 21; the "
+                                                      "first row is the surface, z = 0)")
+    gr.add_argument("--ns", type=int, default=201,
+                    help="surface points over the contact for Ruiz's parameters, >= 2 (default "
+                         "201, at the midpoints of equal parts, with the grid's surface row)")
+    gr.add_argument("--depth", type=float, default=1.0,
+                    help="depth of the grid as a multiple of the contact width W = a + c, > 0 "
+                         "(default 1)")
+    out = p.add_argument_group("output files (each a new file, or one threepart wrote there and "
+                               "that is unchanged; never over anything else)")
+    out.add_argument("--csv", metavar="FILE", help="the fields at the grid points, as CSV")
+    out.add_argument("--vtu", metavar="FILE",
+                     help="the fields as a VTU structured grid of quads for ParaView (y = -z)")
+    out.add_argument("--plot", metavar="FILE.png", help="contour plots under the contact, as PNG")
+    p.add_argument("--json", action="store_true", help="print strict JSON instead of text")
+
+
+class _FatigueHelp(argparse.HelpFormatter):
+    """The help of ``fatigue``: Findley's default constant read only when help is shown.
+
+    Building the parser loads no numpy (see :data:`threepart._HOMES`).
+    """
+
+    def _get_help_string(self, action: argparse.Action) -> str | None:
+        text = super()._get_help_string(action)
+        if text and "{k_findley}" in text:
+            from threepart.fatigue import K_FINDLEY
+
+            text = text.replace("{k_findley}", f"{K_FINDLEY:g}")
+        return text
+
+
+def _fatigue_iv(args: argparse.Namespace) -> None:
+    """Check the fatigue command's own options before any numerics (``--k`` gets its default)."""
+    import math
+
+    from threepart.fatigue import K_FINDLEY, findley_k
+    from threepart.output import check_file
+    from threepart.validate import finite, integer, poisson, positive
+
+    positive("--E", args.E)
+    poisson(args.nu)
+    _fatigue_loads_iv(args)
+    args.k = findley_k(K_FINDLEY if args.k is None else args.k)
+    finite("--sigma-bulk", args.sigma_bulk)
+    _bulk_stress_iv(args)
+    integer("--states", args.states, 2, MAX_FATIGUE_STATES)
+    integer("--nx", args.nx, 2, MAX_FATIGUE_POINTS // 2)
+    integer("--nz", args.nz, 2, MAX_FATIGUE_POINTS // 2)
+    integer("--ns", args.ns, 2, MAX_FATIGUE_POINTS)
+    if args.nx * args.nz > MAX_FATIGUE_POINTS:
+        raise ValueError(f"`--nx` x `--nz` = {args.nx * args.nz} points exceeds "
+                         f"{MAX_FATIGUE_POINTS}, the most this command evaluates")
+    depth = positive("--depth", args.depth)
+    if not depth <= 100:
+        raise ValueError(f"`--depth` = {args.depth!r} must be <= 100 contact widths")
+    files = [(a, getattr(args, a)) for a in ("csv", "vtu", "plot") if getattr(args, a) is not None]
+    seen: dict[str, str] = {}
+    for arg, path in files:
+        import os
+
+        key = os.path.abspath(path)
+        if key in seen:
+            raise ValueError(f"`--{arg}` and `--{seen[key]}` name the same file {path!r}")
+        seen[key] = arg
+        check_file(path, arg=f"--{arg}")
+    if not math.isfinite(args.s):
+        raise ValueError(f"`--s` = {args.s!r} must be a finite number")
+
+
+def _fretting(args: argparse.Namespace, punch: Any, A: float) -> Any:
+    """The fretting cycle by ``--method`` (:func:`threepart.fretting`: ``auto`` falls back to the SIE)."""
+    from threepart.methods import fretting
+
+    return fretting(punch, args.P, args.s, A=A, tilt=args.tilt, Q_max=args.Q_max, f=args.f,
+                    states=args.states, method=args.method, sigma_bulk=args.sigma_bulk,
+                    **method_options(args, args.nu))
+
+
+def _bulk_stress_iv(args: argparse.Namespace) -> None:
+    """A nonzero ``--sigma-bulk`` only for a method that declares it takes one (``Method.bulk_stress``)."""
+    from threepart import registry
+
+    if args.sigma_bulk != 0.0 and args.method != "auto" and not registry.get(args.method).bulk_stress:
+        raise ValueError(f"`--sigma-bulk` = {args.sigma_bulk:g}: method {args.method!r} does not "
+                         "take a bulk stress in its fretting cycle; give --sigma-bulk 0 or another "
+                         "--method")
+
+
+def _fatigue_loads_iv(args: argparse.Namespace) -> None:
+    """A fretting cycle (``--P`` and ``--Q-max``) or a flight cycle (``--state0`` and ``--state1``), not both."""
+    flight = [f"--state{k}" for k in (0, 1) if getattr(args, f"state{k}") is not None]
+    fretting = [o for o, v in (("--P", args.P), ("--Q-max", args.Q_max)) if v is not None]
+    if flight and (fretting or args.sigma_bulk != 0.0 or args.s != 0.0):
+        raise ValueError("give a fretting cycle (`--P`, `--s`, `--Q-max`, `--sigma-bulk`) or a flight "
+                         "cycle's ends (`--state0`, `--state1`), not both")
+    if flight and len(flight) < 2:
+        raise ValueError(f"a flight cycle needs both ends: `--state{1 if flight == ['--state0'] else 0}` "
+                         "is missing")
+    if not flight and len(fretting) < 2:
+        missing = " and ".join(f"`{o}`" for o in ("--P", "--Q-max") if o not in fretting)
+        raise ValueError(f"give {missing} (a fretting cycle), or `--state0` and `--state1` (a flight cycle)")
+
+
+def _flight(args: argparse.Namespace, punch: Any, A: float) -> Any:
+    """The steady state of the flight cycle ``--state0`` -> ``--state1`` by ``--method`` (``auto``: falls back)."""
+    from threepart import steady_state
+
+    return steady_state(punch, (args.state0, args.state1), args.f, A=A, method=args.method,
+                        **method_options(args, args.nu))
+
+
+def _wider_normal(cycle: Any) -> Any:
+    """The normal solution of a fretting cycle, or the wider of a steady cycle's two ends."""
+    normals = getattr(cycle, "normals", None)
+    return cycle.normal if normals is None else max(normals, key=lambda n: float(n.a + n.c))
+
+
+def _fatigue_grid(args: argparse.Namespace, normal: Any) -> tuple[Any, Any]:
+    import numpy as np
+
+    W = normal.a + normal.c
+    x = np.linspace(-normal.a - 0.25 * W, normal.c + 0.25 * W, args.nx)
+    z = np.linspace(0.0, args.depth * W, args.nz)
+    return x[None, :], z[:, None]   # fields of shape (nz, nx): row 0 the surface
+
+
+def run(args: argparse.Namespace) -> int:
+    """Run ``threepart fatigue``: check, solve the cycle, evaluate the parameters, write, print."""
+    import numpy as np
+
+    from threepart.fatigue import fatigue
+    from threepart.material import similar_pair
+    from threepart.methods import describe
+    from threepart.punch import Punch
+
+    punch = Punch(R1=args.R1, R2=args.R2, b=args.b, R=args.R)
+    _fatigue_iv(args)
+    A = similar_pair(args.E, args.nu)
+    # a long run says it is still running every 15 s on stderr, as the verification run does
+
+    def say(msg: str) -> None:
+        print(f"threepart fatigue: {msg}", file=sys.stderr, flush=True)
+
+    steady = args.state0 is not None
+    with heartbeat(say, lambda: "the flight cycle's steady state" if steady else
+                    f"the fretting cycle ({args.states} states per branch)"):
+        cycle = _flight(args, punch, A) if steady else _fretting(args, punch, A)
+    normal = _wider_normal(cycle)
+    x, z = _fatigue_grid(args, normal)
+    a, c = normal.a, normal.c
+    line = -a + (a + c) * (np.arange(args.ns) + 0.5) / args.ns   # inside: never on a contact end
+    with heartbeat(say, lambda: f"the stresses of {2 if steady else cycle.Q.size} recorded states "
+                                 f"at {args.nx * args.nz + args.ns} points"):
+        res = fatigue(cycle, x, z, E=args.E, nu=args.nu, k=args.k,
+                      surface=np.union1d(np.ravel(x), line))
+    if args.csv is not None:
+        _fatigue_csv(args.csv, res)
+    if args.vtu is not None:
+        _fatigue_vtu(args.vtu, res)
+    if args.plot is not None:
+        _fatigue_plot(args.plot, res, cycle)
+    _fatigue_print(args, res, cycle, A, describe(cycle))
+    return 0
+
+
+def _hot_spots(res: Any) -> dict[str, dict[str, Any]]:
+    import math
+
+    out = {}
+    for par in (res.von_mises_range, res.swt, res.findley, res.ruiz.ffdp, res.ruiz.fdp):
+        h = par.hot
+        row: dict[str, Any] = {"value": h.value, "x": h.x, "z": h.z}
+        if h.theta is not None:
+            row["theta"] = math.degrees(h.theta)
+        out[par.name] = row
+    return out
+
+
+def _fatigue_print(args: argparse.Namespace, res: Any, cycle: Any, A: float, headline: str) -> None:
+    normal = _wider_normal(cycle)
+    hot = _hot_spots(res)
+    steady = args.state0 is not None
+    loads: dict[str, Any] = (
+        {"states": [list(args.state0), list(args.state1)], "stick_zone": list(cycle.stick_zone),
+         "energy": cycle.energy, "shakedown": cycle.shakedown} if steady else
+        {"P": args.P, "s": args.s, "Q_max": args.Q_max, "sigma_bulk": args.sigma_bulk})
+    doc = {"method": cycle.method, "A": A, "E": args.E, "nu": args.nu, "k": args.k,
+           **loads, "f": args.f, "a": normal.a, "c": normal.c,
+           "states": res.states, "grid": {"nx": args.nx, "nz": args.nz, "depth_W": args.depth},
+           "hot_spots": hot}
+    if args.json:
+        print_json(doc, {"A": "1/MPa", "E": "MPa", "P": "N/mm", "s": "mm", "Q_max": "N/mm", "a": "mm",
+                         "c": "mm", "sigma_bulk": "MPa", "x": "mm", "z": "mm",
+                         "states": "N/mm, mm, N/mm, MPa", "stick_zone": "mm", "energy": "N*mm/mm",
+                         **FATIGUE_UNITS})
+        return
+    print(headline)
+    print(f"contact    [{-normal.a:.6g}, {normal.c:.6g}] mm (a = {normal.a:.6g}, c = {normal.c:.6g})")
+    if steady:
+        (P0, s0, Q0, g0), (P1, s1, Q1, g1) = args.state0, args.state1
+        print(f"cycle      in phase between (P, s, Q, sigma_bulk) = ({P0:g}, {s0:g}, {Q0:g}, {g0:g}) and "
+              f"({P1:g}, {s1:g}, {Q1:g}, {g1:g}) [N/mm, mm, N/mm, MPa], f {args.f:g}; its steady state: "
+              f"stick zone [{cycle.stick_zone[0]:.6g}, {cycle.stick_zone[1]:.6g}] mm, energy "
+              f"{cycle.energy:.6g} N*mm/mm per cycle" + (", shaken down" if cycle.shakedown else ""))
+    else:
+        print(f"cycle      Q_max {args.Q_max:g} N/mm, f {args.f:g}, sigma_bulk {args.sigma_bulk:g} MPa, "
+              f"{res.states} distinct states")
+    print(f"grid       {args.nx} x {args.nz} points, x over [-a - W/4, c + W/4], z over "
+          f"[0, {args.depth:g} W]; Ruiz also at {args.ns} surface points over the contact")
+    print("hot spots (units: mm, N/mm, MPa, or any consistent set):")
+    for name, row in hot.items():
+        unit = FATIGUE_UNITS[name]
+        where = f"x = {row['x']:.6g} mm, z = {row['z']:.6g} mm"
+        plane = f", plane theta = {row['theta']:.2f} deg" if "theta" in row else ""
+        if name.startswith("ruiz") and row["value"] == 0.0:
+            where = "no surface point in tension where the contact slips" if name == "ruiz_ffdp" \
+                else "no surface point slips"
+        print(f"  {_FATIGUE_LABELS[name]:<26} {row['value']:.6g} {unit}  at {where}{plane}")
+
+
+def _fatigue_columns(res: Any) -> dict[str, Any]:
+    import numpy as np
+
+    cols = {"x": res.von_mises_range.x, "z": res.von_mises_range.z}
+    for par in (res.von_mises_range, res.swt, res.findley):
+        cols[par.name] = par.value
+    for par in (res.swt, res.findley):
+        cols[f"theta_{par.name}"] = np.degrees(par.theta)
+    return cols
+
+
+def _fatigue_csv(path: str, res: Any) -> None:
+    """The fields at the grid points, one row each; Ruiz's (surface) columns only where z = 0."""
+    import numpy as np
+
+    cols = _fatigue_columns(res)
+    units = {"x": "mm", "z": "mm", "theta_swt": "deg", "theta_findley": "deg", **FATIGUE_UNITS}
+    names = [*cols, "ruiz_fdp", "ruiz_ffdp"]
+    flat = {k: np.ravel(v) for k, v in cols.items()}
+    surface = {(float(x)): (fdp, ffdp) for x, fdp, ffdp in
+               zip(res.ruiz.x, res.ruiz.fdp.value, res.ruiz.ffdp.value)}
+    rows = []
+    for i in range(flat["x"].size):
+        row = [f"{flat[k][i]:.17g}" for k in cols]
+        r = surface.get(float(flat["x"][i])) if flat["z"][i] == 0 else None
+        row += [f"{r[0]:.17g}", f"{r[1]:.17g}"] if r is not None else ["", ""]
+        rows.append(row)
+    write_csv(path, [f"{k} [{units[k]}]" for k in names], rows, arg="--csv")
+
+
+def _fatigue_vtu(path: str, res: Any) -> None:
+    """The fields as a VTU grid of quads (points ``(x, -z, 0)``: the surface at y = 0, depth down)."""
+    cols = _fatigue_columns(res)
+    write_grid_vtu(path, cols["x"], cols["z"], {k: v for k, v in cols.items() if k not in ("x", "z")})
+
+
+def _fatigue_plot(path: str, res: Any, cycle: Any) -> None:
+    """Contours of the three field parameters under the contact (z downward) and Ruiz on the surface."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from threepart.output import write_file
+
+    normal = _wider_normal(cycle)
+    fig, axes = plt.subplots(2, 2, figsize=(11, 8), constrained_layout=True)
+    for ax, par in zip(axes.flat, (res.von_mises_range, res.swt, res.findley)):
+        cs = ax.contourf(par.x, par.z, par.value, levels=20, cmap="viridis")
+        fig.colorbar(cs, ax=ax, label=f"{_FATIGUE_LABELS[par.name]} [{FATIGUE_UNITS[par.name]}]")
+        ax.plot([-normal.a, normal.c], [0, 0], color="red", lw=4, solid_capstyle="butt",
+                label="contact")
+        ax.plot(par.hot.x, par.hot.z, "w*", ms=12, mec="k", label="hot spot")
+        ax.set_ylim(float(par.z.max()), 0.0)   # z downward
+        ax.set_xlabel("x [mm]")
+        ax.set_ylabel("depth z [mm]")
+        ax.set_title(_FATIGUE_LABELS[par.name])
+        ax.legend(loc="lower right", fontsize=8)
+    ax = axes.flat[3]
+    r = res.ruiz
+    ax.plot(r.x, r.ffdp.value, "C0", label="FFDP s_xx q delta")
+    ax.set_ylabel(f"FFDP [{FATIGUE_UNITS['ruiz_ffdp']}]", color="C0")
+    ax.axvspan(-normal.a, normal.c, color="red", alpha=0.1, label="contact")
+    twin = ax.twinx()   # FDP has other units
+    twin.plot(r.x, r.fdp.value, "C1--", label="FDP q delta")
+    twin.set_ylabel(f"FDP [{FATIGUE_UNITS['ruiz_fdp']}]", color="C1")
+    ax.set_xlabel("x [mm]")
+    ax.set_title("Ruiz at the surface")
+    ax.legend(handles=[*ax.get_legend_handles_labels()[0], *twin.get_legend_handles_labels()[0]],
+              fontsize=8, loc="upper center")
+    try:
+        write_file(path, lambda p: fig.savefig(p, format="png", dpi=110), arg="--plot")
+    finally:
+        plt.close(fig)
+
