@@ -22,6 +22,7 @@ from pathlib import Path
 from typing import Any, Callable, Sequence
 
 from threepart.catalogue import Case, load_cases
+from threepart.fatigue_parameters import reported
 from threepart.progress import heartbeat
 from threepart.output import atomic_dir, json_safe, strict_json, validate_json
 
@@ -276,13 +277,15 @@ def stress_record(run: CaseRun) -> dict[str, Any]:
 
 
 def load_schema() -> dict[str, Any]:
-    """The JSON schema of ``report.json``."""
-    return json.loads(SCHEMA_FILE.read_text(encoding="utf-8"))
+    """The JSON schema of ``report.json``, the fatigue parameters' names from their table."""
+    schema: dict[str, Any] = json.loads(SCHEMA_FILE.read_text(encoding="utf-8"))
+    schema["$defs"]["fatigue_parameter"]["enum"] = list(reported())
+    return schema
 
 
 def validate(doc: dict[str, Any]) -> None:
     """Validate ``doc`` against the schema (needs ``jsonschema``; skipped without it)."""
-    validate_json(doc, SCHEMA_FILE)
+    validate_json(doc, load_schema())
 
 
 def write_report(tmp: Path, mode: Mode, runs: Sequence[CaseRun], studies: Sequence[Study],

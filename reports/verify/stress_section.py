@@ -2,13 +2,15 @@
 
 Part of :func:`reports.verify.sections.build` (kept apart for its size): every number
 is read from the ``report.json`` document, each with its unit (the report's
-:data:`threepart.cli.UNITS`; the fatigue parameters' :data:`threepart.cli.FATIGUE_UNITS`)
+:data:`threepart.units.UNITS`; the fatigue parameters' from their table, :mod:`threepart.fatigue_parameters`)
 and :data:`SPOT_DIGITS` significant digits.
 """
 from __future__ import annotations
 
 import math
 from typing import Any
+
+from threepart.fatigue_parameters import parameter, parameters
 
 from .sections import (METHOD_NAMES, PLOT_KINDS, Block, Code, Figure, Section, Status, Table, _kind,
                        _u, _with_unit, fmt, physical)
@@ -17,9 +19,8 @@ __all__ = ["stress_section", "sig", "SPOT_DIGITS", "HOT_SPOTS", "FATIGUE_NAMES"]
 
 #: the stress quantities of a hot spot, as the report names them
 HOT_SPOTS = {"sxx": "largest surface σxx", "von_mises": "largest von Mises", "max_shear": "largest Tresca shear"}
-#: the fatigue parameters of a fretting case's hot spots, as the report names them
-FATIGUE_NAMES = {"von_mises_range": "von Mises range", "swt": "SWT", "findley": "Findley",
-                 "ruiz_ffdp": "Ruiz FFDP"}
+#: the fatigue parameters of a fretting case's hot spots, as the report names them (their table's)
+FATIGUE_NAMES = {p.name: p.short for p in parameters() if p.in_report}
 #: significant digits of a hot spot's value and position in the report
 SPOT_DIGITS = 4
 
@@ -45,8 +46,6 @@ def _spot(h: dict[str, Any], unit: str, length: str, depth: bool = True) -> str:
 
 def stress_section(doc: dict[str, Any]) -> tuple[Section | None, set[str]]:
     """Hot spots of the stress field by each method, and the stress plots of every partial-slip case."""
-    from threepart.cli import FATIGUE_UNITS
-
     cases = [c for c in doc["cases"] if "stress" in c]
     cycles = [c for c in doc["cases"] if "fatigue" in c]
     if not cases and not cycles:
@@ -72,7 +71,7 @@ def stress_section(doc: dict[str, Any]) -> tuple[Section | None, set[str]]:
         intro = ()
     if cycles:
         fat_rows = [(c["name"], METHOD_NAMES.get(m, m),
-                     *(_spot(spots[q], FATIGUE_UNITS[q].replace("^2 ", "²·") if physical(c) else "",
+                     *(_spot(spots[q], parameter(q).unit.replace("^2 ", "²·") if physical(c) else "",
                              _u(c, "x")) for q in FATIGUE_NAMES))
                     for c in cycles for m, spots in c["fatigue"]["hot_spots"].items()]
         tables.append(Table(("case", "method", *FATIGUE_NAMES.values()),
@@ -80,8 +79,8 @@ def stress_section(doc: dict[str, Any]) -> tuple[Section | None, set[str]]:
         intro = (*intro, (
             "Fretting fatigue: over each fretting cycle, from the stress history at the cycle's "
             "states, and over each flight cycle, from its steady state at its two end states, the "
-            "von Mises range, Smith–Watson–Topper and Findley on the critical plane, and "
-            "Ruiz's FFDP σxx·q·δ at the surface, by each method on the same points and states (",
+            f"fatigue parameters ({', '.join(FATIGUE_NAMES.values())}; SWT and Findley on the critical "
+            "plane, Ruiz's FFDP σxx·q·δ at the surface), by each method on the same points and states (",
             Code("threepart fatigue"), ", ", Code("docs/FATIGUE.md"), ").",))
     return (Section("Stress and fatigue", "stress", intro, tuple(tables), figs,
                     Status.of(all(c["passed"] for c in cases + cycles))),
