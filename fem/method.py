@@ -86,4 +86,6 @@ def _history(punch: Punch, history: Any, f: float, *, A: float, nu: float | None
 
 METHOD = register(Method("fem", _normal, _slip, _fretting, options=("mesh", "progress"),
                          default_nu=NU, steady=_steady, history=_history,
-                         comparison=lambda options: fem_comparison(options.get("mesh", "default"))))
+                         comparison=lambda options: fem_comparison(options.get("mesh", "default")),
+                         label="FEM", style={"color": "tab:blue", "lw": 1.2, "ls": "--"},
+                         field_color="tab:orange", study="h"))

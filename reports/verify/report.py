@@ -23,6 +23,7 @@ from typing import Any, Callable, Sequence
 
 from threepart.catalogue import Case, load_cases
 from threepart.fatigue_parameters import reported
+from threepart.registry import REFERENCE
 from threepart.progress import heartbeat
 from threepart.output import atomic_dir, json_safe, strict_json, validate_json
 
@@ -173,13 +174,13 @@ def run(mode: Mode, cases: Sequence[Case], say: Callable[[str], None],
         with heartbeat(say, lambda: "[study]   CalculiX"):
             studies.extend(calculix_studies(say))
         timings["calculix_study_s"] = time.perf_counter() - t1
-    cycle = next((r for r in runs if r.case.kind == "fretting" and "closedform" in r.results), None)
+    cycle = next((r for r in runs if r.case.kind == "fretting" and REFERENCE in r.results), None)
     if cycle is not None:
         t1 = time.perf_counter()
         say(f"[study] FEM fretting energy in the load step on {cycle.case.name} (quick mesh): "
             f"states per branch = {list(STEP_STATES)}")
         with heartbeat(say, lambda: "[study]   FEM fretting cycle"):
-            studies.append(fem_step_study(cycle.case, cycle.results["closedform"], "quick",
+            studies.append(fem_step_study(cycle.case, cycle.results[REFERENCE], "quick",
                                           STEP_STATES, progress=lambda m: say(f"[study]   {m}")))
         timings["fem_step_study_s"] = time.perf_counter() - t1
     return runs, studies, timings

@@ -12,7 +12,7 @@ from typing import Any
 
 from threepart.fatigue_parameters import parameter, parameters
 
-from .sections import (METHOD_NAMES, PLOT_KINDS, Block, Code, Figure, Section, Status, Table, _kind,
+from .sections import (method_name, PLOT_KINDS, Block, Code, Figure, Section, Status, Table, _kind,
                        _u, _with_unit, fmt, physical)
 
 __all__ = ["stress_section", "sig", "SPOT_DIGITS", "HOT_SPOTS", "FATIGUE_NAMES"]
@@ -50,7 +50,7 @@ def stress_section(doc: dict[str, Any]) -> tuple[Section | None, set[str]]:
     cycles = [c for c in doc["cases"] if "fatigue" in c]
     if not cases and not cycles:
         return None, set()
-    rows = [(c["name"], METHOD_NAMES.get(m, m), *(_spot(h, _u(c, "p"), _u(c, "x"), q != "sxx")
+    rows = [(c["name"], method_name(m), *(_spot(h, _u(c, "p"), _u(c, "x"), q != "sxx")
                                                   for q, h in spots.items()))
             for c in cases for m, spots in c["stress"]["hot_spots"].items()]
     head = ("case", "method", *(HOT_SPOTS[q] for q in ("sxx", "von_mises", "max_shear")))
@@ -70,7 +70,7 @@ def stress_section(doc: dict[str, Any]) -> tuple[Section | None, set[str]]:
     if not cases:
         intro = ()
     if cycles:
-        fat_rows = [(c["name"], METHOD_NAMES.get(m, m),
+        fat_rows = [(c["name"], method_name(m),
                      *(_spot(spots[q], parameter(q).unit.replace("^2 ", "²·") if physical(c) else "",
                              _u(c, "x")) for q in FATIGUE_NAMES))
                     for c in cycles for m, spots in c["fatigue"]["hot_spots"].items()]
