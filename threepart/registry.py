@@ -13,8 +13,10 @@ Adding a method
 ---------------
 Write one module that builds a :class:`Method` from three functions and calls
 ``register`` on it; import that module, and ``threepart.solve(...,
-method="yours")`` and :func:`get` find it. ``tests/test_registry.py`` does this
-with a toy method.
+method="yours")`` and :func:`get` find it. Its ``label`` and ``style`` name and
+draw it in the report's tables and plots, its ``study`` names the parameter of
+its convergence study; none is needed (its name, matplotlib's next colour).
+``tests/test_registry.py`` does this with a toy method.
 
 The adapter's calls
 -------------------
