@@ -14,6 +14,7 @@ from __future__ import annotations
 
 from typing import Any
 
+from threepart.material import NU   # re-exported: the FE models' nu when only A is given
 from threepart.punch import Punch
 from threepart.registry import Method, register
 from threepart.cycles import HistoryResult, SteadyStateResult
@@ -28,8 +29,6 @@ from .steady import steady_state
 
 __all__ = ["METHOD", "NU", "rigid_punch_modulus", "pair_modulus"]
 
-#: Poisson's ratio the FE models take when only the compliance is given
-NU = 0.3
 
 
 def _nu(nu: float | None) -> float:

@@ -30,7 +30,7 @@ from threepart import closedform, fem
 from threepart.convergence import run_study
 from threepart.fem.finite import zone_margin
 from threepart.fem.mesh import PRESETS
-from threepart.material import similar_pair
+from threepart.material import NU as NU_DEFAULT, similar_pair
 from threepart.meshes import SubstrateSpec
 from threepart.meshes.punch import PunchSpec
 from threepart.punch import Punch
@@ -71,7 +71,7 @@ class MapPoint:
 
 
 #: the scale of every point (the ratios fix the rest), the material and the flank angle
-R1, E, NU, THETA = 10.0, 1.0, 0.3, math.pi / 3
+R1, E, NU, THETA = 10.0, 1.0, NU_DEFAULT, math.pi / 3
 #: the grid of each map mode (:func:`map_points` drops the points the punch cannot hold)
 GRID = {
     "quick": dict(R2_over_R1=(1.0, 0.5), H_over_b=(4.0,), s_over_lift=(0.0, 0.5),

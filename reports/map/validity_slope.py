@@ -36,6 +36,7 @@ from scipy.optimize import brentq
 
 from threepart import fem
 from threepart.material import similar_pair
+from threepart.tolerances import MAP_LIMIT
 
 from .validity import E, GRID, MESHES, NU, THETA, MapPoint, _closed_form, _load, _punch, \
     feasible
@@ -45,8 +46,8 @@ __all__ = ["evaluate_slope", "slope_crossing", "load_level", "SLOPE_RESULT_KEYS"
 
 #: what :func:`evaluate_slope` returns for a point (all floats)
 SLOPE_RESULT_KEYS = ("load_level", "slope_peak_rel_error", "slope_a_rel_error", "slope_time_s")
-#: the small-slope cost of the peak the map marks: 1 %
-SLOPE_LEVEL = 0.01
+#: the small-slope cost of the peak the map marks: the map's 1 % (threepart.tolerances.MAP_LIMIT)
+SLOPE_LEVEL = MAP_LIMIT
 #: the overhangs ``(a - b)/R1`` that bracket :func:`slope_crossing`: the full map grid's ends
 #: (the upper end is lowered to the largest grid overhang the curve's punch can hold)
 SLOPE_BRACKET = (min(GRID["full"]["a_minus_b_over_R1"]), max(GRID["full"]["a_minus_b_over_R1"]))
