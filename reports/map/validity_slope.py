@@ -35,6 +35,7 @@ import numpy as np
 from scipy.optimize import brentq
 
 from threepart import fem
+from threepart.fields import peak
 from threepart.material import similar_pair
 from threepart.tolerances import MAP_LIMIT
 
@@ -63,11 +64,11 @@ def load_level(point: MapPoint) -> float:
 
 
 def _peak(result: Any) -> float:
-    """The larger pressure peak of a result, on 4001 points of its contact (or its FE nodes)."""
+    """The larger pressure peak of a result: of its FE nodes (:func:`threepart.fields.peak`), else
+    of its pressure function (:meth:`~threepart.results.NormalResult.peaks`)."""
     if hasattr(result, "p_nodes") and len(result.p_nodes):
-        return float(np.max(result.p_nodes))
-    x = np.linspace(-result.a, result.c, 4001)
-    return float(np.max(result.pressure(x)))
+        return peak(result.x_nodes, result.p_nodes)[1]
+    return max(pk.p for pk in result.peaks())
 
 
 def evaluate_slope(point: MapPoint, quick: bool = False) -> dict[str, float]:
