@@ -111,10 +111,20 @@ def run(mode: Mode, cases: Sequence[Case], say: Callable[[str], None],
     except in the quick mode; ``robustness`` adds, in the full mode only, the
     robustness study (:func:`reports.verify.robustness.study`) as one more run of checks.
     """
-    runs: list[CaseRun] = []
-    cache: dict[Any, Any] = {}
     timings: dict[str, float] = {}
     t0 = time.perf_counter()
+    runs = _run_cases(mode, cases, say)
+    timings["cases_s"] = time.perf_counter() - t0
+    if robustness and mode.name == "full":
+        _robustness(runs, timings, say)
+    studies = _studies(mode, cases, runs, say, calculix, timings)
+    return runs, studies, timings
+
+
+def _run_cases(mode: Mode, cases: Sequence[Case], say: Callable[[str], None]) -> list[CaseRun]:
+    """Solve and compare every case, one progress line each (and a heartbeat while it runs)."""
+    runs: list[CaseRun] = []
+    cache: dict[Any, Any] = {}
     for i, case in enumerate(cases, 1):
         tag = f"[{i:>2}/{len(cases)}] {case.name:<14}"
         note = (f" (a fretting cycle: 3 branches of {FRETTING_STATES} load states by each method)"
@@ -138,9 +148,12 @@ def run(mode: Mode, cases: Sequence[Case], say: Callable[[str], None],
             "FAIL " + ", ".join(f"{c.comparison}:{c.quantity}" for c in failed) if failed else "ERROR")
         say(f"{tag} {verdict}  ({time.perf_counter() - tc:.2f} s)")
         runs.append(r)
-    timings["cases_s"] = time.perf_counter() - t0
-    if robustness and mode.name == "full":
-        _robustness(runs, timings, say)
+    return runs
+
+
+def _studies(mode: Mode, cases: Sequence[Case], runs: list[CaseRun], say: Callable[[str], None],
+             calculix: bool, timings: dict[str, float]) -> list[Study]:
+    """The convergence studies of the mode, each timed into ``timings``."""
     studies: list[Study] = []
     study_case = next((c for c in cases if c.name == STUDY_CASE), cases[0] if cases else None)
     if study_case is not None and mode.sie_study_n:
@@ -183,7 +196,7 @@ def run(mode: Mode, cases: Sequence[Case], say: Callable[[str], None],
             studies.append(fem_step_study(cycle.case, cycle.results[REFERENCE], "quick",
                                           STEP_STATES, progress=lambda m: say(f"[study]   {m}")))
         timings["fem_step_study_s"] = time.perf_counter() - t1
-    return runs, studies, timings
+    return studies
 
 
 def _robustness(runs: list[CaseRun], timings: dict[str, float], say: Callable[[str], None]) -> None:
