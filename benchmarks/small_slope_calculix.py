@@ -87,7 +87,7 @@ def peak_pressure(x: np.ndarray, p: np.ndarray, a: float) -> float:
     k = int(np.argmax(np.where(inside, p, -np.inf)))
     if abs(x[k]) < 0.3 * a:
         return centre_pressure(x, p, a)
-    return peak(x[inside], p[inside], window=0.1 * a, degree=2)[1]
+    return peak(x, p, half_width=0.1 * a, degree=2, smooth=1, passes=1)[1]
 
 
 def profile(mesh: Mesh, stem: Path) -> ContactProfile:

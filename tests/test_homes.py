@@ -90,20 +90,20 @@ def test_the_windowed_peak_of_a_quartic_is_its_maximum_to_the_sampling():
     x = np.linspace(-1.0, 1.0, 201)
     p = 5.0 - (x - 0.123) ** 2 - 0.5 * (x - 0.123) ** 4
     window = 0.3
-    xp, pp = peak(x, p, window=window, degree=4)
+    xp, pp = peak(x, p, half_width=window, degree=4)
     step = 2 * window / (FIT_SAMPLES - 1)
     assert abs(xp - 0.123) <= step and abs(pp - 5.0) <= step ** 2
     with pytest.raises(ValueError, match=r"`half_width` = 0\.001 holds 1 nodes; the degree-4 fit needs at least 6"):
-        peak(x, p, window=0.001)
+        peak(x, p, half_width=0.001)
 
 
 def test_the_symmetric_peak_is_the_even_fit_at_the_centre():
     from threepart.fields import peak
 
     x = np.linspace(-1.0, 1.0, 101)
-    assert peak(x, 2.0 - x ** 2 + 0.25 * x ** 4, window=0.5, degree=4, symmetric=True)[1] == \
+    assert peak(x, 2.0 - x ** 2 + 0.25 * x ** 4, half_width=0.5, degree=4, symmetric=True)[1] == \
         pytest.approx(2.0, rel=ROUNDING)
-    with pytest.raises(ValueError, match="`symmetric` needs a `window`"):
+    with pytest.raises(ValueError, match="`symmetric` needs a `half_width`"):
         peak(x, x, symmetric=True)
 
 

@@ -1273,6 +1273,6 @@ def centre_pressure(x: np.ndarray, p: np.ndarray, a: float) -> float:
     the quartic by ``(x/a)^6/16 < 5e-5`` of its peak there.
     """
     from threepart.fields import peak
-    return peak(x, p, window=0.3 * a, degree=4, symmetric=True)[1]
+    return peak(x, p, half_width=0.3 * a, degree=4, symmetric=True)[1]
 
 

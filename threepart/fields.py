@@ -14,46 +14,49 @@ from numpy.typing import ArrayLike
 
 __all__ = ["peak", "FIT_SAMPLES"]
 
-#: points on which a least-squares fit is searched for its maximum, over ``± window``
+#: points on which a least-squares fit is searched for its maximum, over ``± half_width``
 FIT_SAMPLES = 2001
 
 
-def peak(x: ArrayLike, p: ArrayLike, *, window: float | None = None, degree: int = 4,
-         smooth: int = 5, symmetric: bool = False) -> tuple[float, float]:
+def peak(x: ArrayLike, p: ArrayLike, *, half_width: float | None = None, degree: int = 4,
+         smooth: int = 5, passes: int = 2, symmetric: bool = False) -> tuple[float, float]:
     """The peak ``(x, p)`` of the nodal values ``p`` at the sorted positions ``x``.
 
     The rule depends on whether the nodal values scatter:
 
-    - ``window`` None (a smooth field, e.g. the FEM's nodal pressures): the vertex of the
+    - ``half_width`` None (a smooth field, e.g. the FEM's nodal pressures): the vertex of the
       parabola through the largest node and its two neighbours; the largest node itself at
       an end of the nodes, or where the three do not curve downward.
-    - ``window`` given (values that scatter, e.g. CalculiX's nodal stresses): the maximum of
-      the least-squares polynomial of ``degree`` over the nodes within ``window`` of the
-      centre, on :data:`FIT_SAMPLES` points; the centre is first the node of the largest
-      ``smooth``-node moving average, then the node nearest the first fit's maximum.
-    - ``symmetric`` (a field symmetric about ``x = 0``, with ``window``): the polynomial of
-      degree ``degree`` in ``x`` with even powers only, fitted over ``|x| < window``, at
+    - ``half_width`` given (values that scatter, e.g. CalculiX's nodal stresses): the maximum
+      of the least-squares polynomial of ``degree`` over the nodes within ``half_width`` of the
+      centre, on :data:`FIT_SAMPLES` points over ``± half_width``; the centre is first the node
+      of the largest ``smooth``-node moving average (``smooth = 1``: the largest node), then,
+      for each further of the ``passes``, the node nearest the previous fit's maximum.
+    - ``symmetric`` (a field symmetric about ``x = 0``, with ``half_width``): the polynomial of
+      degree ``degree`` in ``x`` with even powers only, fitted over ``|x| < half_width``, at
       ``x = 0``.
 
     Raises
     ------
     ValueError
-        Fewer than ``degree + 2`` nodes within the window; ``symmetric`` without a window.
+        Fewer than ``degree + 2`` nodes within ``half_width``; ``symmetric`` without it.
     """
     xa, pa = np.asarray(x, float), np.asarray(p, float)
     if symmetric:
-        if window is None:
-            raise ValueError("`symmetric` needs a `window`: the even fit's half-width")
-        m = np.abs(xa) < window
+        if half_width is None:
+            raise ValueError("`symmetric` needs a `half_width`: the even fit's")
+        m = np.abs(xa) < half_width
         return 0.0, float(np.polyfit(xa[m] ** 2, pa[m], degree // 2)[-1])
-    if window is None:
+    if half_width is None:
         return _vertex(xa, pa)
+    if passes < 1 or smooth < 1:
+        raise ValueError(f"`passes` = {passes} and `smooth` = {smooth} must be >= 1")
     i = int(np.argmax(np.convolve(pa, np.ones(smooth) / smooth, "same")))
-    t = np.linspace(-window, window, FIT_SAMPLES)
-    for _ in range(2):
-        m = np.abs(xa - xa[i]) < window
+    t = np.linspace(-half_width, half_width, FIT_SAMPLES)
+    for _ in range(passes):
+        m = np.abs(xa - xa[i]) < half_width
         if np.count_nonzero(m) < degree + 2:
-            raise ValueError(f"`half_width` = {window:g} holds {np.count_nonzero(m)} nodes; "
+            raise ValueError(f"`half_width` = {half_width:g} holds {np.count_nonzero(m)} nodes; "
                              f"the degree-{degree} fit needs at least {degree + 2}")
         v = np.polyval(np.polyfit(xa[m] - xa[i], pa[m], degree), t)
         j = int(np.argmax(v))

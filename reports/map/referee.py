@@ -86,7 +86,7 @@ def fitted_peak(x: np.ndarray, p: np.ndarray, half_width: float) -> tuple[float,
     least-squares quartic over the nodes within ``half_width`` of it (:func:`threepart.fields.peak`
     with a window: centred on the largest five-node moving average, then on the first fit's maximum).
     """
-    return peak(x, p, window=half_width, degree=4)
+    return peak(x, p, half_width=half_width, degree=4)
 
 
 def finite_deck(point: MapPoint, *, n: float = REFEREE_N, penalty_factor: float = REFEREE_PENALTY,
