@@ -166,3 +166,48 @@ def test_the_command_line_s_units_are_the_table_s():
     from threepart.cli import FATIGUE_UNITS
 
     assert {k: v for k, v in FATIGUE_UNITS.items() if k != "theta"} == {p.name: p.unit for p in fp.parameters()}
+
+
+@pytest.fixture
+def toy_parameter(monkeypatch):
+    """A new parameter as a newcomer adds one: one function and one row, for one test only."""
+    from dataclasses import replace
+
+    monkeypatch.setattr(fp, "_TABLE", dict(fp._TABLE))
+
+    def scaled_range(history, *, scale=2.0):
+        """The von Mises range times ``scale``: a toy with a constant of its own."""
+        vm = fat.von_mises_range(history)
+        return replace(vm, name="toy", value=scale * vm.value, hot=replace(vm.hot, value=scale * vm.hot.value))
+
+    fp.register_parameter(fp.FatigueParameter("toy", "toy (scaled range)", "Toy", "MPa",
+                                              lambda i, **c: scaled_range(i.history, **c),
+                                              constants=("scale",)))
+    return fp.parameter("toy")
+
+
+def test_a_new_row_reaches_the_core_the_command_line_the_report_and_its_schema(toy_parameter, capsys,
+                                                                               tmp_path):
+    """One function and one row: fatigue() evaluates it, the command line prints it with its unit
+    and writes its CSV column, the report tabulates it and its schema admits it; nothing else edited."""
+    from threepart import closedform as cf
+    from threepart import Punch, rigid_punch
+    from threepart.cli import main
+    from threepart.reports.verify import load_schema
+    from threepart.reports.verify.stress_section import fatigue_names
+
+    normal = cf.solve_normal(Punch(R1=10.0, R2=10.0, b=0.0), 100.0, 0.0, A=rigid_punch(2.1e5, NU) * 2)
+    cycle = cf.fretting_cycle(normal, 20.0, 0.5, states=3)
+    x, z = np.linspace(-1.0, 1.0, 5)[None, :], np.linspace(0.0, 0.5, 3)[:, None]
+    res = fp.fatigue(cycle, x, z, E=2.1e5, scale=3.0)
+    assert res.toy.hot.value == pytest.approx(3.0 * res.von_mises_range.hot.value, rel=ROUNDING)
+    assert res.constants["scale"] == 3.0
+    assert "toy" in fp.reported() and load_schema()["$defs"]["fatigue_parameter"]["enum"][-1] == "toy"
+    assert fatigue_names()["toy"] == "Toy"
+    csv = tmp_path / "f.csv"
+    assert main(["fatigue", "--R1", "10", "--R2", "10", "--b", "0", "--E", "210000", "--nu", "0.3",
+                 "--P", "100", "--Q-max", "20", "--f", "0.5", "--nx", "5", "--nz", "3",
+                 "--csv", str(csv)]) == 0
+    line = next(ln for ln in capsys.readouterr().out.splitlines() if ln.strip().startswith("toy (scaled"))
+    assert " MPa  at x = " in line
+    assert "toy [MPa]" in csv.read_text().splitlines()[0].split(",")

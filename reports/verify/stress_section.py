@@ -15,12 +15,20 @@ from threepart.fatigue_parameters import parameter, parameters
 from .sections import (method_name, PLOT_KINDS, Block, Code, Figure, Section, Status, Table, _kind,
                        _u, _with_unit, fmt, physical)
 
-__all__ = ["stress_section", "sig", "SPOT_DIGITS", "HOT_SPOTS", "FATIGUE_NAMES"]
+__all__ = ["stress_section", "sig", "SPOT_DIGITS", "HOT_SPOTS", "FATIGUE_NAMES", "fatigue_names"]
 
 #: the stress quantities of a hot spot, as the report names them
 HOT_SPOTS = {"sxx": "largest surface σxx", "von_mises": "largest von Mises", "max_shear": "largest Tresca shear"}
-#: the fatigue parameters of a fretting case's hot spots, as the report names them (their table's)
-FATIGUE_NAMES = {p.name: p.short for p in parameters() if p.in_report}
+
+
+def fatigue_names() -> dict[str, str]:
+    """The fatigue parameters of a fretting case's hot spots, as the report names them: their table's
+    rows with ``in_report``, read when the section is built (a row registered later is in it)."""
+    return {p.name: p.short for p in parameters() if p.in_report}
+
+
+#: :func:`fatigue_names` at import
+FATIGUE_NAMES = fatigue_names()
 #: significant digits of a hot spot's value and position in the report
 SPOT_DIGITS = 4
 
@@ -70,16 +78,17 @@ def stress_section(doc: dict[str, Any]) -> tuple[Section | None, set[str]]:
     if not cases:
         intro = ()
     if cycles:
+        names = fatigue_names()
         fat_rows = [(c["name"], method_name(m),
                      *(_spot(spots[q], parameter(q).unit.replace("^2 ", "²·") if physical(c) else "",
-                             _u(c, "x")) for q in FATIGUE_NAMES))
+                             _u(c, "x")) for q in names))
                     for c in cycles for m, spots in c["fatigue"]["hot_spots"].items()]
-        tables.append(Table(("case", "method", *FATIGUE_NAMES.values()),
+        tables.append(Table(("case", "method", *names.values()),
                             tuple(fat_rows), "fatigue hot spots over the fretting and flight cycles"))
         intro = (*intro, (
             "Fretting fatigue: over each fretting cycle, from the stress history at the cycle's "
             "states, and over each flight cycle, from its steady state at its two end states, the "
-            f"fatigue parameters ({', '.join(FATIGUE_NAMES.values())}; SWT and Findley on the critical "
+            f"fatigue parameters ({', '.join(names.values())}; SWT and Findley on the critical "
             "plane, Ruiz's FFDP σxx·q·δ at the surface), by each method on the same points and states (",
             Code("threepart fatigue"), ", ", Code("docs/FATIGUE.md"), ").",))
     return (Section("Stress and fatigue", "stress", intro, tuple(tables), figs,
