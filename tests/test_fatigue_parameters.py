@@ -190,11 +190,12 @@ def test_a_new_row_reaches_the_core_the_command_line_the_report_and_its_schema(t
                                                                                tmp_path):
     """One function and one row: fatigue() evaluates it, the command line prints it with its unit
     and writes its CSV column, the report tabulates it and its schema admits it; nothing else edited."""
-    from threepart import closedform as cf
-    from threepart import Punch, rigid_punch
-    from threepart.cli import main
     from threepart.reports.verify import load_schema
     from threepart.reports.verify.stress_section import fatigue_names
+
+    from threepart import Punch, rigid_punch
+    from threepart import closedform as cf
+    from threepart.cli import main
 
     normal = cf.solve_normal(Punch(R1=10.0, R2=10.0, b=0.0), 100.0, 0.0, A=rigid_punch(2.1e5, NU) * 2)
     cycle = cf.fretting_cycle(normal, 20.0, 0.5, states=3)
