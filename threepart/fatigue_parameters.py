@@ -39,21 +39,8 @@ from typing import Any, Callable, Mapping, Sequence
 import numpy as np
 from numpy.typing import ArrayLike
 
-from .fatigue import (
-    K_FINDLEY,
-    Cycle,
-    History,
-    Parameter,
-    Ruiz,
-    _history,
-    _parameter,
-    findley,
-    findley_k,
-    ruiz,
-    stress_history,
-    swt,
-    von_mises_range,
-)
+from .fatigue import (K_FINDLEY, Cycle, History, Parameter, Ruiz, _history, _parameter, findley,
+                      findley_k, ruiz, stress_history, swt, von_mises_range)
 from .results import NU
 from .stress import Stress
 from .validate import finite, poisson, positive, reals
