@@ -45,6 +45,7 @@ from pathlib import Path
 
 import numpy as np
 
+from threepart.fields import peak
 from threepart.calculix import Material, Mesh, run_ccx
 from threepart.calculix import build_half_mesh as build_mesh
 from threepart.calculix import half_deck as write_deck
@@ -87,9 +88,7 @@ def peak_pressure(x: np.ndarray, p: np.ndarray, a: float) -> float:
     k = int(np.argmax(np.where(inside, p, -np.inf)))
     if abs(x[k]) < 0.3 * a:
         return centre_pressure(x, p, a)
-    m = np.abs(x - x[k]) < 0.1 * a
-    c2, c1, c0 = np.polyfit(x[m] - x[k], p[m], 2)
-    return float(c0 - c1 * c1 / (4 * c2)) if c2 < 0 else float(p[m].max())
+    return peak(x, p, half_width=0.1 * a, degree=2, smooth=1, passes=1)[1]
 
 
 def profile(mesh: Mesh, stem: Path) -> ContactProfile:

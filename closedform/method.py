@@ -47,4 +47,5 @@ def _lift_off(punch: Punch, P: float, A: float) -> tuple[float, float]:
 
 
 METHOD = register(Method("closedform", _normal, _slip, _fretting, framework_only=True,
-                         lift_off=_lift_off, steady=steady_state, edges=edges))
+                         lift_off=_lift_off, steady=steady_state, edges=edges, label="closed form",
+                         style={"color": "k", "lw": 1.6, "ls": "-"}))

@@ -14,6 +14,7 @@ from __future__ import annotations
 
 from typing import Any
 
+from threepart.material import NU   # re-exported: the FE models' nu when only A is given
 from threepart.punch import Punch
 from threepart.registry import Method, register
 from threepart.cycles import HistoryResult, SteadyStateResult
@@ -29,8 +30,6 @@ from .steady import steady_state
 
 __all__ = ["METHOD", "NU", "rigid_punch_modulus", "pair_modulus"]
 
-#: Poisson's ratio the FE models take when only the compliance is given
-NU = 0.3
 
 
 def _nu(nu: float | None) -> float:
@@ -87,4 +86,6 @@ def _history(punch: Punch, history: Any, f: float, *, A: float, nu: float | None
 
 METHOD = register(Method("fem", _normal, _slip, _fretting, options=("mesh", "progress"),
                          default_nu=NU, steady=_steady, history=_history, edges=edges,
-                         comparison=lambda options: fem_comparison(options.get("mesh", "default"))))
+                         comparison=lambda options: fem_comparison(options.get("mesh", "default")),
+                         label="FEM", style={"color": "tab:blue", "lw": 1.2, "ls": "--"},
+                         field_color="tab:orange", study="h"))

@@ -25,13 +25,14 @@ from typing import Any
 
 import numpy as np
 
+from threepart.material import E_STEEL, NU as NU_DEFAULT
 from threepart.punch import Punch
 from threepart.results import NormalResult, SlipResult
 
 __all__ = ["main", "figure_data", "curves", "check_admissible", "Curve", "GEOMETRY", "SETS",
            "Q_OVER_FP", "F", "E", "NU"]
 
-E, NU = 210_000.0, 0.3            # MPa, as in the paper
+E, NU = E_STEEL, NU_DEFAULT       # MPa, as in the paper
 F = 0.5                           # friction coefficient; the normalised shear does not depend on it
 Q_OVER_FP = 0.4                   # the paper's partial-slip figure
 LOAD_4PA_OVER_B = 1.0             # the paper's dimensionless load

@@ -47,6 +47,7 @@ from typing import Any, Callable, Sequence
 import numpy as np
 from scipy.optimize import minimize_scalar
 
+from threepart.registry import REFERENCE
 from threepart.catalogue import Case, load_cases
 from threepart.output import atomic_dir, json_safe, strict_json, validate_json
 from threepart.tolerances import TOLERANCES
@@ -119,7 +120,7 @@ class _Source:
         self.case = case
         self.result, _ = solve(case, case.reference, MODES["default"])
         self.normal = normal_of(self.result)
-        self.sie = case.reference == "sie"
+        self.sie = case.reference != REFERENCE   # past the closed form's framework: the SIE's
 
     def pressure(self, x: np.ndarray) -> np.ndarray:
         """The pressure: the closed form, or the inversion integral at the SIE's ends."""

@@ -33,6 +33,7 @@ from __future__ import annotations
 import functools
 import math
 import time
+from typing import Any
 from dataclasses import dataclass
 
 import numpy as np
@@ -312,6 +313,31 @@ def _energy(zones: _Zones, Q_max: float, top: tuple[float, float]) -> tuple[floa
                              f"nodes per panel (`Q_max` = {Q_max:g}); no result is returned")
 
 
+def _check_coulomb(normal: NormalResult, f: float, tilt_rate: float, u: np.ndarray,
+                   mh: np.ndarray) -> None:
+    """Coulomb's law in every recorded loading state ``Q = u`` with stick zones ``mh`` (m, h)."""
+    for v, (m, h) in zip(u[1:], mh[1:]):
+        why = coulomb_violation(normal, normal.P - v / f, m, h, normal.alpha + tilt_rate * v)
+        if why is not None:
+            raise StickSeparationError(
+                f"`Q`/(f P) = {v / (f * normal.P):.6g} of the cycle's loading branch: the stick zone "
+                f"[{m - h:.6g}, {m + h:.6g}] on the concave centre R = {normal.punch.R:g} breaks "
+                f"Coulomb's law: {why}")
+
+
+def _cycle_energy(zones: _Zones, normal: NormalResult, Q_max: float, f: float, tilt_rate: float,
+                  sigma_bulk: float, mh1: tuple[float, float]) -> tuple[float, Any, list[float]]:
+    """The cycle's energy, its quadrature nodes and the join crossings (none under a bulk stress:
+    the friction work, :func:`threepart.bulk.slip_dissipation`); ``mh1`` the stick zone at ``Q_max``."""
+    if sigma_bulk == 0:
+        return _energy(zones, Q_max, mh1)
+    punch, (m1, h1) = normal.punch, mh1
+    energy, nodes = slip_dissipation(
+        normal.pressure, lambda x: stick_gap(punch, normal.alpha + tilt_rate * Q_max, m1, h1, x), f,
+        normal.a, normal.c, (m1 - h1, m1 + h1), joins=(-punch.b, punch.b))
+    return energy, nodes, []
+
+
 def fretting_cycle(normal: NormalResult, Q_max: float, f: float, *, n: int | None = None,
                    scheme: str | None = None, states: int = 21,
                    sigma_bulk: float = 0.0) -> SieFrettingResult:
@@ -376,25 +402,13 @@ def fretting_cycle(normal: NormalResult, Q_max: float, f: float, *, n: int | Non
     u = np.linspace(0.0, Q_max, states)
     mh = np.array([zones(float(v)) for v in u])
     check_slip_direction(normal, Q_max, f, sigma_bulk, sch, (float(mh[-1, 0]), float(mh[-1, 1])))
-    for v, (m, h) in zip(u[1:], mh[1:]):    # Coulomb's law in every recorded loading state
-        why = coulomb_violation(normal, normal.P - v / f, m, h, normal.alpha + tilt_rate * v)
-        if why is not None:
-            raise StickSeparationError(
-                f"`Q`/(f P) = {v / (f * normal.P):.6g} of the cycle's loading branch: the stick zone "
-                f"[{m - h:.6g}, {m + h:.6g}] on the concave centre R = {normal.punch.R:g} breaks "
-                f"Coulomb's law: {why}")
+    _check_coulomb(normal, f, tilt_rate, u, mh)
     punch, A, alpha = normal.punch, normal.A, normal.alpha
     D0 = approach(punch, A, alpha, normal.P, zones.m0, zones.h0)
     F = np.array([f * (D0 - approach(punch, A, alpha + tilt_rate * v, normal.P - v / f, m, h))
                   if v > 0 else 0.0 for v, (m, h) in zip(u, mh)])
-    if sigma_bulk == 0:
-        energy, nodes, cuts = _energy(zones, Q_max, (float(mh[-1, 0]), float(mh[-1, 1])))
-    else:
-        m1, h1 = float(mh[-1, 0]), float(mh[-1, 1])
-        energy, nodes = slip_dissipation(
-            normal.pressure, lambda x: stick_gap(punch, alpha + tilt_rate * Q_max, m1, h1, x), f,
-            normal.a, normal.c, (m1 - h1, m1 + h1), joins=(-punch.b, punch.b))
-        cuts = []
+    energy, nodes, cuts = _cycle_energy(zones, normal, Q_max, f, tilt_rate, sigma_bulk,
+                                        (float(mh[-1, 0]), float(mh[-1, 1])))
     stick = np.column_stack([mh[:, 0] - mh[:, 1], mh[:, 0] + mh[:, 1]])
     info = {"energy_nodes": nodes, "crossings": cuts, "solves": zones.solves}
     diagnostics = Diagnostics(n=sch.n, scheme=sch.name, steps=states,

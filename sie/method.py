@@ -49,4 +49,5 @@ def _options_iv(options: dict[str, Any]) -> None:
 METHOD = register(Method("sie", _normal, _slip, _fretting, options=("n", "scheme"),
                          options_iv=_options_iv, lift_off=lift_off,
                          comparison=lambda options: "sie", steady=steady_state,
-                         history=load_history, edges=edges))
+                         history=load_history, edges=edges, label="SIE", study="n",
+                         style={"color": "tab:red", "marker": "o", "ms": 3.5, "ls": "none", "mfc": "none"}))

@@ -152,8 +152,8 @@ def fake_solver(method: str) -> Method:
             fe = fem_normal(punch, P, s, A=A, tilt=tilt, mesh=mesh)
             return replace(_slip(fe, Q, f, method="fem", mesh=mesh), diagnostics=fe.diagnostics)
 
-        return Method("fem", fem_normal, fem_slip, options=("mesh",), default_nu=0.3,
-                      comparison=_judged_as("fem"))
+        return _as_real(Method("fem", fem_normal, fem_slip, options=("mesh",), default_nu=0.3,
+                               comparison=_judged_as("fem")))
 
     def normal(punch, P, s, *, A, tilt="free", nu=None, n=64, scheme=None):
         return _normal(punch, P, s, A=A, tilt=tilt, method=method, n=n)
@@ -161,8 +161,16 @@ def fake_solver(method: str) -> Method:
     def slip(punch, P, s, *, A, tilt="free", nu=None, Q, f, normal=None, n=64):
         return _slip(normal, Q, f, method=method, n=n)
 
-    return Method(method, normal, slip, options=("n", "scheme"), lift_off=_lift_off,
-                  comparison=_judged_as(method))
+    return _as_real(Method(method, normal, slip, options=("n", "scheme"), lift_off=_lift_off,
+                           comparison=_judged_as(method)))
+
+
+def _as_real(fake: Method) -> Method:
+    """``fake`` with the real method's presentation and role (label, plot style, study parameter,
+    framework only), which the report reads from the registry."""
+    real = registry.get(fake.name)
+    return replace(fake, label=real.label, style=real.style, field_color=real.field_color,
+                   study=real.study, framework_only=real.framework_only)
 
 
 def _judged_as(method: str):

@@ -15,22 +15,17 @@ from threepart.reports import figures
 from threepart.reports.compare import normal_of
 from threepart.reports.verify.runs import MODES, run_case
 
+from threepart.tolerances import BASELINES
+
 from .regression import check_baseline
 
-# --- tolerance per quantity of the baselines (each with its reason) -----------------------
-#: closed-form figures: deterministic Newton solves to ~1e-14; allow for BLAS/libm differences
-CF = {"rtol": 1e-9, "atol": 1e-12}
-#: peak positions: a flat maximum is located to ~sqrt(machine eps) by the bounded search
-CF_X = {"rtol": 1e-6, "atol": 1e-9}
-#: SIE errors against the closed form are round-off-level numbers: guard their size, not digits
-SIE_ERR = {"rtol": 0.0, "atol": 1e-7}
-#: the marched history's errors against the steady state (a flight cycle): an active-set march
-#: of 60 steps, deterministic, whose stick-zone ends in elements and energy move with rounding only
-HISTORY_ERR = {"rtol": 1e-6, "atol": 1e-9}
-#: quick-mesh FEM figures: deterministic given gmsh's mesh; gmsh versions may move nodes slightly
-FEM = {"rtol": 1e-4, "atol": 1e-9}
-#: FEM errors against the closed form: a change of 1e-4 (normalised) is a real change
-FEM_ERR = {"rtol": 0.0, "atol": 1e-4}
+# --- tolerance per quantity of the baselines: threepart.tolerances.BASELINES, each with its reason ---
+CF = BASELINES["closedform"].limits()
+CF_X = BASELINES["closedform_x"].limits()
+SIE_ERR = BASELINES["sie_error"].limits()
+HISTORY_ERR = BASELINES["history_error"].limits()
+FEM = BASELINES["fem"].limits()
+FEM_ERR = BASELINES["fem_error"].limits()
 
 QUICK = MODES["quick"]
 

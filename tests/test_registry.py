@@ -146,3 +146,78 @@ def test_a_method_that_declares_no_bulk_stress_is_refused_one_by_name_before_it_
         threepart.fretting(HERTZ, 400.0, 0.0, **cycle, method="nobulk")
     with pytest.raises(ValueError, match=r"^method 'normal_only' has no fretting cycle$"):
         threepart.fretting(HERTZ, 400.0, 0.0, **cycle, method="normal_only")
+def test_a_toy_method_s_label_and_style_reach_the_report_without_edits(toy, monkeypatch, tmp_path):
+    """The toy's label (Method.label) heads its rows and its legend entry, drawn in its style."""
+    from threepart import catalogue
+    from threepart.reports import solvers
+    from threepart.reports.verify import plots
+    from threepart.reports.verify.sections import method_name
+    from threepart.reports.verify.stress_section import stress_section
+
+    case = next(c for c in catalogue.load_cases() if c.name == "hertz")
+    results = {"closedform": solvers.normal("closedform", case), "toy": solvers.normal("toy", case)}
+    drawn = []
+    monkeypatch.setattr(plots, "save", lambda fig, path, dpi=None: drawn.append(fig) or path)
+    plots.overlay(results, "hertz", tmp_path / "overlay.png")
+    lines = {ln.get_label(): ln for ax in drawn[0].axes for ln in ax.get_lines()}
+    line = lines["toy Hertz"]
+    assert (line.get_color(), line.get_linestyle(), line.get_linewidth()) == ("tab:purple", ":", 2.0)
+    assert lines["closed form"].get_color() == "k"
+    spot = {"x": 0.0, "z": 0.0, "value": 1.0}
+    doc = {"cases": [{"name": "hertz", "passed": True, "plots": [], "E": None,
+                      "stress": {"sigma_bulk": 0.0,
+                                 "hot_spots": {m: {q: spot for q in ("sxx", "von_mises", "max_shear")}
+                                               for m in results}}}]}
+    section, _ = stress_section(doc)
+    assert [row[1] for row in section.tables[0].rows] == ["closed form", "toy Hertz"]
+    assert method_name("toy") == "toy Hertz" and method_name("calculix") == "CalculiX"
+
+
+def _method_names_compared(tree, names):
+    """``(line, name)`` of every string constant equal to a method's name in a comparison
+    (``==``, ``!=``, ``in``, ``not in``, either side, alone or in a tuple, list or set) or as a
+    key of a dict literal."""
+    import ast
+
+    def consts(node):
+        if isinstance(node, ast.Constant) and node.value in names:
+            yield node
+        elif isinstance(node, (ast.Tuple, ast.List, ast.Set)):
+            for elt in node.elts:
+                yield from consts(elt)
+
+    for node in ast.walk(tree):
+        if isinstance(node, ast.Compare) and any(isinstance(op, (ast.Eq, ast.NotEq, ast.In, ast.NotIn))
+                                                 for op in node.ops):
+            for side in (node.left, *node.comparators):
+                yield from ((c.lineno, c.value) for c in consts(side))
+        elif isinstance(node, ast.Dict):
+            yield from ((k.lineno, k.value) for k in node.keys if k is not None for k in consts(k))
+
+
+def test_no_module_of_reports_branches_on_a_method_s_name():
+    """reports/ (syntax tree, not imported) compares no string with a registered method's name and
+    keys no dict by one: a method's label, style, study parameter and reference role are
+    fields of registry.Method (or registry.REFERENCE)."""
+    import ast
+    from pathlib import Path
+
+    import threepart.reports as reports
+
+    root = Path(reports.__file__).resolve().parent
+    names = set(registry.names())
+    files = sorted(root.rglob("*.py"))
+    assert len(files) > 20
+    found = [f"{p.relative_to(root.parent)}:{line}: {name!r}" for p in files
+             for line, name in _method_names_compared(ast.parse(p.read_text(encoding="utf-8")), names)]
+    assert found == []
+
+
+def test_the_name_scan_finds_a_branch_on_a_name():
+    """The scan itself: each form it must catch, and a call argument it must not."""
+    import ast
+
+    src = ('a = m == "sie"\nb = "fem" in ms\nc = m in ("x", "closedform")\nd = {"sie": 1}\n'
+           'e = f("sie")\n')
+    got = sorted(_method_names_compared(ast.parse(src), {"closedform", "sie", "fem"}))
+    assert got == [(1, "sie"), (2, "fem"), (3, "closedform"), (4, "sie")]

@@ -462,7 +462,7 @@ def test_the_hot_spot_tables_carry_units_and_four_significant_digits():
     """Stress and fatigue hot spots: each value with its unit (MPa; FFDP MPa²·mm) and its
     position in mm, to SPOT_DIGITS significant digits of the document's figure; none for a
     nondimensional case."""
-    from threepart.cli import FATIGUE_UNITS
+    from threepart.fatigue_parameters import parameters
     from threepart.reports.verify.stress_section import FATIGUE_NAMES, HOT_SPOTS, SPOT_DIGITS, sig, stress_section
 
     spot = {"x": -1.2345678, "z": 0.012345678, "value": 1234.5678}
@@ -476,7 +476,7 @@ def test_the_hot_spot_tables_carry_units_and_four_significant_digits():
     for table, value in ((stress, spot["value"]), (fatigue, big["value"])):
         physical, nondim = table.rows
         for k, cell in enumerate(physical[2:]):
-            unit = ("MPa" if table is stress else FATIGUE_UNITS[list(FATIGUE_NAMES)[k]].replace("^2 ", "²·"))
+            unit = ("MPa" if table is stress else {p.name: p.unit for p in parameters()}[list(FATIGUE_NAMES)[k]].replace("^2 ", "²·"))
             m = re.fullmatch(rf"{number} {re.escape(unit)} at x = {number}(?:, z = {number})? mm", cell)
             assert m, cell
             for got, want in zip(m.groups(), (value, spot["x"], spot["z"])):

@@ -378,7 +378,7 @@ def _exact_slip(res: Any, k: int) -> float:
 def _fatigue(flank: Any, pad: Any, e_flank: Edge, e_pad: Edge, slip: float, sign: float,
              nu: float) -> dict[str, tuple[float, float]]:
     """Each fatigue parameter's largest value near the edge, over a fretting cycle of amplitude ``Q``, flank and pad."""
-    from .fatigue import fatigue
+    from .fatigue_parameters import fatigue
     n, m = FATIGUE_GRID
     r = np.linspace(-0.5 * slip, 2.0 * slip, n)[:, None]
     z = np.linspace(0.0, slip, m)[None, :]
@@ -394,8 +394,6 @@ def _fatigue(flank: Any, pad: Any, e_flank: Edge, e_pad: Edge, slip: float, sign
                          sigma_bulk=res.sigma_bulk * (1.0 if res.Q > 0 else -1.0), normal=normal)
         x = e.x + sign * r
         fat = fatigue(cycle, x, z, E=E, nu=nu, surface=np.sort(e.x + sign * r.ravel()))
-        found["von_mises_range"].append(fat.von_mises_range.hot.value)
-        found["swt"].append(fat.swt.hot.value)
-        found["findley"].append(fat.findley.hot.value)
-        found["ruiz_ffdp"].append(fat.ruiz.ffdp.hot.value)
+        for name in FATIGUE_PARAMETERS:
+            found[name].append(fat.parameters[name].hot.value)
     return {name: (v[0], v[1]) for name, v in found.items()}

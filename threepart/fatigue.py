@@ -26,11 +26,15 @@ swt                 -- Smith–Watson–Topper on the critical plane: max_θ σn
 findley             -- Findley on the critical plane: max_θ (τa + k σn,max)
 ruiz                -- Ruiz's FDP τδ and FFDP σxx τ δ at the surface (Ruiz, Boddington & Chen 1984)
 
+The table of parameters (name, label, unit, function, critical plane or not) that
+:func:`fatigue`, the command line and the report loop over, and Crossland's
+parameter, are in :mod:`threepart.fatigue_parameters`.
+
 Building blocks
 ---------------
 History             -- stacked σxx, σzz, σxz of several states at the same points
 stress_history      -- the history of a cycle's states at points (x, z)
-fatigue             -- the four parameters of a cycle on points (x, z), in one :class:`Fatigue`
+fatigue             -- every parameter of the table on points (x, z) (:mod:`threepart.fatigue_parameters`)
 HotSpot             -- where a parameter peaks, how much, and on which plane
 critical_plane      -- max over plane angles of a function of (σn, τ) histories
 findley_k           -- Findley's constant checked: a float in [0, 10]
@@ -88,7 +92,7 @@ class Parameter:
     Attributes
     ----------
     name
-        ``"von_mises_range"``, ``"swt"``, ``"findley"``, ``"ruiz_fdp"`` or ``"ruiz_ffdp"``.
+        A row's name in :mod:`threepart.fatigue_parameters` (``"swt"``, ``"ruiz_fdp"``, ...).
     x, z
         The points (broadcast against each other).
     value
@@ -546,52 +550,9 @@ def ruiz(cycle: Cycle, history: History) -> Ruiz:
                 _parameter("ruiz_ffdp", x, zero, sxx_max * fdp))
 
 
-@dataclass(frozen=True)
-class Fatigue:
-    """The four fretting-fatigue parameters of one cycle on one set of points."""
-
-    von_mises_range: Parameter
-    swt: Parameter
-    findley: Parameter
-    ruiz: Ruiz
-    E: float
-    nu: float
-    k: float
-    states: int
-
-
-def fatigue(cycle: Cycle, x: ArrayLike, z: ArrayLike, *, E: float, nu: float = NU,
-            k: float = K_FINDLEY, states: Any = None, surface: ArrayLike | None = None) -> Fatigue:
-    """The von Mises range, SWT, Findley and Ruiz parameters of ``cycle`` at ``(x, z)``.
-
-    Parameters
-    ----------
-    cycle
-        A fretting cycle of any method, or the steady state of a cycle between two
-        states (a flight cycle; its history is its two end states).
-    x, z
-        Points, broadcast against each other, ``z >= 0``.
-    E, nu
-        Young's modulus (> 0) and Poisson's ratio of the substrate (plane strain).
-    k
-        Findley's constant (default :data:`K_FINDLEY`).
-    states
-        Indices of the states to use (default all; :func:`stress_history`).
-    surface
-        Surface points ``x`` for Ruiz's parameters. Default: the points of ``(x, z)``
-        at ``z = 0`` or, if there are none, the distinct ``x`` on the surface. Ruiz's
-        tension lives in a narrow band at the slip zones' outer ends, so a grid's
-        row is often too coarse for its hot spot: give a fine line here.
-    """
-    E = positive("E", E)
-    nu = poisson(nu)
-    k = findley_k(k)
-    xs = None if surface is None else reals("surface", surface)
-    h = stress_history(cycle, x, z, states=states, nu=nu)
-    if xs is None and np.any(h.z == 0):
-        top = h
-    else:
-        xs = np.unique(h.x) if xs is None else xs
-        top = stress_history(cycle, xs, np.zeros_like(xs), states=states, nu=nu)
-    return Fatigue(von_mises_range(h), swt(h, E=E), findley(h, k=k), ruiz(cycle, top),
-                   E=E, nu=nu, k=k, states=h.states)
+def __getattr__(name: str) -> Any:
+    """``fatigue`` and ``Fatigue`` live in :mod:`threepart.fatigue_parameters`, beside the table they loop over."""
+    if name in ("fatigue", "Fatigue"):
+        from . import fatigue_parameters
+        return getattr(fatigue_parameters, name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

@@ -1,9 +1,22 @@
-"""Material compliance ``A`` of eq. (4), plane strain."""
+"""Material compliance ``A`` of eq. (4), plane strain, and the material defaults.
+
+compliance   -- A of two bodies (eq. 4)
+similar_pair -- A of two bodies of one material, 4 (1 - nu^2)/E
+rigid_punch  -- A of a rigid punch on an elastic half-plane, 2 (1 - nu^2)/E
+NU           -- Poisson's ratio by default, 0.3
+E_STEEL      -- Young's modulus of steel, 210 GPa, in MPa
+"""
 from __future__ import annotations
 
 from .validate import finite, positive
 
-__all__ = ["compliance", "rigid_punch", "similar_pair"]
+__all__ = ["compliance", "rigid_punch", "similar_pair", "NU", "E_STEEL"]
+
+#: Poisson's ratio by default: what ``stress()`` assumes for a half-plane result (closed form,
+#: SIE), which knows only the compliance ``A``, and what the FE models take when only ``A`` is given
+NU = 0.3
+#: Young's modulus of steel (MPa), as in the paper's examples: the studies' and figures' material
+E_STEEL = 210_000.0
 
 
 def _body(E: float, nu: float, name: str) -> float:

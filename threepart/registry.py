@@ -13,8 +13,10 @@ Adding a method
 ---------------
 Write one module that builds a :class:`Method` from three functions and calls
 ``register`` on it; import that module, and ``threepart.solve(...,
-method="yours")`` and :func:`get` find it. ``tests/test_registry.py`` does this
-with a toy method.
+method="yours")`` and :func:`get` find it. Its ``label`` and ``style`` name and
+draw it in the report's tables and plots, its ``study`` names the parameter of
+its convergence study; none is needed (its name, matplotlib's next colour).
+``tests/test_registry.py`` does this with a toy method.
 
 The adapter's calls
 -------------------
@@ -53,24 +55,28 @@ get         -- the method of a name, importing a built-in solver on first use
 names       -- every method's name: the built-in ones first, in report order
 lift_off    -- the lift-off lever arms (s_min, s_max) by a method of a name
 BUILTIN     -- the built-in methods and the packages that register them
+REFERENCE   -- the method the others are compared with (the closed form)
 """
 from __future__ import annotations
 
 import importlib
-from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any, Callable
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any, Callable, Mapping
 
 if TYPE_CHECKING:  # pragma: no cover
     from .punch import Punch
     from .cycles import HistoryResult, SteadyStateResult
     from .results import FrettingResult, NormalResult, SlipResult
 
-__all__ = ["Method", "register", "get", "names", "lift_off", "BUILTIN"]
+__all__ = ["Method", "register", "get", "names", "lift_off", "BUILTIN", "REFERENCE"]
 
 #: the built-in methods, in report order (the closed form is the reference of the others),
 #: and the package whose import registers each
 BUILTIN: dict[str, str] = {"closedform": "threepart.closedform", "sie": "threepart.sie",
                            "fem": "threepart.fem"}
+#: the method the others are compared with wherever it answers; a case past its framework names
+#: another (``Case.reference``), and the report tells such cases by that
+REFERENCE = "closedform"
 
 
 @dataclass(frozen=True)
@@ -122,6 +128,18 @@ class Method:
         this method's results against the reference, from the options it was
         run with (the FEM's limits depend on its mesh); None for a method that
         is only ever the reference (the closed form).
+    label
+        How the report and the plots name it ("" for its name).
+    style
+        How the plots draw it: matplotlib line keywords (``color``, ``ls``,
+        ``marker``, ...); empty for matplotlib's next colour. A method drawn as
+        markers alone (``ls="none"``) is sampled at fewer points.
+    field_color
+        The colour of its contours over another method's filled field; None
+        for its style's colour (white where it has none).
+    study
+        The discretisation parameter its convergence study varies (``"n"``,
+        ``"h"``), as the report names it; None for a method without one.
     """
 
     name: str
@@ -138,6 +156,29 @@ class Method:
     history: Callable[..., HistoryResult] | None = None
     edges: Callable[[NormalResult], tuple[tuple[float, float | None], tuple[float, float | None]]] | None = None
     bulk_stress: bool = True
+    label: str = ""
+    style: Mapping[str, Any] = field(default_factory=dict)
+    field_color: str | None = None
+    study: str | None = None
+
+    @property
+    def title(self) -> str:
+        """How the report names it: its label, else its name."""
+        return self.label or self.name
+
+    def plot_style(self) -> dict[str, Any]:
+        """Its matplotlib line keywords with its title as the label."""
+        return {**self.style, "label": self.title}
+
+    @property
+    def markers(self) -> bool:
+        """True if it is drawn as markers alone (``ls="none"``): the plots sample it sparsely."""
+        return self.style.get("ls", self.style.get("linestyle")) == "none"
+
+    @property
+    def contour_color(self) -> str:
+        """The colour of its contours over a filled field."""
+        return self.field_color or str(self.style.get("color", "w"))
 
     def check_options(self, options: dict[str, Any], called: str | None = None) -> None:
         """``ValueError`` naming the first option this method does not take; then the values.

@@ -19,6 +19,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 from scipy.optimize import minimize_scalar
 
+from .material import NU   # re-exported: Poisson's ratio by default (its home, with why)
 from .answer import check_coulomb, check_pressure
 from .asymptotics import Edged as _Edged
 from .punch import Punch
@@ -30,9 +31,6 @@ if TYPE_CHECKING:
 __all__ = ["NormalResult", "SlipResult", "FrettingResult", "MasingCycle", "Peak", "Diagnostics", "SEGMENTS",
            "BRANCHES", "NU", "masing", "segments_in_contact", "PEAK_N", "PEAK_GRID"]
 
-#: Poisson's ratio that ``stress()`` assumes for a half-plane result (closed form, SIE),
-#: which knows only the compliance ``A``; the FEM's results use their own.
-NU = 0.3
 
 #: the bounds of ``n``, the grid points per side, of :meth:`NormalResult.peaks`: two points
 #: (the side's ends) at least; at most a million (8 MB a side; 10**9 would allocate 7.5 GiB)

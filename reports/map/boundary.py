@@ -32,14 +32,16 @@ import math
 from dataclasses import dataclass, field
 from typing import Any, Callable, Sequence
 
+from threepart.tolerances import MAP_LEVELS
+
 from .schema import GROUP_AXES, finite
 
 __all__ = ["LEVELS", "REL_WIDTH", "STEP_CAP", "CURVE_AXES", "X", "Sample", "curves", "brackets",
            "Bisection", "start", "locate", "interpolate"]
 
 #: issue 23: the designer's boundaries, where the closed form's signed peak error crosses
-#: -5 %, -1 %, +1 % and +5 % of the finite body's peak
-LEVELS = (-0.05, -0.01, 0.01, 0.05)
+#: -5 %, -1 %, +1 % and +5 % of the finite body's peak (threepart.tolerances.MAP_LEVELS)
+LEVELS = MAP_LEVELS
 #: the bisection stops once the bracket's ends are within 10 % of each other (hi/lo - 1): finer
 #: than the FEM's own error estimate resolves on most curves, at 1 to 4 steps per crossing
 REL_WIDTH = 0.10

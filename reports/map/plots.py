@@ -24,6 +24,8 @@ import textwrap
 from pathlib import Path
 from typing import Any, Sequence
 
+from threepart.tolerances import MAP_LIMIT
+
 from .boundary import LEVELS, X
 from .schema import finite, pct
 
@@ -31,7 +33,8 @@ __all__ = ["LEVELS", "LIMIT", "BANDS", "below_level", "designer_sentence", "leve
            "stick_sentence", "stick_zone", "slope_plot", "LOAD_LINES"]
 
 #: the designer's limit: the closed form within 1 % of the finite body's peak, either way
-LIMIT = 0.01
+#: (threepart.tolerances.MAP_LIMIT, with its reason)
+LIMIT = MAP_LIMIT
 #: the filled bands of the contour maps (signed fractions of the peak pressure), symmetric about 0
 BANDS = (-0.5, -0.25, -0.1, -0.05, -0.025, -0.01, -0.005, -0.0025, 0.0,
          0.0025, 0.005, 0.01, 0.025, 0.05, 0.1, 0.25, 0.5)

@@ -44,6 +44,7 @@ from typing import Any
 
 import numpy as np
 
+from threepart.fields import peak
 from threepart import calculix
 from threepart.calculix import read as ccx_read
 from threepart.material import similar_pair
@@ -83,23 +84,10 @@ def symmetric(point: MapPoint) -> bool:
 
 def fitted_peak(x: np.ndarray, p: np.ndarray, half_width: float) -> tuple[float, float]:
     """The peak ``(x, p)`` of the nodal pressures ``p`` at ``x`` (sorted): the maximum of the
-    least-squares quartic over the nodes within ``half_width`` of it.
-
-    The fit is centred twice: first on the largest five-node moving average, then on the
-    first fit's maximum.
+    least-squares quartic over the nodes within ``half_width`` of it (:func:`threepart.fields.peak`
+    with a window: centred on the largest five-node moving average, then on the first fit's maximum).
     """
-    i = int(np.argmax(np.convolve(p, np.ones(5) / 5, "same")))
-    t = np.linspace(-half_width, half_width, 2001)
-    for _ in range(2):
-        m = np.abs(x - x[i]) < half_width
-        if np.count_nonzero(m) < 6:
-            raise ValueError(f"`half_width` = {half_width:g} holds {np.count_nonzero(m)} nodes; "
-                             "the quartic fit needs at least 6")
-        v = np.polyval(np.polyfit(x[m] - x[i], p[m], 4), t)
-        j = int(np.argmax(v))
-        x_peak, p_peak = float(x[i] + t[j]), float(v[j])
-        i = int(np.argmin(np.abs(x - x_peak)))
-    return x_peak, p_peak
+    return peak(x, p, half_width=half_width, degree=4)
 
 
 def finite_deck(point: MapPoint, *, n: float = REFEREE_N, penalty_factor: float = REFEREE_PENALTY,

@@ -174,6 +174,156 @@ def _task_time(rec: dict[str, Any]) -> float:
     times = [v for k, v in res.items() if k.startswith("time") or k.endswith("time_s")]
     return sum(v for v in times if finite(v))
 
+#: a task of the sweep: its key, the function a worker runs, its arguments, and its map point
+Task = tuple[str, Callable[..., Any], tuple[Any, ...], Any]
+
+
+class _Engine:
+    """The dask client of a run, opened when the first batch computes (unless given a scheduler),
+    and the run's timings and engine record."""
+
+    def __init__(self, stack: ExitStack, workers: int | None, say: Say) -> None:
+        self.stack, self.workers, self.say = stack, workers, say
+        self.info: dict[str, Any] = {"kind": "dask.distributed", "scheduler": None, "workers": 0,
+                                     "dask_version": dask.__version__}
+        self.timings: dict[str, float] = {"startup_s": 0.0, "sweep_s": 0.0}
+        self.client: Any = None
+        self.said = False
+
+    def connect(self, scheduler: str | None) -> None:
+        """Reach ``scheduler``, or start a local cluster of :attr:`workers` (``None``)."""
+        t1 = time.perf_counter()
+        n = 0 if scheduler is not None else self.workers or DEFAULT_WORKERS
+        self.client, self.info = self.stack.enter_context(open_engine(scheduler, n, CONNECT_TIMEOUT))
+        self.timings["startup_s"] = time.perf_counter() - t1
+
+    def ready(self) -> Any:
+        """The client, opened and announced on first use."""
+        if self.client is None:
+            self.connect(None)
+        if not self.said:
+            self.said = True
+            self.say(f"engine: {self.info['kind']} at {self.info['scheduler']}, {self.info['workers']} "
+                     f"workers (ready in {self.timings['startup_s']:.1f} s)")
+        return self.client
+
+
+class _Batch:
+    """Runs batches of tasks on the engine, logging each record and keeping it in ``records``."""
+
+    def __init__(self, engine: _Engine, records: dict[str, Any], log: Callable[[dict[str, Any]], None],
+                 mode: str) -> None:
+        self.engine, self.records, self.log, self.mode = engine, records, log, mode
+
+    def run(self, batch: list[Task], done0: int, of: int) -> None:
+        client = self.engine.ready()
+        t2 = time.perf_counter()
+        for rec in sweep(client, batch, self.log, self.mode, done0, of, self.engine.say):
+            self.records[rec["key"]] = rec
+        self.engine.timings["sweep_s"] += time.perf_counter() - t2
+
+
+def _pending(st: Any, grid: Sequence[MapPoint], records: dict[str, Any], quick: bool,
+             evaluate: Evaluate, control: Callable[[bool], dict[str, Any]]) -> tuple[list[Task], int]:
+    """The tasks not yet done (the studies', the points', the control's) and the number of all."""
+    studied = study_tasks(st, quick)
+    tasks: list[Task] = [
+        *(t for t in studied if not done(records.get(t[0]))),
+        *((p.key(), evaluate, (p, quick), p) for p in grid if not done(records.get(p.key())))]
+    if not done(records.get(CONTROL_KEY)):
+        tasks.append((CONTROL_KEY, control, (quick,), None))
+    return tasks, len(grid) + 1 + len(studied)
+
+
+def _grid(points: Sequence[MapPoint] | None, quick: bool) -> list[MapPoint]:
+    """The map's points: ``points``, or the grid of the mode; ``ValueError`` on a repeated key."""
+    grid = list(validity.map_points(quick) if points is None else points)
+    keys = [p.key() for p in grid]
+    if len(set(keys)) != len(keys) or CONTROL_KEY in keys:
+        raise ValueError("`points` must have distinct keys, none of them 'control'")
+    return grid
+
+
+def _studied(st: Any, n: int) -> str:
+    """The study tasks of a run, counted for its first line."""
+    return (f"{n} study tasks ({len(st.slip_points or ())} partial slip, {len(st.slope_points or ())} "
+            f"small slope, {len(st.slope_curves or ())} crossings, {len(st.referee_points or ())} CalculiX)")
+
+
+def _bisect(bisections: list[Bisection], cap: int, batch: _Batch, tasks: list[Task],
+            evaluate: Evaluate, quick: bool, say: Say) -> int:
+    """Bisect every crossing in waves of at most ``cap`` steps; the steps taken (``tasks`` grows)."""
+    records = batch.records
+    steps_done = 0
+    for wave in range(1, cap + 1):
+        # this wave's step of each open bisection (two levels of one curve may share a point)
+        steps = [(b, x, _step_point(b, x)) for b in bisections if (x := b.next_x(cap)) is not None]
+        want = {pt.key(): pt for _, _, pt in steps}
+        if not want:
+            break
+        todo: list[Task] = [(k, evaluate, (p, quick), p) for k, p in want.items() if not done(records.get(k))]
+        say(f"boundary, wave {wave}: {len(want)} steps of {len(bisections)} crossings "
+            f"({len(want) - len(todo)} already done)")
+        if todo:
+            batch.run(todo, len(want) - len(todo), len(want))
+            tasks += todo
+        steps_done += len(want)
+        for b, x, pt in steps:
+            rec = records[pt.key()]
+            if rec.get("error") is not None or not finite(rec.get("peak_rel_error")):
+                b.fail(rec.get("error") or "no finite peak error")
+            else:
+                b.take(Sample(x, rec["peak_rel_error"], rec.get("fem_error_estimate") or 0.0, rec["key"]))
+    return steps_done
+
+
+def _document(mode: str, engine: _Engine, st: Any, grid: Sequence[MapPoint], records: dict[str, Any],
+              tasks: list[Task], bisections: list[Bisection],
+              steps_done: int) -> tuple[dict[str, Any], list[dict[str, Any]], list[dict[str, Any]]]:
+    """The ``map.json`` document (its run time still 0), its point rows and its boundaries."""
+    timings = engine.timings
+    grid_keys = {p.key() for p in grid}
+    computed = [records[t[0]] for t in tasks if t[0] in grid_keys]
+    ran = [records[t[0]].get("control", {}) if t[0] == CONTROL_KEY else records[t[0]] for t in tasks]
+    task_s = sum(_task_time(r) for r in ran)
+    timings["evaluate_s"] = task_s
+    if tasks and timings["sweep_s"] > 0 and engine.info["workers"]:
+        timings["overhead_per_task_s"] = max(
+            0.0, (timings["sweep_s"] * engine.info["workers"] - task_s) / len(tasks))
+    ctl = records[CONTROL_KEY]
+    mapped = [{k: {**records[p.key()], **point_columns(st, p, records)}.get(k) for k in COLUMNS}
+              for p in grid]
+    cap = STEP_CAP[mode]
+    boundaries = [b.result(cap) for b in bisections]
+    failed = (sum(p["error"] is not None for p in mapped) + (ctl["error"] is not None)
+              + sum(b["status"] == "failed" for b in boundaries) + failures(st, records))
+    doc: dict[str, Any] = {
+        "schema_version": SCHEMA_VERSION, "tool": "threepart map", "mode": mode, "engine": engine.info,
+        "control_rel_error": ctl["control_rel_error"], "control_limit": CONTROL_LIMIT,
+        "control": {**ctl["control"], "error": ctl["error"]},
+        "points": mapped, "boundaries": boundaries,
+        "bisection": {"levels": list(LEVELS), "rel_width": REL_WIDTH, "step_cap": cap,
+                      "steps": steps_done},
+        "small_slope": small_slope(st, records), "referee": referee_section(st, records),
+        "timings": timings, "plots": [], "stick_zone_plots": [],
+        "summary": {"points": len(mapped), "failed": failed, "computed": len(computed),
+                    "resumed": len(mapped) - len(computed), "run_time_s": 0.0},
+    }
+    return doc, mapped, boundaries
+
+
+def _write(rd: ResumableDir, doc: dict[str, Any], mapped: list[dict[str, Any]],
+           boundaries: list[dict[str, Any]], timings: dict[str, float], say: Say) -> None:
+    """The plots, ``map.csv`` and ``boundaries.csv`` into the map directory (``map.json`` follows)."""
+    t3 = time.perf_counter()
+    _plan(rd, [*(plot_name(g, kind) for g in groups(mapped) for kind in ("peak_error", "stick_zone")),
+               "plots/small_slope.png"])
+    _draw(rd, doc, say)
+    rd.write("map.csv", csv_text(mapped))
+    rd.write("boundaries.csv", boundaries_csv(boundaries))
+    timings["write_s"] = time.perf_counter() - t3
+
+
 
 def exit_status(doc: dict[str, Any]) -> int:
     """0 when every point succeeded and the control is within :data:`CONTROL_LIMIT`, else 1."""
@@ -237,124 +387,30 @@ def run_map(out: str | Path, *, quick: bool = False, scheduler: str | None = Non
     mode = "quick" if quick else "full"
     out = Path(os.path.abspath(out))
     ResumableDir.check(out, command=COMMAND, mode=mode, force=force)   # before any work
-    grid = list(validity.map_points(quick) if points is None else points)
-    keys = [p.key() for p in grid]
-    if len(set(keys)) != len(keys) or CONTROL_KEY in keys:
-        raise ValueError("`points` must have distinct keys, none of them 'control'")
-    engine: dict[str, Any] = {"kind": "dask.distributed", "scheduler": None, "workers": 0,
-                              "dask_version": dask.__version__}
-    timings: dict[str, float] = {"startup_s": 0.0, "sweep_s": 0.0}
+    grid = _grid(points, quick)
     with ExitStack() as stack:
-        # the client (made on the first batch to compute, unless given a scheduler) and whether
-        # the engine line was said
-        live: dict[str, Any] = {"client": None, "said": False}
+        engine = _Engine(stack, workers, say)
         if scheduler is not None:   # reached before `out` is touched: an unreachable one leaves nothing
-            t1 = time.perf_counter()
-            live["client"], engine = stack.enter_context(open_engine(scheduler, 0, CONNECT_TIMEOUT))
-            timings["startup_s"] = time.perf_counter() - t1
+            engine.connect(scheduler)
         rd = ResumableDir.open(out, command=COMMAND, mode=mode, force=force)
         stack.callback(rd.close)
         records = read_log(rd.log_lines(POINTS_FILE), mode)
         st = (studies or Studies()).subsets(grid, points is None, quick)
-        studied = study_tasks(st, quick)
-        n_studies = len(studied)
-        tasks: list[tuple[str, Callable[..., Any], tuple[Any, ...], Any]] = [
-            *(t for t in studied if not done(records.get(t[0]))),
-            *((p.key(), evaluate, (p, quick), p) for p in grid if not done(records.get(p.key())))]
-        if not done(records.get(CONTROL_KEY)):
-            tasks.append((CONTROL_KEY, control, (quick,), None))
-        total = len(grid) + 1 + n_studies
-        say(f"threepart map --{mode}: {len(grid)} points, the control and {n_studies} study tasks "
-            f"({len(st.slip_points or ())} partial slip, {len(st.slope_points or ())} small slope, "
-            f"{len(st.slope_curves or ())} crossings, {len(st.referee_points or ())} CalculiX) -> {out} "
-            f"({rd.action}; {total - len(tasks)} of {total} already done)")
-
-        def log(rec: dict[str, Any]) -> None:
-            rd.append(POINTS_FILE, strict_json(rec))
-
-        def run(batch: list[tuple[str, Callable[..., Any], tuple[Any, ...], Any]], done0: int,
-                of: int) -> None:
-            nonlocal engine
-            if live["client"] is None:
-                t1 = time.perf_counter()
-                live["client"], engine = stack.enter_context(open_engine(
-                    None, workers or DEFAULT_WORKERS, CONNECT_TIMEOUT))
-                timings["startup_s"] = time.perf_counter() - t1
-            if not live["said"]:
-                live["said"] = True
-                say(f"engine: {engine['kind']} at {engine['scheduler']}, {engine['workers']} "
-                    f"workers (ready in {timings['startup_s']:.1f} s)")
-            t2 = time.perf_counter()
-            for rec in sweep(live["client"], batch, log, mode, done0, of, say):
-                records[rec["key"]] = rec
-            timings["sweep_s"] += time.perf_counter() - t2
-
+        tasks, total = _pending(st, grid, records, quick, evaluate, control)
+        say(f"threepart map --{mode}: {len(grid)} points, the control and {_studied(st, total - len(grid) - 1)}"
+            f" -> {out} ({rd.action}; {total - len(tasks)} of {total} already done)")
+        batch = _Batch(engine, records, lambda rec: rd.append(POINTS_FILE, strict_json(rec)), mode)
         if tasks:
-            run(tasks, total - len(tasks), total)
+            batch.run(tasks, total - len(tasks), total)
         # the boundary: every bracketed crossing bisected in waves, step k of every curve at once
-        grid_rows = [{k: records[key].get(k) for k in COLUMNS} for key in keys]
-        bisections = start(grid_rows)
-        cap = STEP_CAP[mode]
-        steps_done = 0
-        for wave in range(1, cap + 1):
-            # this wave's step of each open bisection (two levels of one curve may share a point)
-            steps = [(b, x, _step_point(b, x)) for b in bisections
-                     if (x := b.next_x(cap)) is not None]
-            want = {pt.key(): pt for _, _, pt in steps}
-            if not want:
-                break
-            batch = [(k, evaluate, (p, quick), p) for k, p in want.items() if not done(records.get(k))]
-            say(f"boundary, wave {wave}: {len(want)} steps of {len(bisections)} crossings "
-                f"({len(want) - len(batch)} already done)")
-            if batch:
-                run(batch, len(want) - len(batch), len(want))
-                tasks += batch
-            steps_done += len(want)
-            for b, x, pt in steps:
-                rec = records[pt.key()]
-                if rec.get("error") is not None or not finite(rec.get("peak_rel_error")):
-                    b.fail(rec.get("error") or "no finite peak error")
-                else:
-                    b.take(Sample(x, rec["peak_rel_error"], rec.get("fem_error_estimate") or 0.0,
-                                  rec["key"]))
-    grid_keys = set(keys)
-    computed = [records[t[0]] for t in tasks if t[0] in grid_keys]
-    ran = [records[t[0]].get("control", {}) if t[0] == CONTROL_KEY else records[t[0]] for t in tasks]
-    task_s = sum(_task_time(r) for r in ran)
-    timings["evaluate_s"] = task_s
-    if tasks and timings["sweep_s"] > 0 and engine["workers"]:
-        timings["overhead_per_task_s"] = max(
-            0.0, (timings["sweep_s"] * engine["workers"] - task_s) / len(tasks))
-    ctl = records[CONTROL_KEY]
-    mapped = [{k: {**records[p.key()], **point_columns(st, p, records)}.get(k) for k in COLUMNS}
-              for p in grid]
-    boundaries = [b.result(cap) for b in bisections]
-    failed = (sum(p["error"] is not None for p in mapped) + (ctl["error"] is not None)
-              + sum(b["status"] == "failed" for b in boundaries) + failures(st, records))
-    doc: dict[str, Any] = {
-        "schema_version": SCHEMA_VERSION, "tool": "threepart map", "mode": mode, "engine": engine,
-        "control_rel_error": ctl["control_rel_error"], "control_limit": CONTROL_LIMIT,
-        "control": {**ctl["control"], "error": ctl["error"]},
-        "points": mapped, "boundaries": boundaries,
-        "bisection": {"levels": list(LEVELS), "rel_width": REL_WIDTH, "step_cap": cap,
-                      "steps": steps_done},
-        "small_slope": small_slope(st, records), "referee": referee_section(st, records),
-        "timings": timings, "plots": [], "stick_zone_plots": [],
-        "summary": {"points": len(mapped), "failed": failed, "computed": len(computed),
-                    "resumed": len(mapped) - len(computed), "run_time_s": 0.0},
-    }
-    t3 = time.perf_counter()
-    _plan(rd, [*(plot_name(g, kind) for g in groups(mapped) for kind in ("peak_error", "stick_zone")),
-               "plots/small_slope.png"])
-    _draw(rd, doc, say)
-    rd.write("map.csv", csv_text(mapped))
-    rd.write("boundaries.csv", boundaries_csv(boundaries))
-    timings["write_s"] = time.perf_counter() - t3
-    timings["total_s"] = doc["summary"]["run_time_s"] = time.perf_counter() - t0
-    doc = json_safe(doc)
-    validate(doc)
+        bisections = start([{k: records[p.key()].get(k) for k in COLUMNS} for p in grid])
+        steps_done = _bisect(bisections, STEP_CAP[mode], batch, tasks, evaluate, quick, say)
+    doc, mapped, boundaries = _document(mode, engine, st, grid, records, tasks, bisections, steps_done)
+    _write(rd, doc, mapped, boundaries, engine.timings, say)
+    doc["timings"]["total_s"] = doc["summary"]["run_time_s"] = time.perf_counter() - t0
+    validate(doc := json_safe(doc))
     rd.write("map.json", strict_json(doc, indent=1) + "\n")
-    rd.seal(finished=failed == 0)
+    rd.seal(finished=doc["summary"]["failed"] == 0)
     return doc
 
 

@@ -31,10 +31,10 @@ from threepart.convergence import run_study
 from threepart.errors import MeshResolutionError
 from threepart.fem.finite import zone_margin
 from threepart.fem.mesh import PRESETS
-from threepart.material import similar_pair
+from threepart.material import NU as NU_DEFAULT, similar_pair
 from threepart.meshes import SubstrateSpec
 from threepart.meshes.punch import PunchSpec
-from threepart.nodal import edge_multipliers
+from threepart.fields import edge_multipliers
 from threepart.punch import Punch
 
 from ..compare import normal_figures
@@ -48,7 +48,7 @@ __all__ = ["MapPoint", "map_points", "evaluate", "control", "feasible", "converg
 RESULT_KEYS = ("peak_rel_error", "p_left_rel_error", "p_right_rel_error", "a_rel_error",
                "c_rel_error", "alpha_error", "fem_error_estimate", "P", "s", "time_s")
 #: issue 32: each edge's K_N (docs/EDGES.md), closed form minus finite body over the finite
-#: body's (its fit over the fine mesh's nodes, :func:`threepart.nodal.edge_multipliers`); None
+#: body's (its fit over the fine mesh's nodes, :func:`threepart.fields.edge_multipliers`); None
 #: where the fit finds too few nodes. Not part of ``fem_error_estimate``
 EDGE_KEYS = ("K_N_left_rel_error", "K_N_right_rel_error")
 
@@ -78,7 +78,7 @@ class MapPoint:
 
 
 #: the scale of every point (the ratios fix the rest), the material and the flank angle
-R1, E, NU, THETA = 10.0, 1.0, 0.3, math.pi / 3
+R1, E, NU, THETA = 10.0, 1.0, NU_DEFAULT, math.pi / 3
 #: the grid of each map mode (:func:`map_points` drops the points the punch cannot hold)
 GRID = {
     "quick": dict(R2_over_R1=(1.0, 0.5), H_over_b=(4.0,), s_over_lift=(0.0, 0.5),

@@ -35,7 +35,9 @@ import numpy as np
 from scipy.optimize import brentq
 
 from threepart import fem
+from threepart.fields import peak
 from threepart.material import similar_pair
+from threepart.tolerances import MAP_LIMIT
 
 from .validity import E, GRID, MESHES, NU, THETA, MapPoint, _closed_form, _load, _punch, \
     feasible
@@ -45,8 +47,8 @@ __all__ = ["evaluate_slope", "slope_crossing", "load_level", "SLOPE_RESULT_KEYS"
 
 #: what :func:`evaluate_slope` returns for a point (all floats)
 SLOPE_RESULT_KEYS = ("load_level", "slope_peak_rel_error", "slope_a_rel_error", "slope_time_s")
-#: the small-slope cost of the peak the map marks: 1 %
-SLOPE_LEVEL = 0.01
+#: the small-slope cost of the peak the map marks: the map's 1 % (threepart.tolerances.MAP_LIMIT)
+SLOPE_LEVEL = MAP_LIMIT
 #: the overhangs ``(a - b)/R1`` that bracket :func:`slope_crossing`: the full map grid's ends
 #: (the upper end is lowered to the largest grid overhang the curve's punch can hold)
 SLOPE_BRACKET = (min(GRID["full"]["a_minus_b_over_R1"]), max(GRID["full"]["a_minus_b_over_R1"]))
@@ -62,11 +64,11 @@ def load_level(point: MapPoint) -> float:
 
 
 def _peak(result: Any) -> float:
-    """The larger pressure peak of a result, on 4001 points of its contact (or its FE nodes)."""
+    """The larger pressure peak of a result: of its FE nodes (:func:`threepart.fields.peak`), else
+    of its pressure function (:meth:`~threepart.results.NormalResult.peaks`)."""
     if hasattr(result, "p_nodes") and len(result.p_nodes):
-        return float(np.max(result.p_nodes))
-    x = np.linspace(-result.a, result.c, 4001)
-    return float(np.max(result.pressure(x)))
+        return peak(result.x_nodes, result.p_nodes)[1]
+    return max(pk.p for pk in result.peaks())
 
 
 def evaluate_slope(point: MapPoint, quick: bool = False) -> dict[str, float]:

@@ -15,7 +15,7 @@ from typing import Any, Callable
 
 from threepart.asymptotics import SIDES
 from threepart.errors import MeshResolutionError
-from threepart.nodal import edge_multipliers
+from threepart.fields import edge_multipliers
 from threepart.output import atomic_dir, json_safe, strict_json
 from threepart.results import NormalResult
 from threepart.tolerances import tolerance
@@ -33,7 +33,7 @@ COMPARISON = "referee"
 
 def edges(res: PointsResult, ref: NormalResult) -> list[dict[str, Any]]:
     """Each edge's ``K_N`` (docs/EDGES.md) of the points, fitted over their nodes
-    (:func:`threepart.nodal.edge_multipliers`), against the reference's own.
+    (:func:`threepart.fields.edge_multipliers`), against the reference's own.
 
     An edge agrees when its relative error is within the tolerance table's
     ``("referee", "K_N")`` limit widened by the fit's own error. Too few points near

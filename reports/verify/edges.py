@@ -11,7 +11,9 @@ from __future__ import annotations
 
 from typing import Any, Sequence
 
-from .sections import METHOD_NAMES, Cell, Section, Status, Table, _head, _u, _with_unit, fmt, words
+from threepart import registry
+
+from .sections import Cell, Section, Status, Table, _head, _u, _with_unit, fmt, words
 
 __all__ = ["edge_rows", "edges_section"]
 
@@ -69,12 +71,12 @@ def edges_section(doc: dict[str, Any]) -> Section | None:
     for r in rows:
         case = cases.get(r["case"], {})
         if "error" in r:
-            table.append((r["case"], METHOD_NAMES.get(r["method"], r["method"]), "–", words(r["error"]),
+            table.append((r["case"], registry.get(r["method"]).title, "–", words(r["error"]),
                           "–", "–", "–", "–", "–"))
             continue
         if r["fit_error"] is not None and r["K_N_error"] is not None and r["K_N_error"] > r["fit_error"]:
             covered = False
-        table.append((r["case"], METHOD_NAMES.get(r["method"], r["method"]), r["side"],
+        table.append((r["case"], registry.get(r["method"]).title, r["side"],
                       _with_unit(r["K_N"], _u(case, "K_N")), fmt(r["K_N_error"]), fmt(r["fit_error"]),
                       _with_unit(r["K_T"], _u(case, "K_T")), _with_unit(r["slip_zone"], _u(case, "slip_zone")),
                       _with_unit(r["exact_slip"], _u(case, "slip_zone"))))

@@ -16,22 +16,36 @@ import numpy as np
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 
+from threepart import registry
+from threepart.registry import REFERENCE, Method
 from threepart.units import UNITS
 from threepart.convergence import ROUND_OFF
 
 from ..compare import EDGE_FRACTION, field_errors, is_slip, normal_of
-from .sections import ENERGY_UNIT, order_text
+from .sections import ENERGY_UNIT, method_name, order_text
 from .studies import Study
 
 __all__ = ["new_figure", "save", "overlay", "error_curves", "stress_surface", "von_mises", "sie_convergence",
-           "fem_convergence", "step_convergence", "fretting", "steady", "STYLE"]
+           "fem_convergence", "step_convergence", "fretting", "steady", "style"]
 
-#: how each method is drawn
-STYLE = {
-    "closedform": dict(color="k", lw=1.6, ls="-", label="closed form"),
-    "sie": dict(color="tab:red", marker="o", ms=3.5, ls="none", mfc="none", label="SIE"),
-    "fem": dict(color="tab:blue", lw=1.2, ls="--", label="FEM"),
-}
+
+def _method(method: str) -> Method | None:
+    try:
+        return registry.get(method)
+    except ValueError:
+        return None
+
+
+def style(method: str) -> dict[str, Any]:
+    """How ``method`` is drawn: its registry style, labelled with its name (:class:`threepart.registry.Method`)."""
+    m = _method(method)
+    return m.plot_style() if m is not None else {"label": method}
+
+
+def _sparse(method: str) -> bool:
+    """True for a method drawn as markers alone: sampled at :data:`N_MARKERS` points."""
+    m = _method(method)
+    return m is not None and m.markers
 
 
 def new_figure(ncols: int = 1, nrows: int = 1, size: tuple[float, float] = (6.4, 4.0)) -> tuple[Figure, Any]:
@@ -68,11 +82,7 @@ def save(fig: Figure, path: str | Path, dpi: int = DPI) -> Path:
     return path
 
 
-#: how the plots name a reference method
-REFERENCE_NAME = {"closedform": "closed form", "sie": "SIE"}
-#: the methods' names in titles
-METHOD_NAME = {"closedform": "closed form", "sie": "SIE", "fem": "FEM"}
-#: markers of the SIE along its contact
+#: markers of a method drawn as markers (the SIE) along its contact
 N_MARKERS = 41
 
 
@@ -99,7 +109,7 @@ def _field(res: Any, method: str, field: str) -> tuple[np.ndarray, np.ndarray]:
     """
     n = normal_of(res)
     f = n.pressure if field == "pressure" else res.shear
-    if method == "sie":
+    if _sparse(method):
         x = np.linspace(-n.a, n.c, N_MARKERS)
         return x, np.asarray(f(x), dtype=float)
     x = np.linspace(-n.a, n.c, 1201)[1:-1]
@@ -108,11 +118,11 @@ def _field(res: Any, method: str, field: str) -> tuple[np.ndarray, np.ndarray]:
 
 
 def _methods(methods: Iterable[str]) -> str:
-    return " vs ".join(METHOD_NAME.get(m, m) for m in methods)
+    return " vs ".join(method_name(m) for m in methods)
 
 
 def overlay(results: dict[str, Any], title: str, path: str | Path,
-            reference: str = "closedform", physical: bool = False) -> Path:
+            reference: str = REFERENCE, physical: bool = False) -> Path:
     """Pressure (and, for partial slip, shear) of every method on one plot.
 
     A case with a material (``physical``) is drawn in its units, p in MPa
@@ -121,7 +131,7 @@ def overlay(results: dict[str, Any], title: str, path: str | Path,
     own contact to the ends, where the traction is zero.
     """
     ref = results.get(reference) or next(iter(results.values()))
-    name = REFERENCE_NAME.get(reference, reference)
+    name = method_name(reference)
     nref = normal_of(ref)
     xscale, xlabel = _axis(nref, physical)
     slip = is_slip(ref)
@@ -131,7 +141,7 @@ def overlay(results: dict[str, Any], title: str, path: str | Path,
     pscale = 1.0 if physical else pmax
     for method, res in results.items():
         x, p = _field(res, method, "pressure")
-        ax.plot(x / xscale, p / pscale, **STYLE.get(method, {"label": method}))
+        ax.plot(x / xscale, p / pscale, **style(method))
     _joins(ax, nref.punch.b, xscale)
     ax.axhline(0.0, color="0.85", lw=0.8)
     ax.set_xlabel(xlabel)
@@ -152,7 +162,7 @@ def overlay(results: dict[str, Any], title: str, path: str | Path,
             if not is_slip(res):
                 continue
             x, q = _field(res, method, "shear")
-            ax.plot(x / xscale, q / qscale, **STYLE.get(method, {"label": method}))
+            ax.plot(x / xscale, q / qscale, **style(method))
         lo, hi = ref.stick_zone
         ax.axvspan(lo / xscale, hi / xscale, color="tab:green", alpha=0.1,
                    label=f"stick zone ({name})")
@@ -168,10 +178,10 @@ def overlay(results: dict[str, Any], title: str, path: str | Path,
 
 
 def error_curves(results: dict[str, Any], title: str, path: str | Path,
-                 reference: str = "closedform", physical: bool = False) -> Path:
+                 reference: str = REFERENCE, physical: bool = False) -> Path:
     """|p_method - p_reference| / p_max against x (log scale), and the same for shear."""
     ref = results[reference]
-    name = REFERENCE_NAME.get(reference, reference)
+    name = method_name(reference)
     nref = normal_of(ref)
     W = nref.width
     xscale, xlabel = _axis(nref, physical)
@@ -190,8 +200,8 @@ def error_curves(results: dict[str, Any], title: str, path: str | Path,
                 continue
             err = np.abs(fe.error)
             err = np.where(err > 0, err, np.nan)
-            color = STYLE.get(method, {}).get("color")
-            ax.semilogy(fe.x / xscale, err, color=color, lw=1.0, label=METHOD_NAME.get(method, method))
+            color = style(method).get("color")
+            ax.semilogy(fe.x / xscale, err, color=color, lw=1.0, label=method_name(method))
         ax.axvspan(-nref.a / xscale, (-nref.a + EDGE_FRACTION * W) / xscale, color="0.9")
         ax.axvspan((nref.c - EDGE_FRACTION * W) / xscale, nref.c / xscale, color="0.9",
                    label=f"within {EDGE_FRACTION:.0%} of W of an end (left out of the interior error)")
@@ -270,7 +280,7 @@ CYCLE_STATES = ((1.0, "loading", "Q = Q_max"), (0.0, "unloading", "Q = 0 after r
 
 
 def fretting(results: dict[str, Any], title: str, path: str | Path,
-             reference: str = "closedform", physical: bool = False) -> Path:
+             reference: str = REFERENCE, physical: bool = False) -> Path:
     """A fretting cycle by every method: the hysteresis loop, and the shear at three states.
 
     The loop is ``delta`` less the line through its tips (:meth:`FrettingResult.loop`),
@@ -278,15 +288,15 @@ def fretting(results: dict[str, Any], title: str, path: str | Path,
     case with a material); shears are scaled by ``f p_max`` of the reference.
     """
     ref = results.get(reference) or next(iter(results.values()))
-    name = REFERENCE_NAME.get(reference, reference)
+    name = method_name(reference)
     unit = ENERGY_UNIT if physical else "(nondimensional)"
     fig, axes = new_figure(2, 2)
     ax = axes[0, 0]
     for m, res in results.items():
         Q, h = res.loop()
-        style = {k: v for k, v in STYLE[m].items() if k != "label"}
-        ax.plot(Q / ref.Q_max, h, **style,
-                label=f"{STYLE[m]['label']}: {res.energy:.5g} {unit} per cycle")
+        drawn = {k: v for k, v in style(m).items() if k != "label"}
+        ax.plot(Q / ref.Q_max, h, **drawn,
+                label=f"{method_name(m)}: {res.energy:.5g} {unit} per cycle")
     ax.set_xlabel("Q / Q_max")
     ax.set_ylabel("tangential displacement δ less its elastic line"
                   + (f" ({UNITS['d']})" if physical else ""))
@@ -301,8 +311,8 @@ def fretting(results: dict[str, Any], title: str, path: str | Path,
     scale = ref.f * max(p.p for p in n.peaks())
     for ax, (frac, branch, label) in zip((axes[0, 1], axes[1, 0], axes[1, 1]), CYCLE_STATES):
         for m, res in results.items():
-            xm = x[::16] if m == "sie" else x
-            ax.plot(xm / xscale, res.shear(xm, frac * res.Q_max, branch) / scale, **STYLE[m])
+            xm = x[::16] if _sparse(m) else x
+            ax.plot(xm / xscale, res.shear(xm, frac * res.Q_max, branch) / scale, **style(m))
         _joins(ax, n.punch.b, xscale)
         ax.set_xlabel(xlabel)
         ax.set_ylabel(f"q / (f p_max)  (p_max of the {name})")
@@ -330,7 +340,7 @@ def _steady_shear(shear: Any, x: np.ndarray, k: int | None) -> np.ndarray:
 
 
 def steady(results: dict[str, Any], title: str, path: str | Path,
-           reference: str = "closedform", physical: bool = False,
+           reference: str = REFERENCE, physical: bool = False,
            histories: dict[str, Any] | None = None) -> Path:
     """The steady state of a flight cycle by every method with one: the shear range ``q_1 - q_0``
     (eq. S4) and the shear at state 1 (eq. S13), and the slip amplitude (eq. S7) at both contact
@@ -345,7 +355,7 @@ def steady(results: dict[str, Any], title: str, path: str | Path,
 
     histories = histories or {}
     ref = results.get(reference) or next(iter(results.values()))
-    name = REFERENCE_NAME.get(reference, reference)
+    name = method_name(reference)
     n = max(ref.normals, key=lambda m: float(m.a + m.c))
     xscale, xlabel = _axis(n, physical)
     scale = ref.f * max(p.p for p in n.peaks())
@@ -355,12 +365,12 @@ def steady(results: dict[str, Any], title: str, path: str | Path,
         # k = None: the range q_1 - q_0, which the steady state fixes everywhere (eq. S4); the
         # shear of an end state carries in the stick zone a part locked in by the history (S13)
         for m, res in results.items():
-            ax.plot(x / xscale, _steady_shear(res.shear, x, k) / scale, **STYLE[m])
+            ax.plot(x / xscale, _steady_shear(res.shear, x, k) / scale, **style(m))
         for m, hist in histories.items():
             cyc = last_cycle(hist)
             at = {0: cyc[-1], 1: cyc[len(cyc) // 2]}
             ax.plot(x / xscale, _steady_shear(lambda t, j: hist.shear(t, at[j]), x, k) / scale,
-                    **HISTORY_STYLE, label=f"{STYLE[m]['label']} history, cycle {len(hist.cycles)}")
+                    **HISTORY_STYLE, label=f"{method_name(m)} history, cycle {len(hist.cycles)}")
         _stick_lines(ax, ref, xscale)
         _joins(ax, n.punch.b, xscale)
         ax.set_xlabel(xlabel)
@@ -382,10 +392,10 @@ def steady(results: dict[str, Any], title: str, path: str | Path,
         x = np.linspace(a - w, b + w, 401)
         x = x[(x >= lo) & (x <= hi)]
         for m, res in results.items():
-            ax.plot(x / xscale, np.asarray(res.slip_amplitude(x)), **STYLE[m])
+            ax.plot(x / xscale, np.asarray(res.slip_amplitude(x)), **style(m))
         for m, hist in histories.items():
             ax.plot(x / xscale, slip_amplitude(hist, x), **HISTORY_STYLE,
-                    label=f"{STYLE[m]['label']} history, cycle {len(hist.cycles)}")
+                    label=f"{method_name(m)} history, cycle {len(hist.cycles)}")
         ax.axvline((left if side == "left" else right) / xscale, color="0.4", lw=0.8, ls=":")
         ax.set_xlim(x[0] / xscale, x[-1] / xscale)
         ax.set_xlabel(xlabel)
@@ -407,12 +417,12 @@ def _stress_scales(results: dict[str, Any], reference: str,
     ref = results.get(reference) or next(iter(results.values()))
     nref = normal_of(ref)
     pmax = max(p.p for p in nref.peaks())
-    return (ref, REFERENCE_NAME.get(reference, reference), nref, _axis(nref, physical),
+    return (ref, method_name(reference), nref, _axis(nref, physical),
             1.0 if physical else pmax)
 
 
 def stress_surface(results: dict[str, Any], title: str, path: str | Path, *, nu: float,
-                   reference: str = "closedform", physical: bool = False) -> Path:
+                   reference: str = REFERENCE, physical: bool = False) -> Path:
     """Surface stress ``σxx`` of every method along the contact and beyond its ends.
 
     In MPa against mm for a case with a material, else over the reference's
@@ -426,9 +436,9 @@ def stress_surface(results: dict[str, Any], title: str, path: str | Path, *, nu:
     ax = axes[0, 0]
     x = surface_line(ref)
     for method, res in results.items():
-        xs = x[:: max(len(x) // N_MARKERS, 1)] if method == "sie" else x
+        xs = x[:: max(len(x) // N_MARKERS, 1)] if _sparse(method) else x
         sxx = res.stress(xs, np.zeros_like(xs), nu=nu).sxx
-        ax.plot(xs / xscale, sxx / sscale, **STYLE.get(method, {"label": method}))
+        ax.plot(xs / xscale, sxx / sscale, **style(method))
     for i, xe in enumerate((-nref.a, nref.c)):
         ax.axvline(xe / xscale, color="0.3", lw=0.8, ls="-.",
                    label="contact ends x = -a, c" if i == 0 else None)
@@ -450,7 +460,7 @@ def fmt_stress(value: float, physical: bool) -> str:
 
 
 def von_mises(results: dict[str, Any], title: str, path: str | Path, *, nu: float,
-              reference: str = "closedform", physical: bool = False) -> Path:
+              reference: str = REFERENCE, physical: bool = False) -> Path:
     """Von Mises stress under the contact: the reference filled, every other method's contours on top.
 
     Depth ``z`` points down; the levels are the same for every method, so a
@@ -470,15 +480,15 @@ def von_mises(results: dict[str, Any], title: str, path: str | Path, *, nu: floa
                                        else f"von Mises / p_max, {name}"))
     ax.contour(x / xscale, z / xscale, vm, levels=levels, colors="k", linewidths=0.9)
     handles = [ax.plot([], [], color="k", lw=0.9, label=f"{name} (filled and black lines)")[0]]
-    colours = {"sie": "tab:red", "fem": "tab:orange"}
     for method, res in results.items():
         if method == reference:
             continue
         other = res.stress(x, z, nu=nu).von_mises / sscale
-        colour = colours.get(method, "w")
+        m = _method(method)
+        colour = m.contour_color if m is not None else "w"
         ax.contour(x / xscale, z / xscale, other, levels=levels, colors=colour, linewidths=1.0,
                    linestyles="--")
-        handles.append(ax.plot([], [], color=colour, lw=1.0, ls="--", label=METHOD_NAME.get(method, method))[0])
+        handles.append(ax.plot([], [], color=colour, lw=1.0, ls="--", label=method_name(method))[0])
     ax.plot([-nref.a / xscale, nref.c / xscale], [0, 0], color="w", lw=4, solid_capstyle="butt")
     ax.invert_yaxis()
     ax.set_xlabel(xlabel)

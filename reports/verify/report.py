@@ -22,6 +22,8 @@ from pathlib import Path
 from typing import Any, Callable, Sequence
 
 from threepart.catalogue import Case, load_cases
+from threepart.fatigue_parameters import reported
+from threepart.registry import REFERENCE
 from threepart.progress import heartbeat
 from threepart.output import atomic_dir, json_safe, strict_json, validate_json
 
@@ -109,10 +111,20 @@ def run(mode: Mode, cases: Sequence[Case], say: Callable[[str], None],
     except in the quick mode; ``robustness`` adds, in the full mode only, the
     robustness study (:func:`reports.verify.robustness.study`) as one more run of checks.
     """
-    runs: list[CaseRun] = []
-    cache: dict[Any, Any] = {}
     timings: dict[str, float] = {}
     t0 = time.perf_counter()
+    runs = _run_cases(mode, cases, say)
+    timings["cases_s"] = time.perf_counter() - t0
+    if robustness and mode.name == "full":
+        _robustness(runs, timings, say)
+    studies = _studies(mode, cases, runs, say, calculix, timings)
+    return runs, studies, timings
+
+
+def _run_cases(mode: Mode, cases: Sequence[Case], say: Callable[[str], None]) -> list[CaseRun]:
+    """Solve and compare every case, one progress line each (and a heartbeat while it runs)."""
+    runs: list[CaseRun] = []
+    cache: dict[Any, Any] = {}
     for i, case in enumerate(cases, 1):
         tag = f"[{i:>2}/{len(cases)}] {case.name:<14}"
         note = (f" (a fretting cycle: 3 branches of {FRETTING_STATES} load states by each method)"
@@ -136,9 +148,12 @@ def run(mode: Mode, cases: Sequence[Case], say: Callable[[str], None],
             "FAIL " + ", ".join(f"{c.comparison}:{c.quantity}" for c in failed) if failed else "ERROR")
         say(f"{tag} {verdict}  ({time.perf_counter() - tc:.2f} s)")
         runs.append(r)
-    timings["cases_s"] = time.perf_counter() - t0
-    if robustness and mode.name == "full":
-        _robustness(runs, timings, say)
+    return runs
+
+
+def _studies(mode: Mode, cases: Sequence[Case], runs: list[CaseRun], say: Callable[[str], None],
+             calculix: bool, timings: dict[str, float]) -> list[Study]:
+    """The convergence studies of the mode, each timed into ``timings``."""
     studies: list[Study] = []
     study_case = next((c for c in cases if c.name == STUDY_CASE), cases[0] if cases else None)
     if study_case is not None and mode.sie_study_n:
@@ -172,16 +187,16 @@ def run(mode: Mode, cases: Sequence[Case], say: Callable[[str], None],
         with heartbeat(say, lambda: "[study]   CalculiX"):
             studies.extend(calculix_studies(say))
         timings["calculix_study_s"] = time.perf_counter() - t1
-    cycle = next((r for r in runs if r.case.kind == "fretting" and "closedform" in r.results), None)
+    cycle = next((r for r in runs if r.case.kind == "fretting" and REFERENCE in r.results), None)
     if cycle is not None:
         t1 = time.perf_counter()
         say(f"[study] FEM fretting energy in the load step on {cycle.case.name} (quick mesh): "
             f"states per branch = {list(STEP_STATES)}")
         with heartbeat(say, lambda: "[study]   FEM fretting cycle"):
-            studies.append(fem_step_study(cycle.case, cycle.results["closedform"], "quick",
+            studies.append(fem_step_study(cycle.case, cycle.results[REFERENCE], "quick",
                                           STEP_STATES, progress=lambda m: say(f"[study]   {m}")))
         timings["fem_step_study_s"] = time.perf_counter() - t1
-    return runs, studies, timings
+    return studies
 
 
 def _robustness(runs: list[CaseRun], timings: dict[str, float], say: Callable[[str], None]) -> None:
@@ -278,13 +293,15 @@ def stress_record(run: CaseRun) -> dict[str, Any]:
 
 
 def load_schema() -> dict[str, Any]:
-    """The JSON schema of ``report.json``."""
-    return json.loads(SCHEMA_FILE.read_text(encoding="utf-8"))
+    """The JSON schema of ``report.json``, the fatigue parameters' names from their table."""
+    schema: dict[str, Any] = json.loads(SCHEMA_FILE.read_text(encoding="utf-8"))
+    schema["$defs"]["fatigue_parameter"]["enum"] = list(reported())
+    return schema
 
 
 def validate(doc: dict[str, Any]) -> None:
     """Validate ``doc`` against the schema (needs ``jsonschema``; skipped without it)."""
-    validate_json(doc, SCHEMA_FILE)
+    validate_json(doc, load_schema())
 
 
 def write_report(tmp: Path, mode: Mode, runs: Sequence[CaseRun], studies: Sequence[Study],

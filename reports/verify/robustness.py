@@ -45,6 +45,7 @@ import numpy as np
 from threepart import Punch, closedform, sie
 from threepart.catalogue import Case
 from threepart.errors import NoConvergenceError, StickZoneError
+from threepart.material import E_STEEL, NU
 from threepart.tolerances import tolerance
 
 from ..compare import Check
@@ -81,7 +82,7 @@ GRID = 2001
 #: states per branch of a fretting cycle of the study
 CYCLE_STATES = 3
 #: E of steel (MPa) and ν: a rigid punch on steel, or two steel bodies (E / 2)
-STEEL = (210e3, 0.3)
+STEEL = (E_STEEL, NU)
 
 
 def draw(rng: np.random.Generator, group: str, i: int) -> Case:

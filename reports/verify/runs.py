@@ -26,6 +26,7 @@ from dataclasses import dataclass, field
 from typing import Any, Callable
 
 from threepart import registry
+from threepart.registry import REFERENCE
 from threepart.catalogue import Case
 from threepart.tolerances import tolerance
 
@@ -149,8 +150,8 @@ def refusal_check(case: Case, raised: BaseException | None) -> Check:
     expected = case.closedform_refuses
     right = raised is not None and type(raised).__name__ == expected
     got = "an answer" if raised is None else type(raised).__name__
-    tol = tolerance("refusal", "closedform")
-    return Check(comparison="refusal", quantity="closedform", reference=1.0, obtained=float(right),
+    tol = tolerance("refusal", REFERENCE)
+    return Check(comparison="refusal", quantity=REFERENCE, reference=1.0, obtained=float(right),
                  error=0.0 if right else 1.0, limit=tol.limit,
                  reason=f"{tol.reason}: expected {expected}, got {got}")
 
@@ -171,7 +172,7 @@ def run_case(case: Case, mode: Mode, cache: dict[Any, Any] | None = None,
         case = case.resolved()
         run.case = case
     except Exception as exc:  # noqa: BLE001 - recorded in the report
-        run.errors["closedform"] = f"lift-off range: {type(exc).__name__}: {exc}"
+        run.errors[REFERENCE] = f"lift-off range: {type(exc).__name__}: {exc}"
         return run
     if case.kind == "steady":   # only the methods with a steady state (Method.steady) take part
         methods = tuple(m for m in methods if registry.get(m).steady is not None)
@@ -180,7 +181,7 @@ def run_case(case: Case, mode: Mode, cache: dict[Any, Any] | None = None,
         try:
             res, dt = solve(case, method, mode, cache)
         except Exception as exc:  # noqa: BLE001 - recorded in the report
-            if case.beyond and method == "closedform":
+            if case.beyond and registry.get(method).framework_only:
                 run.checks.append(refusal_check(case, exc))
                 run.refusals[method] = f"{type(exc).__name__}: {exc}"
                 say(f"{method} refuses ({type(exc).__name__})")
@@ -188,7 +189,7 @@ def run_case(case: Case, mode: Mode, cache: dict[Any, Any] | None = None,
             run.errors[method] = f"{type(exc).__name__}: {exc}"
             say(f"{method} FAILED ({type(exc).__name__}: {exc})")
             continue
-        if case.beyond and method == "closedform":
+        if case.beyond and registry.get(method).framework_only:
             run.checks.append(refusal_check(case, None))   # it answered: a failed check
         run.results[method] = res
         run.times[method] = dt
@@ -197,7 +198,7 @@ def run_case(case: Case, mode: Mode, cache: dict[Any, Any] | None = None,
     if ref is None:
         return run
     for method in methods:
-        if method in (case.reference, "closedform") or method not in run.results:
+        if method in (case.reference, REFERENCE) or method not in run.results:
             continue
         judged_by = registry.get(method).comparison
         try:

@@ -23,18 +23,29 @@ from enum import Enum
 from typing import Any, Sequence, Union
 
 from threepart.units import UNITS
+from threepart import registry
+from threepart.registry import REFERENCE
 from threepart.tolerances import ERROR_UNITS, NORMALISATION, VALUE_UNITS
 
 __all__ = ["Status", "Verdict", "Code", "Link", "Item", "Bullets", "Table", "Figure", "Section",
            "Document", "build", "words", "fmt", "order_text", "plot_path", "study_plot_path", "PLOT_KINDS",
-           "ENERGY_UNIT", "ENERGY_UNIT_TEXT", "METHOD_NAMES", "MAP_JSON", "MAP_COMMAND"]
+           "ENERGY_UNIT", "ENERGY_UNIT_TEXT", "method_name", "REFEREE_NAMES", "MAP_JSON", "MAP_COMMAND"]
 
 #: energy dissipated per cycle and unit length: the shear force per unit length Q [N/mm]
 #: times a slip [mm], i.e. N·mm per mm of contact length (a force, N)
 ENERGY_UNIT = f"N·{UNITS['d']}/{UNITS['b']}"
 ENERGY_UNIT_TEXT = f"N·{UNITS['d']} per {UNITS['b']} of contact length, per cycle"
-#: how the report names each method
-METHOD_NAMES = {"closedform": "closed form", "sie": "SIE", "fem": "FEM", "calculix": "CalculiX"}
+#: how the report names a referee that is not a method of the registry (another code's results)
+REFEREE_NAMES = {"calculix": "CalculiX"}
+
+
+def method_name(method: str) -> str:
+    """How the report names ``method``: its registry label (:attr:`threepart.registry.Method.label`),
+    a referee's name, else the name itself."""
+    try:
+        return registry.get(method).title
+    except ValueError:
+        return REFEREE_NAMES.get(method, method)
 #: the validity map's file beside the report (written by ``threepart map``) and the command
 MAP_JSON = "../map/map.json"
 MAP_COMMAND = "threepart map --quick"
@@ -256,8 +267,13 @@ def _verdict(doc: dict[str, Any]) -> str:
             + (f", {total:.0f} s)" if total is not None else ")"))
 
 
+def _beyond(case: dict[str, Any]) -> bool:
+    """True for a case past the closed form's framework: its reference is another method."""
+    return (case.get("reference") or REFERENCE) != REFERENCE
+
+
 def _peaks(case: dict[str, Any]) -> list[float]:
-    ref = case["results"].get(case.get("reference") or "closedform", {})
+    ref = case["results"].get(case.get("reference") or REFERENCE, {})
     return [ref[k]["p"] for k in ("peak_left", "peak_right") if k in ref]
 
 
@@ -337,7 +353,7 @@ def _refused(case: dict[str, Any]) -> Verdict:
 
 
 def _case_lines(doc: dict[str, Any], beyond: bool) -> Table:
-    cases = [c for c in doc["cases"] if (c.get("reference") == "sie") == beyond]
+    cases = [c for c in doc["cases"] if _beyond(c) == beyond]
     rows: tuple[tuple[Cell, ...], ...]
     if beyond:
         head = ("case", "what", "closed form", "SIE vs FEM", "largest limit used")
@@ -362,8 +378,7 @@ def _load(case: dict[str, Any]) -> str:
            f"s = {_with_unit(case['s'], L)}, tilt {case['tilt']}")
     if case["Q_over_fP"] is not None:
         txt += f"; f = {fmt(case['f'])}, Q/fP = {fmt(case['Q_over_fP'])}"
-    ref = case.get("reference", "closedform")
-    return txt + f". Reference: {'the SIE' if ref == 'sie' else 'the closed form'}."
+    return txt + f". Reference: the {method_name(case.get('reference') or REFERENCE)}."
 
 
 def energy_unit(case: dict[str, Any]) -> str:
@@ -411,7 +426,7 @@ def _energy(case: dict[str, Any]) -> Para | None:
         return None
     unit = energy_unit(case)
     return (("Energy dissipated per cycle: "
-             + ", ".join(f"{METHOD_NAMES.get(m, m)} {_with_unit(e, unit)}" for m, e in energies)
+             + ", ".join(f"{method_name(m)} {_with_unit(e, unit)}" for m, e in energies)
              + (f" ({ENERGY_UNIT_TEXT})." if unit else " (nondimensional).")),)
 
 
@@ -423,7 +438,7 @@ def _cycle(case: dict[str, Any]) -> Para | None:
     ends = "; ".join(f"state {k}: P = {_with_unit(P, F)}, s = {_with_unit(s, L)}, Q = {_with_unit(Q, F)}, "
                      f"σ_bulk = {_with_unit(g, S)}" for k, (P, s, Q, g) in enumerate(case["states"]))
     zones = ", ".join(
-        f"{METHOD_NAMES.get(m, m)} [{fmt(-(r['d'] + r['e']))}, {fmt(r['d'] - r['e'])}]"
+        f"{method_name(m)} [{fmt(-(r['d'] + r['e']))}, {fmt(r['d'] - r['e'])}]"
         + (" (shakedown)" if r.get("shakedown") else "")
         for m, r in case["results"].items() if r.get("d") is not None)
     return (f"The cycle moves linearly and in phase between {ends}. Permanent stick zone"
@@ -468,7 +483,7 @@ def _study_title(st: dict[str, Any]) -> str:
     scheme = f" ({st['scheme']})" if st.get("scheme") else ""
     what = {"n": "in n", "h": "in h", "dQ": "in the load step ΔQ",
             "1/K": "in the penalty 1/K"}.get(st["param"], f"in {st['param']}")
-    return f"{METHOD_NAMES.get(st['method'], st['method'])}{scheme} convergence {what}, case {st['case']}"
+    return f"{method_name(st['method'])}{scheme} convergence {what}, case {st['case']}"
 
 
 def _studies(doc: dict[str, Any]) -> Section:
@@ -555,8 +570,8 @@ def build(doc: dict[str, Any], map_link: str | None = None) -> Document:
     overlays, shown = _overlays(doc)
     stress, stress_plots = stress_section(doc)
     shown |= stress_plots
-    inside = [c for c in doc["cases"] if c.get("reference") != "sie"]
-    beyond = [c for c in doc["cases"] if c.get("reference") == "sie"]
+    inside = [c for c in doc["cases"] if not _beyond(c)]
+    beyond = [c for c in doc["cases"] if _beyond(c)]
     sections = [
         Section("How to read it", "how", _how_to_read(doc)),
         Section("Tightest margins", "tightest",

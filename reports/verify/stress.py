@@ -99,7 +99,8 @@ def fatigue_hot_spots(results: Mapping[str, Any], material: tuple[float, float] 
     ``material`` ``(E, nu)``; a case given by its compliance alone is read as a
     similar pair, ``E = 4(1 - ν²)/A`` (eq. 4) with :data:`threepart.results.NU`.
     """
-    from threepart.fatigue import K_FINDLEY, fatigue
+    from threepart.fatigue import K_FINDLEY
+    from threepart.fatigue_parameters import fatigue, reported
 
     ref = results[reference]
     nu = stress_nu(material)
@@ -112,6 +113,6 @@ def fatigue_hot_spots(results: Mapping[str, Any], material: tuple[float, float] 
                            "hot_spots": {}}
     for m, cycle in results.items():
         fat = fatigue(cycle, x, z, E=E, nu=nu, states=idx, surface=line)
-        out["hot_spots"][m] = {p.name: {"x": p.hot.x, "z": p.hot.z, "value": p.hot.value}
-                               for p in (fat.von_mises_range, fat.swt, fat.findley, fat.ruiz.ffdp)}
+        out["hot_spots"][m] = {n: {"x": p.hot.x, "z": p.hot.z, "value": p.hot.value}
+                               for n in reported() for p in (fat.parameters[n],)}
     return out

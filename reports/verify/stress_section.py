@@ -2,7 +2,7 @@
 
 Part of :func:`reports.verify.sections.build` (kept apart for its size): every number
 is read from the ``report.json`` document, each with its unit (the report's
-:data:`threepart.units.UNITS`; the fatigue parameters' :data:`threepart.cli.FATIGUE_UNITS`)
+:data:`threepart.units.UNITS`; the fatigue parameters' from their table, :mod:`threepart.fatigue_parameters`)
 and :data:`SPOT_DIGITS` significant digits.
 """
 from __future__ import annotations
@@ -10,16 +10,25 @@ from __future__ import annotations
 import math
 from typing import Any
 
-from .sections import (METHOD_NAMES, PLOT_KINDS, Block, Code, Figure, Section, Status, Table, _kind,
+from threepart.fatigue_parameters import parameter, parameters
+
+from .sections import (method_name, PLOT_KINDS, Block, Code, Figure, Section, Status, Table, _kind,
                        _u, _with_unit, fmt, physical)
 
-__all__ = ["stress_section", "sig", "SPOT_DIGITS", "HOT_SPOTS", "FATIGUE_NAMES"]
+__all__ = ["stress_section", "sig", "SPOT_DIGITS", "HOT_SPOTS", "FATIGUE_NAMES", "fatigue_names"]
 
 #: the stress quantities of a hot spot, as the report names them
 HOT_SPOTS = {"sxx": "largest surface σxx", "von_mises": "largest von Mises", "max_shear": "largest Tresca shear"}
-#: the fatigue parameters of a fretting case's hot spots, as the report names them
-FATIGUE_NAMES = {"von_mises_range": "von Mises range", "swt": "SWT", "findley": "Findley",
-                 "ruiz_ffdp": "Ruiz FFDP"}
+
+
+def fatigue_names() -> dict[str, str]:
+    """The fatigue parameters of a fretting case's hot spots, as the report names them: their table's
+    rows with ``in_report``, read when the section is built (a row registered later is in it)."""
+    return {p.name: p.short for p in parameters() if p.in_report}
+
+
+#: :func:`fatigue_names` at import
+FATIGUE_NAMES = fatigue_names()
 #: significant digits of a hot spot's value and position in the report
 SPOT_DIGITS = 4
 
@@ -45,13 +54,11 @@ def _spot(h: dict[str, Any], unit: str, length: str, depth: bool = True) -> str:
 
 def stress_section(doc: dict[str, Any]) -> tuple[Section | None, set[str]]:
     """Hot spots of the stress field by each method, and the stress plots of every partial-slip case."""
-    from threepart.cli import FATIGUE_UNITS
-
     cases = [c for c in doc["cases"] if "stress" in c]
     cycles = [c for c in doc["cases"] if "fatigue" in c]
     if not cases and not cycles:
         return None, set()
-    rows = [(c["name"], METHOD_NAMES.get(m, m), *(_spot(h, _u(c, "p"), _u(c, "x"), q != "sxx")
+    rows = [(c["name"], method_name(m), *(_spot(h, _u(c, "p"), _u(c, "x"), q != "sxx")
                                                   for q, h in spots.items()))
             for c in cases for m, spots in c["stress"]["hot_spots"].items()]
     head = ("case", "method", *(HOT_SPOTS[q] for q in ("sxx", "von_mises", "max_shear")))
@@ -71,17 +78,18 @@ def stress_section(doc: dict[str, Any]) -> tuple[Section | None, set[str]]:
     if not cases:
         intro = ()
     if cycles:
-        fat_rows = [(c["name"], METHOD_NAMES.get(m, m),
-                     *(_spot(spots[q], FATIGUE_UNITS[q].replace("^2 ", "²·") if physical(c) else "",
-                             _u(c, "x")) for q in FATIGUE_NAMES))
+        names = fatigue_names()
+        fat_rows = [(c["name"], method_name(m),
+                     *(_spot(spots[q], parameter(q).unit.replace("^2 ", "²·") if physical(c) else "",
+                             _u(c, "x")) for q in names))
                     for c in cycles for m, spots in c["fatigue"]["hot_spots"].items()]
-        tables.append(Table(("case", "method", *FATIGUE_NAMES.values()),
+        tables.append(Table(("case", "method", *names.values()),
                             tuple(fat_rows), "fatigue hot spots over the fretting and flight cycles"))
         intro = (*intro, (
             "Fretting fatigue: over each fretting cycle, from the stress history at the cycle's "
             "states, and over each flight cycle, from its steady state at its two end states, the "
-            "von Mises range, Smith–Watson–Topper and Findley on the critical plane, and "
-            "Ruiz's FFDP σxx·q·δ at the surface, by each method on the same points and states (",
+            f"fatigue parameters ({', '.join(names.values())}; SWT and Findley on the critical "
+            "plane, Ruiz's FFDP σxx·q·δ at the surface), by each method on the same points and states (",
             Code("threepart fatigue"), ", ", Code("docs/FATIGUE.md"), ").",))
     return (Section("Stress and fatigue", "stress", intro, tuple(tables), figs,
                     Status.of(all(c["passed"] for c in cases + cycles))),

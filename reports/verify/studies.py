@@ -11,7 +11,9 @@ from __future__ import annotations
 import math
 from typing import Any, Callable, Sequence
 
+from threepart import registry
 from threepart.catalogue import Case
+from threepart.registry import REFERENCE
 from threepart.convergence import Study, fitted_order, run_study
 
 from .runs import Mode, solve_normal
@@ -58,18 +60,20 @@ def _say(progress: Callable[[str], None] | None, method: str, param: str,
 
 
 def _run(method: str, case: Case, labels: Sequence[str], solver: Callable[[Case, str], Any],
-         param_of: Callable[[Any, str], float], param: str,
+         param_of: Callable[[Any, str], float],
          progress: Callable[[str], None] | None, param_label: str = "level",
          quantities: Sequence[str] = STUDY_QUANTITIES, scheme: str = "") -> Study:
     """A study of ``method`` against the closed form on the one driver (:func:`run_study`).
 
     The errors are normalised by the tolerance table's units (:func:`compare`'s
-    figures); a level that fails is a note, not a crash.
+    figures); a level that fails is a note, not a crash. The parameter is the
+    method's :attr:`threepart.registry.Method.study` (``"n"``, ``"h"``).
     """
+    param = registry.get(method).study or "level"
     case = case.resolved()
-    ref = solve_normal(case, "closedform", Mode("study", None, "quick", (), ()))
+    ref = solve_normal(case, REFERENCE, Mode("study", None, "quick", (), ()))
     if "d" in quantities:
-        ref = solvers.slip("closedform", case, ref)
+        ref = solvers.slip(REFERENCE, case, ref)
 
     def level(lab: str) -> tuple[float, dict[str, float], dict[str, Any], dict[str, float]]:
         res = solver(case, lab)
@@ -96,7 +100,7 @@ def sie_study(case: Case, ns: Sequence[int], scheme: str | None = None,
 
     return _run("sie", case, [str(n) for n in ns], solver,
                 lambda res, lab: float(res.diagnostics.n or int(lab)),
-                "n", progress, "scheme " + (scheme or "default"), scheme=scheme or "default")
+                progress, "scheme " + (scheme or "default"), scheme=scheme or "default")
 
 
 def fem_study(case: Case, ns: Sequence[int],
@@ -110,7 +114,7 @@ def fem_study(case: Case, ns: Sequence[int],
     def solver(c: Case, lab: str) -> Any:
         return solve_normal(c, "fem", Mode("study", None, _family(int(lab)), (), ()))
 
-    return _run("fem", case, [str(n) for n in ns], solver, _h_of, "h", progress, "W/h =")
+    return _run("fem", case, [str(n) for n in ns], solver, _h_of, progress, "W/h =")
 
 
 def fem_slip_study(case: Case, ns: Sequence[int],
@@ -122,7 +126,7 @@ def fem_slip_study(case: Case, ns: Sequence[int],
     def solver(c: Case, lab: str) -> Any:
         return solvers.slip("fem", c, None, mesh=_family(int(lab)))
 
-    return _run("fem", case, [str(n) for n in ns], solver, _h_of, "h", progress, "W/h =",
+    return _run("fem", case, [str(n) for n in ns], solver, _h_of, progress, "W/h =",
                 SLIP_STUDY_QUANTITIES)
 
 

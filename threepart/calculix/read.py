@@ -37,6 +37,8 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from threepart.fields import peak
+
 from .deck import parse_deck
 from .run import CcxError
 
@@ -352,8 +354,7 @@ def centre_pressure(x: np.ndarray, p: np.ndarray, a: float) -> float:
     The fit smooths the nodal stresses' scatter; a Hertz pressure departs from
     the quartic by ``(x/a)^6/16 < 5e-5`` of its peak there.
     """
-    m = np.abs(x) < 0.3 * a
-    return float(np.polyfit(x[m] ** 2, p[m], 2)[-1])
+    return peak(x, p, half_width=0.3 * a, degree=4, symmetric=True)[1]
 
 
 

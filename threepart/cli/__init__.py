@@ -45,7 +45,6 @@ from threepart.units import UNITS
 
 from ._args import LIST_OPTIONS, NUMERIC_OPTIONS, UsageError, real_arg
 from ._main import build_parser, main
-from .fatigue import FATIGUE_UNITS   # noqa: F401 - reports/stress_section.py reads it here, for now
 
 __all__ = ["main", "build_parser", "real_arg", "UNITS", "NUMERIC_OPTIONS", "LIST_OPTIONS", "UsageError",
            "COMMANDS"]

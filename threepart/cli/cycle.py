@@ -34,10 +34,6 @@ PROFILE_POINTS = 2001
 ENERGY_AGREE = 1e-6
 #: the methods ``cycle`` takes (the steady state's: closed form, SIE, FEM; auto as ``solve``)
 METHODS = ("auto", "closedform", "sie", "fem")
-#: the fatigue parameters as printed: label, unit
-_HOT = {"von_mises_range": ("von Mises range", "MPa"), "swt": ("SWT (critical plane)", "MPa"),
-        "findley": ("Findley (critical plane)", "MPa"), "ruiz_ffdp": ("Ruiz FFDP s_xx q delta", "MPa^2 mm"),
-        "ruiz_fdp": ("Ruiz FDP q delta", "MPa mm")}
 
 
 def add_parser(sub: Any) -> None:
@@ -292,7 +288,7 @@ def _hot_spots(res: Any, pr: dict[str, Any]) -> dict[str, Any]:
     line = lo + W * (np.arange(NS) + 0.5) / NS    # inside: never on a contact end
     F = fatigue(res, x, z, E=pr["E"], nu=pr["nu"], surface=np.union1d(np.ravel(x), line))
     out = {}
-    for par in (F.von_mises_range, F.swt, F.findley, F.ruiz.ffdp, F.ruiz.fdp):
+    for par in F.parameters.values():
         out[par.name] = par.hot
     return out
 
@@ -329,10 +325,12 @@ def _print_steady(pr: dict[str, Any], res: Any, figures: dict[str, Any], hot: di
         print("hot spots  none: the cycle has shaken down, its stresses are locked in by the load history")
         return
     print(f"hot spots of the steady cycle (E = {pr['E']:g} MPa, nu = {pr['nu']:g}):")
+    from threepart.fatigue_parameters import parameter
+
     for name, h in hot.items():
-        label, unit = _HOT[name]
+        label, unit = parameter(name).label, parameter(name).unit
         plane = f", plane theta = {math.degrees(h.theta):.2f} deg" if h.theta is not None else ""
-        where = (f"at x = {h.x:.6g} mm, z = {h.z:.6g} mm" if not (name.startswith("ruiz") and h.value == 0.0)
+        where = (f"at x = {h.x:.6g} mm, z = {h.z:.6g} mm" if not (parameter(name).zero and h.value == 0.0)
                  else "(no surface point slips in tension)")
         print(f"  {label:<26} {h.value:.6g} {unit}  {where}{plane}")
 

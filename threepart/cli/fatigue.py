@@ -19,7 +19,7 @@ from threepart.progress import heartbeat
 from ._args import labelled, method_args, method_options, punch_args, state_args
 from ._output import print_json, write_csv, write_grid_vtu
 
-__all__ = ["add_parser", "run", "MAX_FATIGUE_POINTS", "MAX_FATIGUE_STATES", "FATIGUE_UNITS"]
+__all__ = ["add_parser", "run", "MAX_FATIGUE_POINTS", "MAX_FATIGUE_STATES"]
 
 #: the most grid points ``threepart fatigue`` evaluates (each state costs a stress evaluation)
 MAX_FATIGUE_POINTS = 100_000
@@ -27,12 +27,13 @@ MAX_FATIGUE_POINTS = 100_000
 #: stress evaluation at every grid point (README's example on its default grid, this project's
 #: 2-core machine: 50 states 31 s at load 3, 20 states 29 s at load 8); 1000 ran past 5 minutes
 MAX_FATIGUE_STATES = 50
-#: units of the fatigue parameters in the command line's consistent set (mm, N/mm, MPa)
-FATIGUE_UNITS = {"von_mises_range": "MPa", "swt": "MPa", "findley": "MPa",
-                 "ruiz_fdp": "MPa mm", "ruiz_ffdp": "MPa^2 mm", "theta": "deg"}
-_FATIGUE_LABELS = {"von_mises_range": "von Mises range", "swt": "SWT (critical plane)",
-                   "findley": "Findley (critical plane)", "ruiz_ffdp": "Ruiz FFDP s_xx q delta",
-                   "ruiz_fdp": "Ruiz FDP q delta"}
+
+
+def _fatigue_units() -> dict[str, str]:
+    """The fatigue parameters' units (their table's, :mod:`threepart.fatigue_parameters`) and the plane's."""
+    from threepart.fatigue_parameters import parameters
+
+    return {**{p.name: p.unit for p in parameters()}, "theta": "deg"}
 
 
 def add_parser(sub: Any) -> None:
@@ -247,7 +248,7 @@ def _hot_spots(res: Any) -> dict[str, dict[str, Any]]:
     import math
 
     out = {}
-    for par in (res.von_mises_range, res.swt, res.findley, res.ruiz.ffdp, res.ruiz.fdp):
+    for par in res.parameters.values():
         h = par.hot
         row: dict[str, Any] = {"value": h.value, "x": h.x, "z": h.z}
         if h.theta is not None:
@@ -272,7 +273,7 @@ def _fatigue_print(args: argparse.Namespace, res: Any, cycle: Any, A: float, hea
         print_json(doc, {"A": "1/MPa", "E": "MPa", "P": "N/mm", "s": "mm", "Q_max": "N/mm", "a": "mm",
                          "c": "mm", "sigma_bulk": "MPa", "x": "mm", "z": "mm",
                          "states": "N/mm, mm, N/mm, MPa", "stick_zone": "mm", "energy": "N*mm/mm",
-                         **FATIGUE_UNITS})
+                         **_fatigue_units()})
         return
     print(headline)
     print(f"contact    [{-normal.a:.6g}, {normal.c:.6g}] mm (a = {normal.a:.6g}, c = {normal.c:.6g})")
@@ -288,24 +289,27 @@ def _fatigue_print(args: argparse.Namespace, res: Any, cycle: Any, A: float, hea
     print(f"grid       {args.nx} x {args.nz} points, x over [-a - W/4, c + W/4], z over "
           f"[0, {args.depth:g} W]; Ruiz also at {args.ns} surface points over the contact")
     print("hot spots (units: mm, N/mm, MPa, or any consistent set):")
+    from threepart.fatigue_parameters import parameter
+
     for name, row in hot.items():
-        unit = FATIGUE_UNITS[name]
+        unit = _fatigue_units()[name]
         where = f"x = {row['x']:.6g} mm, z = {row['z']:.6g} mm"
         plane = f", plane theta = {row['theta']:.2f} deg" if "theta" in row else ""
-        if name.startswith("ruiz") and row["value"] == 0.0:
-            where = "no surface point in tension where the contact slips" if name == "ruiz_ffdp" \
-                else "no surface point slips"
-        print(f"  {_FATIGUE_LABELS[name]:<26} {row['value']:.6g} {unit}  at {where}{plane}")
+        if parameter(name).zero and row["value"] == 0.0:
+            where = parameter(name).zero
+        print(f"  {parameter(name).label:<26} {row['value']:.6g} {unit}  at {where}{plane}")
 
 
 def _fatigue_columns(res: Any) -> dict[str, Any]:
     import numpy as np
 
-    cols = {"x": res.von_mises_range.x, "z": res.von_mises_range.z}
-    for par in (res.von_mises_range, res.swt, res.findley):
-        cols[par.name] = par.value
-    for par in (res.swt, res.findley):
-        cols[f"theta_{par.name}"] = np.degrees(par.theta)
+    from threepart.fatigue_parameters import parameters as fatigue_parameters
+
+    fields = [p for p in fatigue_parameters() if not p.surface]
+    cols = {"x": res.parameters[fields[0].name].x, "z": res.parameters[fields[0].name].z}
+    cols.update({p.name: res.parameters[p.name].value for p in fields})
+    cols.update({f"theta_{p.name}": np.degrees(res.parameters[p.name].theta)
+                 for p in fields if p.critical_plane})
     return cols
 
 
@@ -313,17 +317,20 @@ def _fatigue_csv(path: str, res: Any) -> None:
     """The fields at the grid points, one row each; Ruiz's (surface) columns only where z = 0."""
     import numpy as np
 
+    from threepart.fatigue_parameters import parameters as fatigue_parameters
+
     cols = _fatigue_columns(res)
-    units = {"x": "mm", "z": "mm", "theta_swt": "deg", "theta_findley": "deg", **FATIGUE_UNITS}
-    names = [*cols, "ruiz_fdp", "ruiz_ffdp"]
+    tops = [p.name for p in fatigue_parameters() if p.surface]
+    units = {"x": "mm", "z": "mm", **{k: "deg" for k in cols if k.startswith("theta_")}, **_fatigue_units()}
+    names = [*cols, *tops]
     flat = {k: np.ravel(v) for k, v in cols.items()}
-    surface = {(float(x)): (fdp, ffdp) for x, fdp, ffdp in
-               zip(res.ruiz.x, res.ruiz.fdp.value, res.ruiz.ffdp.value)}
+    top = res.parameters[tops[0]] if tops else None
+    surface = {float(x): i for i, x in enumerate(top.x)} if top is not None else {}
     rows = []
     for i in range(flat["x"].size):
         row = [f"{flat[k][i]:.17g}" for k in cols]
-        r = surface.get(float(flat["x"][i])) if flat["z"][i] == 0 else None
-        row += [f"{r[0]:.17g}", f"{r[1]:.17g}"] if r is not None else ["", ""]
+        j = surface.get(float(flat["x"][i])) if flat["z"][i] == 0 else None
+        row += [f"{res.parameters[k].value[j]:.17g}" if j is not None else "" for k in tops]
         rows.append(row)
     write_csv(path, [f"{k} [{units[k]}]" for k in names], rows, arg="--csv")
 
@@ -341,29 +348,35 @@ def _fatigue_plot(path: str, res: Any, cycle: Any) -> None:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
+    from threepart.fatigue_parameters import parameter, parameters as fatigue_parameters
     from threepart.output import write_file
 
+    units = _fatigue_units()
     normal = _wider_normal(cycle)
-    fig, axes = plt.subplots(2, 2, figsize=(11, 8), constrained_layout=True)
-    for ax, par in zip(axes.flat, (res.von_mises_range, res.swt, res.findley)):
+    fields = [p for p in fatigue_parameters() if not p.surface]
+    rows = (len(fields) + 2) // 2   # the fields, then Ruiz on the surface
+    fig, axes = plt.subplots(rows, 2, figsize=(11, 4 * rows), constrained_layout=True)
+    for ax, par in zip(axes.flat, (res.parameters[p.name] for p in fields)):
         cs = ax.contourf(par.x, par.z, par.value, levels=20, cmap="viridis")
-        fig.colorbar(cs, ax=ax, label=f"{_FATIGUE_LABELS[par.name]} [{FATIGUE_UNITS[par.name]}]")
+        fig.colorbar(cs, ax=ax, label=f"{parameter(par.name).label} [{units[par.name]}]")
         ax.plot([-normal.a, normal.c], [0, 0], color="red", lw=4, solid_capstyle="butt",
                 label="contact")
         ax.plot(par.hot.x, par.hot.z, "w*", ms=12, mec="k", label="hot spot")
         ax.set_ylim(float(par.z.max()), 0.0)   # z downward
         ax.set_xlabel("x [mm]")
         ax.set_ylabel("depth z [mm]")
-        ax.set_title(_FATIGUE_LABELS[par.name])
+        ax.set_title(parameter(par.name).label)
         ax.legend(loc="lower right", fontsize=8)
-    ax = axes.flat[3]
+    ax = axes.flat[len(fields)]
+    for spare in axes.flat[len(fields) + 1:]:
+        spare.set_visible(False)
     r = res.ruiz
     ax.plot(r.x, r.ffdp.value, "C0", label="FFDP s_xx q delta")
-    ax.set_ylabel(f"FFDP [{FATIGUE_UNITS['ruiz_ffdp']}]", color="C0")
+    ax.set_ylabel(f"FFDP [{units['ruiz_ffdp']}]", color="C0")
     ax.axvspan(-normal.a, normal.c, color="red", alpha=0.1, label="contact")
     twin = ax.twinx()   # FDP has other units
     twin.plot(r.x, r.fdp.value, "C1--", label="FDP q delta")
-    twin.set_ylabel(f"FDP [{FATIGUE_UNITS['ruiz_fdp']}]", color="C1")
+    twin.set_ylabel(f"FDP [{units['ruiz_fdp']}]", color="C1")
     ax.set_xlabel("x [mm]")
     ax.set_title("Ruiz at the surface")
     ax.legend(handles=[*ax.get_legend_handles_labels()[0], *twin.get_legend_handles_labels()[0]],

@@ -57,8 +57,8 @@ def strict_json(doc: Any, **kwargs: Any) -> str:
     return json.dumps(json_safe(doc), allow_nan=False, **kwargs)
 
 
-def validate_json(doc: Any, schema_file: str | Path) -> None:
-    """Validate ``doc`` against the JSON schema in ``schema_file`` (skipped without ``jsonschema``).
+def validate_json(doc: Any, schema_file: str | Path | dict[str, Any]) -> None:
+    """Validate ``doc`` against the JSON schema in ``schema_file``, or that schema itself (skipped without ``jsonschema``).
 
     Raises
     ------
@@ -69,4 +69,6 @@ def validate_json(doc: Any, schema_file: str | Path) -> None:
         import jsonschema
     except ImportError:  # pragma: no cover - jsonschema is in the test extra
         return
-    jsonschema.validate(doc, json.loads(Path(schema_file).read_text(encoding="utf-8")))
+    schema = schema_file if isinstance(schema_file, dict) else \
+        json.loads(Path(schema_file).read_text(encoding="utf-8"))
+    jsonschema.validate(doc, schema)
