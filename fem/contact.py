@@ -389,6 +389,21 @@ def solve_kinematic(C: np.ndarray, x: np.ndarray, g0: np.ndarray, slope: np.ndar
     if kinematics == "small":
         sol = solve_contact(C, x, g0, P, s, free_tilt=free_tilt, max_iter=max_iter, active=active)
         return replace(sol, slope=np.zeros(len(x)))
+    sol, V = _settle_tilt(C, x, g0, slope, P, s, free_tilt, max_iter, active, profile)
+    if face_common is None:
+        return replace(sol, slope=V)
+    V = 0.5 * (V + np.gradient(face_common(replace(sol, slope=V)), x))
+    sol = solve_contact(first_order_compliance(C, V), x, g0, P, s, free_tilt=free_tilt,
+                        max_iter=max_iter, active=sol.active)
+    return replace(sol, slope=V)
+
+
+def _settle_tilt(C: np.ndarray, x: np.ndarray, g0: np.ndarray, slope: np.ndarray, P: float, s: float,
+                 free_tilt: bool, max_iter: int, active: np.ndarray | None,
+                 profile: Callable[[np.ndarray], np.ndarray] | None
+                 ) -> tuple[ContactSolution, np.ndarray]:
+    """:func:`solve_kinematic`'s fixed-point passes on the tilt (and ``d_x`` with ``profile``):
+    the settled solution and the slope ``V`` its forces act along."""
     n = len(x)
     alpha, change, d_x, moved = 0.0, np.inf, None, np.inf
     for _ in range(TILT_PASSES):
@@ -411,12 +426,7 @@ def solve_kinematic(C: np.ndarray, x: np.ndarray, g0: np.ndarray, slope: np.ndar
         raise NoConvergenceError(f"the tilt of the first-order contact did not settle in "
                                  f"{TILT_PASSES} passes (last change {change:.3g}"
                                  + (f", of d_x {moved:.3g})" if profile is not None else ")"))
-    if face_common is None:
-        return replace(sol, slope=V)
-    V = 0.5 * (V + np.gradient(face_common(replace(sol, slope=V)), x))
-    sol = solve_contact(first_order_compliance(C, V), x, g0, P, s, free_tilt=free_tilt,
-                        max_iter=max_iter, active=sol.active)
-    return replace(sol, slope=V)
+    return sol, V
 
 
 def _secant(profile: Callable[[np.ndarray], np.ndarray], x: np.ndarray, d_x: np.ndarray,

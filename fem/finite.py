@@ -255,10 +255,8 @@ def solve_finite(punch: Punch, P: float, s: float = 0.0, *, E: float, nu: float,
         sol, S, timings, dofs = _solve(punch, P, s, E, nu, tilt, max_iter,
                                        pre.spec(left, right, breaks), H, theta, profile,
                                        kinematics)
-        x = S.x
-        p = sol.f / S.weights
-        a_end, c_end = contact_ends(x, p, sol.active, breaks)
-        finer = refined(punch, a_end, c_end, end_size(x, a_end, c_end), pre, attempt, base)
+        a_end, c_end = contact_ends(S.x, sol.f / S.weights, sol.active, breaks)
+        finer = refined(punch, a_end, c_end, end_size(S.x, a_end, c_end), pre, attempt, base)
         if finer is None:
             break
         pre, left, right = finer, a_end, c_end
@@ -266,6 +264,18 @@ def solve_finite(punch: Punch, P: float, s: float = 0.0, *, E: float, nu: float,
     if H is None:
         check_contact(punch, -a_end, c_end, sol.alpha)
     timings = {"locate": t_locate, **timings, "total": time.perf_counter() - t_start}
+    return _finite_result(punch, E, nu, tilt, (H, theta, profile), mesh, kinematics, sol, S, dofs,
+                          (a_end, c_end), timings)
+
+
+def _finite_result(punch: Punch, E: float, nu: float, tilt: str, shape: tuple[float | None, float, str],
+                   mesh: Any, kinematics: str, sol: Any, S: Any, dofs: int, ends: tuple[float, float],
+                   timings: dict[str, float]) -> FemResult:
+    """The :class:`FemResult` of :func:`solve_finite`'s contact ``sol`` on the surface ``S``."""
+    H, theta, profile = shape
+    a_end, c_end = ends
+    x = S.x
+    p = sol.f / S.weights
     h = float(np.max(np.diff(x)) * 2)
     info = {"H": H, "theta": theta, "profile": "eq. 2" if H is None else profile,
             "mesh": mesh if isinstance(mesh, str) else type(mesh).__name__,

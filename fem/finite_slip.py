@@ -157,23 +157,49 @@ def solve_finite_slip(punch: Punch, P: float, s: float = 0.0, *, Q: float, f: fl
         punch, P, s, Q, f, E, nu, H, theta, profile, tilt, mesh, steps, max_iter, progress)
     say = Progress(progress)
     t0 = time.perf_counter()
-    breaks = (-punch.b, punch.b)
     left, right, locate = locate_finite(punch, P, s, E, nu, tilt, max_iter, H, theta, profile, say)
-    ends: tuple[float, ...] = ()
-    if pre.refine > 1 and Q != 0:
-        t1 = time.perf_counter()
-        zone = replace(locate, margin=max(locate.margin,
-                                          zone_margin(punch.b, left, right, 0.15)))
-        trial = _model(punch, P, s, E, nu, tilt, max_iter, f, zone.spec(left, right, breaks), H,
-                       theta, profile, (left, right))
-        ends = trial.stick_zone(trial.step(Q, "loading", 1 if Q > 0 else -1, 1.0))
-        say(f"locate: stick zone of Q = {Q:.6g} about [{ends[0]:.6g}, {ends[1]:.6g}] "
-            f"({time.perf_counter() - t1:.1f} s)")
+    ends = (_stick_ends(punch, P, s, Q, f, E, nu, tilt, max_iter, (H, theta, profile), locate,
+                        (left, right), say) if pre.refine > 1 and Q != 0 else ())
     t_locate = time.perf_counter() - t0
     pre = replace(pre, margin=zone_margin(punch.b, left, right, pre.margin))
+    model, a_end, c_end, h_end = _refined_model(punch, P, s, f, E, nu, tilt, max_iter,
+                                                (H, theta, profile), pre, (left, right), ends, say)
+    if H is None:
+        check_contact(punch, -a_end, c_end, model.normal.alpha)
+    model.timings["locate"] = t_locate
+    model.h_end = h_end
+    info = {"H": H, "theta": theta, "profile": "eq. 2" if H is None else profile,
+            "model": ("two similar bodies" if H is None else
+                      "punch of real shape on a finite block") + ", Coulomb friction"}
+    return shear_path(model, Q, f, steps, say, t0, info)
+
+
+def _stick_ends(punch: Punch, P: float, s: float, Q: float, f: float, E: float, nu: float, tilt: str,
+                max_iter: int, shape: tuple[float | None, float, str], locate: Any,
+                zone: tuple[float, float], say: Progress) -> tuple[float, ...]:
+    """The stick zone of ``Q`` from a first shear solve on the locating mesh (its ends become nodes)."""
+    H, theta, profile = shape
+    left, right = zone
+    t1 = time.perf_counter()
+    spec = replace(locate, margin=max(locate.margin, zone_margin(punch.b, left, right, 0.15)))
+    trial = _model(punch, P, s, E, nu, tilt, max_iter, f, spec.spec(left, right, (-punch.b, punch.b)),
+                   H, theta, profile, (left, right))
+    ends = trial.stick_zone(trial.step(Q, "loading", 1 if Q > 0 else -1, 1.0))
+    say(f"locate: stick zone of Q = {Q:.6g} about [{ends[0]:.6g}, {ends[1]:.6g}] "
+        f"({time.perf_counter() - t1:.1f} s)")
+    return tuple(ends)
+
+
+def _refined_model(punch: Punch, P: float, s: float, f: float, E: float, nu: float, tilt: str,
+                   max_iter: int, shape: tuple[float | None, float, str], pre: Any,
+                   zone: tuple[float, float], ends: tuple[float, ...], say: Progress
+                   ) -> tuple[Any, float, float, float]:
+    """The model on a mesh whose contact ends lie clear of the joins: ``(model, a_end, c_end, h_end)``."""
+    H, theta, profile = shape
+    left, right = zone
     base = pre
     for attempt in range(REFINE_ATTEMPTS + 1):   # an end near a join refines, as in solve_finite
-        spec = pre.spec(left, right, breaks)
+        spec = pre.spec(left, right, (-punch.b, punch.b))
         model = _model(punch, P, s, E, nu, tilt, max_iter, f,
                        with_nodes(spec, ends) if ends else spec, H, theta, profile, (left, right))
         a_end, c_end = model.contact_ends()
@@ -183,11 +209,4 @@ def solve_finite_slip(punch: Punch, P: float, s: float = 0.0, *, Q: float, f: fl
         if finer is None:
             break
         pre, left, right = finer, a_end, c_end
-    if H is None:
-        check_contact(punch, -a_end, c_end, model.normal.alpha)
-    model.timings["locate"] = t_locate
-    model.h_end = h_end
-    info = {"H": H, "theta": theta, "profile": "eq. 2" if H is None else profile,
-            "model": ("two similar bodies" if H is None else
-                      "punch of real shape on a finite block") + ", Coulomb friction"}
-    return shear_path(model, Q, f, steps, say, t0, info)
+    return model, a_end, c_end, h_end

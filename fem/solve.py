@@ -273,10 +273,9 @@ def solve_normal(punch: Punch, P: float, s: float = 0.0, *, E: float, nu: float,
     tilt
         ``"free"``: translation and tilt unknown; ``"suppressed"``: ``alpha = 0``.
     mesh
-        A preset name (``"quick"``, ``"default"``, ``"fine"``), a
-        :class:`~fem.mesh.MeshPreset`, a :class:`~meshes.SubstrateSpec`, a
-        :class:`~fem.mesh.Substrate` or the path of a ``.msh`` file with
-        ``"contact"`` and ``"base"`` groups.
+        A preset name (``"quick"``, ``"default"``, ``"fine"``), a :class:`~fem.mesh.MeshPreset`,
+        a :class:`~meshes.SubstrateSpec`, a :class:`~fem.mesh.Substrate` or the path of a
+        ``.msh`` file with ``"contact"`` and ``"base"`` groups.
     max_iter
         Cap on the active-set iterations, in ``[1, 10000]``.
     fields
@@ -331,8 +330,15 @@ def solve_normal(punch: Punch, P: float, s: float = 0.0, *, E: float, nu: float,
     say = Progress(progress_iv(progress))
     t_start = time.perf_counter()
     run = _solve_refining(pre, punch, P, s, E, nu, tilt, max_iter, say, kinematics)
+    check_contact(punch, -run.left, run.right, run.sol.alpha)
+    return _normal_result(run, punch, E, nu, tilt, (mesh, pre), fields, kinematics, t_start)
+
+
+def _normal_result(run: _Refined, punch: Punch, E: float, nu: float, tilt: str, meshes: tuple[Any, Any],
+                   fields: bool, kinematics: str, t_start: float) -> FemResult:
+    """The :class:`FemResult` of :func:`solve_normal`'s refined contact ``run``."""
+    mesh, pre = meshes
     sc, sol, left, right, t2 = run.sc, run.sol, run.left, run.right, run.t_contact
-    check_contact(punch, -left, right, sol.alpha)
     # the nodal forces on the block: downward f (small), or (v' f, -f) in the global directions
     F = sol.f if kinematics == "small" else np.concatenate([sol.slope * sol.f, -sol.f])
     flds = fields_of(*sc.displacement(F), E, nu) if fields else None
