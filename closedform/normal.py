@@ -26,7 +26,7 @@ from scipy.optimize import minimize_scalar
 from threepart.errors import LiftOffError, SeparationError
 from threepart.punch import Punch
 from threepart.results import Diagnostics, NormalResult
-from threepart.validate import (LENGTH_RANGE, check_arcs, check_contact, check_punch, check_tilt, flag, lever_arm, load_scale,
+from threepart.validate import (LENGTH_RANGE, check_arcs, check_contact, check_punch, check_tilt, first_refused, flag, lever_arm, load_scale,
                                 positive, reals)
 
 from . import formulas
@@ -343,7 +343,8 @@ def solve_normal_batch(punch: Punch, P: ArrayLike, s: ArrayLike = 0.0, *, A: flo
     alpha = st.alpha if tilt == "free" else np.zeros_like(st.h)
     s_out = s_arr if tilt == "free" else st.T / st.AP
     _check_separation(punch, st.a, st.c, A, P_arr, s_out, tilt)
-    for i in range(P_arr.size):      # the first case past the arcs or the slope limit is named
+    i = first_refused(punch, st.a, st.c, alpha)   # the first case past the arcs or the slope limit
+    if i is not None:
         try:
             check_contact(punch, float(st.a[i]), float(st.c[i]), float(alpha[i]))
         except ValueError as exc:
