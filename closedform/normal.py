@@ -30,7 +30,7 @@ from threepart.validate import (LENGTH_RANGE, check_arcs, check_contact, check_p
                                 positive, reals)
 
 from . import formulas
-from .newton import HALF_PI, SCALAR, State, _r_guess, ray_state, solve_phi, solve_r
+from .newton import HALF_PI, SCALAR, State, _r_guess, evaluations, ray_state, solve_phi, solve_r
 
 __all__ = ["NormalSolution", "NormalBatch", "LiftOff", "solve_normal", "solve_normal_batch",
            "lift_off", "P_min"]
@@ -57,6 +57,8 @@ class NormalBatch:
     P: np.ndarray
     s: np.ndarray
     tilt: str
+    #: forward evaluations (:class:`~threepart.closedform.newton.State`) per case, averaged over the batch
+    evaluations: float = 0.0
 
     def __len__(self) -> int:
         return self.a.size
@@ -300,7 +302,9 @@ def solve_normal(punch: Punch, P: float, s: float = 0.0, *, A: float,
     if tilt == "suppressed" and s != 0:
         raise ValueError(f"`s` = {s!r} is an output when tilt='suppressed' (the lever arm s*); pass s=0")
     A = _normal_iv(punch, np.array([P]), A, tilt)
+    n0 = evaluations()
     st, below, above = _solve(punch, P, s, A, tilt, SCALAR)
+    n_eval = evaluations() - n0
     if below or above:
         _refuse_lift_off(punch, np.array([P]), np.array([s]), A, tilt, np.array([below]),
                          np.array([above]))
@@ -309,7 +313,8 @@ def solve_normal(punch: Punch, P: float, s: float = 0.0, *, A: float,
     if not beyond_small_slopes:
         check_contact(punch, st.a, st.c, alpha)
     return NormalSolution(punch, A, st.a, st.c, alpha, P, s, tilt,
-                          diagnostics=Diagnostics(timings={"total": time.perf_counter() - t0}))
+                          diagnostics=Diagnostics(timings={"total": time.perf_counter() - t0}),
+                          info={"evaluations": n_eval})
 
 
 def solve_normal_batch(punch: Punch, P: ArrayLike, s: ArrayLike = 0.0, *, A: float,
@@ -337,7 +342,9 @@ def solve_normal_batch(punch: Punch, P: ArrayLike, s: ArrayLike = 0.0, *, A: flo
             raise type(exc)(f"case {i}: {exc}") from None
     if tilt == "suppressed" and np.any(s_arr != 0):
         raise ValueError("`s` is an output when tilt='suppressed' (the lever arm s*); pass s=0")
+    n0 = evaluations()
     st, below, above = _solve(punch, P_arr, s_arr, A, tilt, np)
+    n_eval = (evaluations() - n0) / P_arr.size
     if np.any(below | above):
         _refuse_lift_off(punch, P_arr, s_arr, A, tilt, np.asarray(below), np.asarray(above))
     alpha = st.alpha if tilt == "free" else np.zeros_like(st.h)
@@ -349,7 +356,7 @@ def solve_normal_batch(punch: Punch, P: ArrayLike, s: ArrayLike = 0.0, *, A: flo
             check_contact(punch, float(st.a[i]), float(st.c[i]), float(alpha[i]))
         except ValueError as exc:
             raise type(exc)(f"case {i} (`P` = {P_arr[i]:.6g}, `s` = {s_out[i]:.6g}): {exc}") from None
-    return NormalBatch(punch, A, st.a, st.c, alpha, P_arr, s_out, tilt)
+    return NormalBatch(punch, A, st.a, st.c, alpha, P_arr, s_out, tilt, n_eval)
 
 
 def lift_off(punch: Punch, P: float, A: float, *, beyond_small_slopes: bool = False) -> LiftOff:
