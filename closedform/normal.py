@@ -350,8 +350,9 @@ def solve_normal_batch(punch: Punch, P: ArrayLike, s: ArrayLike = 0.0, *, A: flo
     alpha = st.alpha if tilt == "free" else np.zeros_like(st.h)
     s_out = s_arr if tilt == "free" else st.T / st.AP
     _check_separation(punch, st.a, st.c, A, P_arr, s_out, tilt)
-    i = first_refused(punch, st.a, st.c, alpha)   # the first case past the arcs or the slope limit
-    if i is not None:
+    k = first_refused(punch, st.a, st.c, alpha)   # the first case past the arcs or the slope limit
+    if k is not None:
+        i = k
         try:
             check_contact(punch, float(st.a[i]), float(st.c[i]), float(alpha[i]))
         except ValueError as exc:

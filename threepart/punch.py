@@ -150,10 +150,10 @@ class Punch:
         array pass per candidate point); Python floats give a float, computed
         with the same operations.
         """
-        if all(isinstance(v, (float, int)) for v in (a, c, alpha)):
+        if isinstance(a, (float, int)) and isinstance(c, (float, int)) and isinstance(alpha, (float, int)):
             return _max_slope(self, float(a), float(c), float(alpha), _SCALAR_OPS)
-        a, c, alpha = (np.asarray(v, dtype=float) for v in (a, c, alpha))
-        return _max_slope(self, a, c, alpha, np)
+        return _max_slope(self, np.asarray(a, dtype=float), np.asarray(c, dtype=float),
+                          np.asarray(alpha, dtype=float), np)
 
 
 class _ScalarOps:
