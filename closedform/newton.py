@@ -295,6 +295,8 @@ def solve_phi(punch: Punch, dAP: Any, target: str, value: Any, xp: Any = np,
 
 #: most iterations of the two-dimensional Newton step before a case goes to the nested roots
 NEWTON_2D_ITER = 16
+#: a step below this that no longer halves is rounding: the iteration has converged
+STALL = 1e-8
 
 
 def _newton_2d(punch: Punch, dAP: Any, target: str, value: Any, xp: Any, sign: float,
@@ -321,34 +323,51 @@ def _newton_2d(punch: Punch, dAP: Any, target: str, value: Any, xp: Any, sign: f
     """
     get = _TARGETS[target]
     r = _r_guess(punch, dAP, xp) if r0 is None else r0
-    phi, lo, hi = HALF_PI / 2 + 0.0 * dAP, 0.0 * dAP, HALF_PI + 0.0 * dAP
+    phi, lo, hi = _phi_guess(punch) + 0.0 * dAP, 0.0 * dAP, HALF_PI + 0.0 * dAP
     if xp is SCALAR:
+        last = math.inf
         for _ in range(NEWTON_2D_ITER):
-            r, phi, lo, hi, small = _step_2d(punch, dAP, get, value, sign, r, phi, lo, hi, xp)
+            r, phi, lo, hi, last, small = _step_2d(punch, dAP, get, value, sign, r, phi, lo, hi, last, xp)
             if small:
                 return r, phi, 0 < phi < HALF_PI
         return r, phi, False
     ok = np.zeros(np.shape(dAP), dtype=bool)
     act = np.arange(ok.size)
     cur = [np.broadcast_to(np.asarray(v, dtype=float), ok.shape).copy()
-           for v in (dAP, value, r, phi, lo, hi)]
+           for v in (dAP, value, r, phi, lo, hi, math.inf)]
     r, phi = cur[2].copy(), cur[3].copy()
     for _ in range(NEWTON_2D_ITER):
-        d, v, rr, pp, ll, hh = cur
-        rr, pp, ll, hh, small = _step_2d(punch, d, get, v, sign, rr, pp, ll, hh, np)
+        d, v, rr, pp, ll, hh, prev = cur
+        rr, pp, ll, hh, prev, small = _step_2d(punch, d, get, v, sign, rr, pp, ll, hh, prev, np)
         r[act], phi[act] = rr, pp
         ok[act[small]] = True
         if small.all():
             break
         keep = ~small
         act = act[keep]
-        cur = [x[keep] for x in (d, v, rr, pp, ll, hh)]
+        cur = [x[keep] for x in (d, v, rr, pp, ll, hh, prev)]
     return r, phi, ok & (phi > 0) & (phi < HALF_PI)
 
 
+@functools.lru_cache(maxsize=64)
+def _phi_guess(punch: Punch) -> float:
+    """Starting angle: ``tan^2 phi = (c - b)/(a - b) = sqrt(R2/R1)``, the untilted contact of two parabolas.
+
+    Two parabolas of radii ``R1`` and ``R2`` pressed without tilt reach about
+    equal heights ``(a - b)^2/R1 = (c - b)^2/R2`` at the contact's ends.
+    """
+    return math.atan((punch.R2 / punch.R1) ** 0.25)
+
+
 def _step_2d(punch: Punch, dAP: Any, get: Callable[[State], tuple[Any, Any, Any]], value: Any,
-             sign: float, r: Any, phi: Any, lo: Any, hi: Any, xp: Any) -> tuple[Any, ...]:
-    """One bracketed Newton step of :func:`_newton_2d`: ``(r, phi, lo, hi, converged)``."""
+             sign: float, r: Any, phi: Any, lo: Any, hi: Any, last: Any, xp: Any) -> tuple[Any, ...]:
+    """One bracketed Newton step of :func:`_newton_2d`: ``(r, phi, lo, hi, step, converged)``.
+
+    ``step`` is ``|dr|/r + |dphi|`` (``inf`` where anything is not finite), ``last`` the previous one: a case has
+    converged when it is below ``XTOL``, or below :data:`STALL` but no longer
+    halving (the rounding floor of an ill-conditioned case, reached after the
+    quadratic steps).
+    """
     st = ray_state(punch, r, phi, xp)
     g, g_h, g_m = get(st)
     cos2, sin2 = xp.cos(2 * phi), xp.sin(2 * phi)
@@ -360,17 +379,25 @@ def _step_2d(punch: Punch, dAP: Any, get: Callable[[State], tuple[Any, Any, Any]
     df = sign * r * r * sin2 * g_m + G_r * r_phi
     # the sign of f is trusted where its linear correction is small against it (its
     # quadratic remainder is then ~ (dr/r) of that correction)
-    trust = (xp.abs(dr) <= 0.1 * r) & (xp.abs(G_r * dr) <= 0.5 * xp.abs(f))
+    near = xp.abs(dr) <= 0.1 * r          # near the constant-load curve: step in phi too
+    trust = near & (xp.abs(G_r * dr) <= 0.5 * xp.abs(f))
     neg = f < 0
     lo, hi = xp.where(trust & neg, phi, lo), xp.where(trust & xp.logical_not(neg), phi, hi)
-    newton = phi - _guarded_ratio(f, df, xp)
+    # Newton's step in t = sin^2 phi = (c - b)/r^2, in which f is linear at the lift-off lines
+    # (in phi it is flat there, and Newton's steps only halve the distance to a root near them)
+    dt = -_guarded_ratio(f * sin2, df, xp)
+    sp, cp = xp.sin(phi), xp.sin(HALF_PI - phi)
+    newton = xp.arctan2(xp.sqrt(xp.maximum(sp * sp + dt, 0.0)), xp.sqrt(xp.maximum(cp * cp - dt, 0.0)))
     close = xp.abs(newton - phi) <= XTOL                      # a converged step (NaN is not close)
     phin = xp.where((newton > lo) & (newton < hi) | close, newton, 0.5 * (lo + hi))
+    phin = xp.where(near, phin, phi)
     drn = dr + r_phi * (phin - phi)
-    small = (xp.abs(drn) <= XTOL * r) & (xp.abs(phin - phi) <= XTOL)
+    step = xp.abs(_guarded_ratio(drn, r, xp)) + xp.abs(phin - phi)   # NaN where not finite
+    step = xp.where(xp.isfinite(step) & xp.isfinite(f), step, math.inf)
+    small = (step <= XTOL) | (step <= STALL) & (step >= 0.5 * last)
     rn = r + drn
     rn = xp.where(rn > 0, rn, 0.5 * r)
-    return rn, phin, lo, hi, small
+    return rn, phin, lo, hi, step, small
 
 
 def _solve_phi_nested(punch: Punch, dAP: Any, target: str, value: Any, xp: Any = np,
