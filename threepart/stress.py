@@ -389,7 +389,7 @@ def _integrals_at_depth(x: np.ndarray, z: np.ndarray, funcs: dict[str, Traction]
     return {name: tuple(np.concatenate(parts) for parts in lists) for name, lists in out.items()}
 
 
-def stress(x: ArrayLike, z: ArrayLike, *, pressure: Traction, shear: Traction | None = None,
+def stress(x: ArrayLike, z: ArrayLike, *, pressure: Traction | None, shear: Traction | None = None,
            ends: tuple[float, float], sigma_bulk: float = 0.0, nu: float = 0.3,
            kinks: ArrayLike = ()) -> Stress:
     """Stresses at the points ``(x, z)``, ``z >= 0``, of the surface tractions on ``ends``.
@@ -401,7 +401,9 @@ def stress(x: ArrayLike, z: ArrayLike, *, pressure: Traction, shear: Traction | 
         the depth. ``z = 0`` gives the surface values.
     pressure
         Vectorised callable ``p(x) >= 0`` (compressive), e.g. ``result.pressure``;
-        only its values on ``ends`` are used.
+        only its values on ``ends`` are used. ``None``: the stresses of the shear
+        alone (a part of a superposition, such as a fretting cycle's history
+        built from its loading states, :func:`threepart.fatigue.stress_history`).
     shear
         Vectorised callable ``q(x)``, the shear the punch exerts on the substrate
         along ``+x`` (e.g. ``slip.shear``); ``None`` for a frictionless contact.
@@ -432,7 +434,7 @@ def stress(x: ArrayLike, z: ArrayLike, *, pressure: Traction, shear: Traction | 
     xa, za = _array("x", x), _array("z", z)
     if np.any(za < 0):
         raise ValueError(f"`z` = {float(za[za < 0].flat[0])!r} must be >= 0: z is the depth into the substrate")
-    p_fn = _traction("pressure", pressure)
+    p_fn = None if pressure is None and shear is not None else _traction("pressure", pressure)
     q_fn = None if shear is None else _traction("shear", shear)
     lo, hi, k = _ends_kinks(ends, kinks)
     bulk = finite("sigma_bulk", sigma_bulk)
@@ -444,14 +446,15 @@ def stress(x: ArrayLike, z: ArrayLike, *, pressure: Traction, shear: Traction | 
     except ValueError:
         raise ValueError(f"`x` of shape {xa.shape} and `z` of shape {za.shape} do not broadcast "
                          "against each other") from None
-    funcs = {"pressure": p_fn} if q_fn is None else {"pressure": p_fn, "shear": q_fn}
+    funcs = {name: f for name, f in (("pressure", p_fn), ("shear", q_fn)) if f is not None}
     xf, zf = xb.ravel(), zb.ravel()
-    sxx, szz, sxz = np.empty(xf.size), np.empty(xf.size), np.empty(xf.size)
+    sxx, szz, sxz = np.zeros(xf.size), np.zeros(xf.size), np.zeros(xf.size)
     c = -2.0 / math.pi
     for part in _chunks(xf.size):   # each chunk's integrals made and dropped in turn
         I = _integrals(xf[part], zf[part], funcs, lo, hi, k, RULE)
-        pxx, pzz, pxz, _ = I["pressure"]
-        sxx[part], szz[part], sxz[part] = c * pxx, c * pzz, c * pxz
+        if p_fn is not None:
+            pxx, pzz, pxz, _ = I["pressure"]
+            sxx[part], szz[part], sxz[part] = c * pxx, c * pzz, c * pxz
         if q_fn is not None:
             qxz, _, qzz, qxx = I["shear"]
             sxx[part] += c * qxx
