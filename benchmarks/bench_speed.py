@@ -1,0 +1,77 @@
+"""Issue 33's speed ratios, side by side in one run, and the peak memory of the stress on many points.
+
+    python benchmarks/bench_speed.py [--quick] [--memory N] [--json out.json]
+
+The ratios are :func:`threepart.reports.benchmark.measure`'s, the same the
+verification report shows (:mod:`threepart.reports.speed`, with their targets):
+the closed-form batch and a single solve against a naive per-case ``fsolve``,
+the forward evaluations per case, the stress per point and on a 200 x 100 grid,
+and the fatigue history superposed against state by state. ``--memory N``
+measures, in a child process, the peak resident memory of ``stress`` on ``N``
+points of a grid (default 10**7) and the time it took.
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import resource
+import subprocess
+import sys
+import time
+
+from threepart.reports.benchmark import measure
+from threepart.reports.speed import SHOWN, TARGETS, met
+
+#: the child that measures the peak memory: a grid of n points, 1000 depths, under caseA_moment
+MEMORY_CHILD = """
+import resource, sys, time
+import numpy as np
+from threepart import closedform as cf
+from threepart.catalogue import get_case
+from threepart.stress import stress
+n = int(sys.argv[1])
+case = get_case("caseA_moment")
+sol = cf.solve_normal(case.punch, case.P, case.s, A=case.A)
+W = sol.a + sol.c
+nz = 1000 if n >= 10**5 else 10
+x = np.linspace(-sol.a - W / 4, sol.c + W / 4, n // nz)[None, :]
+z = np.linspace(W / nz, W, nz)[:, None]
+t = time.perf_counter()
+s = stress(x, z, pressure=sol.pressure, ends=(-sol.a, sol.c), kinks=(-case.punch.b, case.punch.b),
+           progress=lambda m: print(m, file=sys.stderr, flush=True))
+print(time.perf_counter() - t, resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024, s.sxx.size)
+"""
+
+
+def memory(n: int) -> dict[str, float]:
+    """Peak RSS (MB) and seconds of ``stress`` on ``n`` grid points, in a child process."""
+    out = subprocess.run([sys.executable, "-c", MEMORY_CHILD, str(n)], check=True, capture_output=True,
+                         text=True).stdout.split()
+    return {"memory_points": float(out[2]), "memory_s": float(out[0]), "memory_peak_MB": float(out[1])}
+
+
+def main() -> dict:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--quick", action="store_true")
+    parser.add_argument("--memory", type=int, default=0, help="points of the memory measurement (0: none)")
+    parser.add_argument("--json")
+    args = parser.parse_args()
+    t = time.perf_counter()
+    rec = measure(args.quick, say=print)
+    if args.memory:
+        rec["figures"].update(memory(args.memory))
+    for k, v in rec["figures"].items():
+        label, op, target = TARGETS.get(k, (SHOWN.get(k, k), "", None))
+        mark = f"  target {op} {target:g}: {'met' if met(k, v) else 'MISSED'}" if target is not None else ""
+        print(f"{k:<32} {v:12.4g}{mark}")
+    print(f"load average {rec['load'][0]:.2f} before, {os.getloadavg()[0]:.2f} after; "
+          f"{time.perf_counter() - t:.1f} s; peak RSS {resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024:.0f} MB")
+    if args.json:
+        with open(args.json, "w") as fh:
+            json.dump(rec, fh, indent=1)
+    return rec
+
+
+if __name__ == "__main__":
+    main()
