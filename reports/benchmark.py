@@ -80,13 +80,13 @@ def _closedform(size: dict[str, Any]) -> dict[str, float]:
 
 def _stress(size: dict[str, Any]) -> dict[str, float]:
     case = get_case("caseA_moment")
-    n = cf.solve_normal(case.punch, case.P, case.s, A=case.A)
+    n = cf.solve_normal(case.punch, case.P, case.s or 0.0, A=case.A)
     W = n.a + n.c
     rng = np.random.default_rng(1)
     xs, zs = rng.uniform(-n.a - W / 4, n.c + W / 4, size["points"]), rng.uniform(0, W, size["points"])
     nx, nz = size["grid"]
     x, z = np.linspace(-n.a - W / 4, n.c + W / 4, nx)[None, :], np.linspace(0, W, nz)[:, None]
-    kw = {"pressure": n.pressure, "ends": (-n.a, n.c), "kinks": (-case.punch.b, case.punch.b)}
+    kw: dict[str, Any] = {"pressure": n.pressure, "ends": (-n.a, n.c), "kinks": (-case.punch.b, case.punch.b)}
     t_point = best_of(lambda: stress(xs, zs, **kw), 1) / xs.size
     t_grid = best_of(lambda: stress(x, z, **kw), 1)
     return {"stress_us_per_point": 1e6 * t_point, "grid_s": t_grid,

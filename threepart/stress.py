@@ -47,6 +47,7 @@ kernel_primitives   -- the kernels' antiderivatives in s = x - t, for the singul
 """
 from __future__ import annotations
 
+import contextlib
 import math
 from dataclasses import dataclass
 from functools import cached_property
@@ -55,10 +56,11 @@ from typing import Any, Callable, Iterator
 import numpy as np
 from numpy.typing import ArrayLike
 
+from .progress import heartbeat
 from .validate import show, finite
 
 __all__ = ["Stress", "stress", "hilbert", "flamant_normal", "flamant_tangential",
-           "kernel_primitives", "RULE", "POINTS_PER_CHUNK"]
+           "kernel_primitives", "RULE", "POINTS_PER_CHUNK", "PROGRESS_S"]
 
 Traction = Callable[[np.ndarray], Any]
 
@@ -75,6 +77,8 @@ _NODES_PER_BLOCK = 2_000_000
 #: 100 MB beside the points and the result (5 arrays of them), whatever their number (1e7 points
 #: took 1.9 GB in one piece); each point's integrals do not depend on the chunk it falls in
 POINTS_PER_CHUNK = 100_000
+#: seconds between two progress lines of :func:`stress` (when it is given ``progress``)
+PROGRESS_S = 1.0
 
 
 def _kernels(s: np.ndarray, z: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
@@ -389,9 +393,44 @@ def _integrals_at_depth(x: np.ndarray, z: np.ndarray, funcs: dict[str, Traction]
     return {name: tuple(np.concatenate(parts) for parts in lists) for name, lists in out.items()}
 
 
+def _parts(xb: np.ndarray, zb: np.ndarray, funcs: dict[str, Traction], lo: float, hi: float,
+           kinks: np.ndarray) -> Iterator[tuple[Any, dict[str, tuple[np.ndarray, ...]]]]:
+    """``(where, integrals)`` over the flattened points, in parts of bounded memory.
+
+    A grid's rows deeper than :data:`threepart.stress_grid.GRID_DEPTH` of the contact's
+    width come one row at a time from :func:`threepart.stress_grid.grid_integrals`; every
+    other point in chunks of :data:`POINTS_PER_CHUNK` from the pointwise rule.
+    """
+    from .stress_grid import GRID_DEPTH, grid_integrals, is_grid
+
+    xf, zf = xb.ravel(), zb.ravel()
+    grid = is_grid(xb, zb)
+    rest = np.arange(xf.size)
+    if grid is not None:
+        x_row, z_col, rows = grid
+        F = np.concatenate([[lo], kinks, [hi]])
+        deep = z_col >= GRID_DEPTH * (hi - lo)
+        for j in np.flatnonzero(deep):
+            yield rows[j], grid_integrals(x_row, float(z_col[j]), funcs, F, RULE, _evaluate)
+        rest = np.sort(rows[~deep].ravel())
+    for part in _chunks(rest.size):
+        idx = rest[part]
+        yield idx, _integrals(xf[idx], zf[idx], funcs, lo, hi, kinks, RULE)
+
+
+@contextlib.contextmanager
+def _progress(say: Callable[[str], None] | None, done: list[int], n: int) -> Iterator[None]:
+    """A line every second (:func:`threepart.progress.heartbeat`) while ``stress`` works, if ``say``."""
+    if say is None:
+        yield
+        return
+    with heartbeat(say, lambda: f"stress: {done[0]:,} of {n:,} points", every=PROGRESS_S):
+        yield
+
+
 def stress(x: ArrayLike, z: ArrayLike, *, pressure: Traction | None, shear: Traction | None = None,
            ends: tuple[float, float], sigma_bulk: float = 0.0, nu: float = 0.3,
-           kinks: ArrayLike = ()) -> Stress:
+           kinks: ArrayLike = (), progress: Callable[[str], None] | None = None) -> Stress:
     """Stresses at the points ``(x, z)``, ``z >= 0``, of the surface tractions on ``ends``.
 
     Parameters
@@ -416,6 +455,16 @@ def stress(x: ArrayLike, z: ArrayLike, *, pressure: Traction | None, shear: Trac
     kinks
         Points inside ``ends`` where ``p`` or ``q`` is not smooth (the joins
         ``x = ±b``, the stick-zone ends); the quadrature puts panel ends there.
+    progress
+        Called with a line ``"stress: N of M points still running (T s)"``
+        every :data:`PROGRESS_S` seconds of work, if given (the command line
+        passes its stderr).
+
+    Points that form a grid (``x`` the same on every row, one ``z`` per row, e.g.
+    ``x`` of shape ``(1, nx)`` and ``z`` of ``(nz, 1)``) share one rule per depth
+    (:mod:`threepart.stress_grid`); the rest, and the grid's rows shallower than
+    ``GRID_DEPTH`` of the contact's width, take each point's own rule. Both agree
+    to the quadrature's accuracy. The work is done in parts of bounded memory.
 
     Returns
     -------
@@ -450,16 +499,18 @@ def stress(x: ArrayLike, z: ArrayLike, *, pressure: Traction | None, shear: Trac
     xf, zf = xb.ravel(), zb.ravel()
     sxx, szz, sxz = np.zeros(xf.size), np.zeros(xf.size), np.zeros(xf.size)
     c = -2.0 / math.pi
-    for part in _chunks(xf.size):   # each chunk's integrals made and dropped in turn
-        I = _integrals(xf[part], zf[part], funcs, lo, hi, k, RULE)
-        if p_fn is not None:
-            pxx, pzz, pxz, _ = I["pressure"]
-            sxx[part], szz[part], sxz[part] = c * pxx, c * pzz, c * pxz
-        if q_fn is not None:
-            qxz, _, qzz, qxx = I["shear"]
-            sxx[part] += c * qxx
-            szz[part] += c * qzz
-            sxz[part] += c * qxz
+    done = [0]
+    with _progress(progress, done, xf.size):
+        for part, I in _parts(xb, zb, funcs, lo, hi, k):   # each part's integrals made and dropped in turn
+            if p_fn is not None:
+                pxx, pzz, pxz, _ = I["pressure"]
+                sxx[part], szz[part], sxz[part] = c * pxx, c * pzz, c * pxz
+            if q_fn is not None:
+                qxz, _, qzz, qxx = I["shear"]
+                sxx[part] += c * qxx
+                szz[part] += c * qzz
+                sxz[part] += c * qxz
+            done[0] += sxx[part].size
     sxx += bulk
     if not np.all(np.isfinite(sxx)):
         where = int(np.argmax(~np.isfinite(sxx)))
