@@ -111,29 +111,43 @@ def P_min(punch: Punch, A: float, s: float = 0.0, tilt: str = "free") -> float:
 
 
 # -- input validation ----------------------------------------------------------
-def _normal_iv(punch: Punch, P: np.ndarray, A: float, tilt: str) -> float:
-    """Validate before any numerics (``P`` already float64); return ``A`` as a float."""
+def _normal_iv(punch: Punch, P: Any, A: float, tilt: str) -> float:
+    """Validate before any numerics (``P`` a float64 array, or a float: one case); return ``A`` as a float."""
     check_punch(punch)
     A = positive("A", A)
     check_tilt(tilt)
+    pmin = P_0(punch, A)
+    if isinstance(P, float):      # one case: the same checks on a float, without numpy's overhead
+        if not (math.isfinite(P) and P > 0):
+            raise ValueError(_not_a_load(P))
+        if not LENGTH_RANGE[0] <= P <= LENGTH_RANGE[1]:
+            positive("P", P)                                  # raises, naming the range
+        load_scale(punch, P, A)
+        if P <= pmin:
+            raise LiftOffError(_below_P0(punch, P, pmin))
+        return A
     bad = ~np.isfinite(P) | (P <= 0)
     if bad.any():
-        i = int(np.argmax(bad))
-        raise ValueError(f"`P` = {float(P.flat[i])!r} must be a finite compressive load > 0")
+        raise ValueError(_not_a_load(float(P.flat[int(np.argmax(bad))])))
     out = (P < LENGTH_RANGE[0]) | (P > LENGTH_RANGE[1])
     if out.any():
         positive("P", float(P.flat[int(np.argmax(out))]))     # raises, naming the range
     # the contact scale sqrt(2 A P R) and its cube must stay representable
     load_scale(punch, P, A)
-    pmin = P_0(punch, A)
     low = P <= pmin
     if low.any():
-        i = int(np.argmax(low))
-        raise LiftOffError(
-            f"`P` = {P.flat[i]:.6g} is at or below P_min = pi b^2/(2AR) = {pmin:.6g}, the load at "
+        raise LiftOffError(_below_P0(punch, P.flat[int(np.argmax(low))], pmin))
+    return A
+
+
+def _not_a_load(P: float) -> str:
+    return f"`P` = {P!r} must be a finite compressive load > 0"
+
+
+def _below_P0(punch: Punch, P: float, pmin: float) -> str:
+    return (f"`P` = {P:.6g} is at or below P_min = pi b^2/(2AR) = {pmin:.6g}, the load at "
             f"which the convex centre (R = {punch.R:g}) first touches both joins x = ±b; below it the "
             "contact lies inside the central segment, outside the closed form")
-    return A
 
 
 # -- the nested roots ----------------------------------------------------------------
@@ -301,7 +315,7 @@ def solve_normal(punch: Punch, P: float, s: float = 0.0, *, A: float,
     t0 = time.perf_counter()
     if tilt == "suppressed" and s != 0:
         raise ValueError(f"`s` = {s!r} is an output when tilt='suppressed' (the lever arm s*); pass s=0")
-    A = _normal_iv(punch, np.array([P]), A, tilt)
+    A = _normal_iv(punch, P, A, tilt)
     n0 = evaluations()
     st, below, above = _solve(punch, P, s, A, tilt, SCALAR)
     n_eval = evaluations() - n0
@@ -385,7 +399,7 @@ def lift_off(punch: Punch, P: float, A: float, *, beyond_small_slopes: bool = Fa
     """
     check_punch(punch)
     P = positive("P", P)
-    A = _normal_iv(punch, np.array([P]), A, "free")
+    A = _normal_iv(punch, P, A, "free")
     lo, hi = _lift_off_states(punch, P, A, SCALAR)
     checked = () if flag("beyond_small_slopes", beyond_small_slopes) else (lo, hi)
     for st, which in zip(checked, ("s_min (c = b)", "s_max (a = b)")):

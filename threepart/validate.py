@@ -318,8 +318,11 @@ def load_scale(punch: Any, P: Any, A: float, name: str = "P") -> None:
     cube must stay representable. ``P`` may be an array (the first offender
     is named).
     """
-    P = np.atleast_1d(np.asarray(P, dtype=float))
     lo, hi = LENGTH_RANGE[0] ** 2, LENGTH_RANGE[1] ** 2
+    if isinstance(P, float):      # one load: the same product, in Python's floats (which do not warn)
+        if lo <= A * P * max(punch.R1, punch.R2, punch.b) <= hi:
+            return
+    P = np.atleast_1d(np.asarray(P, dtype=float))
     with np.errstate(over="ignore", under="ignore"):
         scale = A * P * max(punch.R1, punch.R2, punch.b)
     out = (scale < lo) | (scale > hi)
