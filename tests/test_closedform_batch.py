@@ -169,3 +169,18 @@ def test_evaluation_count_on_the_benchmark_draw():
     P, s = rng.uniform(200.0, 2000.0, 2000), rng.uniform(-0.3, 0.3, 2000)
     assert cf.solve_normal_batch(case.punch, P, s, A=case.A).evaluations <= MAX_EVALUATIONS
     assert cf.solve_normal(case.punch, 400.0, 0.1, A=case.A).info["evaluations"] <= MAX_EVALUATIONS
+
+
+def test_least_centre_pressure_of_a_batch_is_brents():
+    """The batch's golden-section refinement of the least centre pressure against scipy's bounded
+    Brent search of each case (closedform.normal._centre_pressure_min), concave centre near separation."""
+    from threepart.closedform.normal import _CENTRE_GRID, _centre_minima, _centre_pressure_min
+
+    punch, A = Punch(1.0, 1.5, 0.3, -50.0), 1.0
+    P = cf.P_min(punch, A, tilt="suppressed") * np.linspace(1.001, 1.5, 40)
+    batch = cf.solve_normal_batch(punch, P, 0.0, A=A, tilt="suppressed")
+    xg = np.linspace(-punch.b, punch.b, _CENTRE_GRID)
+    grid = formulas.pressure(punch, batch.a[:, None], batch.c[:, None], A, xg[None, :])
+    got = _centre_minima(punch, batch.a, batch.c, A, grid)
+    want = np.array([_centre_pressure_min(punch, float(a), float(c), A)[1] for a, c in zip(batch.a, batch.c)])
+    assert np.max(np.abs(got - want) / (P / (batch.a + batch.c))) <= ROUND_OFF
