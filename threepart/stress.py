@@ -405,14 +405,17 @@ def _parts(xb: np.ndarray, zb: np.ndarray, funcs: dict[str, Traction], lo: float
 
     xf, zf = xb.ravel(), zb.ravel()
     grid = is_grid(xb, zb)
-    rest = np.arange(xf.size)
-    if grid is not None:
-        x_row, z_col, rows = grid
-        F = np.concatenate([[lo], kinks, [hi]])
-        deep = z_col >= GRID_DEPTH * (hi - lo)
-        for j in np.flatnonzero(deep):
-            yield rows[j], grid_integrals(x_row, float(z_col[j]), funcs, F, RULE, _evaluate)
-        rest = np.sort(rows[~deep].ravel())
+    if grid is None:
+        for part in _chunks(xf.size):
+            yield part, _integrals(xf[part], zf[part], funcs, lo, hi, kinks, RULE)
+        return
+    x_row, z_col, rows = grid
+    F = np.concatenate([[lo], kinks, [hi]])
+    deep = z_col >= GRID_DEPTH * (hi - lo)
+    for j in np.flatnonzero(deep):
+        yield rows[j], grid_integrals(x_row, float(z_col[j]), funcs, F, RULE, _evaluate)
+    rest = np.sort(np.concatenate([np.arange(*rows[j].indices(xf.size)) for j in np.flatnonzero(~deep)]
+                                  or [np.zeros(0, dtype=int)]))
     for part in _chunks(rest.size):
         idx = rest[part]
         yield idx, _integrals(xf[idx], zf[idx], funcs, lo, hi, kinks, RULE)

@@ -37,19 +37,19 @@ GRID_PANEL = 2.0
 _ENTRIES = 2_000_000
 
 
-def is_grid(xb: np.ndarray, zb: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray] | None:
-    """``(x of a row, z of each row, flat index of each point by row)`` if 2-d broadcast points form a grid.
+def is_grid(xb: np.ndarray, zb: np.ndarray) -> tuple[np.ndarray, np.ndarray, list[slice]] | None:
+    """``(x of a row, z of each row, each row's slice of the flattened points)`` if 2-d points form a grid.
 
     Rows of one depth may lie along either axis (``x`` of shape ``(1, nx)`` with
     ``z`` of ``(nz, 1)``, or the transpose); else None.
     """
     if xb.ndim != 2 or xb.shape[0] < 2 or xb.shape[1] < 2:
         return None
-    flat = np.arange(xb.size).reshape(xb.shape)
+    n0, n1 = xb.shape
     if np.all(xb == xb[:1]) and np.all(zb == zb[:, :1]):
-        return xb[0], zb[:, 0], flat
+        return xb[0], zb[:, 0], [slice(j * n1, (j + 1) * n1) for j in range(n0)]
     if np.all(xb == xb[:, :1]) and np.all(zb == zb[:1]):
-        return xb[:, 0], zb[0], flat.T
+        return xb[:, 0], zb[0], [slice(j, None, n1) for j in range(n1)]
     return None
 
 
