@@ -354,7 +354,8 @@ def solve_normal(punch: Punch, P: float, s: float = 0.0, *, A: float,
         _refuse_lift_off(punch, np.array([P]), np.array([s]), A, tilt, np.array([below]),
                          np.array([above]))
     alpha, s = (st.alpha, s) if tilt == "free" else (0.0, st.T / st.AP)
-    _check_separation(punch, np.array([st.a]), np.array([st.c]), A, np.array([P]), np.array([s]), tilt)
+    if punch.kappa0 < 0 and punch.b > 0:   # a concave centre may separate
+        _check_separation(punch, np.array([st.a]), np.array([st.c]), A, np.array([P]), np.array([s]), tilt)
     if not beyond_small_slopes:
         check_contact(punch, st.a, st.c, alpha)
     return NormalSolution(punch, A, st.a, st.c, alpha, P, s, tilt,
