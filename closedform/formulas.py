@@ -46,15 +46,19 @@ def F0(punch: Punch, a: ArrayLike, c: ArrayLike) -> np.ndarray:
 
 
 def _psi(x, xp=np):
-    """``2x - sin 2x``, with a series for small ``x`` (no cancellation)."""
+    """``2x - sin 2x``, with a series for small ``x`` (no cancellation); on floats (``xp`` not numpy) one branch."""
     x2 = x * x
+    if xp is not np:
+        return (4 / 3) * x2 * x * (1 - x2 / 5 + 2 * x2 * x2 / 105) if x < 1e-2 else 2 * x - xp.sin(2 * x)
     series = (4 / 3) * x2 * x * (1 - x2 / 5 + 2 * x2 * x2 / 105)
     return xp.where(x < 1e-2, series, 2 * x - xp.sin(2 * x))
 
 
 def _chi(x, xp=np):
-    """``sin x - x cos x``, with a series for small ``x``."""
+    """``sin x - x cos x``, with a series for small ``x``; on floats (``xp`` not numpy) one branch."""
     x2 = x * x
+    if xp is not np:
+        return x2 * x / 3 * (1 - x2 / 10 + x2 * x2 / 280) if x < 1e-2 else xp.sin(x) - x * xp.cos(x)
     series = x2 * x / 3 * (1 - x2 / 10 + x2 * x2 / 280)
     return xp.where(x < 1e-2, series, xp.sin(x) - x * xp.cos(x))
 

@@ -38,7 +38,7 @@ from threepart.punch import Punch
 from .formulas import _chi, _psi
 
 __all__ = ["State", "SCALAR", "bracketed_root", "ray_state", "solve_r", "solve_phi",
-           "HALF_PI", "MAX_ITER"]
+           "HALF_PI", "MAX_ITER", "EVALUATIONS", "evaluations"]
 
 HALF_PI = 0.5 * math.pi
 MAX_ITER = 200          # bisection alone needs ~60 on a double-precision bracket
@@ -78,6 +78,16 @@ class _Scalar:
 SCALAR: Any = _Scalar
 
 
+#: forward evaluations made so far, counted per case (a :class:`State` of n cases counts n);
+#: read the difference around a solve (:func:`evaluations`)
+EVALUATIONS = [0]
+
+
+def evaluations() -> int:
+    """The number of forward evaluations (cases times :class:`State` constructions) made so far."""
+    return EVALUATIONS[0]
+
+
 class State:
     """Closed forms (with ``A = 1``) and their ``(h, m)`` derivatives at ``a = b + u1^2``, ``c = b + u2^2``.
 
@@ -110,6 +120,7 @@ class State:
     alpha_m: Any
 
     def __init__(self, punch: Punch, u1: Any, u2: Any, xp: Any = np, full: bool = True) -> None:
+        EVALUATIONS[0] += getattr(u1, "size", 1)
         b, k0, k1, k2 = _constants(punch)
         ab, cb = u1 * u1, u2 * u2                     # a - b, c - b
         rho = 0.5 * (ab + cb)                         # h - b
@@ -250,6 +261,148 @@ _TARGETS: dict[str, Callable[[State], tuple[Any, Any, Any]]] = {
 
 
 def solve_phi(punch: Punch, dAP: Any, target: str, value: Any, xp: Any = np,
+              sign: float = 1.0, r0: Any = None) -> tuple[Any, Any, Any, Any]:
+    """Angle ``phi`` in ``[0, pi/2]`` at which ``target`` equals ``value`` at the load ``dAP``.
+
+    ``target`` is ``"moment"`` (``A P s``, increasing in ``phi``) or ``"tilt"``
+    (``alpha``, decreasing: pass ``sign = -1``). A two-dimensional Newton
+    iteration in ``(r, phi)`` on both equations at once (:func:`_newton_2d`)
+    answers every case it brings to a root strictly inside the lift-off
+    range, which is the only root there; the other cases (few, and those
+    outside the range) go to the nested, bracketed roots of
+    :func:`_solve_phi_nested`, which decide a refusal as before.
+
+    Returns
+    -------
+    r, phi, below, above
+        The solution, and the flags of :func:`bracketed_root`: ``below``
+        (the target lies below the value at ``phi = 0``, the line ``c = b``)
+        and ``above`` (beyond ``phi = pi/2``, the line ``a = b``).
+    """
+    r, phi, ok = _newton_2d(punch, dAP, target, value, xp, sign, r0)
+    if xp is SCALAR:
+        return (r, phi, False, False) if ok else _solve_phi_nested(punch, dAP, target, value, xp, sign, r0)
+    if ok.all():
+        false = np.zeros(np.shape(ok), dtype=bool)
+        return r, phi, false, false.copy()
+    below, above = np.zeros(np.shape(ok), dtype=bool), np.zeros(np.shape(ok), dtype=bool)
+    todo = ~ok
+    pick = (lambda v: v[todo] if np.ndim(v) else v)
+    r[todo], phi[todo], below[todo], above[todo] = _solve_phi_nested(
+        punch, pick(dAP), target, pick(value), xp, sign, None if r0 is None else pick(r0))
+    return r, phi, below, above
+
+
+#: most iterations of the two-dimensional Newton step before a case goes to the nested roots
+NEWTON_2D_ITER = 16
+#: a step below this that no longer halves is rounding: the iteration has converged
+STALL = 1e-8
+
+
+def _newton_2d(punch: Punch, dAP: Any, target: str, value: Any, xp: Any, sign: float,
+               r0: Any) -> tuple[Any, Any, Any]:
+    """Newton's method in ``(r, phi)`` on the load and ``target`` equations together, ``phi`` bracketed.
+
+    One :class:`State` per iteration gives both residuals and the exact
+    Jacobian (``h_r = r``, ``m_r = -r cos 2phi``, ``m_phi = r^2 sin 2phi``).
+    The step is the nested iteration's in one: the load's Newton correction
+    ``dr`` at fixed ``phi``, the target linearised onto the constant-load
+    curve, ``f = g + g_r dr``, and its Newton step in ``phi`` along the curve,
+    the radius following the curve's tangent. ``f`` narrows a bracket on
+    ``phi`` (from ``[0, pi/2]``) where its sign is sure (``dr`` below a tenth
+    of ``r`` and ``g_r dr`` below half of ``f``), and a step out of the
+    bracket bisects it. The bracket only speeds the iteration:
+    a case counts as solved (``ok``) only when its full step is below
+    ``XTOL`` (relative in ``r``, absolute in ``phi``), or at the rounding floor
+    (:func:`_step_2d`), which is then taken, with ``0 < phi < pi/2``; the
+    system has one root there, so a converged case is that root. The rest go
+    to :func:`_solve_phi_nested`. Each step is one forward evaluation: about 8
+    per case (``NormalBatch.evaluations``; 31 for the nested roots alone).
+
+    Returns
+    -------
+    r, phi, ok
+    """
+    get = _TARGETS[target]
+    r = _r_guess(punch, dAP, xp) if r0 is None else r0
+    phi, lo, hi = _phi_guess(punch) + 0.0 * dAP, 0.0 * dAP, HALF_PI + 0.0 * dAP
+    if xp is SCALAR:
+        last = math.inf
+        for _ in range(NEWTON_2D_ITER):
+            r, phi, lo, hi, last, small = _step_2d(punch, dAP, get, value, sign, r, phi, lo, hi, last, xp)
+            if small:
+                return r, phi, 0 < phi < HALF_PI
+        return r, phi, False
+    ok = np.zeros(np.shape(dAP), dtype=bool)
+    act = np.arange(ok.size)
+    cur = [np.broadcast_to(np.asarray(v, dtype=float), ok.shape).copy()
+           for v in (dAP, value, r, phi, lo, hi, math.inf)]
+    r, phi = cur[2].copy(), cur[3].copy()
+    for _ in range(NEWTON_2D_ITER):
+        d, v, rr, pp, ll, hh, prev = cur
+        rr, pp, ll, hh, prev, small = _step_2d(punch, d, get, v, sign, rr, pp, ll, hh, prev, np)
+        r[act], phi[act] = rr, pp
+        ok[act[small]] = True
+        if small.all():
+            break
+        keep = ~small
+        act = act[keep]
+        cur = [x[keep] for x in (d, v, rr, pp, ll, hh, prev)]
+    return r, phi, ok & (phi > 0) & (phi < HALF_PI)
+
+
+@functools.lru_cache(maxsize=64)
+def _phi_guess(punch: Punch) -> float:
+    """Starting angle: ``tan^2 phi = (c - b)/(a - b) = sqrt(R2/R1)``, the untilted contact of two parabolas.
+
+    Two parabolas of radii ``R1`` and ``R2`` pressed without tilt reach about
+    equal heights ``(a - b)^2/R1 = (c - b)^2/R2`` at the contact's ends.
+    """
+    return math.atan((punch.R2 / punch.R1) ** 0.25)
+
+
+def _step_2d(punch: Punch, dAP: Any, get: Callable[[State], tuple[Any, Any, Any]], value: Any,
+             sign: float, r: Any, phi: Any, lo: Any, hi: Any, last: Any, xp: Any) -> tuple[Any, ...]:
+    """One bracketed Newton step of :func:`_newton_2d`: ``(r, phi, lo, hi, step, converged)``.
+
+    ``step`` is ``|dr|/r + |dphi|`` (``inf`` where anything is not finite) and
+    ``last`` the previous one: a case has converged when it is below ``XTOL``,
+    or below :data:`STALL` but no longer halving (the rounding floor of an
+    ill-conditioned case, reached after the quadratic steps).
+    """
+    st = ray_state(punch, r, phi, xp)
+    g, g_h, g_m = get(st)
+    cos2, sin2 = xp.cos(2 * phi), xp.sin(2 * phi)
+    L_r = r * (st.AP_h - cos2 * st.AP_m)
+    G_r = sign * r * (g_h - cos2 * g_m)
+    dr = -_guarded_ratio(st.dAP - dAP, L_r, xp)              # the load's correction at fixed phi
+    r_phi = -_guarded_ratio(r * r * sin2 * st.AP_m, L_r, xp)  # the constant-load curve's slope
+    f = sign * (g - value) + G_r * dr                         # the target, on the curve
+    df = sign * r * r * sin2 * g_m + G_r * r_phi
+    # the sign of f is trusted where its linear correction is small against it (its
+    # quadratic remainder is then ~ (dr/r) of that correction)
+    near = xp.abs(dr) <= 0.1 * r          # near the constant-load curve: step in phi too
+    trust = near & (xp.abs(G_r * dr) <= 0.5 * xp.abs(f))
+    neg = f < 0
+    lo, hi = xp.where(trust & neg, phi, lo), xp.where(trust & xp.logical_not(neg), phi, hi)
+    # Newton's step in t = sin^2 phi = (c - b)/r^2, in which f is linear at the lift-off lines
+    # (in phi it is flat there, and Newton's steps only halve the distance to a root near them)
+    dt = -_guarded_ratio(f * sin2, df, xp)
+    sp, cp = xp.sin(phi), xp.sin(HALF_PI - phi)
+    newton = xp.arctan2(xp.sqrt(xp.maximum(sp * sp + dt, 0.0)), xp.sqrt(xp.maximum(cp * cp - dt, 0.0)))
+    close = xp.abs(newton - phi) <= XTOL                      # a converged step (NaN is not close)
+    phin = xp.where((newton > lo) & (newton < hi) | close, newton, 0.5 * (lo + hi))
+    phin = xp.where(near, phin, phi)
+    drn = dr + r_phi * (phin - phi)
+    step = xp.abs(_guarded_ratio(drn, r, xp)) + xp.abs(phin - phi)   # NaN where not finite
+    step = xp.where(xp.isfinite(step) & xp.isfinite(f), step, math.inf)
+    small = (step <= XTOL) | (step <= STALL) & (step >= 0.5 * last)
+    rn = r + drn
+    rn = xp.where(rn > 0, rn, 0.5 * r)
+    return rn, phin, lo, hi, step, small
+
+
+def _solve_phi_nested(punch: Punch, dAP: Any, target: str, value: Any, xp: Any = np,
               sign: float = 1.0, r0: Any = None) -> tuple[Any, Any, Any, Any]:
     """Angle ``phi`` in ``[0, pi/2]`` at which ``target`` equals ``value`` at the load ``dAP``.
 

@@ -26,11 +26,11 @@ from scipy.optimize import minimize_scalar
 from threepart.errors import LiftOffError, SeparationError
 from threepart.punch import Punch
 from threepart.results import Diagnostics, NormalResult
-from threepart.validate import (LENGTH_RANGE, check_arcs, check_contact, check_punch, check_tilt, flag, lever_arm, load_scale,
+from threepart.validate import (LENGTH_RANGE, check_arcs, check_contact, check_punch, check_tilt, first_refused, flag, lever_arm, load_scale,
                                 positive, reals)
 
 from . import formulas
-from .newton import HALF_PI, SCALAR, State, _r_guess, ray_state, solve_phi, solve_r
+from .newton import HALF_PI, SCALAR, State, _r_guess, evaluations, ray_state, solve_phi, solve_r
 
 __all__ = ["NormalSolution", "NormalBatch", "LiftOff", "solve_normal", "solve_normal_batch",
            "lift_off", "P_min"]
@@ -57,6 +57,8 @@ class NormalBatch:
     P: np.ndarray
     s: np.ndarray
     tilt: str
+    #: forward evaluations (:class:`~threepart.closedform.newton.State`) per case, averaged over the batch
+    evaluations: float = 0.0
 
     def __len__(self) -> int:
         return self.a.size
@@ -109,29 +111,43 @@ def P_min(punch: Punch, A: float, s: float = 0.0, tilt: str = "free") -> float:
 
 
 # -- input validation ----------------------------------------------------------
-def _normal_iv(punch: Punch, P: np.ndarray, A: float, tilt: str) -> float:
-    """Validate before any numerics (``P`` already float64); return ``A`` as a float."""
+def _normal_iv(punch: Punch, P: Any, A: float, tilt: str) -> float:
+    """Validate before any numerics (``P`` a float64 array, or a float: one case); return ``A`` as a float."""
     check_punch(punch)
     A = positive("A", A)
     check_tilt(tilt)
+    pmin = P_0(punch, A)
+    if isinstance(P, float):      # one case: the same checks on a float, without numpy's overhead
+        if not (math.isfinite(P) and P > 0):
+            raise ValueError(_not_a_load(P))
+        if not LENGTH_RANGE[0] <= P <= LENGTH_RANGE[1]:
+            positive("P", P)                                  # raises, naming the range
+        load_scale(punch, P, A)
+        if P <= pmin:
+            raise LiftOffError(_below_P0(punch, P, pmin))
+        return A
     bad = ~np.isfinite(P) | (P <= 0)
     if bad.any():
-        i = int(np.argmax(bad))
-        raise ValueError(f"`P` = {float(P.flat[i])!r} must be a finite compressive load > 0")
+        raise ValueError(_not_a_load(float(P.flat[int(np.argmax(bad))])))
     out = (P < LENGTH_RANGE[0]) | (P > LENGTH_RANGE[1])
     if out.any():
         positive("P", float(P.flat[int(np.argmax(out))]))     # raises, naming the range
     # the contact scale sqrt(2 A P R) and its cube must stay representable
     load_scale(punch, P, A)
-    pmin = P_0(punch, A)
     low = P <= pmin
     if low.any():
-        i = int(np.argmax(low))
-        raise LiftOffError(
-            f"`P` = {P.flat[i]:.6g} is at or below P_min = pi b^2/(2AR) = {pmin:.6g}, the load at "
+        raise LiftOffError(_below_P0(punch, P.flat[int(np.argmax(low))], pmin))
+    return A
+
+
+def _not_a_load(P: float) -> str:
+    return f"`P` = {P!r} must be a finite compressive load > 0"
+
+
+def _below_P0(punch: Punch, P: float, pmin: float) -> str:
+    return (f"`P` = {P:.6g} is at or below P_min = pi b^2/(2AR) = {pmin:.6g}, the load at "
             f"which the convex centre (R = {punch.R:g}) first touches both joins x = ±b; below it the "
             "contact lies inside the central segment, outside the closed form")
-    return A
 
 
 # -- the nested roots ----------------------------------------------------------------
@@ -196,6 +212,33 @@ def _centre_pressure_min(punch: Punch, a: float, c: float, A: float) -> tuple[fl
     return (float(r.x), float(r.fun)) if r.fun < best[1] else best
 
 
+#: a batch's case whose least centre pressure, refined all at once, is below this fraction of its
+#: mean pressure is confirmed by :func:`_centre_pressure_min` (both are exact to ~1e-15 of it)
+_CONFIRM = 1e-8
+#: golden-section steps of :func:`_centre_minima`: the bracket of two grid steps, b/16, shrinks to 1e-12 b
+_GOLDEN_STEPS = 60
+
+
+def _centre_minima(punch: Punch, a: np.ndarray, c: np.ndarray, A: float, grid: np.ndarray) -> np.ndarray:
+    """The least pressure on ``[-b, b]`` of each case, all at once (:func:`_centre_pressure_min`'s grid
+    bracket, then a golden-section search of every bracket in one array)."""
+    xg = np.linspace(-punch.b, punch.b, _CENTRE_GRID)
+    i = np.argmin(grid, axis=1) if grid.size else np.zeros(0, dtype=int)
+    best = grid[np.arange(i.size), i] if i.size else np.zeros(0)
+    lo, hi = xg[np.maximum(i - 1, 0)], xg[np.minimum(i + 1, xg.size - 1)]
+    g = 0.5 * (math.sqrt(5.0) - 1.0)
+    x1, x2 = hi - g * (hi - lo), lo + g * (hi - lo)
+    f1, f2 = (formulas.pressure(punch, a, c, A, x) for x in (x1, x2))
+    for _ in range(_GOLDEN_STEPS if a.size else 0):
+        left = f1 < f2                                     # the minimum lies in [lo, x2]
+        lo, hi = np.where(left, lo, x1), np.where(left, x2, hi)
+        x_new = np.where(left, hi - g * (hi - lo), lo + g * (hi - lo))
+        f_new = formulas.pressure(punch, a, c, A, x_new)
+        x1, x2, f1, f2 = (np.where(left, x_new, x2), np.where(left, x1, x_new),
+                          np.where(left, f_new, f2), np.where(left, f1, f_new))
+    return np.minimum(best, np.minimum(f1, f2))
+
+
 def _check_separation(punch: Punch, a: np.ndarray, c: np.ndarray, A: float, P: np.ndarray,
                       s: np.ndarray, tilt: str) -> None:
     """A concave centre must not separate: the pressure stays >= 0 on ``[-b, b]``.
@@ -206,8 +249,12 @@ def _check_separation(punch: Punch, a: np.ndarray, c: np.ndarray, A: float, P: n
     if punch.kappa0 >= 0 or punch.b == 0:
         return
     xg = np.linspace(-punch.b, punch.b, _CENTRE_GRID)
-    grid_min = formulas.pressure(punch, a[:, None], c[:, None], A, xg[None, :]).min(axis=1)
-    for i in np.flatnonzero(grid_min < 0.05 * P / (a + c)):
+    grid = formulas.pressure(punch, a[:, None], c[:, None], A, xg[None, :])
+    near = np.flatnonzero(grid.min(axis=1) < 0.05 * P / (a + c))
+    # the cases near separation, refined all at once; those whose least pressure may be < 0 are
+    # then confirmed (and the first named) one by one, as a single solve does
+    least = _centre_minima(punch, a[near], c[near], A, grid[near])
+    for i in near[least < _CONFIRM * P[near] / (a[near] + c[near])]:
         x, p = _centre_pressure_min(punch, float(a[i]), float(c[i]), A)
         if p < 0:
             where = f"`s` = {s[i]:.6g}" if tilt == "free" else "the tilt suppressed"
@@ -299,17 +346,21 @@ def solve_normal(punch: Punch, P: float, s: float = 0.0, *, A: float,
     t0 = time.perf_counter()
     if tilt == "suppressed" and s != 0:
         raise ValueError(f"`s` = {s!r} is an output when tilt='suppressed' (the lever arm s*); pass s=0")
-    A = _normal_iv(punch, np.array([P]), A, tilt)
+    A = _normal_iv(punch, P, A, tilt)
+    n0 = evaluations()
     st, below, above = _solve(punch, P, s, A, tilt, SCALAR)
+    n_eval = evaluations() - n0
     if below or above:
         _refuse_lift_off(punch, np.array([P]), np.array([s]), A, tilt, np.array([below]),
                          np.array([above]))
     alpha, s = (st.alpha, s) if tilt == "free" else (0.0, st.T / st.AP)
-    _check_separation(punch, np.array([st.a]), np.array([st.c]), A, np.array([P]), np.array([s]), tilt)
+    if punch.kappa0 < 0 and punch.b > 0:   # a concave centre may separate
+        _check_separation(punch, np.array([st.a]), np.array([st.c]), A, np.array([P]), np.array([s]), tilt)
     if not beyond_small_slopes:
         check_contact(punch, st.a, st.c, alpha)
     return NormalSolution(punch, A, st.a, st.c, alpha, P, s, tilt,
-                          diagnostics=Diagnostics(timings={"total": time.perf_counter() - t0}))
+                          diagnostics=Diagnostics(timings={"total": time.perf_counter() - t0}),
+                          info={"evaluations": n_eval})
 
 
 def solve_normal_batch(punch: Punch, P: ArrayLike, s: ArrayLike = 0.0, *, A: float,
@@ -337,18 +388,22 @@ def solve_normal_batch(punch: Punch, P: ArrayLike, s: ArrayLike = 0.0, *, A: flo
             raise type(exc)(f"case {i}: {exc}") from None
     if tilt == "suppressed" and np.any(s_arr != 0):
         raise ValueError("`s` is an output when tilt='suppressed' (the lever arm s*); pass s=0")
+    n0 = evaluations()
     st, below, above = _solve(punch, P_arr, s_arr, A, tilt, np)
+    n_eval = (evaluations() - n0) / P_arr.size
     if np.any(below | above):
         _refuse_lift_off(punch, P_arr, s_arr, A, tilt, np.asarray(below), np.asarray(above))
     alpha = st.alpha if tilt == "free" else np.zeros_like(st.h)
     s_out = s_arr if tilt == "free" else st.T / st.AP
     _check_separation(punch, st.a, st.c, A, P_arr, s_out, tilt)
-    for i in range(P_arr.size):      # the first case past the arcs or the slope limit is named
+    k = first_refused(punch, st.a, st.c, alpha)   # the first case past the arcs or the slope limit
+    if k is not None:
+        i = k
         try:
             check_contact(punch, float(st.a[i]), float(st.c[i]), float(alpha[i]))
         except ValueError as exc:
             raise type(exc)(f"case {i} (`P` = {P_arr[i]:.6g}, `s` = {s_out[i]:.6g}): {exc}") from None
-    return NormalBatch(punch, A, st.a, st.c, alpha, P_arr, s_out, tilt)
+    return NormalBatch(punch, A, st.a, st.c, alpha, P_arr, s_out, tilt, n_eval)
 
 
 def lift_off(punch: Punch, P: float, A: float, *, beyond_small_slopes: bool = False) -> LiftOff:
@@ -376,7 +431,7 @@ def lift_off(punch: Punch, P: float, A: float, *, beyond_small_slopes: bool = Fa
     """
     check_punch(punch)
     P = positive("P", P)
-    A = _normal_iv(punch, np.array([P]), A, "free")
+    A = _normal_iv(punch, P, A, "free")
     lo, hi = _lift_off_states(punch, P, A, SCALAR)
     checked = () if flag("beyond_small_slopes", beyond_small_slopes) else (lo, hi)
     for st, which in zip(checked, ("s_min (c = b)", "s_max (a = b)")):

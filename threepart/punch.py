@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -135,7 +136,7 @@ class Punch:
         centre = self.kappa0 * x
         return alpha + np.where(x < -self.b, left, np.where(x > self.b, right, centre))
 
-    def max_slope(self, a: float, c: float, alpha: float = 0.0) -> float:
+    def max_slope(self, a: ArrayLike, c: ArrayLike, alpha: ArrayLike = 0.0) -> Any:
         """The largest slope of the contact ``[-a, c]``, the measure of half-plane theory's small slopes.
 
         It is the largest of three angles (rad): the tilt ``|alpha|``, the
@@ -144,7 +145,45 @@ class Punch:
         the surface slope ``|v'(x)| = |alpha + g'(x)|`` under the punch. Each
         is linear on each segment, so its extremes lie at the contact's ends
         and at the joins ``x = ±b`` inside it.
+
+        ``a``, ``c`` and ``alpha`` broadcast (a batch of contacts at once, one
+        array pass per candidate point); Python floats give a float, computed
+        with the same operations.
         """
-        x = [t for t in (-a, -self.b, self.b, c) if -a <= t <= c]
-        shape = self.slope(x)
-        return float(max(abs(alpha), np.max(np.abs(shape)), np.max(np.abs(shape + alpha))))
+        if isinstance(a, (float, int)) and isinstance(c, (float, int)) and isinstance(alpha, (float, int)):
+            return _max_slope(self, float(a), float(c), float(alpha), _SCALAR_OPS)
+        return _max_slope(self, np.asarray(a, dtype=float), np.asarray(c, dtype=float),
+                          np.asarray(alpha, dtype=float), np)
+
+
+class _ScalarOps:
+    """The three array functions :func:`_max_slope` needs, on Python floats."""
+
+    abs = staticmethod(abs)
+
+    @staticmethod
+    def maximum(x: float, y: float) -> float:
+        return x if x >= y else y
+
+    @staticmethod
+    def where(cond: bool, x: float, y: float) -> float:
+        return x if cond else y
+
+
+_SCALAR_OPS: Any = _ScalarOps
+
+
+def _max_slope(punch: Punch, a: Any, c: Any, alpha: Any, xp: Any) -> Any:
+    """:meth:`Punch.max_slope` on floats (``xp=_SCALAR_OPS``) or arrays (``xp=numpy``).
+
+    The candidates ``-a, -b, b, c`` outside ``[-a, c]`` count 0; the profile's
+    slope there is :meth:`Punch.slope`'s expression, segment by segment.
+    """
+    b, out = punch.b, xp.abs(alpha)
+    for x in (-a, -b + 0 * a, b + 0 * a, c):
+        left = (x + b * punch.k1) / punch.R1
+        right = (x - b * punch.k2) / punch.R2
+        g = xp.where(x < -b, left, xp.where(x > b, right, punch.kappa0 * x))
+        inside = (-a <= x) & (x <= c)
+        out = xp.where(inside, xp.maximum(out, xp.maximum(xp.abs(g), xp.abs(g + alpha))), out)
+    return out

@@ -47,6 +47,7 @@ kernel_primitives   -- the kernels' antiderivatives in s = x - t, for the singul
 """
 from __future__ import annotations
 
+import contextlib
 import math
 from dataclasses import dataclass
 from functools import cached_property
@@ -55,10 +56,11 @@ from typing import Any, Callable, Iterator
 import numpy as np
 from numpy.typing import ArrayLike
 
+from .progress import heartbeat
 from .validate import show, finite
 
 __all__ = ["Stress", "stress", "hilbert", "flamant_normal", "flamant_tangential",
-           "kernel_primitives", "RULE", "POINTS_PER_CHUNK"]
+           "kernel_primitives", "RULE", "POINTS_PER_CHUNK", "PROGRESS_S"]
 
 Traction = Callable[[np.ndarray], Any]
 
@@ -75,6 +77,8 @@ _NODES_PER_BLOCK = 2_000_000
 #: 100 MB beside the points and the result (5 arrays of them), whatever their number (1e7 points
 #: took 1.9 GB in one piece); each point's integrals do not depend on the chunk it falls in
 POINTS_PER_CHUNK = 100_000
+#: seconds between two progress lines of :func:`stress` (when it is given ``progress``)
+PROGRESS_S = 1.0
 
 
 def _kernels(s: np.ndarray, z: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
@@ -389,9 +393,67 @@ def _integrals_at_depth(x: np.ndarray, z: np.ndarray, funcs: dict[str, Traction]
     return {name: tuple(np.concatenate(parts) for parts in lists) for name, lists in out.items()}
 
 
-def stress(x: ArrayLike, z: ArrayLike, *, pressure: Traction, shear: Traction | None = None,
+def _parts(xb: np.ndarray, zb: np.ndarray, funcs: dict[str, Traction], lo: float, hi: float,
+           kinks: np.ndarray) -> Iterator[tuple[Any, dict[str, tuple[np.ndarray, ...]]]]:
+    """``(where, integrals)`` over the flattened points, in parts of bounded memory.
+
+    A grid's rows deeper than :data:`threepart.stress_grid.GRID_DEPTH` of the contact's
+    width come one row at a time from :func:`threepart.stress_grid.grid_integrals`; every
+    other point in chunks of :data:`POINTS_PER_CHUNK` from the pointwise rule.
+    """
+    from .stress_grid import GRID_DEPTH, grid_integrals, is_grid
+
+    xf, zf = xb.ravel(), zb.ravel()
+    grid = is_grid(xb, zb)
+    if grid is None:
+        for part in _chunks(xf.size):
+            yield part, _integrals(xf[part], zf[part], funcs, lo, hi, kinks, RULE)
+        return
+    x_row, z_col, rows = grid
+    F = np.concatenate([[lo], kinks, [hi]])
+    deep = z_col >= GRID_DEPTH * (hi - lo)
+    for j in np.flatnonzero(deep):
+        yield rows[j], grid_integrals(x_row, float(z_col[j]), funcs, F, RULE, _evaluate)
+    rest = np.sort(np.concatenate([np.arange(*rows[j].indices(xf.size)) for j in np.flatnonzero(~deep)]
+                                  or [np.zeros(0, dtype=int)]))
+    for part in _chunks(rest.size):
+        idx = rest[part]
+        yield idx, _integrals(xf[idx], zf[idx], funcs, lo, hi, kinks, RULE)
+
+
+@contextlib.contextmanager
+def _progress(say: Callable[[str], None] | None, done: list[int], n: int) -> Iterator[None]:
+    """A line every second (:func:`threepart.progress.heartbeat`) while ``stress`` works, if ``say``."""
+    if say is None:
+        yield
+        return
+    with heartbeat(say, lambda: f"stress: {done[0]:,} of {n:,} points", every=PROGRESS_S):
+        yield
+
+
+def _stress_iv(x: ArrayLike, z: ArrayLike, pressure: Any, shear: Any, sigma_bulk: Any, nu: Any
+               ) -> tuple[np.ndarray, np.ndarray, Traction | None, Traction | None, float, float]:
+    """:func:`stress`'s input checked: the broadcast points, the tractions, ``sigma_bulk`` and ``nu``."""
+    xa, za = _array("x", x), _array("z", z)
+    if np.any(za < 0):
+        raise ValueError(f"`z` = {float(za[za < 0].flat[0])!r} must be >= 0: z is the depth into the substrate")
+    p_fn = None if pressure is None and shear is not None else _traction("pressure", pressure)
+    q_fn = None if shear is None else _traction("shear", shear)
+    bulk = finite("sigma_bulk", sigma_bulk)
+    poisson = finite("nu", nu)
+    if not -1.0 < poisson <= 0.5:
+        raise ValueError(f"`nu` = {nu!r} must lie in (-1, 0.5]")
+    try:
+        xb, zb = np.broadcast_arrays(xa, za)
+    except ValueError:
+        raise ValueError(f"`x` of shape {xa.shape} and `z` of shape {za.shape} do not broadcast "
+                         "against each other") from None
+    return xb, zb, p_fn, q_fn, bulk, poisson
+
+
+def stress(x: ArrayLike, z: ArrayLike, *, pressure: Traction | None, shear: Traction | None = None,
            ends: tuple[float, float], sigma_bulk: float = 0.0, nu: float = 0.3,
-           kinks: ArrayLike = ()) -> Stress:
+           kinks: ArrayLike = (), progress: Callable[[str], None] | None = None) -> Stress:
     """Stresses at the points ``(x, z)``, ``z >= 0``, of the surface tractions on ``ends``.
 
     Parameters
@@ -401,7 +463,9 @@ def stress(x: ArrayLike, z: ArrayLike, *, pressure: Traction, shear: Traction | 
         the depth. ``z = 0`` gives the surface values.
     pressure
         Vectorised callable ``p(x) >= 0`` (compressive), e.g. ``result.pressure``;
-        only its values on ``ends`` are used.
+        only its values on ``ends`` are used. ``None``: the stresses of the shear
+        alone (a part of a superposition, such as a fretting cycle's history
+        built from its loading states, :func:`threepart.fatigue.stress_history`).
     shear
         Vectorised callable ``q(x)``, the shear the punch exerts on the substrate
         along ``+x`` (e.g. ``slip.shear``); ``None`` for a frictionless contact.
@@ -414,6 +478,16 @@ def stress(x: ArrayLike, z: ArrayLike, *, pressure: Traction, shear: Traction | 
     kinks
         Points inside ``ends`` where ``p`` or ``q`` is not smooth (the joins
         ``x = ±b``, the stick-zone ends); the quadrature puts panel ends there.
+    progress
+        Called with a line ``"stress: N of M points still running (T s)"``
+        every :data:`PROGRESS_S` seconds of work, if given (the command line
+        passes its stderr).
+
+    Points that form a grid (``x`` the same on every row, one ``z`` per row, e.g.
+    ``x`` of shape ``(1, nx)`` and ``z`` of ``(nz, 1)``) share one rule per depth
+    (:mod:`threepart.stress_grid`); the rest, and the grid's rows shallower than
+    ``GRID_DEPTH`` of the contact's width, take each point's own rule. Both agree
+    to the quadrature's accuracy. The work is done in parts of bounded memory.
 
     Returns
     -------
@@ -429,34 +503,24 @@ def stress(x: ArrayLike, z: ArrayLike, *, pressure: Traction, shear: Traction | 
         ``ends``, or a surface point at a contact end where the shear jumps
         (its ``σxx`` is infinite there).
     """
-    xa, za = _array("x", x), _array("z", z)
-    if np.any(za < 0):
-        raise ValueError(f"`z` = {float(za[za < 0].flat[0])!r} must be >= 0: z is the depth into the substrate")
-    p_fn = _traction("pressure", pressure)
-    q_fn = None if shear is None else _traction("shear", shear)
+    xb, zb, p_fn, q_fn, bulk, poisson = _stress_iv(x, z, pressure, shear, sigma_bulk, nu)
     lo, hi, k = _ends_kinks(ends, kinks)
-    bulk = finite("sigma_bulk", sigma_bulk)
-    poisson = finite("nu", nu)
-    if not -1.0 < poisson <= 0.5:
-        raise ValueError(f"`nu` = {nu!r} must lie in (-1, 0.5]")
-    try:
-        xb, zb = np.broadcast_arrays(xa, za)
-    except ValueError:
-        raise ValueError(f"`x` of shape {xa.shape} and `z` of shape {za.shape} do not broadcast "
-                         "against each other") from None
-    funcs = {"pressure": p_fn} if q_fn is None else {"pressure": p_fn, "shear": q_fn}
-    xf, zf = xb.ravel(), zb.ravel()
-    sxx, szz, sxz = np.empty(xf.size), np.empty(xf.size), np.empty(xf.size)
+    funcs = {name: f for name, f in (("pressure", p_fn), ("shear", q_fn)) if f is not None}
+    xf = xb.ravel()
+    sxx, szz, sxz = np.zeros(xf.size), np.zeros(xf.size), np.zeros(xf.size)
     c = -2.0 / math.pi
-    for part in _chunks(xf.size):   # each chunk's integrals made and dropped in turn
-        I = _integrals(xf[part], zf[part], funcs, lo, hi, k, RULE)
-        pxx, pzz, pxz, _ = I["pressure"]
-        sxx[part], szz[part], sxz[part] = c * pxx, c * pzz, c * pxz
-        if q_fn is not None:
-            qxz, _, qzz, qxx = I["shear"]
-            sxx[part] += c * qxx
-            szz[part] += c * qzz
-            sxz[part] += c * qxz
+    done = [0]
+    with _progress(progress, done, xf.size):
+        for part, I in _parts(xb, zb, funcs, lo, hi, k):   # each part's integrals made and dropped in turn
+            if p_fn is not None:
+                pxx, pzz, pxz, _ = I["pressure"]
+                sxx[part], szz[part], sxz[part] = c * pxx, c * pzz, c * pxz
+            if q_fn is not None:
+                qxz, _, qzz, qxx = I["shear"]
+                sxx[part] += c * qxx
+                szz[part] += c * qzz
+                sxz[part] += c * qxz
+            done[0] += sxx[part].size
     sxx += bulk
     if not np.all(np.isfinite(sxx)):
         where = int(np.argmax(~np.isfinite(sxx)))

@@ -19,6 +19,7 @@ lever_arm           -- ``s`` inside the punch's footprint ``(-(b + R1), b + R2)`
 SLOPE_LIMIT         -- the small-slope limit of half-plane theory (tilt and profile slopes)
 check_contact       -- a solved contact: inside the arcs' extents and within SLOPE_LIMIT
 check_arcs          -- a contact inside the arcs' extents (ArcExtentError), the first half of that
+first_refused       -- the first of a batch of contacts that check_contact refuses, in one array pass
 integer             -- a discretisation count (``n``, ``steps``) between bounds
 poisson             -- Poisson's ratio inside NU_RANGE, ``(-1, 0.5)``
 SLOPE_WARNING       -- the slope past which the measured small-slope error exceeds 5 %
@@ -44,7 +45,7 @@ __all__ = ["real", "finite", "positive", "check_finite", "check_positive", "TILT
            "LENGTH_RANGE", "show", "NU_RANGE", "poisson", "integer", "lever_arm", "SLOPE_LIMIT",
            "SLOPE_WARNING", "check_contact", "check_punch", "MAX_STATES", "check_states", "reals",
            "load_scale", "check_normal", "shear_load", "check_shear", "SLIP_RATIO_LIMIT", "coordinates",
-           "flag", "check_arcs"]
+           "flag", "check_arcs", "first_refused"]
 
 #: tilt modes: the tilt ``alpha`` follows from the moment, or is held at zero
 TILTS = ("free", "suppressed")
@@ -220,6 +221,19 @@ def check_contact(punch: Any, a: float, c: float, alpha: float) -> float:
     return slope
 
 
+def first_refused(punch: Any, a: np.ndarray, c: np.ndarray, alpha: np.ndarray) -> int | None:
+    """Index of the first contact ``[-a[i], c[i]]`` that :func:`check_contact` refuses, or None.
+
+    The same limits as :func:`check_contact` (the arcs' extents, then
+    :data:`SLOPE_LIMIT` on :meth:`threepart.Punch.max_slope`), as array
+    operations over the whole batch; the caller raises that case's own error
+    with :func:`check_contact`.
+    """
+    bad = ((a > punch.b + punch.R1) | (c > punch.b + punch.R2)
+           | ~(punch.max_slope(a, c, alpha) <= SLOPE_LIMIT))
+    return int(np.argmax(bad)) if bad.any() else None
+
+
 def check_arcs(punch: Any, a: float, c: float) -> None:
     """``ArcExtentError`` if a contact end of ``[-a, c]`` runs past an arc's extent (``a > b + R1``, ``c > b + R2``).
 
@@ -304,8 +318,11 @@ def load_scale(punch: Any, P: Any, A: float, name: str = "P") -> None:
     cube must stay representable. ``P`` may be an array (the first offender
     is named).
     """
-    P = np.atleast_1d(np.asarray(P, dtype=float))
     lo, hi = LENGTH_RANGE[0] ** 2, LENGTH_RANGE[1] ** 2
+    if isinstance(P, float):      # one load: the same product, in Python's floats (which do not warn)
+        if lo <= A * P * max(punch.R1, punch.R2, punch.b) <= hi:
+            return
+    P = np.atleast_1d(np.asarray(P, dtype=float))
     with np.errstate(over="ignore", under="ignore"):
         scale = A * P * max(punch.R1, punch.R2, punch.b)
     out = (scale < lo) | (scale > hi)

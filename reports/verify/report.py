@@ -32,6 +32,7 @@ from .runs import FRETTING_STATES, MODES, CaseRun, Mode, run_case
 from ..referee import CALCULIX_CASE, CALCULIX_K, CALCULIX_N, calculix_studies
 from ..compare import is_steady, normal_of
 from .sections import MAP_JSON, plot_path, study_plot_path
+from .speed import speed_record
 from .stress import case_hot_spots, fatigue_hot_spots, stress_nu
 from ..solvers import METHODS
 from .studies import STEP_STATES, Study, fem_slip_study, fem_step_study, fem_study, sie_study
@@ -359,6 +360,8 @@ def write_report(tmp: Path, mode: Mode, runs: Sequence[CaseRun], studies: Sequen
     timings = dict(timings, plots_s=time.perf_counter() - t0)
     timings["total_s"] = timings.get("solve_s", 0.0) + timings["plots_s"]
     doc = build_report(mode, runs, studies, timings, drawn, stressed, tired)
+    if mode.name != "quick":   # issue 33: the speed ratios, measured in the run (reports/verify/speed.py)
+        doc["speed"] = json_safe(speed_record(False, say))
     validate(doc)
     map_link = MAP_JSON if (tmp / MAP_JSON).is_file() else None
     (tmp / "report.json").write_text(strict_json(doc, indent=1), encoding="utf-8")

@@ -565,6 +565,7 @@ def build(doc: dict[str, Any], map_link: str | None = None) -> Document:
         (it exists); otherwise the section says how to make one.
     """
     from .edges import edges_section
+    from .speed import speed_section
     from .stress_section import stress_section
 
     overlays, shown = _overlays(doc)
@@ -590,6 +591,7 @@ def build(doc: dict[str, Any], map_link: str | None = None) -> Document:
         _studies(doc),
         _map(map_link),
         Section("Tolerance table", "tolerances", (), (_tolerances(doc),)),
+        *filter(None, (speed_section(doc),)),   # issue 33: the speed ratios against their targets
         Section("Environment", "environment", (), (_environment(doc),)),
     ]
     return Document(f"threepart verification report ({doc['mode']})", _verdict(doc),
