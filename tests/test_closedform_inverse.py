@@ -149,7 +149,10 @@ def loaded_punch(draw):
     Av = 1.0
     # loads up to 0.05 (1 + b): contacts inside the arcs and the small-slope limit
     P = cf.P_min(punch, Av) + draw(st.floats(1e-4, 0.05)) * (1 + b)
-    lim = cf.lift_off(punch, P, Av)
+    try:
+        lim = cf.lift_off(punch, P, Av)
+    except cf.ArcExtentError:
+        assume(False)   # the load's lift-off arm runs past an arc: refused by name (test_hostile)
     frac = draw(st.floats(0.001, 0.999))
     s = lim.s_min + frac * (lim.s_max - lim.s_min)
     return punch, P, s, Av

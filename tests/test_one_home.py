@@ -143,3 +143,47 @@ def test_no_test_imports_a_solver_folder_as_a_top_level_package():
                      [node.module] if isinstance(node, ast.ImportFrom) and not node.level else [])
             offending += [f"{path.name}: {n}" for n in names if n and n.split(".")[0] in SOLVERS]
     assert offending == []
+
+
+def _module_level_imports(path: Path) -> set[str]:
+    """The core modules ``path`` imports at module level (not inside a function, not for typing only)."""
+    tree = ast.parse(path.read_text(encoding="utf-8"))
+    found: set[str] = set()
+    for node in tree.body:
+        if isinstance(node, ast.ImportFrom):
+            if node.level == 1:
+                found |= {node.module.split(".")[0]} if node.module else {a.name for a in node.names}
+            elif node.module and node.module.startswith("threepart."):
+                found.add(node.module.split(".")[1])
+            elif node.module == "threepart":
+                found |= {a.name for a in node.names}
+    return {m for m in found if (SHARED / f"{m}.py").exists()} - {path.stem}
+
+
+def test_the_core_has_no_import_circle_at_module_level():
+    """No chain of module-level imports among the core's modules leads back to where it started
+    (issue 30: punch, validate, results and stress once imported each other in a circle)."""
+    graph = {p.stem: _module_level_imports(p) for p in _core_files() if p.parent == SHARED}
+    assert len(graph) > 20
+    done: set[str] = set()
+
+    def visit(node: str, path: tuple[str, ...]) -> None:
+        assert node not in path, " -> ".join((*path, node))
+        if node in done:
+            return
+        for nxt in sorted(graph.get(node, ())):
+            visit(nxt, (*path, node))
+        done.add(node)
+
+    for start in sorted(graph):
+        visit(start, ())
+
+
+@pytest.mark.parametrize("module", ["punch", "results", "stress", "stress_grid", "checks"])
+def test_the_problem_types_check_their_input_with_the_leaf_checks_only(module):
+    """punch, results and stress take their argument checks from threepart.checks (which imports no
+    threepart module), never from threepart.validate (which imports them), even lazily."""
+    names = _imports(SHARED / f"{module}.py")
+    assert not any(n == "threepart.validate" or n.startswith("threepart.validate.") for n in names)
+    if module == "checks":
+        assert not any(n.startswith("threepart") for n in names), names

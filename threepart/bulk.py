@@ -25,7 +25,7 @@ import scipy.special
 from numpy.typing import ArrayLike
 
 from .errors import NoConvergenceError, SlipReversalError
-from .validate import finite
+from .checks import finite
 
 __all__ = ["check_sigma_bulk", "corrective_tilt", "slip_direction_margin", "slip_dissipation"]
 

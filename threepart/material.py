@@ -8,7 +8,7 @@ E_STEEL      -- Young's modulus of steel, 210 GPa, in MPa
 """
 from __future__ import annotations
 
-from .validate import finite, positive
+from .checks import finite, positive
 
 __all__ = ["compliance", "rigid_punch", "similar_pair", "NU", "E_STEEL"]
 

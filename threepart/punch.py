@@ -11,7 +11,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike
 
-from .validate import LENGTH_RANGE, finite, positive, real
+from .checks import LENGTH_RANGE, finite, positive, real
 
 __all__ = ["Punch"]
 

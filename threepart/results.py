@@ -23,7 +23,7 @@ from .material import NU   # re-exported: Poisson's ratio by default (its home, 
 from .answer import check_coulomb, check_pressure
 from .asymptotics import Edged as _Edged
 from .punch import Punch
-from .validate import coordinates, finite, integer
+from .checks import coordinates, finite, integer
 
 if TYPE_CHECKING:
     from .stress import Stress

@@ -57,7 +57,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from .progress import heartbeat
-from .validate import show, finite
+from .checks import finite, show
 
 __all__ = ["Stress", "stress", "hilbert", "flamant_normal", "flamant_tangential",
            "kernel_primitives", "RULE", "POINTS_PER_CHUNK", "PROGRESS_S"]

@@ -35,11 +35,14 @@ flag                -- a yes/no option (``beyond_small_slopes``): a Python or nu
 """
 from __future__ import annotations
 
-import math
-import numbers
 from typing import Any
 
 import numpy as np
+
+from .checks import (LENGTH_RANGE, NU_RANGE, TILTS, check_finite, check_positive, check_tilt, coordinates,
+                     finite, flag, integer, poisson, positive, real, reals, show)
+from .punch import Punch
+from .results import NormalResult
 
 __all__ = ["real", "finite", "positive", "check_finite", "check_positive", "TILTS", "check_tilt",
            "LENGTH_RANGE", "show", "NU_RANGE", "poisson", "integer", "lever_arm", "SLOPE_LIMIT",
@@ -47,113 +50,9 @@ __all__ = ["real", "finite", "positive", "check_finite", "check_positive", "TILT
            "load_scale", "check_normal", "shear_load", "check_shear", "SLIP_RATIO_LIMIT", "coordinates",
            "flag", "check_arcs", "first_refused"]
 
-#: tilt modes: the tilt ``alpha`` follows from the moment, or is held at zero
-TILTS = ("free", "suppressed")
-#: lengths and loads are kept inside this magnitude range, so that squares, cubes and
-#: reciprocals of them stay finite in double precision
-LENGTH_RANGE = (1e-60, 1e60)
-
-
-def show(value: Any) -> str:
-    """``repr(value)``, cut to 40 characters, for a one-line message (every check's messages use it)."""
-    text = repr(value)
-    return text if len(text) <= 40 else f"{text[:18]}...{text[-18:]} ({len(text)} characters)"
-
-
-def _number(name: str, value: Any) -> float:
-    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (numbers.Real, np.floating,
-                                                                      np.integer)):
-        raise TypeError(f"`{name}` = {show(value)} must be a real number, not {type(value).__name__}")
-    try:
-        v = float(value)      # float64, whatever the width or kind of the real number given
-    except OverflowError:
-        raise ValueError(f"`{name}` = {show(value)} is outside the double-precision range") from None
-    if math.isinf(v) and not (isinstance(value, (float, np.floating)) and np.isinf(value)):
-        # e.g. np.longdouble(1e4000): finite as given, infinite in float64
-        raise ValueError(f"`{name}` = {show(value)} is outside the double-precision range")
-    return v
-
-
-def real(name: str, value: Any) -> float:
-    """``value`` as a float (``inf`` allowed); ``ValueError`` unless it is a real number, not NaN or a bool."""
-    v = _number(name, value)
-    if math.isnan(v):
-        raise ValueError(f"`{name}` = nan is not a number")
-    return v
-
-
-def finite(name: str, value: Any) -> float:
-    """``value`` as a finite float, else ``ValueError``."""
-    v = _number(name, value)
-    if not math.isfinite(v):
-        raise ValueError(f"`{name}` = {show(value)} must be a finite number")
-    return v
-
-
-def positive(name: str, value: Any, limits: tuple[float, float] = LENGTH_RANGE) -> float:
-    """``value`` as a float in ``[limits[0], limits[1]]`` (a positive magnitude), else ``ValueError``."""
-    v = finite(name, value)
-    if v <= 0:
-        raise ValueError(f"`{name}` = {show(value)} must be > 0")
-    lo, hi = limits
-    if not lo <= v <= hi:
-        raise ValueError(f"`{name}` = {show(value)} is outside [{lo:g}, {hi:g}], the range this "
-                         "library computes in double precision")
-    return v
-
-
-def check_finite(**values: Any) -> None:
-    """Raise ``ValueError`` naming the first argument that is not a finite real number."""
-    for name, value in values.items():
-        finite(name, value)
-
-
-def check_positive(**values: Any) -> None:
-    """Raise ``ValueError`` naming the first argument that is not a finite number > 0."""
-    for name, value in values.items():
-        positive(name, value)
-
-
-def check_tilt(tilt: Any) -> str:
-    """``tilt`` if it is one of :data:`TILTS`, else ``ValueError``."""
-    if not isinstance(tilt, str) or tilt not in TILTS:
-        raise ValueError(f"`tilt` = {tilt!r} must be one of {TILTS}")
-    return tilt
-
-
-def integer(name: str, value: Any, lo: int, hi: int) -> int:
-    """``value`` as an int in ``[lo, hi]``: a discretisation count such as ``n`` or ``steps``.
-
-    A bool, a float or any non-integer type is a ``TypeError``; a count out of
-    range is a ``ValueError`` naming both bounds (the upper bound keeps a
-    solve within this machine's memory and time).
-    """
-    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (numbers.Integral, np.integer)):
-        raise TypeError(f"`{name}` = {show(value)} must be an integer, not {type(value).__name__}")
-    v = int(value)
-    if not lo <= v <= hi:
-        raise ValueError(f"`{name}` = {v} must lie in [{lo}, {hi}]")
-    return v
-
-
-#: Poisson's ratio of a stable isotropic solid lies in this open interval
-NU_RANGE = (-1.0, 0.5)
-
-
-def poisson(nu: Any) -> float:
-    """``nu`` as a float inside :data:`NU_RANGE`, else ``ValueError`` naming ``nu`` and the range."""
-    v = finite("nu", nu)
-    lo, hi = NU_RANGE
-    if not lo < v < hi:
-        raise ValueError(f"`nu` = {nu!r} must lie in ({lo:g}, {hi:g}), Poisson's ratio of a "
-                         "stable isotropic solid")
-    return v
-
 
 def check_punch(punch: Any) -> Any:
     """``punch`` if it is a :class:`threepart.Punch`, else ``TypeError``."""
-    from .punch import Punch
-
     if not isinstance(punch, Punch):
         raise TypeError(f"`punch` must be a threepart.Punch, not {type(punch).__name__}")
     return punch
@@ -188,6 +87,8 @@ def lever_arm(punch: Any, s: Any) -> float:
 #: answer is refused, e.g. a tilt of -0.8 rad. Past :data:`SLOPE_WARNING` the command line
 #: says that the small-slope error may exceed 5 %.
 SLOPE_LIMIT = 0.5
+
+
 #: the slope at which the measured small-slope error in the peak pressure reaches 5 %
 #: (0.43 slope^1.1 = 0.05 at 0.142; docs/SMALL_SLOPE.md)
 SLOPE_WARNING = 0.14
@@ -267,50 +168,6 @@ def check_states(states: Any, most: int = MAX_STATES) -> int:
     return integer("states", states, 2, most)
 
 
-def reals(name: str, value: Any) -> np.ndarray:
-    """``value`` (a real number or an array of them) as a 1-D float64 array.
-
-    A bool, a string, bytes, ``None``, a complex number or an object array of
-    anything but real numbers is a ``TypeError`` naming ``name``; NaN is a
-    ``ValueError``. Every float width (and ``np.longdouble``) is promoted to
-    float64; a value outside float64's range is a ``ValueError``.
-    """
-    if isinstance(value, (str, bytes)) or value is None:
-        raise TypeError(f"`{name}` = {show(value)} must be real numbers, not {type(value).__name__}")
-    try:
-        # a list is checked element by element: numpy would turn True into 1.0
-        arr = np.asarray(value, dtype=object if isinstance(value, (list, tuple)) else None)
-    except ValueError:
-        raise TypeError(f"`{name}` = {show(value)} must be a flat array of real numbers") from None
-    kind = arr.dtype.kind
-    if kind == "O":
-        out = np.empty(arr.size)
-        for i, v in enumerate(arr.ravel()):
-            try:
-                out[i] = _number(name, v)
-            except (TypeError, ValueError) as exc:
-                raise type(exc)(f"{exc} (element {i})") from None
-            if math.isinf(out[i]) and not math.isinf(v):
-                raise ValueError(f"`{name}` = {show(v)} is outside the double-precision range "
-                                 f"(element {i})")
-            if math.isnan(out[i]):
-                raise ValueError(f"`{name}` = nan is not a number (element {i})")
-        return out
-    if kind not in "iuf":
-        raise TypeError(f"`{name}` must be real numbers, not an array of {arr.dtype} "
-                        f"(first value {show(arr.ravel()[0] if arr.size else arr)})")
-    with np.errstate(over="ignore"):
-        out = arr.astype(float).ravel()
-    bad = np.isinf(out) & ~np.isinf(arr.ravel()) if kind == "f" else np.isinf(out)
-    if bad.any():
-        i = int(np.argmax(bad))
-        raise ValueError(f"`{name}` = {show(arr.ravel()[i])} is outside the double-precision range "
-                         f"(element {i})")
-    if np.isnan(out).any():
-        raise ValueError(f"`{name}` = nan is not a number (element {int(np.argmax(np.isnan(out)))})")
-    return out
-
-
 def load_scale(punch: Any, P: Any, A: float, name: str = "P") -> None:
     """Refuse a load whose contact scale ``A P max(R1, R2, b)`` leaves ``LENGTH_RANGE**2``.
 
@@ -339,8 +196,6 @@ def check_normal(normal: Any, argument: str = "normal") -> Any:
     ``argument`` is the parameter's name in the caller (``"normal_solution"``
     in the closed form), which the message names.
     """
-    from .results import NormalResult
-
     if not isinstance(normal, NormalResult):
         raise TypeError(f"`{argument}` must be a NormalResult (from a solve_normal), not "
                         f"{type(normal).__name__}")
@@ -386,61 +241,3 @@ def check_shear(normal: Any, Q: Any, f: Any, name: str = "Q", what: str = "there
     ``argument`` is the normal result's parameter name in the caller, for the message.
     """
     return shear_load(Q, f, check_normal(normal, argument).P, name, what, limit)
-
-
-def coordinates(name: str, value: Any) -> Any:
-    """``value``, a coordinate or an array of them, as finite float64 (the same shape).
-
-    Every result's ``pressure(x)``, ``shear(x)``, ``slip_amplitude(x)`` and
-    ``stress(x, z)`` pass their coordinates through here (wrapped once in
-    :class:`threepart.results.NormalResult`), so every method refuses alike:
-    ``None``, a string, bytes, a bool or a complex number (alone or in an
-    array) is a ``TypeError`` naming ``name``; NaN, an infinity or a number
-    outside float64's range (``10**400``) is a ``ValueError`` naming it. A
-    float array, the solvers' own calls, costs one ``isfinite`` pass.
-    """
-    if isinstance(value, np.ndarray) and value.dtype.kind == "f":
-        with np.errstate(over="ignore"):      # a longdouble past float64's range becomes inf
-            arr = value if value.dtype == np.float64 else value.astype(float)
-    elif isinstance(value, (numbers.Real, np.floating, np.integer)) and not isinstance(value, (bool, np.bool_)):
-        return finite(name, value)
-    elif isinstance(value, (list, tuple, np.ndarray)):
-        arr = _coordinate_array(name, value)
-    else:
-        raise TypeError(f"`{name}` = {show(value)} must be a real number or an array of them, not "
-                        f"{type(value).__name__}")
-    bad = ~np.isfinite(arr)
-    if bad.any():
-        i = int(np.argmax(bad.ravel()))
-        raise ValueError(f"`{name}` = {show(arr.ravel()[i])} (element {i}) must be a finite coordinate")
-    return arr
-
-
-def _coordinate_array(name: str, value: Any) -> np.ndarray:
-    """An array (or nested list) of coordinates as float64, element by element if it is not numeric."""
-    try:
-        arr = np.asarray(value, dtype=object if isinstance(value, (list, tuple)) else None)
-    except ValueError:
-        raise TypeError(f"`{name}` = {show(value)} must be a regular array of real numbers") from None
-    if arr.dtype.kind in "iu":
-        return arr.astype(float)
-    if arr.dtype.kind != "O":
-        raise TypeError(f"`{name}` must be real numbers, not an array of {arr.dtype}")
-    out = np.empty(arr.shape)
-    for i, v in enumerate(arr.ravel()):
-        try:
-            out.flat[i] = finite(name, v)
-        except (TypeError, ValueError) as exc:
-            raise type(exc)(f"{exc} (element {i})") from None
-    return out
-
-
-def flag(name: str, value: Any) -> bool:
-    """``value`` as a bool if it is one (Python's or numpy's), else ``TypeError`` naming ``name``.
-
-    A yes/no option such as ``beyond_small_slopes``: ``1``, ``"yes"`` or
-    ``None`` are refused rather than read by their truth value.
-    """
-    if not isinstance(value, (bool, np.bool_)):
-        raise TypeError(f"`{name}` = {show(value)} must be True or False, not {type(value).__name__}")
-    return bool(value)
