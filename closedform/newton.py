@@ -38,11 +38,16 @@ from threepart.punch import Punch
 from .formulas import _chi, _psi
 
 __all__ = ["State", "SCALAR", "bracketed_root", "ray_state", "solve_r", "solve_phi",
-           "HALF_PI", "MAX_ITER", "EVALUATIONS", "evaluations"]
+           "HALF_PI", "MAX_ITER", "EVALUATIONS", "evaluations", "XTOL", "XTOL_RANGE"]
 
 HALF_PI = 0.5 * math.pi
 MAX_ITER = 200          # bisection alone needs ~60 on a double-precision bracket
-XTOL = 1e-12            # relative Newton step (error ~ its square) or bracket width at which to stop
+#: relative Newton step (error ~ its square) or bracket width at which to stop: the default of
+#: every root finder's ``xtol`` (``closedform.solve_normal(..., xtol=...)``)
+XTOL = 1e-12
+#: the range of ``xtol`` a caller may ask for: below 1e-15 a step is rounding; above 1e-6 the
+#: root's error (about its square) would pass 1e-12, coarser than the closed form claims
+XTOL_RANGE = (1e-15, 1e-6)
 
 
 class _Scalar:
@@ -170,7 +175,8 @@ def _guarded_ratio(num: Any, den: Any, xp: Any) -> Any:
 
 def bracketed_root(fun: Callable[[Any], tuple[Any, Any]], x: Any, lo: Any, hi: Any, xp: Any,
                    *, lo_known: Any = True, hi_known: Any = False,
-                   max_iter: int = MAX_ITER, atol: float = 0.0) -> tuple[Any, Any, Any]:
+                   max_iter: int = MAX_ITER, atol: float = 0.0, xtol: float = XTOL
+                   ) -> tuple[Any, Any, Any]:
     """Root of an increasing ``fun`` in ``[lo, hi]`` by Newton steps safeguarded by bisection.
 
     Parameters
@@ -186,9 +192,12 @@ def bracketed_root(fun: Callable[[Any], tuple[Any, Any]], x: Any, lo: Any, hi: A
         Whether ``f(lo) < 0`` (``f(hi) >= 0``) is known. An unknown end is
         evaluated when a step would leave the bracket; if its sign is wrong,
         the root lies outside ``[lo, hi]`` and the case is flagged.
+    xtol
+        Relative Newton step or bracket width at which to stop (default :data:`XTOL`;
+        the root's error is about its square).
     atol
         Absolute step or bracket width at which to stop, besides the relative
-        ``XTOL``: a root at ``x = 0`` (an angle ``phi`` at a join, where ``f`` is
+        ``xtol``: a root at ``x = 0`` (an angle ``phi`` at a join, where ``f`` is
         rounding) has no relative width, and bisection towards it never closed.
 
     Returns
@@ -225,7 +234,7 @@ def bracketed_root(fun: Callable[[Any], tuple[Any, Any]], x: Any, lo: Any, hi: A
         # outside the bracket: bisect a closed bracket, else try the unknown end
         fallback = xp.where(lo_known & hi_known, 0.5 * (lo + hi),
                             xp.where(lo_known, xp.where(xp.isfinite(hi), hi, 2 * x + (x == 0)), lo))
-        tol = xp.maximum(XTOL * xp.abs(x), atol)
+        tol = xp.maximum(xtol * xp.abs(x), atol)
         small = xp.abs(newton - x) <= tol          # a converged Newton step (NaN is not small)
         xn = xp.where(inside | small, newton, fallback)
         stop = below | above | (f == 0)
@@ -238,7 +247,7 @@ def bracketed_root(fun: Callable[[Any], tuple[Any, Any]], x: Any, lo: Any, hi: A
                              "steps")
 
 
-def solve_r(punch: Punch, dAP: Any, phi: Any, r0: Any, xp: Any = np) -> Any:
+def solve_r(punch: Punch, dAP: Any, phi: Any, r0: Any, xp: Any = np, xtol: float = XTOL) -> Any:
     """Radius ``r`` at which ``A (P - P_0) = dAP`` along the ray ``phi`` (inner root).
 
     ``r = 0`` is the contact ``[-b, b]`` with ``A (P - P_0) = 0 < dAP``; the load
@@ -250,7 +259,7 @@ def solve_r(punch: Punch, dAP: Any, phi: Any, r0: Any, xp: Any = np) -> Any:
         st = ray_state(punch, r, phi, xp, full=False)
         return st.dAP - dAP, r * (st.AP_h - cos2 * st.AP_m)
 
-    return bracketed_root(fun, r0, 0.0 * r0, math.inf + 0.0 * r0, xp)[0]
+    return bracketed_root(fun, r0, 0.0 * r0, math.inf + 0.0 * r0, xp, xtol=xtol)[0]
 
 
 #: the outer equations: name -> (state -> (value, d value/dh, d value/dm))
@@ -261,7 +270,7 @@ _TARGETS: dict[str, Callable[[State], tuple[Any, Any, Any]]] = {
 
 
 def solve_phi(punch: Punch, dAP: Any, target: str, value: Any, xp: Any = np,
-              sign: float = 1.0, r0: Any = None) -> tuple[Any, Any, Any, Any]:
+              sign: float = 1.0, r0: Any = None, xtol: float = XTOL) -> tuple[Any, Any, Any, Any]:
     """Angle ``phi`` in ``[0, pi/2]`` at which ``target`` equals ``value`` at the load ``dAP``.
 
     ``target`` is ``"moment"`` (``A P s``, increasing in ``phi``) or ``"tilt"``
@@ -279,9 +288,10 @@ def solve_phi(punch: Punch, dAP: Any, target: str, value: Any, xp: Any = np,
         (the target lies below the value at ``phi = 0``, the line ``c = b``)
         and ``above`` (beyond ``phi = pi/2``, the line ``a = b``).
     """
-    r, phi, ok = _newton_2d(punch, dAP, target, value, xp, sign, r0)
+    r, phi, ok = _newton_2d(punch, dAP, target, value, xp, sign, r0, xtol)
     if xp is SCALAR:
-        return (r, phi, False, False) if ok else _solve_phi_nested(punch, dAP, target, value, xp, sign, r0)
+        return (r, phi, False, False) if ok else _solve_phi_nested(punch, dAP, target, value, xp, sign, r0,
+                                                                    xtol)
     if ok.all():
         false = np.zeros(np.shape(ok), dtype=bool)
         return r, phi, false, false.copy()
@@ -289,7 +299,7 @@ def solve_phi(punch: Punch, dAP: Any, target: str, value: Any, xp: Any = np,
     todo = ~ok
     pick = (lambda v: v[todo] if np.ndim(v) else v)
     r[todo], phi[todo], below[todo], above[todo] = _solve_phi_nested(
-        punch, pick(dAP), target, pick(value), xp, sign, None if r0 is None else pick(r0))
+        punch, pick(dAP), target, pick(value), xp, sign, None if r0 is None else pick(r0), xtol)
     return r, phi, below, above
 
 
@@ -300,7 +310,7 @@ STALL = 1e-8
 
 
 def _newton_2d(punch: Punch, dAP: Any, target: str, value: Any, xp: Any, sign: float,
-               r0: Any) -> tuple[Any, Any, Any]:
+               r0: Any, xtol: float = XTOL) -> tuple[Any, Any, Any]:
     """Newton's method in ``(r, phi)`` on the load and ``target`` equations together, ``phi`` bracketed.
 
     One :class:`State` per iteration gives both residuals and the exact
@@ -329,7 +339,8 @@ def _newton_2d(punch: Punch, dAP: Any, target: str, value: Any, xp: Any, sign: f
     if xp is SCALAR:
         last = math.inf
         for _ in range(NEWTON_2D_ITER):
-            r, phi, lo, hi, last, small = _step_2d(punch, dAP, get, value, sign, r, phi, lo, hi, last, xp)
+            r, phi, lo, hi, last, small = _step_2d(punch, dAP, get, value, sign, r, phi, lo, hi, last, xp,
+                                                   xtol)
             if small:
                 return r, phi, 0 < phi < HALF_PI
         return r, phi, False
@@ -340,7 +351,7 @@ def _newton_2d(punch: Punch, dAP: Any, target: str, value: Any, xp: Any, sign: f
     r, phi = cur[2].copy(), cur[3].copy()
     for _ in range(NEWTON_2D_ITER):
         d, v, rr, pp, ll, hh, prev = cur
-        rr, pp, ll, hh, prev, small = _step_2d(punch, d, get, v, sign, rr, pp, ll, hh, prev, np)
+        rr, pp, ll, hh, prev, small = _step_2d(punch, d, get, v, sign, rr, pp, ll, hh, prev, np, xtol)
         r[act], phi[act] = rr, pp
         ok[act[small]] = True
         if small.all():
@@ -362,11 +373,12 @@ def _phi_guess(punch: Punch) -> float:
 
 
 def _step_2d(punch: Punch, dAP: Any, get: Callable[[State], tuple[Any, Any, Any]], value: Any,
-             sign: float, r: Any, phi: Any, lo: Any, hi: Any, last: Any, xp: Any) -> tuple[Any, ...]:
+             sign: float, r: Any, phi: Any, lo: Any, hi: Any, last: Any, xp: Any,
+             xtol: float = XTOL) -> tuple[Any, ...]:
     """One bracketed Newton step of :func:`_newton_2d`: ``(r, phi, lo, hi, step, converged)``.
 
     ``step`` is ``|dr|/r + |dphi|`` (``inf`` where anything is not finite) and
-    ``last`` the previous one: a case has converged when it is below ``XTOL``,
+    ``last`` the previous one: a case has converged when it is below ``xtol``,
     or below :data:`STALL` but no longer halving (the rounding floor of an
     ill-conditioned case, reached after the quadratic steps).
     """
@@ -390,20 +402,20 @@ def _step_2d(punch: Punch, dAP: Any, get: Callable[[State], tuple[Any, Any, Any]
     dt = -_guarded_ratio(f * sin2, df, xp)
     sp, cp = xp.sin(phi), xp.sin(HALF_PI - phi)
     newton = xp.arctan2(xp.sqrt(xp.maximum(sp * sp + dt, 0.0)), xp.sqrt(xp.maximum(cp * cp - dt, 0.0)))
-    close = xp.abs(newton - phi) <= XTOL                      # a converged step (NaN is not close)
+    close = xp.abs(newton - phi) <= xtol                      # a converged step (NaN is not close)
     phin = xp.where((newton > lo) & (newton < hi) | close, newton, 0.5 * (lo + hi))
     phin = xp.where(near, phin, phi)
     drn = dr + r_phi * (phin - phi)
     step = xp.abs(_guarded_ratio(drn, r, xp)) + xp.abs(phin - phi)   # NaN where not finite
     step = xp.where(xp.isfinite(step) & xp.isfinite(f), step, math.inf)
-    small = (step <= XTOL) | (step <= STALL) & (step >= 0.5 * last)
+    small = (step <= xtol) | (step <= STALL) & (step >= 0.5 * last)
     rn = r + drn
     rn = xp.where(rn > 0, rn, 0.5 * r)
     return rn, phin, lo, hi, step, small
 
 
 def _solve_phi_nested(punch: Punch, dAP: Any, target: str, value: Any, xp: Any = np,
-              sign: float = 1.0, r0: Any = None) -> tuple[Any, Any, Any, Any]:
+                      sign: float = 1.0, r0: Any = None, xtol: float = XTOL) -> tuple[Any, Any, Any, Any]:
     """Angle ``phi`` in ``[0, pi/2]`` at which ``target`` equals ``value`` at the load ``dAP``.
 
     ``target`` is ``"moment"`` (``A P s``, increasing in ``phi``) or ``"tilt"``
@@ -421,11 +433,11 @@ def _solve_phi_nested(punch: Punch, dAP: Any, target: str, value: Any, xp: Any =
     """
     get = _TARGETS[target]
     if r0 is None:
-        r0 = solve_r(punch, dAP, HALF_PI / 2 + 0.0 * dAP, _r_guess(punch, dAP, xp), xp)
+        r0 = solve_r(punch, dAP, HALF_PI / 2 + 0.0 * dAP, _r_guess(punch, dAP, xp), xp, xtol)
     radius = [r0]
 
     def fun(phi: Any) -> tuple[Any, Any]:
-        r = solve_r(punch, dAP, phi, radius[0], xp)
+        r = solve_r(punch, dAP, phi, radius[0], xp, xtol)
         radius[0] = r
         st = ray_state(punch, r, phi, xp)
         cos2, sin2 = xp.cos(2 * phi), xp.sin(2 * phi)
@@ -436,10 +448,10 @@ def _solve_phi_nested(punch: Punch, dAP: Any, target: str, value: Any, xp: Any =
         dg = g_m * r * r * sin2 + r * (g_h - cos2 * g_m) * r_phi
         return sign * (g - value), sign * dg
 
-    # an angle: its absolute XTOL closes a bracket on phi = 0 (a stick-zone end on a join, issue 29)
+    # an angle: its absolute xtol closes a bracket on phi = 0 (a stick-zone end on a join, issue 29)
     phi, below, above = bracketed_root(fun, HALF_PI / 2 + 0.0 * dAP, 0.0 * dAP, HALF_PI + 0.0 * dAP,
-                                       xp, lo_known=False, hi_known=False, atol=XTOL)
-    r = solve_r(punch, dAP, phi, radius[0], xp)
+                                       xp, lo_known=False, hi_known=False, atol=xtol, xtol=xtol)
+    r = solve_r(punch, dAP, phi, radius[0], xp, xtol)
     return r, phi, below, above
 
 

@@ -26,11 +26,12 @@ from scipy.optimize import minimize_scalar
 from threepart.errors import LiftOffError, SeparationError
 from threepart.punch import Punch
 from threepart.results import Diagnostics, NormalResult
-from threepart.validate import (LENGTH_RANGE, check_arcs, check_contact, check_punch, check_tilt, first_refused, flag, lever_arm, load_scale,
-                                positive, reals)
+from threepart.validate import (LENGTH_RANGE, check_arcs, check_contact, check_punch, check_tilt, finite,
+                                first_refused, flag, lever_arm, load_scale, positive, reals)
 
 from . import formulas
-from .newton import HALF_PI, SCALAR, State, _r_guess, evaluations, ray_state, solve_phi, solve_r
+from .newton import (HALF_PI, SCALAR, XTOL, XTOL_RANGE, State, _r_guess, evaluations, ray_state, solve_phi,
+                     solve_r)
 
 __all__ = ["NormalSolution", "NormalBatch", "LiftOff", "solve_normal", "solve_normal_batch",
            "lift_off", "P_min"]
@@ -140,6 +141,16 @@ def _normal_iv(punch: Punch, P: Any, A: float, tilt: str) -> float:
     return A
 
 
+def _xtol_iv(xtol: Any) -> float:
+    """``xtol`` as a float inside :data:`~closedform.newton.XTOL_RANGE`, else an error naming it."""
+    x = finite("xtol", xtol)
+    lo, hi = XTOL_RANGE
+    if not lo <= x <= hi:
+        raise ValueError(f"`xtol` = {x!r} must lie in [{lo:g}, {hi:g}]: below, a step is rounding; "
+                         "above, the roots' error (about its square) passes 1e-12")
+    return x
+
+
 def _not_a_load(P: float) -> str:
     return f"`P` = {P!r} must be a finite compressive load > 0"
 
@@ -151,13 +162,14 @@ def _below_P0(punch: Punch, P: float, pmin: float) -> str:
 
 
 # -- the nested roots ----------------------------------------------------------------
-def _solve(punch: Punch, P: Any, s: Any, A: float, tilt: str, xp: Any) -> tuple[State, Any, Any]:
+def _solve(punch: Punch, P: Any, s: Any, A: float, tilt: str, xp: Any,
+           xtol: float = XTOL) -> tuple[State, Any, Any]:
     """State of the solution, and the flags below/above the lift-off range."""
     dAP = A * P - 0.5 * math.pi * punch.kappa0 * punch.b**2   # A (P - P_0), > 0
     if tilt == "free":
-        r, phi, below, above = solve_phi(punch, dAP, "moment", A * P * s, xp)
+        r, phi, below, above = solve_phi(punch, dAP, "moment", A * P * s, xp, xtol=xtol)
     else:
-        r, phi, below, above = solve_phi(punch, dAP, "tilt", 0.0 * dAP, xp, sign=-1.0)
+        r, phi, below, above = solve_phi(punch, dAP, "tilt", 0.0 * dAP, xp, sign=-1.0, xtol=xtol)
     return ray_state(punch, r, phi, xp), below, above
 
 
@@ -294,7 +306,8 @@ def _separation_load(punch: Punch, A: float, s: float, tilt: str) -> float:
 
 # -- public API ---------------------------------------------------------------------
 def solve_normal(punch: Punch, P: float, s: float = 0.0, *, A: float,
-                 tilt: str = "free", beyond_small_slopes: bool = False) -> NormalSolution:
+                 tilt: str = "free", beyond_small_slopes: bool = False,
+                 xtol: float = XTOL) -> NormalSolution:
     """Contact ``[-a, c]`` and tilt ``alpha`` of the punch under the load ``P`` at lever arm ``s``.
 
     Parameters
@@ -321,6 +334,10 @@ def solve_normal(punch: Punch, P: float, s: float = 0.0, *, A: float,
         (:mod:`threepart.reports.map.validity`); such an answer lies outside the
         theory. Default False: refused. A bool (Python's or numpy's); anything
         else is a ``TypeError``.
+    xtol
+        The root finders' relative step at which to stop (:data:`~closedform.newton.XTOL`,
+        1e-12, by default; the roots' error is about its square), in
+        :data:`~closedform.newton.XTOL_RANGE`, ``[1e-15, 1e-6]``.
 
     Raises
     ------
@@ -343,12 +360,13 @@ def solve_normal(punch: Punch, P: float, s: float = 0.0, *, A: float,
     check_punch(punch)
     P, s = positive("P", P), lever_arm(punch, s)
     beyond_small_slopes = flag("beyond_small_slopes", beyond_small_slopes)
+    xtol = _xtol_iv(xtol)
     t0 = time.perf_counter()
     if tilt == "suppressed" and s != 0:
         raise ValueError(f"`s` = {s!r} is an output when tilt='suppressed' (the lever arm s*); pass s=0")
     A = _normal_iv(punch, P, A, tilt)
     n0 = evaluations()
-    st, below, above = _solve(punch, P, s, A, tilt, SCALAR)
+    st, below, above = _solve(punch, P, s, A, tilt, SCALAR, xtol)
     n_eval = evaluations() - n0
     if below or above:
         _refuse_lift_off(punch, np.array([P]), np.array([s]), A, tilt, np.array([below]),
@@ -364,14 +382,15 @@ def solve_normal(punch: Punch, P: float, s: float = 0.0, *, A: float,
 
 
 def solve_normal_batch(punch: Punch, P: ArrayLike, s: ArrayLike = 0.0, *, A: float,
-                       tilt: str = "free") -> NormalBatch:
-    """:func:`solve_normal` for many load cases at once (vectorised).
+                       tilt: str = "free", xtol: float = XTOL) -> NormalBatch:
+    """:func:`solve_normal` for many load cases at once (vectorised; ``xtol`` as there).
 
     ``P`` and ``s`` broadcast against each other (arrays of equal length, or
     one of length 1), else ``ValueError`` naming both shapes; the first
     inadmissible case raises the same error :func:`solve_normal` would, with its values.
     """
     check_punch(punch)
+    xtol = _xtol_iv(xtol)
     P_in, s_in = reals("P", P), reals("s", s)
     if P_in.size != s_in.size and 1 not in (P_in.size, s_in.size):
         raise ValueError(f"`P` (shape {np.shape(P)}) and `s` (shape {np.shape(s)}) do not broadcast: "
@@ -389,7 +408,7 @@ def solve_normal_batch(punch: Punch, P: ArrayLike, s: ArrayLike = 0.0, *, A: flo
     if tilt == "suppressed" and np.any(s_arr != 0):
         raise ValueError("`s` is an output when tilt='suppressed' (the lever arm s*); pass s=0")
     n0 = evaluations()
-    st, below, above = _solve(punch, P_arr, s_arr, A, tilt, np)
+    st, below, above = _solve(punch, P_arr, s_arr, A, tilt, np, xtol)
     n_eval = (evaluations() - n0) / P_arr.size
     if np.any(below | above):
         _refuse_lift_off(punch, P_arr, s_arr, A, tilt, np.asarray(below), np.asarray(above))

@@ -200,3 +200,29 @@ def check_solve_then_forward_and_pressure(case):
     Pq, Mq = _moments(sol)
     assert Pq == pytest.approx(P, rel=MOMENTS)
     assert Mq / Pq == pytest.approx(s, rel=MOMENTS, abs=MOMENTS * sol.width)
+
+
+def test_the_root_finders_tolerance_is_a_keyword_and_is_checked():
+    """``xtol`` reaches every root finder of the closed form: a looser one stops sooner (fewer
+    forward evaluations) and still solves eqs. (equilibrium_condition_1) and (2) to the forward
+    formulas' own P and s within xtol; outside XTOL_RANGE it is refused by name."""
+    from threepart import solve
+    from threepart.closedform.newton import XTOL_RANGE
+
+    punch, P, s = Punch(10.0, 5.0, 1.0), 400.0, 0.2
+    counts = []
+    for xtol in (XTOL_RANGE[1], 1e-9, XTOL_RANGE[0]):
+        sol = cf.solve_normal(punch, P, s, A=A, xtol=xtol)
+        assert formulas.load(punch, sol.a, sol.c, A) == pytest.approx(P, rel=xtol + RTOL)
+        assert formulas.lever_arm(punch, sol.a, sol.c) == pytest.approx(s, abs=(xtol + RTOL) * sol.width)
+        counts.append(sol.info["evaluations"])
+        batch = cf.solve_normal_batch(punch, [P, 1.5 * P], [s, 0.0], A=A, xtol=xtol)
+        assert batch.a[0] == pytest.approx(sol.a, rel=xtol + RTOL)
+    assert counts == sorted(counts) and counts[0] < counts[-1], counts
+    via = solve(punch, P, s, A=A, method="closedform", xtol=1e-9)
+    assert via.a == pytest.approx(cf.solve_normal(punch, P, s, A=A, xtol=1e-9).a, rel=RTOL)
+    for bad in (1e-3, 1e-16, float("nan")):
+        with pytest.raises(ValueError, match=r"^`xtol` = "):
+            cf.solve_normal(punch, P, s, A=A, xtol=bad)
+    with pytest.raises(TypeError, match=r"`xtol`"):
+        cf.solve_normal_batch(punch, [P], [s], A=A, xtol="1e-9")
