@@ -1194,3 +1194,27 @@ def test_a_failed_study_fails_the_map_and_is_retried_and_a_missing_ccx_is_a_note
     assert calls(c) == sorted([bad, *(f"referee:{p.key()}" for p in REFEREE)])
     assert doc["points"][2]["d_rel_error"] == slip_expected(ONE_CURVE[2])["d_rel_error"]
     assert exit_status(doc) == 0 and doc["referee"]["note"] is None
+
+
+#: the watchdog's periods in the test below: a look every 10 ms, giving up after 50 ms without a
+#: worker (the cluster there never has one, so the outcome does not depend on these times)
+WATCH_CHECK_S, WATCH_GIVE_UP_S = 0.01, 0.05
+
+
+def test_a_cluster_without_workers_stops_the_map_with_the_reason_instead_of_waiting(tmp_path, counter,
+                                                                                   monkeypatch):
+    """A scheduler whose workers are gone (here: one that never had any) never runs a task; the
+    sweep's watchdog cancels the pending tasks and the map stops with a one-line reason that says a
+    rerun resumes, instead of waiting forever (a full-suite run once sat in this wait)."""
+    from dask.distributed import LocalCluster
+
+    from threepart.reports.map import engine
+
+    monkeypatch.setattr(engine, "WORKER_CHECK_S", WATCH_CHECK_S)
+    monkeypatch.setattr(engine, "NO_WORKERS_S", WATCH_GIVE_UP_S)
+    with LocalCluster(n_workers=0, processes=False, dashboard_address=":0") as empty:
+        with pytest.raises(RuntimeError, match=r"^the dask cluster has had no worker for 0 s, so the "
+                                               r"map's pending tasks cannot run; .* rerun: the map "
+                                               r"resumes where it stopped$"):
+            sweep(tmp_path / "map", empty.scheduler_address, FakeEvaluate(counter))
+    assert calls(counter) == []

@@ -10,6 +10,7 @@ from __future__ import annotations
 import gc
 import logging
 import os
+import threading
 import time
 import uuid
 from asyncio import CancelledError
@@ -53,6 +54,12 @@ def _quiet_workers() -> Iterator[None]:
         else:
             os.environ[_WORKER_LOG_ENV] = saved_env
 
+
+#: seconds between two looks at the cluster's workers while a sweep waits
+WORKER_CHECK_S = 5.0
+#: seconds without any worker after which a sweep gives up: its pending tasks are cancelled and
+#: the map stops with an error naming the cause (a rerun resumes), instead of waiting forever
+NO_WORKERS_S = 120.0
 
 #: the dask setting (as an environment variable) of the worker processes' log level
 _WORKER_LOG_ENV = "DASK_LOGGING__DISTRIBUTED"
@@ -183,8 +190,14 @@ def sweep(client: Any, tasks: list[tuple[str, Callable[..., Any], tuple[Any, ...
         futures[fut] = (key, point)
     records: list[dict[str, Any]] = []
     t0 = time.perf_counter()
+    stop, lost = threading.Event(), []
+    watch = threading.Thread(target=_watch_workers, args=(client, list(futures), stop, lost),
+                             name="threepart-map-workers", daemon=True)
+    watch.start()
     try:
         for fut in as_completed(list(futures)):
+            if lost:
+                raise RuntimeError(lost[0])
             key, point = futures[fut]
             exc: BaseException | None = None
             try:
@@ -209,8 +222,32 @@ def sweep(client: Any, tasks: list[tuple[str, Callable[..., Any], tuple[Any, ...
             say(f"[{done:>{len(str(total))}}/{total}] {key}  {status}  "
                 f"elapsed {elapsed:.1f} s, ETA {eta:.0f} s")
     finally:   # on an interrupt or an error: nothing left running for this run
+        stop.set()
+        watch.join()
         try:
             client.cancel([f for f in futures if not f.done()])
         except Exception:   # the scheduler is gone already: nothing to cancel
             pass
     return records
+
+
+def _watch_workers(client: Any, futures: list[Any], stop: threading.Event, lost: list[str]) -> None:
+    """Until ``stop``: every :data:`WORKER_CHECK_S`, count the cluster's workers; after
+    :data:`NO_WORKERS_S` without one, say why in ``lost`` and cancel the pending ``futures``
+    (their results then arrive as cancelled, and :func:`sweep` raises ``lost``'s reason)."""
+    since: float | None = None
+    while not stop.wait(WORKER_CHECK_S):
+        try:
+            workers = len(client.scheduler_info().get("workers", {}))
+        except Exception:   # the scheduler is unreachable: the sweep's own calls will say so
+            continue
+        since = None if workers else (since if since is not None else time.monotonic())
+        if since is not None and time.monotonic() - since >= NO_WORKERS_S:
+            lost.append(f"the dask cluster has had no worker for {NO_WORKERS_S:.0f} s, so the map's "
+                        "pending tasks cannot run; start workers (or a new cluster) and rerun: the "
+                        "map resumes where it stopped")
+            try:
+                client.cancel([f for f in futures if not f.done()])
+            except Exception:
+                pass
+            return
