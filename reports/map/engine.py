@@ -190,7 +190,7 @@ def sweep(client: Any, tasks: list[tuple[str, Callable[..., Any], tuple[Any, ...
         futures[fut] = (key, point)
     records: list[dict[str, Any]] = []
     t0 = time.perf_counter()
-    stop, lost = threading.Event(), []
+    stop, lost = threading.Event(), list[str]()
     watch = threading.Thread(target=_watch_workers, args=(client, list(futures), stop, lost),
                              name="threepart-map-workers", daemon=True)
     watch.start()
