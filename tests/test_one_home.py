@@ -187,3 +187,15 @@ def test_the_problem_types_check_their_input_with_the_leaf_checks_only(module):
     assert not any(n == "threepart.validate" or n.startswith("threepart.validate.") for n in names)
     if module == "checks":
         assert not any(n.startswith("threepart") for n in names), names
+
+
+def test_the_scan_sees_lazy_and_relative_imports(tmp_path):
+    """The layer checks' scanner itself: imports inside functions, relative ones, and of a subpackage."""
+    path = tmp_path / "m.py"
+    path.write_text("def f():\n    from .calculix import read\n    import threepart.readers\n"
+                    "def g():\n    from ..reports.map import sweep\n", encoding="utf-8")
+    found = _imports(path, package=["threepart", "output"])
+    assert {"threepart.output.calculix", "threepart.readers", "threepart.reports.map.sweep"} <= found
+    assert [_layer(n) for n in ("threepart.calculix.read", "threepart.reports.map", "threepart.cli",
+                                "threepart.sie.normal", "threepart.fields", "numpy")] == \
+        ["foreign", "reports", "cli", "solvers", "core", None]

@@ -219,6 +219,28 @@ def problem_args(p: argparse.ArgumentParser, *, compliance_option: bool) -> None
                    help="free (default, or the case's) or suppressed")
 
 
+def given_punch_and_material(args: argparse.Namespace, needs: Sequence[str]) -> tuple[Any, float | None]:
+    """The punch of ``--R1 --R2 --b [--R]`` and the checked ``--A`` or ``--E``/``--nu`` choice.
+
+    ``needs`` are the options the command requires besides the material (its first missing one is
+    named). Returns ``(punch, nu)``, ``nu`` None where not given (the caller's default applies).
+    """
+    import math
+
+    from threepart.punch import Punch
+    from threepart.validate import poisson
+
+    missing = [o for o in needs if getattr(args, o) is None]
+    if missing:
+        raise ValueError(f"give `--case NAME`, or the punch, material and loads: `--{missing[0]}` is missing")
+    if args.A is not None and args.E is not None:
+        raise ValueError("give either `--A` or `--E`/`--nu`, not both")
+    if args.A is None and (args.E is None or args.nu is None):
+        raise ValueError("the material needs `--A`, or both `--E` and `--nu`")
+    punch = Punch(R1=args.R1, R2=args.R2, b=args.b, R=math.inf if args.R is None else args.R)
+    return punch, None if args.nu is None else poisson(args.nu)
+
+
 def problem(args: argparse.Namespace) -> dict[str, Any]:
     """The punch, loads and material of ``--case`` or of the command line's options."""
     from threepart.catalogue import get_case, load_cases

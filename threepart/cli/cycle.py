@@ -20,7 +20,7 @@ from typing import Any
 
 from threepart.progress import heartbeat
 
-from ._args import labelled, method_options, state_arg
+from ._args import given_punch_and_material, labelled, method_options, state_arg
 
 __all__ = ["add_parser", "run"]
 
@@ -110,18 +110,9 @@ def _case(args: argparse.Namespace) -> dict[str, Any]:
 def _given(args: argparse.Namespace) -> dict[str, Any]:
     """Punch, compliance, material, friction and states of the command line's options."""
     from threepart.material import similar_pair
-    from threepart.punch import Punch
-    from threepart.validate import poisson, positive
+    from threepart.validate import positive
 
-    missing = [o for o in ("R1", "R2", "b", "f") if getattr(args, o) is None]
-    if missing:
-        raise ValueError(f"give `--case NAME`, or the punch, material and loads: `--{missing[0]}` is missing")
-    if args.A is not None and args.E is not None:
-        raise ValueError("give either `--A` or `--E`/`--nu`, not both")
-    if args.A is None and (args.E is None or args.nu is None):
-        raise ValueError("the material needs `--A`, or both `--E` and `--nu`")
-    punch = Punch(R1=args.R1, R2=args.R2, b=args.b, R=math.inf if args.R is None else args.R)
-    nu = None if args.nu is None else poisson(args.nu)
+    punch, nu = given_punch_and_material(args, ("R1", "R2", "b", "f"))
     if args.A is not None:
         A = positive("--A", args.A)
     else:

@@ -14,8 +14,9 @@ Building the parser loads no numpy: every numerical import is inside ``run``.
 from __future__ import annotations
 
 import argparse
-import math
 from typing import Any
+
+from ._args import given_punch_and_material
 
 __all__ = ["add_parser", "run"]
 
@@ -69,9 +70,8 @@ def _flank_problem(args: argparse.Namespace) -> dict[str, Any]:
     """The flank's punch, compliance, Poisson ratio and loads, checked before any numerics."""
     from threepart.catalogue import get_case, load_cases
     from threepart.material import similar_pair
-    from threepart.punch import Punch
-    from threepart.results import NU
-    from threepart.validate import finite, poisson, positive
+    from threepart.material import NU
+    from threepart.validate import finite, positive
 
     own = ("R1", "R2", "b", "R", "E", "nu", "A", "P", "s", "Q", "f", "sigma_bulk")
     if args.case is not None:
@@ -90,16 +90,9 @@ def _flank_problem(args: argparse.Namespace) -> dict[str, Any]:
         nu = c.material[1] if c.material is not None else NU
         return {"punch": c.punch, "A": c.A, "nu": nu, "P": c.P, "s": c.s, "Q": c.Q, "f": c.f,
                 "sigma_bulk": c.sigma_bulk}
-    missing = [o for o in ("R1", "R2", "b", "P", "Q", "f") if getattr(args, o) is None]
-    if missing:
-        raise ValueError(f"give `--case NAME`, or the punch, material and loads: `--{missing[0]}` is missing")
-    if args.A is not None and args.E is not None:
-        raise ValueError("give either `--A` or `--E`/`--nu`, not both")
-    if args.A is None and (args.E is None or args.nu is None):
-        raise ValueError("the material needs `--A`, or both `--E` and `--nu`")
-    nu = NU if args.nu is None else poisson(args.nu)
+    punch, given_nu = given_punch_and_material(args, ("R1", "R2", "b", "P", "Q", "f"))
+    nu = NU if given_nu is None else given_nu
     A = positive("--A", args.A) if args.A is not None else similar_pair(positive("--E", args.E), nu)
-    punch = Punch(R1=args.R1, R2=args.R2, b=args.b, R=math.inf if args.R is None else args.R)
     return {"punch": punch, "A": A, "nu": nu, "P": positive("--P", args.P),
             "s": 0.0 if args.s is None else finite("--s", args.s), "Q": finite("--Q", args.Q),
             "f": positive("--f", args.f),
