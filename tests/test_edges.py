@@ -315,3 +315,29 @@ def test_report_rows_and_section():
     assert section is not None and section.status is Status.PASS
     assert len(section.tables[0].rows) == len(rows)
     assert edges_section({"edges": [], "cases": []}) is None
+
+
+def test_the_report_s_asymptote_study_is_first_order_and_hertz_s_constant_is_one(tmp_path):
+    """The report's study of the asymptotic slip zone (closed form, Q/fP -> 0): on every edge the
+    error falls as (slip/W)^1 (fitted order within the edges table's slip_order bounds), Hertz's
+    error per slip/W is 1 (Mindlin's first-order term, an identity), the three-part punches' within
+    slip_constant; the plot is drawn and the section shows it."""
+    from threepart.reports.verify.edges import asymptote_study, draw_asymptote, edges_section
+
+    study = asymptote_study()
+    lo, hi = tolerance("edges", "slip_order").limit, tolerance("edges", "slip_order_max").limit
+    for c in study["curves"]:
+        assert lo <= c["order"] <= hi, c
+        assert c["constant"] <= tolerance("edges", "slip_constant").limit, c
+    hertz = [c for c in study["curves"] if c["case"] == "hertz"]
+    assert len(hertz) == 2
+    for c in hertz:
+        assert c["constant"] == pytest.approx(1.0, rel=tolerance("edges", "slip_first_order").limit)
+    draw_asymptote(study, tmp_path / "a.png")
+    assert (tmp_path / "a.png").stat().st_size > 0
+    section = edges_section({"edges": [{"case": "hertz", "method": "closedform", "side": "left",
+                                        "K_N": 1.0, "K_N_error": 0.0, "fit_error": None, "K_T": 0.0,
+                                        "slip_zone": None, "exact_slip": None}],
+                             "cases": [{"name": "hertz"}], "edge_asymptote": {**study, "plot": "a.png"}})
+    assert len(section.figures) == 1 and section.figures[0].path == "a.png"
+    assert "in proportion to the slip zone" in section.figures[0].caption

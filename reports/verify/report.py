@@ -32,6 +32,7 @@ from .runs import FRETTING_STATES, MODES, CaseRun, Mode, run_case
 from ..referee import CALCULIX_CASE, CALCULIX_K, CALCULIX_N, calculix_studies
 from ..compare import is_steady, normal_of
 from .sections import MAP_JSON, plot_path, study_plot_path
+from .edges import ASYMPTOTE_PLOT, asymptote_study, draw_asymptote
 from .speed import speed_record
 from .stress import case_hot_spots, fatigue_hot_spots, stress_nu
 from ..solvers import METHODS
@@ -357,9 +358,12 @@ def write_report(tmp: Path, mode: Mode, runs: Sequence[CaseRun], studies: Sequen
             {"n": plots.sie_convergence, "h": plots.fem_convergence,
              "dQ": plots.step_convergence}[st.param](st, tmp / name)
             drawn["_studies"].append(name)
+        edge_study = asymptote_study()          # issue 32: the asymptotic slip zone as Q/fP -> 0
+        draw_asymptote(edge_study, tmp / ASYMPTOTE_PLOT)
     timings = dict(timings, plots_s=time.perf_counter() - t0)
     timings["total_s"] = timings.get("solve_s", 0.0) + timings["plots_s"]
     doc = build_report(mode, runs, studies, timings, drawn, stressed, tired)
+    doc["edge_asymptote"] = json_safe({**edge_study, "plot": ASYMPTOTE_PLOT})
     if mode.name != "quick":   # issue 33: the speed ratios, measured in the run (reports/verify/speed.py)
         doc["speed"] = json_safe(speed_record(False, say))
     validate(doc)
