@@ -326,8 +326,11 @@ def match(flank_result: Any, edge: str, R: float | None = None, P: float | None 
     edge
         ``"left"`` (``-a``) or ``"right"`` (``c``).
     R, P
-        At most one: the pad's radius, or its load. Neither: the pad as wide as the
-        flank's contact, ``R = √W/(A K_N)`` (its second-order terms then come closer).
+        At most one: the pad's radius, or its load. Neither: the radius whose pad puts the
+        surface σxx over the slip zone closest to the flank's (the largest difference over
+        the flank's largest |σxx| there, minimised over ``R`` from :data:`PAD_RANGE`'s
+        factors of the pad as wide as the flank's contact, ``R = √W/(A K_N)``): the
+        multipliers fix the edge to first order, the radius its second-order terms.
     method
         The method that solves the pad (through :func:`threepart.solve`).
     fatigue
@@ -344,29 +347,72 @@ def match(flank_result: Any, edge: str, R: float | None = None, P: float | None 
     FullSlidingError
         If no pad of the given size reproduces the edge without sliding.
     """
-    from .methods import solve
-    from .punch import Punch
     from .results import NU
     k, R, P = _match_iv(flank_result, edge, R, P)
     nu = NU if nu is None else nu
     target = edges(flank_result)[k]
     assert target.K_T is not None and target.sigma_bulk is not None
-    sign = 1.0 if k == 0 else -1.0
-    A, f, sigma = flank_result.normal.A, flank_result.f, flank_result.sigma_bulk
     if R is None and P is None:
-        R = math.sqrt(flank_result.normal.width) / (A * target.K_N)
+        R = _best_radius(flank_result, k, target, method, nu)
+    pad, R, P, Q, result, mine, r, s_flank, s_pad, error = _pad(flank_result, k, target, method, nu,
+                                                                  R=R, P=P)
+    sign = 1.0 if k == 0 else -1.0
+    slip = float(r[-1] + r[0])
+    found = _fatigue(flank_result, result, target, mine, slip, sign, nu) if fatigue else {}
+    return Match(edge, pad, R, P, Q, flank_result.sigma_bulk, flank_result.f, flank_result.normal.A,
+                 result, target, mine, r, s_flank, s_pad, error, found)
+
+
+#: the pad radii :func:`match` searches when given neither ``R`` nor ``P``: factors of the pad as
+#: wide as the flank's contact (the optimum lay at 0.47-0.78 of it on the catalogue's flanks)
+PAD_RANGE = (0.05, 20.0)
+#: points of the coarse scan over PAD_RANGE (log-spaced) before the bounded refinement
+PAD_SCAN = 17
+
+
+def _pad(flank: Any, k: int, target: Edge, method: str, nu: float, *, R: float | None,
+         P: float | None) -> tuple[Any, ...]:
+    """The pad of radius ``R`` (or load ``P``) reproducing ``target``, solved, and its surface σxx
+    over the slip zone against the flank's: ``(punch, R, P, Q, result, edge, r, sxx_flank, sxx_pad,
+    error)``."""
+    from .methods import solve
+    from .punch import Punch
+    sign = 1.0 if k == 0 else -1.0
+    A, f, sigma = flank.normal.A, flank.f, flank.sigma_bulk
+    assert target.K_T is not None          # a flank with a shear (checked by match)
     R, P, Q = pad_loads(target.K_N, target.K_T, sign, sigma, f, A, R=R, P=P)
     pad = Punch(R, R, 0.0)
     result = solve(pad, P, 0.0, A=A, Q=Q, f=f, sigma_bulk=sigma, method=method)
     mine = edges(result)[k]
-    slip = min(_exact_slip(flank_result, k), _exact_slip(result, k))
+    slip = min(_exact_slip(flank, k), _exact_slip(result, k))
     r = slip * (np.arange(SXX_POINTS) + 0.5) / SXX_POINTS
     zero = np.zeros_like(r)
-    s_flank = flank_result.stress(target.x + sign * r, zero, nu=nu).sxx
+    s_flank = flank.stress(target.x + sign * r, zero, nu=nu).sxx
     s_pad = result.stress(mine.x + sign * r, zero, nu=nu).sxx
     error = float(np.max(np.abs(s_pad - s_flank)) / np.max(np.abs(s_flank)))
-    found = _fatigue(flank_result, result, target, mine, slip, sign, nu) if fatigue else {}
-    return Match(edge, pad, R, P, Q, sigma, f, A, result, target, mine, r, s_flank, s_pad, error, found)
+    return pad, R, P, Q, result, mine, r, s_flank, s_pad, error
+
+
+def _best_radius(flank: Any, k: int, target: Edge, method: str, nu: float) -> float:
+    """The pad radius of least σxx error over the slip zone (:data:`PAD_RANGE`, :data:`PAD_SCAN`)."""
+    from scipy.optimize import minimize_scalar
+
+    R0 = math.sqrt(flank.normal.width) / (flank.normal.A * target.K_N)
+
+    def error(log_factor: float) -> float:
+        try:
+            return float(_pad(flank, k, target, method, nu, R=R0 * math.exp(log_factor), P=None)[-1])
+        except ValueError:   # a pad that slides, or whose bulk stress reverses the slip: not a candidate
+            return math.inf
+
+    grid = np.linspace(math.log(PAD_RANGE[0]), math.log(PAD_RANGE[1]), PAD_SCAN)
+    errors = [error(g) for g in grid]
+    i = int(np.argmin(errors))
+    if not math.isfinite(errors[i]):
+        return R0                     # no pad in the range fits: the width rule, refused by pad_loads
+    lo, hi = grid[max(i - 1, 0)], grid[min(i + 1, len(grid) - 1)]
+    best = minimize_scalar(error, bounds=(lo, hi), method="bounded", options={"xatol": 1e-3})
+    return R0 * math.exp(float(best.x) if best.fun <= errors[i] else float(grid[i]))
 
 
 def _exact_slip(res: Any, k: int) -> float:

@@ -5,7 +5,8 @@ and loads; ``--edge`` picks its edge. The pad (a cylinder of radius ``R`` on a f
 the same material and ``f``, under the flank's bulk stress) gets the load ``P`` and
 shear ``Q`` whose edge has the flank's ``K_N`` and ``K_T``, hence its slip zone
 (:func:`threepart.asymptotics.match`). Give the pad's radius (``--pad-R``) or its
-load (``--pad-P``), or neither for a pad as wide as the flank's contact. It prints
+load (``--pad-P``), or neither for the pad whose surface σxx over the slip zone is
+closest to the flank's. It prints
 both edges' multipliers, the pad's loads, the surface σxx agreement over the slip
 zone and the fatigue parameters near the edge, flank against pad.
 
@@ -57,7 +58,8 @@ def add_parser(sub: Any) -> None:
     m.add_argument("--edge", required=True, choices=("left", "right"),
                    help="the flank's edge to reproduce: left (-a) or right (c)")
     m.add_argument("--pad-R", dest="pad_R", type=float,
-                   help=unit("the pad's radius; or --pad-P; neither: the pad as wide as the flank", "R"))
+                   help=unit("the pad's radius; or --pad-P; neither: the radius of least surface-stress "
+                             "error over the slip zone", "R"))
     m.add_argument("--pad-P", dest="pad_P", type=float, help=unit("the pad's normal load", "P"))
     m.add_argument("--method", choices=METHODS, default="auto",
                    help="the method that solves the flank (default auto: the closed form where it holds)")
@@ -104,7 +106,8 @@ def _problem(args: argparse.Namespace) -> dict[str, Any]:
     from threepart.validate import positive, shear_load
 
     if args.pad_R is not None and args.pad_P is not None:
-        raise ValueError("give `--pad-R` or `--pad-P` (or neither: the pad as wide as the flank), not both")
+        raise ValueError("give `--pad-R` or `--pad-P` (or neither: the pad of least surface-stress "
+                         "error), not both")
     pr = _flank_problem(args)
     shear_load(pr["Q"], pr["f"], pr["P"])
     pr["pad"] = ({"R": positive("--pad-R", args.pad_R)} if args.pad_R is not None else
