@@ -23,9 +23,6 @@ __all__ = ["add_parser", "run"]
 
 #: the methods that may solve the flank (the pad is solved by the closed form)
 METHODS = ("auto", "closedform", "sie", "fem")
-#: the fatigue parameters as printed: label, unit
-_FATIGUE = {"von_mises_range": ("von Mises range", "MPa"), "swt": ("SWT (critical plane)", "MPa"),
-            "findley": ("Findley (critical plane)", "MPa"), "ruiz_ffdp": ("Ruiz FFDP s_xx q delta", "MPa^2 mm")}
 
 
 def add_parser(sub: Any) -> None:
@@ -132,14 +129,16 @@ def _print(pr: dict[str, Any], flank: Any, m: Any) -> None:
     print(f"the {m.side} edge          {'flank':>14} {'pad':>14}")
     for label, key in (("K_N", "K_N"), ("K_T", "K_T"), ("K_T bulk share", "K_sigma"),
                        ("slip zone (asymptotic)", "slip_zone")):
-        a, b = getattr(m.flank, key), getattr(m.pad, key)
+        a, b = getattr(m.flank, key) + 0.0, getattr(m.pad, key) + 0.0   # + 0.0: no "-0"
         print(f"  {label:<24} {a:14.6g} {b:14.6g} {UNITS[key]}")
     k = ("left", "right").index(m.side)
     exact = [(r.stick_zone[0] + r.a) if k == 0 else (r.c - r.stick_zone[1]) for r in (flank, m.result)]
     print(f"  {'slip zone (exact)':<24} {exact[0]:14.6g} {exact[1]:14.6g} {UNITS['slip_zone']}")
     print(f"surface sigma_xx over the slip zone: largest difference {m.sxx_error:.3g} of the flank's largest")
+    from threepart.fatigue_parameters import parameter
+
     for name, (a, b) in m.fatigue.items():
-        label, unit = _FATIGUE[name]
+        label, unit = parameter(name).label, parameter(name).unit
         print(f"  {label:<24} {a:14.6g} {b:14.6g} {unit}  ({(b - a) / abs(a):+.2e})")
 
 
