@@ -13,7 +13,7 @@ from typing import Any, Sequence
 
 from threepart import registry
 
-from .sections import Cell, Figure, Section, Status, Table, _head, _u, _with_unit, fmt, words
+from .sections import Cell, Figure, Section, Status, Table, fmt, head_unit, unit_of, with_unit, words
 
 __all__ = ["edge_rows", "edges_section", "asymptote_study", "draw_asymptote", "ASYMPTOTE_CASES",
            "ASYMPTOTE_RATIOS", "ASYMPTOTE_PLOT"]
@@ -88,11 +88,11 @@ def edges_section(doc: dict[str, Any]) -> Section | None:
         if r["fit_error"] is not None and r["K_N_error"] is not None and r["K_N_error"] > r["fit_error"]:
             covered = False
         table.append((r["case"], registry.get(r["method"]).title, r["side"],
-                      _with_unit(r["K_N"], _u(case, "K_N")), fmt(r["K_N_error"]), fmt(r["fit_error"]),
-                      _with_unit(r["K_T"], _u(case, "K_T")), _with_unit(r["slip_zone"], _u(case, "slip_zone")),
-                      _with_unit(r["exact_slip"], _u(case, "slip_zone"))))
-    head = ("case", "method", "edge", "K_N", "K_N error", "fit error", "K_T", _head("slip zone", "asymptotic"),
-            _head("slip zone", "exact"))
+                      with_unit(r["K_N"], unit_of(case, "K_N")), fmt(r["K_N_error"]), fmt(r["fit_error"]),
+                      with_unit(r["K_T"], unit_of(case, "K_T")), with_unit(r["slip_zone"], unit_of(case, "slip_zone")),
+                      with_unit(r["exact_slip"], unit_of(case, "slip_zone"))))
+    head = ("case", "method", "edge", "K_N", "K_N error", "fit error", "K_T", head_unit("slip zone", "asymptotic"),
+            head_unit("slip zone", "exact"))
     intro = (("At a distance r inside an edge the pressure is p ≈ K_N √r and the fully stuck shear "
               "q ≈ K_T/√r (for a cycle: of the change of shear); the asymptotic slip zone is 2|K_T|/(f K_N) "
               "(a cycle's |ΔK_T|/(f K_N)). K_N error is against the reference method's, fit error the "

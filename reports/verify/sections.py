@@ -29,7 +29,8 @@ from threepart.tolerances import ERROR_UNITS, NORMALISATION, VALUE_UNITS
 
 __all__ = ["Status", "Verdict", "Code", "Link", "Item", "Bullets", "Table", "Figure", "Section",
            "Document", "build", "words", "fmt", "order_text", "plot_path", "study_plot_path", "PLOT_KINDS",
-           "ENERGY_UNIT", "ENERGY_UNIT_TEXT", "method_name", "REFEREE_NAMES", "MAP_JSON", "MAP_COMMAND"]
+           "ENERGY_UNIT", "ENERGY_UNIT_TEXT", "method_name", "REFEREE_NAMES", "MAP_JSON", "MAP_COMMAND",
+           "with_unit", "unit_of", "head_unit", "physical", "plot_kind"]
 
 #: energy dissipated per cycle and unit length: the shear force per unit length Q [N/mm]
 #: times a slip [mm], i.e. N·mm per mm of contact length (a force, N)
@@ -198,7 +199,8 @@ def fmt(v: Any) -> str:
     return str(v)
 
 
-def _with_unit(v: Any, unit: str) -> str:
+def with_unit(v: Any, unit: str) -> str:
+    """``v`` formatted (:func:`fmt`) with its unit, if it has one."""
     return fmt(v) if v is None or not unit else f"{fmt(v)} {unit}"
 
 
@@ -231,12 +233,13 @@ def physical(case: dict[str, Any]) -> bool:
     return case.get("E") is not None
 
 
-def _u(case: dict[str, Any], quantity: str) -> str:
+def unit_of(case: dict[str, Any], quantity: str) -> str:
     """The unit label of ``quantity`` for ``case`` (empty for a nondimensional case)."""
     return UNITS[quantity] if physical(case) else ""
 
 
-def _head(name: str, unit: str) -> str:
+def head_unit(name: str, unit: str) -> str:
+    """A table head: ``name [unit]``, or ``name`` without a unit."""
     return f"{name} [{unit}]" if unit else name
 
 
@@ -253,7 +256,8 @@ def study_plot_path(method: str, scheme: str | None, case: str) -> str:
     return f"plots/{method}{'_' + scheme if scheme else ''}_{case}_convergence.png"
 
 
-def _kind(path: str, case: str) -> str:
+def plot_kind(path: str, case: str) -> str:
+    """The kind (a key of :data:`PLOT_KINDS`) of the case's plot at ``path``; ``""`` if none."""
     return next((k for k in PLOT_KINDS if path == plot_path(case, k)), "")
 
 
@@ -307,7 +311,7 @@ def _loads(doc: dict[str, Any]) -> list[Para]:
         peaks = _peaks(c)
         unit = UNITS["p"] if physical(c) else ""
         txt = (f"At another load: {c['name']}, {c['description']} (P = "
-               f"{_with_unit(c['P'], _u(c, 'P'))}, 4PA/b = {c['load_4PA_over_b']:.3g}")
+               f"{with_unit(c['P'], unit_of(c, 'P'))}, 4PA/b = {c['load_4PA_over_b']:.3g}")
         if peaks:
             txt += f"; peak pressures {' and '.join(f'{p:.3g} {unit}'.strip() for p in peaks)}"
         out.append((txt + ").",))
@@ -340,7 +344,7 @@ def _case_link(name: str) -> Link:
 def _tightest(doc: dict[str, Any]) -> Table:
     head = ("case", "comparison", "quantity", "error", "limit", "limit used")
     rows = tuple((_case_link(t["case"]), t["comparison"], t["quantity"],
-                  _with_unit(t["error"], t["unit"]), _with_unit(t["limit"], t["unit"]),
+                  with_unit(t["error"], t["unit"]), with_unit(t["limit"], t["unit"]),
                   _used(t["ratio"])) for t in doc["summary"].get("tightest", []))
     return Table(head, rows)
 
@@ -369,13 +373,13 @@ def _case_lines(doc: dict[str, Any], beyond: bool) -> Table:
 def _load(case: dict[str, Any]) -> str:
     """The case's input in one sentence, with units (or "nondimensional")."""
     p = case["punch"]
-    L = _u(case, "b")
-    R = "∞" if p["R"] is None else _with_unit(p["R"], L)
+    L = unit_of(case, "b")
+    R = "∞" if p["R"] is None else with_unit(p["R"], L)
     material = (f"E = {case['E']:.6g} {UNITS['E']}, ν = {fmt(case['nu'])}; " if physical(case)
                 else f"nondimensional, A = {fmt(case.get('A'))}; ")
-    txt = (f"R1 = {_with_unit(p['R1'], L)}, R2 = {_with_unit(p['R2'], L)}, b = {_with_unit(p['b'], L)}, "
-           f"R = {R}; {material}P = {_with_unit(case['P'], _u(case, 'P'))}, "
-           f"s = {_with_unit(case['s'], L)}, tilt {case['tilt']}")
+    txt = (f"R1 = {with_unit(p['R1'], L)}, R2 = {with_unit(p['R2'], L)}, b = {with_unit(p['b'], L)}, "
+           f"R = {R}; {material}P = {with_unit(case['P'], unit_of(case, 'P'))}, "
+           f"s = {with_unit(case['s'], L)}, tilt {case['tilt']}")
     if case["Q_over_fP"] is not None:
         txt += f"; f = {fmt(case['f'])}, Q/fP = {fmt(case['Q_over_fP'])}"
     return txt + f". Reference: the {method_name(case.get('reference') or REFERENCE)}."
@@ -387,13 +391,13 @@ def energy_unit(case: dict[str, Any]) -> str:
 
 
 def _results(case: dict[str, Any]) -> Table:
-    L = _u(case, "a")
-    head = [_head("a", L), _head("c", L), _head("α", _u(case, "alpha")), _head("s", L),
-            _head("p_left", _u(case, "p")), _head("p_right", _u(case, "p")), _head("d", L),
-            _head("e", L)]
+    L = unit_of(case, "a")
+    head = [head_unit("a", L), head_unit("c", L), head_unit("α", unit_of(case, "alpha")), head_unit("s", L),
+            head_unit("p_left", unit_of(case, "p")), head_unit("p_right", unit_of(case, "p")), head_unit("d", L),
+            head_unit("e", L)]
     fretting = any("energy" in r for r in case["results"].values())
     if fretting:
-        head.append(_head("energy per cycle", energy_unit(case)))
+        head.append(head_unit("energy per cycle", energy_unit(case)))
     head.append("time [s]")
     rows = []
     for m, r in case["results"].items():
@@ -414,9 +418,9 @@ def _checks(case: dict[str, Any]) -> Table:
         if not physical(case) and vunit in UNITS.values():
             vunit = ""
         ratio = c["error"] / c["limit"] if c["error"] is not None and c["limit"] else None
-        rows.append((c["comparison"], c["quantity"], _with_unit(c["reference"], vunit),
-                     _with_unit(c["obtained"], vunit), _with_unit(c["error"], unit),
-                     _with_unit(c["limit"], unit), _used(ratio), Verdict(Status.of(c["passed"]))))
+        rows.append((c["comparison"], c["quantity"], with_unit(c["reference"], vunit),
+                     with_unit(c["obtained"], vunit), with_unit(c["error"], unit),
+                     with_unit(c["limit"], unit), _used(ratio), Verdict(Status.of(c["passed"]))))
     return Table(head, tuple(rows), f"{len(rows)} checks against the tolerance table", fold=True)
 
 
@@ -426,7 +430,7 @@ def _energy(case: dict[str, Any]) -> Para | None:
         return None
     unit = energy_unit(case)
     return (("Energy dissipated per cycle: "
-             + ", ".join(f"{method_name(m)} {_with_unit(e, unit)}" for m, e in energies)
+             + ", ".join(f"{method_name(m)} {with_unit(e, unit)}" for m, e in energies)
              + (f" ({ENERGY_UNIT_TEXT})." if unit else " (nondimensional).")),)
 
 
@@ -434,9 +438,9 @@ def _cycle(case: dict[str, Any]) -> Para | None:
     """A flight cycle's two end states and each method's permanent stick zone ``[-(d+e), d-e]``."""
     if "states" not in case:
         return None
-    L, F, S = _u(case, "b"), _u(case, "P"), (UNITS["E"] if physical(case) else "")
-    ends = "; ".join(f"state {k}: P = {_with_unit(P, F)}, s = {_with_unit(s, L)}, Q = {_with_unit(Q, F)}, "
-                     f"σ_bulk = {_with_unit(g, S)}" for k, (P, s, Q, g) in enumerate(case["states"]))
+    L, F, S = unit_of(case, "b"), unit_of(case, "P"), (UNITS["E"] if physical(case) else "")
+    ends = "; ".join(f"state {k}: P = {with_unit(P, F)}, s = {with_unit(s, L)}, Q = {with_unit(Q, F)}, "
+                     f"σ_bulk = {with_unit(g, S)}" for k, (P, s, Q, g) in enumerate(case["states"]))
     zones = ", ".join(
         f"{method_name(m)} [{fmt(-(r['d'] + r['e']))}, {fmt(r['d'] - r['e'])}]"
         + (" (shakedown)" if r.get("shakedown") else "")
@@ -456,7 +460,7 @@ def _case_section(case: dict[str, Any], shown: set[str]) -> Section:
     intro += [(f"{m}: ", *words(x)) for m, x in case.get("refusals", {}).items()]
     intro += [(f"error, {m}: ", *words(x)) for m, x in case["errors"].items()]
     tables = [_results(case)] + ([_checks(case)] if case["checks"] else [])
-    figures = tuple(Figure(p, f"{case['name']}: {PLOT_KINDS.get(_kind(p, case['name']), p)}")
+    figures = tuple(Figure(p, f"{case['name']}: {PLOT_KINDS.get(plot_kind(p, case['name']), p)}")
                     for p in case["plots"] if p not in shown)
     return Section(f"{case['name']}: {case['description']}", case["name"], tuple(intro),
                    tuple(tables), figures, Status.of(case["passed"]), fold=True)

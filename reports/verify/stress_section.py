@@ -12,8 +12,8 @@ from typing import Any
 
 from threepart.fatigue_parameters import parameter, parameters
 
-from .sections import (method_name, PLOT_KINDS, Block, Code, Figure, Section, Status, Table, _kind,
-                       _u, _with_unit, fmt, physical)
+from .sections import (method_name, PLOT_KINDS, Block, Code, Figure, Section, Status, Table, plot_kind,
+                       unit_of, with_unit, fmt, physical)
 
 __all__ = ["stress_section", "sig", "SPOT_DIGITS", "HOT_SPOTS", "FATIGUE_NAMES", "fatigue_names"]
 
@@ -58,14 +58,14 @@ def stress_section(doc: dict[str, Any]) -> tuple[Section | None, set[str]]:
     cycles = [c for c in doc["cases"] if "fatigue" in c]
     if not cases and not cycles:
         return None, set()
-    rows = [(c["name"], method_name(m), *(_spot(h, _u(c, "p"), _u(c, "x"), q != "sxx")
+    rows = [(c["name"], method_name(m), *(_spot(h, unit_of(c, "p"), unit_of(c, "x"), q != "sxx")
                                                   for q, h in spots.items()))
             for c in cases for m, spots in c["stress"]["hot_spots"].items()]
     head = ("case", "method", *(HOT_SPOTS[q] for q in ("sxx", "von_mises", "max_shear")))
-    figs = tuple(Figure(p, f"{c['name']}: {PLOT_KINDS[_kind(p, c['name'])]}", f"#{c['name']}",
+    figs = tuple(Figure(p, f"{c['name']}: {PLOT_KINDS[plot_kind(p, c['name'])]}", f"#{c['name']}",
                         Status.of(c["passed"]))
-                 for c in cases for p in c["plots"] if _kind(p, c["name"]) in ("stress", "von_mises"))
-    bulk = ", ".join(f"{c['name']} {_with_unit(c['stress']['sigma_bulk'], _u(c, 'sigma_bulk'))}" for c in cases)
+                 for c in cases for p in c["plots"] if plot_kind(p, c["name"]) in ("stress", "von_mises"))
+    bulk = ", ".join(f"{c['name']} {with_unit(c['stress']['sigma_bulk'], unit_of(c, 'sigma_bulk'))}" for c in cases)
     intro: tuple[Block, ...] = (
         ("The stress in the substrate under every partial-slip case, by each method from its own "
          "tractions (the FEM from its displacement field): x along the surface, z the depth, "
@@ -81,7 +81,7 @@ def stress_section(doc: dict[str, Any]) -> tuple[Section | None, set[str]]:
         names = fatigue_names()
         fat_rows = [(c["name"], method_name(m),
                      *(_spot(spots[q], parameter(q).unit.replace("^2 ", "²·") if physical(c) else "",
-                             _u(c, "x")) for q in names))
+                             unit_of(c, "x")) for q in names))
                     for c in cycles for m, spots in c["fatigue"]["hot_spots"].items()]
         tables.append(Table(("case", "method", *names.values()),
                             tuple(fat_rows), "fatigue hot spots over the fretting and flight cycles"))
