@@ -27,10 +27,12 @@ from threepart import registry
 from threepart.registry import REFERENCE
 from threepart.tolerances import ERROR_UNITS, NORMALISATION, VALUE_UNITS
 
+from .cells import fmt, head_unit, physical, unit_of, with_unit
+
 __all__ = ["Status", "Verdict", "Code", "Link", "Item", "Bullets", "Table", "Figure", "Section",
            "Document", "build", "words", "fmt", "order_text", "plot_path", "study_plot_path", "PLOT_KINDS",
            "ENERGY_UNIT", "ENERGY_UNIT_TEXT", "method_name", "REFEREE_NAMES", "MAP_JSON", "MAP_COMMAND",
-           "with_unit", "unit_of", "head_unit", "physical", "plot_kind"]
+           "with_unit", "unit_of", "head_unit", "physical", "plot_kind"]   # the cells from .cells
 
 #: energy dissipated per cycle and unit length: the shear force per unit length Q [N/mm]
 #: times a slip [mm], i.e. N·mm per mm of contact length (a force, N)
@@ -186,24 +188,6 @@ class Document:
 
 
 # -- formatting -------------------------------------------------------------------------------
-def fmt(v: Any) -> str:
-    """Short numeric format for tables."""
-    if v is None:
-        return "–"
-    if isinstance(v, bool):
-        return "yes" if v else "no"
-    if isinstance(v, float):
-        if not math.isfinite(v):
-            return str(v)
-        return f"{v:.3e}" if v != 0 and (abs(v) < 1e-3 or abs(v) >= 1e5) else f"{v:.6g}"
-    return str(v)
-
-
-def with_unit(v: Any, unit: str) -> str:
-    """``v`` formatted (:func:`fmt`) with its unit, if it has one."""
-    return fmt(v) if v is None or not unit else f"{fmt(v)} {unit}"
-
-
 def _used(ratio: Any) -> str:
     """``error/limit`` as a percentage of the limit used."""
     return "–" if ratio is None else f"{100 * ratio:.3g} %"
@@ -226,21 +210,6 @@ def order_text(errors: Sequence[float | None], order: float | None) -> str:
     if not any(x > ROUND_OFF for x in e if math.isfinite(x)):
         return "at round-off"
     return "not monotone"
-
-
-def physical(case: dict[str, Any]) -> bool:
-    """Whether a case has a material, so its numbers carry units (mm, N/mm, MPa)."""
-    return case.get("E") is not None
-
-
-def unit_of(case: dict[str, Any], quantity: str) -> str:
-    """The unit label of ``quantity`` for ``case`` (empty for a nondimensional case)."""
-    return UNITS[quantity] if physical(case) else ""
-
-
-def head_unit(name: str, unit: str) -> str:
-    """A table head: ``name [unit]``, or ``name`` without a unit."""
-    return f"{name} [{unit}]" if unit else name
 
 
 # -- plot names (one home: verify writes them, the sections show them) ------------------------
