@@ -149,10 +149,16 @@ def snapshot(d: Path) -> dict[str, bytes]:
 
 @pytest.fixture(scope="module")
 def scheduler():
-    """A 2-worker cluster on this machine, shared by the module, as an existing scheduler."""
+    """A 2-worker cluster on this machine, shared by the module, as an existing scheduler.
+
+    Its workers are threads of this process on a TCP scheduler (the child processes of the
+    tests reach it by address): no worker process can vanish under the module, as both of a
+    process cluster once did in a full-suite run, leaving the sweep to wait (the map's watchdog
+    now ends such a wait, see the last test).
+    """
     from dask.distributed import LocalCluster
 
-    with LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+    with LocalCluster(n_workers=2, threads_per_worker=1, processes=False, protocol="tcp",
                       dashboard_address=":0") as cluster:
         yield cluster.scheduler_address
 
