@@ -438,7 +438,7 @@ TOLERANCES.update({
     ("match", "multipliers"): _T(1e-6, "issue 32 target: the matched pad's K_N, K_T and slip zone equal the flank's edge to 1e-6 (closed form); measured <= 1e-14"),
     ("match", "sxx_slip"): _T(5e-2, "issue 32 target: the pad's surface sigma_xx within 5 % of the flank's over the slip zone, of the flank's largest |sigma_xx| there; measured 1.8e-2 to 4.3e-2 on caseA_moment's edges at Q/fP <= 0.05 (a pad of the flank's width, or R = 50 mm at Q/fP = 0.02); it falls with the slip zone, a first-order match (docs/EDGES.md section 6)"),
     ("match", "sxx_bulk"): _T(6e-2, "the default pad (the radius of least surface sigma_xx error over the slip zone) on the catalogue's flanks: measured 3.3e-2 and 5.3e-2 on fan_blade_flank_bulk's edges (a pad of the flank's width: 0.33 and 0.30), <= 1.8e-2 on slip_Q0.4's; the bulk-loaded right edge misses the 5 % target by 0.3 %"),
-    ("match", "fatigue"): _T(1e-2, "the fatigue parameters' largest values near the edge (von Mises range, SWT, Findley, Ruiz's FFDP), pad against flank: measured <= 3e-3 on caseA_moment's edges at Q/fP <= 0.05, a pad of the flank's width"),
+    ("match", "fatigue"): _T(1e-2, "the fatigue parameters' largest values near the edge (von Mises range, SWT, Findley, Ruiz's FFDP), pad against flank: measured <= 3e-3 on caseA_moment's edges at Q/fP <= 0.05 with a pad of the flank's width, <= 7.9e-3 (Ruiz's FFDP; the others <= 2.8e-3) with the default pad of least sigma_xx error, whose sigma_xx is within 2e-3"),
 })
 
 # closed form vs FEM, fine mesh: every size of the default mesh halved, so the default's limits hold
