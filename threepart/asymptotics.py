@@ -19,6 +19,7 @@ edges       -- the two :class:`Edge` records of a normal, slip, fretting or stea
 K_T_stuck   -- ``(K_T_left, K_T_right)`` of the fully stuck shear under ``Q`` and ``sigma_bulk`` (E3)
 K_sigma     -- the bulk stress's share of ``K_T`` at each edge (E3)
 slip_zone   -- the asymptotic slip zone ``2 |K_T|/(f K_N)`` (E5), or of a cycle (E7)
+exact_slip  -- a result's own slip zone at an edge, to compare the asymptote with
 hertz_K_N   -- ``K_N = p0 √(2/a)`` of a Hertzian contact (E2)
 Match       -- the pad test of :func:`match`: its punch, loads, result and how well its edge field agrees
 match       -- the cylinder-on-flat test that reproduces one edge of a flank
@@ -38,7 +39,7 @@ from . import registry
 if TYPE_CHECKING:
     from .results import NormalResult
 
-__all__ = ["Edge", "Edged", "edges", "K_T_stuck", "K_sigma", "slip_zone", "hertz_K_N", "SIDES",
+__all__ = ["Edge", "Edged", "edges", "K_T_stuck", "K_sigma", "slip_zone", "exact_slip", "hertz_K_N", "SIDES",
            "Match", "match", "pad_loads", "SXX_POINTS", "FATIGUE_GRID", "FATIGUE_STATES", "FATIGUE_PARAMETERS"]
 
 #: the two edges of a contact, in the order :func:`edges` returns them
@@ -415,10 +416,22 @@ def _best_radius(flank: Any, k: int, target: Edge, method: str, nu: float) -> fl
     return R0 * math.exp(float(best.x) if best.fun <= errors[i] else float(grid[i]))
 
 
+def exact_slip(res: Any, k: int) -> float | None:
+    """A result's own slip zone at edge ``k`` (0 left, 1 right): from its contact end to its stick
+    zone's; None for a result without a stick zone (a normal result, a cycle that shook down)."""
+    zone = getattr(res, "stick_zone", None)
+    if zone is None or getattr(res, "shakedown", False) or not hasattr(res, "d"):
+        return None
+    normal = res.normals[0] if hasattr(res, "normals") else getattr(res, "normal", res)
+    lo, hi = zone
+    return float(lo + normal.a) if k == 0 else float(normal.c - hi)
+
+
 def _exact_slip(res: Any, k: int) -> float:
-    """The exact slip zone of a partial-slip result at its edge ``k`` (0 left, 1 right)."""
-    lo, hi = res.stick_zone
-    return float(lo + res.a) if k == 0 else float(res.c - hi)
+    """:func:`exact_slip` of a partial-slip result, which has one."""
+    slip = exact_slip(res, k)
+    assert slip is not None, "a partial-slip result has a stick zone"
+    return slip
 
 
 def _fatigue(flank: Any, pad: Any, e_flank: Edge, e_pad: Edge, slip: float, sign: float,

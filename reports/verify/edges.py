@@ -12,6 +12,7 @@ from __future__ import annotations
 from typing import Any, Sequence
 
 from threepart import registry
+from threepart.asymptotics import exact_slip
 
 from .sections import Cell, Figure, Section, Status, Table, fmt, head_unit, unit_of, with_unit, words
 
@@ -27,18 +28,6 @@ ASYMPTOTE_RATIOS = tuple(float(r) for r in (1e-4, 3e-4, 1e-3, 3e-3, 1e-2, 3e-2, 
 ASYMPTOTE_F = 0.5
 #: where the report draws it
 ASYMPTOTE_PLOT = "plots/edge_asymptote.png"
-
-
-def _exact_slip(res: Any, k: int) -> float | None:
-    """The result's own slip zone at edge ``k`` (0 left, 1 right), or None without a stick zone."""
-    zone = getattr(res, "stick_zone", None)
-    if zone is None or getattr(res, "shakedown", False):
-        return None
-    normal = res.normals[0] if hasattr(res, "normals") else getattr(res, "normal", res)
-    if not hasattr(res, "d"):
-        return None
-    lo, hi = zone
-    return float(lo + normal.a) if k == 0 else float(normal.c - hi)
 
 
 def edge_rows(runs: Sequence[Any]) -> list[dict[str, Any]]:
@@ -67,7 +56,7 @@ def edge_rows(runs: Sequence[Any]) -> list[dict[str, Any]]:
                              "K_N": e.K_N, "K_N_error": None if K_ref is None else abs(e.K_N - K_ref) / K_ref,
                              "fit_error": None if e.fit_error is None else e.fit_error / e.K_N,
                              "K_T": e.K_T, "slip_zone": e.slip_zone,
-                             "exact_slip": _exact_slip(run.results[method], k)})
+                             "exact_slip": exact_slip(run.results[method], k)})
     return rows
 
 
@@ -148,7 +137,7 @@ def asymptote_study() -> dict[str, Any]:
                 except ValueError as exc:   # a stick zone the reference refuses: named, not drawn
                     failed.append(f"{name}, Q/fP = {ratio:g}: {exc}")
                     continue
-                exact, estimate = _exact_slip(res, k), res.edges()[k].slip_zone
+                exact, estimate = exact_slip(res, k), res.edges()[k].slip_zone
                 if exact is None or exact <= 0 or estimate is None:
                     continue
                 slip.append(exact / W)

@@ -35,10 +35,15 @@ SHOWN = {"batch_us_per_case": "batch, µs per case", "single_us": "one solve, µ
          "fatigue_ms_per_point_and_state": "fatigue history, ms per point and state"}
 
 
-def met(name: str, value: float) -> bool:
-    """Whether the figure ``name`` meets its target."""
-    _, op, target = TARGETS[name]
+def meets(value: float, op: str, target: float) -> bool:
+    """Whether ``value`` meets ``target`` under ``op`` (``">="`` or ``"<="``)."""
     return value >= target if op == ">=" else value <= target
+
+
+def met(name: str, value: float) -> bool:
+    """Whether the figure ``name`` meets its target in :data:`TARGETS`."""
+    _, op, target = TARGETS[name]
+    return meets(value, op, target)
 
 
 def speed_record(quick: bool, say: Callable[[str], None] | None = None) -> dict[str, Any]:

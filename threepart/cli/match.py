@@ -68,8 +68,7 @@ def add_parser(sub: Any) -> None:
 def _flank_problem(args: argparse.Namespace) -> dict[str, Any]:
     """The flank's punch, compliance, Poisson ratio and loads, checked before any numerics."""
     from threepart.catalogue import get_case, load_cases
-    from threepart.material import similar_pair
-    from threepart.material import NU
+    from threepart.material import NU, similar_pair
     from threepart.validate import finite, positive
 
     own = ("R1", "R2", "b", "R", "E", "nu", "A", "P", "s", "Q", "f", "sigma_bulk")
@@ -119,6 +118,7 @@ def _line(label: str, value: float, key: str) -> str:
 
 def _print(pr: dict[str, Any], flank: Any, m: Any) -> None:
     """The flank's and the pad's edges, the pad's loads and how well the edge field agrees."""
+    from threepart import asymptotics
     from threepart.units import UNITS
 
     print(f"flank: {flank.method}, contact [{-flank.a:.6g}, {flank.c:.6g}] {UNITS['a']}, "
@@ -132,7 +132,7 @@ def _print(pr: dict[str, Any], flank: Any, m: Any) -> None:
         a, b = getattr(m.flank, key) + 0.0, getattr(m.pad, key) + 0.0   # + 0.0: no "-0"
         print(f"  {label:<24} {a:14.6g} {b:14.6g} {UNITS[key]}")
     k = ("left", "right").index(m.side)
-    exact = [(r.stick_zone[0] + r.a) if k == 0 else (r.c - r.stick_zone[1]) for r in (flank, m.result)]
+    exact = [asymptotics.exact_slip(r, k) for r in (flank, m.result)]
     print(f"  {'slip zone (exact)':<24} {exact[0]:14.6g} {exact[1]:14.6g} {UNITS['slip_zone']}")
     print(f"surface sigma_xx over the slip zone: largest difference {m.sxx_error:.3g} of the flank's largest")
     from threepart.fatigue_parameters import parameter
