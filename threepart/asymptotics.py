@@ -438,10 +438,11 @@ def _fatigue(flank: Any, pad: Any, e_flank: Edge, e_pad: Edge, slip: float, sign
              nu: float) -> dict[str, tuple[float, float]]:
     """Each fatigue parameter's largest value near the edge, over a fretting cycle of amplitude ``Q``, flank and pad."""
     from .fatigue_parameters import fatigue
+    from .material import similar_pair_modulus
     n, m = FATIGUE_GRID
     r = np.linspace(-0.5 * slip, 2.0 * slip, n)[:, None]
     z = np.linspace(0.0, slip, m)[None, :]
-    E = 4.0 * (1.0 - nu * nu) / flank.normal.A
+    E = similar_pair_modulus(flank.normal.A, nu)
     found: dict[str, list[float]] = {name: [] for name in FATIGUE_PARAMETERS}
     for res, e in ((flank, e_flank), (pad, e_pad)):
         normal, cycle_of = res.normal, registry.get(res.method).fretting

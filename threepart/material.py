@@ -10,7 +10,7 @@ from __future__ import annotations
 
 from .checks import finite, positive
 
-__all__ = ["compliance", "rigid_punch", "similar_pair", "NU", "E_STEEL"]
+__all__ = ["compliance", "rigid_punch", "similar_pair", "similar_pair_modulus", "NU", "E_STEEL"]
 
 #: Poisson's ratio by default: what ``stress()`` assumes for a half-plane result (closed form,
 #: SIE), which knows only the compliance ``A``, and what the FE models take when only ``A`` is given
@@ -45,6 +45,12 @@ def compliance(E1: float, nu1: float, E2: float | None = None, nu2: float | None
 def similar_pair(E: float, nu: float) -> float:
     """Two bodies of the same material: ``A = 4 (1 - nu^2)/E``."""
     return 2 * _body(E, nu, "")
+
+
+def similar_pair_modulus(A: float, nu: float) -> float:
+    """The modulus ``E = 4 (1 - nu^2)/A`` of two similar bodies of compliance ``A`` (inverse of
+    :func:`similar_pair`)."""
+    return 4.0 * (1.0 - nu * nu) / A
 
 
 def rigid_punch(E: float, nu: float) -> float:

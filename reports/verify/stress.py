@@ -15,7 +15,7 @@ from typing import Any, Mapping
 import numpy as np
 
 from threepart.fatigue import HotSpot
-from threepart.results import NU
+from threepart.material import NU, similar_pair_modulus
 
 from ..compare import STRESS_REACH, is_steady, normal_of, surface_line
 
@@ -104,7 +104,7 @@ def fatigue_hot_spots(results: Mapping[str, Any], material: tuple[float, float] 
 
     ref = results[reference]
     nu = stress_nu(material)
-    E = float(material[0]) if material is not None else 4.0 * (1.0 - nu**2) / normal_of(ref).A
+    E = float(material[0]) if material is not None else similar_pair_modulus(normal_of(ref).A, nu)
     x, z = field_grid(ref, FATIGUE_GRID)
     nr = normal_of(ref)
     line = np.linspace(-nr.a, nr.c, 202)[1:-1]
