@@ -23,6 +23,9 @@ from scipy.special import xlogy
 
 from threepart.punch import Punch
 
+from .kernel import chi_v as _chi
+from .kernel import psi_v as _psi
+
 __all__ = ["beta", "F0", "load", "tilt", "moment", "lever_arm", "pressure",
            "F1", "F2", "F3"]
 
@@ -43,24 +46,6 @@ def F0(punch: Punch, a: ArrayLike, c: ArrayLike) -> np.ndarray:
     """``F0 = k1/R1 beta1 + k2/R2 beta2 + pi/R`` (eq. f0)."""
     b1, b2 = beta(a, c, punch.b)
     return punch.kappa1 * b1 + punch.kappa2 * b2 + np.pi * punch.kappa0
-
-
-def _psi(x, xp=np):
-    """``2x - sin 2x``, with a series for small ``x`` (no cancellation); on floats (``xp`` not numpy) one branch."""
-    x2 = x * x
-    if xp is not np:
-        return (4 / 3) * x2 * x * (1 - x2 / 5 + 2 * x2 * x2 / 105) if x < 1e-2 else 2 * x - xp.sin(2 * x)
-    series = (4 / 3) * x2 * x * (1 - x2 / 5 + 2 * x2 * x2 / 105)
-    return xp.where(x < 1e-2, series, 2 * x - xp.sin(2 * x))
-
-
-def _chi(x, xp=np):
-    """``sin x - x cos x``, with a series for small ``x``; on floats (``xp`` not numpy) one branch."""
-    x2 = x * x
-    if xp is not np:
-        return x2 * x / 3 * (1 - x2 / 10 + x2 * x2 / 280) if x < 1e-2 else xp.sin(x) - x * xp.cos(x)
-    series = x2 * x / 3 * (1 - x2 / 10 + x2 * x2 / 280)
-    return xp.where(x < 1e-2, series, xp.sin(x) - x * xp.cos(x))
 
 
 def load(punch: Punch, a: ArrayLike, c: ArrayLike, A: ArrayLike) -> np.ndarray:

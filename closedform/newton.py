@@ -35,7 +35,7 @@ import numpy as np
 
 from threepart.punch import Punch
 
-from .formulas import _chi, _psi
+from . import kernel
 
 __all__ = ["State", "SCALAR", "bracketed_root", "ray_state", "solve_r", "solve_phi",
            "HALF_PI", "MAX_ITER", "EVALUATIONS", "evaluations", "XTOL", "XTOL_RANGE"]
@@ -97,14 +97,19 @@ class State:
     """Closed forms (with ``A = 1``) and their ``(h, m)`` derivatives at ``a = b + u1^2``, ``c = b + u2^2``.
 
     ``h = (a+c)/2`` and ``m = (c-a)/2`` are the contact's half-width and centre;
-    ``xp`` is :mod:`numpy` for arrays or :data:`SCALAR` for Python floats;
-    ``full=False`` evaluates the load and its derivatives only (the inner root).
+    ``xp`` is :mod:`numpy` for arrays (``u1`` and ``u2`` broadcast) or :data:`SCALAR`
+    for Python floats. The values are :func:`closedform.kernel.state`'s (the one
+    home of these formulas, compiled), one attribute per :data:`~closedform.kernel.FIELDS`.
 
     Attributes
     ----------
+    a, c, h, m
+        The contact.
     AP, dAP
         ``A P`` (eq. equilibrium_condition_1, compressive) and ``A (P - P_0)``
         with ``A P_0 = pi b^2/(2R)``, the latter free of cancellation.
+    F0
+        Eq. (f0).
     T
         ``A P s``, the moment (eq. equilibrium_condition_2, compressive).
     alpha
@@ -113,42 +118,34 @@ class State:
         Their derivatives in ``h`` and ``m``.
     """
 
-    AP: Any
+    a: Any
+    c: Any
+    h: Any
+    m: Any
     dAP: Any
-    T: Any
-    alpha: Any
+    AP: Any
     AP_h: Any
     AP_m: Any
+    F0: Any
+    T: Any
     T_h: Any
     T_m: Any
+    alpha: Any
     alpha_h: Any
     alpha_m: Any
 
-    def __init__(self, punch: Punch, u1: Any, u2: Any, xp: Any = np, full: bool = True) -> None:
-        EVALUATIONS[0] += getattr(u1, "size", 1)
-        b, k0, k1, k2 = _constants(punch)
-        ab, cb = u1 * u1, u2 * u2                     # a - b, c - b
-        rho = 0.5 * (ab + cb)                         # h - b
-        h, m = b + rho, 0.5 * (cb - ab)
-        b1 = 2 * xp.arctan2(u1, xp.sqrt(2 * b + cb))  # sqrt(c + b)
-        b2 = 2 * xp.arctan2(u2, xp.sqrt(2 * b + ab))  # sqrt(a + b)
-        s1, c1, s2, c2 = xp.sin(b1), xp.cos(b1), xp.sin(b2), xp.cos(b2)
-        self.a, self.c, self.h, self.m = b + ab, b + cb, h, m
-        edges = 0.25 * h * h * (k1 * _psi(b1, xp) + k2 * _psi(b2, xp))
-        self.dAP = edges + 0.5 * math.pi * k0 * rho * (2 * b + rho)
-        self.AP = edges + 0.5 * math.pi * k0 * h * h
-        sc = k1 * s1 * c1 + k2 * s2 * c2
-        self.AP_m = h * (k2 * s2 - k1 * s1)
-        self.AP_h = 2 * self.AP / h + h * sc
-        if not full:  # the load alone, for the inner root
-            return
-        self.F0 = k1 * b1 + k2 * b2 + math.pi * k0
-        self.T = m * self.AP + h**3 * (k2 * s2**3 - k1 * s1**3) / 6
-        self.alpha = h * (k1 * _chi(b1, xp) - k2 * _chi(b2, xp)) / math.pi - m * k0
-        self.T_m = self.AP + m * self.AP_m + 0.5 * h * h * sc
-        self.T_h = m * self.AP_h + 0.5 * h * h * (k2 * s2 - k1 * s1)
-        self.alpha_m = -self.F0 / math.pi
-        self.alpha_h = (k1 * s1 - k2 * s2) / math.pi
+    def __init__(self, punch: Punch, u1: Any, u2: Any, xp: Any = np) -> None:
+        const = _constants(punch)
+        if xp is SCALAR:
+            EVALUATIONS[0] += 1
+            values: Any = kernel.state(*const, float(u1), float(u2))
+        else:
+            u1, u2 = np.broadcast_arrays(np.asarray(u1, dtype=float), np.asarray(u2, dtype=float))
+            EVALUATIONS[0] += u1.size
+            rows = kernel.states(*const, np.ravel(u1), np.ravel(u2))
+            values = [row.reshape(u1.shape) if u1.ndim else row[0] for row in rows]
+        for name, value in zip(kernel.FIELDS, values):
+            setattr(self, name, value)
 
 
 @functools.lru_cache(maxsize=64)
@@ -157,14 +154,14 @@ def _constants(punch: Punch) -> tuple[float, float, float, float]:
     return punch.b, punch.kappa0, punch.kappa1, punch.kappa2
 
 
-def ray_state(punch: Punch, r: Any, phi: Any, xp: Any = np, full: bool = True) -> State:
+def ray_state(punch: Punch, r: Any, phi: Any, xp: Any = np) -> State:
     """:class:`State` at ``u1 = r cos(phi)``, ``u2 = r sin(phi)``.
 
     ``cos(phi)`` is evaluated as ``sin(pi/2 - phi)``: exact zeros on the
     lift-off lines, and ``u1 == u2`` to the last bit at ``phi = pi/4``, so
     that a symmetric case has ``alpha = 0`` exactly.
     """
-    return State(punch, r * xp.sin(HALF_PI - phi), r * xp.sin(phi), xp, full)
+    return State(punch, r * xp.sin(HALF_PI - phi), r * xp.sin(phi), xp)
 
 
 def _guarded_ratio(num: Any, den: Any, xp: Any) -> Any:
@@ -256,7 +253,7 @@ def solve_r(punch: Punch, dAP: Any, phi: Any, r0: Any, xp: Any = np, xtol: float
     cos2 = xp.cos(2 * phi)
 
     def fun(r: Any) -> tuple[Any, Any]:
-        st = ray_state(punch, r, phi, xp, full=False)
+        st = ray_state(punch, r, phi, xp)
         return st.dAP - dAP, r * (st.AP_h - cos2 * st.AP_m)
 
     return bracketed_root(fun, r0, 0.0 * r0, math.inf + 0.0 * r0, xp, xtol=xtol)[0]
@@ -305,61 +302,46 @@ def solve_phi(punch: Punch, dAP: Any, target: str, value: Any, xp: Any = np,
 
 #: most iterations of the two-dimensional Newton step before a case goes to the nested roots
 NEWTON_2D_ITER = 16
-#: a step below this that no longer halves is rounding: the iteration has converged
-STALL = 1e-8
+#: the outer equations of :func:`solve_phi`, as :func:`closedform.kernel.newton_2d` names them
+_KERNEL_TARGET = {"moment": kernel.MOMENT, "tilt": kernel.TILT}
 
 
 def _newton_2d(punch: Punch, dAP: Any, target: str, value: Any, xp: Any, sign: float,
                r0: Any, xtol: float = XTOL) -> tuple[Any, Any, Any]:
     """Newton's method in ``(r, phi)`` on the load and ``target`` equations together, ``phi`` bracketed.
 
-    One :class:`State` per iteration gives both residuals and the exact
-    Jacobian (``h_r = r``, ``m_r = -r cos 2phi``, ``m_phi = r^2 sin 2phi``).
-    The step is the nested iteration's in one: the load's Newton correction
-    ``dr`` at fixed ``phi``, the target linearised onto the constant-load
-    curve, ``f = g + g_r dr``, and its Newton step in ``phi`` along the curve,
-    the radius following the curve's tangent. ``f`` narrows a bracket on
-    ``phi`` (from ``[0, pi/2]``) where its sign is sure (``dr`` below a tenth
-    of ``r`` and ``g_r dr`` below half of ``f``), and a step out of the
-    bracket bisects it. The bracket only speeds the iteration:
-    a case counts as solved (``ok``) only when its full step is below
-    ``XTOL`` (relative in ``r``, absolute in ``phi``), or at the rounding floor
-    (:func:`_step_2d`), which is then taken, with ``0 < phi < pi/2``; the
-    system has one root there, so a converged case is that root. The rest go
-    to :func:`_solve_phi_nested`. Each step is one forward evaluation: about 8
-    per case (``NormalBatch.evaluations``; 31 for the nested roots alone).
+    The iteration is :func:`closedform.kernel.newton_2d` (compiled; a batch is its
+    loop over the cases): one forward evaluation per step gives both residuals and
+    the exact Jacobian, the step is the nested iteration's in one, and a case
+    counts as solved (``ok``) only when its full step is below ``xtol``, or at the
+    rounding floor, with ``0 < phi < pi/2``; the system has one root there, so a
+    converged case is that root. The rest go to :func:`_solve_phi_nested`. About 8
+    evaluations per case (``NormalBatch.evaluations``; 31 for the nested roots alone).
 
     Returns
     -------
     r, phi, ok
     """
-    get = _TARGETS[target]
-    r = _r_guess(punch, dAP, xp) if r0 is None else r0
-    phi, lo, hi = _phi_guess(punch) + 0.0 * dAP, 0.0 * dAP, HALF_PI + 0.0 * dAP
+    const = _constants(punch)
+    which = _KERNEL_TARGET[target]
+    phi0 = _phi_guess(punch)
     if xp is SCALAR:
-        last = math.inf
-        for _ in range(NEWTON_2D_ITER):
-            r, phi, lo, hi, last, small = _step_2d(punch, dAP, get, value, sign, r, phi, lo, hi, last, xp,
-                                                   xtol)
-            if small:
-                return r, phi, 0 < phi < HALF_PI
-        return r, phi, False
-    ok = np.zeros(np.shape(dAP), dtype=bool)
-    act = np.arange(ok.size)
-    cur = [np.broadcast_to(np.asarray(v, dtype=float), ok.shape).copy()
-           for v in (dAP, value, r, phi, lo, hi, math.inf)]
-    r, phi = cur[2].copy(), cur[3].copy()
-    for _ in range(NEWTON_2D_ITER):
-        d, v, rr, pp, ll, hh, prev = cur
-        rr, pp, ll, hh, prev, small = _step_2d(punch, d, get, v, sign, rr, pp, ll, hh, prev, np, xtol)
-        r[act], phi[act] = rr, pp
-        ok[act[small]] = True
-        if small.all():
-            break
-        keep = ~small
-        act = act[keep]
-        cur = [x[keep] for x in (d, v, rr, pp, ll, hh, prev)]
-    return r, phi, ok & (phi > 0) & (phi < HALF_PI)
+        r = _r_guess(punch, dAP, xp) if r0 is None else r0
+        r, phi, ok, n = kernel.newton_2d(*const, float(dAP), which, float(value), float(sign), float(r),
+                                         phi0, float(xtol), NEWTON_2D_ITER)
+        EVALUATIONS[0] += n
+        return r, phi, ok
+    dAP = np.asarray(dAP, dtype=float)
+    shape = dAP.shape
+    r = _r_guess(punch, dAP, np) if r0 is None else r0
+
+    def flat(v: Any) -> np.ndarray:
+        return np.ascontiguousarray(np.broadcast_to(np.asarray(v, dtype=float), shape)).ravel()
+
+    r, phi, ok, n = kernel.newton_2d_many(*const, flat(dAP), which, flat(value), float(sign), flat(r), phi0,
+                                          float(xtol), NEWTON_2D_ITER)
+    EVALUATIONS[0] += n
+    return r.reshape(shape), phi.reshape(shape), ok.reshape(shape)
 
 
 @functools.lru_cache(maxsize=64)
@@ -370,48 +352,6 @@ def _phi_guess(punch: Punch) -> float:
     equal heights ``(a - b)^2/R1 = (c - b)^2/R2`` at the contact's ends.
     """
     return math.atan((punch.R2 / punch.R1) ** 0.25)
-
-
-def _step_2d(punch: Punch, dAP: Any, get: Callable[[State], tuple[Any, Any, Any]], value: Any,
-             sign: float, r: Any, phi: Any, lo: Any, hi: Any, last: Any, xp: Any,
-             xtol: float = XTOL) -> tuple[Any, ...]:
-    """One bracketed Newton step of :func:`_newton_2d`: ``(r, phi, lo, hi, step, converged)``.
-
-    ``step`` is ``|dr|/r + |dphi|`` (``inf`` where anything is not finite) and
-    ``last`` the previous one: a case has converged when it is below ``xtol``,
-    or below :data:`STALL` but no longer halving (the rounding floor of an
-    ill-conditioned case, reached after the quadratic steps).
-    """
-    st = ray_state(punch, r, phi, xp)
-    g, g_h, g_m = get(st)
-    cos2, sin2 = xp.cos(2 * phi), xp.sin(2 * phi)
-    L_r = r * (st.AP_h - cos2 * st.AP_m)
-    G_r = sign * r * (g_h - cos2 * g_m)
-    dr = -_guarded_ratio(st.dAP - dAP, L_r, xp)              # the load's correction at fixed phi
-    r_phi = -_guarded_ratio(r * r * sin2 * st.AP_m, L_r, xp)  # the constant-load curve's slope
-    f = sign * (g - value) + G_r * dr                         # the target, on the curve
-    df = sign * r * r * sin2 * g_m + G_r * r_phi
-    # the sign of f is trusted where its linear correction is small against it (its
-    # quadratic remainder is then ~ (dr/r) of that correction)
-    near = xp.abs(dr) <= 0.1 * r          # near the constant-load curve: step in phi too
-    trust = near & (xp.abs(G_r * dr) <= 0.5 * xp.abs(f))
-    neg = f < 0
-    lo, hi = xp.where(trust & neg, phi, lo), xp.where(trust & xp.logical_not(neg), phi, hi)
-    # Newton's step in t = sin^2 phi = (c - b)/r^2, in which f is linear at the lift-off lines
-    # (in phi it is flat there, and Newton's steps only halve the distance to a root near them)
-    dt = -_guarded_ratio(f * sin2, df, xp)
-    sp, cp = xp.sin(phi), xp.sin(HALF_PI - phi)
-    newton = xp.arctan2(xp.sqrt(xp.maximum(sp * sp + dt, 0.0)), xp.sqrt(xp.maximum(cp * cp - dt, 0.0)))
-    close = xp.abs(newton - phi) <= xtol                      # a converged step (NaN is not close)
-    phin = xp.where((newton > lo) & (newton < hi) | close, newton, 0.5 * (lo + hi))
-    phin = xp.where(near, phin, phi)
-    drn = dr + r_phi * (phin - phi)
-    step = xp.abs(_guarded_ratio(drn, r, xp)) + xp.abs(phin - phi)   # NaN where not finite
-    step = xp.where(xp.isfinite(step) & xp.isfinite(f), step, math.inf)
-    small = (step <= xtol) | (step <= STALL) & (step >= 0.5 * last)
-    rn = r + drn
-    rn = xp.where(rn > 0, rn, 0.5 * r)
-    return rn, phin, lo, hi, step, small
 
 
 def _solve_phi_nested(punch: Punch, dAP: Any, target: str, value: Any, xp: Any = np,

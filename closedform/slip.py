@@ -180,7 +180,7 @@ def stick_zones_on_path(normal: NormalResult, Q: float, f: float, sigma_bulk: fl
     out = ~(dAP > 0)
     safe = np.where(out, A * normal.P, dAP)
     r, phi, below, above = solve_phi(punch, safe, "tilt", alpha_star, np, sign=-1.0)
-    st = ray_state(punch, r, phi, np, full=False)
+    st = ray_state(punch, r, phi, np)
     zero = lam == 0
     out = (out | below | above) & ~zero
     return np.where(zero, normal.a, st.a), np.where(zero, normal.c, st.c), out

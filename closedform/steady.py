@@ -211,7 +211,7 @@ class _Cycle:
         if np.any(todo):
             r, phi, lo, hi = solve_phi(punch, np.where(out, A * max(n.P for n in self.ends), dAP)[todo],
                                        "tilt", alpha_star[todo], np, sign=-1.0)
-            zs = ray_state(punch, r, phi, np, full=False)
+            zs = ray_state(punch, r, phi, np)
             a_s, c_s = a_s.copy(), c_s.copy()
             a_s[todo], c_s[todo] = zs.a, zs.c
             out = out.copy()

@@ -7,6 +7,7 @@ the verification report's speed section (:mod:`reports.verify.speed`).
 
 measure         -- every figure of :data:`reports.verify.speed.TARGETS`, with the load before and after
 naive           -- a per-case ``scipy.optimize.fsolve`` on the same equations (the baseline)
+paper_equations -- its equations: the printed P(a, c) and s(a, c), transcribed in numpy
 """
 from __future__ import annotations
 
@@ -26,7 +27,7 @@ from threepart.closedform import formulas
 from threepart.closedform.newton import evaluations
 from threepart.stress import stress
 
-__all__ = ["measure", "naive", "best_of", "SIZES"]
+__all__ = ["measure", "naive", "paper_equations", "best_of", "SIZES"]
 
 #: sizes of each measurement, full and quick (cases of the batch, of the naive fsolve, single
 #: solves, scattered stress points, the grid's nx and nz, and the fatigue grid's)
@@ -46,16 +47,40 @@ def best_of(fn: Callable[[], Any], repeat: int = 3) -> float:
     return min(times)
 
 
-def naive(punch: Any, A: float, P: np.ndarray, s: np.ndarray) -> np.ndarray:
-    """``(a, c)`` of each case by ``fsolve`` on ``P(a, c)`` and ``s(a, c)`` (eqs.
-    equilibrium_condition_1 and _2 of :mod:`closedform.formulas`), from a symmetric Hertz-like start."""
+def paper_equations(punch: Any, a: np.ndarray, c: np.ndarray, A: float) -> tuple[np.ndarray, np.ndarray]:
+    """``(P, s)`` of a contact ``[-a, c]``: eqs. (equilibrium_condition_1, _2) as printed, transcribed in numpy.
+
+    ``8AP = (a+c)^2 F0 + 2 k1/R1 (a-2b-c) sqrt((a-b)(b+c)) - 2 k2/R2 (a+2b-c) sqrt((a+b)(c-b))``
+    with ``F0`` of eq. (f0), and ``6AP (s - m) = k2/R2 ((a+b)(c-b))^(3/2) - k1/R1 ((a-b)(b+c))^(3/2)``,
+    the sign of ``P`` corrected (docs/ERRATA.md): what a user would transcribe, shown beside issue 33's
+    baseline (:func:`naive` on :mod:`closedform.formulas`, whose array handling costs it 6x).
+    """
+    b, k1, k2 = punch.b, punch.k1 / punch.R1, punch.k2 / punch.R2
+    W = a + c
+    F0 = k1 * np.arccos((2 * b - a + c) / W) + k2 * np.arccos((a + 2 * b - c) / W) + np.pi / punch.R
+    left, right = (a - b) * (b + c), (a + b) * (c - b)
+    P = (W**2 * F0 + 2 * k1 * (a - 2 * b - c) * np.sqrt(left)
+         - 2 * k2 * (a + 2 * b - c) * np.sqrt(right)) / (8 * A)
+    s = 0.5 * (c - a) + (k2 * right**1.5 - k1 * left**1.5) / (6 * A * P)
+    return P, s
+
+
+def naive(punch: Any, A: float, P: np.ndarray, s: np.ndarray, equations: Any = None) -> np.ndarray:
+    """``(a, c)`` of each case by ``fsolve`` on ``P(a, c)`` and ``s(a, c)``, from a symmetric Hertz-like start.
+
+    The equations are the library's forward closed forms (eqs. equilibrium_condition_1 and _2 of
+    :mod:`closedform.formulas`, issue 33's baseline) unless ``equations`` gives others (``(punch, a, c, A)
+    -> (P, s)``, e.g. :func:`paper_equations`).
+    """
+    equations = equations or (lambda punch, a, c, A: (formulas.load(punch, a, c, A),
+                                                      formulas.lever_arm(punch, a, c)))
     out = np.empty((P.size, 2))
     for i, (Pi, si) in enumerate(zip(P, s)):
         a0 = punch.b + math.sqrt(2 * Pi * A * punch.R1 / math.pi) * 0.5
 
         def res(ac: np.ndarray, Pi: float = Pi, si: float = si) -> list[float]:
-            a, c = np.maximum(ac, punch.b)
-            return [float(formulas.load(punch, a, c, A) / Pi - 1), float(formulas.lever_arm(punch, a, c) - si)]
+            load, lever = equations(punch, *np.maximum(ac, punch.b), A)
+            return [float(load / Pi - 1), float(lever - si)]
 
         out[i] = fsolve(res, [a0, a0], xtol=1e-13)
     return out
@@ -70,12 +95,17 @@ def _closedform(size: dict[str, Any]) -> dict[str, float]:
     t_naive = best_of(lambda: naive(punch, A, P[:nn], s[:nn]), 1) / nn
     t_batch = best_of(lambda: cf.solve_normal_batch(punch, P, s, A=A)) / P.size
     t_single = best_of(lambda: [cf.solve_normal(punch, 400.0, 0.1, A=A) for _ in range(ns)]) / ns
+    t_paper = best_of(lambda: naive(punch, A, P[:nn], s[:nn], paper_equations), 1) / nn
     n0 = evaluations()
     batch = cf.solve_normal_batch(punch, P, s, A=A)
     return {"batch_over_naive": t_naive / t_batch, "single_over_naive": t_naive / t_single,
             "evaluations_per_case": (evaluations() - n0) / P.size, "batch_us_per_case": 1e6 * t_batch,
             "single_us": 1e6 * t_single, "naive_us_per_case": 1e6 * t_naive,
-            "batch_vs_naive_a": float(np.max(np.abs(naive(punch, A, P[:nn], s[:nn])[:, 0] / batch.a[:nn] - 1)))}
+            "naive_paper_us_per_case": 1e6 * t_paper, "single_over_naive_paper": t_paper / t_single,
+            "batch_over_naive_paper": t_paper / t_batch,
+            "batch_vs_naive_a": float(np.max(np.abs(naive(punch, A, P[:nn], s[:nn])[:, 0] / batch.a[:nn] - 1))),
+            "batch_vs_naive_paper_a": float(np.max(np.abs(
+                naive(punch, A, P[:nn], s[:nn], paper_equations)[:, 0] / batch.a[:nn] - 1)))}
 
 
 def _stress(size: dict[str, Any]) -> dict[str, float]:

@@ -258,3 +258,73 @@ def test_peaks_do_not_depend_on_n(n):
 def test_peaks_refuse_a_bad_n(n, error, match):
     with pytest.raises(error, match=match):
         NORMAL.peaks(n)
+
+
+# -- the closed form's pressure on a convex profile: compressive by construction ---------------------
+def _convex_contacts(n: int, seed: int):
+    """``n`` random convex punches (radii over decades, flat, convex or Hertz centre) and contacts
+    ``[-a, c]`` with ``a, c >= b`` from 1e-9 b past a join to 30 b: any contact, solved or not."""
+    rng = np.random.default_rng(seed)
+    for _ in range(n):
+        kind = rng.choice(["A", "general", "C"])
+        b = 0.0 if kind == "C" else 1.0
+        R1, R2 = 10 ** rng.uniform(math.log10(0.03), 3, 2)
+        R = 10 ** rng.uniform(math.log10(0.03), 4) if kind == "general" else math.inf
+        ell = b or 1.0
+        a, c = (b + ell * 10 ** rng.uniform(-9, math.log10(30)) for _ in range(2))
+        yield Punch(R1, R2, b, R), a, c
+
+
+def _divided_difference_pressure(punch: Punch, a: float, c: float, x: float) -> float:
+    """``w(x)/(pi A) int_0^pi [v'(t) - v'(x)]/(t - x) dtheta`` at ``t = m + h cos(theta)``
+    (``dt/w(t) = dtheta``): eq. (inverted_IE) as a proper integral, by adaptive quadrature."""
+    from scipy.integrate import quad
+
+    h, m = 0.5 * (a + c), 0.5 * (c - a)
+    vx = float(punch.slope(x))
+
+    def dd(theta: float) -> float:
+        t = m + h * math.cos(theta)
+        return 0.0 if t == x else (float(punch.slope(t)) - vx) / (t - x)
+
+    kinks = sorted(math.acos(min(1.0, max(-1.0, (t - m) / h))) for t in (-punch.b, punch.b, x))
+    total, _ = quad(dd, 0.0, math.pi, points=kinks, epsabs=0.0, epsrel=1e-13, limit=400)
+    return math.sqrt((x + a) * (c - x)) * total / (math.pi * A)
+
+
+def test_on_a_convex_profile_the_closed_forms_pressure_is_the_divided_difference_and_never_tensile():
+    """Why the closed form's answer check samples only a concave centre (``NormalSolution.check``).
+
+    On any contact of a convex punch, (1) eq. (pressure_abbreviated) equals the
+    divided-difference form of eq. (inverted_IE) by quadrature, and (2) its least value
+    over the answer check's points, points 1e-12 to 1e-3 of the width from each edge and
+    the joins is >= -1e-12 of its peak (rounding; measured: no negative value at all, and the
+    identity within 1.7e-12): the check's 1e-6 could never refuse it.
+    """
+    from threepart.answer import _points
+
+    worst_identity = worst_sign = 0.0
+    for i, (punch, a, c) in enumerate(_convex_contacts(400, seed=33)):
+        W = a + c
+        near = W * np.logspace(-12, -3, 10)
+        x = np.concatenate([_points(-a, c), -a + near, c - near,
+                            [t for t in (-punch.b, punch.b) if -a < t < c]])
+        p = formulas.pressure(punch, a, c, A, x)
+        assert np.isfinite(p).all()
+        peak = p.max()
+        worst_sign = min(worst_sign, p.min() / peak)
+        if i % 20 == 0:       # the identity at three points of every 20th contact
+            for xi in (-a + 0.3 * W, 0.5 * (c - a) + 1e-3 * W, c - 0.01 * W):
+                ref = _divided_difference_pressure(punch, a, c, xi)
+                worst_identity = max(worst_identity,
+                                     abs(float(formulas.pressure(punch, a, c, A, xi)) - ref) / peak)
+    assert worst_sign >= -tolerance("closedform", "round_off").limit
+    assert worst_identity <= tolerance("closedform", "quadrature").limit
+
+
+def test_a_concave_centres_closed_form_answer_is_still_sampled():
+    """A concave centre's pressure may be tensile: a contact built below its separation load is refused."""
+    punch = Punch(1.0, 1.0, 1.0, -2.0)
+    with pytest.raises(SeparationError, match="pressure is nowhere compressive"):
+        closedform.NormalSolution(punch, A, 1.05, 1.05, 0.0, 1.0, 0.0)
+    closedform.NormalSolution(Punch(1.0, 1.0, 1.0), A, 1.05, 1.05, 0.0, 1.0, 0.0)   # convex: never refused

@@ -222,9 +222,16 @@ def test_no_nan_from_an_edge_a_rounding_error_inside_a_join():
 
 
 def test_a_failing_iteration_is_a_named_error_never_a_number(monkeypatch):
-    """If the closed forms were not finite, the bracketed root raises NoConvergenceError."""
-    from threepart.closedform import newton
+    """If the closed forms were not finite, the compiled 2-D Newton iteration reports no convergence
+    (never a number), and the bracketed roots it hands the case to raise NoConvergenceError."""
+    from threepart.closedform import kernel, newton
 
+    b, k0, k1, k2 = 1.0, 0.0, 0.1, 0.2
+    for bad in ("value", "dAP"):
+        args = {"dAP": 1.0, "value": 0.1} | {bad: float("nan")}
+        r, phi, ok, n = kernel.newton_2d(b, k0, k1, k2, args["dAP"], kernel.MOMENT, args["value"], 1.0,
+                                         1.0, 0.7, 1e-12, newton.NEWTON_2D_ITER)
+        assert not ok and n == newton.NEWTON_2D_ITER
     real_state = newton.State
 
     class Broken(real_state):
@@ -233,5 +240,6 @@ def test_a_failing_iteration_is_a_named_error_never_a_number(monkeypatch):
             self.dAP = self.dAP * float("nan")
 
     monkeypatch.setattr(newton, "State", Broken)
+    monkeypatch.setattr(newton.kernel, "newton_2d", lambda *args: (math.nan, math.nan, False, 16))
     with pytest.raises(cf.NoConvergenceError, match="function is not finite"):
         cf.solve_normal(Punch(10.0, 5.0, 1.0), 400.0, A=A)

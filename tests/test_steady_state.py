@@ -396,7 +396,7 @@ def _zone(P: float, alpha: float):
     from threepart.closedform.newton import ray_state, solve_phi
     dAP = A * P - 0.5 * math.pi * CASE_A.kappa0 * CASE_A.b**2
     r, phi, lo, hi = solve_phi(CASE_A, np.array([dAP]), "tilt", np.array([alpha]), np, sign=-1.0)
-    st = ray_state(CASE_A, r, phi, np, full=False)
+    st = ray_state(CASE_A, r, phi, np)
     return float(st.a[0]), float(st.c[0]), bool(lo[0] or hi[0])
 
 

@@ -55,6 +55,8 @@ def show(value: Any) -> str:
 
 
 def _number(name: str, value: Any) -> float:
+    if type(value) is float:      # the common case, without the checks' cost (a single solve's inputs)
+        return value
     if isinstance(value, (bool, np.bool_)) or not isinstance(value, (numbers.Real, np.floating,
                                                                       np.integer)):
         raise TypeError(f"`{name}` = {show(value)} must be a real number, not {type(value).__name__}")

@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from functools import cached_property
 from typing import Any
 
 import numpy as np
@@ -64,28 +65,28 @@ class Punch:
                              f"{LENGTH_RANGE[1]:g}], or R = inf for a flat centre")
         set_(self, "R", R)
 
-    # -- derived constants -------------------------------------------------
-    @property
+    # -- derived constants (cached: the punch is frozen) -----------------------
+    @cached_property
     def kappa0(self) -> float:
         """Curvature of the central segment, ``1/R`` (0 for case A)."""
         return 0.0 if math.isinf(self.R) else 1.0 / self.R
 
-    @property
+    @cached_property
     def kappa1(self) -> float:
         """Curvature jump at ``x = -b``: ``k1/R1 = 1/R1 - 1/R``."""
         return 1.0 / self.R1 - self.kappa0
 
-    @property
+    @cached_property
     def kappa2(self) -> float:
         """Curvature jump at ``x = +b``: ``k2/R2 = 1/R2 - 1/R``."""
         return 1.0 / self.R2 - self.kappa0
 
-    @property
+    @cached_property
     def k1(self) -> float:
         """``k1 = 1 - R1/R`` of eq. (2)."""
         return 1.0 - self.R1 * self.kappa0
 
-    @property
+    @cached_property
     def k2(self) -> float:
         """``k2 = 1 - R2/R`` of eq. (2)."""
         return 1.0 - self.R2 * self.kappa0

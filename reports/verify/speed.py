@@ -29,7 +29,10 @@ TARGETS: dict[str, tuple[str, str, float]] = {
 }
 #: figures shown without a target, for the reader
 SHOWN = {"batch_us_per_case": "batch, µs per case", "single_us": "one solve, µs",
-         "naive_us_per_case": "naive fsolve, µs per case",
+         "naive_us_per_case": "naive fsolve on closedform.formulas (the targets' baseline), µs per case",
+         "naive_paper_us_per_case": "fsolve on the printed equations transcribed in numpy (no target), µs per case",
+         "single_over_naive_paper": "one closed-form solve against that fsolve",
+         "batch_over_naive_paper": "closed-form batch against that fsolve",
          "stress_us_per_point": "stress at scattered points, µs per point",
          "grid_us_per_point": "stress on the grid, µs per point",
          "fatigue_ms_per_point_and_state": "fatigue history, ms per point and state"}
