@@ -53,7 +53,7 @@ SIE_SCHEMES = ("plain", "projected")
 #: how many of the tightest checks (error/limit, worst first) the report lists on top
 TIGHTEST = 10
 PACKAGES = ("threepart", "numpy", "scipy", "matplotlib", "scikit-fem", "gmsh", "meshio",
-            "threadpoolctl")
+            "threadpoolctl", "numba")
 
 
 def _versions() -> dict[str, str | None]:
