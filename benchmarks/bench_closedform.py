@@ -49,7 +49,7 @@ def main() -> dict:
     t_batch = best_of(lambda: cf.solve_normal_batch(PUNCH, P, s, A=A), repeat=3)
     t_press = best_of(lambda: sol.pressure(x))
     nn = args.naive_cases
-    t_naive = best_of(lambda: naive(P[:nn], s[:nn]), repeat=1) / nn
+    t_naive = best_of(lambda: naive(P[:nn], s[:nn])) / nn
 
     batch = cf.solve_normal_batch(PUNCH, P, s, A=A)
     ref = naive(P[:nn], s[:nn])

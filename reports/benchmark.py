@@ -92,10 +92,10 @@ def _closedform(size: dict[str, Any]) -> dict[str, float]:
     rng = np.random.default_rng(0)
     P, s = rng.uniform(200.0, 2000.0, size["batch"]), rng.uniform(-0.3, 0.3, size["batch"])
     nn, ns = size["naive"], size["single"]
-    t_naive = best_of(lambda: naive(punch, A, P[:nn], s[:nn]), 1) / nn
+    t_naive = best_of(lambda: naive(punch, A, P[:nn], s[:nn])) / nn
     t_batch = best_of(lambda: cf.solve_normal_batch(punch, P, s, A=A)) / P.size
     t_single = best_of(lambda: [cf.solve_normal(punch, 400.0, 0.1, A=A) for _ in range(ns)]) / ns
-    t_paper = best_of(lambda: naive(punch, A, P[:nn], s[:nn], paper_equations), 1) / nn
+    t_paper = best_of(lambda: naive(punch, A, P[:nn], s[:nn], paper_equations)) / nn
     n0 = evaluations()
     batch = cf.solve_normal_batch(punch, P, s, A=A)
     return {"batch_over_naive": t_naive / t_batch, "single_over_naive": t_naive / t_single,
