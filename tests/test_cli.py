@@ -570,6 +570,45 @@ def test_fatigue_states_are_bounded_and_the_bound_is_in_the_help(capsys):
     assert f"recorded states per branch of the cycle, 2 to {MAX_FATIGUE_STATES}" in help_text
 
 
+def test_fatigue_constant_reaches_its_row_and_crossland_is_affine_in_kappa(capsys, tmp_path):
+    """``--constant kappa=...`` reaches Crossland's row: its field is affine in kappa (Crossland's
+    definition, sqrt(J2,a) + kappa sigma_h,max), kappa moves it, and no option gives its default."""
+    from threepart.fatigue_parameters import KAPPA_CROSSLAND
+
+    def field(*extra):
+        out = tmp_path / f"f{len(list(tmp_path.iterdir()))}.csv"
+        assert main([*FATIGUE, "--csv", str(out), *extra]) == 0
+        text = capsys.readouterr().out
+        rows = [line.split(",") for line in out.read_text().splitlines()]
+        col = rows[0].index("crossland [MPa]")
+        return np.array([float(r[col]) for r in rows[1:]]), text
+
+    c0, text0 = field("--constant", "kappa=0")
+    c1, _ = field("--constant", "kappa=1")
+    default, text = field()
+    assert "constants  k 0.3, kappa 0 " in text0 and "kappa" not in text.split("constants", 1)[1].splitlines()[0]
+    sigma_h = c1 - c0
+    assert np.abs(sigma_h).max() > 0       # kappa moves the field
+    scale = np.abs(c1).max()
+    assert np.abs(default - (c0 + KAPPA_CROSSLAND * sigma_h)).max() <= tolerance("closedform", "round_off").limit * scale
+
+
+@pytest.mark.parametrize("given, match", [
+    ("kappa", r"argument --constant: invalid constant: 'kappa' \(write NAME=VALUE"),
+    ("k=0.3", r"`--constant k=...`: Findley's constant is `--k`"),
+    ("foo=1", r"no fatigue parameter has a constant `foo` \(theirs: kappa"),
+    ("kappa=11", r"`kappa` = 11.0 must lie in \[0, 10\]"),
+])
+def test_a_bad_fatigue_constant_is_one_line_and_exit_2(capsys, given, match):
+    assert main([*FATIGUE, "--constant", given]) == 2
+    assert re.search(match, _one_line_error(capsys, "fatigue"))
+
+
+def test_a_fatigue_constant_given_twice_is_refused(capsys):
+    assert main([*FATIGUE, "--constant", "kappa=0.1", "--constant", "kappa=0.2"]) == 2
+    assert "`--constant kappa` is given twice" in _one_line_error(capsys, "fatigue")
+
+
 def test_fatigue_auto_falls_back_past_lift_off_and_says_why_on_its_first_line(capsys):
     """threepart.fretting's ``auto`` behind ``threepart fatigue``: past lift-off the SIE answers, and the
     first line quotes the refusal the closed form raises when called directly (one auto fallback)."""

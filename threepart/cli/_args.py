@@ -30,7 +30,7 @@ from typing import Any, NoReturn, Sequence
 from threepart.units import UNITS
 
 __all__ = ["UsageError", "Parser", "NUMERIC_OPTIONS", "LIST_OPTIONS", "join_negative_numbers",
-           "real_arg", "number_list", "state_arg", "labelled", "punch_args", "state_args", "method_args", "method_options",
+           "real_arg", "number_list", "state_arg", "constant_arg", "labelled", "punch_args", "state_args", "method_args", "method_options",
            "problem_args", "problem", "FORCE_HELP"]
 
 #: options that take a number; ``--s -1e-3`` is read as ``--s=-1e-3`` (argparse alone
@@ -116,6 +116,15 @@ def real_arg(text: str) -> float:
         raise argparse.ArgumentTypeError(f"{text} overflows to inf in double precision (the largest "
                                          f"number is {sys.float_info.max:.3g})")
     return v
+
+
+def constant_arg(text: str) -> tuple[str, float]:
+    """``"kappa=0.5"`` as ``("kappa", 0.5)`` (the type of ``--constant``), the value read by :func:`real_arg`."""
+    name, sep, value = text.partition("=")
+    name = name.strip()
+    if not sep or not name.isidentifier():
+        raise argparse.ArgumentTypeError(f"invalid constant: {text!r} (write NAME=VALUE, e.g. kappa=0.5)")
+    return name, real_arg(value)
 
 
 def number_list(text: str) -> list[float]:

@@ -16,7 +16,7 @@ from typing import Any
 
 from threepart.progress import heartbeat
 
-from ._args import labelled, method_args, method_options, punch_args, state_args
+from ._args import constant_arg, labelled, method_args, method_options, punch_args, state_args
 from ._output import print_json, write_csv, write_grid_vtu
 
 __all__ = ["add_parser", "run", "MAX_FATIGUE_POINTS", "MAX_FATIGUE_STATES"]
@@ -56,6 +56,10 @@ def _fatigue_args(p: argparse.ArgumentParser) -> None:
     m.add_argument("--nu", type=float, required=True, help="Poisson's ratio, in (-1, 0.5)")
     m.add_argument("--k", type=float,   # None: threepart.fatigue.K_FINDLEY, read when used
                    help="Findley's constant, in [0, 10] (default {k_findley})")
+    m.add_argument("--constant", action="append", default=[], type=constant_arg, metavar="NAME=VALUE",
+                   help="another fatigue parameter's constant, by the name its row of "
+                        "threepart.fatigue_parameters gives it, e.g. kappa=0.5 (Crossland's, in [0, 10]; "
+                        "default 0.368); repeatable")
     ld = p.add_argument_group("loads: P at s, then the cycle Q = 0 -> Q_max -> -Q_max -> Q_max; or "
                               "a flight cycle's two ends, --state0 and --state1")
     ld.add_argument("--P", type=float,
@@ -122,6 +126,7 @@ def _fatigue_iv(args: argparse.Namespace) -> None:
     poisson(args.nu)
     _fatigue_loads_iv(args)
     args.k = findley_k(K_FINDLEY if args.k is None else args.k)
+    args.constants = _constants_iv(args.constant)
     finite("--sigma-bulk", args.sigma_bulk)
     _bulk_stress_iv(args)
     integer("--states", args.states, 2, MAX_FATIGUE_STATES)
@@ -146,6 +151,24 @@ def _fatigue_iv(args: argparse.Namespace) -> None:
         check_file(path, arg=f"--{arg}")
     if not math.isfinite(args.s):
         raise ValueError(f"`--s` = {args.s!r} must be a finite number")
+
+
+def _constants_iv(given: list[tuple[str, float]]) -> dict[str, float]:
+    """``--constant`` as ``{name: value}``: each a constant some row of the table names, once; not ``k``."""
+    from threepart.fatigue_parameters import parameters
+
+    known = sorted({c for p in parameters() for c in p.constants} - {"k"})
+    out: dict[str, float] = {}
+    for name, value in given:
+        if name == "k":
+            raise ValueError("`--constant k=...`: Findley's constant is `--k`")
+        if name not in known:
+            raise ValueError(f"`--constant {name}=...`: no fatigue parameter has a constant `{name}` "
+                             f"(theirs: {', '.join(known) or 'none'}; Findley's k is `--k`)")
+        if name in out:
+            raise ValueError(f"`--constant {name}` is given twice")
+        out[name] = value
+    return out
 
 
 def _fretting(args: argparse.Namespace, punch: Any, A: float) -> Any:
@@ -232,8 +255,8 @@ def run(args: argparse.Namespace) -> int:
     line = -a + (a + c) * (np.arange(args.ns) + 0.5) / args.ns   # inside: never on a contact end
     with heartbeat(say, lambda: f"the stresses of {2 if steady else cycle.Q.size} recorded states "
                                  f"at {args.nx * args.nz + args.ns} points"):
-        res = fatigue(cycle, x, z, E=args.E, nu=args.nu, k=args.k,
-                      surface=np.union1d(np.ravel(x), line))
+        res = fatigue(cycle, x, z, E=args.E, nu=args.nu, k=args.k, surface=np.union1d(np.ravel(x), line),
+                      **args.constants)
     if args.csv is not None:
         _fatigue_csv(args.csv, res)
     if args.vtu is not None:
@@ -265,7 +288,7 @@ def _fatigue_print(args: argparse.Namespace, res: Any, cycle: Any, A: float, hea
         {"states": [list(args.state0), list(args.state1)], "stick_zone": list(cycle.stick_zone),
          "energy": cycle.energy, "shakedown": cycle.shakedown} if steady else
         {"P": args.P, "s": args.s, "Q_max": args.Q_max, "sigma_bulk": args.sigma_bulk})
-    doc = {"method": cycle.method, "A": A, "E": args.E, "nu": args.nu, "k": args.k,
+    doc = {"method": cycle.method, "A": A, "E": args.E, "nu": args.nu, "k": args.k, "constants": args.constants,
            **loads, "f": args.f, "a": normal.a, "c": normal.c,
            "states": res.states, "grid": {"nx": args.nx, "nz": args.nz, "depth_W": args.depth},
            "hot_spots": hot}
@@ -288,6 +311,8 @@ def _fatigue_print(args: argparse.Namespace, res: Any, cycle: Any, A: float, hea
               f"{res.states} distinct states")
     print(f"grid       {args.nx} x {args.nz} points, x over [-a - W/4, c + W/4], z over "
           f"[0, {args.depth:g} W]; Ruiz also at {args.ns} surface points over the contact")
+    constants = ", ".join(f"{name} {value:g}" for name, value in {"k": args.k, **args.constants}.items())
+    print(f"constants  {constants} (the parameters' own defaults for the others)")
     print("hot spots (units: mm, N/mm, MPa, or any consistent set):")
     from threepart.fatigue_parameters import parameter
 
