@@ -121,7 +121,8 @@ def newton_2d(b: float, k0: float, k1: float, k2: float, dAP: float, target: int
     The case is ``A (P - P_0) = dAP`` and ``target`` (:data:`MOMENT`: ``A P s``;
     :data:`TILT`: ``alpha``, with ``sign = -1`` as it decreases in ``phi``)
     equal to ``value``, with ``u1 = r cos(phi)``, ``u2 = r sin(phi)``. Each step
-    is one :func:`state`, the load's Newton correction ``dr`` at fixed ``phi``
+    is one :func:`state`, which gives both residuals and the exact Jacobian
+    (``h_r = r``, ``m_r = -r cos 2phi``, ``m_phi = r^2 sin 2phi``): the load's Newton correction ``dr`` at fixed ``phi``
     and the target linearised onto the constant-load curve, ``f = g + g_r dr``,
     stepped in ``t = sin^2 phi`` (linear at the lift-off lines) inside a bracket
     on ``phi`` narrowed where the sign of ``f`` is sure. Converged: a full step
