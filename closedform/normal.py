@@ -24,7 +24,7 @@ from numpy.typing import ArrayLike
 from scipy.optimize import minimize_scalar
 
 from threepart.answer import check_pressure
-from threepart.errors import LiftOffError, SeparationError
+from threepart.errors import LiftOffError, NoConvergenceError, SeparationError
 from threepart.punch import Punch
 from threepart.results import Diagnostics, NormalResult
 from threepart.validate import (LENGTH_RANGE, check_arcs, check_contact, check_punch, check_tilt, finite,
@@ -58,8 +58,11 @@ class NormalSolution(NormalResult):
         a flat or convex centre) ``v'`` never decreases, the divided difference is ``>= 0``
         and so is ``p``: sampling it could not refuse (``tests/test_answers.py`` checks the
         identity by quadrature and the sign on wide random contacts). A concave centre is
-        sampled as every other method's answer is.
+        sampled as every other method's answer is; a contact that is not finite is refused.
         """
+        if not math.isfinite(self.a + self.c):
+            raise NoConvergenceError(f"closedform: the contact [-a, c] = [{-self.a:.6g}, {self.c:.6g}] for "
+                                     f"`P` = {self.P:.6g} is not finite; no result is returned")
         if self.punch.kappa0 < 0:
             check_pressure(self)
 

@@ -328,3 +328,5 @@ def test_a_concave_centres_closed_form_answer_is_still_sampled():
     with pytest.raises(SeparationError, match="pressure is nowhere compressive"):
         closedform.NormalSolution(punch, A, 1.05, 1.05, 0.0, 1.0, 0.0)
     closedform.NormalSolution(Punch(1.0, 1.0, 1.0), A, 1.05, 1.05, 0.0, 1.0, 0.0)   # convex: never refused
+    with pytest.raises(NoConvergenceError, match="not finite"):                    # unless not a number
+        closedform.NormalSolution(Punch(1.0, 1.0, 1.0), A, math.nan, 1.05, 0.0, 1.0, 0.0)
