@@ -53,7 +53,7 @@ def paper_equations(punch: Any, a: np.ndarray, c: np.ndarray, A: float) -> tuple
     ``8AP = (a+c)^2 F0 + 2 k1/R1 (a-2b-c) sqrt((a-b)(b+c)) - 2 k2/R2 (a+2b-c) sqrt((a+b)(c-b))``
     with ``F0`` of eq. (f0), and ``6AP (s - m) = k2/R2 ((a+b)(c-b))^(3/2) - k1/R1 ((a-b)(b+c))^(3/2)``,
     the sign of ``P`` corrected (docs/ERRATA.md): what a user would transcribe, shown beside issue 33's
-    baseline (:func:`naive` on :mod:`closedform.formulas`, whose array handling costs it 6x).
+    baseline (:func:`naive` on :mod:`closedform.formulas`, whose array handling costs it about 7x).
     """
     b, k1, k2 = punch.b, punch.k1 / punch.R1, punch.k2 / punch.R2
     W = a + c
