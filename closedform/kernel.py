@@ -32,6 +32,7 @@ __all__ = ["FIELDS", "state", "states", "newton_2d", "newton_2d_many", "psi", "c
 #: the fields of :func:`state`, in order (the attributes of :class:`closedform.newton.State`)
 FIELDS = ("a", "c", "h", "m", "dAP", "AP", "AP_h", "AP_m", "F0", "T", "T_h", "T_m",
           "alpha", "alpha_h", "alpha_m")
+_N_FIELDS = len(FIELDS)
 #: the outer equation of :func:`newton_2d`: the moment ``A P s`` (tilt free) or the tilt ``alpha``
 MOMENT, TILT = 0, 1
 #: a step below this that no longer halves is rounding: the iteration has converged
@@ -99,10 +100,10 @@ def state(b: float, k0: float, k1: float, k2: float, u1: float, u2: float) -> tu
 @_compiled
 def states(b: float, k0: float, k1: float, k2: float, u1: np.ndarray, u2: np.ndarray) -> np.ndarray:
     """:func:`state` at each ``(u1[i], u2[i])``: an array of shape ``(len(FIELDS), n)``."""
-    out = np.empty((15, u1.size))
+    out = np.empty((_N_FIELDS, u1.size))
     for i in range(u1.size):
         st = state(b, k0, k1, k2, u1[i], u2[i])
-        for j in range(15):
+        for j in range(_N_FIELDS):
             out[j, i] = st[j]
     return out
 

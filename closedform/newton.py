@@ -362,14 +362,7 @@ def _solve_phi_nested(punch: Punch, dAP: Any, target: str, value: Any, xp: Any =
     (``alpha``, decreasing: pass ``sign = -1``). The radius follows ``phi``
     through :func:`solve_r`, warm-started from the previous iterate, and the
     derivative along the constant-load curve is exact:
-    ``dr/dphi = -(dAP/dphi)/(dAP/dr)``.
-
-    Returns
-    -------
-    r, phi, below, above
-        The solution, and the flags of :func:`bracketed_root`: ``below``
-        (the target lies below the value at ``phi = 0``, the line ``c = b``)
-        and ``above`` (beyond ``phi = pi/2``, the line ``a = b``).
+    ``dr/dphi = -(dAP/dphi)/(dAP/dr)``. Returns ``r, phi, below, above`` as :func:`solve_phi`.
     """
     get = _TARGETS[target]
     if r0 is None:

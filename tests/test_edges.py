@@ -203,6 +203,22 @@ def _exact_slip(res) -> tuple[float, float]:
     return lo + res.a, res.c - hi
 
 
+def _slip_errors(edges, exacts, width: float, where: str, errs: list, sizes: list) -> None:
+    """Append each edge's relative slip-zone error and its exact slip zone over ``width``; each within
+    CONSTANT times that size."""
+    for edge, exact in zip(edges, exacts):
+        errs.append(abs(edge.slip_zone / exact - 1))
+        sizes.append(exact / width)
+        assert errs[-1] <= CONSTANT * sizes[-1], f"{edge.side} at {where}"
+
+
+def _assert_first_order(errs: list, sizes: list, label: str) -> None:
+    """The log-log slope of the error against the slip zone, per edge (left, right alternate), in ORDER."""
+    for k in (0, 1):
+        order = np.polyfit(np.log(sizes[k::2]), np.log(errs[k::2]), 1)[0]
+        assert ORDER[0] <= order <= ORDER[1], f"{label}: fitted order {order:.3f}"
+
+
 @pytest.mark.parametrize("name", SLIP_CASES)
 @pytest.mark.parametrize("method", ["closedform", "sie"])
 def test_slip_zone_is_first_order(name, method):
@@ -211,13 +227,8 @@ def test_slip_zone_is_first_order(name, method):
     errs, sizes = [], []
     for ratio in RATIOS:
         res = solve(c.punch, c.P, c.s, A=c.A, Q=ratio * F * c.P, f=F, method=method)
-        for edge, exact in zip(res.edges(), _exact_slip(res)):
-            errs.append(abs(edge.slip_zone / exact - 1))
-            sizes.append(exact / res.normal.width)
-            assert errs[-1] <= CONSTANT * sizes[-1], f"{edge.side} at Q/fP = {ratio}"
-    for k in (0, 1):
-        order = np.polyfit(np.log(sizes[k::2]), np.log(errs[k::2]), 1)[0]
-        assert ORDER[0] <= order <= ORDER[1], f"{name} {method}: fitted order {order:.3f}"
+        _slip_errors(res.edges(), _exact_slip(res), res.normal.width, f"Q/fP = {ratio}", errs, sizes)
+    _assert_first_order(errs, sizes, f"{name} {method}")
 
 
 def test_fretting_cycle_slip_zone_is_the_loading_one():
@@ -244,13 +255,8 @@ def test_steady_state_slip_zone_is_first_order(method):
         cyc = steady_state(c.punch, states, F, A=c.A, method=method)
         n = cyc.normals[0]
         lo, hi = cyc.stick_zone
-        for edge, exact in zip(cyc.edges(), (lo + n.a, n.c - hi)):
-            errs.append(abs(edge.slip_zone / exact - 1))
-            sizes.append(exact / n.width)
-            assert errs[-1] <= CONSTANT * sizes[-1], f"{edge.side} at ΔQ/fP = {2 * ratio}"
-    for k in (0, 1):
-        order = np.polyfit(np.log(sizes[k::2]), np.log(errs[k::2]), 1)[0]
-        assert ORDER[0] <= order <= ORDER[1], f"{method}: fitted order {order:.3f}"
+        _slip_errors(cyc.edges(), (lo + n.a, n.c - hi), n.width, f"ΔQ/fP = {2 * ratio}", errs, sizes)
+    _assert_first_order(errs, sizes, method)
 
 
 def test_fem_slip_edges():
