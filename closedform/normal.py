@@ -24,7 +24,7 @@ from numpy.typing import ArrayLike
 from scipy.optimize import minimize_scalar
 
 from threepart.answer import check_pressure
-from threepart.errors import LiftOffError, NoConvergenceError, SeparationError
+from threepart.errors import InputError, LiftOffError, NoConvergenceError, SeparationError
 from threepart.punch import Punch
 from threepart.results import Diagnostics, NormalResult
 from threepart.validate import (LENGTH_RANGE, check_arcs, check_contact, check_punch, check_tilt, finite,
@@ -141,7 +141,7 @@ def _normal_iv(punch: Punch, P: Any, A: float, tilt: str) -> float:
     pmin = P_0(punch, A)
     if isinstance(P, float):      # one case: the same checks on a float, without numpy's overhead
         if not (math.isfinite(P) and P > 0):
-            raise ValueError(_not_a_load(P))
+            raise InputError(_not_a_load(P))
         if not LENGTH_RANGE[0] <= P <= LENGTH_RANGE[1]:
             positive("P", P)                                  # raises, naming the range
         load_scale(punch, P, A)
@@ -150,7 +150,7 @@ def _normal_iv(punch: Punch, P: Any, A: float, tilt: str) -> float:
         return A
     bad = ~np.isfinite(P) | (P <= 0)
     if bad.any():
-        raise ValueError(_not_a_load(float(P.flat[int(np.argmax(bad))])))
+        raise InputError(_not_a_load(float(P.flat[int(np.argmax(bad))])))
     out = (P < LENGTH_RANGE[0]) | (P > LENGTH_RANGE[1])
     if out.any():
         positive("P", float(P.flat[int(np.argmax(out))]))     # raises, naming the range
@@ -167,7 +167,7 @@ def _xtol_iv(xtol: Any) -> float:
     x = finite("xtol", xtol)
     lo, hi = XTOL_RANGE
     if not lo <= x <= hi:
-        raise ValueError(f"`xtol` = {x!r} must lie in [{lo:g}, {hi:g}]: below, a step is rounding; "
+        raise InputError(f"`xtol` = {x!r} must lie in [{lo:g}, {hi:g}]: below, a step is rounding; "
                          "above, the roots' error (about its square) passes 1e-12")
     return x
 
@@ -384,7 +384,7 @@ def solve_normal(punch: Punch, P: float, s: float = 0.0, *, A: float,
     xtol = _xtol_iv(xtol)
     t0 = time.perf_counter()
     if tilt == "suppressed" and s != 0:
-        raise ValueError(f"`s` = {s!r} is an output when tilt='suppressed' (the lever arm s*); pass s=0")
+        raise InputError(f"`s` = {s!r} is an output when tilt='suppressed' (the lever arm s*); pass s=0")
     A = _normal_iv(punch, P, A, tilt)
     n0 = evaluations()
     st, below, above = _solve(punch, P, s, A, tilt, SCALAR, xtol)
@@ -414,7 +414,7 @@ def solve_normal_batch(punch: Punch, P: ArrayLike, s: ArrayLike = 0.0, *, A: flo
     xtol = _xtol_iv(xtol)
     P_in, s_in = reals("P", P), reals("s", s)
     if P_in.size != s_in.size and 1 not in (P_in.size, s_in.size):
-        raise ValueError(f"`P` (shape {np.shape(P)}) and `s` (shape {np.shape(s)}) do not broadcast: "
+        raise InputError(f"`P` (shape {np.shape(P)}) and `s` (shape {np.shape(s)}) do not broadcast: "
                          f"give arrays of one length, or one of them a single value")
     P_arr, s_arr = np.broadcast_arrays(P_in, s_in)
     P_arr, s_arr = P_arr.copy(), s_arr.copy()
@@ -427,7 +427,7 @@ def solve_normal_batch(punch: Punch, P: ArrayLike, s: ArrayLike = 0.0, *, A: flo
         except ValueError as exc:
             raise type(exc)(f"case {i}: {exc}") from None
     if tilt == "suppressed" and np.any(s_arr != 0):
-        raise ValueError("`s` is an output when tilt='suppressed' (the lever arm s*); pass s=0")
+        raise InputError("`s` is an output when tilt='suppressed' (the lever arm s*); pass s=0")
     n0 = evaluations()
     st, below, above = _solve(punch, P_arr, s_arr, A, tilt, np, xtol)
     n_eval = (evaluations() - n0) / P_arr.size

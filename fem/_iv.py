@@ -24,6 +24,7 @@ from threepart.material import rigid_punch, similar_pair
 from threepart.punch import Punch
 from threepart.validate import (check_punch, check_tilt, finite, integer, lever_arm, load_scale,
                                 poisson, positive)
+from threepart.errors import InputError, InputTypeError
 
 __all__ = ["FE_LENGTH_RANGE", "MAX_ITER", "STEPS", "MAX_FE_STATES", "H_FACTOR", "material", "load",
            "mesh_arg", "normal_iv", "height_iv"]
@@ -63,7 +64,7 @@ def load(punch: Punch, P: Any, A: float) -> float:
     ell = punch.b + math.sqrt(A * P * max(punch.R1, punch.R2, punch.b))
     lo, hi = FE_LENGTH_RANGE
     if not lo <= ell <= hi:
-        raise ValueError(f"`P` = {P!r} gives the contact's length scale b + sqrt(A P max(R1, R2)) "
+        raise InputError(f"`P` = {P!r} gives the contact's length scale b + sqrt(A P max(R1, R2)) "
                          f"= {ell:.3g}, outside [{lo:g}, {hi:g}], where gmsh meshes it faithfully; "
                          "give the lengths in other units")
     return P
@@ -82,12 +83,12 @@ def mesh_arg(mesh: Any, kinds: tuple[type, ...], allow_path: bool = True) -> Any
         return preset(mesh)
     if allow_path and isinstance(mesh, (str, Path)):
         if not Path(mesh).is_file():
-            raise ValueError(f"`mesh` = {str(mesh)!r} is not a file")
+            raise InputError(f"`mesh` = {str(mesh)!r} is not a file")
         return Path(mesh)
     if isinstance(mesh, kinds):
         return mesh
     names = ", ".join(k.__name__ for k in kinds)
-    raise TypeError(f"`mesh` must be a preset name {sorted(PRESETS)}"
+    raise InputTypeError(f"`mesh` must be a preset name {sorted(PRESETS)}"
                     + (", a .msh path" if allow_path else "") + f" or a {names}, "
                     f"not {type(mesh).__name__}")
 
@@ -117,11 +118,11 @@ def height_iv(punch: Punch, H: Any, theta: Any, profile: Any) -> tuple[float | N
         H = positive("H", H)
         top = H_FACTOR * (punch.b + max(punch.R1, punch.R2))
         if H > top:   # bounded: a finite mesh in a finite time
-            raise ValueError(f"`H` = {H!r} exceeds {H_FACTOR:g} (b + max(R1, R2)) = {top:g}: a "
+            raise InputError(f"`H` = {H!r} exceeds {H_FACTOR:g} (b + max(R1, R2)) = {top:g}: a "
                              "taller punch changes nothing in the contact but grows the mesh")
     theta = finite("theta", theta)
     if not 0 < theta < math.pi / 2:
-        raise ValueError(f"`theta` = {theta!r} must lie in (0, pi/2)")
+        raise InputError(f"`theta` = {theta!r} must lie in (0, pi/2)")
     if not isinstance(profile, str) or profile not in PROFILES:
-        raise ValueError(f"`profile` = {profile!r} must be one of {PROFILES}")
+        raise InputError(f"`profile` = {profile!r} must be one of {PROFILES}")
     return H, theta, profile

@@ -15,6 +15,7 @@ from __future__ import annotations
 import sys
 import time
 from typing import Any, Callable, Union
+from threepart.errors import InputTypeError
 
 __all__ = ["Progress", "ProgressArg", "progress_iv"]
 
@@ -25,7 +26,7 @@ def progress_iv(progress: Any) -> ProgressArg:
     """``progress`` if it is ``None``, a bool or a callable, else ``TypeError``."""
     if progress is None or isinstance(progress, bool) or callable(progress):
         return progress
-    raise TypeError(f"`progress` must be None, True, False or a callable, "
+    raise InputTypeError(f"`progress` must be None, True, False or a callable, "
                     f"not {type(progress).__name__}")
 
 

@@ -30,7 +30,7 @@ from typing import Any, Callable
 import numpy as np
 from threadpoolctl import threadpool_limits
 
-from threepart.errors import NoConvergenceError
+from threepart.errors import InputError, InputTypeError, NoConvergenceError
 from threepart.validate import finite, integer, positive
 
 from ._boundary import boundary
@@ -46,10 +46,10 @@ KINEMATICS = ("small", "first_order")
 def check_kinematics(kinematics: Any) -> str:
     """``kinematics`` if it is one of :data:`KINEMATICS`; ``TypeError``/``ValueError`` naming it."""
     if not isinstance(kinematics, str):
-        raise TypeError(f"`kinematics` must be a str, one of {KINEMATICS}, "
+        raise InputTypeError(f"`kinematics` must be a str, one of {KINEMATICS}, "
                         f"not {type(kinematics).__name__}")
     if kinematics not in KINEMATICS:
-        raise ValueError(f"`kinematics` = {kinematics!r} must be one of {KINEMATICS}")
+        raise InputError(f"`kinematics` = {kinematics!r} must be one of {KINEMATICS}")
     return kinematics
 
 
@@ -223,15 +223,15 @@ def _contact_iv(C: Any, x: Any, g0: Any, P: Any, s: Any, max_iter: Any, active: 
     n = len(x) if x.ndim == 1 else -1
     C, g0 = np.asarray(C, dtype=float), np.asarray(g0, dtype=float)
     if n < 1 or C.shape != (n, n) or g0.shape != (n,):
-        raise ValueError(f"`C`, `x`, `g0` must have shapes (n, n), (n,), (n,); got {C.shape}, "
+        raise InputError(f"`C`, `x`, `g0` must have shapes (n, n), (n,), (n,); got {C.shape}, "
                          f"{x.shape}, {g0.shape}")
     for name, arr in (("C", C), ("x", x), ("g0", g0)):
         if not np.all(np.isfinite(arr)):
-            raise ValueError(f"`{name}` holds a non-finite value")
+            raise InputError(f"`{name}` holds a non-finite value")
     if active is not None:
         active = np.asarray(active)
         if active.shape != (n,) or active.dtype != bool:
-            raise ValueError(f"`active` must be a bool array of shape ({n},)")
+            raise InputError(f"`active` must be a bool array of shape ({n},)")
     return P, s, max_iter, C, x, g0, active
 
 

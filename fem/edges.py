@@ -8,6 +8,7 @@ import numpy as np
 
 from threepart.fields import edge_multipliers
 from threepart.results import NormalResult
+from threepart.errors import InputError
 
 __all__ = ["edges"]
 
@@ -16,6 +17,6 @@ def edges(normal: NormalResult) -> tuple[tuple[float, float | None], tuple[float
     """The fit of :func:`threepart.fields.edge_multipliers` over an FE normal result's ``x_nodes``, ``p_nodes``."""
     x, p = getattr(normal, "x_nodes", None), getattr(normal, "p_nodes", None)
     if x is None or p is None or len(x) == 0:
-        raise ValueError("`normal` has no FE nodal pressures to fit the edge multipliers to")
+        raise InputError("`normal` has no FE nodal pressures to fit the edge multipliers to")
     left, right = edge_multipliers(np.asarray(x, float), np.asarray(p, float), normal.a, normal.c, normal.punch.b)
     return left, right

@@ -40,7 +40,7 @@ from skfem import Basis, ElementTriP2, ElementVector, FacetBasis, LinearForm, as
 from skfem.models.elasticity import lame_parameters, linear_elasticity
 from threadpoolctl import threadpool_limits
 
-from threepart.errors import NoConvergenceError
+from threepart.errors import InputError, InputTypeError, NoConvergenceError
 
 from ._boundary import boundary
 from ._iv import material
@@ -82,9 +82,9 @@ def choose_backend(name: str | None = None) -> str:
     chosen = name or os.environ.get(BACKEND_VARIABLE) or backends()[0]
     what = f"`backend` = {chosen!r}" if name else f"${BACKEND_VARIABLE} = {chosen!r}"
     if chosen not in BACKENDS:
-        raise ValueError(f"{what} is not a backend; use one of {list(BACKENDS)}")
+        raise InputError(f"{what} is not a backend; use one of {list(BACKENDS)}")
     if chosen not in backends():
-        raise ValueError(f"{what} is not installed: pip install -e '.[fast]' (scikit-sparse "
+        raise InputError(f"{what} is not installed: pip install -e '.[fast]' (scikit-sparse "
                          "builds against SuiteSparse, e.g. Debian's libsuitesparse-dev)")
     return chosen
 
@@ -244,10 +244,10 @@ def condense(substrate: Substrate, E: float, nu: float,
         an unknown or missing ``backend``.
     """
     if not isinstance(substrate, Substrate):
-        raise TypeError(f"`substrate` must be a fem.Substrate, not {type(substrate).__name__}")
+        raise InputTypeError(f"`substrate` must be a fem.Substrate, not {type(substrate).__name__}")
     E, nu = material(E, nu)
     if components not in (("u^2",), ("u^1", "u^2")):
-        raise ValueError(f"`components` = {components!r} must be ('u^2',) or ('u^1', 'u^2')")
+        raise InputError(f"`components` = {components!r} must be ('u^2',) or ('u^1', 'u^2')")
     chosen = choose_backend(backend)
     t0 = time.perf_counter()
     mesh, groups = substrate.mesh, substrate.boundaries

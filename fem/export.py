@@ -13,6 +13,7 @@ import meshio
 import numpy as np
 from skfem import Basis
 from skfem.models.elasticity import lame_parameters
+from threepart.errors import InputError
 
 __all__ = ["Fields", "fields_of", "plane_strain_stress", "to_meshio", "write_fields"]
 
@@ -91,7 +92,7 @@ def write_fields(fields: Fields, path: str | Path, overwrite: bool = False) -> P
 
     path = Path(path)
     if path.suffix not in (".vtu", ".xdmf"):
-        raise ValueError(f"`path` = {str(path)!r} must end in .vtu or .xdmf")
+        raise InputError(f"`path` = {str(path)!r} must end in .vtu or .xdmf")
     how = "choose another name or pass overwrite=True to replace it"
     check_file(path, arg="path", overwrite=overwrite, how=how)
     m = to_meshio(fields)

@@ -49,7 +49,7 @@ from typing import Any
 
 import numpy as np
 
-from threepart.errors import ContactZoneError
+from threepart.errors import ContactZoneError, InputError
 from threepart.material import similar_pair
 from threepart.meshes import SubstrateSpec
 from threepart.output import scratch_dir
@@ -179,7 +179,7 @@ def _finite_iv(punch: Any, P: Any, s: Any, E: Any, nu: Any, H: Any, theta: Any, 
     """The checked input of :func:`solve_finite`, before any numerics."""
     check_punch(punch)
     if not math.isinf(punch.R):
-        raise ValueError(f"`punch` has R = {punch.R!r}: the finite punch has a flat centre (R = inf)")
+        raise InputError(f"`punch` has R = {punch.R!r}: the finite punch has a flat centre (R = inf)")
     P, s, E, nu, tilt, max_iter = normal_iv(punch, P, s, E, nu, tilt, max_iter, pair=True)
     H, theta, profile = height_iv(punch, H, theta, profile)
     pre = mesh_arg(mesh, (MeshPreset,), allow_path=False)

@@ -74,6 +74,7 @@ from .mesh import MeshPreset, Substrate
 from .recovery import StressField, model_nu
 from .solve import MeshArg
 from .twobody import TwoBodyModel, two_body_model
+from threepart.errors import InputError
 
 __all__ = ["FemSlipResult", "FemFrettingResult", "solve_partial_slip", "fretting_cycle"]
 
@@ -150,7 +151,7 @@ class FemFrettingResult(FrettingResult):
         for st in self.history:
             if st.branch == branch and math.isclose(st.Q, Q, rel_tol=1e-12, abs_tol=1e-12 * self.Q_max):
                 return st
-        raise ValueError(f"`Q` = {Q!r} on `branch` = {branch!r} is not a recorded state "
+        raise InputError(f"`Q` = {Q!r} on `branch` = {branch!r} is not a recorded state "
                          f"(one of the {len(self.history)} of `Q` on {BRANCHES})")
 
     def shear(self, x: ArrayLike, Q: float, branch: str) -> np.ndarray:

@@ -22,6 +22,7 @@ from threadpoolctl import threadpool_limits
 from ._boundary import boundary
 from .elasticity import SurfaceCompliance, condense
 from .mesh import Substrate
+from threepart.errors import InputError, InputTypeError
 
 __all__ = ["Interface", "interface", "mirror", "check_matched", "bulk_field"]
 
@@ -34,7 +35,7 @@ def mirror(sub: Substrate) -> Substrate:
     are the original's, node for node.
     """
     if not isinstance(sub, Substrate):
-        raise TypeError(f"`sub` must be a fem.Substrate, not {type(sub).__name__}")
+        raise InputTypeError(f"`sub` must be a fem.Substrate, not {type(sub).__name__}")
     m = sub.mesh
     image = MeshTri(np.ascontiguousarray(m.p * np.array([[1.0], [-1.0]])),
                     np.ascontiguousarray(m.t[[0, 2, 1]]))
@@ -64,11 +65,11 @@ def check_matched(x_lower: np.ndarray, x_upper: np.ndarray, what: str) -> None:
         Naming ``what`` (the two bodies) and the first mismatch.
     """
     if len(x_lower) != len(x_upper):
-        raise ValueError(f"{what}: interface nodes do not match ({len(x_lower)} against "
+        raise InputError(f"{what}: interface nodes do not match ({len(x_lower)} against "
                          f"{len(x_upper)} nodes)")
     gap = np.abs(np.asarray(x_lower) - np.asarray(x_upper))
     if gap.max(initial=0.0) > 1e-9 * np.ptp(x_lower):
-        raise ValueError(f"{what}: interface nodes do not match (by {gap.max():.3g} at "
+        raise InputError(f"{what}: interface nodes do not match (by {gap.max():.3g} at "
                          f"x = {x_lower[int(np.argmax(gap))]:.6g})")
 
 
@@ -122,7 +123,7 @@ def interface(lower: Substrate, upper: Substrate | None, E: float, nu: float) ->
         If the two bodies' interface nodes do not match (:func:`check_matched`).
     """
     if upper is not None and not isinstance(upper, Substrate):
-        raise TypeError(f"`upper` must be a fem.Substrate or None, not {type(upper).__name__}")
+        raise InputTypeError(f"`upper` must be a fem.Substrate or None, not {type(upper).__name__}")
     S = condense(lower, E, nu, ("u^1", "u^2"))
     B = S if upper is None else condense(upper, E, nu, ("u^1", "u^2"))
     check_matched(S.x, B.x, "the substrate and the punch body (use `mirror`)")
@@ -165,7 +166,7 @@ def bulk_field(sub: Substrate, sc: SurfaceCompliance, E: float, nu: float) -> np
     """
     missing = [g for g in ("left", "right", "base") if g not in sub.boundaries]
     if missing:
-        raise ValueError(f"`mesh` has no {missing} boundary groups: a bulk stress `sigma_bulk` "
+        raise InputError(f"`mesh` has no {missing} boundary groups: a bulk stress `sigma_bulk` "
                          "acts on the substrate's end faces")
     basis = sc.basis
     lam, mu = lame_parameters(E, nu)

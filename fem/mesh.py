@@ -19,7 +19,7 @@ import meshio
 import numpy as np
 from skfem import MeshTri
 
-from threepart.errors import NoConvergenceError
+from threepart.errors import InputError, InputTypeError, NoConvergenceError
 from threepart.meshes import SubstrateSpec, build_substrate
 from threepart.output import scratch_dir
 from threepart.validate import finite
@@ -81,7 +81,7 @@ class MeshPreset:
             object.__setattr__(self, name, v)
             lo_open = name in ("margin",)
             if not (lo < v if lo_open else lo <= v) or not v <= hi:
-                raise ValueError(f"`{name}` = {v!r} must lie in {'(' if lo_open else '['}{lo:g}, "
+                raise InputError(f"`{name}` = {v!r} must lie in {'(' if lo_open else '['}{lo:g}, "
                                  f"{hi:g}]: {PRESET_MEANING[name]}")
 
     def scaled(self, k: float) -> "MeshPreset":
@@ -141,7 +141,7 @@ def preset(name: str) -> MeshPreset:
     try:
         return PRESETS[name]
     except KeyError:
-        raise ValueError(f"`mesh` = {name!r} is not a preset; use one of {sorted(PRESETS)}, "
+        raise InputError(f"`mesh` = {name!r} is not a preset; use one of {sorted(PRESETS)}, "
                          "a MeshPreset, a SubstrateSpec or a .msh path") from None
 
 
@@ -180,10 +180,10 @@ def read_substrate(path: str | Path) -> Substrate:
     except (meshio.ReadError, ValueError, KeyError, IndexError, EOFError, UnicodeDecodeError,
             AttributeError, TypeError) as e:
         why = " ".join(str(e).split()) or f"{type(e).__name__}, not an MSH file"
-        raise ValueError(f"`path` = {str(path)!r} is not a gmsh mesh meshio can read: {why}") from None
+        raise InputError(f"`path` = {str(path)!r} is not a gmsh mesh meshio can read: {why}") from None
     cells = m.cells_dict
     if "triangle" not in cells:
-        raise ValueError(f"`path` = {str(path)!r} holds no triangles")
+        raise InputError(f"`path` = {str(path)!r} holds no triangles")
     mesh = MeshTri(np.ascontiguousarray(m.points[:, :2].T),
                    np.ascontiguousarray(cells["triangle"].T))
     tags = m.cell_data_dict.get("gmsh:physical", {}).get("line")
@@ -201,7 +201,7 @@ def read_substrate(path: str | Path) -> Substrate:
             boundaries[name] = np.sort(facet[tags == tag])
     missing = {"contact", "base"} - set(boundaries)
     if missing:
-        raise ValueError(f"`path` = {str(path)!r} lacks the physical groups {sorted(missing)}")
+        raise InputError(f"`path` = {str(path)!r} lacks the physical groups {sorted(missing)}")
     return Substrate(mesh=mesh, boundaries=boundaries, path=str(path))
 
 
@@ -220,7 +220,7 @@ def make_substrate(spec: SubstrateSpec) -> Substrate:
     is a :class:`NoConvergenceError` (:func:`gmsh_failure`).
     """
     if not isinstance(spec, SubstrateSpec):
-        raise TypeError(f"`spec` must be a SubstrateSpec, not {type(spec).__name__}")
+        raise InputTypeError(f"`spec` must be a SubstrateSpec, not {type(spec).__name__}")
     return copy.deepcopy(_meshed(spec))
 
 

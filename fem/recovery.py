@@ -27,6 +27,7 @@ from threepart.stress import Stress
 from threepart.validate import finite
 
 from .export import plane_strain_stress
+from threepart.errors import InputError
 
 __all__ = ["StressField", "model_nu"]
 
@@ -43,7 +44,7 @@ def model_nu(nu: Any, own: float) -> float:
         return own
     v = finite("nu", nu)
     if v != own:
-        raise ValueError(f"`nu` = {v!r} differs from the FE model's Poisson ratio {own!r}: "
+        raise InputError(f"`nu` = {v!r} differs from the FE model's Poisson ratio {own!r}: "
                          "its stress field was solved with it (pass None)")
     return own
 
@@ -98,17 +99,17 @@ class StressField:
         try:
             xb, zb = np.broadcast_arrays(xa, za)
         except ValueError:
-            raise ValueError(f"`x` of shape {xa.shape} and `z` of shape {za.shape} do not "
+            raise InputError(f"`x` of shape {xa.shape} and `z` of shape {za.shape} do not "
                              "broadcast against each other") from None
         if not (np.all(np.isfinite(xb)) and np.all(np.isfinite(zb))):
-            raise ValueError("`x` and `z` must be finite")
+            raise InputError("`x` and `z` must be finite")
         p = self.basis.mesh.p
         lo, hi, depth = float(p[0].min()), float(p[0].max()), float(-p[1].min())
         if np.any(zb < 0) or np.any(zb > depth):
-            raise ValueError(f"`z` must lie in [0, {depth:.6g}], the depth of the FE block "
+            raise InputError(f"`z` must lie in [0, {depth:.6g}], the depth of the FE block "
                              "(z is the depth into the substrate)")
         if np.any(xb < lo) or np.any(xb > hi):
-            raise ValueError(f"`x` must lie in [{lo:.6g}, {hi:.6g}], the width of the FE block")
+            raise InputError(f"`x` must lie in [{lo:.6g}, {hi:.6g}], the width of the FE block")
         nodal = self.nodal()
         sb = nodal["_basis"]
         pts = np.vstack([xb.ravel(), -zb.ravel()])

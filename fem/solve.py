@@ -25,7 +25,7 @@ from numpy.typing import ArrayLike
 from threepart.punch import Punch
 
 from threepart.validate import check_contact, integer
-from threepart.errors import ContactZoneError, SeparationError
+from threepart.errors import ContactZoneError, InputError, InputTypeError, SeparationError
 from threepart.material import rigid_punch
 from threepart.results import NU, Diagnostics, NormalResult
 from threepart.stress import Stress
@@ -325,7 +325,7 @@ def solve_normal(punch: Punch, P: float, s: float = 0.0, *, E: float, nu: float,
     P, s, E, nu, tilt, max_iter = normal_iv(punch, P, s, E, nu, tilt, max_iter, pair=False)
     pre = mesh_arg(mesh, (MeshPreset, SubstrateSpec, Substrate))
     if not isinstance(fields, (bool, np.bool_)):
-        raise TypeError(f"`fields` must be a bool, not {type(fields).__name__}")
+        raise InputTypeError(f"`fields` must be a bool, not {type(fields).__name__}")
     kinematics = check_kinematics(kinematics)
     say = Progress(progress_iv(progress))
     t_start = time.perf_counter()
@@ -380,9 +380,9 @@ def deformed_ends(result: FemResult) -> tuple[float, float]:
         finite-body result, whose punch deforms too.
     """
     if not isinstance(result, FemResult) or result.stress_field is None:
-        raise ValueError("`result` must be a FemResult of fem.solve_normal with its field")
+        raise InputError("`result` must be a FemResult of fem.solve_normal with its field")
     if "H" in result.info:
-        raise ValueError("`result` is a finite-body result (fem.solve_finite): its punch moves "
+        raise InputError("`result` is a finite-body result (fem.solve_finite): its punch moves "
                          "too; deformed_ends takes a rigid punch's (fem.solve_normal)")
     basis, u = result.stress_field.basis, result.stress_field.u
     ux = basis.split_indices()[0]

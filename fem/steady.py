@@ -20,7 +20,7 @@ from typing import Any, Sequence
 import numpy as np
 from numpy.typing import ArrayLike
 
-from threepart.errors import NoConvergenceError
+from threepart.errors import InputError, NoConvergenceError
 from threepart.history import History, check_history
 from threepart.meshes import SubstrateSpec
 from threepart.punch import Punch
@@ -121,7 +121,7 @@ def _check(punch: Any, states: Any, f: Any, E: Any, nu: Any, mesh: Any, cycles: 
     steps = integer("steps", steps, *STEPS_RANGE)
     if isinstance(first, str):
         if first not in FIRST:
-            raise ValueError(f"`first` = {first!r} must be one of {FIRST} or a sequence of "
+            raise InputError(f"`first` = {first!r} must be one of {FIRST} or a sequence of "
                              "(P, s, Q, sigma_bulk) states")
     else:
         try:

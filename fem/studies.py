@@ -18,6 +18,7 @@ from threepart.punch import Punch
 from ._boundary import boundary
 from .mesh import MeshPreset
 from .solve import FemResult, solve_normal
+from threepart.errors import InputError
 
 __all__ = ["convergence_study", "domain_study", "QUANTITIES"]
 
@@ -73,7 +74,7 @@ def convergence_study(punch: Punch, P: float, s: float = 0.0, *, E: float, nu: f
     """
     ns = [float(n) for n in ns]
     if len(ns) < 4 or any(b <= a for a, b in zip(ns, ns[1:])):
-        raise ValueError(f"`ns` = {ns!r} must hold at least 4 increasing element counts")
+        raise InputError(f"`ns` = {ns!r} must hold at least 4 increasing element counts")
     ref = reference() if callable(reference) else reference
     return run_study(lambda n: _level(punch, P, s, E, nu, tilt,
                                       MeshPreset(n=n, growth=growth, L=L)),
@@ -94,7 +95,7 @@ def domain_study(punch: Punch, P: float, s: float = 0.0, *, E: float, nu: float,
     """
     Ls = [float(v) for v in Ls]
     if len(Ls) < 2 or any(b <= a for a, b in zip(Ls, Ls[1:])):
-        raise ValueError(f"`Ls` = {Ls!r} must hold at least 2 increasing block sizes")
+        raise InputError(f"`Ls` = {Ls!r} must hold at least 2 increasing block sizes")
     solved = {v: _level(punch, P, s, E, nu, tilt, MeshPreset(n=n, growth=growth, L=v))
               for v in Ls}
     last = solved[Ls[-1]][1]

@@ -14,13 +14,11 @@ from typing import Any
 import meshio
 import numpy as np
 
+from threepart.errors import ManifestError
+
 from .substrate import SubstrateSpec
 
 __all__ = ["coordinate_checksum", "describe", "write_manifest", "check_manifest", "ManifestError"]
-
-
-class ManifestError(AssertionError):
-    """A mesh file does not match its manifest."""
 
 
 def coordinate_checksum(points: np.ndarray, scale: float) -> str:

@@ -26,6 +26,7 @@ import gmsh
 import numpy as np
 
 from .substrate import SubstrateSpec, gmsh_session, size_field
+from threepart.errors import InputError, InputTypeError
 
 __all__ = ["PunchSpec", "build_punch", "PROFILES"]
 
@@ -66,22 +67,22 @@ class PunchSpec:
         for name in ("b", "R1", "R2", "H", "theta", "growth"):
             value = getattr(self, name)
             if isinstance(value, bool):
-                raise TypeError(f"`{name}` = {value!r} must be a real number, not bool")
+                raise InputTypeError(f"`{name}` = {value!r} must be a real number, not bool")
             if not isinstance(value, (int, float)) or not math.isfinite(value) or value < 0:
-                raise ValueError(f"`{name}` = {value!r} must be a finite number >= 0")
+                raise InputError(f"`{name}` = {value!r} must be a finite number >= 0")
         if self.R1 <= 0 or self.R2 <= 0 or self.H <= 0:
-            raise ValueError("`R1`, `R2` and `H` must be > 0")
+            raise InputError("`R1`, `R2` and `H` must be > 0")
         if not 0 < self.theta < math.pi / 2:
-            raise ValueError(f"`theta` = {self.theta!r} must lie in (0, pi/2)")
+            raise InputError(f"`theta` = {self.theta!r} must lie in (0, pi/2)")
         if self.profile not in PROFILES:
-            raise ValueError(f"`profile` = {self.profile!r} must be one of {PROFILES}")
+            raise InputError(f"`profile` = {self.profile!r} must be one of {PROFILES}")
         lo, hi = self.edge_x("left"), self.edge_x("right")
         if not (lo < self.zone.x_lo and self.zone.x_hi < hi):
-            raise ValueError(f"the contact zone [{self.zone.x_lo:.6g}, {self.zone.x_hi:.6g}] must lie "
+            raise InputError(f"the contact zone [{self.zone.x_lo:.6g}, {self.zone.x_hi:.6g}] must lie "
                              f"on the punch's lower face [{lo:.6g}, {hi:.6g}] (before the flanks)")
         top = float(np.max(self.height(np.array([self.zone.x_lo, self.zone.x_hi]))))
         if not top < 0.8 * self.H:
-            raise ValueError(f"`H` = {self.H!r} is too low: the contact zone rises to {top:.6g} "
+            raise InputError(f"`H` = {self.H!r} is too low: the contact zone rises to {top:.6g} "
                              "on the lower face (it must stay below 0.8 H)")
 
     def radius(self, side: str) -> float:

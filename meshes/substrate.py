@@ -29,6 +29,7 @@ from typing import Iterator
 
 import gmsh
 import numpy as np
+from threepart.errors import InputError, InputTypeError
 
 __all__ = ["SubstrateSpec", "build_substrate", "gmsh_session", "size_field", "PHYSICAL_CURVES"]
 
@@ -86,39 +87,39 @@ class SubstrateSpec:
         for name in ("x_lo", "x_hi", "h", "L", "growth", "h_max", "h_fine"):
             value = getattr(self, name)
             if isinstance(value, bool) or not isinstance(value, numbers.Real):
-                raise TypeError(f"`{name}` = {value!r} must be a real number, not "
+                raise InputTypeError(f"`{name}` = {value!r} must be a real number, not "
                                 f"{type(value).__name__}")
             if not math.isfinite(value):
-                raise ValueError(f"`{name}` = {value!r} must be a finite number")
+                raise InputError(f"`{name}` = {value!r} must be a finite number")
         if not self.x_hi > self.x_lo:
-            raise ValueError(f"`x_hi` = {self.x_hi!r} must exceed `x_lo` = {self.x_lo!r}")
+            raise InputError(f"`x_hi` = {self.x_hi!r} must exceed `x_lo` = {self.x_lo!r}")
         if self.h <= 0 or self.h > self.x_hi - self.x_lo:
-            raise ValueError(f"`h` = {self.h!r} must be > 0 and <= the zone length "
+            raise InputError(f"`h` = {self.h!r} must be > 0 and <= the zone length "
                              f"{self.x_hi - self.x_lo!r}")
         if not (-self.L / 2 < self.x_lo and self.x_hi < self.L / 2):
-            raise ValueError(f"`L` = {self.L!r} is too small: the zone [{self.x_lo}, {self.x_hi}] "
+            raise InputError(f"`L` = {self.L!r} is too small: the zone [{self.x_lo}, {self.x_hi}] "
                              f"must lie inside (-L/2, L/2)")
         lo, hi = GROWTH_RANGE
         if not lo <= self.growth <= hi:
-            raise ValueError(f"`growth` = {self.growth!r} must lie in [{lo:g}, {hi:g}]: a slower "
+            raise InputError(f"`growth` = {self.growth!r} must lie in [{lo:g}, {hi:g}]: a slower "
                              "growth away from the zone fills the block with elements")
         if self.h_max < 0:
-            raise ValueError(f"`h_max` = {self.h_max!r} must be >= 0 (0 means L/20)")
+            raise InputError(f"`h_max` = {self.h_max!r} must be >= 0 (0 means L/20)")
         if not (isinstance(self.h_fine, (int, float)) and 0 <= self.h_fine <= self.h):
-            raise ValueError(f"`h_fine` = {self.h_fine!r} must lie in [0, h = {self.h!r}] "
+            raise InputError(f"`h_fine` = {self.h_fine!r} must lie in [0, h = {self.h!r}] "
                              "(0: no refinement)")
         for x in (*self.breakpoints, *self.refine_at):
             if not isinstance(x, (int, float)) or not math.isfinite(x):
-                raise ValueError(f"breakpoint or `refine_at` point {x!r} must be a finite number")
+                raise InputError(f"breakpoint or `refine_at` point {x!r} must be a finite number")
         zone = (self.x_hi - self.x_lo) / self.h
         if zone > MAX_ZONE_ELEMENTS:
-            raise ValueError(f"`h` = {self.h!r} puts {zone:.3g} elements along the zone "
+            raise InputError(f"`h` = {self.h!r} puts {zone:.3g} elements along the zone "
                              f"[{self.x_lo!r}, {self.x_hi!r}], more than {MAX_ZONE_ELEMENTS}")
         if self.L / self.h > MAX_BLOCK_RATIO:
-            raise ValueError(f"`L` = {self.L!r} is {self.L / self.h:.3g} elements `h`, more than "
+            raise InputError(f"`L` = {self.L!r} is {self.L / self.h:.3g} elements `h`, more than "
                              f"{MAX_BLOCK_RATIO:g}: the block's coordinates would swamp the zone's")
         if self.h_fine > 0 and self.h / self.h_fine > MAX_FINE_RATIO:
-            raise ValueError(f"`h_fine` = {self.h_fine!r} is {self.h / self.h_fine:.3g} times "
+            raise InputError(f"`h_fine` = {self.h_fine!r} is {self.h / self.h_fine:.3g} times "
                              f"finer than `h`, more than {MAX_FINE_RATIO:g}")
 
     @property

@@ -18,6 +18,7 @@ import numpy as np
 from threepart.output import json_safe
 from threepart.tolerances import (FRETTING_QUANTITIES, NORMAL_QUANTITIES, SLIP_QUANTITIES, STEADY_QUANTITIES,
                                   STRESS_QUANTITIES, tolerance)
+from threepart.errors import InputError
 
 __all__ = ["Check", "FieldErrors", "compare", "field_errors", "sample_points", "is_slip", "normal_of",
            "normal_figures", "slip_figures", "fretting_figures", "is_fretting", "SHEAR_STATES",
@@ -393,7 +394,7 @@ def fretting_figures(ref: Any, other: Any) -> dict[str, tuple[float, float, floa
     """
     if len(ref.Q) != len(other.Q) or not np.allclose(ref.Q, other.Q, rtol=0, atol=1e-12 * ref.Q_max) \
             or not np.array_equal(ref.branch, other.branch):
-        raise ValueError("the two fretting cycles do not record the same states (branch and Q)")
+        raise InputError("the two fretting cycles do not record the same states (branch and Q)")
     out: dict[str, tuple[float, float, float]] = {}
     out["energy"] = (ref.energy, other.energy, abs(other.energy - ref.energy) / abs(ref.energy))
     at_max = int(np.flatnonzero(ref.branch == "loading")[-1])

@@ -40,6 +40,7 @@ from functools import lru_cache
 from typing import TYPE_CHECKING, Any, Callable, Mapping
 
 import pytest
+from threepart.errors import InputError, InputTypeError
 
 if TYPE_CHECKING:  # pragma: no cover
     from threepart.catalogue import Case
@@ -115,13 +116,13 @@ def _float(result: Any, name: str) -> float:
     try:
         value = float(getattr(result, name))
     except AttributeError:
-        raise TypeError(f"`result` has no attribute `{name}`: threepart_check needs `a`, `c` and "
+        raise InputTypeError(f"`result` has no attribute `{name}`: threepart_check needs `a`, `c` and "
                         "`pressure(x)`") from None
     except (TypeError, ValueError):
-        raise TypeError(f"`result.{name}` must be a number, not {type(getattr(result, name)).__name__}") \
+        raise InputTypeError(f"`result.{name}` must be a number, not {type(getattr(result, name)).__name__}") \
             from None
     if not math.isfinite(value):
-        raise ValueError(f"`result.{name}` = {value} must be finite")
+        raise InputError(f"`result.{name}` = {value} must be finite")
     return value
 
 
@@ -134,10 +135,10 @@ def _adapt(result: Any, ref: Any) -> tuple[Any, tuple[str, ...]]:
     Normal, Slip = _shapes()
     a, c = _float(result, "a"), _float(result, "c")
     if not callable(getattr(result, "pressure", None)):
-        raise TypeError("`result` has no callable `pressure(x)`: threepart_check needs `a`, `c` and "
+        raise InputTypeError("`result` has no callable `pressure(x)`: threepart_check needs `a`, `c` and "
                         "`pressure(x)`")
     if not a + c > 0:
-        raise ValueError(f"`result` has an empty contact: a + c = {a + c:g} must be > 0")
+        raise InputError(f"`result` has an empty contact: a + c = {a + c:g} must be > 0")
     base = normal_of(ref)
     missing = tuple(q for q in ("alpha", "P", "s") if getattr(result, q, None) is None)
     normal = Normal(punch=base.punch, A=base.A, a=a, c=c,
@@ -225,7 +226,7 @@ def check(result: Any, case: Case, *, comparison: str = DEFAULT_COMPARISON,
 
     if not any(k[0] == comparison for k in TOLERANCES):
         groups = sorted({k[0] for k in TOLERANCES})
-        raise ValueError(f"`comparison` = {comparison!r} is not a row group of the tolerance table "
+        raise InputError(f"`comparison` = {comparison!r} is not a row group of the tolerance table "
                          f"(one of {', '.join(groups)})")
     ref = reference(case)
     other, missing = _adapt(result, ref)
@@ -234,10 +235,10 @@ def check(result: Any, case: Case, *, comparison: str = DEFAULT_COMPARISON,
     compared = {c.quantity for c in checks}
     for q, limit in tolerances.items():
         if q not in compared:
-            raise ValueError(f"`tolerances` names {q!r}, which is not compared for this result "
+            raise InputError(f"`tolerances` names {q!r}, which is not compared for this result "
                              f"(compared: {', '.join(sorted(compared))})")
         if not (isinstance(limit, (int, float)) and limit > 0):
-            raise ValueError(f"`tolerances[{q!r}]` = {limit!r} must be a number > 0")
+            raise InputError(f"`tolerances[{q!r}]` = {limit!r} must be a number > 0")
     return [Check(c.comparison, c.quantity, c.reference, c.obtained, c.error,
                   float(tolerances[c.quantity]), "given by the test")
             if c.quantity in tolerances else c for c in checks]

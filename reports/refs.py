@@ -54,6 +54,7 @@ from threepart.tolerances import TOLERANCES
 
 from .verify.runs import MODES, solve
 from .compare import normal_of
+from threepart.errors import InputError
 
 __all__ = ["DATASET_VERSION", "SCHEMA_FILE", "GRID", "SUBSURFACE", "CONVENTIONS", "PRECISION_OF",
            "precision", "index", "reference", "export_refs", "load_refs", "validate", "main", "INDEX"]
@@ -200,7 +201,7 @@ def reference(case: Case) -> dict[str, Any]:
         stresses, the cycle (fretting) and the precision claimed per quantity.
     """
     if case.kind not in KINDS:
-        raise ValueError(f"case {case.name!r} is a {case.kind} case: the reference dataset holds "
+        raise InputError(f"case {case.name!r} is a {case.kind} case: the reference dataset holds "
                          f"{', '.join(KINDS)} cases only (a flight cycle's steady state is not yet in it)")
     case = case.resolved()
     src = _Source(case)
@@ -375,7 +376,7 @@ def load_refs(directory: str | Path) -> dict[str, dict[str, Any]]:
     directory = Path(directory)
     idx = json.loads((directory / INDEX).read_text(encoding="utf-8"))
     if idx.get("dataset_version") != DATASET_VERSION:
-        raise ValueError(f"`directory` = {str(directory)!r} holds dataset version "
+        raise InputError(f"`directory` = {str(directory)!r} holds dataset version "
                          f"{idx.get('dataset_version')!r}; this threepart reads {DATASET_VERSION!r}")
     docs = {}
     for entry in idx["cases"]:
@@ -385,7 +386,7 @@ def load_refs(directory: str | Path) -> dict[str, dict[str, Any]]:
             want = _columns(doc, table)
             for col, values in want.items():
                 if cols.get(col) != values:
-                    raise ValueError(f"{name}: column {col!r} differs from {entry['file']}")
+                    raise InputError(f"{name}: column {col!r} differs from {entry['file']}")
         docs[doc["name"]] = doc
     return docs
 
@@ -408,7 +409,7 @@ def main(out: str | Path = "refs", force: bool = False, cases: Sequence[str] | N
         known = {c.name: c for c in load_cases(None)}
         unknown = [n for n in cases if n not in known]
         if unknown or not cases:
-            raise ValueError(f"`--cases` = {','.join(cases)!r}: {unknown[0] if unknown else 'empty'!r} "
+            raise InputError(f"`--cases` = {','.join(cases)!r}: {unknown[0] if unknown else 'empty'!r} "
                              f"is not a catalogue case (one of {', '.join(known)})")
         chosen = [known[n] for n in dict.fromkeys(cases)]
     docs = export_refs(out, cases=chosen, force=force, progress=say)

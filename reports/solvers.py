@@ -12,6 +12,7 @@ from typing import TYPE_CHECKING, Any
 from threepart import registry
 from threepart.cycles import SteadyStateResult
 from threepart.results import FrettingResult, NormalResult, SlipResult
+from threepart.errors import InputError
 
 if TYPE_CHECKING:  # pragma: no cover
     from threepart.catalogue import Case
@@ -69,8 +70,8 @@ def _bulk(case: Case) -> dict[str, float]:
 def steady(method: str, case: Case, **options: Any) -> SteadyStateResult:
     """The periodic steady state of ``case``'s cycle between its two ``states`` by ``method``."""
     if case.states is None or case.f is None:
-        raise ValueError(f"case {case.name!r} has no cycle (`states` and `f`)")
+        raise InputError(f"case {case.name!r} has no cycle (`states` and `f`)")
     call = registry.get(method).steady
     if call is None:
-        raise ValueError(f"method {method!r} has no steady state (Method.steady)")
+        raise InputError(f"method {method!r} has no steady state (Method.steady)")
     return call(case.punch, case.states, case.f, A=case.A, **_nu(method, case), **options)

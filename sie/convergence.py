@@ -11,6 +11,7 @@ from collections.abc import Callable, Sequence
 from numpy.typing import ArrayLike
 
 from threepart.convergence import Study, run_study
+from threepart.errors import InputError
 
 __all__ = ["convergence_study"]
 
@@ -38,7 +39,7 @@ def convergence_study(quantity: Callable[[int], ArrayLike], ns: Sequence[int],
         ``n``), ``extrapolated["value"]`` (Richardson, from the two largest ``n``).
     """
     if len(ns) < 2:
-        raise ValueError(f"`ns` = {list(ns)!r} must hold at least two sizes")
+        raise InputError(f"`ns` = {list(ns)!r} must hold at least two sizes")
     return run_study(lambda n: (int(n), {"value": quantity(int(n))}, {}), list(ns), param="n",
                      reference={"value": reference}, scales={"value": scale},
                      require_monotone=False)

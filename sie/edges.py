@@ -23,6 +23,7 @@ import numpy as np
 from threepart.results import NormalResult
 
 from .series import ChebyshevPressure, log_kink
+from threepart.errors import InputError
 
 __all__ = ["K_N", "edges"]
 
@@ -52,6 +53,6 @@ def edges(normal: NormalResult) -> tuple[tuple[float, float | None], tuple[float
     """``((K_N(-a), None), (K_N(c), None))`` of an SIE normal result (its ``density``)."""
     density = getattr(normal, "density", None)
     if density is None:
-        raise ValueError("`normal` has no SIE density to take the edge multipliers from")
+        raise InputError("`normal` has no SIE density to take the edge multipliers from")
     left, right = K_N(density)
     return (left, None), (right, None)

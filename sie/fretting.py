@@ -42,7 +42,7 @@ from numpy.typing import ArrayLike
 from scipy.optimize import brentq
 
 from threepart.bulk import check_sigma_bulk, corrective_tilt, slip_dissipation
-from threepart.errors import NoConvergenceError, StickSeparationError
+from threepart.errors import InputError, NoConvergenceError, StickSeparationError
 from threepart.punch import Punch
 from threepart.results import Diagnostics, MasingCycle, NormalResult
 from threepart.validate import SLIP_RATIO_LIMIT, check_shear, check_states
@@ -265,7 +265,7 @@ class _Zones:
             m, h, _, _ = stick_zone_by_continuation(nrm, P_star, self.sch, alpha)
         self.solves += 1
         if m - h < -nrm.a * (1 + 1e-12) or m + h > nrm.c * (1 + 1e-12):
-            raise ValueError(f"stick zone [{m - h:.6g}, {m + h:.6g}] at u = {u:g} leaves the contact "
+            raise InputError(f"stick zone [{m - h:.6g}, {m + h:.6g}] at u = {u:g} leaves the contact "
                              f"[{-nrm.a:.6g}, {nrm.c:.6g}]; is `normal` consistent with its punch?")
         return m, h
 

@@ -32,7 +32,7 @@ from threepart.punch import Punch
 
 from threepart.validate import (check_arcs, check_contact, check_punch, check_tilt, lever_arm,
                                 load_scale, positive)
-from threepart.errors import NoConvergenceError, SeparationError
+from threepart.errors import InputError, NoConvergenceError, SeparationError
 from threepart.results import Diagnostics, NormalResult
 
 from .projection import slope_coefficients
@@ -83,7 +83,7 @@ def check_scheme(scheme: str, n: int) -> Plain | Projected:
     """Validate ``scheme`` and ``n`` and build the scheme."""
     n = check_n(n)
     if scheme == "plain" and n > MAX_PLAIN_N:
-        raise ValueError(f"`n` = {n} exceeds {MAX_PLAIN_N}, the largest plain collocation "
+        raise InputError(f"`n` = {n} exceeds {MAX_PLAIN_N}, the largest plain collocation "
                          "system factorised here (use scheme='projected')")
     return make_scheme(scheme, n)
 
@@ -96,7 +96,7 @@ def _check_normal(punch: Punch, P: float, s: float, A: float, tilt: str, n: int,
     s = lever_arm(punch, s)
     check_tilt(tilt)
     if tilt == "suppressed" and s != 0:
-        raise ValueError(f"`s` = {s!r} must be 0 with tilt='suppressed': the centroid is returned")
+        raise InputError(f"`s` = {s!r} must be 0 with tilt='suppressed': the centroid is returned")
     load_scale(punch, P, A)
     return P, s, A, check_scheme(scheme, n)
 
@@ -121,7 +121,7 @@ def solve_ends(punch: Punch, A: float, P: float, sch: Plain | Projected, *,
         If the bracketing or the Newton iteration fails.
     """
     if (s is None) == (alpha is None):
-        raise ValueError("exactly one of `s` and `alpha` must be given")
+        raise InputError("exactly one of `s` and `alpha` must be given")
     scale_h = h0 if h0 is not None else max(punch.b, math.sqrt(2 * P * A * max(punch.R1, punch.R2) / math.pi))
     k = math.pi / (2 * A * P)
 
@@ -418,7 +418,7 @@ def lift_off(punch: Punch, P: float, A: float) -> tuple[float, float]:
     P, A = positive("P", P), positive("A", A)
     load_scale(punch, P, A)
     if punch.b == 0:
-        raise ValueError("`punch`.b = 0: there is no join to lift off from (case C / Hertz)")
+        raise InputError("`punch`.b = 0: there is no join to lift off from (case C / Hertz)")
     sch = Projected(2)
     k = math.pi / (2 * A * P)
     out = []

@@ -40,6 +40,7 @@ from threepart.punch import Punch
 from .projection import kinks, ramp_remainder, slope_coefficients
 from .quadrature import plain_functionals
 from .series import ChebyshevPressure
+from threepart.errors import InputError
 
 __all__ = ["SCHEMES", "Plain", "Projected", "make_scheme", "KinkedPressure"]
 
@@ -144,5 +145,5 @@ SCHEMES: dict[str, type[Plain] | type[Projected]] = {"plain": Plain, "projected"
 def make_scheme(scheme: str, n: int) -> Plain | Projected:
     """The scheme object named ``scheme`` with ``n`` terms."""
     if scheme not in SCHEMES:
-        raise ValueError(f"`scheme` = {scheme!r} must be one of {sorted(SCHEMES)}")
+        raise InputError(f"`scheme` = {scheme!r} must be one of {sorted(SCHEMES)}")
     return SCHEMES[scheme](n)

@@ -24,7 +24,8 @@ from numpy.typing import ArrayLike
 
 from threepart.bulk import check_sigma_bulk, corrective_tilt, slip_direction_margin
 from threepart.validate import SLIP_RATIO_LIMIT, check_shear
-from threepart.errors import NoConvergenceError, SeparationError, SlipReversalError, StickSeparationError
+from threepart.errors import (InputError, NoConvergenceError, SeparationError, SlipReversalError,
+                              StickSeparationError)
 from threepart.results import Diagnostics, NormalResult, SlipResult
 
 from .normal import (DEFAULT_N, DEFAULT_SCHEME, check_scheme, check_single_contact, scan_ends,
@@ -291,7 +292,7 @@ def solve_partial_slip(normal: NormalResult, Q: float, f: float, *, n: int | Non
     if sigma_bulk:
         check_slip_direction(normal, Q, f, sigma_bulk, sch, (m, h))
     if lo < -normal.a * (1 + 1e-12) or hi > normal.c * (1 + 1e-12):
-        raise ValueError(f"`Q` = {Q:g}: stick zone [{lo:.6g}, {hi:.6g}] leaves the contact "
+        raise InputError(f"`Q` = {Q:g}: stick zone [{lo:.6g}, {hi:.6g}] leaves the contact "
                          f"[{-normal.a:.6g}, {normal.c:.6g}]; is `normal` consistent with its punch?")
     stick, extra = sch.pressure(punch, A, m, h)
     diagnostics = Diagnostics(n=sch.n, scheme=sch.name, iterations=its, residual=res,

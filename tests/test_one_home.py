@@ -182,11 +182,14 @@ def test_the_core_has_no_import_circle_at_module_level():
 @pytest.mark.parametrize("module", ["punch", "results", "stress", "stress_grid", "checks"])
 def test_the_problem_types_check_their_input_with_the_leaf_checks_only(module):
     """punch, results and stress take their argument checks from threepart.checks (which imports no
-    threepart module), never from threepart.validate (which imports them), even lazily."""
+    threepart module but the leaf errors), never from threepart.validate (which imports them), even
+    lazily."""
     names = _imports(SHARED / f"{module}.py")
     assert not any(n == "threepart.validate" or n.startswith("threepart.validate.") for n in names)
     if module == "checks":
-        assert not any(n.startswith("threepart") for n in names), names
+        leaf = {"threepart.errors"} | {f"threepart.errors.{e}" for e in ("InputError", "InputTypeError")}
+        assert not any(n.startswith("threepart") and n not in leaf for n in names), names
+        assert not any(n.startswith("threepart") for n in _imports(SHARED / "errors.py"))
 
 
 def test_the_scan_sees_lazy_and_relative_imports(tmp_path):

@@ -67,8 +67,9 @@ ruiz                -- Ruiz's FDP (tau delta) and FFDP (sigma_xx tau delta) at t
 HotSpot             -- where a parameter is largest, how much, and on which plane
 (all four at once: ``threepart.fatigue.fatigue``; the module keeps the name ``fatigue``)
 
-Errors (one family, raised by every solver)
+Errors (one family, raised by every solver; all derive from ThreepartError)
 ------
+ThreepartError      -- the base: ``except threepart.ThreepartError`` catches any refusal of threepart's
 LiftOffError        -- s (or P) puts a contact edge inside the central segment (ValueError)
 SeparationError     -- a concave centre would separate (ValueError)
 FullSlidingError    -- |Q| >= f P (ValueError)
@@ -80,6 +81,8 @@ MeshResolutionError -- a contact end too close to a join for the FE mesh (a Cont
 SlopeLimitError     -- the contact's slope is past half-plane theory's small-slope limit (ValueError)
 ArcExtentError      -- a contact end runs past an edge arc's extent (ValueError)
 CoulombError        -- an answer's shear breaks |q| <= f p (a StickZoneError; threepart.answer)
+ReaderError         -- another code's file that cannot be read, named with why (ValueError)
+(the rest of the family, and its tree: ``threepart.errors``)
 """
 from __future__ import annotations
 
@@ -98,7 +101,7 @@ _HOMES = {
     "StickZoneError": "errors", "StickSeparationError": "errors",
     "NoConvergenceError": "errors", "ContactZoneError": "errors",
     "MeshResolutionError": "errors", "SlopeLimitError": "errors", "ArcExtentError": "errors",
-    "CoulombError": "errors",
+    "CoulombError": "errors", "ThreepartError": "errors", "ReaderError": "errors",
     "solve": "methods", "METHODS": "methods", "CHOICES": "methods",
     "Stress": "stress",
     "hilbert": "stress",
@@ -113,7 +116,8 @@ __all__ = list(_HOMES)
 if TYPE_CHECKING:   # pragma: no cover - for type checkers and IDEs only
     from .errors import (ArcExtentError, ContactZoneError, CoulombError, FullSlidingError,
                          LiftOffError, MeshResolutionError, NoConvergenceError, SeparationError,
-                         SlopeLimitError, StickSeparationError, StickZoneError)
+                         ReaderError, SlopeLimitError, StickSeparationError, StickZoneError,
+                         ThreepartError)
     from .material import compliance, rigid_punch, similar_pair
     from .methods import CHOICES, METHODS, fretting, solve, steady_state
     from .punch import Punch

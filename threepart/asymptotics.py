@@ -35,6 +35,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from . import registry
+from threepart.errors import InputError, InputTypeError
 
 if TYPE_CHECKING:
     from .results import NormalResult
@@ -126,7 +127,7 @@ def _normal_multipliers(normal: NormalResult) -> tuple[tuple[float, float | None
     """``((K_N, fit_error), (K_N, fit_error))`` of a normal result, by its method's ``edges``."""
     method = registry.get(normal.method)
     if method.edges is None:
-        raise ValueError(f"method {normal.method!r} does not compute edge multipliers "
+        raise InputError(f"method {normal.method!r} does not compute edge multipliers "
                          "(its registry entry has no `edges`)")
     return method.edges(normal)
 
@@ -197,7 +198,7 @@ def edges(result: Any) -> tuple[Edge, Edge]:
                            "fretting", result.method, cycle=True)
     if isinstance(result, SteadyStateResult):
         return _edges_steady(result)
-    raise TypeError(f"`result` must be a normal, slip, fretting or steady-state result, "
+    raise InputTypeError(f"`result` must be a normal, slip, fretting or steady-state result, "
                     f"not {type(result).__name__}")
 
 
@@ -271,12 +272,12 @@ def _match_iv(flank: Any, edge: Any, R: Any, P: Any) -> tuple[int, float | None,
     from .results import SlipResult
     from .validate import positive, show
     if not isinstance(flank, SlipResult):
-        raise TypeError(f"`flank_result` must be a partial-slip result (threepart.solve with Q and f), "
+        raise InputTypeError(f"`flank_result` must be a partial-slip result (threepart.solve with Q and f), "
                         f"not {type(flank).__name__}")
     if edge not in SIDES:
-        raise ValueError(f"`edge` = {show(edge)} must be 'left' or 'right'")
+        raise InputError(f"`edge` = {show(edge)} must be 'left' or 'right'")
     if R is not None and P is not None:
-        raise ValueError("give at most one of `R` (the pad's radius) and `P` (its load), not both")
+        raise InputError("give at most one of `R` (the pad's radius) and `P` (its load), not both")
     return (SIDES.index(edge), None if R is None else positive("R", R),
             None if P is None else positive("P", P))
 
@@ -447,7 +448,7 @@ def _fatigue(flank: Any, pad: Any, e_flank: Edge, e_pad: Edge, slip: float, sign
     for res, e in ((flank, e_flank), (pad, e_pad)):
         normal, cycle_of = res.normal, registry.get(res.method).fretting
         if cycle_of is None:
-            raise ValueError(f"method {res.method!r} has no fretting cycle for the fatigue parameters; "
+            raise InputError(f"method {res.method!r} has no fretting cycle for the fatigue parameters; "
                              "pass fatigue=False")
         cycle = cycle_of(normal.punch, normal.P, normal.s, A=normal.A, tilt=normal.tilt, nu=None,
                          Q_max=abs(res.Q), states=FATIGUE_STATES, f=res.f,

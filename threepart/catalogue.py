@@ -23,6 +23,7 @@ from .material import rigid_punch
 from .punch import Punch
 from .registry import lift_off
 from .validate import finite, positive, show
+from threepart.errors import InputError
 
 __all__ = ["Case", "CASES_FILE", "SUITES", "LIFT_OFF_METHOD", "load_cases", "get_case", "slip_loads"]
 
@@ -86,7 +87,7 @@ class Case:
 
     def __post_init__(self) -> None:
         if (self.material is None) == (self.compliance is None):
-            raise ValueError(f"case {self.name!r} needs exactly one of `material` (E, nu) and `A`")
+            raise InputError(f"case {self.name!r} needs exactly one of `material` (E, nu) and `A`")
 
     @property
     def E(self) -> float:
@@ -100,7 +101,7 @@ class Case:
 
     def _material(self) -> tuple[float, float]:
         if self.material is None:
-            raise ValueError(f"case {self.name!r} is nondimensional: it gives `A`, not a material (E, nu)")
+            raise InputError(f"case {self.name!r} is nondimensional: it gives `A`, not a material (E, nu)")
         return self.material
 
     @property
@@ -136,7 +137,7 @@ class Case:
     def shear_load(self) -> tuple[float, float]:
         """``(Q, f)`` of a partial-slip case; ``ValueError`` for a normal case."""
         if self.Q is None or self.f is None:
-            raise ValueError(f"case {self.name!r} has no shear load (`Q_over_fP` and `f`)")
+            raise InputError(f"case {self.name!r} has no shear load (`Q_over_fP` and `f`)")
         return self.Q, self.f
 
     @property
@@ -180,11 +181,11 @@ def _read(path: str | Path | None) -> dict[str, Any]:
     try:
         data = json.loads(Path(path or CASES_FILE).read_text(encoding="utf-8"))
     except OSError as exc:
-        raise ValueError(f"{where} cannot be read: {exc.strerror or exc}") from None
+        raise InputError(f"{where} cannot be read: {exc.strerror or exc}") from None
     except (UnicodeDecodeError, json.JSONDecodeError) as exc:
-        raise ValueError(f"{where} is not a JSON case catalogue: {exc}") from None
+        raise InputError(f"{where} is not a JSON case catalogue: {exc}") from None
     if not isinstance(data, dict) or not isinstance(data.get("cases"), list):
-        raise ValueError(f"{where} has no field 'cases' (a list of cases)")
+        raise InputError(f"{where} has no field 'cases' (a list of cases)")
     return data
 
 
@@ -202,14 +203,14 @@ def _checked_case(c: Any, default_material: Any, path: str | Path | None, i: int
                 finite(key, value)
         finite("sigma_bulk", case.sigma_bulk)
         if case.states is not None and case.f is None:
-            raise ValueError("`states` (a cycle) needs the coefficient of friction `f`")
+            raise InputError("`states` (a cycle) needs the coefficient of friction `f`")
         if case.material is not None:
             positive("E", case.material[0])
             finite("nu", case.material[1])
     except KeyError as exc:
-        raise ValueError(f"{where} has no field {exc.args[0]!r}") from None
+        raise InputError(f"{where} has no field {exc.args[0]!r}") from None
     except (TypeError, ValueError, AttributeError) as exc:
-        raise ValueError(f"{where}: {exc}") from None
+        raise InputError(f"{where}: {exc}") from None
     return case
 
 
@@ -234,11 +235,11 @@ def _states(states: Any) -> tuple[tuple[float, float, float, float], tuple[float
     if states is None:
         return None
     if not isinstance(states, list) or len(states) != 2:
-        raise ValueError(f"`states` must be a list of 2 states [P, s, Q, sigma_bulk], not {show(states)}")
+        raise InputError(f"`states` must be a list of 2 states [P, s, Q, sigma_bulk], not {show(states)}")
     out = []
     for k, st in enumerate(states):
         if not isinstance(st, list) or len(st) != 4:
-            raise ValueError(f"`states[{k}]` must be a list [P, s, Q, sigma_bulk] of 4 numbers, not {show(st)}")
+            raise InputError(f"`states[{k}]` must be a list [P, s, Q, sigma_bulk] of 4 numbers, not {show(st)}")
         P, s, Q, sigma = (finite(f"states[{k}][{i}]", v) for i, v in enumerate(st))
         positive(f"states[{k}][0] (P)", P)
         out.append((float(P), float(s), float(Q), float(sigma)))
@@ -251,15 +252,15 @@ def load_cases(suite: str | None = "verify", path: str | Path | None = None) -> 
     ``path`` reads another catalogue file of the same layout (default :data:`CASES_FILE`).
     """
     if suite is not None and suite not in SUITES:
-        raise ValueError(f"`suite` = {suite!r} is not one of {SUITES}")
+        raise InputError(f"`suite` = {suite!r} is not one of {SUITES}")
     data = _read(path)
     cases = [_checked_case(c, data.get("material"), path, i) for i, c in enumerate(data["cases"])]
     names = [c.name for c in cases]
     if len(set(names)) != len(names):
-        raise ValueError(f"case names in {path or CASES_FILE} are not unique: {names}")
+        raise InputError(f"case names in {path or CASES_FILE} are not unique: {names}")
     unknown = {s for c in cases for s in c.suites} - set(SUITES)
     if unknown:
-        raise ValueError(f"unknown suites {sorted(unknown)} in {path or CASES_FILE}")
+        raise InputError(f"unknown suites {sorted(unknown)} in {path or CASES_FILE}")
     return [c for c in cases if suite is None or suite in c.suites]
 
 
@@ -275,7 +276,7 @@ def get_case(name: str, path: str | Path | None = None) -> Case:
     for c in cases:
         if c.name == name:
             return c
-    raise ValueError(f"`name` = {show(name)} is not a case of {path or CASES_FILE.name} "
+    raise InputError(f"`name` = {show(name)} is not a case of {path or CASES_FILE.name} "
                      f"(its cases: {', '.join(c.name for c in cases)})")
 
 

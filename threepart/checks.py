@@ -34,6 +34,7 @@ import numbers
 from typing import Any
 
 import numpy as np
+from threepart.errors import InputError, InputTypeError
 
 __all__ = ["real", "finite", "positive", "check_finite", "check_positive", "TILTS", "check_tilt",
            "LENGTH_RANGE", "show", "NU_RANGE", "poisson", "integer", "reals", "coordinates", "flag"]
@@ -59,14 +60,14 @@ def _number(name: str, value: Any) -> float:
         return value
     if isinstance(value, (bool, np.bool_)) or not isinstance(value, (numbers.Real, np.floating,
                                                                       np.integer)):
-        raise TypeError(f"`{name}` = {show(value)} must be a real number, not {type(value).__name__}")
+        raise InputTypeError(f"`{name}` = {show(value)} must be a real number, not {type(value).__name__}")
     try:
         v = float(value)      # float64, whatever the width or kind of the real number given
     except OverflowError:
-        raise ValueError(f"`{name}` = {show(value)} is outside the double-precision range") from None
+        raise InputError(f"`{name}` = {show(value)} is outside the double-precision range") from None
     if math.isinf(v) and not (isinstance(value, (float, np.floating)) and np.isinf(value)):
         # e.g. np.longdouble(1e4000): finite as given, infinite in float64
-        raise ValueError(f"`{name}` = {show(value)} is outside the double-precision range")
+        raise InputError(f"`{name}` = {show(value)} is outside the double-precision range")
     return v
 
 
@@ -74,7 +75,7 @@ def real(name: str, value: Any) -> float:
     """``value`` as a float (``inf`` allowed); ``ValueError`` unless it is a real number, not NaN or a bool."""
     v = _number(name, value)
     if math.isnan(v):
-        raise ValueError(f"`{name}` = nan is not a number")
+        raise InputError(f"`{name}` = nan is not a number")
     return v
 
 
@@ -82,7 +83,7 @@ def finite(name: str, value: Any) -> float:
     """``value`` as a finite float, else ``ValueError``."""
     v = _number(name, value)
     if not math.isfinite(v):
-        raise ValueError(f"`{name}` = {show(value)} must be a finite number")
+        raise InputError(f"`{name}` = {show(value)} must be a finite number")
     return v
 
 
@@ -90,10 +91,10 @@ def positive(name: str, value: Any, limits: tuple[float, float] = LENGTH_RANGE) 
     """``value`` as a float in ``[limits[0], limits[1]]`` (a positive magnitude), else ``ValueError``."""
     v = finite(name, value)
     if v <= 0:
-        raise ValueError(f"`{name}` = {show(value)} must be > 0")
+        raise InputError(f"`{name}` = {show(value)} must be > 0")
     lo, hi = limits
     if not lo <= v <= hi:
-        raise ValueError(f"`{name}` = {show(value)} is outside [{lo:g}, {hi:g}], the range this "
+        raise InputError(f"`{name}` = {show(value)} is outside [{lo:g}, {hi:g}], the range this "
                          "library computes in double precision")
     return v
 
@@ -113,7 +114,7 @@ def check_positive(**values: Any) -> None:
 def check_tilt(tilt: Any) -> str:
     """``tilt`` if it is one of :data:`TILTS`, else ``ValueError``."""
     if not isinstance(tilt, str) or tilt not in TILTS:
-        raise ValueError(f"`tilt` = {tilt!r} must be one of {TILTS}")
+        raise InputError(f"`tilt` = {tilt!r} must be one of {TILTS}")
     return tilt
 
 
@@ -125,10 +126,10 @@ def integer(name: str, value: Any, lo: int, hi: int) -> int:
     solve within this machine's memory and time).
     """
     if isinstance(value, (bool, np.bool_)) or not isinstance(value, (numbers.Integral, np.integer)):
-        raise TypeError(f"`{name}` = {show(value)} must be an integer, not {type(value).__name__}")
+        raise InputTypeError(f"`{name}` = {show(value)} must be an integer, not {type(value).__name__}")
     v = int(value)
     if not lo <= v <= hi:
-        raise ValueError(f"`{name}` = {v} must lie in [{lo}, {hi}]")
+        raise InputError(f"`{name}` = {v} must lie in [{lo}, {hi}]")
     return v
 
 
@@ -141,7 +142,7 @@ def poisson(nu: Any) -> float:
     v = finite("nu", nu)
     lo, hi = NU_RANGE
     if not lo < v < hi:
-        raise ValueError(f"`nu` = {nu!r} must lie in ({lo:g}, {hi:g}), Poisson's ratio of a "
+        raise InputError(f"`nu` = {nu!r} must lie in ({lo:g}, {hi:g}), Poisson's ratio of a "
                          "stable isotropic solid")
     return v
 
@@ -155,12 +156,12 @@ def reals(name: str, value: Any) -> np.ndarray:
     float64; a value outside float64's range is a ``ValueError``.
     """
     if isinstance(value, (str, bytes)) or value is None:
-        raise TypeError(f"`{name}` = {show(value)} must be real numbers, not {type(value).__name__}")
+        raise InputTypeError(f"`{name}` = {show(value)} must be real numbers, not {type(value).__name__}")
     try:
         # a list is checked element by element: numpy would turn True into 1.0
         arr = np.asarray(value, dtype=object if isinstance(value, (list, tuple)) else None)
     except ValueError:
-        raise TypeError(f"`{name}` = {show(value)} must be a flat array of real numbers") from None
+        raise InputTypeError(f"`{name}` = {show(value)} must be a flat array of real numbers") from None
     kind = arr.dtype.kind
     if kind == "O":
         out = np.empty(arr.size)
@@ -170,23 +171,23 @@ def reals(name: str, value: Any) -> np.ndarray:
             except (TypeError, ValueError) as exc:
                 raise type(exc)(f"{exc} (element {i})") from None
             if math.isinf(out[i]) and not math.isinf(v):
-                raise ValueError(f"`{name}` = {show(v)} is outside the double-precision range "
+                raise InputError(f"`{name}` = {show(v)} is outside the double-precision range "
                                  f"(element {i})")
             if math.isnan(out[i]):
-                raise ValueError(f"`{name}` = nan is not a number (element {i})")
+                raise InputError(f"`{name}` = nan is not a number (element {i})")
         return out
     if kind not in "iuf":
-        raise TypeError(f"`{name}` must be real numbers, not an array of {arr.dtype} "
+        raise InputTypeError(f"`{name}` must be real numbers, not an array of {arr.dtype} "
                         f"(first value {show(arr.ravel()[0] if arr.size else arr)})")
     with np.errstate(over="ignore"):
         out = arr.astype(float).ravel()
     bad = np.isinf(out) & ~np.isinf(arr.ravel()) if kind == "f" else np.isinf(out)
     if bad.any():
         i = int(np.argmax(bad))
-        raise ValueError(f"`{name}` = {show(arr.ravel()[i])} is outside the double-precision range "
+        raise InputError(f"`{name}` = {show(arr.ravel()[i])} is outside the double-precision range "
                          f"(element {i})")
     if np.isnan(out).any():
-        raise ValueError(f"`{name}` = nan is not a number (element {int(np.argmax(np.isnan(out)))})")
+        raise InputError(f"`{name}` = nan is not a number (element {int(np.argmax(np.isnan(out)))})")
     return out
 
 
@@ -209,12 +210,12 @@ def coordinates(name: str, value: Any) -> Any:
     elif isinstance(value, (list, tuple, np.ndarray)):
         arr = _coordinate_array(name, value)
     else:
-        raise TypeError(f"`{name}` = {show(value)} must be a real number or an array of them, not "
+        raise InputTypeError(f"`{name}` = {show(value)} must be a real number or an array of them, not "
                         f"{type(value).__name__}")
     bad = ~np.isfinite(arr)
     if bad.any():
         i = int(np.argmax(bad.ravel()))
-        raise ValueError(f"`{name}` = {show(arr.ravel()[i])} (element {i}) must be a finite coordinate")
+        raise InputError(f"`{name}` = {show(arr.ravel()[i])} (element {i}) must be a finite coordinate")
     return arr
 
 
@@ -223,11 +224,11 @@ def _coordinate_array(name: str, value: Any) -> np.ndarray:
     try:
         arr = np.asarray(value, dtype=object if isinstance(value, (list, tuple)) else None)
     except ValueError:
-        raise TypeError(f"`{name}` = {show(value)} must be a regular array of real numbers") from None
+        raise InputTypeError(f"`{name}` = {show(value)} must be a regular array of real numbers") from None
     if arr.dtype.kind in "iu":
         return arr.astype(float)
     if arr.dtype.kind != "O":
-        raise TypeError(f"`{name}` must be real numbers, not an array of {arr.dtype}")
+        raise InputTypeError(f"`{name}` must be real numbers, not an array of {arr.dtype}")
     out = np.empty(arr.shape)
     for i, v in enumerate(arr.ravel()):
         try:
@@ -244,5 +245,5 @@ def flag(name: str, value: Any) -> bool:
     ``None`` are refused rather than read by their truth value.
     """
     if not isinstance(value, (bool, np.bool_)):
-        raise TypeError(f"`{name}` = {show(value)} must be True or False, not {type(value).__name__}")
+        raise InputTypeError(f"`{name}` = {show(value)} must be True or False, not {type(value).__name__}")
     return bool(value)

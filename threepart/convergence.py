@@ -26,6 +26,7 @@ from typing import Any, Callable, Mapping, Sequence
 
 import numpy as np
 from numpy.typing import ArrayLike
+from threepart.errors import InputError
 
 __all__ = ["ROUND_OFF", "is_monotone", "converges_monotonically", "fitted_order", "three_level_order",
            "gci", "richardson", "Study", "run_study", "analyse"]
@@ -314,9 +315,9 @@ def run_study(evaluate: Callable[[Any], tuple[Any, ...]],
     Study
     """
     if not isinstance(param, str) or not param:
-        raise ValueError(f"`param` = {param!r} must name the discretisation parameter")
+        raise InputError(f"`param` = {param!r} must name the discretisation parameter")
     if len(levels) < 2:
-        raise ValueError(f"`levels` = {list(levels)!r} must hold at least two levels")
+        raise InputError(f"`levels` = {list(levels)!r} must hold at least two levels")
     study = Study(param, reference=dict(reference or {}), method=method, case=case, scheme=scheme)
     for level in levels:
         t0 = time.perf_counter()

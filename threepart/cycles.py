@@ -23,6 +23,7 @@ from .answer import check_coulomb
 from .punch import Punch
 from .results import NU, Diagnostics, NormalResult, _Answer, _Edged, _kinks
 from .stress import Stress, stress
+from threepart.errors import InputError
 
 __all__ = ["SteadyStateResult", "HistoryResult"]
 
@@ -81,7 +82,7 @@ class SteadyStateResult(_Edged, _Answer):
 
     def _state(self, state: Any) -> int:
         if isinstance(state, bool) or state not in (0, 1):
-            raise ValueError(f"`state` = {state!r} must be 0 or 1 (an end of the cycle)")
+            raise InputError(f"`state` = {state!r} must be 0 or 1 (an end of the cycle)")
         return int(state)
 
     def shear(self, x: ArrayLike, state: int) -> np.ndarray:
@@ -95,7 +96,7 @@ class SteadyStateResult(_Edged, _Answer):
         """
         k = self._state(state)
         if self.shakedown:
-            raise ValueError("the cycle has shaken down: its shear is locked in by the load history, "
+            raise InputError("the cycle has shaken down: its shear is locked in by the load history, "
                              "the steady state does not determine it (only energy = 0 and the stick zone)")
         (P0, _, Q0, _), (P1, _, Q1, _), (P, _, Q, _) = *self.states, self.states[k]
         sgn, f, f_star = self.sign, self.f, 0.5 * (self.f * (P0 + P1) - abs(Q1 - Q0))   # f P* (eq. S6)
@@ -232,7 +233,7 @@ class HistoryResult(_Answer):
     def _state(self, k: int) -> int:
         n = len(self.P)
         if isinstance(k, bool) or not isinstance(k, (int, np.integer)) or not -n <= k < n:
-            raise ValueError(f"`k` = {k!r} must be a state index in [{-n}, {n - 1}]")
+            raise InputError(f"`k` = {k!r} must be a state index in [{-n}, {n - 1}]")
         return int(k) % n
 
     def _field(self, values: np.ndarray, x: ArrayLike, k: int) -> np.ndarray:
@@ -273,7 +274,7 @@ class HistoryResult(_Answer):
             If the history has no completed cycle, or no rigid shift (``delta``).
         """
         if self.delta is None or not self.cycles:
-            raise ValueError("the history has no completed cycle with a rigid shift `delta` to draw a loop of")
+            raise InputError("the history has no completed cycle with a rigid shift `delta` to draw a loop of")
         i, j = self.cycles[cycle]
         return self.delta[i:j + 1], self.Q[i:j + 1]
 
@@ -287,6 +288,6 @@ class HistoryResult(_Answer):
         """
         zones = self.stick[k := self._state(k)]
         if not zones:
-            raise ValueError(f"state `k` = {k} has no stick interval: every point of its contact "
+            raise InputError(f"state `k` = {k} has no stick interval: every point of its contact "
                              "slipped in the step to it")
         return max(zones, key=lambda z: z[1] - z[0])

@@ -1,5 +1,34 @@
 """The one error family of threepart; every solver raises from here.
 
+Every error threepart raises derives from :class:`ThreepartError`, so that
+``except ThreepartError`` catches any refusal of threepart's, and keeps the
+built-in base it always had, so that ``except ValueError`` still catches bad
+input: ``class LiftOffError(ThreepartError, ValueError)``.
+
+The family (built-in base in brackets):
+
+ThreepartError          -- the base of all: any refusal of threepart's
+NoConvergenceError      -- an iteration did not converge (RuntimeError)
+LiftOffError            -- ``s`` or ``P`` puts a contact edge inside the central segment (ValueError)
+FullSlidingError        -- ``|Q| >= f P`` (ValueError)
+StickZoneError          -- a stick zone the method cannot represent (ValueError)
+  StickSeparationError  -- its corrective pressure breaks Coulomb's law
+  SlipReversalError     -- a bulk stress reverses the slip at one end
+    CycleSlipReversalError -- a cycle's steady state would slip against the half-cycle
+  CoulombError          -- an answer's shear breaks ``|q| <= f p``
+  OneSidedSlipError     -- a cycle's permanent stick zone reaches one edge only
+  DisjointContactsError -- a cycle's end states' contacts do not overlap: no permanent stick zone
+SeparationError         -- a concave centre would separate (ValueError)
+ContactZoneError        -- the FE contact reached the end of its mesh zone (RuntimeError)
+  MeshResolutionError   -- a contact end too close to a join for the FE mesh
+SlopeLimitError         -- past half-plane theory's small-slope limit (ValueError)
+ArcExtentError          -- a contact end past an edge arc's extent (ValueError)
+ReaderError             -- a file of another code that cannot be read: names the file and why (ValueError)
+OutputExistsError       -- a path holds what threepart did not write (ValueError)
+CcxError                -- CalculiX ran but failed, or wrote no result (RuntimeError)
+CcxMissing              -- ``ccx`` is not on the PATH (OSError)
+ManifestError           -- a mesh file does not match its manifest (AssertionError)
+
 Bad input is a :class:`ValueError` (or one of the subclasses below) whose
 message names the argument and the limit. A contact that leaves the paper's
 framework is refused with the subclass that says why. A numerical method that
@@ -8,24 +37,29 @@ returns a number it does not trust, and none returns NaN.
 """
 from __future__ import annotations
 
-__all__ = ["NoConvergenceError", "LiftOffError", "FullSlidingError", "StickZoneError",
+__all__ = ["ThreepartError", "NoConvergenceError", "LiftOffError", "FullSlidingError", "StickZoneError",
            "SeparationError", "ContactZoneError", "MeshResolutionError", "SlopeLimitError",
-           "ArcExtentError", "StickSeparationError", "SlipReversalError", "CoulombError", "full_sliding"]
+           "ArcExtentError", "StickSeparationError", "SlipReversalError", "CoulombError", "full_sliding",
+           "ReaderError", "OutputExistsError", "CcxError", "CcxMissing", "ManifestError"]
 
 
-class NoConvergenceError(RuntimeError):
+class ThreepartError(Exception):
+    """The base of every error threepart raises: ``except ThreepartError`` catches any refusal."""
+
+
+class NoConvergenceError(ThreepartError, RuntimeError):
     """An iteration (root finder, Newton, active set) did not converge; no result is returned."""
 
 
-class LiftOffError(ValueError):
+class LiftOffError(ThreepartError, ValueError):
     """The lever arm ``s`` (or the load ``P``) puts a contact edge inside the central segment."""
 
 
-class FullSlidingError(ValueError):
+class FullSlidingError(ThreepartError, ValueError):
     """``|Q| >= f P``: the contact slides as a whole, there is no stick zone."""
 
 
-class StickZoneError(ValueError):
+class StickZoneError(ThreepartError, ValueError):
     """The stick zone would end inside the central segment, where the closed form does not hold."""
 
 
@@ -79,7 +113,7 @@ def full_sliding(name: str, Q: float, f: float, P: float, what: str = "there is 
         f"contact slides as a whole (full sliding), {what}")
 
 
-class SeparationError(ValueError):
+class SeparationError(ThreepartError, ValueError):
     """A concave centre would separate: the single contact's pressure is tensile.
 
     The true contact then splits into two zones, or the punch rests on one
@@ -87,7 +121,7 @@ class SeparationError(ValueError):
     """
 
 
-class ContactZoneError(RuntimeError):
+class ContactZoneError(ThreepartError, RuntimeError):
     """The FE contact reached an end of the mesh's candidate zone, so the mesh cannot hold it."""
 
 
@@ -101,7 +135,7 @@ class MeshResolutionError(ContactZoneError):
     """
 
 
-class SlopeLimitError(ValueError):
+class SlopeLimitError(ThreepartError, ValueError):
     """The contact's surface slope ``max |v'|`` exceeds the small-slope limit of half-plane theory.
 
     Half-plane theory measures the gap vertically and applies the tractions to
@@ -109,12 +143,12 @@ class SlopeLimitError(ValueError):
     """
 
 
-class ArcExtentError(ValueError):
+class ArcExtentError(ThreepartError, ValueError):
     """A contact end runs past the geometric extent of an edge arc (``a > b + R1`` or ``c > b + R2``)."""
 
 
 # --- the steady state of in-phase loading (docs/STEADY_STATE.md) --------------------------------
-__all__ += ["CycleSlipReversalError", "OneSidedSlipError"]
+__all__ += ["CycleSlipReversalError", "OneSidedSlipError", "DisjointContactsError"]
 
 
 class CycleSlipReversalError(SlipReversalError):
@@ -138,3 +172,46 @@ class OneSidedSlipError(StickZoneError):
     (docs/STEADY_STATE.md, eq. S12), whose bounded corrective pressure needs a
     stick zone inside the contact and one sense of slip a half-cycle.
     """
+
+
+class DisjointContactsError(StickZoneError):
+    """The contacts of a cycle's two end states do not overlap: no point stays in contact all cycle.
+
+    The permanent stick zone of a cycle's steady state lies inside the smaller
+    of the two end states' contacts and inside both; where their intersection
+    is empty there is none, and no stick zone may be returned outside a contact.
+    """
+
+
+# --- files: other codes' output, and threepart's own output --------------------------------------
+
+class ReaderError(ThreepartError, ValueError):
+    """A file of another code cannot be read: the message names the file and what is wrong with it."""
+
+
+class OutputExistsError(ThreepartError, ValueError):
+    """A path may not be written: it holds something threepart did not write, or that was changed."""
+
+
+class CcxError(ThreepartError, RuntimeError):
+    """``ccx`` (CalculiX) ran but failed, or wrote no result."""
+
+
+class CcxMissing(ThreepartError, OSError):
+    """``ccx`` (CalculiX) is not on the PATH."""
+
+
+class ManifestError(ThreepartError, AssertionError):
+    """A mesh file does not match its manifest."""
+
+
+# --- bad input ---------------------------------------------------------------------------------
+__all__ += ["InputError", "InputTypeError"]
+
+
+class InputError(ThreepartError, ValueError):
+    """A bad value of an argument: the message names the argument and the limit it breaks."""
+
+
+class InputTypeError(ThreepartError, TypeError):
+    """An argument of the wrong type: the message names the argument and the type it needs."""

@@ -54,6 +54,7 @@ from .fatigue_history import Cycle, History, _check_cycle, _history, stress_hist
 from .results import BRANCHES, NU
 from .stress import Stress
 from .validate import finite, poisson, positive, reals
+from threepart.errors import InputError
 
 __all__ = ["HotSpot", "Parameter", "Ruiz", "Fatigue", "History", "stress_history",
            "von_mises_range", "swt", "findley", "ruiz", "fatigue", "critical_plane",
@@ -257,7 +258,7 @@ def findley_k(k: Any) -> float:
     """Findley's constant as a float in ``[0, 10]``, else ``ValueError`` naming ``k``."""
     v = finite("k", k)
     if not 0.0 <= v <= 10.0:
-        raise ValueError(f"`k` = {k!r} must lie in [0, 10] (Findley's constant; typically 0.2-0.3)")
+        raise InputError(f"`k` = {k!r} must lie in [0, 10] (Findley's constant; typically 0.2-0.3)")
     return v
 
 

@@ -22,6 +22,7 @@ from .cycles import SteadyStateResult
 from .results import NU, FrettingResult, MasingCycle, masing
 from .stress import Stress
 from .validate import integer, poisson, reals
+from threepart.errors import InputError, InputTypeError
 
 __all__ = ["History", "stress_history", "Cycle", "SAME_U"]
 
@@ -67,23 +68,23 @@ class History:
         stresses = list(stresses)
         for i, s in enumerate(stresses):
             if not isinstance(s, Stress):
-                raise TypeError(f"`stresses[{i}]` must be a threepart.stress.Stress, not "
+                raise InputTypeError(f"`stresses[{i}]` must be a threepart.stress.Stress, not "
                                 f"{type(s).__name__}")
         if len(stresses) < 2:
-            raise ValueError(f"`stresses` holds {len(stresses)} state(s): a cycle needs at least 2")
+            raise InputError(f"`stresses` holds {len(stresses)} state(s): a cycle needs at least 2")
         first = stresses[0]
         for i, s in enumerate(stresses[1:], 1):
             if s.x.shape != first.x.shape or not (np.array_equal(s.x, first.x)
                                                   and np.array_equal(s.z, first.z)):
-                raise ValueError(f"`stresses[{i}]` is at other points than `stresses[0]`: a history "
+                raise InputError(f"`stresses[{i}]` is at other points than `stresses[0]`: a history "
                                  "needs every state at the same points")
             if s.nu != first.nu:
-                raise ValueError(f"`stresses[{i}]` has nu = {s.nu!r}, `stresses[0]` nu = {first.nu!r}: "
+                raise InputError(f"`stresses[{i}]` has nu = {s.nu!r}, `stresses[0]` nu = {first.nu!r}: "
                                  "a history needs one material")
         sxx, szz, sxz = (np.stack([getattr(s, k) for s in stresses]) for k in ("sxx", "szz", "sxz"))
         for k, arr in zip(("sxx", "szz", "sxz"), (sxx, szz, sxz)):
             if not np.all(np.isfinite(arr)):
-                raise ValueError(f"`stresses` hold a non-finite {k}: every stress must be finite")
+                raise InputError(f"`stresses` hold a non-finite {k}: every stress must be finite")
         m = len(stresses)
         Qs = np.full(m, np.nan) if Q is None else np.asarray(Q, float).reshape(m)
         br = np.full(m, "", dtype=object) if branch is None else np.asarray(branch, dtype=object).reshape(m)
@@ -98,7 +99,7 @@ class History:
         """The history at the points with ``z = 0``, flattened (``ValueError`` if there are none)."""
         at = (self.z == 0).ravel()
         if not at.any():
-            raise ValueError("the history has no surface point (z = 0): Ruiz's parameter is a "
+            raise InputError("the history has no surface point (z = 0): Ruiz's parameter is a "
                              "surface quantity")
         m = self.states
         pick = lambda a: a.reshape(m, -1)[:, at]   # noqa: E731
@@ -111,7 +112,7 @@ def _history(history: Any) -> History:
         return history
     if isinstance(history, (list, tuple)):
         return History.from_stresses(history)
-    raise TypeError(f"`history` must be a threepart.fatigue.History or a sequence of Stress, not "
+    raise InputTypeError(f"`history` must be a threepart.fatigue.History or a sequence of Stress, not "
                     f"{type(history).__name__}")
 
 
@@ -122,7 +123,7 @@ Cycle = FrettingResult | SteadyStateResult
 
 def _check_cycle(cycle: Any) -> Cycle:
     if not isinstance(cycle, (FrettingResult, SteadyStateResult)):
-        raise TypeError(f"`cycle` must be a FrettingResult (from a fretting_cycle) or a SteadyStateResult "
+        raise InputTypeError(f"`cycle` must be a FrettingResult (from a fretting_cycle) or a SteadyStateResult "
                         f"(from a steady_state), not {type(cycle).__name__}")
     return cycle
 
@@ -131,7 +132,7 @@ def _steady_history(cycle: SteadyStateResult, xb: np.ndarray, zb: np.ndarray, st
                     nu: float) -> History:
     """The steady cycle's stresses at its two end states (docs/FATIGUE.md, "The flight cycle")."""
     if states is not None:
-        raise ValueError(f"`states` = {states!r} selects recorded states of a fretting cycle; a steady "
+        raise InputError(f"`states` = {states!r} selects recorded states of a fretting cycle; a steady "
                          "state's history is its two end states: leave `states` out")
     stresses = [cycle.stress(xb, zb, k, nu=nu) for k in (0, 1)]
     return History.from_stresses(stresses, Q=[cycle.states[0][2], cycle.states[1][2]],
@@ -143,17 +144,17 @@ def _points(x: ArrayLike, z: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
     xa = reals("x", x).reshape(np.shape(x))
     za = reals("z", z).reshape(np.shape(z))
     if not (np.all(np.isfinite(xa)) and np.all(np.isfinite(za))):
-        raise ValueError("`x` and `z` must hold finite numbers")
+        raise InputError("`x` and `z` must hold finite numbers")
     if np.any(za < 0):
-        raise ValueError(f"`z` = {float(za[za < 0].flat[0])!r} must be >= 0: z is the depth into "
+        raise InputError(f"`z` = {float(za[za < 0].flat[0])!r} must be >= 0: z is the depth into "
                          "the substrate")
     try:
         xb, zb = np.broadcast_arrays(xa, za)
     except ValueError:
-        raise ValueError(f"`x` of shape {xa.shape} and `z` of shape {za.shape} do not broadcast "
+        raise InputError(f"`x` of shape {xa.shape} and `z` of shape {za.shape} do not broadcast "
                          "against each other") from None
     if xb.size == 0:
-        raise ValueError("`x` and `z` hold no point")
+        raise InputError("`x` and `z` hold no point")
     return xb.copy(), zb.copy()
 
 
@@ -163,12 +164,12 @@ def _states(cycle: FrettingResult, states: Any) -> np.ndarray:
     if states is None:
         return np.arange(n)
     if isinstance(states, (str, bytes)) or not hasattr(states, "__len__"):
-        raise TypeError(f"`states` must be a sequence of indices into `cycle.Q`, not "
+        raise InputTypeError(f"`states` must be a sequence of indices into `cycle.Q`, not "
                         f"{type(states).__name__}")
     idx = np.array([integer(f"states[{i}]", s, -n, n - 1) for i, s in enumerate(states)], dtype=int)
     idx = np.unique(idx % n) if idx.size else idx
     if idx.size < 2:
-        raise ValueError(f"`states` selects {idx.size} distinct state(s) of the cycle's {n}: a "
+        raise InputError(f"`states` selects {idx.size} distinct state(s) of the cycle's {n}: a "
                          "stress range needs at least 2")
     return idx
 
@@ -283,6 +284,6 @@ def _masing_history(cycle: FrettingResult, xb: np.ndarray, zb: np.ndarray, idx: 
         out["sxx"][n] += cycle.sigma_bulk * float(cycle.Q[i]) / Q_max
     for k, arr in out.items():
         if not np.all(np.isfinite(arr)):
-            raise ValueError(f"the history holds a non-finite {k}: every stress must be finite")
+            raise InputError(f"the history holds a non-finite {k}: every stress must be finite")
     return History(p.x, p.z, out["sxx"], out["szz"], out["sxz"], nu=nu, Q=cycle.Q[idx],
                    branch=cycle.branch[idx])

@@ -44,6 +44,7 @@ from .fatigue import (K_FINDLEY, Cycle, History, Parameter, Ruiz, _history, _par
 from .results import NU
 from .stress import Stress
 from .validate import finite, poisson, positive, reals
+from threepart.errors import InputError, InputTypeError
 
 __all__ = ["FatigueParameter", "register_parameter", "parameters", "parameter", "reported", "Inputs",
            "Fatigue", "fatigue", "crossland", "deviatoric_amplitude", "KAPPA_CROSSLAND",
@@ -115,7 +116,7 @@ _TABLE: dict[str, FatigueParameter] = {}
 def register_parameter(row: FatigueParameter) -> FatigueParameter:
     """Add ``row`` to the table (replacing one of the same name) and return it."""
     if not isinstance(row, FatigueParameter):
-        raise TypeError(f"`row` must be a threepart.fatigue_parameters.FatigueParameter, not "
+        raise InputTypeError(f"`row` must be a threepart.fatigue_parameters.FatigueParameter, not "
                         f"{type(row).__name__}")
     _TABLE[row.name] = row
     return row
@@ -131,7 +132,7 @@ def parameter(name: str) -> FatigueParameter:
     try:
         return _TABLE[name]
     except (KeyError, TypeError):
-        raise ValueError(f"`name` = {name!r} must be one of {', '.join(_TABLE)}") from None
+        raise InputError(f"`name` = {name!r} must be one of {', '.join(_TABLE)}") from None
 
 
 def reported() -> tuple[str, ...]:
@@ -241,7 +242,7 @@ def crossland(history: History | Sequence[Stress], *, kappa: float = KAPPA_CROSS
     h = _history(history)
     kappa = finite("kappa", kappa)
     if not 0.0 <= kappa <= 10.0:
-        raise ValueError(f"`kappa` = {kappa!r} must lie in [0, 10] (Crossland's constant, "
+        raise InputError(f"`kappa` = {kappa!r} must lie in [0, 10] (Crossland's constant, "
                          "3 t-1/f-1 - sqrt(3))")
     sh = ((1.0 + h.nu) * (h.sxx + h.szz) / 3.0).max(axis=0)
     return _parameter("crossland", h.x, h.z, deviatoric_amplitude(h) + kappa * sh)
@@ -339,7 +340,7 @@ def fatigue(cycle: Cycle, x: ArrayLike, z: ArrayLike, *, E: float, nu: float = N
     known = {c for p in parameters() for c in p.constants}
     unknown = sorted(set(constants) - known)
     if unknown:
-        raise TypeError(f"`{unknown[0]}` is not a constant of any fatigue parameter (theirs: "
+        raise InputTypeError(f"`{unknown[0]}` is not a constant of any fatigue parameter (theirs: "
                         f"{', '.join(sorted(known))})")
     E = positive("E", E)
     nu = poisson(nu)

@@ -24,7 +24,7 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import ArrayLike
 
-from .errors import MeshResolutionError
+from .errors import InputError, MeshResolutionError
 
 __all__ = ["peak", "FIT_SAMPLES", "edge_multipliers", "WINDOWS", "DEGREES", "JOIN_SHARE", "MIN_NODES"]
 
@@ -58,19 +58,19 @@ def peak(x: ArrayLike, p: ArrayLike, *, half_width: float | None = None, degree:
     xa, pa = np.asarray(x, float), np.asarray(p, float)
     if symmetric:
         if half_width is None:
-            raise ValueError("`symmetric` needs a `half_width`: the even fit's")
+            raise InputError("`symmetric` needs a `half_width`: the even fit's")
         m = np.abs(xa) < half_width
         return 0.0, float(np.polyfit(xa[m] ** 2, pa[m], degree // 2)[-1])
     if half_width is None:
         return _vertex(xa, pa)
     if passes < 1 or smooth < 1:
-        raise ValueError(f"`passes` = {passes} and `smooth` = {smooth} must be >= 1")
+        raise InputError(f"`passes` = {passes} and `smooth` = {smooth} must be >= 1")
     i = int(np.argmax(np.convolve(pa, np.ones(smooth) / smooth, "same")))
     t = np.linspace(-half_width, half_width, FIT_SAMPLES)
     for _ in range(passes):
         m = np.abs(xa - xa[i]) < half_width
         if np.count_nonzero(m) < degree + 2:
-            raise ValueError(f"`half_width` = {half_width:g} holds {np.count_nonzero(m)} nodes; "
+            raise InputError(f"`half_width` = {half_width:g} holds {np.count_nonzero(m)} nodes; "
                              f"the degree-{degree} fit needs at least {degree + 2}")
         v = np.polyval(np.polyfit(xa[m] - xa[i], pa[m], degree), t)
         j = int(np.argmax(v))

@@ -25,6 +25,7 @@ from typing import Any, Sequence
 import numpy as np
 
 from .validate import integer, show
+from threepart.errors import InputError, InputTypeError
 
 __all__ = ["History", "read_history", "check_history", "check_period", "stuck", "step_work", "MAX_HISTORY", "COLUMNS"]
 
@@ -96,11 +97,11 @@ def _value(where: str, column: str, text: Any) -> float:
     try:
         v = float(text)
     except (TypeError, ValueError):
-        raise ValueError(f"{where}, column `{column}`: {show(text)} is not a number") from None
+        raise InputError(f"{where}, column `{column}`: {show(text)} is not a number") from None
     if not math.isfinite(v):
-        raise ValueError(f"{where}, column `{column}`: {show(text)} must be a finite number")
+        raise InputError(f"{where}, column `{column}`: {show(text)} must be a finite number")
     if column == "P" and v <= 0:
-        raise ValueError(f"{where}, column `P`: {show(text)} must be > 0 (a compressive normal load)")
+        raise InputError(f"{where}, column `P`: {show(text)} must be > 0 (a compressive normal load)")
     return v
 
 
@@ -121,13 +122,13 @@ def read_history(path: str | os.PathLike[str]) -> History:
         with open(name, newline="", encoding="utf-8") as fh:
             rows = list(csv.reader(fh))
     except (OSError, UnicodeDecodeError, csv.Error) as exc:
-        raise ValueError(f"history file {name!r} cannot be read: {exc}") from None
+        raise InputError(f"history file {name!r} cannot be read: {exc}") from None
     if not rows:
-        raise ValueError(f"history file {name!r} is empty: it needs a header {', '.join(COLUMNS)}")
+        raise InputError(f"history file {name!r} is empty: it needs a header {', '.join(COLUMNS)}")
     header = [h.strip() for h in rows[0]]
     missing = [c for c in COLUMNS if c not in header]
     if missing:
-        raise ValueError(f"history file {name!r} has no column `{missing[0]}` (its header is "
+        raise InputError(f"history file {name!r} has no column `{missing[0]}` (its header is "
                          f"{', '.join(header)}; it needs {', '.join(COLUMNS)})")
     index = [header.index(c) for c in COLUMNS]
     states = []
@@ -136,16 +137,16 @@ def read_history(path: str | os.PathLike[str]) -> History:
             continue                     # a blank line
         where = f"history file {name!r}, row {line}"
         if len(row) < len(header):
-            raise ValueError(f"{where}: {len(row)} entries, the header has {len(header)}")
+            raise InputError(f"{where}: {len(row)} entries, the header has {len(header)}")
         states.append(tuple(_value(where, c, row[i]) for c, i in zip(COLUMNS, index)))
     if not states:
-        raise ValueError(f"history file {name!r} has no states below its header")
+        raise InputError(f"history file {name!r} has no states below its header")
     return _history(states, f"history file {name!r}")
 
 
 def _history(states: Sequence[tuple[float, ...]], what: str) -> History:
     if len(states) > MAX_HISTORY:
-        raise ValueError(f"{what} has {len(states)} states, more than MAX_HISTORY = {MAX_HISTORY}")
+        raise InputError(f"{what} has {len(states)} states, more than MAX_HISTORY = {MAX_HISTORY}")
     P, s, Q, sb = (np.array(col, dtype=float) for col in zip(*states))
     return History(P=P, s=s, Q=Q, sigma_bulk=sb)
 
@@ -165,15 +166,15 @@ def check_history(history: Any) -> History:
     if isinstance(history, (str, Path)):
         return read_history(history)
     if not isinstance(history, (Sequence, np.ndarray)):
-        raise TypeError(f"`history` must be a sequence of (P, s, Q, sigma_bulk) states or a CSV path, "
+        raise InputTypeError(f"`history` must be a sequence of (P, s, Q, sigma_bulk) states or a CSV path, "
                         f"not {type(history).__name__}")
     if len(history) == 0:
-        raise ValueError("`history` has no states")
+        raise InputError("`history` has no states")
     states = []
     for k, state in enumerate(history):
         if isinstance(state, (str, bytes)) or not isinstance(state, (Sequence, np.ndarray)) \
                 or len(state) != len(COLUMNS):
-            raise TypeError(f"`history` state {k} = {show(state)} must be a ({', '.join(COLUMNS)}) tuple")
+            raise InputTypeError(f"`history` state {k} = {show(state)} must be a ({', '.join(COLUMNS)}) tuple")
         states.append(tuple(_value(f"`history` state {k}", c, v) for c, v in zip(COLUMNS, state)))
     return _history(states, "`history`")
 

@@ -9,6 +9,7 @@ E_STEEL      -- Young's modulus of steel, 210 GPa, in MPa
 from __future__ import annotations
 
 from .checks import finite, positive
+from threepart.errors import InputError
 
 __all__ = ["compliance", "rigid_punch", "similar_pair", "similar_pair_modulus", "NU", "E_STEEL"]
 
@@ -24,7 +25,7 @@ def _body(E: float, nu: float, name: str) -> float:
     E = positive(f"E{name}", E)
     nu = finite(f"nu{name}", nu)
     if not -1.0 < nu <= 0.5:
-        raise ValueError(f"`nu{name}` = {nu!r} must lie in (-1, 0.5]")
+        raise InputError(f"`nu{name}` = {nu!r} must lie in (-1, 0.5]")
     kappa, mu = 3 - 4 * nu, E / (2 * (1 + nu))
     return (kappa + 1) / (4 * mu)
 
@@ -36,7 +37,7 @@ def compliance(E1: float, nu1: float, E2: float | None = None, nu2: float | None
     (``A = 4 (1 - nu^2)/E``).
     """
     if (E2 is None) != (nu2 is None):
-        raise ValueError("give both `E2` and `nu2`, or neither (same material)")
+        raise InputError("give both `E2` and `nu2`, or neither (same material)")
     if E2 is None or nu2 is None:
         E2, nu2 = E1, nu1
     return _body(E1, nu1, "1") + _body(E2, nu2, "2")

@@ -37,7 +37,7 @@ from __future__ import annotations
 from typing import Any, Callable
 
 from . import registry
-from .errors import LiftOffError, SeparationError, StickZoneError
+from .errors import InputError, LiftOffError, SeparationError, StickZoneError
 from .punch import Punch
 from .cycles import SteadyStateResult
 from .results import FrettingResult, NormalResult, SlipResult
@@ -63,7 +63,7 @@ def _one(name: str, punch: Punch, P: float, s: float, A: float, tilt: str, Q: fl
     if Q is None or f is None:
         return m.normal(punch, P, s, A=A, tilt=tilt, nu=nu, **options)
     if m.slip is None:
-        raise ValueError(f"method {name!r} has no partial-slip model")
+        raise InputError(f"method {name!r} has no partial-slip model")
     return m.slip(punch, P, s, A=A, tilt=tilt, nu=nu, Q=Q, f=f, **_bulk(m, sigma_bulk, "partial slip"),
                   **options)
 
@@ -74,7 +74,7 @@ def _bulk(m: registry.Method, sigma_bulk: float, what: str) -> dict[str, float]:
     if not sigma_bulk:
         return {}
     if not m.bulk_stress:
-        raise ValueError(f"`sigma_bulk` = {sigma_bulk:g}: method {m.name!r} does not take a bulk "
+        raise InputError(f"`sigma_bulk` = {sigma_bulk:g}: method {m.name!r} does not take a bulk "
                          f"stress in its {what}; give sigma_bulk=0 or another method")
     return {"sigma_bulk": sigma_bulk}
 
@@ -136,10 +136,10 @@ def solve(punch: Punch, P: float, s: float = 0.0, *, A: float, tilt: str = "free
     if method != "auto":
         registry.get(method, also=("auto",))   # an unknown name is refused before anything else
     if (Q is None) != (f is None):
-        raise ValueError("give both `Q` and `f` for partial slip, or neither")
+        raise InputError("give both `Q` and `f` for partial slip, or neither")
     sigma_bulk = check_sigma_bulk(sigma_bulk)
     if sigma_bulk and Q is None:
-        raise ValueError(f"`sigma_bulk` = {sigma_bulk:g} applies to partial slip only: give `Q` and `f`")
+        raise InputError(f"`sigma_bulk` = {sigma_bulk:g} applies to partial slip only: give `Q` and `f`")
     check_positive(A=A)
     if method != "auto":
         return _one(method, punch, P, s, A, tilt, Q, f, nu, options, sigma_bulk)
@@ -161,7 +161,7 @@ def _checked(name: str, options: dict[str, Any], nu: float | None) -> registry.M
 def _check_nu(m: registry.Method, nu: float | None) -> None:
     """``nu`` only for a method of finite bodies: a half-plane method depends on the material only through ``A``."""
     if nu is not None and m.default_nu is None:
-        raise ValueError(f"`nu` is not used by method {m.name!r}: a half-plane solution depends on "
+        raise InputError(f"`nu` is not used by method {m.name!r}: a half-plane solution depends on "
                          "the material only through `A`")
 
 
@@ -183,7 +183,7 @@ def _steady(name: str, punch: Punch, states: Any, f: float, A: float, nu: float 
             options: dict[str, Any]) -> SteadyStateResult:
     m = _checked(name, options, nu)
     if m.steady is None:
-        raise ValueError(f"method {name!r} has no steady-state model of a cycle")
+        raise InputError(f"method {name!r} has no steady-state model of a cycle")
     return m.steady(punch, states, f, A=A, **({} if nu is None else {"nu": nu}), **options)
 
 
@@ -240,7 +240,7 @@ def _cycle(name: str, punch: Punch, P: float, s: float, A: float, tilt: str, Q_m
            options: dict[str, Any]) -> FrettingResult:
     m = _checked(name, options, nu)
     if m.fretting is None:
-        raise ValueError(f"method {name!r} has no fretting cycle")
+        raise InputError(f"method {name!r} has no fretting cycle")
     bulk = _bulk(m, sigma_bulk, "fretting cycle")
     return m.fretting(punch, P, s, A=A, tilt=tilt, nu=nu, Q_max=Q_max, f=f, states=states,
                       normal=None, **bulk, **options)

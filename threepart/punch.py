@@ -13,6 +13,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from .checks import LENGTH_RANGE, finite, positive, real
+from threepart.errors import InputError
 
 __all__ = ["Punch"]
 
@@ -51,17 +52,17 @@ class Punch:
         set_(self, "R2", positive("R2", self.R2))
         b = finite("b", self.b)
         if b < 0:
-            raise ValueError(f"`b` = {self.b!r} must be >= 0 (half-width of the central segment)")
+            raise InputError(f"`b` = {self.b!r} must be >= 0 (half-width of the central segment)")
         if not (b == 0 or LENGTH_RANGE[0] <= b <= LENGTH_RANGE[1]):
-            raise ValueError(f"`b` = {self.b!r} must be 0 or lie in [{LENGTH_RANGE[0]:g}, "
+            raise InputError(f"`b` = {self.b!r} must be 0 or lie in [{LENGTH_RANGE[0]:g}, "
                              f"{LENGTH_RANGE[1]:g}] (half-width of the central segment)")
         set_(self, "b", b)
         R = real("R", self.R)
         if R == -math.inf or R == 0:
-            raise ValueError(f"`R` = {R:g} is not allowed: use R = math.inf for a flat centre "
+            raise InputError(f"`R` = {R:g} is not allowed: use R = math.inf for a flat centre "
                              "(case A), a negative radius for a concave one (case B)")
         if math.isfinite(R) and not LENGTH_RANGE[0] <= abs(R) <= LENGTH_RANGE[1]:
-            raise ValueError(f"`R` = {self.R!r}: |R| must lie in [{LENGTH_RANGE[0]:g}, "
+            raise InputError(f"`R` = {self.R!r}: |R| must lie in [{LENGTH_RANGE[0]:g}, "
                              f"{LENGTH_RANGE[1]:g}], or R = inf for a flat centre")
         set_(self, "R", R)
 

@@ -62,6 +62,7 @@ from __future__ import annotations
 import importlib
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any, Callable, Mapping
+from threepart.errors import InputError, InputTypeError
 
 if TYPE_CHECKING:  # pragma: no cover
     from .punch import Punch
@@ -187,7 +188,7 @@ class Method:
         """
         unknown = sorted(set(options) - set(self.options))
         if unknown:
-            raise ValueError(f"`{unknown[0]}` is not an option of method {called or repr(self.name)} "
+            raise InputError(f"`{unknown[0]}` is not an option of method {called or repr(self.name)} "
                              f"(its options: {', '.join(self.options) or 'none'})")
         if self.options_iv is not None:
             self.options_iv(options)
@@ -199,7 +200,7 @@ _REGISTRY: dict[str, Method] = {}
 def register(method: Method) -> Method:
     """Add ``method`` to the registry (replacing one of the same name) and return it."""
     if not isinstance(method, Method):
-        raise TypeError(f"`method` must be a threepart.registry.Method, not {type(method).__name__}")
+        raise InputTypeError(f"`method` must be a threepart.registry.Method, not {type(method).__name__}")
     _REGISTRY[method.name] = method
     return method
 
@@ -225,7 +226,7 @@ def get(name: Any, also: tuple[str, ...] = ()) -> Method:
     try:
         return _REGISTRY[name]
     except (KeyError, TypeError):
-        raise ValueError(f"`method` = {name!r} must be one of "
+        raise InputError(f"`method` = {name!r} must be one of "
                          f"{', '.join((*also, *names()))}") from None
 
 
@@ -240,5 +241,5 @@ def lift_off(name: str, punch: Punch, P: float, A: float) -> tuple[float, float]
     """
     method = get(name)
     if method.lift_off is None:
-        raise ValueError(f"`method` = {name!r} does not compute lift-off lever arms")
+        raise InputError(f"`method` = {name!r} does not compute lift-off lever arms")
     return method.lift_off(punch, P, A)

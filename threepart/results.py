@@ -24,6 +24,7 @@ from .answer import check_coulomb, check_pressure
 from .asymptotics import Edged as _Edged
 from .punch import Punch
 from .checks import coordinates, finite, integer
+from threepart.errors import InputError
 
 if TYPE_CHECKING:
     from .stress import Stress
@@ -583,12 +584,12 @@ def masing(Q_max: float, Q: float, branch: str) -> tuple[float, float, float]:
         For an unknown ``branch`` or a ``Q`` outside the branch's range.
     """
     if branch not in BRANCHES:
-        raise ValueError(f"`branch` = {branch!r} must be one of {BRANCHES}")
+        raise InputError(f"`branch` = {branch!r} must be one of {BRANCHES}")
     Q = finite("Q", Q)
     lo = 0.0 if branch == "loading" else -Q_max
     tol = 1e-12 * Q_max
     if not lo - tol <= Q <= Q_max + tol:
-        raise ValueError(f"`Q` = {Q:g} lies outside [{lo:g}, {Q_max:g}], the range of the "
+        raise InputError(f"`Q` = {Q:g} lies outside [{lo:g}, {Q_max:g}], the range of the "
                          f"{branch} branch for `Q_max` = {Q_max:g}")
     Q = min(max(Q, lo), Q_max)
     if branch == "loading":

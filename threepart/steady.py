@@ -30,7 +30,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from .bulk import _psi
-from .errors import NoConvergenceError, OneSidedSlipError, full_sliding
+from .errors import InputError, InputTypeError, NoConvergenceError, OneSidedSlipError, full_sliding
 from .validate import finite, positive
 
 __all__ = ["shakes_down", "check_cycle_states", "ramp", "corrective_load", "corrective_tilt_cycle", "tilt_rate",
@@ -53,16 +53,16 @@ def check_cycle_states(states: Any, f: Any) -> tuple[tuple[LoadState, LoadState]
     otherwise, naming the state). Checked before any numerics.
     """
     if isinstance(states, (str, bytes)) or not hasattr(states, "__len__"):
-        raise TypeError(f"`states` must be a sequence of two (P, s, Q, sigma_bulk) tuples, not "
+        raise InputTypeError(f"`states` must be a sequence of two (P, s, Q, sigma_bulk) tuples, not "
                         f"{type(states).__name__}")
     if len(states) != 2:
-        raise ValueError(f"`states` has {len(states)} entries: it must hold the two ends of the "
+        raise InputError(f"`states` has {len(states)} entries: it must hold the two ends of the "
                          "cycle, each (P, s, Q, sigma_bulk)")
     f = positive("f", f)
     out = []
     for k, st in enumerate(states):
         if isinstance(st, (str, bytes)) or not hasattr(st, "__len__") or len(st) != 4:
-            raise ValueError(f"`states[{k}]` = {st!r} must be a tuple (P, s, Q, sigma_bulk)")
+            raise InputError(f"`states[{k}]` = {st!r} must be a tuple (P, s, Q, sigma_bulk)")
         P = positive(f"states[{k}].P", st[0])
         s, Q, sigma = (finite(f"states[{k}].{n}", v) for n, v in zip(("s", "Q", "sigma_bulk"), st[1:]))
         if abs(Q) >= f * P:

@@ -58,6 +58,7 @@ from numpy.typing import ArrayLike
 
 from .progress import heartbeat
 from .checks import finite, show
+from threepart.errors import InputError, InputTypeError
 
 __all__ = ["Stress", "stress", "hilbert", "flamant_normal", "flamant_tangential",
            "kernel_primitives", "RULE", "POINTS_PER_CHUNK", "PROGRESS_S"]
@@ -212,24 +213,24 @@ class Stress:
 def _array(name: str, value: Any) -> np.ndarray:
     """``value`` as a finite float array, else ``TypeError``/``ValueError`` naming ``name``."""
     if isinstance(value, (str, bytes)) or value is None:
-        raise TypeError(f"`{name}` = {show(value)} must be a real number or array, "
+        raise InputTypeError(f"`{name}` = {show(value)} must be a real number or array, "
                         f"not {type(value).__name__}")
     try:
         arr = np.asarray(value)
     except (TypeError, ValueError):
-        raise TypeError(f"`{name}` must be a real number or array, not {type(value).__name__}") from None
+        raise InputTypeError(f"`{name}` must be a real number or array, not {type(value).__name__}") from None
     if arr.dtype == bool or not (np.issubdtype(arr.dtype, np.floating) or np.issubdtype(arr.dtype, np.integer)):
-        raise TypeError(f"`{name}` must be a real number or array, not an array of {arr.dtype}")
+        raise InputTypeError(f"`{name}` must be a real number or array, not an array of {arr.dtype}")
     arr = arr.astype(float)
     if not np.all(np.isfinite(arr)):
         bad = float(arr[~np.isfinite(arr)].flat[0])
-        raise ValueError(f"`{name}` holds {bad!r}: every value must be a finite number")
+        raise InputError(f"`{name}` holds {bad!r}: every value must be a finite number")
     return arr
 
 
 def _traction(name: str, func: Any) -> Traction:
     if not callable(func):
-        raise TypeError(f"`{name}` must be a callable of x (e.g. result.pressure), "
+        raise InputTypeError(f"`{name}` must be a callable of x (e.g. result.pressure), "
                         f"not {type(func).__name__}")
     return func
 
@@ -238,24 +239,24 @@ def _evaluate(name: str, func: Traction, t: np.ndarray) -> np.ndarray:
     """``func(t)`` as a finite float array of ``t``'s shape, else ``ValueError`` naming ``name``."""
     v = np.asarray(func(t), dtype=float)
     if v.shape != t.shape:
-        raise ValueError(f"`{name}` returned shape {v.shape} for x of shape {t.shape}: it must be "
+        raise InputError(f"`{name}` returned shape {v.shape} for x of shape {t.shape}: it must be "
                          "a vectorised callable of x")
     if not np.all(np.isfinite(v)):
         where = t[~np.isfinite(v)].flat[0]
-        raise ValueError(f"`{name}` is not finite at x = {where:.6g} inside `ends`")
+        raise InputError(f"`{name}` is not finite at x = {where:.6g} inside `ends`")
     return v
 
 
 def _ends_kinks(ends: Any, kinks: Any) -> tuple[float, float, np.ndarray]:
     if not isinstance(ends, (tuple, list, np.ndarray)) or len(ends) != 2:
-        raise TypeError(f"`ends` = {show(ends)} must be the pair (-a, c)")
+        raise InputTypeError(f"`ends` = {show(ends)} must be the pair (-a, c)")
     lo, hi = finite("ends[0]", ends[0]), finite("ends[1]", ends[1])
     if not lo < hi:
-        raise ValueError(f"`ends` = ({lo:g}, {hi:g}) must satisfy ends[0] < ends[1]")
+        raise InputError(f"`ends` = ({lo:g}, {hi:g}) must satisfy ends[0] < ends[1]")
     k = _array("kinks", kinks if np.size(kinks) else np.zeros(0)).ravel()
     if k.size and (k.min() < lo or k.max() > hi):
         bad = k[(k < lo) | (k > hi)][0]
-        raise ValueError(f"`kinks` holds x = {bad:g}, outside `ends` [{lo:g}, {hi:g}]")
+        raise InputError(f"`kinks` holds x = {bad:g}, outside `ends` [{lo:g}, {hi:g}]")
     k = np.unique(k[(k > lo) & (k < hi)])
     return lo, hi, k
 
@@ -436,17 +437,17 @@ def _stress_iv(x: ArrayLike, z: ArrayLike, pressure: Any, shear: Any, sigma_bulk
     """:func:`stress`'s input checked: the broadcast points, the tractions, ``sigma_bulk`` and ``nu``."""
     xa, za = _array("x", x), _array("z", z)
     if np.any(za < 0):
-        raise ValueError(f"`z` = {float(za[za < 0].flat[0])!r} must be >= 0: z is the depth into the substrate")
+        raise InputError(f"`z` = {float(za[za < 0].flat[0])!r} must be >= 0: z is the depth into the substrate")
     p_fn = None if pressure is None and shear is not None else _traction("pressure", pressure)
     q_fn = None if shear is None else _traction("shear", shear)
     bulk = finite("sigma_bulk", sigma_bulk)
     poisson = finite("nu", nu)
     if not -1.0 < poisson <= 0.5:
-        raise ValueError(f"`nu` = {nu!r} must lie in (-1, 0.5]")
+        raise InputError(f"`nu` = {nu!r} must lie in (-1, 0.5]")
     try:
         xb, zb = np.broadcast_arrays(xa, za)
     except ValueError:
-        raise ValueError(f"`x` of shape {xa.shape} and `z` of shape {za.shape} do not broadcast "
+        raise InputError(f"`x` of shape {xa.shape} and `z` of shape {za.shape} do not broadcast "
                          "against each other") from None
     return xb, zb, p_fn, q_fn, bulk, poisson
 
@@ -524,7 +525,7 @@ def stress(x: ArrayLike, z: ArrayLike, *, pressure: Traction | None, shear: Trac
     sxx += bulk
     if not np.all(np.isfinite(sxx)):
         where = int(np.argmax(~np.isfinite(sxx)))
-        raise ValueError(f"σxx is infinite at the surface point x = {xb.ravel()[where]:.6g}, a contact "
+        raise InputError(f"σxx is infinite at the surface point x = {xb.ravel()[where]:.6g}, a contact "
                          "end where the shear traction jumps; evaluate at z > 0")
     shape = xb.shape
     return Stress(x=xb.copy(), z=zb.copy(), sxx=sxx.reshape(shape), szz=szz.reshape(shape),
@@ -550,6 +551,6 @@ def hilbert(func: Traction, x: ArrayLike, *, ends: tuple[float, float], kinks: A
                                 RULE)["func"][3] / math.pi
     if not np.all(np.isfinite(val)):
         where = flat[int(np.argmax(~np.isfinite(val)))]
-        raise ValueError(f"the Hilbert transform is infinite at x = {where:.6g}, a contact end where "
+        raise InputError(f"the Hilbert transform is infinite at x = {where:.6g}, a contact end where "
                          "`func` jumps")
     return val.reshape(xa.shape)

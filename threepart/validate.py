@@ -43,6 +43,7 @@ from .checks import (LENGTH_RANGE, NU_RANGE, TILTS, check_finite, check_positive
                      finite, flag, integer, poisson, positive, real, reals, show)
 from .punch import Punch
 from .results import NormalResult
+from threepart.errors import InputError, InputTypeError
 
 __all__ = ["real", "finite", "positive", "check_finite", "check_positive", "TILTS", "check_tilt",
            "LENGTH_RANGE", "show", "NU_RANGE", "poisson", "integer", "lever_arm", "SLOPE_LIMIT",
@@ -54,7 +55,7 @@ __all__ = ["real", "finite", "positive", "check_finite", "check_positive", "TILT
 def check_punch(punch: Any) -> Any:
     """``punch`` if it is a :class:`threepart.Punch`, else ``TypeError``."""
     if not isinstance(punch, Punch):
-        raise TypeError(f"`punch` must be a threepart.Punch, not {type(punch).__name__}")
+        raise InputTypeError(f"`punch` must be a threepart.Punch, not {type(punch).__name__}")
     return punch
 
 
@@ -70,7 +71,7 @@ def lever_arm(punch: Any, s: Any) -> float:
     v = finite("s", s)
     lo, hi = -(punch.b + punch.R1), punch.b + punch.R2
     if not lo < v < hi:
-        raise ValueError(f"`s` = {s!r} lies outside the punch's footprint ({lo:g}, {hi:g}) = "
+        raise InputError(f"`s` = {s!r} lies outside the punch's footprint ({lo:g}, {hi:g}) = "
                          "(-(b + R1), b + R2): the load's centroid must lie on the punch")
     return v
 
@@ -185,7 +186,7 @@ def load_scale(punch: Any, P: Any, A: float, name: str = "P") -> None:
     out = (scale < lo) | (scale > hi)
     if out.any():
         i = int(np.argmax(out))
-        raise ValueError(
+        raise InputError(
             f"`{name}` = {float(P.flat[i])!r} gives A P max(R1, R2, b) = {float(scale.flat[i]):.3g}, "
             f"outside [{lo:g}, {hi:g}] (length^2), the range this library computes in double precision")
 
@@ -197,7 +198,7 @@ def check_normal(normal: Any, argument: str = "normal") -> Any:
     in the closed form), which the message names.
     """
     if not isinstance(normal, NormalResult):
-        raise TypeError(f"`{argument}` must be a NormalResult (from a solve_normal), not "
+        raise InputTypeError(f"`{argument}` must be a NormalResult (from a solve_normal), not "
                         f"{type(normal).__name__}")
     return normal
 

@@ -84,6 +84,7 @@ from .studies import Studies, failures, point_columns, referee_section, small_sl
 from .schema import (COLUMNS, COORDINATES, GROUP_AXES, SCHEMA_FILE, SCHEMA_VERSION,
                          boundaries_csv, csv_text, finite, groups, load_schema, plot_name, validate)
 from .validity import MapPoint
+from threepart.errors import InputError
 
 __all__ = ["run_map", "main", "exit_status", "check_arguments", "below_level", "designer_sentence",
            "validate", "load_schema", "SCHEMA_FILE", "SCHEMA_VERSION", "COLUMNS", "COORDINATES",
@@ -112,15 +113,15 @@ def check_arguments(workers: int | None, scheduler: str | None) -> None:
     """Check the engine's arguments before any work (one-line ``ValueError`` naming the limit)."""
     if workers is not None:
         if isinstance(workers, bool) or not isinstance(workers, int):
-            raise ValueError(f"`--workers` = {workers!r} must be an integer >= 1")
+            raise InputError(f"`--workers` = {workers!r} must be an integer >= 1")
         if not 1 <= workers <= MAX_WORKERS:
-            raise ValueError(f"`--workers` = {workers} must lie in [1, {MAX_WORKERS}], the CPUs of "
+            raise InputError(f"`--workers` = {workers} must lie in [1, {MAX_WORKERS}], the CPUs of "
                              "this machine (each worker is a process that keeps a core busy)")
         if scheduler is not None:
-            raise ValueError("give `--workers` (a local cluster) or `--scheduler` (an existing "
+            raise InputError("give `--workers` (a local cluster) or `--scheduler` (an existing "
                              "cluster, which has its own workers), not both")
     if scheduler is not None and (not isinstance(scheduler, str) or not scheduler.strip()):
-        raise ValueError(f"`--scheduler` = {scheduler!r} must be a scheduler address, "
+        raise InputError(f"`--scheduler` = {scheduler!r} must be a scheduler address, "
                          "e.g. tcp://host:8786")
 
 
@@ -240,7 +241,7 @@ def _grid(points: Sequence[MapPoint] | None, quick: bool) -> list[MapPoint]:
     grid = list(validity.map_points(quick) if points is None else points)
     keys = [p.key() for p in grid]
     if len(set(keys)) != len(keys) or CONTROL_KEY in keys:
-        raise ValueError("`points` must have distinct keys, none of them 'control'")
+        raise InputError("`points` must have distinct keys, none of them 'control'")
     return grid
 
 

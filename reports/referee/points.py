@@ -19,6 +19,7 @@ from numpy.typing import ArrayLike
 
 from threepart import readers
 from threepart.results import Diagnostics, NormalResult
+from threepart.errors import InputError
 
 __all__ = ["PointsResult", "from_points", "square_root_end", "check_points", "read_pressure"]
 
@@ -88,18 +89,18 @@ def from_points(x: ArrayLike, p: ArrayLike, ref: NormalResult, *, alpha: float |
     x = np.asarray(x, dtype=float).ravel()
     p = np.asarray(p, dtype=float).ravel()
     if x.shape != p.shape:
-        raise ValueError(f"`x` and `p` must have the same length, not {x.size} and {p.size}")
+        raise InputError(f"`x` and `p` must have the same length, not {x.size} and {p.size}")
     if x.size < 8:
-        raise ValueError(f"the pressure has {x.size} points; at least 8 are needed")
+        raise InputError(f"the pressure has {x.size} points; at least 8 are needed")
     if not (np.all(np.isfinite(x)) and np.all(np.isfinite(p))):
-        raise ValueError("the pressure holds a non-finite x or p (NaN or inf)")
+        raise InputError("the pressure holds a non-finite x or p (NaN or inf)")
     check_points(x, p, alpha)
     order = np.argsort(x, kind="stable")
     x, p = x[order], p[order]
     if np.any(np.diff(x) <= 0):
-        raise ValueError("the pressure's `x` repeats a position; give each point once")
+        raise InputError("the pressure's `x` repeats a position; give each point once")
     if np.count_nonzero(p > 0) < 2:
-        raise ValueError("the pressure has fewer than 2 points with p > 0: no contact to judge")
+        raise InputError("the pressure has fewer than 2 points with p > 0: no contact to judge")
     if ends is None:
         c = square_root_end(x, p)
         a = square_root_end(-x[::-1], p[::-1])       # the left end, mirrored
@@ -128,11 +129,11 @@ def check_points(x: np.ndarray, p: np.ndarray, alpha: float | None) -> None:
     hi = LENGTH_RANGE[1]
     for name, v in (("x", x), ("p", p)):
         if v.size and not float(np.max(np.abs(v))) <= hi:
-            raise ValueError(f"the pressure's `{name}` reaches {float(np.max(np.abs(v))):.3g} in "
+            raise InputError(f"the pressure's `{name}` reaches {float(np.max(np.abs(v))):.3g} in "
                              f"magnitude, past {hi:g}, the range this library computes in double "
                              "precision (its load and centroid would overflow)")
     if alpha is not None and not abs(finite("alpha", alpha)) <= SLOPE_LIMIT:
-        raise ValueError(f"`alpha` = {alpha!r} exceeds the small-slope limit {SLOPE_LIMIT:g} of "
+        raise InputError(f"`alpha` = {alpha!r} exceeds the small-slope limit {SLOPE_LIMIT:g} of "
                          "half-plane theory in magnitude")
 
 

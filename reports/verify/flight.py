@@ -33,6 +33,7 @@ from threepart.cycles import HistoryResult
 from threepart.tolerances import tolerance
 
 from ..compare import Check
+from threepart.errors import InputError
 
 __all__ = ["HISTORY_METHODS", "HISTORY_ELEMENTS", "HISTORY_STEPS", "HISTORY_CYCLES", "load_path", "march",
            "history_figures", "history_checks", "last_cycle", "slip_amplitude", "HISTORY_QUANTITIES"]
@@ -55,7 +56,7 @@ def load_path(case: Case, steps: int = HISTORY_STEPS, cycles: int = HISTORY_CYCL
     """State 0 (applied from the unloaded body in one step), then ``cycles`` cycles 0 -> 1 -> 0 in
     ``steps`` linear steps a half-cycle: the in-phase path of docs/STEADY_STATE.md §0."""
     if case.states is None:
-        raise ValueError(f"case {case.name!r} has no cycle (`states`)")
+        raise InputError(f"case {case.name!r} has no cycle (`states`)")
     s0, s1 = (np.asarray(st, float) for st in case.states)
     lam = np.linspace(0.0, 1.0, steps + 1)[1:]
     path = [tuple(s0)]
@@ -68,7 +69,7 @@ def load_path(case: Case, steps: int = HISTORY_STEPS, cycles: int = HISTORY_CYCL
 def march(method: str, case: Case) -> HistoryResult:
     """The history of ``case``'s cycle marched by ``method``'s ``load_history`` (its package's)."""
     if case.f is None:
-        raise ValueError(f"case {case.name!r} has no coefficient of friction `f`")
+        raise InputError(f"case {case.name!r} has no coefficient of friction `f`")
     load_history = getattr(import_module(registry.BUILTIN[method]), "load_history")
     return load_history(case.punch, load_path(case), case.f, A=case.A, n=HISTORY_ELEMENTS,
                         period=2 * HISTORY_STEPS)

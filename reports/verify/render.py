@@ -17,6 +17,7 @@ from typing import Any
 
 from .sections import (Block, Bullets, Code, Document, Figure, Link, Section, Status, Table,
                        Verdict, build, fmt)
+from threepart.errors import InputError
 
 __all__ = ["markdown", "html", "fmt", "png_width", "WIDE_PX", "PAGE_PX"]
 
@@ -171,7 +172,7 @@ WIDE_PX = 800
 def png_width(data: bytes) -> int:
     """The width in pixels of a PNG, from its IHDR chunk (bytes 16-20)."""
     if data[:8] != b"\x89PNG\r\n\x1a\n":
-        raise ValueError("not a PNG file")
+        raise InputError("not a PNG file")
     return int.from_bytes(data[16:20], "big")
 
 

@@ -37,6 +37,7 @@ from .speed import speed_record
 from .stress import case_hot_spots, fatigue_hot_spots, stress_nu
 from ..solvers import METHODS
 from .studies import STEP_STATES, Study, fem_slip_study, fem_step_study, fem_study, sie_study
+from threepart.errors import InputError
 
 __all__ = ["main", "run", "build_report", "write_report", "stress_record",
            "SCHEMA_FILE", "load_schema", "validate", "STUDY_CASE", "SLIP_STUDY_CASE",
@@ -409,7 +410,7 @@ def main(mode: str = "default", out: str | Path = "report", force: bool = False,
         If ``out`` may not be written; checked before any work.
     """
     if mode not in MODES:
-        raise ValueError(f"`mode` = {mode!r} must be one of {sorted(MODES)}")
+        raise InputError(f"`mode` = {mode!r} must be one of {sorted(MODES)}")
     out = Path(out)
     t0 = time.perf_counter()
 

@@ -34,6 +34,7 @@ from ..compare import Check, compare
 from .flight import HISTORY_METHODS, history_checks, march
 from .. import solvers
 from ..solvers import METHODS
+from threepart.errors import InputError
 
 __all__ = ["CaseRun", "Mode", "MODES", "run_case", "solve", "solve_normal", "METHODS",
            "FRETTING_STATES"]
@@ -203,7 +204,7 @@ def run_case(case: Case, mode: Mode, cache: dict[Any, Any] | None = None,
         judged_by = registry.get(method).comparison
         try:
             if judged_by is None:
-                raise ValueError(f"method {method!r} names no tolerance group (Method.comparison)")
+                raise InputError(f"method {method!r} names no tolerance group (Method.comparison)")
             run.checks.extend(compare(ref, run.results[method], judged_by(mode.options(method))))
         except Exception as exc:  # noqa: BLE001
             run.errors[f"compare-{method}"] = f"{type(exc).__name__}: {exc}"

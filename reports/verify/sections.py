@@ -28,6 +28,7 @@ from threepart.registry import REFERENCE
 from threepart.tolerances import ERROR_UNITS, NORMALISATION, VALUE_UNITS
 
 from .cells import fmt, head_unit, physical, unit_of, with_unit
+from threepart.errors import InputError
 
 __all__ = ["Status", "Verdict", "Code", "Link", "Item", "Bullets", "Table", "Figure", "Section",
            "Document", "build", "words", "fmt", "order_text", "plot_path", "study_plot_path", "PLOT_KINDS",
@@ -216,7 +217,7 @@ def order_text(errors: Sequence[float | None], order: float | None) -> str:
 def plot_path(case: str, kind: str) -> str:
     """The report-relative path of a case's plot of ``kind`` (:data:`PLOT_KINDS`)."""
     if kind not in PLOT_KINDS:
-        raise ValueError(f"`kind` = {kind!r} is not one of {sorted(PLOT_KINDS)}")
+        raise InputError(f"`kind` = {kind!r} is not one of {sorted(PLOT_KINDS)}")
     return f"plots/{case}_{kind}.png"
 
 

@@ -19,6 +19,7 @@ from threepart.convergence import Study, fitted_order, run_study
 from .runs import Mode, solve_normal
 from ..compare import normal_figures, slip_figures
 from .. import solvers
+from threepart.errors import InputError
 
 __all__ = ["Study", "sie_study", "fem_study", "fem_slip_study", "fem_step_study",
            "STUDY_QUANTITIES", "SLIP_STUDY_QUANTITIES", "STEP_STATES"]
@@ -143,7 +144,7 @@ def _h_of(res: Any, lab: str) -> float:
     if h is None:   # a slip result's element size is its normal result's
         h = getattr(res, "normal", res).diagnostics.h
     if h is None:
-        raise ValueError(f"the FE result of level {lab} carries no element size in its diagnostics")
+        raise InputError(f"the FE result of level {lab} carries no element size in its diagnostics")
     return float(h)
 
 

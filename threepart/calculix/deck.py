@@ -24,6 +24,7 @@ import numpy as np
 
 from ..material import compliance
 from ..validate import check_tilt, finite, positive
+from threepart.errors import InputError, InputTypeError
 
 if TYPE_CHECKING:   # pragma: no cover - the models' types only; mesh.py imports this module
     from .mesh import Mesh, Model
@@ -135,7 +136,7 @@ def step_text(*, nlgeom: bool, ref: int, F: float | None = None, delta: float | 
     # room for the contact's Newton iterations in each increment
     controls = "*CONTROLS, PARAMETERS=TIME INCREMENTATION\n40, 60, 9, 200, 10, 4, 12, 40\n"
     if (F is None) == (delta is None):
-        raise ValueError("give the force `F` or the descent `delta`, not both or neither")
+        raise InputError("give the force `F` or the descent `delta`, not both or neither")
     if F is not None:
         load = f"*CLOAD\n{ref}, 2, {-F:.15g}\n"
     else:
@@ -266,7 +267,7 @@ class DeckSettings:
         positive("growth", self.growth, (0.01, 2.0))
         check_tilt(self.tilt)
         if not isinstance(self.pair, bool):
-            raise TypeError(f"`pair` = {self.pair!r} must be a bool")
+            raise InputTypeError(f"`pair` = {self.pair!r} must be a bool")
 
     def size(self, W: float) -> float:
         """The element size at the contact for a contact width ``W`` (checked: :func:`check_mesh_size`)."""
@@ -285,7 +286,7 @@ def check_mesh_size(h: float, W: float) -> float:
     """
     lo, hi = W_OVER_H
     if not lo <= W / h <= hi:
-        raise ValueError(f"`h` (`--h`) = {h:.4g} gives W/h = {W / h:.4g} elements across the contact "
+        raise InputError(f"`h` (`--h`) = {h:.4g} gives W/h = {W / h:.4g} elements across the contact "
                          f"width W = a + c = {W:.6g}; give W/h from {lo:g} to {hi:g}, h from "
                          f"{W / hi:.4g} to {W / lo:.4g}")
     return h
@@ -320,9 +321,9 @@ def write_deck(model: Model, *, P: float, s: float, E: float, nu: float,
     xL, xR = model.xy[tl - 1, 0], model.xy[tr - 1, 0]
     half = "block_sym" in model.nsets
     if half and not (s == 0.0 and clamped):
-        raise ValueError(f"a half model needs `s` = 0 (got {s:g}) and `clamped` (got {clamped})")
+        raise InputError(f"a half model needs `s` = 0 (got {s:g}) and `clamped` (got {clamped})")
     if not half and settings.tilt == "free" and not xL < s < xR:
-        raise ValueError(f"`s` = {s:g} must lie on the punch's top, between {xL:g} and {xR:g}")
+        raise InputError(f"`s` = {s:g} must lie on the punch's top, between {xL:g} and {xR:g}")
     top = model.nsets["punch_top"]
     base = model.nsets["block_base"]
     mid = int(base[np.argmin(np.abs(model.xy[base - 1, 0] - 0.5 * (model.c - model.a)))])
@@ -427,19 +428,19 @@ def parse_deck(text: str) -> list[Keyword]:
         if line.startswith("*"):
             items = [t.strip() for t in line[1:].split(",")]
             if not items[0]:
-                raise ValueError(f"line {i}: empty keyword")
+                raise InputError(f"line {i}: empty keyword")
             params = {}
             for it in items[1:]:
                 if not it:
                     continue
                 key, eq, value = it.partition("=")
                 if eq and not (key.strip() and value.strip()):
-                    raise ValueError(f"line {i}: malformed parameter {it!r}")
+                    raise InputError(f"line {i}: malformed parameter {it!r}")
                 params[key.strip().upper()] = value.strip()
             cards.append(Keyword(items[0].upper(), params, [], i))
         else:
             if not cards:
-                raise ValueError(f"line {i}: data before the first keyword")
+                raise InputError(f"line {i}: data before the first keyword")
             cards[-1].data.append([t.strip() for t in line.split(",") if t.strip()])
     return cards
 

@@ -21,6 +21,7 @@ import numpy as np
 from ..punch import Punch
 from ..validate import positive
 from .deck import DeckSettings
+from threepart.errors import InputError, InputTypeError
 
 __all__ = ["Mesh", "build_half_mesh", "Model", "build_model", "build_finite_model", "GMSH_TO_CCX",
            "MASTER_RATIO"]
@@ -356,12 +357,12 @@ def build_finite_model(punch: Punch, a: float, c: float, *, H: float, theta: flo
     spec = PunchSpec(zone=SubstrateSpec(x_lo=xf0, x_hi=xf1, h=h0, L=depth), b=punch.b, R1=punch.R1,
                      R2=punch.R2, H=H, theta=theta)       # checks that the zone lies on the face
     if not (xf0 < -punch.b and punch.b < xf1):
-        raise ValueError(f"the fine zone [{xf0:.6g}, {xf1:.6g}] must hold the flat centre [-b, b]")
+        raise InputError(f"the fine zone [{xf0:.6g}, {xf1:.6g}] must hold the flat centre [-b, b]")
     if not isinstance(half, bool):
-        raise TypeError(f"`half` = {half!r} must be a bool")
+        raise InputTypeError(f"`half` = {half!r} must be a bool")
     if half:
         if punch.R1 != punch.R2 or a != c:
-            raise ValueError(f"`half` needs a symmetric problem: R1 = {punch.R1:g} and R2 = {punch.R2:g}, "
+            raise InputError(f"`half` needs a symmetric problem: R1 = {punch.R1:g} and R2 = {punch.R2:g}, "
                              f"a = {a:g} and c = {c:g} must be equal")
         return _finite_half_model(punch, c, spec, h0=h0, xf1=xf1, H=H, theta=theta, width=width,
                                   depth=depth, settings=settings)

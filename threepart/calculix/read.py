@@ -41,6 +41,7 @@ from threepart.fields import peak
 
 from .deck import parse_deck
 from .run import CcxError
+from threepart.errors import InputError
 
 if TYPE_CHECKING:   # pragma: no cover - the model's type only
     from .mesh import Model
@@ -421,12 +422,12 @@ def contact_pressure(path: str | Path, *, arg: str = "path") -> tuple[np.ndarray
     if suffix == ".dat":
         inp = path.with_suffix(".inp")
         if not inp.is_file():
-            raise ValueError(f"`{arg}` = {str(path)!r}: a .dat holds no coordinates and the deck "
+            raise InputError(f"`{arg}` = {str(path)!r}: a .dat holds no coordinates and the deck "
                              f"{inp.name!r} is not beside it; put the job's .inp there (same stem) or "
                              "give its .frd")
         blocks = read_dat(stem)
         if "contact print energy" not in blocks or "relative contact displacement" not in blocks:
-            raise ValueError(f"`{arg}` = {str(path)!r} holds no contact output: request "
+            raise InputError(f"`{arg}` = {str(path)!r} holds no contact output: request "
                              "`*CONTACT PRINT` with CSTR, CDIS, CELS in the step (threepart deck does)")
         xy = deck_nodes(inp)
         disp = blocks.get("displacements NSURF", {})
@@ -436,7 +437,7 @@ def contact_pressure(path: str | Path, *, arg: str = "path") -> tuple[np.ndarray
     else:
         frd = read_frd(stem)
         if "CONTACT" not in frd:
-            raise ValueError(f"`{arg}` = {str(path)!r} has no CONTACT block: request "
+            raise InputError(f"`{arg}` = {str(path)!r} has no CONTACT block: request "
                              "`*CONTACT FILE` with CDIS, CSTR, CELS in the step")
         xy = read_frd_nodes(stem)
         disp = frd.get("DISP", {})
@@ -447,7 +448,7 @@ def contact_pressure(path: str | Path, *, arg: str = "path") -> tuple[np.ndarray
         cpress = {k: v[3] for k, v in frd["CONTACT"].items()}
     forces = {n: v for n, v in nodal_forces(copen, energy, max(xy)).items() if n in xy}
     if len(forces) < 8:
-        raise ValueError(f"`{arg}` = {str(path)!r}: {len(forces)} slave nodes with coordinates "
+        raise InputError(f"`{arg}` = {str(path)!r}: {len(forces)} slave nodes with coordinates "
                          "and contact output; at least 8 are needed")
     nodes = np.array(sorted(forces, key=lambda n: xy[n][0]))
     x0 = np.array([xy[n][0] for n in nodes])
@@ -473,7 +474,7 @@ def _cpress_points(path: Path, blocks: dict[str, dict[int, np.ndarray]], xyz: di
         x = xyz[n][0] + (disp[n][0] if n in disp else 0.0)
         by_x.setdefault(round(float(x), 9), []).append((float(v[3]), float(v[0])))
     if not by_x:
-        raise ValueError(f"`{arg}` = {str(path)!r}: no contact node has coordinates")
+        raise InputError(f"`{arg}` = {str(path)!r}: no contact node has coordinates")
     xs = np.array(sorted(by_x))
     cp = np.array([np.mean([t[0] for t in by_x[k]]) for k in xs])
     co = np.array([np.mean([t[1] for t in by_x[k]]) for k in xs])

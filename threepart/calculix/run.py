@@ -14,20 +14,14 @@ import shutil
 import subprocess
 from pathlib import Path
 
+from ..errors import CcxError, CcxMissing
+
 __all__ = ["ccx_available", "run_ccx", "CcxError", "CcxMissing"]
 
 
 def ccx_available() -> bool:
     """Whether ``ccx`` (CalculiX) is on the PATH."""
     return shutil.which("ccx") is not None
-
-
-class CcxError(RuntimeError):
-    """``ccx`` ran but failed, or wrote no result."""
-
-
-class CcxMissing(OSError):
-    """``ccx`` is not on the PATH."""
 
 
 def run_ccx(deck: str, workdir: Path, name: str = "job", timeout: float = 900.0) -> Path:

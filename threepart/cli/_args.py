@@ -27,6 +27,7 @@ import math
 import sys
 from typing import Any, NoReturn, Sequence
 
+from threepart.errors import InputError, ThreepartError
 from threepart.units import UNITS
 
 __all__ = ["UsageError", "Parser", "NUMERIC_OPTIONS", "LIST_OPTIONS", "join_negative_numbers",
@@ -47,7 +48,7 @@ FORCE_HELP = ("no longer needed: a rerun replaces threepart's own earlier output
               "without --force")
 
 
-class UsageError(Exception):
+class UsageError(ThreepartError):
     """A command-line usage error, already formatted as one line."""
 
 
@@ -241,11 +242,11 @@ def given_punch_and_material(args: argparse.Namespace, needs: Sequence[str]) -> 
 
     missing = [o for o in needs if getattr(args, o) is None]
     if missing:
-        raise ValueError(f"give `--case NAME`, or the punch, material and loads: `--{missing[0]}` is missing")
+        raise InputError(f"give `--case NAME`, or the punch, material and loads: `--{missing[0]}` is missing")
     if args.A is not None and args.E is not None:
-        raise ValueError("give either `--A` or `--E`/`--nu`, not both")
+        raise InputError("give either `--A` or `--E`/`--nu`, not both")
     if args.A is None and (args.E is None or args.nu is None):
-        raise ValueError("the material needs `--A`, or both `--E` and `--nu`")
+        raise InputError("the material needs `--A`, or both `--E` and `--nu`")
     punch = Punch(R1=args.R1, R2=args.R2, b=args.b, R=math.inf if args.R is None else args.R)
     return punch, None if args.nu is None else poisson(args.nu)
 
@@ -258,14 +259,14 @@ def problem(args: argparse.Namespace) -> dict[str, Any]:
     given = [o for o in ("R1", "R2", "b", "R", "P", "s") if getattr(args, o) is not None]
     if args.case is not None:
         if given:
-            raise ValueError(f"give `--case` or the punch and loads, not both (also got "
+            raise InputError(f"give `--case` or the punch and loads, not both (also got "
                              f"`--{given[0]}`)")
         if args.case not in {c.name for c in load_cases(None)}:
             names = ", ".join(c.name for c in load_cases(None))
-            raise ValueError(f"`--case` = {args.case!r} is not in the catalogue ({names})")
+            raise InputError(f"`--case` = {args.case!r} is not in the catalogue ({names})")
         case = get_case(args.case).resolved()
         if case.material is None and (args.E is None or args.nu is None):
-            raise ValueError(f"case {case.name!r} gives only A; add `--E` and `--nu`")
+            raise InputError(f"case {case.name!r} gives only A; add `--E` and `--nu`")
         E, nu = case.material if case.material is not None else (args.E, args.nu)
         E = E if args.E is None else args.E
         nu = nu if args.nu is None else args.nu
@@ -274,7 +275,7 @@ def problem(args: argparse.Namespace) -> dict[str, Any]:
                 "tilt": args.tilt or case.tilt}
     missing = [o for o in ("R1", "R2", "b", "P", "E", "nu") if getattr(args, o) is None]
     if missing:
-        raise ValueError(f"give `--case NAME`, or the punch and the loads: `--{missing[0]}` is missing")
+        raise InputError(f"give `--case NAME`, or the punch and the loads: `--{missing[0]}` is missing")
     punch = Punch(R1=args.R1, R2=args.R2, b=args.b, R=float("inf") if args.R is None else args.R)
     return {"name": "", "punch": punch, "P": args.P, "s": 0.0 if args.s is None else args.s,
             "E": args.E, "nu": args.nu, "A": None, "tilt": args.tilt or "free"}

@@ -11,6 +11,7 @@ import argparse
 from typing import Any
 
 from ._args import labelled, problem, problem_args
+from threepart.errors import InputError
 
 __all__ = ["add_parser", "run"]
 
@@ -59,7 +60,7 @@ def _compare_iv(args: argparse.Namespace) -> None:
     from threepart.validate import SLOPE_LIMIT, finite, positive
 
     if args.alpha is not None and not abs(finite("--alpha", args.alpha)) <= SLOPE_LIMIT:
-        raise ValueError(f"`--alpha` = {args.alpha!r} rad exceeds the small-slope limit "
+        raise InputError(f"`--alpha` = {args.alpha!r} rad exceeds the small-slope limit "
                          f"{SLOPE_LIMIT:g} of half-plane theory in magnitude: no model judged "
                          "against it tilts that far")
     if args.penalty is not None:

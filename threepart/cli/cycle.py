@@ -21,6 +21,7 @@ from typing import Any
 from threepart.progress import heartbeat
 
 from ._args import given_punch_and_material, labelled, method_options, state_arg
+from threepart.errors import InputError
 
 __all__ = ["add_parser", "run"]
 
@@ -89,17 +90,17 @@ def _case(args: argparse.Namespace) -> dict[str, Any]:
     given = [o for o in ("R1", "R2", "b", "R", "E", "nu", "A", "f", "state0", "state1")
              if getattr(args, o) is not None]
     if given:
-        raise ValueError(f"give `--case` or the punch, material and loads, not both (also got `--{given[0]}`)")
+        raise InputError(f"give `--case` or the punch, material and loads, not both (also got `--{given[0]}`)")
     names = [c.name for c in load_cases(None)]
     if args.case not in names:
-        raise ValueError(f"`--case` = {args.case!r} is not in the catalogue ({', '.join(names)})")
+        raise InputError(f"`--case` = {args.case!r} is not in the catalogue ({', '.join(names)})")
     case = get_case(args.case).resolved()
     if case.states is None and args.history is None:
         with_states = ", ".join(c.name for c in load_cases(None) if c.states is not None)
-        raise ValueError(f"case {case.name!r} has no cycle `states` (cases with states: {with_states}); "
+        raise InputError(f"case {case.name!r} has no cycle `states` (cases with states: {with_states}); "
                          "give another case, or `--history FILE.csv`")
     if case.f is None:
-        raise ValueError(f"case {case.name!r} has no coefficient of friction `f`")
+        raise InputError(f"case {case.name!r} has no coefficient of friction `f`")
     A = case.A
     # the SWT strains use the case's own modulus; a compliance-only case is read as a similar pair
     E, nu = case.material if case.material is not None else (None, None)
@@ -121,7 +122,7 @@ def _given(args: argparse.Namespace) -> dict[str, Any]:
     states = None
     if args.history is None:
         if args.state0 is None or args.state1 is None:
-            raise ValueError(f"give the two ends of the cycle, `--state0` and `--state1` "
+            raise InputError(f"give the two ends of the cycle, `--state0` and `--state1` "
                              f"(`--state{0 if args.state0 is None else 1}` is missing), or `--history FILE.csv`")
         states = (args.state0, args.state1)
     return {"name": "", "punch": punch, "A": A, "E": args.E, "nu": nu, "f": positive("--f", args.f),
@@ -135,12 +136,12 @@ def _problem(args: argparse.Namespace) -> dict[str, Any]:
     from threepart.results import NU
 
     if args.history is not None and (args.state0 is not None or args.state1 is not None):
-        raise ValueError("give the ends `--state0`/`--state1` or `--history`, not both")
+        raise InputError("give the ends `--state0`/`--state1` or `--history`, not both")
     if args.history is not None and args.method == "closedform":
-        raise ValueError("`--history` is marched numerically: `--method closedform` has none; "
+        raise InputError("`--history` is marched numerically: `--method closedform` has none; "
                          "use sie (auto) or fem")
     if args.n is not None and args.method in ("closedform", "fem"):
-        raise ValueError(f"`--n` = {args.n} sets the SIE's elements: drop it with `--method {args.method}`")
+        raise InputError(f"`--n` = {args.n} sets the SIE's elements: drop it with `--method {args.method}`")
     pr = _case(args) if args.case is not None else _given(args)
     if pr["nu"] is None:    # only A given: a similar pair of the default Poisson ratio
         pr["nu"] = NU
@@ -176,7 +177,7 @@ def _march(args: argparse.Namespace, pr: dict[str, Any]) -> Any:
 
     m = registry.get(AUTO[1] if args.method == "auto" else args.method)
     if m.history is None:
-        raise ValueError(f"`--method` = {args.method}: it marches no load history (sie and fem do)")
+        raise InputError(f"`--method` = {args.method}: it marches no load history (sie and fem do)")
     return m.history(pr["punch"], pr["history"], pr["f"], A=pr["A"], **method_options(args, pr["nu"]))
 
 

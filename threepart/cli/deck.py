@@ -10,6 +10,7 @@ import argparse
 from typing import Any
 
 from ._args import labelled, problem, problem_args
+from threepart.errors import InputError
 
 __all__ = ["add_parser", "run"]
 
@@ -44,7 +45,7 @@ def run(args: argparse.Namespace) -> int:
     from threepart.output import write_file
 
     if args.format != "calculix":
-        raise ValueError(f"`--format` = {args.format!r}: only calculix is written")
+        raise InputError(f"`--format` = {args.format!r}: only calculix is written")
     pr = problem(args)
     settings = calculix.DeckSettings(h=args.h, penalty=args.penalty, pair=args.pair,
                                      tilt=pr["tilt"], **({} if args.stiffening is None

@@ -18,6 +18,7 @@ from threepart.progress import heartbeat
 
 from ._args import constant_arg, labelled, method_args, method_options, punch_args, state_args
 from ._output import print_json, write_csv, write_grid_vtu
+from threepart.errors import InputError
 
 __all__ = ["add_parser", "run", "MAX_FATIGUE_POINTS", "MAX_FATIGUE_STATES"]
 
@@ -134,11 +135,11 @@ def _fatigue_iv(args: argparse.Namespace) -> None:
     integer("--nz", args.nz, 2, MAX_FATIGUE_POINTS // 2)
     integer("--ns", args.ns, 2, MAX_FATIGUE_POINTS)
     if args.nx * args.nz > MAX_FATIGUE_POINTS:
-        raise ValueError(f"`--nx` x `--nz` = {args.nx * args.nz} points exceeds "
+        raise InputError(f"`--nx` x `--nz` = {args.nx * args.nz} points exceeds "
                          f"{MAX_FATIGUE_POINTS}, the most this command evaluates")
     depth = positive("--depth", args.depth)
     if not depth <= 100:
-        raise ValueError(f"`--depth` = {args.depth!r} must be <= 100 contact widths")
+        raise InputError(f"`--depth` = {args.depth!r} must be <= 100 contact widths")
     files = [(a, getattr(args, a)) for a in ("csv", "vtu", "plot") if getattr(args, a) is not None]
     seen: dict[str, str] = {}
     for arg, path in files:
@@ -146,11 +147,11 @@ def _fatigue_iv(args: argparse.Namespace) -> None:
 
         key = os.path.abspath(path)
         if key in seen:
-            raise ValueError(f"`--{arg}` and `--{seen[key]}` name the same file {path!r}")
+            raise InputError(f"`--{arg}` and `--{seen[key]}` name the same file {path!r}")
         seen[key] = arg
         check_file(path, arg=f"--{arg}")
     if not math.isfinite(args.s):
-        raise ValueError(f"`--s` = {args.s!r} must be a finite number")
+        raise InputError(f"`--s` = {args.s!r} must be a finite number")
 
 
 def _constants_iv(given: list[tuple[str, float]]) -> dict[str, float]:
@@ -161,12 +162,12 @@ def _constants_iv(given: list[tuple[str, float]]) -> dict[str, float]:
     out: dict[str, float] = {}
     for name, value in given:
         if name == "k":
-            raise ValueError("`--constant k=...`: Findley's constant is `--k`")
+            raise InputError("`--constant k=...`: Findley's constant is `--k`")
         if name not in known:
-            raise ValueError(f"`--constant {name}=...`: no fatigue parameter has a constant `{name}` "
+            raise InputError(f"`--constant {name}=...`: no fatigue parameter has a constant `{name}` "
                              f"(theirs: {', '.join(known) or 'none'}; Findley's k is `--k`)")
         if name in out:
-            raise ValueError(f"`--constant {name}` is given twice")
+            raise InputError(f"`--constant {name}` is given twice")
         out[name] = value
     return out
 
@@ -185,7 +186,7 @@ def _bulk_stress_iv(args: argparse.Namespace) -> None:
     from threepart import registry
 
     if args.sigma_bulk != 0.0 and args.method != "auto" and not registry.get(args.method).bulk_stress:
-        raise ValueError(f"`--sigma-bulk` = {args.sigma_bulk:g}: method {args.method!r} does not "
+        raise InputError(f"`--sigma-bulk` = {args.sigma_bulk:g}: method {args.method!r} does not "
                          "take a bulk stress in its fretting cycle; give --sigma-bulk 0 or another "
                          "--method")
 
@@ -195,14 +196,14 @@ def _fatigue_loads_iv(args: argparse.Namespace) -> None:
     flight = [f"--state{k}" for k in (0, 1) if getattr(args, f"state{k}") is not None]
     fretting = [o for o, v in (("--P", args.P), ("--Q-max", args.Q_max)) if v is not None]
     if flight and (fretting or args.sigma_bulk != 0.0 or args.s != 0.0):
-        raise ValueError("give a fretting cycle (`--P`, `--s`, `--Q-max`, `--sigma-bulk`) or a flight "
+        raise InputError("give a fretting cycle (`--P`, `--s`, `--Q-max`, `--sigma-bulk`) or a flight "
                          "cycle's ends (`--state0`, `--state1`), not both")
     if flight and len(flight) < 2:
-        raise ValueError(f"a flight cycle needs both ends: `--state{1 if flight == ['--state0'] else 0}` "
+        raise InputError(f"a flight cycle needs both ends: `--state{1 if flight == ['--state0'] else 0}` "
                          "is missing")
     if not flight and len(fretting) < 2:
         missing = " and ".join(f"`{o}`" for o in ("--P", "--Q-max") if o not in fretting)
-        raise ValueError(f"give {missing} (a fretting cycle), or `--state0` and `--state1` (a flight cycle)")
+        raise InputError(f"give {missing} (a fretting cycle), or `--state0` and `--state1` (a flight cycle)")
 
 
 def _flight(args: argparse.Namespace, punch: Any, A: float) -> Any:

@@ -18,6 +18,7 @@ import argparse
 from typing import Any
 
 from ._args import given_punch_and_material
+from threepart.errors import InputError
 
 __all__ = ["add_parser", "run"]
 
@@ -75,16 +76,16 @@ def _flank_problem(args: argparse.Namespace) -> dict[str, Any]:
     if args.case is not None:
         given = [o for o in own if getattr(args, o) is not None]
         if given:
-            raise ValueError(f"give `--case` or the punch, material and loads, not both (also got "
+            raise InputError(f"give `--case` or the punch, material and loads, not both (also got "
                              f"`--{given[0].replace('_', '-')}`)")
         names = [c.name for c in load_cases(None)]
         if args.case not in names:
-            raise ValueError(f"`--case` = {args.case!r} is not in the catalogue ({', '.join(names)})")
+            raise InputError(f"`--case` = {args.case!r} is not in the catalogue ({', '.join(names)})")
         c = get_case(args.case).resolved()
         if c.Q is None or c.f is None or c.states is not None:
             shear = ", ".join(k.name for k in load_cases(None) if k.Q is not None and k.states is None
                               and not k.beyond)
-            raise ValueError(f"case {c.name!r} has no partial-slip load (cases with one: {shear})")
+            raise InputError(f"case {c.name!r} has no partial-slip load (cases with one: {shear})")
         nu = c.material[1] if c.material is not None else NU
         return {"punch": c.punch, "A": c.A, "nu": nu, "P": c.P, "s": c.s, "Q": c.Q, "f": c.f,
                 "sigma_bulk": c.sigma_bulk}
@@ -102,7 +103,7 @@ def _problem(args: argparse.Namespace) -> dict[str, Any]:
     from threepart.validate import positive, shear_load
 
     if args.pad_R is not None and args.pad_P is not None:
-        raise ValueError("give `--pad-R` or `--pad-P` (or neither: the pad of least surface-stress "
+        raise InputError("give `--pad-R` or `--pad-P` (or neither: the pad of least surface-stress "
                          "error), not both")
     pr = _flank_problem(args)
     shear_load(pr["Q"], pr["f"], pr["P"])

@@ -13,6 +13,7 @@ from typing import Any
 
 from ._args import labelled, method_args, method_options, number_list, punch_args, state_args
 from ._output import print_result, write_points_csv
+from threepart.errors import InputError
 
 __all__ = ["add_parser", "run", "MAX_GRID"]
 
@@ -93,16 +94,16 @@ def _compliance(args: argparse.Namespace) -> float:
 
     if args.A is not None:
         if args.E is not None:
-            raise ValueError("give either `--A` or `--E`/`--nu`, not both")
+            raise InputError("give either `--A` or `--E`/`--nu`, not both")
         if args.rigid:
-            raise ValueError("`--rigid` applies to `--E`/`--nu`; with `--A` the compliance is "
+            raise InputError("`--rigid` applies to `--E`/`--nu`; with `--A` the compliance is "
                              "given, so drop `--rigid`")
         if args.nu is not None and _finite_body(args) is None:
-            raise ValueError("`--nu` with `--A` is used only by a method that models a finite "
+            raise InputError("`--nu` with `--A` is used only by a method that models a finite "
                              "body (`--method fem`); drop it or give `--E` and `--nu` instead")
         return float(args.A)
     if args.E is None or args.nu is None:
-        raise ValueError("the material needs `--A`, or both `--E` and `--nu`")
+        raise InputError("the material needs `--A`, or both `--E` and `--nu`")
     return rigid_punch(args.E, args.nu) if args.rigid else compliance(args.E, args.nu)
 
 
@@ -128,7 +129,7 @@ def _figures(args: argparse.Namespace, slip: bool) -> dict[str, Any]:
     _points_iv(args)
     options, nu_note = _options(args)
     if slip and args.sigma_bulk and args.rigid:
-        raise ValueError(f"`--sigma-bulk` = {args.sigma_bulk:g} needs elastically similar bodies (its "
+        raise InputError(f"`--sigma-bulk` = {args.sigma_bulk:g} needs elastically similar bodies (its "
                          "strain is A sigma_bulk/4 with A of eq. (4) for one material): drop `--rigid`")
     loads = {"Q": args.Q, "f": args.f, "sigma_bulk": args.sigma_bulk} if slip else {}
     res = solve(punch, args.P, args.s, A=A, tilt=args.tilt, method=args.method, **loads, **options)
@@ -202,14 +203,14 @@ def _points_iv(args: argparse.Namespace) -> None:
     import math
 
     if args.x is not None and args.grid is not None:
-        raise ValueError("give `--x` or `--grid`, not both")
+        raise InputError("give `--x` or `--grid`, not both")
     if args.x is not None and not all(math.isfinite(v) for v in args.x):
-        raise ValueError(f"`--x` = {args.x} must hold finite numbers")
+        raise InputError(f"`--x` = {args.x} must hold finite numbers")
     if args.grid is not None and not 2 <= args.grid <= MAX_GRID:
-        raise ValueError(f"`--grid` = {args.grid} must lie in [2, {MAX_GRID}]")
+        raise InputError(f"`--grid` = {args.grid} must lie in [2, {MAX_GRID}]")
     if args.csv is not None:
         if args.x is None and args.grid is None:
-            raise ValueError("`--csv` needs the points: give `--x` or `--grid`")
+            raise InputError("`--csv` needs the points: give `--x` or `--grid`")
         from threepart.output import check_file
 
         check_file(args.csv, arg="--csv")   # a new file, or threepart's own unchanged one

@@ -26,6 +26,8 @@ import threading
 from pathlib import Path
 from typing import Any, Callable, NoReturn
 
+from ..errors import OutputExistsError, ThreepartError
+
 __all__ = ["OutputExistsError", "Digest", "reraise", "digest", "unchanged", "write_json",
            "fsync_dir", "fill_file", "current_umask"]
 
@@ -35,11 +37,7 @@ _CHUNK = 1 << 20
 Digest = dict[str, Any]
 
 
-class OutputExistsError(ValueError):
-    """A path may not be written: it holds something threepart did not write, or that was changed."""
-
-
-class _WriteError(OSError):
+class _WriteError(ThreepartError, OSError):
     """An ``OSError`` whose one-line message already names what could not be written."""
 
 

@@ -20,6 +20,7 @@ from typing import Callable
 from .atomic import Digest, OutputExistsError, digest, fill_file, fsync_dir, reraise, unchanged, write_json
 from .keys import sign, signature_holds
 from .markers import MARKER, MARKER_FORMAT
+from threepart.errors import InputError
 
 __all__ = ["LEDGER", "check_file", "write_file"]
 
@@ -77,11 +78,11 @@ def check_file(path: str | Path, *, arg: str = "path", overwrite: bool = False,
     q = f"`{arg}` = {str(path)!r}"
     directory = Path(os.path.abspath(path)).parent
     if not path.name or path.name in (".", ".."):
-        raise ValueError(f"{q} is not a file name")
+        raise InputError(f"{q} is not a file name")
     if path.name in (LEDGER, MARKER) or path.name.endswith(".part"):
-        raise ValueError(f"{q}: the name is threepart's own bookkeeping; choose another name")
+        raise InputError(f"{q}: the name is threepart's own bookkeeping; choose another name")
     if not directory.is_dir():
-        raise ValueError(f"{q}: directory does not exist" if not os.path.lexists(directory)
+        raise InputError(f"{q}: directory does not exist" if not os.path.lexists(directory)
                          else f"{q}: {str(directory)!r} is not a directory")
     recorded, has_ledger = _read_ledger(directory)
     if recorded is None:

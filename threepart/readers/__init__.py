@@ -33,6 +33,7 @@ from pathlib import Path
 from typing import Any, Callable
 
 import numpy as np
+from threepart.errors import InputError, InputTypeError
 
 __all__ = ["Record", "Format", "register_reader", "read", "formats", "format_of", "describe", "BUILTIN"]
 
@@ -90,12 +91,12 @@ def register_reader(name: str, suffixes: list[str] | tuple[str, ...], read_funct
     A later registration of the same name or suffix replaces the earlier one.
     """
     if not isinstance(name, str) or not name:
-        raise TypeError(f"`name` = {name!r} must be a non-empty str")
+        raise InputTypeError(f"`name` = {name!r} must be a non-empty str")
     if not callable(read_function):
-        raise TypeError(f"`read_function` = {read_function!r} must be callable")
+        raise InputTypeError(f"`read_function` = {read_function!r} must be callable")
     bad = [s for s in suffixes if not (isinstance(s, str) and s.startswith(".") and len(s) > 1)]
     if bad or not suffixes:
-        raise ValueError(f"`suffixes` = {list(suffixes)!r} must be one or more strings such as '.csv'")
+        raise InputError(f"`suffixes` = {list(suffixes)!r} must be one or more strings such as '.csv'")
     _FORMATS[name] = Format(name, tuple(s.lower() for s in suffixes), read_function, help)
     for s in suffixes:
         _SUFFIXES[s.lower()] = name
@@ -134,7 +135,7 @@ def format_of(path: str | Path, *, arg: str = "path") -> Format:
             found = _SUFFIXES[ext]
     if found is None:
         known = ", ".join(f"{f.name} ({' '.join(f.suffixes)})" for f in _FORMATS.values())
-        raise ValueError(f"`{arg}` = {str(path)!r}: no reader for "
+        raise InputError(f"`{arg}` = {str(path)!r}: no reader for "
                          f"{path.suffix or 'a file without a suffix'}; the formats: {known}")
     return _FORMATS[found]
 
@@ -162,11 +163,11 @@ def read(path: str | Path, *, arg: str = "path", file_format: str | None = None,
     """
     path = Path(path)
     if not path.is_file():
-        raise ValueError(f"`{arg}` = {str(path)!r} is not a file")
+        raise InputError(f"`{arg}` = {str(path)!r} is not a file")
     if file_format is not None:
         _load_builtin()
         if file_format not in _FORMATS:
-            raise ValueError(f"`file_format` = {file_format!r} is not a format; the formats: "
+            raise InputError(f"`file_format` = {file_format!r} is not a format; the formats: "
                              f"{', '.join(_FORMATS)}")
         fmt = _FORMATS[file_format]
     else:

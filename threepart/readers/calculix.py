@@ -8,6 +8,7 @@ from typing import Any
 from threepart.calculix.read import contact_pressure
 
 from . import Record, register_reader
+from threepart.errors import InputError
 
 __all__ = ["read_calculix"]
 
@@ -15,7 +16,7 @@ __all__ = ["read_calculix"]
 def read_calculix(path: Path, *, arg: str = "path", **options: Any) -> Record:
     """The contact pressure of one CalculiX run's ``.frd`` or ``.dat`` (the deck ``.inp`` beside a ``.dat``)."""
     if options:
-        raise ValueError(f"`{arg}` = {str(path)!r}: CalculiX's files take no options, not "
+        raise InputError(f"`{arg}` = {str(path)!r}: CalculiX's files take no options, not "
                          f"{', '.join(options)}")
     x, p, info = contact_pressure(path, arg=arg)
     return Record(x, p, None, info)

@@ -12,6 +12,7 @@ from typing import Any
 import numpy as np
 
 from . import Record, register_reader
+from threepart.errors import InputError
 
 __all__ = ["read_csv"]
 
@@ -19,7 +20,7 @@ __all__ = ["read_csv"]
 def read_csv(path: Path, *, arg: str = "path", **options: Any) -> Record:
     """The points of a CSV file: ``x, p`` per row (``x, p, q`` with the shear), compressive ``p`` positive."""
     if options:
-        raise ValueError(f"`{arg}` = {str(path)!r}: a CSV takes no options, not {', '.join(options)}")
+        raise InputError(f"`{arg}` = {str(path)!r}: a CSV takes no options, not {', '.join(options)}")
     rows: list[list[float]] = []
     with open(path, newline="", encoding="utf-8") as f:
         for i, row in enumerate(csv.reader(line for line in f if not line.lstrip().startswith("#"))):
@@ -32,11 +33,11 @@ def read_csv(path: Path, *, arg: str = "path", **options: Any) -> Record:
             except (ValueError, IndexError):
                 if i == 0 and not rows:
                     continue          # a header line
-                raise ValueError(f"`{arg}` = {str(path)!r}: row {i + 1} is not two numbers "
+                raise InputError(f"`{arg}` = {str(path)!r}: row {i + 1} is not two numbers "
                                  f"x, p: {','.join(row)!r}") from None
             rows.append(values)
     if not rows:
-        raise ValueError(f"`{arg}` = {str(path)!r} holds no x, p rows")
+        raise InputError(f"`{arg}` = {str(path)!r} holds no x, p rows")
     x = np.array([r[0] for r in rows])
     p = np.array([r[1] for r in rows])
     q = np.array([r[2] for r in rows]) if all(len(r) == 3 for r in rows) else None

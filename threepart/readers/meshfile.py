@@ -31,6 +31,7 @@ from typing import Any
 import numpy as np
 
 from . import Record, register_reader
+from threepart.errors import InputError
 
 __all__ = ["read_mesh_file", "FIELDS", "SURFACE_TOLERANCE", "MESHIO_FORMATS"]
 
@@ -66,13 +67,13 @@ def read_mesh_file(path: Path, *, arg: str = "path", file_format: str = "vtu",
     """
     unknown = [k for k in options if k not in _OPTIONS]
     if unknown:
-        raise ValueError(f"`{arg}` = {str(path)!r}: unknown option {unknown[0]!r}; "
+        raise InputError(f"`{arg}` = {str(path)!r}: unknown option {unknown[0]!r}; "
                          f"a mesh file takes {', '.join(_OPTIONS)}")
     points, point_data, point_sets = _load(path, file_format, arg)
     names = [options["field"]] if options.get("field") else [f for f in FIELDS if f in point_data]
     if not names or names[0] not in point_data:
         looked = repr(options["field"]) if options.get("field") else "any of " + ", ".join(FIELDS)
-        raise ValueError(f"`{arg}` = {str(path)!r} has no point field {looked}; its point fields: "
+        raise InputError(f"`{arg}` = {str(path)!r} has no point field {looked}; its point fields: "
                          f"{', '.join(sorted(point_data)) or 'none'}; name the pressure with field=NAME")
     nodes = _surface(points, point_data, point_sets, options.get("surface"), path, arg)
     x = points[nodes, 0]
@@ -82,11 +83,11 @@ def read_mesh_file(path: Path, *, arg: str = "path", file_format: str = "vtu",
     q = None
     if options.get("shear"):
         if options["shear"] not in point_data:
-            raise ValueError(f"`{arg}` = {str(path)!r} has no point field {options['shear']!r} (shear); "
+            raise InputError(f"`{arg}` = {str(path)!r} has no point field {options['shear']!r} (shear); "
                              f"its point fields: {', '.join(sorted(point_data))}")
         q = _column(point_data[options["shear"]], options.get("component"), options["shear"], path, arg)[nodes]
     if not np.all(np.isfinite(p)):
-        raise ValueError(f"`{arg}` = {str(path)!r}: the field {names[0]!r} is not finite at "
+        raise InputError(f"`{arg}` = {str(path)!r}: the field {names[0]!r} is not finite at "
                          f"{int(np.count_nonzero(~np.isfinite(p)))} of the {nodes.size} surface nodes")
     return Record(x, p, q, {"source": file_format, "field": names[0], "nodes": int(nodes.size)})
 
@@ -100,14 +101,14 @@ def _load(path: Path, file_format: str, arg: str
         try:
             import netCDF4  # noqa: F401
         except ImportError:
-            raise ValueError(f"`{arg}` = {str(path)!r}: reading Exodus needs netCDF4 "
+            raise InputError(f"`{arg}` = {str(path)!r}: reading Exodus needs netCDF4 "
                              "(pip install netCDF4)") from None
     # the format's own reader: meshio.read prints and exits the process on a file it cannot read
     try:
         mesh = getattr(meshio, file_format).read(str(path))
     except (meshio.ReadError, *_UNREADABLE) as exc:
         if file_format != "xdmf":
-            raise ValueError(f"`{arg}` = {str(path)!r}: meshio cannot read it as {file_format}: "
+            raise InputError(f"`{arg}` = {str(path)!r}: meshio cannot read it as {file_format}: "
                              f"{str(exc).splitlines()[0] if str(exc) else type(exc).__name__}") from None
         return _xdmf_last_step(path, arg)
     point_data = {k: np.asarray(v) for k, v in mesh.point_data.items()}
@@ -128,7 +129,7 @@ def _xdmf_last_step(path: Path, arg: str) -> tuple[np.ndarray, dict[str, np.ndar
             for k in range(reader.num_steps):
                 _, data, _ = reader.read_data(k)
     except (meshio.ReadError, *_UNREADABLE) as exc:
-        raise ValueError(f"`{arg}` = {str(path)!r}: meshio cannot read it as xdmf: "
+        raise InputError(f"`{arg}` = {str(path)!r}: meshio cannot read it as xdmf: "
                          f"{str(exc).splitlines()[0] if str(exc) else type(exc).__name__}") from None
     return np.asarray(points, dtype=float), {k: np.asarray(v) for k, v in data.items()}, {}
 
@@ -165,22 +166,22 @@ def _surface(points: np.ndarray, point_data: dict[str, np.ndarray], point_sets: 
         elif name in point_data:
             nodes = np.flatnonzero(np.asarray(point_data[name]).reshape(len(points), -1)[:, 0] != 0)
         else:
-            raise ValueError(f"`{arg}` = {str(path)!r} has no node set {name!r}; its point sets: "
+            raise InputError(f"`{arg}` = {str(path)!r} has no node set {name!r}; its point sets: "
                              f"{', '.join(sorted(point_sets)) or 'none'}, its point fields: "
                              f"{', '.join(sorted(point_data)) or 'none'}")
         where = f"in the set {name!r}"
     else:
         if points.shape[1] < 2:
-            raise ValueError(f"`{arg}` = {str(path)!r}: a mesh of one dimension has no surface y = 0")
+            raise InputError(f"`{arg}` = {str(path)!r}: a mesh of one dimension has no surface y = 0")
         extent = float(np.ptp(points[:, :2], axis=0).max()) or 1.0
         nodes = np.flatnonzero(np.abs(points[:, 1]) <= SURFACE_TOLERANCE * extent)
         where = (f"on the top surface y = 0 (y spans [{points[:, 1].min():.6g}, "
                  f"{points[:, 1].max():.6g}]); name the contact nodes' set with surface=NAME")
     if nodes.size == 0:
-        raise ValueError(f"`{arg}` = {str(path)!r}: no node lies {where}")
+        raise InputError(f"`{arg}` = {str(path)!r}: no node lies {where}")
     x = points[nodes, 0]
     if np.unique(x).size < x.size:
-        raise ValueError(f"`{arg}` = {str(path)!r}: several surface nodes share an x (two bodies "
+        raise InputError(f"`{arg}` = {str(path)!r}: several surface nodes share an x (two bodies "
                          "touching at y = 0?); name the block's contact nodes with surface=NAME")
     return nodes
 
@@ -192,7 +193,7 @@ def _column(values: np.ndarray, component: int | None, name: str, path: Path, ar
     if v.shape[1] == 1:
         return v[:, 0]
     if component is None or not 0 <= int(component) < v.shape[1]:
-        raise ValueError(f"`{arg}` = {str(path)!r}: the field {name!r} has {v.shape[1]} components; "
+        raise InputError(f"`{arg}` = {str(path)!r}: the field {name!r} has {v.shape[1]} components; "
                          f"pick one with component=0..{v.shape[1] - 1}")
     return v[:, int(component)]
 
