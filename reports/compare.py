@@ -302,7 +302,7 @@ def _friction_excess(res: Any) -> float:
     return float(max(excess.max(), 0.0) / (res.f * p.max()))
 
 
-def compare(ref: Any, other: Any, comparison: str) -> list[Check]:
+def compare(ref: Any, other: Any, comparison: str, *, stresses: bool = True) -> list[Check]:
     """Compare ``other`` with the reference ``ref`` and judge each figure.
 
     Parameters
@@ -319,6 +319,9 @@ def compare(ref: Any, other: Any, comparison: str) -> list[Check]:
     comparison
         Row group of :data:`threepart.tolerances.TOLERANCES`: ``"sie"``,
         ``"fem-quick"``, ``"fem-default"`` or ``"fem-fine"``.
+    stresses
+        Whether a partial slip's stresses in the substrate are compared too
+        (:data:`~threepart.tolerances.STRESS_QUANTITIES`).
 
     Returns
     -------
@@ -331,8 +334,10 @@ def compare(ref: Any, other: Any, comparison: str) -> list[Check]:
     quantities: tuple[str, ...] = NORMAL_QUANTITIES
     if is_slip(ref) and is_slip(other):
         figures.update(slip_figures(ref, other))
-        figures.update(stress_figures(ref, other))
-        quantities = NORMAL_QUANTITIES + SLIP_QUANTITIES + STRESS_QUANTITIES
+        quantities = NORMAL_QUANTITIES + SLIP_QUANTITIES
+        if stresses:
+            figures.update(stress_figures(ref, other))
+            quantities += STRESS_QUANTITIES
     elif is_fretting(ref) and is_fretting(other):
         figures.update(fretting_figures(ref, other))
         quantities = NORMAL_QUANTITIES + FRETTING_QUANTITIES

@@ -3,7 +3,8 @@
 Names
 -----
 COMPARISON   -- the tolerance table's rows a pressure from outside is judged by
-judge        -- compare and diagnose: the JSON-safe document of the report
+judge        -- compare and diagnose: the JSON-safe document of the report (a pressure, or
+                a partial slip: the shear too, and the friction pitfalls)
 document     -- that document as the report's sections (checks, pitfalls)
 write_report -- the report directory (md, html, json) through threepart.output
 main         -- read, judge and report (``threepart compare``); 0 when all holds, else 1
@@ -17,13 +18,15 @@ from threepart.asymptotics import SIDES
 from threepart.errors import MeshResolutionError
 from threepart.fields import edge_multipliers
 from threepart.output import atomic_dir, json_safe, strict_json
-from threepart.results import NormalResult
+from threepart.errors import InputError
+from threepart.results import NormalResult, SlipResult
 from threepart.tolerances import tolerance
 
-from ..compare import compare
+from ..compare import compare, is_slip, normal_of
 from ..verify.sections import Bullets, Document, Item, Section, Status, Table, Verdict, fmt, words
+from .friction import SlipPointsResult, friction_pitfalls, slip_from_points
 from .pitfalls import diagnose
-from .points import PointsResult, from_points, read_pressure
+from .points import PointsResult, from_points
 
 __all__ = ["COMPARISON", "judge", "edges", "document", "write_report", "main"]
 
@@ -56,21 +59,37 @@ def edges(res: PointsResult, ref: NormalResult) -> list[dict[str, Any]]:
     return out
 
 
-def judge(res: PointsResult, ref: NormalResult, *, penalty: float | None = None,
+def judge(res: PointsResult | SlipPointsResult, ref: NormalResult | SlipResult, *,
+          penalty: float | None = None, stick_slope: float | None = None,
           source: str = "") -> dict[str, Any]:
-    """The comparison and the diagnosis of ``res`` against ``ref``, as a JSON-safe document."""
-    checks = [c for c in compare(ref, res, COMPARISON)
+    """The comparison and the diagnosis of ``res`` against ``ref``, as a JSON-safe document.
+
+    A partial slip (both slip results) is compared by the same comparison as the
+    verification run's (its stick zone, shear, ``∫q = Q`` and Coulomb's bound)
+    and diagnosed for the friction pitfalls besides the pressure's. The
+    stresses are left out: between a file's last loaded point and the end
+    fitted to it the tractions are not known, and a jump there is a logarithmic
+    peak of the surface σxx that belongs to the interpolation, not to the code.
+    """
+    normal, ref_normal = normal_of(res), normal_of(ref)
+    checks = [c for c in compare(ref, res, COMPARISON, stresses=False)
               if c.quantity != "alpha" or res.info.get("alpha_given")]
-    pitfalls = diagnose(res, ref, penalty=penalty)
+    pitfalls = diagnose(normal, ref_normal, penalty=penalty)
+    reference = {"method": ref.method, "a": ref.a, "c": ref.c, "alpha": ref.alpha,
+                 "P": ref.P, "s": ref.s, "note": ref.info.get("auto", "")}
+    obtained = {"a": res.a, "c": res.c, "P": normal.P, "s": normal.s,
+                "points": int(normal.x_nodes.size)}
+    if is_slip(ref) and is_slip(res):
+        pitfalls += friction_pitfalls(res, ref, stick_slope=stick_slope)
+        reference.update(Q=ref.Q, f=ref.f, d=ref.d, e=ref.e, stick_zone=list(ref.stick_zone))
+        obtained.update(d=res.d, e=res.e, stick_zone=list(res.stick_zone))
     return json_safe({
         "tool": "threepart compare", "source": source,
-        "reference": {"method": ref.method, "a": ref.a, "c": ref.c, "alpha": ref.alpha,
-                      "P": ref.P, "s": ref.s, "note": ref.info.get("auto", "")},
-        "obtained": {"a": res.a, "c": res.c, "P": res.P, "s": res.s, "points": int(res.x_nodes.size)},
+        "reference": reference, "obtained": obtained,
         "passed": all(c.passed for c in checks) and not pitfalls,
         "checks": [c.as_dict() for c in checks],
         "pitfalls": [q.as_dict() for q in pitfalls],
-        "edges": edges(res, ref),
+        "edges": edges(normal, ref_normal),
     })
 
 
@@ -121,14 +140,31 @@ def write_report(doc: dict[str, Any], out: str | Path) -> None:
         (tmp / "report.html").write_text(render_html(d, tmp), encoding="utf-8")
 
 
-def main(pressure: str | Path, ref: NormalResult, *, out: str | Path, alpha: float | None = None,
-         penalty: float | None = None, say: Callable[[str], None] = print, **options: Any) -> int:
+def main(pressure: str | Path, ref: NormalResult | SlipResult, *, out: str | Path,
+         alpha: float | None = None, penalty: float | None = None, stick_slope: float | None = None,
+         say: Callable[[str], None] = print, **options: Any) -> int:
     """Read (``options``: the reader's, :func:`threepart.readers.read`), judge and report;
-    0 when every check holds and no pitfall shows, else 1."""
-    x, p, info = read_pressure(pressure, **options)
-    res = from_points(x, p, ref, alpha=alpha, info={k: v for k, v in info.items()
-                                                   if k in ("source", "penalty", "increments")})
-    doc = judge(res, ref, penalty=penalty, source=str(pressure))
+    0 when every check holds and no pitfall shows, else 1.
+
+    Against a partial slip (``ref`` a :class:`~threepart.results.SlipResult`) the
+    file must carry the shear ``q`` as well (CalculiX's CSTR, a mesh file's
+    ``contact_shear``, a CSV's third column).
+    """
+    from threepart import readers
+
+    record = readers.read(pressure, arg="--pressure", **options)
+    info = {k: v for k, v in record.info.items()
+            if k in ("source", "penalty", "increments", "stick_slope")}
+    res: PointsResult | SlipPointsResult
+    if is_slip(ref):
+        if record.q is None:
+            raise InputError(f"`--pressure` {pressure}: the file carries no shear q, which a partial "
+                             "slip (--Q, --f) is judged by (CalculiX: CSTR; a mesh file: a point "
+                             "field contact_shear; a CSV: a third column q)")
+        res = slip_from_points(record.x, record.p, record.q, ref, alpha=alpha, info=info)
+    else:
+        res = from_points(record.x, record.p, ref, alpha=alpha, info=info)
+    doc = judge(res, ref, penalty=penalty, stick_slope=stick_slope, source=str(pressure))
     write_report(doc, out)
     failed = [c for c in doc["checks"] if not c["passed"]]
     say(f"{'PASSED' if doc['passed'] else 'FAILED'}: {len(doc['checks']) - len(failed)}/"

@@ -1,0 +1,120 @@
+"""The friction referee: another code's partial slip judged by the verification run's comparison.
+
+The points are an independent reference sampled at nodes (the closed form of Hertz's partial
+slip, whose stick zone is Mindlin's c/a = sqrt(1 - Q/fP)); each pitfall is provoked by the one
+fault it names, and each limit fails at 3x and passes at 0.3x of itself (as tests/test_compare.py).
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+import threepart
+from threepart import Punch
+from threepart.errors import InputError
+from threepart.reports.referee import friction, judge, slip_from_points, stick_ends
+from threepart.tolerances import tolerance
+
+A = 4 * (1 - 0.3**2) / 210e3          # two similar steel bodies
+P, F, RATIO = 400.0, 0.5, 0.4
+
+
+@pytest.fixture(scope="module")
+def ref():
+    return threepart.solve(Punch(R1=10, R2=10, b=0), P, 0.0, A=A, Q=RATIO * F * P, f=F,
+                           method="closedform")
+
+
+def _nodes(ref, n=481, reach=1.2):
+    x = np.linspace(-reach * ref.a, reach * ref.c, n)
+    return x, ref.pressure(x), ref.shear(x)
+
+
+def test_the_reference_is_mindlins(ref):
+    assert ref.d / ref.a == pytest.approx(math.sqrt(1 - RATIO), rel=1e-12)
+
+
+def test_sampled_reference_passes_and_its_stick_zone_is_mindlins(ref):
+    x, p, q = _nodes(ref)
+    res = slip_from_points(x, p, q, ref)
+    W = ref.a + ref.c
+    assert abs(res.d - math.sqrt(1 - RATIO) * ref.a) < 5e-3 * W
+    assert abs(res.e) < 5e-3 * W
+    doc = judge(res, ref, source="sampled")
+    failed = [(c["quantity"], c["error"]) for c in doc["checks"] if not c["passed"]]
+    assert doc["passed"], (failed, doc["pitfalls"])
+    names = {c["quantity"] for c in doc["checks"]}
+    assert {"d", "e", "q_interior_max", "q_integral", "q_bound"} <= names
+
+
+def test_stick_ends_cross_the_margin_between_nodes():
+    x = np.linspace(-1, 1, 11)
+    p = np.ones_like(x)
+    ratio = np.where(np.abs(x) < 0.45, 0.5, 1.0)            # sticks on [-0.4, 0.4]
+    lo, hi = stick_ends(x, p, ratio * 0.3, 0.3, margin=0.25)
+    # the ratio crosses 0.75 halfway between 0.4 (0.5) and 0.6 (1.0)
+    assert (lo, hi) == pytest.approx((-0.5, 0.5), abs=1e-12)
+    with pytest.raises(InputError, match="no point sticks"):
+        stick_ends(x, p, 0.3 * p, 0.3)
+
+
+def test_a_flipped_shear_is_named(ref):
+    x, p, q = _nodes(ref)
+    doc = judge(slip_from_points(x, p, -q, ref), ref)
+    assert [q["name"] for q in doc["pitfalls"]] == ["shear-sign"]
+    assert not doc["passed"]
+
+
+def test_a_shifted_stick_zone_is_named_coupling(ref):
+    """q = f p(x) - f p*(x + delta): the stick zone moves by -delta, its width and ∫q stay."""
+    x, p, q = _nodes(ref, n=961)
+    W = ref.a + ref.c
+    delta = 4 * friction.SHIFT * W
+
+    def shifted(xs):
+        return F * ref.pressure(xs) - (F * ref.pressure(xs + delta) - ref.shear(xs + delta))
+
+    res = slip_from_points(x, p, shifted(x), ref)
+    assert res.e == pytest.approx(ref.e + delta, abs=1e-3 * W)
+    names = [q["name"] for q in judge(res, ref)["pitfalls"]]
+    assert "coupling" in names
+    small = slip_from_points(x, p, F * p - (F * ref.pressure(x + 0.3 * friction.SHIFT * W)
+                                             - ref.shear(x + 0.3 * friction.SHIFT * W)), ref)
+    assert "coupling" not in [q["name"] for q in judge(small, ref)["pitfalls"]]
+
+
+def test_a_stick_zone_that_does_not_slip_is_named(ref):
+    """Points that stick everywhere (|q| = f p / 2 scaled to ∫q = Q): nothing slips."""
+    x, p, _ = _nodes(ref)
+    q = 0.5 * F * p
+    res = slip_from_points(x, p, q * ref.Q / np.trapezoid(q, x), ref)
+    assert "no-slip" in [q["name"] for q in judge(res, ref)["pitfalls"]]
+
+
+@pytest.mark.parametrize("factor, named", [(3.0, True), (0.3, False)])
+def test_the_stick_slope_is_named_at_three_times_its_limit(ref, factor, named):
+    x, p, q = _nodes(ref)
+    W = ref.a + ref.c
+    K_t = 1.0 / (factor * friction.SLOPE * A * W)       # creep = factor * SLOPE
+    pitfalls = judge(slip_from_points(x, p, q, ref), ref, stick_slope=K_t)["pitfalls"]
+    assert ("stick-slope" in [q["name"] for q in pitfalls]) is named
+
+
+@pytest.mark.parametrize("factor, passes", [(3.0, False), (0.3, True)])
+def test_the_shear_limit_fails_at_three_times_and_holds_at_a_third(ref, factor, passes):
+    x, p, q = _nodes(ref, n=961)
+    limit = tolerance("referee", "q_interior_max").limit
+    peak = float(np.max(np.abs(q)))
+    W = ref.a + ref.c
+    bump = factor * limit * peak * np.exp(-((x - 0.1 * W) / (0.02 * W)) ** 2)   # inside the stick zone
+    check = {c["quantity"]: c for c in judge(slip_from_points(x, p, q + bump, ref), ref)["checks"]}
+    assert check["q_interior_max"]["passed"] is passes
+
+
+def test_a_non_finite_shear_is_refused_by_name(ref):
+    x, p, q = _nodes(ref)
+    q[3] = np.nan
+    with pytest.raises(InputError, match="non-finite q"):
+        slip_from_points(x, p, q, ref)
