@@ -29,7 +29,9 @@ R, P, E, NU = 10.0, 100.0, 210e3, 0.3
 A = rigid_punch(E, NU)
 a_H = math.sqrt(2 * P * R * A / math.pi)
 p0_H = 2 * P / (math.pi * a_H)
-HERTZ_ARGS = ["--R1", str(R), "--R2", str(R), "--b", "0", "--P", str(P), "--E", str(E), "--nu", str(NU)]
+#: the compliance given as such (``--A``): the reference is a rigid punch, whatever ``--E``'s convention
+HERTZ_ARGS = ["--R1", str(R), "--R2", str(R), "--b", "0", "--P", str(P), "--E", str(E), "--nu", str(NU),
+              "--A", repr(A)]
 #: the files store doubles: the field and the positions read back to round-off (of p0, of a)
 READ_BACK = 1e-12
 #: nodes along the surface: 600 elements over 3 a (W/h = 400 over the contact, where the

@@ -27,6 +27,10 @@ surface_pressure -- the contact pressure along the block's surface of a model's 
 SurfacePressure  -- what :func:`surface_pressure` returns
 contact_edge     -- a contact end from the gap just outside it (``gap^(2/3)`` linear)
 centre_pressure  -- ``p(0)`` of a symmetric pressure from a quartic fit about the centre
+
+Every file's text is read and checked line by line in :mod:`.files`: a missing,
+binary or truncated file, a number that does not read or is not finite, is one
+:class:`~threepart.errors.ReaderError` naming the file (and the line), never NaN.
 """
 from __future__ import annotations
 
@@ -40,8 +44,10 @@ import numpy as np
 from threepart.fields import peak
 
 from .deck import parse_deck
+from .files import file_label, frd_blocks, last_printed, run_file
 from .run import CcxError
-from threepart.errors import InputError
+from threepart.errors import InputError, ReaderError
+from threepart.textfile import finite_row, read_text
 
 if TYPE_CHECKING:   # pragma: no cover - the model's type only
     from .mesh import Model
@@ -143,44 +149,32 @@ def element_vertices(elements: list[tuple[str, np.ndarray]], nodes: np.ndarray, 
     return vertex[nodes]
 
 
-def read_frd(stem: Path) -> dict[str, dict[int, np.ndarray]]:
-    """The last increment's nodal blocks of ``stem.frd``: ``{"DISP": {node: values}, "STRESS": ...}``."""
-    out: dict[str, dict[int, np.ndarray]] = {}
-    current: dict[int, np.ndarray] | None = None
-    with open(f"{stem}.frd") as f:
-        for line in f:
-            if line.startswith(" -4"):
-                current = {}
-                out[line.split()[1]] = current          # later increments overwrite earlier
-            elif line.startswith(" -1") and current is not None:
-                n = int(line[3:13])
-                vals = line[13:].rstrip("\n")
-                current[n] = np.array([float(vals[12 * j:12 * j + 12]) for j in range(len(vals) // 12)])
-            elif line.startswith(" -3"):
-                current = None
-    return out
+def read_frd(stem: str | Path, *, arg: str | None = None) -> dict[str, dict[int, np.ndarray]]:
+    """The last increment's nodal blocks of ``stem.frd`` (or of ``stem`` itself if it ends in
+    ``.frd``): ``{"DISP": {node: values}, "STRESS": ...}``. ReaderError (naming ``arg`` and the
+    line): not UTF-8 text, a number that does not read or is not finite, a truncated file."""
+    path = run_file(stem, ".frd")
+    blocks = frd_blocks(path, file_label(path, arg))
+    blocks.pop("2C", None)
+    return blocks
 
 
-def read_frd_nodes(stem: Path) -> dict[int, np.ndarray]:
-    """The node coordinates of ``stem.frd`` (its ``2C`` block): ``{node: (x, y, z)}``."""
-    out: dict[int, np.ndarray] = {}
-    inside = False
-    with open(f"{stem}.frd") as f:
-        for line in f:
-            if line.startswith("    2C"):
-                inside = True
-            elif inside and line.startswith(" -1"):
-                out[int(line[3:13])] = np.array([float(line[13 + 12 * j:25 + 12 * j]) for j in range(3)])
-            elif inside and line.startswith(" -3"):
-                break
-    return out
+def read_frd_nodes(stem: str | Path, *, arg: str | None = None) -> dict[int, np.ndarray]:
+    """The node coordinates of ``stem.frd`` (its ``2C`` block): ``{node: (x, y, z)}``;
+    ReaderError as :func:`read_frd`, and if the file has no node block."""
+    path = run_file(stem, ".frd")
+    label = file_label(path, arg)
+    nodes = frd_blocks(path, label).get("2C")
+    if not nodes:
+        raise ReaderError(f"{label} has no node coordinates (no 2C block of -1 lines): not a "
+                          "CalculiX result, or one cut down too far")
+    return nodes
 
 
-def read_descent(stem: Path) -> float:
+def read_descent(stem: str | Path) -> float:
     """The punch's descent: minus the last printed ``u_y`` of the reference node."""
-    lines = Path(f"{stem}.dat").read_text().splitlines()
-    i = max(k for k, ln in enumerate(lines) if ln.strip().startswith("displacements"))
-    return -float(lines[i + 2].split()[2])
+    where, words = last_printed(stem, "displacements")
+    return -finite_row(words[2:3] or ["(none)"], where)[0]
 
 
 def read_increments(stem: Path) -> int | None:
@@ -189,18 +183,19 @@ def read_increments(stem: Path) -> int | None:
     A row whose attempt column ends in ``U`` is an attempt that did not
     converge and was cut back; the deck's model is one increment of the whole load.
     """
-    sta = Path(f"{stem}.sta")
+    sta = run_file(stem, ".sta")
     if not sta.is_file():
         return None
-    rows = [ln.split() for ln in sta.read_text().splitlines()[2:]]
+    rows = [ln.split() for ln in read_text(sta, file_label(sta, None)).splitlines()[2:]]
     return sum(1 for r in rows if len(r) >= 3 and not r[2].endswith("U"))
 
 
-def read_reaction(stem: Path) -> np.ndarray:
+def read_reaction(stem: str | Path) -> np.ndarray:
     """The last printed total reaction ``(RFx, RFy)`` of the block's base."""
-    lines = Path(f"{stem}.dat").read_text().splitlines()
-    i = max(k for k, ln in enumerate(lines) if ln.strip().startswith("total force"))
-    return np.array([float(v) for v in lines[i + 2].split()[:2]])
+    where, words = last_printed(stem, "total force")
+    if len(words) < 2:
+        raise ReaderError(f"{where}: {' '.join(words)!r} is not a total force RFx RFy")
+    return np.array(finite_row(words[:2], where))
 
 
 
@@ -210,33 +205,38 @@ def read_reaction(stem: Path) -> np.ndarray:
 DEALTERNATE_NODES = 4
 
 
-def read_dat(stem: Path) -> dict[str, dict[int, np.ndarray]]:
+def read_dat(stem: str | Path, *, arg: str | None = None) -> dict[str, dict[int, np.ndarray]]:
     """The printed blocks of ``stem.dat`` at the last time: ``{title: {node: values}}``.
 
     The title is the block's heading up to its first ``(``, followed by the set's
     name where the heading names one (``"displacements NSURF"``, ``"contact stress"``,
     ``"relative contact displacement"``, ``"contact print energy"``,
-    ``"total force NBASE"``); a later time's block replaces an earlier one's.
+    ``"total force NBASE"``); a later time's block replaces an earlier one's. ``stem`` may
+    name the ``.dat`` itself; ``arg`` names it in the messages. A row of numbers that is not
+    finite (``NaN``, ``Infinity``) is a :class:`ReaderError` naming the file and the line.
     """
+    path = run_file(stem, ".dat")
+    label = file_label(path, arg)
     out: dict[str, dict[int, np.ndarray]] = {}
     current: dict[int, np.ndarray] | None = None
-    with open(f"{stem}.dat") as f:
-        for line in f:
-            words = line.split()
-            if not words:
+    for i, line in enumerate(read_text(path, label).splitlines(), start=1):
+        words = line.split()
+        if not words:
+            continue
+        if words[0][0].isalpha():
+            title = line.split("(")[0].strip()
+            if " for set " in line:
+                title += " " + line.split(" for set ")[1].split()[0]
+            current = {}
+            out[title] = current
+            continue
+        if current is not None and len(words) > 1:
+            try:
+                n = int(words[0])
+            except ValueError:          # not a node's row (a total force's): the block ends
+                current = None
                 continue
-            if words[0][0].isalpha():
-                title = line.split("(")[0].strip()
-                if " for set " in line:
-                    title += " " + line.split(" for set ")[1].split()[0]
-                current = {}
-                out[title] = current
-                continue
-            if current is not None and len(words) > 1:
-                try:
-                    current[int(words[0])] = np.array([float(w) for w in words[1:]])
-                except ValueError:
-                    current = None
+            current[n] = np.array(finite_row(words[1:], f"{label}, line {i} (node {n})"))
     return out
 
 
@@ -361,13 +361,23 @@ def centre_pressure(x: np.ndarray, p: np.ndarray, a: float) -> float:
 
 
 # --------------------------------------------------------------------------- a run's file alone
-def deck_nodes(inp: Path) -> dict[int, np.ndarray]:
-    """The node coordinates of a deck's ``*NODE`` cards: ``{node: (x, y)}``."""
+def deck_nodes(inp: str | Path, *, beside: str | None = None) -> dict[int, np.ndarray]:
+    """The node coordinates of a deck's ``*NODE`` cards: ``{node: (x, y)}``; a node number or
+    coordinate that does not read, or is not finite, is a ReaderError naming the deck (and
+    ``beside``, how the messages name the ``.dat`` it gives the coordinates of)."""
+    label = file_label(Path(inp), None) if beside is None else f"the deck {str(inp)!r} beside {beside}"
     out: dict[int, np.ndarray] = {}
-    for card in parse_deck(Path(inp).read_text()):
+    try:
+        cards = parse_deck(read_text(inp, label))
+    except InputError as exc:
+        raise ReaderError(f"{label}, {exc}") from None
+    for card in cards:
         if card.name == "NODE":
             for row in card.data:
-                out[int(row[0])] = np.array([float(v) for v in row[1:3]])
+                where = f"{label}, *NODE row {', '.join(map(str, row))!r}"
+                if len(row) < 3 or not str(row[0]).strip().isdigit():
+                    raise ReaderError(f"{where}: not a node number and two coordinates")
+                out[int(row[0])] = np.array(finite_row([str(v) for v in row[1:3]], where))
     return out
 
 
@@ -412,44 +422,56 @@ def contact_pressure(path: str | Path, *, arg: str = "path") -> tuple[np.ndarray
 
     Raises
     ------
-    ValueError
-        A ``.dat`` without its deck beside it, a file without contact output,
-        fewer than 8 slave nodes with coordinates.
+    ReaderError
+        One line naming ``arg`` and the file (the file is looked up as given:
+        ``job.FRD`` is read as it is): a ``.dat`` without its deck beside it, a
+        file without contact output or node coordinates, fewer than 8 slave
+        nodes with coordinates, what :func:`read_frd`, :func:`read_dat` and
+        :func:`deck_nodes` refuse (binary or non-UTF-8 text, a number that does
+        not read or is not finite, a truncated file), and a pressure that
+        comes out non-finite (coincident nodes).
     """
     path = Path(path)
     suffix = path.suffix.lower()
     stem = path.with_suffix("")
+    label = file_label(path, arg)
     if suffix == ".dat":
-        inp = path.with_suffix(".inp")
-        if not inp.is_file():
-            raise InputError(f"`{arg}` = {str(path)!r}: a .dat holds no coordinates and the deck "
-                             f"{inp.name!r} is not beside it; put the job's .inp there (same stem) or "
-                             "give its .frd")
-        blocks = read_dat(stem)
+        inp = next((p for p in (path.with_suffix(".inp"), path.with_suffix(".INP")) if p.is_file()), None)
+        if inp is None:
+            raise ReaderError(f"{label}: a .dat holds no coordinates and the deck "
+                              f"{path.with_suffix('.inp').name!r} is not beside it; put the job's .inp "
+                              "there (same stem) or give its .frd")
+        blocks = read_dat(path, arg=arg)
         if "contact print energy" not in blocks or "relative contact displacement" not in blocks:
-            raise InputError(f"`{arg}` = {str(path)!r} holds no contact output: request "
-                             "`*CONTACT PRINT` with CSTR, CDIS, CELS in the step (threepart deck does)")
-        xy = deck_nodes(inp)
+            raise ReaderError(f"{label} holds no contact output: request "
+                              "`*CONTACT PRINT` with CSTR, CDIS, CELS in the step (threepart deck does)")
+        xy = deck_nodes(inp, beside=label)
         disp = blocks.get("displacements NSURF", {})
         copen = blocks["relative contact displacement"]
         energy = blocks["contact print energy"]
         cpress = {k: v[0] for k, v in blocks.get("contact stress", {}).items()}
     else:
-        frd = read_frd(stem)
+        frd = read_frd(path, arg=arg)
+        if not frd:
+            raise ReaderError(f"{label} holds no result block (no -4 line): empty, or not CalculiX's .frd")
         if "CONTACT" not in frd:
-            raise InputError(f"`{arg}` = {str(path)!r} has no CONTACT block: request "
-                             "`*CONTACT FILE` with CDIS, CSTR, CELS in the step")
-        xy = read_frd_nodes(stem)
+            raise ReaderError(f"{label} has no CONTACT block: request "
+                              "`*CONTACT FILE` with CDIS, CSTR, CELS in the step")
+        if any(v.size < 4 for v in frd["CONTACT"].values()):
+            raise ReaderError(f"{label}: its CONTACT block has fewer than 4 components (COPEN to CPRESS)")
+        xy = read_frd_nodes(path, arg=arg)
         disp = frd.get("DISP", {})
         if "CELS" not in frd:
-            return _cpress_points(path, frd, xy, disp, arg)
+            return _finite_points(*_cpress_points(path, frd, xy, disp, arg), label)
         copen = {k: v[:1] for k, v in frd["CONTACT"].items()}
         energy = frd["CELS"]
         cpress = {k: v[3] for k, v in frd["CONTACT"].items()}
+    if not xy:
+        raise ReaderError(f"{label}: its deck has no *NODE coordinates")
     forces = {n: v for n, v in nodal_forces(copen, energy, max(xy)).items() if n in xy}
     if len(forces) < 8:
-        raise InputError(f"`{arg}` = {str(path)!r}: {len(forces)} slave nodes with coordinates "
-                         "and contact output; at least 8 are needed")
+        raise ReaderError(f"{label}: {len(forces)} slave nodes with coordinates "
+                          "and contact output; at least 8 are needed")
     nodes = np.array(sorted(forces, key=lambda n: xy[n][0]))
     x0 = np.array([xy[n][0] for n in nodes])
     f = np.array([forces[n][0] for n in nodes])
@@ -458,7 +480,18 @@ def contact_pressure(path: str | Path, *, arg: str = "path") -> tuple[np.ndarray
     x = x0 + np.array([disp[n][0] if n in disp else 0.0 for n in nodes])
     ks = list(copen)
     K = penalty_stiffness(np.array([copen[k][0] for k in ks]), np.array([cpress.get(k, math.nan) for k in ks]))
-    return x, p, {"source": suffix[1:], "forces": f, "penalty": K, "increments": read_increments(stem)}
+    return _finite_points(x, p, {"source": suffix[1:], "forces": f, "penalty": K,
+                                 "increments": read_increments(stem)}, label)
+
+
+def _finite_points(x: np.ndarray, p: np.ndarray, info: dict[str, Any], label: str
+                   ) -> tuple[np.ndarray, np.ndarray, dict[str, Any]]:
+    """``(x, p, info)`` if every position and pressure is finite; else ReaderError naming the file."""
+    bad = np.flatnonzero(~(np.isfinite(x) & np.isfinite(p)))
+    if bad.size:
+        raise ReaderError(f"{label}: the pressure is not finite at {bad.size} of its {x.size} nodes "
+                          f"(the first at x = {x[bad[0]]:g}; coincident nodes?)")
+    return x, p, info
 
 
 def _cpress_points(path: Path, blocks: dict[str, dict[int, np.ndarray]], xyz: dict[int, np.ndarray],

@@ -1,7 +1,8 @@
 """The CSV reader: columns ``x, p`` (and optionally the shear ``q``), what ``threepart compare`` read first.
 
 An optional header line and ``#`` comment lines are skipped. A third column,
-when every row has one, is the shear ``q``.
+when every row has one, is the shear ``q``. The file is UTF-8 (a byte-order
+mark is dropped); every entry must be a finite number.
 """
 from __future__ import annotations
 
@@ -12,36 +13,57 @@ from typing import Any
 import numpy as np
 
 from . import Record, register_reader
-from threepart.errors import InputError
+from threepart.errors import InputError, ReaderError
+from threepart.textfile import finite_row, read_text
 
-__all__ = ["read_csv"]
+__all__ = ["read_csv", "COLUMNS"]
+
+#: the columns of a pressure CSV, in order (the third is optional)
+COLUMNS = ("x", "p", "q")
 
 
 def read_csv(path: Path, *, arg: str = "path", **options: Any) -> Record:
-    """The points of a CSV file: ``x, p`` per row (``x, p, q`` with the shear), compressive ``p`` positive."""
+    """The points of a CSV file: ``x, p`` per row (``x, p, q`` with the shear), compressive ``p`` positive.
+
+    Raises
+    ------
+    ReaderError
+        A file that is not UTF-8 text (:func:`threepart.textfile.read_text`), a
+        row (after the header) that is not two or three numbers, an entry that
+        is not finite (``nan``, ``inf``, ``1e400``), no rows: one line naming
+        the file and the row (counted as the file's lines).
+    """
     if options:
         raise InputError(f"`{arg}` = {str(path)!r}: a CSV takes no options, not {', '.join(options)}")
+    label = f"`{arg}` = {str(path)!r}"
     rows: list[list[float]] = []
-    with open(path, newline="", encoding="utf-8") as f:
-        for i, row in enumerate(csv.reader(line for line in f if not line.lstrip().startswith("#"))):
-            if not row or not "".join(row).strip():
+    header_seen = False
+    for line, text in enumerate(read_text(path, label).splitlines(), start=1):
+        if text.lstrip().startswith("#") or not text.strip():
+            continue
+        row = next(csv.reader([text]))
+        cells = row[:2] + (row[2:3] if len(row) > 2 and row[2].strip() else [])
+        if len(cells) < 2 or not _numbers(cells):
+            if not rows and not header_seen:
+                header_seen = True        # the header line
                 continue
-            try:
-                values = [float(row[0]), float(row[1])]
-                if len(row) > 2 and row[2].strip():
-                    values.append(float(row[2]))
-            except (ValueError, IndexError):
-                if i == 0 and not rows:
-                    continue          # a header line
-                raise InputError(f"`{arg}` = {str(path)!r}: row {i + 1} is not two numbers "
-                                 f"x, p: {','.join(row)!r}") from None
-            rows.append(values)
+            raise ReaderError(f"{label}: row {line} is not two numbers x, p: {text.strip()!r}")
+        rows.append(finite_row(cells, f"{label}: row {line}", COLUMNS))
     if not rows:
-        raise InputError(f"`{arg}` = {str(path)!r} holds no x, p rows")
+        raise ReaderError(f"{label} holds no x, p rows")
     x = np.array([r[0] for r in rows])
     p = np.array([r[1] for r in rows])
     q = np.array([r[2] for r in rows]) if all(len(r) == 3 for r in rows) else None
     return Record(x, p, q, {"source": "csv"})
+
+
+def _numbers(cells: list[str]) -> bool:
+    """Whether every cell reads as a number (else the line is a header)."""
+    try:
+        [float(c) for c in cells]
+    except ValueError:
+        return False
+    return bool(cells)
 
 
 register_reader("csv", (".csv", ".txt"), read_csv,

@@ -17,7 +17,12 @@ the pressure there from a point field: the option ``field``, or the first of
 ``shear``
     A point field of the shear traction, if wanted.
 ``component``
-    Which column of a field with several components (default: a field must have one).
+    Which column of a field with several components (default: a field must have one):
+    an integer in ``0..MAX_COMPONENT``.
+
+A file meshio cannot read, a node coordinate that is not finite anywhere in the
+mesh (refused before the surface is looked for), or a pressure or shear that is
+not finite on the surface is one :class:`~threepart.errors.ReaderError` naming the file.
 
 A file with several time steps is read at its last (XDMF time series by
 meshio's ``TimeSeriesReader``, Exodus through netCDF4); meshio alone reads
@@ -31,9 +36,10 @@ from typing import Any
 import numpy as np
 
 from . import Record, register_reader
-from threepart.errors import InputError
+from threepart.checks import integer
+from threepart.errors import InputError, ReaderError
 
-__all__ = ["read_mesh_file", "FIELDS", "SURFACE_TOLERANCE", "MESHIO_FORMATS"]
+__all__ = ["read_mesh_file", "FIELDS", "SURFACE_TOLERANCE", "MESHIO_FORMATS", "MAX_COMPONENT"]
 
 #: the pressure fields looked for, in order, when the option ``field`` is not given
 FIELDS = ("contact_pressure", "CPRESS", "pressure", "contact pressure", "PRES", "p")
@@ -48,6 +54,8 @@ MESHIO_FORMATS = {
     "exodus": ("exodus", (".e", ".exo", ".ex2", ".exii"), "Exodus II (MOOSE; the last time step)"),
 }
 _OPTIONS = ("field", "surface", "shear", "component")
+#: the largest ``component`` asked for: a point field has at most 9 (a 3-D tensor's), so 0..8
+MAX_COMPONENT = 8
 #: what meshio's readers raise on a file they cannot read (a ReadError, or the parser's own
 #: error: XML's ParseError is a SyntaxError, HDF5's and netCDF's an OSError)
 _UNREADABLE: tuple[type[BaseException], ...] = (ValueError, OSError, KeyError, IndexError, SyntaxError,
@@ -60,20 +68,27 @@ def read_mesh_file(path: Path, *, arg: str = "path", file_format: str = "vtu",
 
     Raises
     ------
+    ReaderError
+        A file meshio cannot read, a node coordinate that is not finite
+        (anywhere in the mesh), no pressure field (the message names the fields
+        present), no surface node, a pressure or shear that is not finite on
+        the surface.
     ValueError
-        An option this reader does not know, a file meshio cannot read, no
-        pressure field (the message names the fields present), no surface node,
-        a field with several components and no ``component``.
+        An option this reader does not know, a field with several components
+        and no ``component``; a ``component`` that is not an integer is a TypeError.
     """
     unknown = [k for k in options if k not in _OPTIONS]
     if unknown:
         raise InputError(f"`{arg}` = {str(path)!r}: unknown option {unknown[0]!r}; "
                          f"a mesh file takes {', '.join(_OPTIONS)}")
+    if options.get("component") is not None:
+        options["component"] = integer("component", options["component"], 0, MAX_COMPONENT)
     points, point_data, point_sets = _load(path, file_format, arg)
+    _finite_points(points, path, arg)
     names = [options["field"]] if options.get("field") else [f for f in FIELDS if f in point_data]
     if not names or names[0] not in point_data:
         looked = repr(options["field"]) if options.get("field") else "any of " + ", ".join(FIELDS)
-        raise InputError(f"`{arg}` = {str(path)!r} has no point field {looked}; its point fields: "
+        raise ReaderError(f"`{arg}` = {str(path)!r} has no point field {looked}; its point fields: "
                          f"{', '.join(sorted(point_data)) or 'none'}; name the pressure with field=NAME")
     nodes = _surface(points, point_data, point_sets, options.get("surface"), path, arg)
     x = points[nodes, 0]
@@ -83,12 +98,13 @@ def read_mesh_file(path: Path, *, arg: str = "path", file_format: str = "vtu",
     q = None
     if options.get("shear"):
         if options["shear"] not in point_data:
-            raise InputError(f"`{arg}` = {str(path)!r} has no point field {options['shear']!r} (shear); "
+            raise ReaderError(f"`{arg}` = {str(path)!r} has no point field {options['shear']!r} (shear); "
                              f"its point fields: {', '.join(sorted(point_data))}")
         q = _column(point_data[options["shear"]], options.get("component"), options["shear"], path, arg)[nodes]
-    if not np.all(np.isfinite(p)):
-        raise InputError(f"`{arg}` = {str(path)!r}: the field {names[0]!r} is not finite at "
-                         f"{int(np.count_nonzero(~np.isfinite(p)))} of the {nodes.size} surface nodes")
+    for name, v in ((names[0], p), (options.get("shear"), q)):
+        if v is not None and not np.all(np.isfinite(v)):
+            raise ReaderError(f"`{arg}` = {str(path)!r}: the field {name!r} is not finite at "
+                              f"{int(np.count_nonzero(~np.isfinite(v)))} of the {nodes.size} surface nodes")
     return Record(x, p, q, {"source": file_format, "field": names[0], "nodes": int(nodes.size)})
 
 
@@ -108,8 +124,8 @@ def _load(path: Path, file_format: str, arg: str
         mesh = getattr(meshio, file_format).read(str(path))
     except (meshio.ReadError, *_UNREADABLE) as exc:
         if file_format != "xdmf":
-            raise InputError(f"`{arg}` = {str(path)!r}: meshio cannot read it as {file_format}: "
-                             f"{str(exc).splitlines()[0] if str(exc) else type(exc).__name__}") from None
+            raise ReaderError(f"`{arg}` = {str(path)!r}: meshio cannot read it as {file_format}: "
+                              f"{str(exc).splitlines()[0] if str(exc) else type(exc).__name__}") from None
         return _xdmf_last_step(path, arg)
     point_data = {k: np.asarray(v) for k, v in mesh.point_data.items()}
     if file_format == "exodus":
@@ -129,8 +145,8 @@ def _xdmf_last_step(path: Path, arg: str) -> tuple[np.ndarray, dict[str, np.ndar
             for k in range(reader.num_steps):
                 _, data, _ = reader.read_data(k)
     except (meshio.ReadError, *_UNREADABLE) as exc:
-        raise InputError(f"`{arg}` = {str(path)!r}: meshio cannot read it as xdmf: "
-                         f"{str(exc).splitlines()[0] if str(exc) else type(exc).__name__}") from None
+        raise ReaderError(f"`{arg}` = {str(path)!r}: meshio cannot read it as xdmf: "
+                          f"{str(exc).splitlines()[0] if str(exc) else type(exc).__name__}") from None
     return np.asarray(points, dtype=float), {k: np.asarray(v) for k, v in data.items()}, {}
 
 
@@ -152,6 +168,15 @@ def _exodus_last_step(path: Path) -> dict[str, np.ndarray]:
         return out
 
 
+def _finite_points(points: np.ndarray, path: Path, arg: str) -> None:
+    """Refuse a mesh with a node coordinate that is not finite, anywhere (before the surface is looked for)."""
+    bad = np.flatnonzero(~np.all(np.isfinite(points), axis=1))
+    if bad.size:
+        where = ", ".join(f"{v:g}" for v in points[bad[0]])
+        raise ReaderError(f"`{arg}` = {str(path)!r}: {bad.size} of its {len(points)} nodes have a "
+                          f"coordinate that is not finite (node {int(bad[0])} at ({where}))")
+
+
 def _surface(points: np.ndarray, point_data: dict[str, np.ndarray], point_sets: dict[str, np.ndarray],
              name: str | None, path: Path, arg: str) -> np.ndarray:
     """The surface nodes: the set ``name`` (a point set, or a point field nonzero there), or y = 0."""
@@ -166,22 +191,22 @@ def _surface(points: np.ndarray, point_data: dict[str, np.ndarray], point_sets: 
         elif name in point_data:
             nodes = np.flatnonzero(np.asarray(point_data[name]).reshape(len(points), -1)[:, 0] != 0)
         else:
-            raise InputError(f"`{arg}` = {str(path)!r} has no node set {name!r}; its point sets: "
+            raise ReaderError(f"`{arg}` = {str(path)!r} has no node set {name!r}; its point sets: "
                              f"{', '.join(sorted(point_sets)) or 'none'}, its point fields: "
                              f"{', '.join(sorted(point_data)) or 'none'}")
         where = f"in the set {name!r}"
     else:
         if points.shape[1] < 2:
-            raise InputError(f"`{arg}` = {str(path)!r}: a mesh of one dimension has no surface y = 0")
+            raise ReaderError(f"`{arg}` = {str(path)!r}: a mesh of one dimension has no surface y = 0")
         extent = float(np.ptp(points[:, :2], axis=0).max()) or 1.0
         nodes = np.flatnonzero(np.abs(points[:, 1]) <= SURFACE_TOLERANCE * extent)
         where = (f"on the top surface y = 0 (y spans [{points[:, 1].min():.6g}, "
                  f"{points[:, 1].max():.6g}]); name the contact nodes' set with surface=NAME")
     if nodes.size == 0:
-        raise InputError(f"`{arg}` = {str(path)!r}: no node lies {where}")
+        raise ReaderError(f"`{arg}` = {str(path)!r}: no node lies {where}")
     x = points[nodes, 0]
     if np.unique(x).size < x.size:
-        raise InputError(f"`{arg}` = {str(path)!r}: several surface nodes share an x (two bodies "
+        raise ReaderError(f"`{arg}` = {str(path)!r}: several surface nodes share an x (two bodies "
                          "touching at y = 0?); name the block's contact nodes with surface=NAME")
     return nodes
 
@@ -192,7 +217,7 @@ def _column(values: np.ndarray, component: int | None, name: str, path: Path, ar
     v = v.reshape(v.shape[0], -1)
     if v.shape[1] == 1:
         return v[:, 0]
-    if component is None or not 0 <= int(component) < v.shape[1]:
+    if component is None or not 0 <= component < v.shape[1]:
         raise InputError(f"`{arg}` = {str(path)!r}: the field {name!r} has {v.shape[1]} components; "
                          f"pick one with component=0..{v.shape[1] - 1}")
     return v[:, int(component)]
