@@ -21,6 +21,7 @@ solve_partial_slip  -- Ciavarella-Jaeger stick zone [-(d+e), d-e] and shear q(x)
 fretting_cycle      -- Q: 0 -> Q_max -> -Q_max -> Q_max by Masing's rule: stick zones, delta, energy per cycle
 steady_state        -- periodic steady state of an in-phase cycle between two (P, s, Q, sigma_bulk):
                        permanent stick zone, energy per cycle, shakedown (docs/STEADY_STATE.md)
+wear_limit          -- the worn limit of a fretting cycle: singular pressure on the stick zone, worn depth (docs/WEAR.md)
 
 Errors (from :mod:`threepart.errors`)
 ------
@@ -59,3 +60,7 @@ __all__ = [
 ]
 
 from . import method as _method  # registers this solver in threepart.registry
+
+# the worn limit of partial-slip fretting (issue 39, docs/WEAR.md)
+from .wear import STICK_RULES, WearLimit, wear_limit  # noqa: E402
+__all__ += ["wear_limit", "WearLimit", "STICK_RULES"]

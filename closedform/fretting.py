@@ -83,7 +83,7 @@ from .slip import (check_coulomb, check_slip_direction, stick_zone_bound, stick_
                    stick_zones_on_path)
 
 __all__ = ["FrettingSolution", "fretting_cycle", "approach", "stick_gap", "omega",
-           "loop_energy"]
+           "loop_energy", "fretting_iv"]
 
 #: Gauss–Legendre nodes of the first energy quadrature; doubled until it settles
 ENERGY_NODES = 16
@@ -219,7 +219,7 @@ class FrettingSolution(MasingCycle):
         return np.where((x > -n.a) & (x < n.c), self.f * gap, 0.0)
 
 
-def _fretting_iv(normal: NormalResult, Q_max: float, f: float, states: int
+def fretting_iv(normal: NormalResult, Q_max: float, f: float, states: int
                  ) -> tuple[float, float, int]:
     Q_max, f = check_shear(normal, Q_max, f, "Q_max", "there is no fretting cycle",
                            argument="normal_solution")
@@ -338,7 +338,7 @@ def fretting_cycle(normal_solution: NormalResult, Q_max: float, f: float, *,
         The energy quadrature did not settle (not expected).
     """
     normal = normal_solution
-    Q_max, f, states = _fretting_iv(normal, Q_max, f, states)
+    Q_max, f, states = fretting_iv(normal, Q_max, f, states)
     sigma_bulk = check_sigma_bulk(sigma_bulk, normal, Q_max)
     t0 = time.perf_counter()
     punch, A, alpha = normal.punch, normal.A, normal.alpha
