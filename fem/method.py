@@ -2,9 +2,12 @@
 
 The FE models are bodies of finite size and need Young's modulus and Poisson's
 ratio; the adapter converts the compliance ``A`` (eq. 4) at ``nu`` (default
-:data:`NU`): the normal problem is a rigid punch on a block of modulus
-``2(1 - nu^2)/A``; partial slip and the fretting cycle are two similar bodies,
-each of modulus ``4(1 - nu^2)/A``, which solve their own normal problem with
+:data:`NU`) by the one mapping of :mod:`threepart.material`: the normal problem is
+a rigid punch on a block of modulus ``2(1 - nu^2)/A``
+(:func:`threepart.material.rigid_punch_modulus`: ``E/2`` for two similar bodies of
+``E``, the catalogue's and the command line's convention); partial slip and the
+fretting cycle are two similar bodies, each of modulus ``4(1 - nu^2)/A``
+(:func:`threepart.material.similar_pair_modulus`), which solve their own normal problem with
 the shear; so is the steady state of an in-phase cycle (:func:`fem.steady_state`). In half-plane theory the solution depends on the material only
 through ``A``; ``nu`` affects only the finite block's far field.
 
@@ -14,6 +17,7 @@ from __future__ import annotations
 
 from typing import Any
 
+from threepart import material
 from threepart.material import NU   # re-exported: the FE models' nu when only A is given
 from threepart.punch import Punch
 from threepart.registry import Method, register
@@ -38,13 +42,12 @@ def _nu(nu: float | None) -> float:
 
 def rigid_punch_modulus(A: float, nu: float | None = None) -> float:
     """Young's modulus of the block on which a rigid punch has compliance ``A``: ``2(1 - nu^2)/A``."""
-    v = _nu(nu)
-    return 2.0 * (1.0 - v * v) / positive("A", A)
+    return material.rigid_punch_modulus(A, _nu(nu))
 
 
 def pair_modulus(A: float, nu: float | None = None) -> float:
     """Young's modulus of each of two similar bodies of composite compliance ``A``: ``4(1 - nu^2)/A``."""
-    return 2.0 * rigid_punch_modulus(A, nu)
+    return material.similar_pair_modulus(positive("A", A), _nu(nu))
 
 
 def _normal(punch: Punch, P: float, s: float, *, A: float, tilt: str = "free",

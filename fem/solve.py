@@ -269,7 +269,7 @@ def solve_normal(punch: Punch, P: float, s: float = 0.0, *, E: float, nu: float,
         Lever arm of the load (pressure centroid), positive to the right; ignored
         (and returned as the centroid) when ``tilt == "suppressed"``.
     E, nu
-        Substrate's Young's modulus and Poisson's ratio (plane strain).
+        The block's, under the rigid punch (two similar bodies of E: E/2, ``material.block_modulus``).
     tilt
         ``"free"``: translation and tilt unknown; ``"suppressed"``: ``alpha = 0``.
     mesh

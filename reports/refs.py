@@ -170,6 +170,15 @@ class _Source:
         return out
 
 
+def _units(case: Case) -> str:
+    """The units of a case and what its material means (the one convention, :mod:`threepart.material`)."""
+    if case.material is None:
+        return "nondimensional (consistent units; A given)"
+    if case.bodies == "rigid punch":
+        return "mm, N/mm, MPa; E, nu of the half-plane under a rigid punch, A = 2(1 - nu^2)/E"
+    return "mm, N/mm, MPa; E, nu of both bodies (two similar bodies), A = 4(1 - nu^2)/E"
+
+
 def _inputs(case: Case) -> dict[str, Any]:
     d = case.as_dict()
     inputs = {"punch": {k: d["punch"][k] for k in ("R1", "R2", "b", "R")},
@@ -223,7 +232,7 @@ def reference(case: Case) -> dict[str, Any]:
     doc: dict[str, Any] = {
         "document": "case", "dataset_version": DATASET_VERSION, "threepart_version": _version(),
         "name": case.name, "description": case.description, "kind": case.kind,
-        "units": "mm, N/mm, MPa" if case.material is not None else "nondimensional (consistent units; A given)",
+        "units": _units(case),
         "source": _source(case, src),
         "inputs": _inputs(case),
         "solution": solution,

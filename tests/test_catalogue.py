@@ -30,7 +30,7 @@ def test_verification_suite_covers_every_punch_kind_and_load():
     assert any(c.kind == "slip" and c.material and BULK_MPA[0] <= c.sigma_bulk <= BULK_MPA[1] for c in inside)
     sym = get_case("caseA_sym")
     assert sym.punch.R1 == sym.punch.R2 == 10.0 and sym.punch.b == 1.0
-    assert sym.material == (210e3, 0.3) and sym.A == rigid_punch(210e3, 0.3)
+    assert sym.material == (210e3, 0.3) and sym.bodies == "rigid punch" and sym.A == rigid_punch(210e3, 0.3)
     assert sym.load_4PA_over_b == pytest.approx(1.0, rel=tolerance("catalogue", "paper_load").limit)
 
 
@@ -64,11 +64,11 @@ def test_every_case_names_known_suites_and_names_are_unique():
 
 def test_a_case_needs_one_of_material_and_compliance(tmp_path):
     data = json.loads(CASES_FILE.read_text(encoding="utf-8"))
-    data["cases"] = [dict(data["cases"][-1], material={"E": 2.0, "nu": 0.0})]
+    data["cases"] = [dict(data["cases"][-1], material={"E": 4000.0, "nu": 0.0})]
     data["cases"][0].pop("A")
     ok = tmp_path / "ok.json"
     ok.write_text(json.dumps(data))
-    assert load_cases(None, ok)[0].A == 1.0        # 2 (1 - 0) / 2
+    assert load_cases(None, ok)[0].A == 1e-3       # two similar bodies: 4 (1 - 0) / 4000
     data["cases"][0]["A"] = 1.0
     both = tmp_path / "both.json"
     both.write_text(json.dumps(data))

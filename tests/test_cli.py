@@ -540,17 +540,18 @@ def test_compare_refuses_a_pressure_whose_load_overflows_before_writing(capsys, 
 # ---------------------------------------------------------------------------------------
 # a modulus in GPa, unbounded work
 # ---------------------------------------------------------------------------------------
-def test_a_modulus_in_gpa_is_named_when_the_slope_is_past_the_limit(capsys):
-    """--E 210 (steel in GPa) at P = 400 makes the same contact as --E 210000 at P = 400000 (half-plane
-    theory depends on A P only): the same slope past the limit, but only the first names --E."""
-    base = ["solve", "--R1", "10", "--R2", "5", "--b", "1", "--nu", "0.3", "--rigid", "--s", "0.1"]
-    assert main([*base, "--E", "210", "--P", "400"]) == 2
-    gpa = _one_line_error(capsys)
-    assert main([*base, "--E", "210000", "--P", "400000"]) == 2
-    mpa = _one_line_error(capsys)
-    assert "is `--E` = 210 in MPa (steel: 210000, not 210)?" in gpa
-    slope = re.search(r"slope \(tilt, profile or surface\) reaches (\S+)", mpa).group(1)
-    assert f"reaches {slope}" in gpa and "`--E`" not in mpa
+@pytest.mark.parametrize("E, unit", [("210", "GPa"), ("210e9", "Pa")])
+def test_a_modulus_in_other_units_is_refused_before_any_solve(capsys, E, unit):
+    """--E 210 (steel in GPa) or 210e9 (in Pa) lies outside the moduli of engineering solids in MPa
+    (threepart.units.E_RANGE): one line naming --E and the range, exit 2, whatever the load."""
+    from threepart.units import E_RANGE
+
+    base = ["solve", "--R1", "10", "--R2", "5", "--b", "1", "--nu", "0.3", "--s", "0.1", "--P", "400"]
+    assert main([*base, "--E", E]) == 2
+    err = _one_line_error(capsys)
+    assert "`--E`" in err and f"[{E_RANGE[0]:g}, {E_RANGE[1]:g}] MPa" in err, (unit, err)
+    assert main([*base, "--E", "210000"]) == 0
+    capsys.readouterr()
 
 
 FATIGUE = ["fatigue", "--R1", "10", "--R2", "10", "--b", "0", "--E", "210000", "--nu", "0.3", "--P", "100",

@@ -62,3 +62,18 @@ def test_the_old_homes_raise_the_same_classes():
 def test_a_refusal_is_caught_as_a_threepart_error():
     with pytest.raises(threepart.ThreepartError, match="`s`"):
         threepart.solve(threepart.Punch(R1=10, R2=5, b=1), 400, 50.0, A=1e-5)
+
+
+@pytest.mark.parametrize("error", ["InputTypeError", "ManifestError", "CcxError", "ReaderError"])
+def test_the_command_line_gives_any_refusal_one_line_and_status_2(monkeypatch, capsys, error):
+    """Whatever built-in base a refusal has (TypeError, AssertionError, RuntimeError), the command
+    line prints its one line and exits 2, never a traceback."""
+    from threepart.cli import _main, solve
+
+    def refuse(args):
+        raise getattr(errors, error)(f"`x` = 1 breaks its limit ({error})")
+
+    monkeypatch.setattr(solve, "run", refuse)
+    status = _main.main(["solve", "--case", "caseA_sym"])
+    err = capsys.readouterr().err.strip().splitlines()
+    assert status == 2 and len(err) == 1 and error in err[0], err

@@ -354,6 +354,7 @@ def match(flank_result: Any, edge: str, R: float | None = None, P: float | None 
     nu = NU if nu is None else nu
     target = edges(flank_result)[k]
     assert target.K_T is not None and target.sigma_bulk is not None
+    _slip_zone_iv(flank_result, edge, k)
     if R is None and P is None:
         R = _best_radius(flank_result, k, target, method, nu)
     pad, R, P, Q, result, mine, r, s_flank, s_pad, error = _pad(flank_result, k, target, method, nu,
@@ -363,6 +364,23 @@ def match(flank_result: Any, edge: str, R: float | None = None, P: float | None 
     found = _fatigue(flank_result, result, target, mine, slip, sign, nu) if fatigue else {}
     return Match(edge, pad, R, P, Q, flank_result.sigma_bulk, flank_result.f, flank_result.normal.A,
                  result, target, mine, r, s_flank, s_pad, error, found)
+
+
+def _slip_zone_iv(flank: Any, edge: str, k: int) -> None:
+    """Refuse a flank whose slip zone at ``edge`` is none (``Q = 0``) or below the rounding of its ends.
+
+    The σxx comparison runs over the slip zone: over none it would be 0/0, and below
+    ``tolerance("match", "slip_zone_min")`` of the contact width the rounding of the
+    contact and stick-zone ends sets its size (issue 37).
+    """
+    from .tolerances import tolerance
+    slip, width = _exact_slip(flank, k), flank.normal.width
+    least = tolerance("match", "slip_zone_min").limit
+    if slip > least * width:
+        return
+    raise InputError(f"`flank_result` has no slip zone to match at its {edge} edge: it is "
+                     f"{max(slip, 0.0):.3g}, not over {least:g} of the contact width {width:.6g} "
+                     f"(Q = {flank.Q:g}, sigma_bulk = {flank.sigma_bulk:g}); give a larger shear load")
 
 
 #: the pad radii :func:`match` searches when given neither ``R`` nor ``P``: factors of the pad as
@@ -387,6 +405,8 @@ def _pad(flank: Any, k: int, target: Edge, method: str, nu: float, *, R: float |
     result = solve(pad, P, 0.0, A=A, Q=Q, f=f, sigma_bulk=sigma, method=method)
     mine = edges(result)[k]
     slip = min(_exact_slip(flank, k), _exact_slip(result, k))
+    if not slip > 0.0:   # the flank's is checked by match: the pad's, of the same K_T/K_N
+        raise InputError(f"the pad `R` = {R:.6g} has no slip zone at its {SIDES[k]} edge to compare")
     r = slip * (np.arange(SXX_POINTS) + 0.5) / SXX_POINTS
     zero = np.zeros_like(r)
     s_flank = flank.stress(target.x + sign * r, zero, nu=nu).sxx
@@ -413,7 +433,8 @@ def _best_radius(flank: Any, k: int, target: Edge, method: str, nu: float) -> fl
     if not math.isfinite(errors[i]):
         return R0                     # no pad in the range fits: the width rule, refused by pad_loads
     lo, hi = grid[max(i - 1, 0)], grid[min(i + 1, len(grid) - 1)]
-    best = minimize_scalar(error, bounds=(lo, hi), method="bounded", options={"xatol": 1e-3})
+    with np.errstate(invalid="ignore"):   # a candidate that slides is inf: Brent's parabola steps past it
+        best = minimize_scalar(error, bounds=(lo, hi), method="bounded", options={"xatol": 1e-3})
     return R0 * math.exp(float(best.x) if best.fun <= errors[i] else float(grid[i]))
 
 

@@ -19,7 +19,7 @@ from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Any
 
-from .material import rigid_punch
+from .material import BODIES, block_modulus, material_compliance, modulus
 from .punch import Punch
 from .registry import lift_off
 from .validate import finite, positive, show
@@ -39,9 +39,12 @@ LIFT_OFF_METHOD = "closedform"
 class Case:
     """One case of the catalogue: punch, material or compliance, loads and (for partial slip) Q and f.
 
-    Exactly one of ``material`` (``(E, nu)`` of the elastic half-plane under a
-    rigid punch) and ``compliance`` (``A`` itself, for a nondimensional case)
-    is given. ``s`` is the lever arm; when ``s_lift_off_fraction`` is set
+    Exactly one of ``material`` (``(E, nu)``, E in MPa) and ``compliance``
+    (``A`` itself, for a nondimensional case) is given. A material is that of
+    both bodies, two similar elastic bodies, ``A = 4 (1 - nu^2)/E`` (the one
+    convention, :func:`threepart.material.material_compliance`), unless
+    ``bodies`` says ``"rigid punch"``: a rigid punch on an elastic half-plane of
+    that material, ``A = 2 (1 - nu^2)/E``. ``s`` is the lever arm; when ``s_lift_off_fraction`` is set
     instead, :meth:`resolved` computes ``s`` from the lift-off range, using the
     stored lift-off lever arm ``s_max`` when there is one (a fraction above 1
     is past lift-off). ``closedform_refuses`` names the error the closed form
@@ -74,6 +77,7 @@ class Case:
     cycle: bool = False
     sigma_bulk: float = 0.0
     states: tuple[tuple[float, float, float, float], tuple[float, float, float, float]] | None = None
+    bodies: str = BODIES[0]
 
     @property
     def beyond(self) -> bool:
@@ -88,15 +92,21 @@ class Case:
     def __post_init__(self) -> None:
         if (self.material is None) == (self.compliance is None):
             raise InputError(f"case {self.name!r} needs exactly one of `material` (E, nu) and `A`")
+        if self.bodies not in BODIES:
+            raise InputError(f"case {self.name!r}: `bodies` = {self.bodies!r} must be one of {BODIES}")
+        if self.compliance is not None and self.bodies != BODIES[0]:
+            raise InputError(f"case {self.name!r} gives `A` itself: `bodies` applies to a material (E, nu)")
 
     @property
     def E(self) -> float:
-        """Young's modulus of the half-plane; ``ValueError`` for a nondimensional case."""
+        """Young's modulus of both bodies (of the half-plane under a ``"rigid punch"``); ``ValueError``
+        for a nondimensional case."""
         return self._material()[0]
 
     @property
     def nu(self) -> float:
-        """Poisson's ratio of the half-plane; ``ValueError`` for a nondimensional case."""
+        """Poisson's ratio of both bodies (of the half-plane under a ``"rigid punch"``); ``ValueError``
+        for a nondimensional case."""
         return self._material()[1]
 
     def _material(self) -> tuple[float, float]:
@@ -106,10 +116,18 @@ class Case:
 
     @property
     def A(self) -> float:
-        """Compliance of eq. (4): the given ``A``, or a rigid punch on the half-plane (E, nu)."""
+        """Compliance of eq. (4): the given ``A``, or that of the material and its ``bodies``: two
+        similar bodies, ``4 (1 - nu^2)/E``, or a rigid punch, ``2 (1 - nu^2)/E``."""
         if self.compliance is not None:
             return self.compliance
-        return rigid_punch(*self._material())
+        return material_compliance(*self._material(), bodies=self.bodies)
+
+    @property
+    def block_E(self) -> float:
+        """The modulus of the FE normal model's block under its rigid punch that has this case's ``A``
+        (:func:`threepart.material.block_modulus`): ``E`` for a ``"rigid punch"`` case, ``E/2`` for two
+        similar bodies of ``E``, the same ``nu``. ``ValueError`` for a nondimensional case."""
+        return block_modulus(self._material()[0], self.bodies)
 
     @property
     def kind(self) -> str:
@@ -147,7 +165,7 @@ class Case:
 
     def normal_key(self) -> tuple[Any, ...]:
         """Cases with equal keys share one normal problem (partial slip reuses it)."""
-        return (self.punch, self.material, self.compliance, self.P, self.s, self.tilt)
+        return (self.punch, self.material, self.bodies, self.compliance, self.P, self.s, self.tilt)
 
     def resolved(self) -> Case:
         """This case with ``s`` a number (from the lift-off fraction if one is given)."""
@@ -167,7 +185,8 @@ class Case:
         return {"name": self.name, "description": self.description, "kind": self.kind,
                 "punch": {"R1": p.R1, "R2": p.R2, "b": p.b, "R": None if math.isinf(p.R) else p.R,
                           "case": p.case},
-                "E": E, "nu": nu, "A": self.A, "P": self.P, "s": self.s, "tilt": self.tilt,
+                "E": E, "nu": nu, "bodies": None if self.material is None else self.bodies,
+                "A": self.A, "P": self.P, "s": self.s, "tilt": self.tilt,
                 "s_lift_off_fraction": self.s_lift_off_fraction, "load_4PA_over_b":
                     None if math.isinf(self.load_4PA_over_b) else self.load_4PA_over_b,
                 "f": self.f, "Q_over_fP": self.Q_over_fP, "Q": self.Q,
@@ -205,7 +224,7 @@ def _checked_case(c: Any, default_material: Any, path: str | Path | None, i: int
         if case.states is not None and case.f is None:
             raise InputError("`states` (a cycle) needs the coefficient of friction `f`")
         if case.material is not None:
-            positive("E", case.material[0])
+            modulus(case.material[0])
             finite("nu", case.material[1])
     except KeyError as exc:
         raise InputError(f"{where} has no field {exc.args[0]!r}") from None
@@ -227,7 +246,8 @@ def _case(c: dict[str, Any], default_material: dict[str, float]) -> Case:
                 s_lift_off_fraction=c.get("s_lift_off_fraction"), s_max=c.get("s_max"),
                 f=c.get("f"), Q_over_fP=c.get("Q_over_fP"), suites=tuple(c["suites"]),
                 closedform_refuses=c.get("closedform_refuses"), cycle=bool(c.get("cycle", False)),
-                sigma_bulk=float(c.get("sigma_bulk", 0.0)), states=_states(c.get("states")))
+                sigma_bulk=float(c.get("sigma_bulk", 0.0)), states=_states(c.get("states")),
+                bodies=c.get("bodies", BODIES[0]))
 
 
 def _states(states: Any) -> tuple[tuple[float, float, float, float], tuple[float, float, float, float]] | None:

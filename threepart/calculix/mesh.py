@@ -249,7 +249,7 @@ def _parabola(occ: Any, punch: Punch, ends: tuple[int, int], x0: float, x1: floa
     ``ends`` are the gmsh points at ``x0`` and ``x1``; the middle control point is where
     the tangents at both ends meet.
     """
-    if float(punch.curvature(0.5 * (x0 + x1))) == 0.0:     # the flat centre of case A
+    if -punch.b <= x0 and x1 <= punch.b:      # the flat centre of case A (a Hertz face, b = 0, has none)
         return occ.addLine(ends[0], ends[1])
     g0 = float(punch.profile(x0)) - lift
     s0 = float(punch.slope(x0 + 1e-12 * (x1 - x0)))
@@ -281,7 +281,9 @@ def build_model(punch: Punch, a: float, c: float, settings: DeckSettings = DeckS
     xl, xr = -a - 2 * m, c + 2 * m       # the punch's face
     xm = 0.5 * (c - a)
     half, depth = 0.5 * settings.block * W, settings.block * W
-    breaks = sorted({xl, xr, xf0, xf1, *(x for x in (-punch.b, punch.b) if xl < x < xr)})
+    # the face's pieces meet at -b and b; a Hertz face (b = 0, R1 = R2) is one parabola, not split
+    kinks = () if punch.b == 0 and punch.R1 == punch.R2 else (-punch.b, punch.b)
+    breaks = sorted({xl, xr, xf0, xf1, *(x for x in kinks if xl < x < xr)})
     xs = np.union1d(np.linspace(xl, xr, 4001), breaks)
     lift = float(np.min(punch.profile(xs)))     # the face just touches y = 0
     with gmsh_session():

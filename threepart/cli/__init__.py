@@ -7,12 +7,14 @@ calls :func:`main`.
 Sub-command modules
 -------------------
 solve        -- ``solve`` and ``slip``: the normal and the partial-slip problem (threepart.solve)
+cases        -- ``cases``: the catalogue's cases with their kinds and descriptions, for ``--case NAME``
 verify       -- ``verify``: closed form against SIE and FEM, the tolerance report
 figures      -- ``figures``: the paper's result figures, with the SIE solution as markers
 map          -- ``map``: the finite-body validity map, on dask.distributed
 export_refs  -- ``export-refs``: the catalogue's reference solutions as a versioned dataset
 fatigue      -- ``fatigue``: fretting-fatigue parameters of a fretting or flight cycle (threepart.fretting)
 cycle        -- ``cycle``: the steady state of an in-phase flight cycle, or a load history
+match        -- ``match``: the Hertzian pad test that reproduces one edge of a flank
 deck         -- ``deck``: a ready-to-run CalculiX input deck
 compare      -- ``compare``: judge another code's contact pressure against threepart
 
@@ -23,7 +25,7 @@ module and one entry in :data:`threepart.cli._main.SUBCOMMANDS` (and its name in
 
 Shared modules
 --------------
-_args        -- the parser, number options (real_arg, the ``--s -1e-3`` joining), option groups
+_args        -- the parser, number options (real_arg, the ``--s -1e-3`` joining), option groups, ``--case``
 _output      -- printing (text and ``--json``), CSV and VTU writers, the units
 _main        -- build_parser (one loop over the sub-command modules), main: exit status, one-line errors
 

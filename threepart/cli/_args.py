@@ -18,6 +18,11 @@ state_args          -- the options ``--state0 --state1``: a flight cycle's two e
 method_args         -- the option group ``--method --mesh``
 method_options      -- the options ``--method`` declares, from the command line (``mesh``, ``n``, ``nu``)
 problem_args, problem -- ``--case NAME`` or the punch, loads and material (deck, compare)
+given_R             -- ``--R``, or inf (a flat centre) where it is not given
+case_arg            -- the option ``--case NAME`` of every command that takes a problem
+catalogue_case      -- the resolved catalogue case of ``--case``, every option of the problem refused beside it
+need_options        -- refuse a problem given neither by ``--case`` nor whole: the first missing option named
+E_HELP, NU_HELP     -- the help of ``--E``/``--nu``: the one material convention (both bodies)
 FORCE_HELP          -- the help of the ``--force`` that an output directory no longer needs
 """
 from __future__ import annotations
@@ -28,11 +33,11 @@ import sys
 from typing import Any, NoReturn, Sequence
 
 from threepart.errors import InputError, ThreepartError
-from threepart.units import UNITS
+from threepart.units import E_RANGE, UNITS
 
 __all__ = ["UsageError", "Parser", "NUMERIC_OPTIONS", "LIST_OPTIONS", "join_negative_numbers",
            "real_arg", "number_list", "state_arg", "constant_arg", "labelled", "punch_args", "state_args", "method_args", "method_options",
-           "problem_args", "problem", "FORCE_HELP"]
+           "problem_args", "problem", "given_R", "case_arg", "catalogue_case", "need_options", "FORCE_HELP", "E_HELP", "NU_HELP"]
 
 #: options that take a number; ``--s -1e-3`` is read as ``--s=-1e-3`` (argparse alone
 #: would take ``-1e-3`` for an option)
@@ -52,12 +57,36 @@ class UsageError(ThreepartError):
     """A command-line usage error, already formatted as one line."""
 
 
+#: the help of ``--E``: the one material convention (:mod:`threepart.material`), for every command
+E_HELP = ("Young's modulus of BOTH bodies (two similar elastic bodies, A = 4(1 - nu^2)/E), in MPa "
+          f"inside [{E_RANGE[0]:g}, {E_RANGE[1]:g}] (steel: 210000)")
+#: the help of ``--nu``
+NU_HELP = "Poisson's ratio of both bodies"
+
+
 class Parser(argparse.ArgumentParser):
-    """An argument parser whose usage errors are one line (raised, so that main returns 2)."""
+    """An argument parser whose usage errors are one line (raised, so that main returns 2).
+
+    Every command's ``--E`` is checked here, once, against the moduli of engineering solids in MPa
+    (:func:`threepart.material.modulus`): ``--E 210e9`` (Pa) or ``--E 210`` (GPa) is a usage error.
+    """
 
     def error(self, message: str) -> NoReturn:
         msg = " ".join(message.split())
         raise UsageError(f"{self.prog}: error: {msg} (see `{self.prog} --help`)")
+
+    def parse_known_args(self, args: Sequence[str] | None = None,   # type: ignore[override]
+                         namespace: argparse.Namespace | None = None) -> tuple[argparse.Namespace, list[str]]:
+        ns, rest = super().parse_known_args(args, namespace)
+        E = getattr(ns, "E", None)
+        if E is not None:
+            from threepart.material import modulus
+
+            try:
+                modulus(E, "--E")
+            except InputError as exc:
+                self.error(str(exc))
+        return ns, rest
 
 
 def _is_number(token: str) -> bool:
@@ -159,19 +188,24 @@ def labelled(help_text: str, quantity: str) -> str:
 
 
 def punch_args(p: argparse.ArgumentParser) -> None:
-    """``--R1 --R2 --b --R``: the punch of eq. (2), for every command that takes one."""
-    g = p.add_argument_group("punch geometry (eq. 2)")
-    g.add_argument("--R1", type=float, required=True, help=labelled("left edge radius, > 0", "R1"))
-    g.add_argument("--R2", type=float, required=True, help=labelled("right edge radius, > 0", "R2"))
-    g.add_argument("--b", type=float, required=True,
-                   help=labelled("half-width of the central segment, >= 0", "b"))
-    g.add_argument("--R", type=float, default=float("inf"),
+    """``--R1 --R2 --b --R``: the punch of eq. (2), for every command that takes one (required
+    unless ``--case`` gives it: :func:`need_options`)."""
+    g = p.add_argument_group("punch geometry (eq. 2), unless --case")
+    g.add_argument("--R1", type=float, help=labelled("left edge radius, > 0", "R1"))
+    g.add_argument("--R2", type=float, help=labelled("right edge radius, > 0", "R2"))
+    g.add_argument("--b", type=float, help=labelled("half-width of the central segment, >= 0", "b"))
+    g.add_argument("--R", type=float,   # None: inf, the default (given_R reads it)
                    help=labelled("central radius: inf (flat, case A, default), negative for "
                                  "concave (case B)", "R"))
 
 
+def given_R(args: argparse.Namespace) -> float:
+    """``--R``, or inf (a flat centre) where it is not given."""
+    return math.inf if args.R is None else float(args.R)
+
+
 def state_args(group: Any) -> None:
-    """``--state0 --state1``: a flight cycle's two ends, instead of one load (``solve``, ``slip``, ``fatigue``)."""
+    """``--state0 --state1``: a flight cycle's two ends, instead of one load (``fatigue``)."""
     for k in (0, 1):
         group.add_argument(f"--state{k}", type=state_arg, metavar="P,s,Q,SIGMA",
                            help=f"end {k} of an in-phase flight cycle (N/mm, mm, N/mm, MPa), instead of "
@@ -208,10 +242,48 @@ def method_options(args: argparse.Namespace, nu: float | None) -> dict[str, Any]
     return options
 
 
+#: what every ``--case`` says of the options beside it (one rule for every command)
+CASE_RULE = "`threepart cases` lists them; the punch and the loads beside it are refused"
+
+
+def case_arg(group: Any, what: str = "a case of the catalogue (threepart/cases.json)", rule: str = CASE_RULE) -> None:
+    """``--case NAME`` in ``group``: the problem of a catalogue case (:func:`catalogue_case`)."""
+    group.add_argument("--case", metavar="NAME", help=f"{what}; {rule}")
+
+
+def catalogue_case(args: argparse.Namespace, own: Sequence[str],
+                   what: str = "the punch, material and loads") -> Any:
+    """The resolved :class:`threepart.catalogue.Case` of ``--case``, before any numerics.
+
+    ``own`` are the command's options of the problem (``dest`` names): beside ``--case``
+    the first one given is refused, as is a name the catalogue does not hold (its names
+    listed). A ``store_true`` option counts as given when set. ``what`` names ``own`` in the refusal.
+    """
+    from threepart.catalogue import get_case, load_cases
+
+    given = [o for o in own if getattr(args, o, None) not in (None, False)]
+    if given:
+        raise InputError(f"give `--case` or {what}, not both (also got "
+                         f"`--{given[0].replace('_', '-')}`)")
+    names = [c.name for c in load_cases(None)]
+    if args.case not in names:
+        raise InputError(f"`--case` = {args.case!r} is not in the catalogue ({', '.join(names)}; "
+                         "`threepart cases` describes them)")
+    return get_case(args.case).resolved()
+
+
+def need_options(args: argparse.Namespace, needs: Sequence[str]) -> None:
+    """Refuse a problem given neither by ``--case`` nor whole: the first of ``needs`` missing is named."""
+    missing = [o for o in needs if getattr(args, o, None) is None]
+    if missing:
+        raise InputError(f"give `--case NAME`, or the punch, material and loads: "
+                         f"`--{missing[0].replace('_', '-')}` is missing")
+
+
 def problem_args(p: argparse.ArgumentParser, *, compliance_option: bool) -> None:
     """``--case NAME``, or the punch, the loads and the material on the command line."""
     g = p.add_argument_group("the problem: --case NAME, or the punch and the loads (eq. 2)")
-    g.add_argument("--case", metavar="NAME", help="a case of the catalogue (threepart/cases.json)")
+    case_arg(g)
     for name, text in (("--R1", "left edge radius"), ("--R2", "right edge radius"),
                        ("--b", "half-width of the central segment")):
         g.add_argument(name, type=float, help=labelled(text, name[2:]))
@@ -219,12 +291,12 @@ def problem_args(p: argparse.ArgumentParser, *, compliance_option: bool) -> None
                    help=labelled("central radius (default inf: flat)", "R"))
     g.add_argument("--P", type=float, help=labelled("normal load per unit length", "P"))
     g.add_argument("--s", type=float, default=None, help=labelled("lever arm of P (default 0)", "s"))
-    g.add_argument("--E", type=float, help=labelled("Young's modulus of the block", "E"))
-    g.add_argument("--nu", type=float, help="Poisson's ratio of the block")
+    g.add_argument("--E", type=float, help=E_HELP + "; with --case, replaces the case's")
+    g.add_argument("--nu", type=float, help=NU_HELP + "; with --case, replaces the case's")
     if compliance_option:
         g.add_argument("--A", type=float,
                        help=labelled("compliance of the model judged (eq. 4); default: the case's, "
-                                     "or 2(1 - nu^2)/E (a rigid punch)", "A"))
+                                     "or 4(1 - nu^2)/E (two similar bodies)", "A"))
     g.add_argument("--tilt", choices=("free", "suppressed"), default=None,
                    help="free (default, or the case's) or suppressed")
 
@@ -240,9 +312,7 @@ def given_punch_and_material(args: argparse.Namespace, needs: Sequence[str]) -> 
     from threepart.punch import Punch
     from threepart.validate import poisson
 
-    missing = [o for o in needs if getattr(args, o) is None]
-    if missing:
-        raise InputError(f"give `--case NAME`, or the punch, material and loads: `--{missing[0]}` is missing")
+    need_options(args, needs)
     if args.A is not None and args.E is not None:
         raise InputError("give either `--A` or `--E`/`--nu`, not both")
     if args.A is None and (args.E is None or args.nu is None):
@@ -252,30 +322,28 @@ def given_punch_and_material(args: argparse.Namespace, needs: Sequence[str]) -> 
 
 
 def problem(args: argparse.Namespace) -> dict[str, Any]:
-    """The punch, loads and material of ``--case`` or of the command line's options."""
-    from threepart.catalogue import get_case, load_cases
+    """The punch, loads and material of ``--case`` or of the command line's options.
+
+    ``A`` is the problem's compliance: the case's, or that of ``--E``/``--nu`` as two similar bodies
+    (:func:`threepart.material.material_compliance`; a case's ``bodies`` kept when it is a rigid punch).
+    """
+    from threepart.material import material_compliance
     from threepart.punch import Punch
 
-    given = [o for o in ("R1", "R2", "b", "R", "P", "s") if getattr(args, o) is not None]
     if args.case is not None:
-        if given:
-            raise InputError(f"give `--case` or the punch and loads, not both (also got "
-                             f"`--{given[0]}`)")
-        if args.case not in {c.name for c in load_cases(None)}:
-            names = ", ".join(c.name for c in load_cases(None))
-            raise InputError(f"`--case` = {args.case!r} is not in the catalogue ({names})")
-        case = get_case(args.case).resolved()
+        case = catalogue_case(args, ("R1", "R2", "b", "R", "P", "s"), "the punch and loads")
         if case.material is None and (args.E is None or args.nu is None):
             raise InputError(f"case {case.name!r} gives only A; add `--E` and `--nu`")
         E, nu = case.material if case.material is not None else (args.E, args.nu)
         E = E if args.E is None else args.E
         nu = nu if args.nu is None else args.nu
+        A = case.A if args.E is None and args.nu is None else material_compliance(E, nu, case.bodies)
         return {"name": case.name, "punch": case.punch, "P": case.P, "s": float(case.s or 0.0),
-                "E": E, "nu": nu, "A": case.A if args.E is None and args.nu is None else None,
-                "tilt": args.tilt or case.tilt}
+                "E": E, "nu": nu, "bodies": case.bodies, "A": A, "tilt": args.tilt or case.tilt}
     missing = [o for o in ("R1", "R2", "b", "P", "E", "nu") if getattr(args, o) is None]
     if missing:
         raise InputError(f"give `--case NAME`, or the punch and the loads: `--{missing[0]}` is missing")
     punch = Punch(R1=args.R1, R2=args.R2, b=args.b, R=float("inf") if args.R is None else args.R)
     return {"name": "", "punch": punch, "P": args.P, "s": 0.0 if args.s is None else args.s,
-            "E": args.E, "nu": args.nu, "A": None, "tilt": args.tilt or "free"}
+            "E": args.E, "nu": args.nu, "bodies": "similar pair", "A": material_compliance(args.E, args.nu),
+            "tilt": args.tilt or "free"}

@@ -16,7 +16,7 @@ from typing import Any, Iterator, Sequence
 
 from threepart.__main__ import INTERRUPTED, program
 
-from . import compare, cycle, deck, export_refs, fatigue, figures, match, solve, verify
+from . import cases, compare, cycle, deck, export_refs, fatigue, figures, match, solve, verify
 from . import map as map_   # the module, not the builtin
 from ._args import Parser, UsageError, join_negative_numbers, real_arg
 
@@ -24,7 +24,7 @@ __all__ = ["build_parser", "main", "SUBCOMMANDS", "HELP"]
 
 #: the sub-command modules, in the order ``threepart --help`` lists them; each has
 #: ``add_parser(subparsers)`` (which sets ``func``) and ``run(args) -> int``
-SUBCOMMANDS = (solve, verify, figures, map_, export_refs, fatigue, cycle, match, deck, compare)
+SUBCOMMANDS = (solve, cases, verify, figures, map_, export_refs, fatigue, cycle, match, deck, compare)
 
 #: the description ``threepart --help`` prints
 HELP = """The ``threepart`` command line.
@@ -33,6 +33,7 @@ Sub-commands
 ------------
 solve    normal problem: a, c, alpha, peak pressures, segments in contact, lift-off lever arms
 slip     partial slip: adds the stick zone for a shear load Q and friction f
+cases    the catalogue's cases, each with its kind and description, for --case NAME
 verify   verification run: closed form against SIE and FEM, tolerance report
 figures  the paper's result figures, with the SIE solution as markers
 map      where the half-plane formulas stop: the finite-body validity map, on dask.distributed
@@ -42,6 +43,12 @@ cycle    the flight cycle: steady state of an in-phase cycle (or a load history)
 match    the Hertzian pad test that reproduces one edge of a flank: its K_N, K_T and slip zone
 deck     a ready-to-run CalculiX input deck of a catalogue case or of a punch and loads
 compare  judge another code's contact pressure (CSV, CalculiX .frd/.dat, VTU/XDMF/MED/Exodus) against threepart
+
+A problem is a catalogue case, --case NAME (`threepart cases` lists them), or
+the punch, material and loads as options; the punch and loads beside --case
+are refused (deck and compare take --E, --nu and --tilt beside it to replace
+the case's).
+An option a command does not know is named before anything else.
 
 --method auto (default) uses the paper's closed form where it holds and the SIE
 where it does not (past lift-off, the punch on one corner, a stick zone that
@@ -142,22 +149,48 @@ def main(argv: Sequence[str] | None = None) -> int:
             args, extra = build_parser().parse_known_args(join_negative_numbers(argv))
         except SystemExit as exc:  # --help
             return exc.code if isinstance(exc.code, int) else 0
+        except UsageError:
+            _unknown_first(argv)
+            raise
         prog = f"threepart {args.command}"
         if extra:   # named here, so that the message names the sub-command
-            raise UsageError(f"{prog}: error: unrecognized arguments: {' '.join(extra)} "
-                             f"(see `{prog} --help`)")
+            raise _unrecognized(prog, extra)
         return int(args.func(args))
     except BaseException as exc:
         # Ctrl-C inside a C extension's import (numpy's) comes out as an ImportError, or any
         # other error, with the KeyboardInterrupt lost: the flag, not the class, tells
         if not (isinstance(exc, KeyboardInterrupt) or interrupted.is_set()):
-            return _error_status(_units_hint(exc, args), prog)
+            return _error_status(exc, prog)
         resume = "; run it again to resume" if prog == "threepart map" else ""
         print(f"{prog}: interrupted{resume}", file=sys.stderr)
         return INTERRUPTED
     finally:
         if previous is not None:
             signal.signal(signal.SIGINT, previous)
+
+
+def _unrecognized(prog: str, extra: Sequence[str]) -> UsageError:
+    """The one-line usage error that names the arguments ``prog`` does not know."""
+    return UsageError(f"{prog}: error: unrecognized arguments: {' '.join(extra)} (see `{prog} --help`)")
+
+
+def _unknown_first(argv: Sequence[str]) -> None:
+    """Raise the error naming an unknown option, if ``argv`` has one, before any other usage error.
+
+    argparse reports a missing required option before an unknown one, so ``--load 400``
+    (for ``--P 400``) would be told "--P is required" and never hear of ``--load``: the
+    arguments are parsed again with nothing required, and what is left over is named.
+    """
+    parser = build_parser()
+    for action in _actions(parser):
+        if not isinstance(action, argparse._SubParsersAction):
+            action.required = False
+    try:
+        args, extra = parser.parse_known_args(join_negative_numbers(argv))
+    except (UsageError, SystemExit):   # another error, which the first parse reports
+        return
+    if extra:
+        raise _unrecognized(f"threepart {args.command}", extra)
 
 
 def _watch_interrupts() -> tuple[threading.Event, Any]:
@@ -179,33 +212,9 @@ def _watch_interrupts() -> tuple[threading.Event, Any]:
     return event, signal.signal(signal.SIGINT, on_sigint)
 
 
-#: a modulus below this (MPa) with a contact past the slope limit is likely given in GPa
-#: (the metals' moduli lie between about 45 and 410 GPa; steel's is 210 GPa = 210000 MPa)
-GPA_SUSPECT_E = 1000.0
-
-
-def _units_hint(exc: BaseException, args: argparse.Namespace | None) -> BaseException:
-    """``exc``, or for a slope past the limit (or a contact past an arc) with a small ``--E``,
-    the same error pointing at the modulus and its units.
-
-    ``--E 210`` (steel in GPa, not MPa) makes the contact a thousand times too
-    compliant and its slope absurd; the slope-limit error alone would send the
-    user to the load or the lever arm.
-    """
-    from threepart.errors import ArcExtentError, SlopeLimitError
-
-    E = getattr(args, "E", None)
-    if (not isinstance(exc, (SlopeLimitError, ArcExtentError)) or E is None
-            or getattr(args, "A", None) is not None or not 0 < E < GPA_SUSPECT_E):
-        return exc
-    what = _one_line(exc).replace("; reduce the load or the lever arm `s`", "")
-    return type(exc)(f"is `--E` = {E:g} in MPa (steel: 210000, not 210)? With it, {what}; "
-                     "else reduce the load or the lever arm `s`")
-
-
 def _error_status(exc: BaseException, prog: str) -> int:
     """The exit status of an error that ended a command (its one line on stderr), or re-raise it."""
-    from threepart.errors import ContactZoneError, NoConvergenceError
+    from threepart.errors import ThreepartError
 
     try:
         raise exc
@@ -217,7 +226,7 @@ def _error_status(exc: BaseException, prog: str) -> int:
             print(f"{prog}: error: {_one_line(exc)}", file=sys.stderr)
             return 2
         return PIPE_CLOSED
-    except (ValueError, NoConvergenceError, ContactZoneError, OSError) as exc:
+    except (ThreepartError, ValueError, OSError) as exc:   # any refusal of threepart's, bad input, a file
         print(f"{prog}: error: {_one_line(exc)}", file=sys.stderr)
         return 2
 

@@ -40,14 +40,13 @@ def add_parser(sub: Any) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Judge ``--pressure`` and write the report into ``--out``; the referee's exit status."""
-    from threepart.material import rigid_punch
     from threepart.methods import solve
     from threepart.reports.referee import main as referee_main
     from threepart.results import NormalResult
 
     _compare_iv(args)
     pr = problem(args)
-    A = args.A if args.A is not None else pr["A"] if pr["A"] is not None else rigid_punch(pr["E"], pr["nu"])
+    A = args.A if args.A is not None else pr["A"]
     ref = solve(pr["punch"], pr["P"], pr["s"], A=A, tilt=pr["tilt"])
     assert isinstance(ref, NormalResult)           # no Q: the normal problem
     options = {k: v for k, v in (("field", args.field), ("surface", args.surface)) if v is not None}

@@ -40,7 +40,7 @@ def add_parser(sub: Any) -> None:
 def run(args: argparse.Namespace) -> int:
     """Write the deck to ``--out`` and say what it holds; the exit status."""
     from threepart import calculix
-    from threepart.material import compliance, similar_pair
+    from threepart.material import compliance, rigid_punch_modulus, similar_pair_modulus
     from threepart.methods import solve
     from threepart.output import write_file
 
@@ -50,8 +50,12 @@ def run(args: argparse.Namespace) -> int:
     settings = calculix.DeckSettings(h=args.h, penalty=args.penalty, pair=args.pair,
                                      tilt=pr["tilt"], **({} if args.stiffening is None
                                                          else {"stiffening": args.stiffening}))
-    E, nu = pr["E"], pr["nu"]
-    A = similar_pair(E, nu) if args.pair else compliance(E, nu, E * settings.stiffening, nu)
+    # the problem's A (both bodies of --E/--nu, or the case's) onto the model by threepart.material's
+    # one mapping: two similar bodies of 4(1 - nu^2)/A each, or the block of 2(1 - nu^2)/A under the
+    # stiff punch (E/2 for two similar bodies of E); A is then the model's own, stiffening included
+    nu = pr["nu"]
+    E = similar_pair_modulus(pr["A"], nu) if args.pair else rigid_punch_modulus(pr["A"], nu)
+    A = compliance(E, nu) if args.pair else compliance(E, nu, E * settings.stiffening, nu)
     ref = solve(pr["punch"], pr["P"], pr["s"], A=A, tilt=pr["tilt"])
     model = calculix.build_model(pr["punch"], ref.a, ref.c, settings)
     deck = calculix.write_deck(model, P=pr["P"], s=pr["s"], E=E, nu=nu, settings=settings,

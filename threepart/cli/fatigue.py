@@ -2,7 +2,8 @@
 
 A fretting cycle ``Q = 0 -> Q_max -> -Q_max -> Q_max`` at ``P`` (:func:`threepart.fretting`,
 its ``auto`` fallback), or the periodic steady state of an in-phase flight cycle
-between ``--state0`` and ``--state1`` (:func:`threepart.steady_state`); then the
+between ``--state0`` and ``--state1`` (:func:`threepart.steady_state`), or either of a
+catalogue case (``--case``); then the
 fatigue parameters on a grid under the contact (:func:`threepart.fatigue.fatigue`):
 their hot spots printed (or ``--json``), the fields as CSV (``--csv``), as a VTU
 grid for ParaView (``--vtu``) and as contour plots (``--plot``). Definitions:
@@ -16,7 +17,8 @@ from typing import Any
 
 from threepart.progress import heartbeat
 
-from ._args import constant_arg, labelled, method_args, method_options, punch_args, state_args
+from ._args import (case_arg, catalogue_case, constant_arg, given_R, labelled, method_args, method_options,
+                    need_options, punch_args, state_args)
 from ._output import print_json, write_csv, write_grid_vtu
 from threepart.errors import InputError
 
@@ -28,6 +30,9 @@ MAX_FATIGUE_POINTS = 100_000
 #: stress evaluation at every grid point (README's example on its default grid, this project's
 #: 2-core machine: 50 states 31 s at load 3, 20 states 29 s at load 8); 1000 ran past 5 minutes
 MAX_FATIGUE_STATES = 50
+#: what ``--case`` refuses beside it: the options of the problem (their ``dest``)
+PROBLEM_OPTIONS = ("R1", "R2", "b", "R", "E", "nu", "P", "s", "Q_max", "f", "sigma_bulk", "tilt",
+                   "state0", "state1")
 
 
 def _fatigue_units() -> dict[str, str]:
@@ -50,31 +55,34 @@ def add_parser(sub: Any) -> None:
 
 
 def _fatigue_args(p: argparse.ArgumentParser) -> None:
+    case_arg(p.add_argument_group("the problem: --case NAME, or the punch, material and loads below"),
+             "a catalogue case with a material, f and a shear load (its Q the amplitude Q_max of the "
+             "fretting cycle) or a flight cycle's `states`",
+             "`threepart cases` lists them; the punch, material and loads beside it are refused")
     punch_args(p)
-    m = p.add_argument_group("material (two similar bodies, plane strain: A = 4(1 - nu^2)/E)")
-    m.add_argument("--E", type=float, required=True,
-                   help=labelled("Young's modulus (also for the SWT strains)", "E"))
-    m.add_argument("--nu", type=float, required=True, help="Poisson's ratio, in (-1, 0.5)")
+    m = p.add_argument_group("material (two similar bodies, plane strain: A = 4(1 - nu^2)/E), unless --case")
+    m.add_argument("--E", type=float, help=labelled("Young's modulus (also for the SWT strains)", "E"))
+    m.add_argument("--nu", type=float, help="Poisson's ratio, in (-1, 0.5)")
     m.add_argument("--k", type=float,   # None: threepart.fatigue.K_FINDLEY, read when used
                    help="Findley's constant, in [0, 10] (default {k_findley})")
     m.add_argument("--constant", action="append", default=[], type=constant_arg, metavar="NAME=VALUE",
                    help="another fatigue parameter's constant, by the name its row of "
                         "threepart.fatigue_parameters gives it, e.g. kappa=0.5 (Crossland's, in [0, 10]; "
                         "default 0.368); repeatable")
-    ld = p.add_argument_group("loads: P at s, then the cycle Q = 0 -> Q_max -> -Q_max -> Q_max; or "
-                              "a flight cycle's two ends, --state0 and --state1")
+    ld = p.add_argument_group("loads, unless --case: P at s, then the cycle Q = 0 -> Q_max -> -Q_max -> "
+                              "Q_max; or a flight cycle's two ends, --state0 and --state1")
     ld.add_argument("--P", type=float,
                     help=labelled("compressive normal load per unit length, > 0", "P"))
-    ld.add_argument("--s", type=float, default=0.0,
-                    help=labelled("lever arm of P, positive to the right", "s"))
+    ld.add_argument("--s", type=float,
+                    help=labelled("lever arm of P, positive to the right (default 0)", "s"))
     ld.add_argument("--Q-max", dest="Q_max", type=float,
                     help=labelled("amplitude of the shear force the punch exerts on the substrate "
                                    "along +x, 0 < Q_max < f P", "Q"))
-    ld.add_argument("--f", type=float, required=True, help="coefficient of friction, > 0")
-    ld.add_argument("--sigma-bulk", dest="sigma_bulk", type=float, default=0.0,
+    ld.add_argument("--f", type=float, help="coefficient of friction, > 0")
+    ld.add_argument("--sigma-bulk", dest="sigma_bulk", type=float,
                     help="bulk stress sigma_xx in the substrate at Q_max, tension positive, in "
                          "phase with Q [MPa] (default 0)")
-    ld.add_argument("--tilt", choices=("free", "suppressed"), default="free")
+    ld.add_argument("--tilt", choices=("free", "suppressed"), help="free (default) or suppressed")
     state_args(ld)
     mt = method_args(p)
     mt.add_argument("--states", type=int, default=5,
@@ -113,6 +121,32 @@ class _FatigueHelp(argparse.HelpFormatter):
 
             text = text.replace("{k_findley}", f"{K_FINDLEY:g}")
         return text
+
+
+def _problem_iv(args: argparse.Namespace) -> float | None:
+    """The problem of ``--case`` written into ``args`` (its compliance returned), or the options'
+    defaults (None returned: A from ``--E``/``--nu``); before any numerics."""
+    if args.case is None:
+        need_options(args, ("R1", "R2", "b", "E", "nu", "f"))
+        args.s = 0.0 if args.s is None else args.s
+        args.sigma_bulk = 0.0 if args.sigma_bulk is None else args.sigma_bulk
+        args.tilt = args.tilt or "free"
+        return None
+    c = catalogue_case(args, PROBLEM_OPTIONS)
+    if c.material is None or c.f is None or (c.Q is None and c.states is None):
+        from threepart.catalogue import load_cases
+
+        fit = ", ".join(k.name for k in load_cases(None) if k.material is not None and k.f is not None)
+        raise InputError(f"case {c.name!r} has no material (E, nu), f and shear load or `states` for a "
+                         f"fatigue cycle (cases with them: {fit})")
+    args.R1, args.R2, args.b, args.R = c.punch.R1, c.punch.R2, c.punch.b, c.punch.R
+    (args.E, args.nu), args.f, args.tilt = c.material, c.f, c.tilt
+    args.s, args.sigma_bulk = 0.0, 0.0
+    if c.states is not None:
+        args.state0, args.state1 = c.states
+    else:
+        args.P, args.s, args.Q_max, args.sigma_bulk = c.P, c.s_load, c.Q, c.sigma_bulk
+    return float(c.A)
 
 
 def _fatigue_iv(args: argparse.Namespace) -> None:
@@ -238,9 +272,10 @@ def run(args: argparse.Namespace) -> int:
     from threepart.methods import describe
     from threepart.punch import Punch
 
-    punch = Punch(R1=args.R1, R2=args.R2, b=args.b, R=args.R)
+    case_A = _problem_iv(args)
+    punch = Punch(R1=args.R1, R2=args.R2, b=args.b, R=given_R(args))
     _fatigue_iv(args)
-    A = similar_pair(args.E, args.nu)
+    A = similar_pair(args.E, args.nu) if case_A is None else case_A
     # a long run says it is still running every 15 s on stderr, as the verification run does
 
     def say(msg: str) -> None:
@@ -289,7 +324,7 @@ def _fatigue_print(args: argparse.Namespace, res: Any, cycle: Any, A: float, hea
         {"states": [list(args.state0), list(args.state1)], "stick_zone": list(cycle.stick_zone),
          "energy": cycle.energy, "shakedown": cycle.shakedown} if steady else
         {"P": args.P, "s": args.s, "Q_max": args.Q_max, "sigma_bulk": args.sigma_bulk})
-    doc = {"method": cycle.method, "A": A, "E": args.E, "nu": args.nu, "k": args.k, "constants": args.constants,
+    doc = {"method": cycle.method, **({"case": args.case} if args.case else {}), "A": A, "E": args.E, "nu": args.nu, "k": args.k, "constants": args.constants,
            **loads, "f": args.f, "a": normal.a, "c": normal.c,
            "states": res.states, "grid": {"nx": args.nx, "nz": args.nz, "depth_W": args.depth},
            "hot_spots": hot}
@@ -300,6 +335,8 @@ def _fatigue_print(args: argparse.Namespace, res: Any, cycle: Any, A: float, hea
                          **_fatigue_units()})
         return
     print(headline)
+    if args.case:
+        print(f"case       {args.case}")
     print(f"contact    [{-normal.a:.6g}, {normal.c:.6g}] mm (a = {normal.a:.6g}, c = {normal.c:.6g})")
     if steady:
         (P0, s0, Q0, g0), (P1, s1, Q1, g1) = args.state0, args.state1

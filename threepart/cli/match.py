@@ -17,7 +17,7 @@ from __future__ import annotations
 import argparse
 from typing import Any
 
-from ._args import given_punch_and_material
+from ._args import case_arg, catalogue_case, given_punch_and_material
 from threepart.errors import InputError
 
 __all__ = ["add_parser", "run"]
@@ -38,7 +38,8 @@ def add_parser(sub: Any) -> None:
                        description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter,
                        epilog="Units: mm, N/mm, MPa, 1/MPa, or any consistent set. See docs/EDGES.md.")
     g = p.add_argument_group("the flank: --case NAME (with Q and f), or the punch (eq. 2), material and loads")
-    g.add_argument("--case", metavar="NAME", help="a catalogue case with a shear load (e.g. fan_blade_flank_bulk)")
+    case_arg(g, "a catalogue case with a shear load (e.g. fan_blade_flank_bulk)",
+             "`threepart cases` lists them; the punch, material and loads beside it are refused")
     g.add_argument("--R1", type=float, help=unit("left edge radius, > 0", "R1"))
     g.add_argument("--R2", type=float, help=unit("right edge radius, > 0", "R2"))
     g.add_argument("--b", type=float, help=unit("half-width of the central segment, >= 0", "b"))
@@ -68,20 +69,13 @@ def add_parser(sub: Any) -> None:
 
 def _flank_problem(args: argparse.Namespace) -> dict[str, Any]:
     """The flank's punch, compliance, Poisson ratio and loads, checked before any numerics."""
-    from threepart.catalogue import get_case, load_cases
+    from threepart.catalogue import load_cases
     from threepart.material import NU, similar_pair
     from threepart.validate import finite, positive
 
     own = ("R1", "R2", "b", "R", "E", "nu", "A", "P", "s", "Q", "f", "sigma_bulk")
     if args.case is not None:
-        given = [o for o in own if getattr(args, o) is not None]
-        if given:
-            raise InputError(f"give `--case` or the punch, material and loads, not both (also got "
-                             f"`--{given[0].replace('_', '-')}`)")
-        names = [c.name for c in load_cases(None)]
-        if args.case not in names:
-            raise InputError(f"`--case` = {args.case!r} is not in the catalogue ({', '.join(names)})")
-        c = get_case(args.case).resolved()
+        c = catalogue_case(args, own)
         if c.Q is None or c.f is None or c.states is not None:
             shear = ", ".join(k.name for k in load_cases(None) if k.Q is not None and k.states is None
                               and not k.beyond)

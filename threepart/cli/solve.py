@@ -2,16 +2,18 @@
 
 ``solve`` prints a, c, alpha, the peak pressures, the segments in contact and
 the lift-off lever arms; ``slip`` adds the stick zone for a shear load Q and
-friction f. Both call :func:`threepart.solve` (its ``auto`` fallback says why on
-the first line); ``--x``/``--grid`` add p(x) (and q(x)) at points, ``--csv``
-writes them, ``--json`` prints strict JSON.
+friction f. The problem is a catalogue case (``--case NAME``) or the punch,
+material and loads given as options. Both call :func:`threepart.solve` (its
+``auto`` fallback says why on the first line); ``--x``/``--grid`` add p(x) (and
+q(x)) at points, ``--csv`` writes them, ``--json`` prints strict JSON.
 """
 from __future__ import annotations
 
 import argparse
 from typing import Any
 
-from ._args import labelled, method_args, method_options, number_list, punch_args, state_args
+from ._args import (E_HELP, NU_HELP, case_arg, catalogue_case, given_R, labelled, method_args,
+                    method_options, need_options, number_list, punch_args)
 from ._output import print_result, write_points_csv
 from threepart.errors import InputError
 
@@ -19,42 +21,48 @@ __all__ = ["add_parser", "run", "MAX_GRID"]
 
 #: the most points ``--grid`` prints
 MAX_GRID = 1_000_000
-_EPILOG = "Units: mm, N/mm, MPa, 1/MPa, rad, or any consistent set."
+#: what ``--case`` refuses beside it: the options of the problem (their ``dest``), and of slip's shear load
+PROBLEM_OPTIONS = ("R1", "R2", "b", "R", "A", "E", "nu", "rigid", "P", "s", "tilt")
+SHEAR_OPTIONS = ("Q", "f", "sigma_bulk")
+_EPILOG = ("Units: mm, N/mm, MPa, 1/MPa, rad; --E in MPa (a unit slip is refused), or in any "
+           "consistent set give --A.")
 
 
 def add_parser(sub: Any) -> None:
     """Add ``solve`` and ``slip`` to ``sub`` (the sub-parsers of :func:`threepart.cli.build_parser`)."""
     p = sub.add_parser("solve", help="normal problem (closed form where it holds, else SIE)",
                        epilog=_EPILOG)
-    _geometry_args(p)
-    p.set_defaults(func=run, Q=None, f=None)
+    _geometry_args(p, "a catalogue case: its punch, material and loads (a case with a shear load: its "
+                      "normal problem)")
+    p.set_defaults(func=run, Q=None, f=None, sigma_bulk=None)
 
     p = sub.add_parser("slip", help="partial slip (Ciavarella-Jaeger; closed form or SIE)",
                        epilog=_EPILOG)
-    _geometry_args(p)
-    p.add_argument("--Q", type=float, required=True, help=labelled("shear force, |Q| < f P", "Q"))
-    p.add_argument("--f", type=float, required=True, help="coefficient of friction, > 0")
-    p.add_argument("--sigma-bulk", type=float, default=0.0, dest="sigma_bulk",
-                   help=labelled("bulk stress along x in the substrate at Q, MPa, tension positive; "
-                                 "rises with Q in proportion (default 0)", "sigma_bulk"))
+    _geometry_args(p, "a catalogue case with a shear load Q and f (a cycle's: its running load)")
+    sh = p.add_argument_group("shear load, unless --case")
+    sh.add_argument("--Q", type=float, help=labelled("shear force, |Q| < f P", "Q"))
+    sh.add_argument("--f", type=float, help="coefficient of friction, > 0")
+    sh.add_argument("--sigma-bulk", type=float, dest="sigma_bulk",
+                    help=labelled("bulk stress along x in the substrate at Q, MPa, tension positive; "
+                                  "rises with Q in proportion (default 0)", "sigma_bulk"))
     p.set_defaults(func=run)
 
 
-def _geometry_args(p: argparse.ArgumentParser) -> None:
+def _geometry_args(p: argparse.ArgumentParser, case_help: str) -> None:
+    case_arg(p.add_argument_group("the problem: --case NAME, or the punch, material and loads below"),
+             case_help, "`threepart cases` lists them; the punch, material and loads beside it are refused")
     punch_args(p)
-    m = p.add_argument_group("material (eq. 4, plane strain)")
+    m = p.add_argument_group("material (eq. 4, plane strain), unless --case")
     m.add_argument("--A", type=float, help=labelled("compliance A; or give --E/--nu", "A"))
-    m.add_argument("--E", type=float,
-                   help=labelled("Young's modulus of the half-plane (and punch, see --rigid)", "E"))
-    m.add_argument("--nu", type=float, help="Poisson's ratio")
-    m.add_argument("--rigid", action="store_true", help="rigid punch on an elastic half-plane")
-    ld = p.add_argument_group("loads")
-    ld.add_argument("--P", type=float, required=True,
-                    help=labelled("compressive normal load per unit length, > 0", "P"))
-    ld.add_argument("--s", type=float, default=0.0,
-                    help=labelled("lever arm of P, positive to the right", "s"))
-    ld.add_argument("--tilt", choices=("free", "suppressed"), default="free")
-    state_args(ld)
+    m.add_argument("--E", type=float, help=E_HELP + "; with --rigid, of the half-plane alone")
+    m.add_argument("--nu", type=float, help=NU_HELP + " (with --rigid, of the half-plane)")
+    m.add_argument("--rigid", action="store_true",
+                   help="a rigid punch on an elastic half-plane of --E/--nu, A = 2(1 - nu^2)/E")
+    ld = p.add_argument_group("loads, unless --case")
+    ld.add_argument("--P", type=float, help=labelled("compressive normal load per unit length, > 0", "P"))
+    ld.add_argument("--s", type=float,
+                    help=labelled("lever arm of P, positive to the right (default 0)", "s"))
+    ld.add_argument("--tilt", choices=("free", "suppressed"), help="free (default) or suppressed")
     method_args(p)
     pt = p.add_argument_group("fields at points")
     pt.add_argument("--x", type=number_list, metavar="X1,X2,...",
@@ -107,42 +115,66 @@ def _compliance(args: argparse.Namespace) -> float:
     return rigid_punch(args.E, args.nu) if args.rigid else compliance(args.E, args.nu)
 
 
-def _options(args: argparse.Namespace) -> tuple[dict[str, Any], str | None]:
-    """The method's options from ``--mesh`` and ``--nu`` (a finite body's), and the note on an assumed nu."""
+def _options(args: argparse.Namespace, nu: float | None) -> tuple[dict[str, Any], str | None]:
+    """The method's options from ``--mesh`` and ``nu`` (``--nu`` or the case's, a finite body's), and
+    the note on an assumed nu."""
     finite_body = _finite_body(args)
-    if finite_body is None or args.nu is not None:
-        return method_options(args, args.nu), None
+    if finite_body is None or nu is not None:
+        return method_options(args, nu), None
+    how = "the case gives only A" if args.case is not None else "give --nu to set it"
     nu_note = (f"the FE model needs Poisson's ratio; nu = {finite_body.default_nu} "
-               "assumed (give --nu to set it; in half-plane theory only A matters)")
+               f"assumed ({how}; in half-plane theory only A matters)")
     return method_options(args, finite_body.default_nu), nu_note
+
+
+def _problem(args: argparse.Namespace, slip: bool) -> dict[str, Any]:
+    """The checked problem of ``--case`` or of the options, before any numerics: ``name``, ``punch``,
+    ``A``, ``nu`` (None: not given), ``P``, ``s``, ``tilt`` and for ``slip`` the ``loads`` Q, f, sigma_bulk."""
+    from threepart.catalogue import load_cases
+    from threepart.punch import Punch
+
+    if args.case is not None:
+        c = catalogue_case(args, PROBLEM_OPTIONS + (SHEAR_OPTIONS if slip else ()))
+        if slip and (c.Q is None or c.f is None):
+            shear = ", ".join(k.name for k in load_cases(None) if k.Q is not None)
+            raise InputError(f"case {c.name!r} has no shear load `Q` and `f` (cases with one: {shear})")
+        loads = {"Q": c.Q, "f": c.f, "sigma_bulk": c.sigma_bulk} if slip else {}
+        return {"name": c.name, "punch": c.punch, "A": c.A, "nu": None if c.material is None else c.material[1],
+                "P": c.P, "s": c.s_load, "tilt": c.tilt, "loads": loads}
+    need_options(args, ("R1", "R2", "b", "P", *(("Q", "f") if slip else ())))
+    punch = Punch(R1=args.R1, R2=args.R2, b=args.b, R=given_R(args))
+    A = _compliance(args)
+    sigma_bulk = 0.0 if args.sigma_bulk is None else args.sigma_bulk
+    if slip and sigma_bulk and args.rigid:
+        raise InputError(f"`--sigma-bulk` = {sigma_bulk:g} needs elastically similar bodies (its "
+                         "strain is A sigma_bulk/4 with A of eq. (4) for one material): drop `--rigid`")
+    loads = {"Q": args.Q, "f": args.f, "sigma_bulk": sigma_bulk} if slip else {}
+    return {"name": None, "punch": punch, "A": A, "nu": args.nu, "P": args.P,
+            "s": 0.0 if args.s is None else args.s, "tilt": args.tilt or "free", "loads": loads}
 
 
 def _figures(args: argparse.Namespace, slip: bool) -> dict[str, Any]:
     """Solve by ``--method`` (:func:`threepart.solve`, its ``auto`` fallback) and collect the figures
     to print, in print order."""
     from threepart.methods import describe, solve
-    from threepart.punch import Punch
     from threepart.results import SlipResult
 
-    punch = Punch(R1=args.R1, R2=args.R2, b=args.b, R=args.R)
-    A = _compliance(args)
+    pr = _problem(args, slip)
+    punch, A = pr["punch"], pr["A"]
     _points_iv(args)
-    options, nu_note = _options(args)
-    if slip and args.sigma_bulk and args.rigid:
-        raise InputError(f"`--sigma-bulk` = {args.sigma_bulk:g} needs elastically similar bodies (its "
-                         "strain is A sigma_bulk/4 with A of eq. (4) for one material): drop `--rigid`")
-    loads = {"Q": args.Q, "f": args.f, "sigma_bulk": args.sigma_bulk} if slip else {}
-    res = solve(punch, args.P, args.s, A=A, tilt=args.tilt, method=args.method, **loads, **options)
+    options, nu_note = _options(args, pr["nu"])
+    res = solve(punch, pr["P"], pr["s"], A=A, tilt=pr["tilt"], method=args.method, **pr["loads"], **options)
     normal = res.normal if isinstance(res, SlipResult) else res
     left, right = normal.peaks()
     out: dict[str, Any] = {
         "method": res.method,
         **({"method_note": res.info["auto"]} if "auto" in res.info else {}),
+        **({"case": pr["name"]} if pr["name"] else {}),
         "punch": {"R1": punch.R1, "R2": punch.R2, "b": punch.b, "R": punch.R, "case": punch.case},
         "A": A, **({"nu": options["nu"]} if "nu" in options else {}),
         **({"nu_note": nu_note} if nu_note else {}),
         # s as given; with the tilt suppressed, the lever arm s* that holds alpha = 0
-        "P": float(args.P), "s": float(args.s) if normal.tilt == "free" else normal.s,
+        "P": float(pr["P"]), "s": float(pr["s"]) if normal.tilt == "free" else normal.s,
         "tilt": normal.tilt,
         "a": normal.a, "c": normal.c, "alpha": normal.alpha, "slope": normal.slope,
         **_slope_note(normal.slope),
