@@ -4,7 +4,7 @@ Run ``python benchmarks/bench_fem.py [quick default ...] [--peer | --backends | 
 case of the catalogue's ``"fem"`` suite (Hertz; case A symmetric and with unequal radii and a
 moment; case B; case C; a general finite R; suppressed tilt; near lift-off) it
 prints the FE errors against ``closedform.solve_normal`` at the case's compliance
-``A = rigid_punch(E, nu)``: ``a`` and ``c`` in units of the contact width W,
+``A`` of the case (a rigid-punch block of ``case.block_E``): ``a`` and ``c`` in units of the contact width W,
 ``alpha`` relative, both peak pressures and the interior pressure (5 % of W
 excluded at each edge) relative to the largest peak, with DOFs and times. Then,
 side by side in the same run (every FE solve cold: no cached contact estimate or
@@ -59,7 +59,7 @@ def cold_solve(case, mesh: str):
     fem.solve.locate_ends.cache_clear()
     fem.mesh._meshed.cache_clear()
     t0 = time.perf_counter()
-    fe = fem.solve_normal(case.punch, case.P, case.s_load, E=case.E, nu=case.nu, tilt=case.tilt,
+    fe = fem.solve_normal(case.punch, case.P, case.s_load, E=case.block_E, nu=case.nu, tilt=case.tilt,
                           mesh=mesh)
     return fe, time.perf_counter() - t0
 
@@ -122,7 +122,7 @@ def peer(meshes: list[str]) -> None:
             fe, dt = cold_solve(case, mesh)
             times[f"fem {mesh}"] = (dt, row(f"fem {mesh}", dt, fe.a, fe.c, fe.x_nodes, fe.p_nodes))
         for cells in PEER_CELLS:
-            r = solve_peer(case.punch, case.P, E=case.E, nu=case.nu, width=W, cells=cells)
+            r = solve_peer(case.punch, case.P, E=case.block_E, nu=case.nu, width=W, cells=cells)
             times[f"tamaas {cells}/W"] = (r.time_s, row(f"tamaas {cells}/W", r.time_s, r.a, r.c, r.x, r.p))
         # tamaas' time to 4e-5: its coarsest grid that gets there, else its finest (said so);
         # judged on a and c alone, then on a, c and the pressure
@@ -224,11 +224,11 @@ def backends(meshes: list[str], repeat: int = 2) -> None:
             # the solves' mesh, made again (from the cache): its preset, refined as they were
             pre = fem.mesh.preset(mesh)
             pre = replace(pre, refine=pre.refine * fs.info["refined"])
-            guess = fem.locate_contact(case.punch, case.P, case.s_load, E=case.E, nu=case.nu,
+            guess = fem.locate_contact(case.punch, case.P, case.s_load, E=case.block_E, nu=case.nu,
                                        tilt=case.tilt)
             sub = fem.make_substrate(pre.spec(*guess, (-case.punch.b, case.punch.b)))
             first = (case, sub) if k == 0 else first
-            cond = {b: min((elasticity.condense(sub, case.E, case.nu, backend=b)
+            cond = {b: min((elasticity.condense(sub, case.block_E, case.nu, backend=b)
                             for _ in range(repeat)), key=lambda sc: sc.timings["factorise"])
                     for b in names}
             C_s, C_c = cond["scipy"].C, cond["cholmod"].C
@@ -252,7 +252,7 @@ def backends(meshes: list[str], repeat: int = 2) -> None:
           + f" {total['scipy']['solve'] / total['cholmod']['solve']:6.2f}")
     if first is not None:
         case, sub = first
-        two = {b: min((elasticity.condense(sub, case.E, case.nu, ("u^1", "u^2"), backend=b)
+        two = {b: min((elasticity.condense(sub, case.block_E, case.nu, ("u^1", "u^2"), backend=b)
                        for _ in range(repeat)), key=lambda sc: sc.timings["factorise"])
                for b in names}
         t2 = {b: two[b].timings["factorise"] for b in names}

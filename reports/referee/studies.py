@@ -52,7 +52,7 @@ def calculix_result(case: Any, n: float, penalty_factor: float, workdir: Path,
     from threepart.methods import solve
 
     case = case.resolved()
-    E, nu = case.material
+    E, nu = case.block_E, case.material[1]    # the rigid-punch block of the case's A
     settings = calculix.DeckSettings(n=n, penalty_factor=penalty_factor)
     A = compliance(E, nu, E * settings.stiffening, nu)
     punch = _replace(case.punch, R1=scale * case.punch.R1, R2=scale * case.punch.R2,
@@ -102,7 +102,7 @@ def calculix_studies(say: Callable[[str], None] = print) -> list[Any]:
             say(f"[study]   calculix W/h = {n:g}, K = {k:g} E/h: peak error {max(err['p_left'], err['p_right']):.3g}, "
                 f"a {err['a']:.3g} W, c {err['c']:.3g} W")
             h = float(res.diagnostics.h or math.nan)
-            E = float(case.material[0]) if case.material else math.nan
+            E = float(case.block_E) if case.material else math.nan
             return (h if param == "h" else h / (k * E), raw, {"dofs": res.diagnostics.dofs}, err)
 
         mesh = run_study(lambda n: level(n, CALCULIX_K_MESH, "h"), list(CALCULIX_N), param="h",
