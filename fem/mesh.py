@@ -61,6 +61,8 @@ class MeshPreset:
         the rate ``growth``; ``1`` keeps the zone uniform. With ``refine > 1`` the
         estimated contact ends are also mesh nodes.
 
+    Notes
+    -----
     Each parameter is bounded (:data:`PRESET_BOUNDS`): ``n`` in ``[4, 2400]``,
     ``growth`` in ``[0.0125, 1]``, ``L`` in ``[4, 1e4]``, ``margin`` in
     ``(0, 2]``, ``refine`` in ``[1, 1024]``; a bool or a string is a ``TypeError``.

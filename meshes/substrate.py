@@ -68,6 +68,8 @@ class SubstrateSpec:
     h_fine
         Element size at the ``refine_at`` points; ``0`` means no refinement (a uniform zone).
 
+    Notes
+    -----
     Bounds: ``growth`` in :data:`GROWTH_RANGE`, at most :data:`MAX_ZONE_ELEMENTS`
     along the zone, ``L / h`` at most :data:`MAX_BLOCK_RATIO`, ``h / h_fine`` at
     most :data:`MAX_FINE_RATIO`. A bool or a non-number is a ``TypeError``.
