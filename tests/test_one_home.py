@@ -41,7 +41,7 @@ def _imports(path: Path, package: list[str] | None = None) -> set[str]:
 
 #: what sits above the core inside ``threepart/``: the command line and the foreign codes' toolkits
 #: (``__main__`` is the command line's entry)
-ABOVE_CORE = ("cli", "calculix", "readers", "__main__")
+ABOVE_CORE = ("cli", "calculix", "getfem", "readers", "__main__")
 #: the layers, bottom up: each folder's package may import those below it, never those above
 LAYERS = {"core": 0, "meshes": 1, "solvers": 1, "foreign": 2, "reports": 3, "cli": 4}
 
@@ -56,7 +56,7 @@ def _layer(module: str) -> str | None:
         return "solvers"
     if top in ("meshes", "reports"):
         return top
-    if top in ("calculix", "readers"):
+    if top in ("calculix", "getfem", "readers"):
         return "foreign"
     if top in ("cli", "__main__"):
         return "cli"

@@ -124,3 +124,51 @@ def test_a_non_finite_shear_is_refused_by_name(ref):
     q[3] = np.nan
     with pytest.raises(InputError, match="non-finite q"):
         slip_from_points(x, p, q, ref)
+
+
+# --- threepart compare --Q --f: the same judgement at the command line ------------------------------
+HERTZ = ["--R1", "10", "--R2", "10", "--b", "0", "--P", str(P), "--E", "210000", "--nu", "0.3"]   # A of the pair
+
+
+def _csv(path, x, p, q):
+    path.write_text("x,p,q\n" + "\n".join(f"{a:.17g},{b:.17g},{c:.17g}" for a, b, c in zip(x, p, q)))
+    return path
+
+
+@pytest.mark.parametrize("sign, status, line", [(1.0, 0, "PASSED"), (-1.0, 1, "pitfall shear-sign")])
+def test_compare_judges_a_partial_slip_from_a_csv(tmp_path, capsys, ref, sign, status, line):
+    from threepart.cli import main
+
+    x, p, q = _nodes(ref)
+    csv = _csv(tmp_path / "slip.csv", x, p, sign * q)
+    argv = ["compare", "--pressure", str(csv), *HERTZ, "--Q", repr(ref.Q), "--f", repr(F),
+            "--out", str(tmp_path / "report")]
+    assert main(argv) == status
+    assert line in capsys.readouterr().out
+    assert (tmp_path / "report" / "report.html").is_file()
+
+
+@pytest.mark.parametrize("extra, match", [
+    (["--Q", "80"], "give both `--Q` and `--f`"),
+    (["--stick-slope", "1e6"], "judge a partial slip: give `--Q` and `--f` too"),
+    (["--Q", "80", "--f", "0.5", "--stick-slope", "-1"], "`--stick-slope`"),
+])
+def test_compare_refuses_a_half_given_partial_slip(tmp_path, capsys, ref, extra, match):
+    from threepart.cli import main
+
+    x, p, q = _nodes(ref)
+    csv = _csv(tmp_path / "slip.csv", x, p, q)
+    assert main(["compare", "--pressure", str(csv), *HERTZ, *extra, "--out", str(tmp_path / "r")]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and match in err[0], err
+
+
+def test_compare_of_a_partial_slip_needs_the_files_shear(tmp_path, capsys, ref):
+    from threepart.cli import main
+
+    x, p, _ = _nodes(ref)
+    csv = tmp_path / "normal.csv"
+    csv.write_text("x,p\n" + "\n".join(f"{a:.17g},{b:.17g}" for a, b in zip(x, p)))
+    assert main(["compare", "--pressure", str(csv), *HERTZ, "--Q", repr(ref.Q), "--f", repr(F),
+                 "--out", str(tmp_path / "r")]) == 2
+    assert "carries no shear q" in capsys.readouterr().err

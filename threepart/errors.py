@@ -27,6 +27,8 @@ ReaderError             -- a file of another code that cannot be read: names the
 OutputExistsError       -- a path holds what threepart did not write (ValueError)
 CcxError                -- CalculiX ran but failed, or wrote no result (RuntimeError)
 CcxMissing              -- ``ccx`` is not on the PATH (OSError)
+GetfemError             -- a GetFEM script ran but failed (Newton, a crash), or wrote no result (RuntimeError)
+GetfemMissing           -- no interpreter that imports ``getfem`` (OSError)
 ManifestError           -- a mesh file does not match its manifest (AssertionError)
 
 Bad input is a :class:`ValueError` (or one of the subclasses below) whose
@@ -215,3 +217,15 @@ class InputError(ThreepartError, ValueError):
 
 class InputTypeError(ThreepartError, TypeError):
     """An argument of the wrong type: the message names the argument and the type it needs."""
+
+
+# --- GetFEM, the second outside referee (threepart.getfem) ---------------------------------------
+__all__ += ["GetfemError", "GetfemMissing"]
+
+
+class GetfemError(ThreepartError, RuntimeError):
+    """A GetFEM script ran but failed (Newton did not converge, GetFEM raised), or wrote no result."""
+
+
+class GetfemMissing(ThreepartError, OSError):
+    """No Python interpreter that imports ``getfem`` (``THREEPART_GETFEM_PYTHON``, ``python3``)."""

@@ -76,6 +76,13 @@ normalised error (``_level``: at the finest discretisation of a study).
     A pressure from another code (``threepart compare --pressure``) and the
     CalculiX column of the verification run, against the closed form (or the
     SIE past lift-off): the issue-22 targets.
+``getfem``
+    GetFEM's partial slip and fretting cycle of two similar bodies (:mod:`threepart.getfem`)
+    against Mindlin and the closed form: the issue-38 targets.
+``calculix-friction``
+    CalculiX's partial slip and fretting cycle of two similar bodies
+    (:mod:`threepart.calculix.friction`) against Mindlin and the closed form: the issue-38
+    targets, and what CalculiX reaches where it misses them (``q_integral``, ``stick_shift``).
 ``referee-pitfall``
     When the referee names a known pitfall of another code's pressure
     (:mod:`threepart.reports.referee.pitfalls`): tension, load, the ends'
@@ -95,6 +102,9 @@ normalised error (``_level``: at the finest discretisation of a study).
 ``fem-steady``
     The FEM's periodic steady state (``tests/test_fem_steady.py``): marched
     against the closed form, shakedown, path independence, the march's stop.
+``auto-march``
+    The steady state's ``auto`` past the superposition (issue 37, ``tests/test_cycles_auto.py``):
+    the SIE's load history marched until two cycles agree, and that against the closed form.
 ``convergence``
     The convergence tools (:mod:`threepart.convergence`) on manufactured sequences.
 ``answer``
@@ -295,6 +305,7 @@ TOLERANCES: dict[tuple[str, str], Tolerance] = {
     ("referee", "q_interior_max"): _T(2e-2, "issue 38 target: the shear within 2 % of its peak, 5 % of W in from the contact ends, at the points (next to the sqrt kinks at the stick-zone ends too)"),
     ("referee", "q_L2"): _T(3e-2, "includes the sqrt kinks at the contact and stick-zone ends, which the points resolve to their spacing"),
     ("referee", "q_integral"): _T(1e-3, "issue 38 target: ∫q dx of the points by the trapezoidal rule against Q"),
+    ("referee", "energy"): _T(2e-2, "issue 38 target: an outside code's fretting energy per cycle within 2 % of the closed form's (Masing)"),
     ("referee", "q_bound"): _T(1e-2, "|q| - f p of the points over f p_max: a penalty or augmented Lagrangian friction law lets |q| pass f p by its own tolerance"),
     # --- the referee's pitfalls: when `threepart compare` names one (reports/referee/pitfalls.py) ---
     ("referee-pitfall", "negative"): _T(1e-3, "tension (of the peak) past which negative pressures are named: CalculiX writes CPRESS = -K COPEN at open nodes, a tension; the points' own noise stays below"),
@@ -406,10 +417,16 @@ TOLERANCES: dict[tuple[str, str], Tolerance] = {
     ("sie-history", "shakedown"): _T(1e-9, "friction work of the cycles after the first, of the first's, and slip after the first cycle, of its largest: rounding (measured 4e-13, 1e-12)"),
     ("sie-history", "loop_area"): _T(1e-2, "area of the Q-delta loop of a cycle against its friction work (∮ Q dδ: the normal work is conservative in the uncoupled problem, so a cycling P adds none), both trapezoidal in the states, 40 a cycle: measured 4.0e-3 (P constant) and 5.0e-3 (P cycling in phase)"),
     ("sie-history", "steady"): _T(1e-9, "two first-loading paths, the last cycle: energy, and the shear outside the permanent stick zone of f p_max: the same discrete states, rounding (measured 1e-15)"),
-    ("sie-history", "cycle_energy"): _T(5e-3, "flight cycle (fan_blade_flight_cycle): friction work of the third marched cycle, n = 1024, 10 steps a half-cycle, against the closed form's steady state (S11) (measured 9.3e-4; the slip zones are 2 and 6 elements wide)"),
+    ("sie-history", "cycle_12"): _T(1e-2, "issue 37 target: the Hertz cycle (R = 10, P 300 -> 500, Q -50 -> 150, f = 0.6) at 12 states a half-cycle, n = 400, the last cycle's energy against the closed form's (S11): measured 4.3e-3 (3.0e-2 before the passing elements' work and the sub-steps)"),
+    ("sie-history", "cycle_energy"): _T(1e-2, "flight cycle (fan_blade_flight_cycle): friction work of the third marched cycle, n = 1024, 10 steps a half-cycle, against the closed form's steady state (S11): measured 5.4e-3 with the Ti-on-Ti compliance (slip zones 8 and 7 elements wide; 4 sub-steps a step give 4.0e-3, n = 2048 gives 3.7e-3, n = 512 4.6e-2: the grid's error dominates)"),
     ("fem-history", "stick_end"): _T(3.0, "FEM on the quick mesh against the SIE at n = 400 over one in-phase cycle, stick-zone ends in the FEM's elements h (measured 0.3 h)"),
     ("fem-history", "energy_default"): _T(5e-3, "FEM on the default mesh against the SIE at n = 1600, energy of each of three in-phase cycles (measured 0.04 % on the first)"),
     ("fem-history", "energy"): _T(3e-2, "FEM on the quick mesh against the SIE at n = 400, energy per in-phase cycle (measured 0.7 %)"),
+    # --- the steady state's auto past the superposition (issue 37): the SIE's history marched -------
+    ("auto-march", "settle"): _T(1e-6, "the march stops when two successive cycles' friction work agree to this: the active-set march repeats a settled cycle's states, so its work repeats to rounding (the issue's one-sided cycle: 1.8e-4 between cycles 2 and 3, 2.2e-8 between 3 and 4, 2.4e-12 between 4 and 5)"),
+    ("auto-march", "energy"): _T(2e-2, "the marched cycle (400 elements, 24 states a half-cycle) against the closed form's energy (S11) on random admissible cycles whose slip zones span >= 10 elements: measured <= 1.3e-2 (3.4e-2 at 3-4 elements, which info['march'] reports)"),
+    ("auto-march", "stick_end"): _T(1.5, "the marched cycle's permanent stick-zone ends against the closed form's, in elements h: an element stuck all cycle ends on an element edge (measured <= 0.55 h)"),
+    ("auto-march", "shakedown"): _T(1e-9, "a marched cycle has shaken down when its friction work is at most this of the largest cycle's (the first's): rounding, as (\"sie-history\", \"shakedown\")"),
     # --- fem steady state (issue 31): fem.steady_state, the cycle marched until it repeats ----------
     ("fem-steady", "settle"): _T(1e-4, "the march stops when two successive cycles' friction work agree to this: a settled cycle repeats the last to rounding (measured 4e-14); the first after a proportional first loading differs by 15 %"),
     ("fem-steady", "shakedown"): _T(1e-9, "friction work of a shaken-down cycle, of its elastic work (max(|ΔQ|, f ΔP) times the largest nodal range of w); its slip amplitude, of W: rounding (measured 2e-16 of the work, slip amplitude 0)"),
@@ -420,14 +437,14 @@ TOLERANCES: dict[tuple[str, str], Tolerance] = {
     ("fem-steady", "zone_default"): _T(2e-3, "issue 31 target: stick-zone ends on the default mesh within 2e-3 W of the closed form's: measured <= 8.8e-4 W"),
     ("fem-steady", "energy_default"): _T(1e-2, "issue 31 target: energy per cycle on the default mesh within 1 %: measured <= 0.40 % (40 steps a half-cycle)"),
     # --- the flight cycle's steady state (STEADY_QUANTITIES) by the FEM, in the verification run ---
-    ("fem-quick", "stick_ends"): _T(2e-3, "fan_blade_flight_cycle on the quick mesh: stick-zone ends of W (the issue's 2e-3 W on the default mesh); measured 2.4e-4"),
-    ("fem-quick", "cycle_energy"): _T(3e-2, "as on the default mesh, quick mesh: measured 1.1e-2 (slip zones of a few elements)"),
-    ("fem-quick", "q_range"): _T(3e-3, "shear range q_1 - q_0 at the quick mesh's nodes, interior: measured 6.9e-4"),
-    ("fem-quick", "slip_amplitude"): _T(0.6, "slip amplitude of the flight cycle's slip zones, 0.021 and 0.0055 mm wide, about 8 and 2 quick-mesh elements at its ends: nodal slip, linear between nodes, against eq. S7; measured 0.42 of the largest (the issue sets no target; on wider slip zones, tests/test_fem_steady.py, 4.8e-3)"),
-    ("fem-default", "stick_ends"): _T(2e-3, "issue 31 target: permanent stick-zone ends within 2e-3 W on the default mesh; measured 2.4e-4 on fan_blade_flight_cycle"),
-    ("fem-default", "cycle_energy"): _T(1e-2, "issue 31 target: energy per cycle within 1 % on the default mesh, 40 steps a half-cycle; measured 6.4e-3 on fan_blade_flight_cycle"),
-    ("fem-default", "q_range"): _T(1e-3, "shear range q_1 - q_0 at the default mesh's nodes, interior: measured 1.3e-4"),
-    ("fem-default", "slip_amplitude"): _T(0.35, "as on the quick mesh, with half its elements: measured 0.24 of the largest, the slip zones 4 to 16 elements wide (no target in the issue)"),
+    ("fem-quick", "stick_ends"): _T(2e-3, "fan_blade_flight_cycle on the quick mesh: stick-zone ends of W (the issue's 2e-3 W on the default mesh); measured 4.5e-4 (Ti on Ti, issue 37; 2.4e-4 as a rigid punch)"),
+    ("fem-quick", "cycle_energy"): _T(3e-2, "as on the default mesh, quick mesh: measured 1.2e-2 (slip zones of a few elements)"),
+    ("fem-quick", "q_range"): _T(3e-3, "shear range q_1 - q_0 at the quick mesh's nodes, interior: measured 6.4e-4"),
+    ("fem-quick", "slip_amplitude"): _T(0.12, "slip amplitude of the flight cycle (Ti on Ti, issue 37: slip zones 0.029 and 0.009 mm wide at the lower end state, 0.032 and 0.026 mm at the upper): nodal slip, linear between nodes, against eq. S7; measured 6.0e-2 of the largest (the issue sets no target; as a rigid punch, slip zones of 0.021 and 0.0055 mm, it was 0.42 under a limit of 0.6)"),
+    ("fem-default", "stick_ends"): _T(2e-3, "issue 31 target: permanent stick-zone ends within 2e-3 W on the default mesh; measured 2.8e-4 on fan_blade_flight_cycle"),
+    ("fem-default", "cycle_energy"): _T(1e-2, "issue 31 target: energy per cycle within 1 % on the default mesh, 40 steps a half-cycle; measured 2.8e-3 on fan_blade_flight_cycle"),
+    ("fem-default", "q_range"): _T(1e-3, "shear range q_1 - q_0 at the default mesh's nodes, interior: measured 1.7e-4"),
+    ("fem-default", "slip_amplitude"): _T(3e-2, "as on the quick mesh, with half its elements: measured 5.2e-3 of the largest on the Ti-on-Ti flight cycle, 1.3e-2 on the fine mesh (the nodal slip's peak between nodes: not monotone in h; quick 6.0e-2); issue 37 §9: 0.24 under a limit of 0.35 when the case was a rigid punch, its slip zones 1.4 to 4.7 times narrower; no target in the issue"),
     # --- the one check of every answer (threepart.answer), of every method -----------------------
     ("answer", "p_min"): _T(1e-6, "the least pressure over the contact, of the peak: the closed form's is exact (rounding, 1e-15) and the SIE's (n = 1024) errs by <= 5e-8 of the peak (the table's 'refs' 'stress'); the SIE's answer to issue 29's case below its separation load dipped by -2.4e-5 of the peak (sharp R1 = 0.037 b), so 1e-6 refuses it and no rounding; measured on 300 random cases at n = 1024: no dip at all (min p >= 0)"),
     ("answer", "q_bound"): _T(1e-6, "|q| - f p, of f p_max: 0 in the slip zones by construction (q = f p), and in the stick zone as the corrective p*'s pointwise error, <= 5e-8 of the peak for the SIE at n = 1024 (as 'sie' 'q_bound'); the FEM holds |t_i| <= f f_i node by node (1e-12)"),
@@ -448,8 +465,33 @@ TOLERANCES.update({
     ("edges", "slip_order_max"): _T(1.05, "as slip_order, from above: fitted 1.00"),
     ("match", "multipliers"): _T(1e-6, "issue 32 target: the matched pad's K_N, K_T and slip zone equal the flank's edge to 1e-6 (closed form); measured <= 1e-14"),
     ("match", "sxx_slip"): _T(5e-2, "issue 32 target: the pad's surface sigma_xx within 5 % of the flank's over the slip zone, of the flank's largest |sigma_xx| there; measured 1.8e-2 to 4.3e-2 on caseA_moment's edges at Q/fP <= 0.05 (a pad of the flank's width, or R = 50 mm at Q/fP = 0.02); it falls with the slip zone, a first-order match (docs/EDGES.md section 6)"),
-    ("match", "sxx_bulk"): _T(6e-2, "the default pad (the radius of least surface sigma_xx error over the slip zone) on the catalogue's flanks: measured 3.3e-2 and 5.3e-2 on fan_blade_flank_bulk's edges (a pad of the flank's width: 0.33 and 0.30), <= 1.8e-2 on slip_Q0.4's; the bulk-loaded right edge misses the 5 % target by 0.3 %"),
+    ("match", "sxx_bulk"): _T(6e-2, "the default pad (the radius of least surface sigma_xx error over the slip zone) on the catalogue's flanks: measured 2.3e-2 on fan_blade_flank_bulk's left edge (Ti on Ti), <= 1.8e-2 on slip_Q0.4's; judged where the edge is in its asymptotic regime (exact slip zone within 1.5x Mindlin's 2|K_T|/(f K_N)): the bulk-loaded right edge (2.8x, the bulk stress cancels 95 % of K_T) reaches 0.21 at best"),
+    ("match", "slip_zone_min"): _T(1e-9, "the smallest slip zone, as a fraction of the contact width W, over which match() compares the surface sigma_xx (issue 37): below it the rounding of the contact and stick-zone ends (1e-16 W) sets the slip zone; measured on caseA_moment's left edge at P = 400, s = 0.1: sxx_error 1.8e-7 at 1.7e-9 W (1.4e-7 by its first order in the slip zone, from 1.7e-7 W), 2.4e-6 at 1.7e-10 W where first order gives 1.4e-8, 8.8e-5 at 1.7e-11 W, 0.61 at 4e-16 W, NaN at Q = 0"),
     ("match", "fatigue"): _T(1e-2, "the fatigue parameters' largest values near the edge (von Mises range, SWT, Findley, Ruiz's FFDP), pad against flank: measured <= 3e-3 on caseA_moment's edges at Q/fP <= 0.05 with a pad of the flank's width, <= 7.9e-3 (Ruiz's FFDP; the others <= 2.8e-3) with the default pad of least sigma_xx error, whose sigma_xx is within 2e-3"),
+})
+
+# --- the closed-form worn limit of fretting (issue 39, closedform/wear.py, docs/WEAR.md): tests/test_wear_limit.py
+TOLERANCES.update({
+    ("wear-limit", "quadrature"): _T(2e-9, "∫p = P and ∫x p = P s of the singular limit pressure by 2^16-node Gauss–Chebyshev (first kind): the joins' (x∓b)ln|x∓b| limit the rule; measured <= 3.9e-10 (three-part, all rules), 1e-12 (Hertz)"),
+    ("wear-limit", "round_off"): _T(1e-12, "Hertz against eq. W11; C1 = 0 where the stick zone cannot move (symmetric, Hertz with a moment); the ends' K = Q_max/(π f) of eqs. W7, W12 and Coulomb's margin of the fixed points, of Q_max/π (measured >= -0: 1.4e-7 least): rounding of the closed forms and the roots"),
+    ("wear-limit", "hertz"): _T(1e-11, "Hertz against the unbounded-ends Gauss–Chebyshev collocation (exact for a quadratic p w): measured <= 1.6e-13 of the peak, tilt 7e-16"),
+    ("wear-limit", "collocation"): _T(3e-5, "three-part punch against the collocation with n = 1600, 5 % of the width from the ends, of the peak (tilt of the slope range): the joins' kinks, measured <= 6.2e-6 (tilt 8.8e-8; held, pinned 8.9e-7, consistent 9.2e-7)"),
+    ("wear-limit", "gap"): _T(1e-8, "the worn profile plus the half-plane displacement (QUADPACK weighted rules, epsrel 1e-10) a rigid-body motion over the scar, of the largest depth: measured <= 3.4e-10 (three-part, pinned), 1.1e-13 (Hertz)"),
+})
+
+# --- the SIE on a worn profile and the fretting-wear march (issue 39, sie/profile.py, sie/wear.py): tests/test_wear.py
+TOLERANCES.update({
+    ("wear", "zero_depth"): _T(1e-12, "a zero worn depth adds nothing to the punch's exact coefficients: ends (of W), tilt and pressure (of the peak) as the punch's own SIE; measured 0 and 1.7e-16"),
+    ("wear", "profile_ends"): _T(1e-5, "a quadratic depth x^2/20 at 4001 knots against Hertz of the summed curvature, of W: the knots' interpolation; measured 8.4e-7 W (pchip), 5.2e-6 W (linear: the secants lie above the parabola by h^2/8 R')"),
+    ("wear", "profile_pressure"): _T(5e-3, "as profile_ends, the pressure of the peak away from the ends: pchip's slope is first order at the minimum x = 0 (5.3e-4), linear's secants kink at every knot (3.0e-3)"),
+    ("wear", "equilibrium"): _T(1e-8, "∫p = P and ∫x p = P s of a worn profile's pressure by adaptive quadrature (epsrel 1e-12): the load and centroid equations hold exactly for the sine series"),
+    ("wear", "unbounded"): _T(1e-10, "unbounded ends on the limit's stick zone against closedform.wear_limit (eq. W3): pressure of the unworn peak 5 % from the ends, tilt of the slope scale, the ends' K; measured <= 1.6e-14"),
+    ("wear", "unworn_energy"): _T(1e-9, "a zero depth's fretting cycle against the closed form: the loop's energy (ln h/h*, 48-node Gauss–Legendre) and the friction work ∫4f²pG* dx (96 nodes per slip zone) measured 4e-16, 3.6e-15; the stick zone at Q_max (mm) 1e-16"),
+    ("wear", "stick_zone"): _T(1e-3, "issue 39 target: a symmetric contact's stick zone unchanged by wear, of W; the depth interpolated between the last unworn and the first worn knot reaches into the stick zone by < 1 knot spacing: measured 3.7e-4 W after 60 cycles at k = 1e-5 (301 knots)"),
+    ("wear", "identity"): _T(5e-3, "eq. W15: the worn area per cycle (the knots' increments k 4 f² p G*, trapezoidal) against k times the loop's area (ln h/h*) of the same worn state, Hertz after 60 cycles at k = 1e-5: measured 1.9e-3 on 301 knots; 6.3e-2 on 151, whose 13 knots per slip zone miss the rate's sqrt(r) at the contact ends"),
+    ("wear", "energy_routes"): _T(2e-3, "the loop's area (ln h/h*, the stick zones alone) against the march's friction work ∫4f²pG* dx (the slip, by the worn profile's gap series) on a marched worn profile: measured 3.5e-4 on 301 knots (2.0e-3 on 151), the loop's own two-level estimate 4.6e-5"),
+    ("wear", "limit_L2"): _T(1e-2, "issue 39 target: the marched pressure within 1 % of the worn limit (eq. W11), L2 over the stick zone less 10 % of it at each end"),
+    ("wear", "energy_left"): _T(5e-2, "issue 39 target: the energy per cycle below 5 % of its start after k N well past the elastic approach"),
 })
 
 # closed form vs FEM, fine mesh: every size of the default mesh halved, so the default's limits hold
@@ -476,6 +518,27 @@ TOLERANCES.update({
                                               "an answer on admissible input (issue 29)"),
 })
 
+
+# --- GetFEM, the outside referee of friction (issue 38, threepart.getfem, docs/GETFEM.md): two similar
+# bodies, P2, Coulomb_friction_coupled_projection; tests/test_getfem.py and the GetFEM column -------------
+TOLERANCES.update({
+    ("getfem", "stick_end"): _T(5e-3, "issue 38 target: each stick-zone end within 5e-3 W of the closed form's (Hertz: Mindlin's c = a sqrt(1 - Q/fP)); measured from the slip (threepart.getfem.slip_ends) 7e-5 W on Hertz at W/h = 64, 2e-4 W at 128 and <= 2e-4 W on slip_Q0.4 at 128; from the tractions (|q| < 0.99 f p, reports.referee.friction) 2.7e-3 W on Hertz at W/h = 64 and 128, 6.7e-3 W on slip_Q0.4's right end at 64 and <= 2.8e-3 W at 128 (docs/GETFEM.md)"),
+    ("getfem", "q_integral"): _T(1e-3, "issue 38 target: ∫q of the multiplier against Q; measured <= 1e-8 at every mesh (the multiplier is the traction: exact to Newton's residual)"),
+    ("getfem", "P"): _T(1e-3, "∫p of the multiplier against P, as q_integral; measured <= 1e-9"),
+    ("getfem", "q_interior_max"): _T(2e-2, "issue 38 target: q within 2 % of its peak away from the ends (5 % of W in from the contact's and the stick zone's ends); measured on Hertz 3.9e-3 at W/h = 64 and 1.4e-3 at 128 (3.7e-2 at 32), on slip_Q0.4 9.8e-3 at 64 and 1.3e-3 at 128"),
+    ("getfem", "energy"): _T(2e-2, "issue 38 target: the energy per fretting cycle (the Q-delta loop's area, Simpson's rule per branch) within 2 % of the closed form's; measured -0.97 % on fretting_Q0.4 x 20 at W/h = 64 and -1.06 % at 128 with Q_max/8 steps (trapezoids -1.39 %, -1.45 %): a 1 % deficit that does not fall with h (docs/GETFEM.md)"),
+})
+
+# --- CalculiX with friction (issue 38, threepart.calculix.friction, docs/CALCULIX.md): two similar
+# bodies, surface-to-surface penalty contact, *FRICTION; tests/test_calculix_friction.py ----------------
+TOLERANCES.update({
+    ("calculix-friction", "stick_end"): _T(5e-3, "issue 38 target, on the stick zone's half-width against Mindlin's c = a sqrt(1 - Q/fP) (Hertz) or the closed form's d, in W; measured -2.9e-4 W on Hertz at W/h = 100, 4.1e-3, 1.6e-3, 1.4e-4 W on slip_Q0.4 at W/h = 50, 100, 200 (ends from threepart.calculix.friction.stick_ends)"),
+    ("calculix-friction", "stick_shift"): _T(1e-2, "the stick zone's centre against the closed form's, in W: CalculiX's zone sits toward +x by 5.5e-3 W on Hertz at W/h = 100 (7.5e-3 at W/h = 50) and by 5.5e-3, 4.0e-3, 5.3e-3 W on slip_Q0.4 at W/h = 50, 100, 200 (an offset of the model, not the mesh; a block 80 W instead of 20 W changed nothing), past the issue's 5e-3 W for each end; not explained"),
+    ("calculix-friction", "P"): _T(1e-3, "∫CPRESS dx at the block's nodes against P; measured 1.1e-4 (Hertz) and 6.9e-5 (slip_Q0.4) at W/h = 100, 2.8e-3 and 3.5e-3 at W/h = 50"),
+    ("calculix-friction", "q_integral"): _T(3e-3, "∫(-CSHEAR1) dx at the block's nodes against Q, wider than the issue's 1e-3, which CalculiX's nodal CSTR (extrapolated from the faces' integration points) does not meet: measured 1.6e-3 (Hertz) and 1.2e-3 (slip_Q0.4) at W/h = 100, 9e-3 and 8e-3 at W/h = 50, 2.9e-3 (slip_Q0.4) at W/h = 200"),
+    ("calculix-friction", "q_interior_max"): _T(2e-2, "issue 38 target: q within 2 % of its peak 5 % of W in from the contact's and the stick zone's ends; measured 1.1e-2 on slip_Q0.4 at W/h = 100 (Hertz: 3.0e-2, the zone's offset)"),
+    ("calculix-friction", "energy"): _T(2e-2, "issue 38 target: the energy per fretting cycle (∮ F·du of the punch's loads, Simpson's rule) within 2 % of the closed form's; measured +0.25 % on fretting_Q0.4 at W/h = 50"),
+})
 
 # --- limits outside the (comparison, quantity) table, each with its reason --------------------------
 #: the validity map's designer limit (issue 23): the closed form within 1 % of the finite body's peak

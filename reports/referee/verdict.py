@@ -22,7 +22,7 @@ from threepart.errors import InputError
 from threepart.results import NormalResult, SlipResult
 from threepart.tolerances import tolerance
 
-from ..compare import compare, is_slip, normal_of
+from ..compare import compare, normal_of
 from ..verify.sections import Bullets, Document, Item, Section, Status, Table, Verdict, fmt, words
 from .friction import SlipPointsResult, friction_pitfalls, slip_from_points
 from .pitfalls import diagnose
@@ -79,7 +79,7 @@ def judge(res: PointsResult | SlipPointsResult, ref: NormalResult | SlipResult, 
                  "P": ref.P, "s": ref.s, "note": ref.info.get("auto", "")}
     obtained = {"a": res.a, "c": res.c, "P": normal.P, "s": normal.s,
                 "points": int(normal.x_nodes.size)}
-    if is_slip(ref) and is_slip(res):
+    if isinstance(ref, SlipResult) and isinstance(res, SlipPointsResult):
         pitfalls += friction_pitfalls(res, ref, stick_slope=stick_slope)
         reference.update(Q=ref.Q, f=ref.f, d=ref.d, e=ref.e, stick_zone=list(ref.stick_zone))
         obtained.update(d=res.d, e=res.e, stick_zone=list(res.stick_zone))
@@ -156,7 +156,7 @@ def main(pressure: str | Path, ref: NormalResult | SlipResult, *, out: str | Pat
     info = {k: v for k, v in record.info.items()
             if k in ("source", "penalty", "increments", "stick_slope")}
     res: PointsResult | SlipPointsResult
-    if is_slip(ref):
+    if isinstance(ref, SlipResult):
         if record.q is None:
             raise InputError(f"`--pressure` {pressure}: the file carries no shear q, which a partial "
                              "slip (--Q, --f) is judged by (CalculiX: CSTR; a mesh file: a point "

@@ -30,6 +30,7 @@ from threepart.output import atomic_dir, json_safe, strict_json, validate_json
 from . import render
 from .runs import FRETTING_STATES, MODES, CaseRun, Mode, run_case
 from ..referee import CALCULIX_CASE, CALCULIX_K, CALCULIX_N, calculix_studies
+from ..referee.friction_studies import FRICTION_METHOD, friction_studies
 from ..compare import is_steady, normal_of
 from .sections import MAP_JSON, plot_path, study_plot_path
 from .edges import ASYMPTOTE_PLOT, asymptote_study, draw_asymptote
@@ -190,6 +191,12 @@ def _studies(mode: Mode, cases: Sequence[Case], runs: list[CaseRun], say: Callab
         with heartbeat(say, lambda: "[study]   CalculiX"):
             studies.extend(calculix_studies(say))
         timings["calculix_study_s"] = time.perf_counter() - t1
+        t1 = time.perf_counter()
+        say("[study] the friction referees (CalculiX, GetFEM): Hertz partial slip of two similar "
+            "bodies, converging in h" + (", and its fretting energy per cycle" if mode.name == "full" else ""))
+        with heartbeat(say, lambda: "[study]   friction referees"):
+            studies.extend(friction_studies(say, fretting=mode.name == "full"))
+        timings["friction_referee_s"] = time.perf_counter() - t1
     cycle = next((r for r in runs if r.case.kind == "fretting" and REFERENCE in r.results), None)
     if cycle is not None:
         t1 = time.perf_counter()
@@ -353,7 +360,7 @@ def write_report(tmp: Path, mode: Mode, runs: Sequence[CaseRun], studies: Sequen
                     drawn[name].append(plot_path(name, kind))
         drawn["_studies"] = []
         for st in studies:
-            if not st.values or st.method == "calculix":   # the CalculiX column: tables only
+            if not st.values or st.method == "calculix" or st.method.endswith(FRICTION_METHOD):   # referees: tables only
                 continue
             name = study_plot_path(st.method, st.scheme, st.case)
             {"n": plots.sie_convergence, "h": plots.fem_convergence,

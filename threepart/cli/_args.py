@@ -43,7 +43,8 @@ __all__ = ["UsageError", "Parser", "NUMERIC_OPTIONS", "LIST_OPTIONS", "join_nega
 #: would take ``-1e-3`` for an option)
 NUMERIC_OPTIONS = ("--R1", "--R2", "--b", "--R", "--A", "--E", "--nu", "--P", "--s", "--Q", "--f",
                    "--Q-max", "--sigma-bulk", "--k", "--depth",   # --Q-max, --k, --depth: fatigue
-                   "--alpha", "--h", "--penalty", "--stiffening", "--pad-R", "--pad-P")   # deck, compare; match
+                   "--alpha", "--h", "--penalty", "--stiffening", "--pad-R", "--pad-P",   # deck, compare; match
+                   "--stick-slope")   # compare of a partial slip
 #: options that take a comma-separated list of numbers (``--x -0.5,0.2`` is read as ``--x=-0.5,0.2``)
 LIST_OPTIONS = ("--x",)
 

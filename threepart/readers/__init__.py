@@ -22,6 +22,7 @@ csv             -- ``.csv``/``.txt``: columns ``x, p`` (and ``q``) (:mod:`.csv`)
 frd, dat        -- CalculiX's ``.frd`` and ``.dat`` through :mod:`threepart.calculix.read` (:mod:`.calculix`)
 vtu, xdmf, med, exodus -- any mesh file meshio reads with a contact-pressure point field on
                    the contact surface: FEniCSx/dolfinx, Code_Aster, MOOSE (:mod:`.meshfile`)
+getfem          -- ``.getfem.json``: the sidecar of threepart's GetFEM script, every state's loads (:mod:`.getfem`)
 
 The core (``threepart/*.py``) never imports this package.
 """
@@ -33,12 +34,12 @@ from pathlib import Path
 from typing import Any, Callable
 
 import numpy as np
-from threepart.errors import InputError, InputTypeError
+from threepart.errors import InputError, InputTypeError, ReaderError
 
 __all__ = ["Record", "Format", "register_reader", "read", "formats", "format_of", "describe", "BUILTIN"]
 
 #: the modules of the built-in formats, imported (and so registered) on the table's first use
-BUILTIN = ("csv", "calculix", "meshfile")
+BUILTIN = ("csv", "calculix", "meshfile", "getfem")
 
 
 @dataclass(frozen=True)
@@ -112,9 +113,17 @@ def _load_builtin() -> None:
 
 
 def formats() -> list[Format]:
-    """The table's formats, built-in ones first, in the order they registered."""
+    """The table's formats: the built-in ones first, in the order of :data:`BUILTIN` (whichever
+    module was imported first), then the others in the order they registered."""
     _load_builtin()
-    return list(_FORMATS.values())
+    return sorted(_FORMATS.values(), key=_rank)
+
+
+def _rank(fmt: Format) -> int:
+    """The place of the module that registered ``fmt`` in :data:`BUILTIN` (others after them)."""
+    module = getattr(fmt.read, "__module__", "") or ""
+    name = module[len(__name__) + 1:] if module.startswith(__name__ + ".") else ""
+    return BUILTIN.index(name) if name in BUILTIN else len(BUILTIN)
 
 
 def describe() -> str:
@@ -134,7 +143,7 @@ def format_of(path: str | Path, *, arg: str = "path") -> Format:
         if ext in _SUFFIXES:
             found = _SUFFIXES[ext]
     if found is None:
-        known = ", ".join(f"{f.name} ({' '.join(f.suffixes)})" for f in _FORMATS.values())
+        known = ", ".join(f"{f.name} ({' '.join(f.suffixes)})" for f in formats())
         raise InputError(f"`{arg}` = {str(path)!r}: no reader for "
                          f"{path.suffix or 'a file without a suffix'}; the formats: {known}")
     return _FORMATS[found]
@@ -157,13 +166,18 @@ def read(path: str | Path, *, arg: str = "path", file_format: str | None = None,
 
     Raises
     ------
+    ReaderError
+        A path that is not a file, or a file the reader refuses (unreadable,
+        malformed, a number that is not finite), in one line naming ``arg`` and
+        the file; a record with a non-finite or misshapen ``x``, ``p`` or ``q``
+        from any reader is refused here, so none is ever returned.
     ValueError
-        A path that is not a file, a suffix (or ``file_format``) no reader
-        registered, or what the reader refuses, in one line naming ``arg``.
+        A suffix (or ``file_format``) no reader registered, or an option the
+        reader refuses, in one line naming ``arg``.
     """
     path = Path(path)
     if not path.is_file():
-        raise InputError(f"`{arg}` = {str(path)!r} is not a file")
+        raise ReaderError(f"`{arg}` = {str(path)!r} is not a file")
     if file_format is not None:
         _load_builtin()
         if file_format not in _FORMATS:
@@ -172,4 +186,22 @@ def read(path: str | Path, *, arg: str = "path", file_format: str | None = None,
         fmt = _FORMATS[file_format]
     else:
         fmt = format_of(path, arg=arg)
-    return fmt.read(path, arg=arg, **options)
+    return _checked(fmt.read(path, arg=arg, **options), f"`{arg}` = {str(path)!r}")
+
+
+def _checked(record: Record, label: str) -> Record:
+    """``record`` if its ``x``, ``p`` (and ``q``) are finite 1-D arrays of one length; else ReaderError."""
+    n = np.shape(record.x)
+    for name in ("x", "p", "q"):
+        v = getattr(record, name)
+        if v is None and name == "q":
+            continue
+        v = np.asarray(v)
+        if v.ndim != 1 or v.shape != n or v.dtype.kind not in "fiu":
+            raise ReaderError(f"{label}: the reader returned `{name}` of shape {v.shape} ({v.dtype}), "
+                              f"not real numbers of the shape of `x`, {n}")
+        bad = np.flatnonzero(~np.isfinite(v))
+        if bad.size:
+            raise ReaderError(f"{label}: `{name}` is not finite at {bad.size} of its {v.size} points "
+                              f"(the first at x = {float(np.asarray(record.x)[bad[0]]):g})")
+    return record
