@@ -30,13 +30,13 @@ from typing import Any, Callable
 import numpy as np
 from numpy.typing import ArrayLike
 
-from threepart.errors import (CycleSlipReversalError, LiftOffError,
+from threepart.errors import (CycleSlipReversalError, InputError, LiftOffError,
                               StickSeparationError, StickZoneError)
 from threepart.punch import Punch
 from threepart.cycles import SteadyStateResult
 from threepart.results import Diagnostics
-from threepart.steady import (WORK_NODES, LoadState, Path, check_cycle_states, corrective_load,
-                              corrective_tilt_cycle, cycle_margin, half_cycle_work, lam_rule, ramp,
+from threepart.steady import (WORK_NODES, LoadState, Path, check_cycle_states, common_contact,
+                              corrective_load, corrective_tilt_cycle, cycle_margin, half_cycle_work, lam_rule, ramp,
                               shakes_down, tilt_rate)
 from threepart.validate import check_punch
 
@@ -276,9 +276,9 @@ class _Cycle:
 
 def _permanent(cycle: _Cycle) -> tuple[float, float, bool]:
     """``(left, right, shakedown)`` of the permanent stick zone, or the refusal that applies (eq. S12)."""
+    lo, hi = common_contact(((-cycle.ends[0].a, cycle.ends[0].c), (-cycle.ends[1].a, cycle.ends[1].c)))
     z = cycle(np.array([1.0]))[0]
     left, right, out = float(z["left"][0]), float(z["right"][0]), bool(z["out"][0])
-    lo, hi = max(-n.a for n in cycle.ends), min(n.c for n in cycle.ends)
     tol = 1e-12 * (hi - lo)
     if not out and left <= lo + tol and right >= hi - tol:
         return lo, hi, True
@@ -288,6 +288,21 @@ def _permanent(cycle: _Cycle) -> tuple[float, float, bool]:
             f"{stick_zone_leaves(cycle.punch.b)}, where the closed form does not hold")
     shakes_down(left, right, lo, hi)     # OneSidedSlipError where it reaches one edge only
     return left, right, False
+
+
+#: a contact end closer to its join than this fraction of ``b`` is the join itself in double precision
+JOIN_RESOLUTION = 1e-13
+
+
+def _check_resolved(punch: Punch, normals: tuple[NormalSolution, NormalSolution]) -> None:
+    """Refuse an end state whose contact passes the joins ``±b`` by rounding only (a load so small that
+    ``a - b`` is lost against ``b``): its edges, slip zones and energy would be divisions by zero."""
+    for k, n in enumerate(normals):
+        if punch.b > 0 and min(n.a, n.c) - punch.b <= JOIN_RESOLUTION * punch.b:
+            raise InputError(
+                f"`states[{k}].P` = {n.P:g}: the contact [{-n.a:.17g}, {n.c:.17g}] passes the joins ±b = "
+                f"±{punch.b:g} by less than {JOIN_RESOLUTION:g} b, rounding in double precision: the load is "
+                "too small for the closed form to resolve its edges")
 
 
 def _check_coulomb(normals: tuple[NormalSolution, NormalSolution], left: float, right: float) -> None:
@@ -349,6 +364,7 @@ def steady_state(punch: Punch, states: Any, f: float, *, A: float) -> SteadySolu
     t0 = time.perf_counter()
     batch = solve_normal_batch(punch, [st0[0], st1[0]], [st0[1], st1[1]], A=A)
     normals = (batch[0], batch[1])
+    _check_resolved(punch, normals)
     cycle = _Cycle(punch, batch.A, f, (st0, st1), normals)
     grid = np.linspace(0.0, 1.0, MARGIN_GRID)
     first = [lam_rule(n, ())[0] for n in (WORK_NODES, 2 * WORK_NODES)]

@@ -478,6 +478,8 @@ def steady_figures(ref: Any, other: Any) -> dict[str, tuple[float, float, float]
     out["q_range"] = (fe.interior_peak(fe.ref), fe.interior_peak(fe.other), fe.interior_max)
     x = sample_points(other.normals[0], lo, hi)
     dr, do = (np.asarray(r.slip_amplitude(x), float) for r in (ref, other))
-    scale = float(np.max(np.abs(dr))) or 1.0
-    out["slip_amplitude"] = (float(np.max(dr)), float(np.max(do)), float(np.max(np.abs(do - dr))) / scale)
+    # the largest amplitudes where they lie (the one routine of the command line and the report)
+    peak_ref, peak_other = ref.largest_slip_amplitude()[0], other.largest_slip_amplitude()[0]
+    scale = peak_ref or 1.0
+    out["slip_amplitude"] = (peak_ref, peak_other, float(np.max(np.abs(do - dr))) / scale)
     return out

@@ -29,8 +29,8 @@ from threepart.errors import (CycleSlipReversalError, NoConvergenceError,
 from threepart.punch import Punch
 from threepart.cycles import SteadyStateResult
 from threepart.results import Diagnostics
-from threepart.steady import (LoadState, Path, check_cycle_states, corrective_load, corrective_tilt_cycle,
-                              cycle_margin, half_cycle_work, ramp, shakes_down, tilt_rate)
+from threepart.steady import (LoadState, Path, check_cycle_states, common_contact, corrective_load,
+                              corrective_tilt_cycle, cycle_margin, half_cycle_work, ramp, shakes_down, tilt_rate)
 from threepart.validate import check_punch
 
 from .fretting import stick_gap
@@ -193,9 +193,9 @@ def _crossings(cycle: _SieCycle, j: int) -> tuple[float, ...]:
 
 
 def _classify(cycle: _SieCycle) -> tuple[float, float, bool]:
-    """``(m*, h*, shakedown)`` of the permanent stick zone (eq. S12), or :class:`OneSidedSlipError`."""
-    e0, e1 = cycle.ends
-    lo, hi = max(-e0.a, -e1.a), min(e0.c, e1.c)
+    """``(m*, h*, shakedown)`` of the permanent stick zone (eq. S12), or :class:`OneSidedSlipError`
+    (:class:`DisjointContactsError` where the end contacts do not overlap)."""
+    lo, hi = common_contact(((-cycle.ends[0].a, cycle.ends[0].c), (-cycle.ends[1].a, cycle.ends[1].c)))
     m, h = cycle.zone(0, 1.0)
     left, right = m - h, m + h
     if shakes_down(left, right, lo, hi):

@@ -264,3 +264,36 @@ def test_the_fem_answers_the_flight_case_near_the_closed_form(capsys):
     limit = tolerance("fem-quick", "stick_ends").limit
     assert abs(left - ref.stick_zone[0]) <= limit * W and abs(right - ref.stick_zone[1]) <= limit * W
     assert text.startswith("method: fem")
+
+
+#: the issue-37 cycle the superposition refuses (one end shakes down): case A, its compliance as given
+ONE_SIDED = ["--R1", "10", "--R2", "5", "--b", "1", "--A", "1.7333e-5", "--f", "0.5",
+             "--state0", "1000,0.05,20,20", "--state1", "1400,0.15,320,60"]
+
+
+def test_auto_marches_a_cycle_the_superposition_refuses_and_says_so(capsys):
+    """The stick zone printed reaches the right edge of the contacts' common part (the normals alone)."""
+    from threepart import sie
+    from threepart.punch import Punch
+
+    text = _run(capsys, ONE_SIDED)
+    assert re.match(r"method: sie-march \(the superposition does not model this cycle: .* would reach the right "
+                    r"edge .*; marched by the SIE's load history, \d+ cycles", text)
+    ends = [sie.solve_normal(Punch(10.0, 5.0, 1.0), P, s, A=1.7333e-5) for P, s in ((1000, 0.05), (1400, 0.15))]
+    lo, hi = max(-n.a for n in ends), min(n.c for n in ends)
+    left, right = _number(text, rf"stick zone \[{NUM}, {NUM}\] mm \(stuck all through the last marched cycle\)")
+    assert lo < left < right and abs(right - hi) <= PRINTED * abs(hi)
+    (energy,) = _number(text, rf"energy\s+{NUM} N\*mm/mm per cycle")
+    assert energy > 0 and "shakedown  no" in text
+
+
+def test_the_slip_amplitude_printed_is_the_largest(capsys):
+    """fan_blade_flight_cycle: at least the largest of a dense sample of the closed form's, where it lies."""
+    text = _run(capsys, ["--case", CASE])
+    value, where = _number(text, rf"slip amplitude  largest {NUM} mm at x = {NUM} mm")
+    case = catalogue.get_case(CASE)
+    ref = cf.steady_state(case.punch, case.states, case.f, A=case.A)
+    lo, hi = min(-n.a for n in ref.normals), max(n.c for n in ref.normals)
+    x = np.linspace(lo, hi, 200_001)
+    dense = ref.slip_amplitude(x)
+    assert value >= dense.max() * (1 - PRINTED) and abs(where - x[np.argmax(dense)]) <= 2 * (x[1] - x[0])

@@ -249,7 +249,10 @@ def test_the_flight_cycles_von_mises_range_and_ruiz_by_hand(flight):
     case = catalogue.get_case(CASE)
     nu = case.nu
     W = min(n.c for n in flight.normals) + min(n.a for n in flight.normals)
-    x = np.linspace(-1.1 * W / 2 - 0.1, 1.1 * W / 2 + 0.1, 23)
+    left, right = flight.stick_zone
+    lo, hi = max(-n.a for n in flight.normals), min(n.c for n in flight.normals)
+    inner = [np.linspace(lo, left, 7)[1:-1], np.linspace(right, hi, 7)[1:-1]]    # inside both slip zones
+    x = np.sort(np.concatenate([np.linspace(-1.1 * W / 2 - 0.1, 1.1 * W / 2 + 0.1, 23), *inner]))
     z = np.array([0.0, 0.01 * W, 0.1 * W])[:, None]
     ends = []
     for k, n in enumerate(flight.normals):

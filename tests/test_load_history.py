@@ -222,13 +222,13 @@ def test_csv_errors_name_the_file_the_row_and_the_column(tmp_path, text, match):
 def test_input_errors():
     with pytest.raises(ValueError, match="cannot be read"):
         read_history("/nonexistent/h.csv")
-    with pytest.raises(ValueError, match=r"`history` state 1, column `s`: nan must be a finite number"):
+    with pytest.raises(ValueError, match=r"`history\[1\].s` = nan must be a finite number"):
         sie.load_history(HERTZ, [(P_H, 0.0, 0.0, 0.0), (P_H, math.nan, 0.0, 0.0)], F, A=A_H)
     with pytest.raises(ValueError, match=r"`history` state 1: \|`Q`\| = 2 >= f P = 1.5"):
         sie.load_history(HERTZ, [(P_H, 0.0, 0.0, 0.0), (P_H, 0.0, 2.0, 0.0)], F, A=A_H)
     with pytest.raises(ValueError, match="`history` has no states"):
         sie.load_history(HERTZ, [], F, A=A_H)
-    with pytest.raises(TypeError, match=r"`history` state 0 = .* must be a \(P, s, Q, sigma_bulk\) tuple"):
+    with pytest.raises(TypeError, match=r"`history` state 0 = .* has 2 values: it must be a \(P, s, Q, sigma_bulk\) tuple"):
         sie.load_history(HERTZ, [(P_H, 0.0)], F, A=A_H)
     with pytest.raises(TypeError, match="`history` must be a sequence"):
         sie.load_history(HERTZ, 3.0, F, A=A_H)

@@ -432,7 +432,7 @@ def test_past_the_central_segment_the_sie_answers_and_matches_its_fretting_cycle
     ([(400.0, 0.1, 0.0, 0.0), (400.0, 0.1, 200.0, 0.0)], F, FullSlidingError,
      r"\|`states\[1\].Q`\| = 200 >= f P = 200 .*no steady state with a stick zone"),
     ([(400.0, 0.1, 0.0, 0.0)], F, ValueError, r"`states` has 1 entries: it must hold the two ends"),
-    ([(400.0, 0.1, 0.0), (400.0, 0.1, 1.0, 0.0)], F, ValueError, r"`states\[0\]` = .* must be a tuple"),
+    ([(400.0, 0.1, 0.0), (400.0, 0.1, 1.0, 0.0)], F, ValueError, r"`states\[0\]` = .* has 3 values: it must be a \(P, s, Q"),
     ([(-400.0, 0.1, 0.0, 0.0), (400.0, 0.1, 1.0, 0.0)], F, ValueError, r"`states\[0\].P` = -400.0 must be > 0"),
     ([(400.0, 0.1, math.nan, 0.0), (400.0, 0.1, 1.0, 0.0)], F, ValueError, r"`states\[0\].Q` = nan must be"),
     ([(400.0, 0.1, 0.0, 0.0), (400.0, 0.1, 1.0, 0.0)], 0.0, ValueError, r"`f` = 0.0 must be > 0"),

@@ -31,6 +31,7 @@ Problem
 Punch               -- three-part punch (R1, R2, b, R), profile v(x) and slope v'(x), eq. (2)
 compliance          -- A of eq. (4), plane strain, two bodies
 similar_pair        -- A = 4(1 - nu^2)/E, two bodies of one material
+material_compliance -- A of a material (E in MPa, checked): both bodies (the convention), or a rigid punch
 rigid_punch         -- A = 2(1 - nu^2)/E, a rigid punch on an elastic half-plane
 TILTS               -- tilt modes "free" and "suppressed"
 
@@ -94,7 +95,7 @@ from typing import TYPE_CHECKING, Any
 #: neither numpy nor scipy, and Ctrl-C during those imports is the command line's to handle
 _HOMES = {
     "Punch": "punch", "compliance": "material", "similar_pair": "material",
-    "rigid_punch": "material", "TILTS": "validate",
+    "rigid_punch": "material", "material_compliance": "material", "TILTS": "validate",
     "NormalResult": "results", "SlipResult": "results", "Peak": "results",
     "SteadyStateResult": "cycles", "HistoryResult": "cycles",
     "LiftOffError": "errors", "SeparationError": "errors", "FullSlidingError": "errors",
@@ -118,7 +119,7 @@ if TYPE_CHECKING:   # pragma: no cover - for type checkers and IDEs only
                          LiftOffError, MeshResolutionError, NoConvergenceError, SeparationError,
                          ReaderError, SlopeLimitError, StickSeparationError, StickZoneError,
                          ThreepartError)
-    from .material import compliance, rigid_punch, similar_pair
+    from .material import compliance, material_compliance, rigid_punch, similar_pair
     from .methods import CHOICES, METHODS, fretting, solve, steady_state
     from .punch import Punch
     from .results import NormalResult, Peak, SlipResult

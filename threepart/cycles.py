@@ -10,9 +10,11 @@ Names
 -----
 SteadyStateResult -- the periodic steady state of an in-phase cycle (docs/STEADY_STATE.md)
 HistoryResult     -- a contact marched through a load history with the memory of slip
+MarchedSteadyResult -- the steady state of a cycle as the last cycle of a marched history (``auto``)
 """
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 from typing import Any, Mapping
 
@@ -22,10 +24,24 @@ from numpy.typing import ArrayLike
 from .answer import check_coulomb
 from .punch import Punch
 from .results import NU, Diagnostics, NormalResult, _Answer, _Edged, _kinks
+from .checks import LENGTH_RANGE, show
+from .steady import common_contact
 from .stress import Stress, stress
-from threepart.errors import InputError
+from threepart.errors import DisjointContactsError, InputError, InputTypeError, StickZoneError
 
-__all__ = ["SteadyStateResult", "HistoryResult"]
+__all__ = ["SteadyStateResult", "HistoryResult", "MarchedSteadyResult"]
+
+#: a stick zone may pass the end contacts' common part by this fraction of its width (rounding of
+#: the roots), besides the method's element ``h``
+ZONE_SLACK = 1e-9
+#: points of each panel's first scan in :meth:`SteadyStateResult.largest_slip_amplitude`
+AMPLITUDE_SCAN = 33
+#: ... whose ends lie this fraction of the larger contact inside the panel's (a contact end itself is
+#: outside), and the zoom's last spacing
+AMPLITUDE_INSET = 1e-12
+#: the most zooms of the scan (each narrows it by (AMPLITUDE_SCAN - 1)/2), and the width of the
+#: last, of the larger contact
+AMPLITUDE_ROUNDS, AMPLITUDE_XTOL = 8, 1e-10
 
 
 @dataclass(frozen=True)
@@ -75,14 +91,38 @@ class SteadyStateResult(_Edged, _Answer):
         raise NotImplementedError
 
     def check(self) -> None:
-        """Coulomb's law at both ends of the cycle (:func:`threepart.answer.check_coulomb`); none in shakedown."""
+        """The stick zone inside both end contacts (:meth:`check_stick_zone`); Coulomb's law at both ends
+        of the cycle (:func:`threepart.answer.check_coulomb`), none in shakedown."""
+        self.check_stick_zone()
         if not self.shakedown:
             for k in (0, 1):
                 check_coulomb(_End(self, k))
 
+    def check_stick_zone(self) -> None:
+        """Refuse a permanent stick zone that is empty, not finite or outside either end contact.
+
+        The ends may pass the contacts' common part by the method's element ``h``
+        (a marched zone ends half-way between nodes) and rounding of its width.
+
+        Raises
+        ------
+        DisjointContactsError
+            If the end contacts do not overlap (:func:`threepart.steady.common_contact`).
+        StickZoneError
+            If the zone is inverted or leaves the contacts' common part.
+        """
+        lo, hi = common_contact(((-self.normals[0].a, self.normals[0].c), (-self.normals[1].a, self.normals[1].c)))
+        left, right = self.stick_zone
+        slack = ZONE_SLACK * (hi - lo) + (self.diagnostics.h or 0.0)
+        if not (math.isfinite(left) and math.isfinite(right) and left <= right
+                and left >= lo - slack and right <= hi + slack):
+            raise StickZoneError(
+                f"{self.method or 'the'} steady state's stick zone [{left:.6g}, {right:.6g}] is not inside the "
+                f"contacts' common part [{lo:.6g}, {hi:.6g}]: no stick zone is returned outside a contact")
+
     def _state(self, state: Any) -> int:
-        if isinstance(state, bool) or state not in (0, 1):
-            raise InputError(f"`state` = {state!r} must be 0 or 1 (an end of the cycle)")
+        if isinstance(state, (bool, np.bool_)) or not isinstance(state, (int, np.integer)) or state not in (0, 1):
+            raise InputError(f"`state` = {show(state)} must be 0 or 1 (an end of the cycle, one int)")
         return int(state)
 
     def shear(self, x: ArrayLike, state: int) -> np.ndarray:
@@ -114,11 +154,57 @@ class SteadyStateResult(_Edged, _Answer):
         amp = self.f * np.abs(self.gap(x, "stick") - 0.5 * (self.gap(x, 0) + self.gap(x, 1)))
         return np.where((x > lo) & (x < hi), amp, 0.0)
 
+    def largest_slip_amplitude(self) -> tuple[float, float]:
+        """``(delta, x)``: the largest slip amplitude (:meth:`slip_amplitude`) and where it lies.
+
+        The one routine of the command line and the report. The larger contact is cut
+        into panels at both contacts' ends, the stick zones' ends and the joins; each
+        panel is scanned at :data:`AMPLITUDE_SCAN` points, its ends taken just inside
+        (the largest value often lies at the larger contact's edge, where the amplitude
+        falls to 0 outside), and the scan zoomed on the best point's neighbours until they
+        lie :data:`AMPLITUDE_XTOL` of the contact apart.
+        ``(0, -a)`` where nothing slips.
+        """
+        lo, hi = min(-n.a for n in self.normals), max(n.c for n in self.normals)
+        if self.shakedown:
+            return 0.0, lo
+        zones = self.stick_intervals if isinstance(self, MarchedSteadyResult) else (self.stick_zone,)
+        b = self.normals[0].punch.b
+        cuts = np.array(sorted({lo, hi, *(t for n in self.normals for t in (-n.a, n.c)),
+                                *(t for t in (-b, b, *(e for z in zones for e in z)) if lo < t < hi)}))
+        inset = AMPLITUDE_INSET * (hi - lo)
+        left, right = cuts[:-1] + inset, cuts[1:] - inset
+        keep = right > left
+        left, right = left[keep], right[keep]
+        xs = left[:, None] + (right - left)[:, None] * np.linspace(0.0, 1.0, AMPLITUDE_SCAN)[None, :]
+        v = np.asarray(self.slip_amplitude(xs.ravel()), dtype=float).reshape(xs.shape)
+        k, i = (int(j) for j in np.unravel_index(int(np.argmax(v)), v.shape))
+        best, xs = (float(v[k, i]), float(xs[k, i])), xs[k]
+        for _ in range(AMPLITUDE_ROUNDS):          # zoom on the best point's neighbours in its panel
+            xs = np.linspace(xs[max(i - 1, 0)], xs[min(i + 1, len(xs) - 1)], AMPLITUDE_SCAN)
+            v = np.asarray(self.slip_amplitude(xs), dtype=float)
+            i = int(np.argmax(v))
+            if v[i] > best[0]:
+                best = (float(v[i]), float(xs[i]))
+            if xs[-1] - xs[0] <= AMPLITUDE_XTOL * (hi - lo):
+                break
+        return best
+
     def stress(self, x: ArrayLike, z: ArrayLike, state: int, *, nu: float = NU) -> Stress:
         """Stresses in the substrate at ``(x, z)`` at the end ``state``: pressure, :meth:`shear`, ``sigma_bulk``."""
         n = self.normals[k := self._state(state)]
+        _in_range(x, z)
         return stress(x, z, pressure=n.pressure, shear=lambda t: self.shear(t, k), ends=(-n.a, n.c),
                       sigma_bulk=self.states[k][3], nu=nu, kinks=_kinks(n.punch.b, -n.a, n.c, *self.stick_zone))
+
+
+def _in_range(x: ArrayLike, z: ArrayLike) -> None:
+    """Refuse points past :data:`threepart.checks.LENGTH_RANGE`, whose squares overflow, naming the coordinate."""
+    for name, v in (("x", x), ("z", z)):
+        big = float(np.max(np.abs(np.asarray(v, dtype=float)), initial=0.0))
+        if big > LENGTH_RANGE[1]:
+            raise InputError(f"`{name}` = {big:g} is outside [-{LENGTH_RANGE[1]:g}, {LENGTH_RANGE[1]:g}], the range "
+                             "of lengths this library computes in double precision")
 
 
 @dataclass(frozen=True)
@@ -271,10 +357,16 @@ class HistoryResult(_Answer):
         Raises
         ------
         ValueError
-            If the history has no completed cycle, or no rigid shift (``delta``).
+            If the history has no completed cycle, or no rigid shift (``delta``), or ``cycle`` is
+            out of range; ``TypeError`` if it is not an int.
         """
         if self.delta is None or not self.cycles:
             raise InputError("the history has no completed cycle with a rigid shift `delta` to draw a loop of")
+        n = len(self.cycles)
+        if isinstance(cycle, (bool, np.bool_)) or not isinstance(cycle, (int, np.integer)):
+            raise InputTypeError(f"`cycle` = {show(cycle)} must be an int, the index of a completed cycle")
+        if not -n <= cycle < n:
+            raise InputError(f"`cycle` = {cycle} must index one of the {n} completed cycles, in [{-n}, {n - 1}]")
         i, j = self.cycles[cycle]
         return self.delta[i:j + 1], self.Q[i:j + 1]
 
@@ -291,3 +383,105 @@ class HistoryResult(_Answer):
             raise InputError(f"state `k` = {k} has no stick interval: every point of its contact "
                              "slipped in the step to it")
         return max(zones, key=lambda z: z[1] - z[0])
+
+
+def _intersect(runs: tuple[tuple[tuple[float, float], ...], ...]) -> tuple[tuple[float, float], ...]:
+    """The points in every one of several sets of intervals, as intervals."""
+    out = list(runs[0]) if runs else []
+    for zones in runs[1:]:
+        out = [(max(lo, l2), min(hi, h2)) for lo, hi in out for l2, h2 in zones if min(hi, h2) > max(lo, l2)]
+    return tuple(out)
+
+
+@dataclass(frozen=True)
+class MarchedSteadyResult(SteadyStateResult):
+    """The steady state of a cycle marched by a load history until two cycles agree (``method="auto"``).
+
+    Where the superposition of docs/STEADY_STATE.md refuses (one end slips and the
+    other shakes down, the ends slip in opposite senses, or the end contacts do not
+    overlap), the load history (:func:`sie.load_history`) is marched cycle after
+    cycle; its last cycle is the steady state.
+
+    Attributes (beyond :class:`SteadyStateResult`)
+    ----------
+    history
+        The marched :class:`HistoryResult`; its last cycle is the steady one.
+    ends
+        The history's state indices of the cycle's ends 0 and 1 in its last cycle.
+    stick_intervals
+        The permanent stick intervals: what stuck in every step of the last cycle
+        (on the history's element edges; possibly reaching one contact edge, or
+        none where the end contacts do not overlap). ``d``, ``e`` describe the
+        widest; with none, ``d = e = 0`` and :attr:`stick_zone` raises.
+    """
+
+    history: HistoryResult | None = field(default=None, repr=False, compare=False)
+    ends: tuple[int, int] = (0, 0)
+    stick_intervals: tuple[tuple[float, float], ...] = ()
+
+    @property
+    def stick_zone(self) -> tuple[float, float]:
+        if not self.stick_intervals:
+            (l0, r0), (l1, r1) = ((-n.a, n.c) for n in self.normals)
+            raise DisjointContactsError(
+                f"no point stuck all through the marched cycle between the contacts [{l0:.6g}, {r0:.6g}] and "
+                f"[{l1:.6g}, {r1:.6g}]: the cycle has no permanent stick zone (`stick_intervals` is empty)")
+        return max(self.stick_intervals, key=lambda z: z[1] - z[0])
+
+    def check(self) -> None:
+        """The stick intervals inside both end contacts; Coulomb's law held in every state of the march
+        (:func:`threepart.coulomb.coulomb_state` refuses a shear past its bound)."""
+        if self.stick_intervals:
+            self.check_stick_zone()
+
+    @classmethod
+    def from_history(cls, history: HistoryResult, states: tuple[Any, Any], f: float, steps: int,
+                     shakedown_share: float, method: str, info: dict[str, Any]) -> "MarchedSteadyResult":
+        """The steady state of ``history``'s last cycle (``steps`` states a half-cycle, ending at state 0).
+
+        ``shakedown``: the last cycle's energy is at most ``shakedown_share`` of the largest cycle's.
+        """
+        i, j = history.cycles[-1]
+        ends = (j, i + steps)
+        # the elements' stick intervals, cut to what is in contact all cycle (an end element may overhang it)
+        lo = max(-history.normals[k].a for k in range(i, j + 1))
+        touch = (((lo, min(history.normals[k].c for k in range(i, j + 1))),),)
+        zones = _intersect(touch + tuple(history.stick[k] for k in range(i + 1, j + 1)))
+        widest = max(zones, key=lambda z: z[1] - z[0]) if zones else (0.0, 0.0)
+        energy = float(history.energy[-1])
+        shakedown = energy <= shakedown_share * float(np.max(history.energy))
+        return cls(normals=(history.normals[ends[0]], history.normals[ends[1]]), states=states, f=f,
+                   d=0.5 * (widest[1] - widest[0]), e=-0.5 * (widest[0] + widest[1]),
+                   energy=0.0 if shakedown else energy, shakedown=shakedown, method=method,
+                   diagnostics=history.diagnostics, info=info, history=history, ends=ends,
+                   stick_intervals=zones)
+
+    def _cycle_states(self) -> range:
+        assert self.history is not None
+        i, j = self.history.cycles[-1]
+        return range(i, j + 1)
+
+    def shear(self, x: ArrayLike, state: int) -> np.ndarray:
+        """Shear ``q(x)`` at the end ``state`` of the last marched cycle: the elements' values, linear
+        between their midpoints over the end's contact, 0 at its ends (the march's shear, history and all)."""
+        assert self.history is not None
+        k = self.ends[self._state(state)]
+        n = self.history.normals[k]
+        xs, vs = self.history.x_nodes, self.history.q_nodes[k]
+        inside = (xs > -n.a) & (xs < n.c)
+        return np.interp(np.asarray(x, dtype=float), np.concatenate([[-n.a], xs[inside], [n.c]]),
+                         np.concatenate([[0.0], vs[inside], [0.0]]), left=0.0, right=0.0)
+
+    def slip_amplitude(self, x: ArrayLike) -> np.ndarray:
+        """Half the range of the accumulated slip over the last marched cycle (eq. S7's amplitude)."""
+        assert self.history is not None
+        slips = np.array([self.history.slip(x, k) for k in self._cycle_states()])
+        return 0.5 * (slips.max(axis=0) - slips.min(axis=0))
+
+    def stress(self, x: ArrayLike, z: ArrayLike, state: int, *, nu: float = NU) -> Stress:
+        """Stresses in the substrate at ``(x, z)`` at the end ``state``: pressure, :meth:`shear`, ``sigma_bulk``."""
+        n = self.normals[k := self._state(state)]
+        _in_range(x, z)
+        cuts = [t for zone in self.stick_intervals for t in zone]
+        return stress(x, z, pressure=n.pressure, shear=lambda t: self.shear(t, k), ends=(-n.a, n.c),
+                      sigma_bulk=self.states[k][3], nu=nu, kinks=_kinks(n.punch.b, -n.a, n.c, *cuts))

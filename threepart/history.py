@@ -16,6 +16,7 @@ MAX_HISTORY     -- the most states of a history
 from __future__ import annotations
 
 import csv
+import io
 import math
 import os
 from dataclasses import dataclass
@@ -24,8 +25,10 @@ from typing import Any, Sequence
 
 import numpy as np
 
-from .validate import integer, show
-from threepart.errors import InputError, InputTypeError
+from .steady import state_values
+from .validate import finite, integer, positive, show
+from threepart.errors import InputError, InputTypeError, ReaderError
+from threepart.textfile import read_text
 
 __all__ = ["History", "read_history", "check_history", "check_period", "stuck", "step_work", "MAX_HISTORY", "COLUMNS"]
 
@@ -109,39 +112,45 @@ def read_history(path: str | os.PathLike[str]) -> History:
     """The states of a CSV file with a header naming the columns ``P, s, Q, sigma_bulk`` (any order).
 
     Other columns are ignored. Rows are counted as the file's lines (the header is row 1).
+    The file is UTF-8 text; a byte-order mark (as spreadsheets write one) is dropped.
 
     Raises
     ------
-    ValueError
-        One line naming the file and, where it applies, the row and the column:
-        an unreadable file, a missing column, a short row, an entry that is not a
-        finite number, a ``P`` that is not > 0, no states, more than :data:`MAX_HISTORY`.
+    ReaderError
+        One line naming the file and, where it applies, the row and the column
+        (a ValueError): an unreadable, binary or non-UTF-8 file
+        (:func:`threepart.textfile.read_text`), a missing column, a short row, an
+        entry that is not a finite number (``nan``, ``inf``, ``1e400``), a ``P``
+        that is not > 0, no states, more than :data:`MAX_HISTORY`.
     """
     name = os.fspath(path)
+    label = f"history file {name!r}"
     try:
-        with open(name, newline="", encoding="utf-8") as fh:
-            rows = list(csv.reader(fh))
-    except (OSError, UnicodeDecodeError, csv.Error) as exc:
-        raise InputError(f"history file {name!r} cannot be read: {exc}") from None
+        rows = list(csv.reader(io.StringIO(read_text(name, label), newline="")))
+    except csv.Error as exc:
+        raise ReaderError(f"{label} cannot be read as CSV: {exc}") from None
     if not rows:
-        raise InputError(f"history file {name!r} is empty: it needs a header {', '.join(COLUMNS)}")
+        raise ReaderError(f"{label} is empty: it needs a header {', '.join(COLUMNS)}")
     header = [h.strip() for h in rows[0]]
     missing = [c for c in COLUMNS if c not in header]
     if missing:
-        raise InputError(f"history file {name!r} has no column `{missing[0]}` (its header is "
-                         f"{', '.join(header)}; it needs {', '.join(COLUMNS)})")
+        raise ReaderError(f"{label} has no column `{missing[0]}` (its header is "
+                          f"{', '.join(header)}; it needs {', '.join(COLUMNS)})")
     index = [header.index(c) for c in COLUMNS]
     states = []
-    for line, row in enumerate(rows[1:], start=2):
-        if not any(cell.strip() for cell in row):
-            continue                     # a blank line
-        where = f"history file {name!r}, row {line}"
-        if len(row) < len(header):
-            raise InputError(f"{where}: {len(row)} entries, the header has {len(header)}")
-        states.append(tuple(_value(where, c, row[i]) for c, i in zip(COLUMNS, index)))
-    if not states:
-        raise InputError(f"history file {name!r} has no states below its header")
-    return _history(states, f"history file {name!r}")
+    try:
+        for line, row in enumerate(rows[1:], start=2):
+            if not any(cell.strip() for cell in row):
+                continue                     # a blank line
+            where = f"{label}, row {line}"
+            if len(row) < len(header):
+                raise ReaderError(f"{where}: {len(row)} entries, the header has {len(header)}")
+            states.append(tuple(_value(where, c, row[i]) for c, i in zip(COLUMNS, index)))
+        if not states:
+            raise ReaderError(f"{label} has no states below its header")
+        return _history(states, label)
+    except InputError as exc:           # an entry's (or the count's) check: the file is at fault
+        raise ReaderError(str(exc)) from None
 
 
 def _history(states: Sequence[tuple[float, ...]], what: str) -> History:
@@ -157,9 +166,12 @@ def check_history(history: Any) -> History:
     Raises
     ------
     TypeError
-        ``history`` is none of these, or a state is not a sequence of four numbers.
+        ``history`` is none of these, a state is neither a sequence of four nor a mapping with the
+        keys ``P, s, Q, sigma_bulk``, or a value is not a real number (a bool, a string, a Decimal:
+        as :func:`threepart.steady.check_cycle_states`, through :mod:`threepart.checks`).
     ValueError
-        As :func:`read_history`, naming the state (counted from 0) and the column.
+        Naming the state (counted from 0) and the value: ``P`` not > 0, a value not finite or past
+        double precision, more than :data:`MAX_HISTORY` states.
     """
     if isinstance(history, History):
         return history
@@ -170,12 +182,13 @@ def check_history(history: Any) -> History:
                         f"not {type(history).__name__}")
     if len(history) == 0:
         raise InputError("`history` has no states")
+    if len(history) > MAX_HISTORY:
+        raise InputError(f"`history` has {len(history)} states, more than MAX_HISTORY = {MAX_HISTORY}")
     states = []
     for k, state in enumerate(history):
-        if isinstance(state, (str, bytes)) or not isinstance(state, (Sequence, np.ndarray)) \
-                or len(state) != len(COLUMNS):
-            raise InputTypeError(f"`history` state {k} = {show(state)} must be a ({', '.join(COLUMNS)}) tuple")
-        states.append(tuple(_value(f"`history` state {k}", c, v) for c, v in zip(COLUMNS, state)))
+        P, s, Q, sb = state_values(state, f"`history` state {k}", InputTypeError)   # as a steady state's
+        states.append((positive(f"history[{k}].P", P), *(finite(f"history[{k}].{c}", v)
+                                                            for c, v in zip(COLUMNS[1:], (s, Q, sb)))))
     return _history(states, "`history`")
 
 

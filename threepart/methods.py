@@ -37,14 +37,15 @@ from __future__ import annotations
 from typing import Any, Callable
 
 from . import registry
-from .errors import InputError, LiftOffError, SeparationError, StickZoneError
+from .errors import (CycleSlipReversalError, DisjointContactsError, InputError, LiftOffError, NoConvergenceError,
+                     OneSidedSlipError, SeparationError, StickZoneError)
 from .punch import Punch
-from .cycles import SteadyStateResult
+from .cycles import MarchedSteadyResult, SteadyStateResult
 from .results import FrettingResult, NormalResult, SlipResult
 from .bulk import check_sigma_bulk
-from .validate import check_positive
+from .validate import check_positive, integer
 
-__all__ = ["METHODS", "CHOICES", "AUTO", "solve", "steady_state", "fretting", "describe"]
+__all__ = ["METHODS", "CHOICES", "AUTO", "solve", "steady_state", "march_steady_state", "fretting", "describe"]
 
 #: the three built-in solvers, in report order
 METHODS = tuple(registry.BUILTIN)
@@ -54,6 +55,14 @@ CHOICES = ("auto", *METHODS)
 AUTO = ("closedform", "sie")
 #: the closed form's refusals past its framework, on which ``auto`` falls back
 FALLBACK_ON = (LiftOffError, StickZoneError, SeparationError)
+#: the superposition's refusals of an admissible cycle (closed form and SIE), on which the steady
+#: state's ``auto`` marches the SIE's load history until two cycles agree
+MARCH_ON = (OneSidedSlipError, CycleSlipReversalError, DisjointContactsError)
+#: the marched cycle: states a half-cycle (and of the first loading from rest), the cycles of the
+#: first march (doubled until two cycles agree) and the most marched
+MARCH_STEPS, MARCH_FIRST, MARCH_CYCLES = 24, 4, 64
+#: the states a half-cycle ``march_steady_state`` takes
+MARCH_STEPS_RANGE = (2, 1000)
 
 
 def _one(name: str, punch: Punch, P: float, s: float, A: float, tilt: str, Q: float | None,
@@ -232,7 +241,66 @@ def steady_state(punch: Punch, states: Any, f: float, *, A: float, method: str =
     check_positive(A=A)
     if method != "auto":
         return _steady(method, punch, states, f, A, nu, options)
-    return _auto(lambda name, opts: _steady(name, punch, states, f, A, nu, opts), options)
+    try:
+        return _auto(lambda name, opts: _steady(name, punch, states, f, A, nu, opts), options)
+    except MARCH_ON as refusal:
+        why = f"the superposition does not model this cycle: {' '.join(str(refusal).split())}"
+    return march_steady_state(punch, states, f, A=A, why=why)
+
+
+def march_steady_state(punch: Punch, states: Any, f: float, *, A: float, why: str = "",
+                       steps: int = MARCH_STEPS) -> MarchedSteadyResult:
+    """The steady state of the cycle between ``states[0]`` and ``states[1]``, by the SIE's load history.
+
+    The cycle is marched from rest (:func:`threepart.steady.cycle_states`, ``steps``
+    states a half-cycle), :data:`MARCH_FIRST` cycles, then twice as many, ... until the
+    energies of the last two cycles agree to ``tolerance("auto-march", "settle")``;
+    the last cycle is the steady state (:class:`~threepart.cycles.MarchedSteadyResult`).
+
+    Returns
+    -------
+    MarchedSteadyResult
+        ``method`` ``"sie-march"``; ``info["auto"]``: ``why`` and how the march settled;
+        ``info["march"]``: ``cycles`` marched, ``steps`` a half-cycle, ``agreement`` (the
+        last two cycles' relative difference), the history's ``n`` and its ``resolved``.
+
+    Raises
+    ------
+    NoConvergenceError
+        If the energies have not settled in :data:`MARCH_CYCLES` cycles.
+    """
+    from .steady import check_cycle_states, cycle_states
+    from .tolerances import tolerance
+
+    check_positive(A=A)
+    (st0, st1), f = check_cycle_states(states, f)
+    steps = integer("steps", steps, *MARCH_STEPS_RANGE)
+    march = registry.get(AUTO[1]).history
+    assert march is not None     # the SIE registers its load history (sie/method.py)
+    settle = tolerance("auto-march", "settle").limit
+    cycles = MARCH_FIRST
+    while True:
+        try:
+            hist = march(punch, cycle_states(st0, st1, steps, cycles), f, A=A, period=2 * steps)
+        except NoConvergenceError as exc:
+            raise NoConvergenceError(f"{why + '; ' if why else ''}the SIE's load history could not march the "
+                                     f"cycle either: {exc}") from None
+        e0, e1 = (float(v) for v in hist.energy[-2:])
+        change = abs(e1 - e0) / max(abs(e0), abs(e1)) if max(abs(e0), abs(e1)) > 0 else 0.0
+        if change <= settle:
+            break
+        if 2 * cycles > MARCH_CYCLES:
+            raise NoConvergenceError(
+                f"the marched cycle did not settle in {cycles} cycles: the friction work of the last two was "
+                f"{e0:.6g} and {e1:.6g} N·mm/mm (relative change {change:.3g} > {settle:g}); no result is returned")
+        cycles *= 2
+    done = (f"marched by the SIE's load history, {cycles} cycles of {steps} states a half-cycle: the last two "
+            f"cycles' energies agree to {change:.2g} (within {settle:g})")
+    info = {"auto": f"{why}; {done}" if why else done,
+            "march": {"cycles": cycles, "steps": steps, "agreement": change, "n": hist.diagnostics.n,
+                      "resolved": hist.info.get("resolved", True)}}
+    return MarchedSteadyResult.from_history(hist, (st0, st1), f, steps,
+                                            tolerance("auto-march", "shakedown").limit, "sie-march", info)
 
 
 def _cycle(name: str, punch: Punch, P: float, s: float, A: float, tilt: str, Q_max: float, f: float,

@@ -12,28 +12,33 @@ load :func:`corrective_load` and tilt :func:`corrective_tilt_cycle`. The
 permanent stick zone is that of ``lam = 1``.
 
 * :func:`check_cycle_states` -- the input check of ``states`` and ``f``;
+* :func:`state_values` -- one state's four values, from a tuple or a mapping by :data:`STATE_KEYS`;
 * :func:`ramp` -- ``(P, s, Q, sigma_bulk)`` at the fractions ``lam`` of a half-cycle;
 * :func:`corrective_load`, :func:`corrective_tilt_cycle` -- ``P*`` and ``alpha*`` (S5, S6);
 * :func:`tilt_rate` -- ``d alpha/d lam`` of a normal solution on the path (S8);
 * :func:`gap_rate` -- ``d gap*/d lam`` of the corrective contact outside it (S9);
 * :func:`cycle_margin` -- the slip-direction margins at the two contact ends (S10);
 * :func:`half_cycle_work` -- the friction work of a half-cycle by quadrature (S11);
-* :func:`lam_rule` -- its Gauss–Legendre fractions ``lam`` and weights.
+* :func:`lam_rule` -- its Gauss–Legendre fractions ``lam`` and weights;
+* :func:`cycle_states` -- the states of a cycle marched as a load history, from rest;
+* :func:`common_contact` -- the intersection of the two end contacts, where a permanent stick zone lies;
+* :func:`shakes_down` -- whether the permanent stick zone covers it (eq. S12).
 """
 from __future__ import annotations
 
 import functools
 import math
-from typing import Any, Callable
+from typing import Any, Callable, Mapping, Sequence
 
 import numpy as np
 from numpy.typing import ArrayLike
 
 from .bulk import _psi
-from .errors import InputError, InputTypeError, NoConvergenceError, OneSidedSlipError, full_sliding
-from .validate import finite, positive
+from .errors import (DisjointContactsError, InputError, InputTypeError, NoConvergenceError, OneSidedSlipError,
+                     StickZoneError,                      full_sliding)
+from .validate import finite, positive, show
 
-__all__ = ["shakes_down", "check_cycle_states", "ramp", "corrective_load", "corrective_tilt_cycle", "tilt_rate",
+__all__ = ["STATE_KEYS", "state_values", "shakes_down", "common_contact", "cycle_states", "check_cycle_states", "ramp", "corrective_load", "corrective_tilt_cycle", "tilt_rate",
            "gap_rate", "cycle_margin", "half_cycle_work", "lam_rule", "WORK_RTOL", "WORK_NODES"]
 
 #: relative change of the friction work between two quadratures at which it has settled
@@ -61,14 +66,38 @@ def check_cycle_states(states: Any, f: Any) -> tuple[tuple[LoadState, LoadState]
     f = positive("f", f)
     out = []
     for k, st in enumerate(states):
-        if isinstance(st, (str, bytes)) or not hasattr(st, "__len__") or len(st) != 4:
-            raise InputError(f"`states[{k}]` = {st!r} must be a tuple (P, s, Q, sigma_bulk)")
+        st = state_values(st, f"`states[{k}]`")
         P = positive(f"states[{k}].P", st[0])
         s, Q, sigma = (finite(f"states[{k}].{n}", v) for n, v in zip(("s", "Q", "sigma_bulk"), st[1:]))
         if abs(Q) >= f * P:
             raise full_sliding(f"states[{k}].Q", Q, f, P, "there is no steady state with a stick zone")
         out.append((P, s, Q, sigma))
     return (out[0], out[1]), f
+
+
+#: the names of a state's four values, in order (a mapping gives them by these keys)
+STATE_KEYS = ("P", "s", "Q", "sigma_bulk")
+
+
+def state_values(state: Any, label: str, length_error: type[Exception] = InputError) -> tuple[Any, ...]:
+    """A state's four values ``(P, s, Q, sigma_bulk)``, unchecked: from a sequence of four, or a
+    mapping with exactly the keys :data:`STATE_KEYS`; else ``TypeError``/``ValueError`` (``length_error``
+    for a sequence of another length) whose message starts with ``label`` (e.g. ```states[0]```)."""
+    if isinstance(state, Mapping):
+        keys = set(state)
+        if keys != set(STATE_KEYS):
+            missing, extra = sorted(set(STATE_KEYS) - keys), sorted(map(str, keys - set(STATE_KEYS)))
+            raise InputError(f"{label} = {show(state)} must have exactly the keys {', '.join(STATE_KEYS)}"
+                             + (f" (missing {', '.join(missing)})" if missing else "")
+                             + (f" (unknown {', '.join(extra)})" if extra else ""))
+        return tuple(state[key] for key in STATE_KEYS)
+    if isinstance(state, (str, bytes)) or not isinstance(state, (Sequence, np.ndarray)):
+        raise InputTypeError(f"{label} = {show(state)} must be a ({', '.join(STATE_KEYS)}) tuple or a "
+                             f"mapping with those keys, not {type(state).__name__}")
+    if len(state) != len(STATE_KEYS):
+        raise length_error(f"{label} = {show(state)} has {len(state)} values: it must be a "
+                           f"({', '.join(STATE_KEYS)}) tuple")
+    return tuple(state)
 
 
 def ramp(start: LoadState, end: LoadState, lam: ArrayLike) -> tuple[np.ndarray, ...]:
@@ -227,10 +256,18 @@ def shakes_down(left: float, right: float, lo: float, hi: float) -> bool:
         opposite senses), which the superposition of one sense of slip a
         half-cycle does not model.
     """
+    if not (math.isfinite(left) and math.isfinite(right) and left < right):
+        raise StickZoneError(f"the permanent stick zone [{left:.6g}, {right:.6g}] is empty or not finite: "
+                             "no stick zone is returned")
     tol = 1e-12 * (hi - lo)
     at_lo, at_hi = left <= lo + tol, right >= hi - tol
     if at_lo and at_hi:
         return True
+    if right <= lo or left >= hi:
+        raise OneSidedSlipError(
+            f"the superposition's permanent stick zone would lie wholly outside the smaller contact "
+            f"[{lo:.6g}, {hi:.6g}] (at [{left:.6g}, {right:.6g}]): the ends slip in opposite senses, which "
+            "the steady-state superposition (one sense of slip a half-cycle) does not model")
     if at_lo or at_hi:
         raise OneSidedSlipError(
             f"the permanent stick zone [{left:.6g}, {right:.6g}] would reach the "
@@ -239,3 +276,36 @@ def shakes_down(left: float, right: float, lo: float, hi: float) -> bool:
             "senses, which the steady-state superposition (one sense of slip a half-cycle) does not model")
     return False
 
+
+def common_contact(contacts: tuple[tuple[float, float], tuple[float, float]]) -> tuple[float, float]:
+    """``(lo, hi)``: the points in contact at both ends of a cycle, where a permanent stick zone lies (eq. S12).
+
+    ``contacts`` are the end states' contacts ``(-a_0, c_0)``, ``(-a_1, c_1)``.
+
+    Raises
+    ------
+    DisjointContactsError
+        If they do not overlap: no point stays in contact all cycle, so no point
+        sticks all cycle; no stick zone is returned outside a contact.
+    """
+    (l0, r0), (l1, r1) = contacts
+    lo, hi = max(l0, l1), min(r0, r1)
+    if not hi > lo:
+        raise DisjointContactsError(
+            f"the contacts of the cycle's two end states, [{l0:.6g}, {r0:.6g}] and [{l1:.6g}, {r1:.6g}], "
+            "do not overlap: no point stays in contact all cycle, so the cycle has no permanent stick zone")
+    return lo, hi
+
+
+def cycle_states(start: LoadState, end: LoadState, steps: int, cycles: int) -> np.ndarray:
+    """The states ``(P, s, Q, sigma_bulk)``, ``(K, 4)``, of the cycle between ``start`` and ``end`` marched as a history.
+
+    From rest the four loads rise in proportion to ``start`` (``P`` at the lever arm
+    ``s`` of ``start``) in ``steps`` states, then ``cycles`` cycles ``start -> end ->
+    start`` of ``steps`` states a half-cycle, the loads linear (eq. S1): each cycle
+    ends at ``start``, every ``2 steps`` states.
+    """
+    lam = np.linspace(0.0, 1.0, steps + 1)[1:]
+    first = np.array(ramp((0.0, start[1], 0.0, 0.0), start, lam)).T
+    half, back = (np.array(ramp(a, b, lam)).T for a, b in ((start, end), (end, start)))
+    return np.vstack([first, *([half, back] * cycles)])

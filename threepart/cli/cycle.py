@@ -67,7 +67,10 @@ def add_parser(sub: Any) -> None:
                          "marched with the memory of slip (methods sie, fem)")
     mt = p.add_argument_group("method")
     mt.add_argument("--method", choices=METHODS, default="auto",
-                    help="auto (default): the closed form where it holds, else the SIE; a history: the SIE")
+                    help="auto (default): the closed form where it holds, else the SIE, and where the "
+                         "superposition refuses the cycle (one end shakes down, the ends slip in opposite senses, "
+                         "the end contacts do not overlap) the SIE's load history marched until two cycles "
+                         "agree; a history: the SIE")
     mt.add_argument("--mesh", choices=("quick", "default", "fine"), default="default",
                     help="FE mesh preset for --method fem (default: default)")
     mt.add_argument("--n", type=int, metavar="N",
@@ -201,6 +204,8 @@ def run(args: argparse.Namespace) -> int:
     if args.out is not None:
         if history:
             figures["loop"] = res.loop()
+        elif getattr(res, "history", None) is not None:     # a marched steady state: its own last cycle
+            figures["loop"] = res.history.loop()
         else:
             with heartbeat(_say, lambda: "the hysteresis loop (the cycle marched by the SIE)"):
                 figures["loop"] = _steady_loop(pr)
@@ -215,17 +220,11 @@ LOOP_STEPS, LOOP_CYCLES = 20, 2
 
 def _steady_loop(pr: dict[str, Any]) -> Any:
     """``(delta, Q)`` of the steady cycle, marched by the SIE's load history (the loop's only source)."""
-    import numpy as np
-
     from threepart import registry
-    from threepart.steady import ramp
+    from threepart.steady import cycle_states
 
-    lam = np.linspace(0.0, 1.0, LOOP_STEPS + 1)[1:]
-    s0, s1 = pr["states"]
-    first = np.array(ramp((0.0, s0[1], 0.0, 0.0), s0, lam)).T
-    half = np.array(ramp(s0, s1, lam)).T
-    back = np.array(ramp(s1, s0, lam)).T
-    states = np.vstack([first, *([half, back] * LOOP_CYCLES)])
+    start, end = pr["states"]
+    states = cycle_states(start, end, LOOP_STEPS, LOOP_CYCLES)
     march = registry.get("sie").history
     assert march is not None     # the SIE registers its load history (sie/method.py)
     return march(pr["punch"], states, pr["f"], A=pr["A"], period=2 * LOOP_STEPS).loop()
@@ -244,8 +243,14 @@ def _steady_figures(res: Any) -> dict[str, Any]:
 
     x = _profile_x(res.normals)
     q = (None, None) if res.shakedown else (res.shear(x, 0), res.shear(x, 1))
+    zones = list(getattr(res, "stick_intervals", ())) or ([] if _zoneless(res) else [res.stick_zone])
     return {"x": x, "q0": q[0], "q1": q[1], "slip": np.asarray(res.slip_amplitude(x), float),
-            "stick": [res.stick_zone]}
+            "stick": zones, "largest": res.largest_slip_amplitude()}
+
+
+def _zoneless(res: Any) -> bool:
+    """A marched steady state with no permanent stick zone (its end contacts do not overlap)."""
+    return hasattr(res, "stick_intervals") and not res.stick_intervals
 
 
 def _last_cycle(res: Any) -> tuple[int, int]:
@@ -295,23 +300,38 @@ def _print_states(pr: dict[str, Any], states: Any) -> None:
 
 
 def _print_slip(figures: dict[str, Any]) -> None:
+    """The largest slip amplitude: a steady state's where it lies (``largest_slip_amplitude``), a
+    history's sampled on its elements."""
     import numpy as np
 
-    i = int(np.argmax(figures["slip"]))
-    if not figures["slip"][i] > 0:
+    if "largest" in figures:
+        value, where = figures["largest"]
+    else:
+        i = int(np.argmax(figures["slip"]))
+        value, where = float(figures["slip"][i]), float(figures["x"][i])
+    if not value > 0:
         print("slip amplitude  0 mm everywhere: nothing slips")
         return
-    print(f"slip amplitude  largest {figures['slip'][i]:.10g} mm at x = {figures['x'][i]:.10g} mm")
+    print(f"slip amplitude  largest {value:.10g} mm at x = {where:.10g} mm")
 
 
 def _print_steady(pr: dict[str, Any], res: Any, figures: dict[str, Any], hot: dict[str, Any] | None) -> None:
     why = res.info.get("auto")
     print(f"method: {res.method}" + (f" ({why})" if why else ""))
     _print_states(pr, res.states)
-    left, right = res.stick_zone
-    print(f"stick zone [{left:.10g}, {right:.10g}] mm (d = {res.d:.10g} mm, e = {res.e:.10g} mm)")
+    if hasattr(res, "stick_intervals"):     # marched: the intervals that stuck all through the last cycle
+        zones = ", ".join(f"[{lo:.10g}, {hi:.10g}]" for lo, hi in res.stick_intervals)
+        print(f"stick zone {zones} mm (stuck all through the last marched cycle)" if zones else
+              "stick zone none: no point stuck all through the last marched cycle")
+    else:
+        left, right = res.stick_zone
+        print(f"stick zone [{left:.10g}, {right:.10g}] mm (d = {res.d:.10g} mm, e = {res.e:.10g} mm)")
     print(f"shakedown  {'yes: nothing slips in the steady state' if res.shakedown else 'no: the ends slip every cycle'}")
     print(f"energy     {res.energy:.10g} N*mm/mm per cycle")
+    march = res.info.get("march")
+    if march is not None and not march["resolved"]:
+        print(f"note       a slip zone of the march spans only 1 or 2 of its {march['n']} elements: its share "
+              "of the energy is coarse")
     _print_slip(figures)
     if hot is None:
         print("hot spots  none: the cycle has shaken down, its stresses are locked in by the load history")
