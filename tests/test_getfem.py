@@ -202,7 +202,7 @@ def test_getfem_hertz_partial_slip_gives_mindlins_stick_zone_and_carries_Q(tmp_p
     if not getfem.getfem_available():
         pytest.skip("no interpreter imports getfem (apt-get install python3-getfem, or set "
                     "THREEPART_GETFEM_PYTHON)")
-    from threepart.reports.referee.friction import stick_ends
+    from threepart.fields import stick_ends
 
     f, P = 0.5, P_HERTZ
     Q = 0.4 * f * P

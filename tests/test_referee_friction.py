@@ -14,7 +14,7 @@ import pytest
 import threepart
 from threepart import Punch
 from threepart.errors import InputError
-from threepart.reports.referee import friction, judge, slip_from_points, stick_ends
+from threepart.reports.referee import friction, judge, slip_from_points
 from threepart.tolerances import tolerance
 
 A = 4 * (1 - 0.3**2) / 210e3          # two similar steel bodies
@@ -55,15 +55,10 @@ def test_sampled_reference_passes_and_its_stick_zone_is_mindlins(ref):
     assert {"d", "e", "q_interior_max", "q_integral", "q_bound"} <= names
 
 
-def test_stick_ends_cross_the_margin_between_nodes():
-    x = np.linspace(-1, 1, 11)
-    p = np.ones_like(x)
-    ratio = np.where(np.abs(x) < 0.45, 0.5, 1.0)            # sticks on [-0.4, 0.4]
-    lo, hi = stick_ends(x, p, ratio * 0.3, 0.3, margin=0.25)
-    # the ratio crosses 0.75 halfway between 0.4 (0.5) and 0.6 (1.0)
-    assert (lo, hi) == pytest.approx((-0.5, 0.5), abs=ROUNDING)
-    with pytest.raises(InputError, match="no point sticks"):
-        stick_ends(x, p, 0.3 * p, 0.3)
+def test_points_that_all_slip_are_refused_by_name(ref):
+    x, p, _ = _nodes(ref)
+    with pytest.raises(InputError, match="no two points stick"):
+        slip_from_points(x, p, F * p, ref)
 
 
 def test_a_flipped_shear_is_named(ref):

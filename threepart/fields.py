@@ -21,12 +21,15 @@ edge_multipliers -- ``((K_N, fit_error), (K_N, fit_error))`` at ``-a`` and ``c``
 """
 from __future__ import annotations
 
+import math
+
 import numpy as np
 from numpy.typing import ArrayLike
 
 from .errors import InputError, MeshResolutionError
 
-__all__ = ["peak", "FIT_SAMPLES", "edge_multipliers", "WINDOWS", "DEGREES", "JOIN_SHARE", "MIN_NODES"]
+__all__ = ["peak", "FIT_SAMPLES", "edge_multipliers", "WINDOWS", "DEGREES", "JOIN_SHARE", "MIN_NODES",
+           "stick_ends", "STICK_MARGIN", "STICK_NODES"]
 
 #: points on which a least-squares fit is searched for its maximum, over ``± half_width``
 FIT_SAMPLES = 2001
@@ -146,3 +149,38 @@ def edge_multipliers(x: np.ndarray, p: np.ndarray, a: float, c: float, b: float
     reach_l = JOIN_SHARE * (min(joins_left) + a) if joins_left else W
     reach_r = JOIN_SHARE * (c - max(joins_left)) if joins_left else W
     return _one_edge(x + a, p, reach_l), _one_edge(c - x, p, reach_r)
+
+
+#: a node sticks where ``1 - |q|/(f p)`` exceeds this: a penalty or augmented friction law leaves
+#: the slip zones' nodes a little below ``f p`` (CalculiX's, GetFEM's), and they must not enter the fit
+STICK_MARGIN = 0.02
+#: the sticking nodes next to each end that the fit of ``(1 - |q|/(f p))^2`` takes
+STICK_NODES = 6
+
+
+def stick_ends(x: ArrayLike, p: ArrayLike, q: ArrayLike, f: float, *, margin: float = STICK_MARGIN,
+               k: int = STICK_NODES) -> tuple[float, float]:
+    """The stick zone's ends of nodal tractions: where ``1 - |q|/(f p)`` falls to 0, from a fit inside it.
+
+    In a slip zone ``|q| = f p``; inside the stick zone ``f p - |q|`` rises from its
+    ends as a square root (Ciavarella–Jäger: the corrective pressure ``p*`` of eq.
+    integral_equation_2 is bounded at the stick zone's ends), so ``(1 - |q|/(f p))^2``
+    is linear in ``x`` there. A polynomial of degree up to 2 is fitted to it over the
+    ``k`` sticking nodes next to each end (ratio above ``margin``), and its root nearest
+    them is the end: on Mindlin's traction at nodes ``h`` apart within ``0.2 h``
+    (W/h = 50) and ``0.05 h`` (W/h = 100). ``x`` ascending; ``(nan, nan)`` if fewer than
+    two nodes stick.
+    """
+    x, p, q = (np.asarray(v, dtype=float) for v in (x, p, q))
+    on = p > 0
+    r = np.zeros(len(x))
+    r[on] = 1.0 - np.abs(q[on]) / (f * p[on])
+    stick = np.flatnonzero(on & (r > margin))
+    if stick.size < 2:
+        return math.nan, math.nan
+    ends = []
+    for idx in (stick[:k], stick[::-1][:k]):
+        roots = np.roots(np.polyfit(x[idx], r[idx] ** 2, min(2, idx.size - 1)))
+        roots = roots[np.isreal(roots)].real
+        ends.append(float(roots[np.argmin(np.abs(roots - x[idx[0]]))]) if roots.size else float(x[idx[0]]))
+    return ends[0], ends[1]

@@ -41,7 +41,7 @@ Modules
 -------
 points   -- PointsResult, from_points, square_root_end, check_points, read_pressure (by threepart.readers)
 pitfalls -- Pitfall, diagnose, oscillation and the pitfalls' limits
-friction -- SlipPointsResult, slip_from_points, stick_ends, friction_pitfalls (a partial slip's shear)
+friction -- SlipPointsResult, slip_from_points, friction_pitfalls (a partial slip's shear)
 verdict  -- judge, document, write_report, main (``threepart compare``), COMPARISON
 studies  -- the CalculiX column of the verification run: calculix_result, calculix_studies
 
@@ -53,8 +53,7 @@ square_root_end -- a square-root end from the last loaded points
 check_points    -- refuse points that overflow, and a tilt that is no small slope
 read_pressure   -- the points ``(x, p, info)`` of a file, by the reader its suffix picks
 SlipPointsResult -- a SlipResult whose shear interpolates given points (its normal a PointsResult)
-slip_from_points -- build one: the stick zone where |q| < (1 - STICK_MARGIN) f p
-stick_ends      -- the ends of the longest run of sticking points
+slip_from_points -- build one: the stick zone by threepart.fields.stick_ends
 friction_pitfalls -- the friction pitfalls a partial slip's points show
 Pitfall         -- one diagnosed pitfall: its name, the number and what to do
 diagnose        -- every pitfall a pressure shows
@@ -71,14 +70,14 @@ CALCULIX_CASE, SLOPE_SCALE, CALCULIX_N, CALCULIX_K, CALCULIX_K_MESH, CALCULIX_QU
 """
 from __future__ import annotations
 
-from .friction import SlipPointsResult, friction_pitfalls, slip_from_points, stick_ends
+from .friction import SlipPointsResult, friction_pitfalls, slip_from_points
 from .pitfalls import END_NODES, LOAD, NEGATIVE, OSCILLATION, PENETRATION, Pitfall, diagnose, oscillation
 from .points import PointsResult, check_points, from_points, read_pressure, square_root_end
 from .studies import (CALCULIX_CASE, CALCULIX_K, CALCULIX_K_MESH, CALCULIX_N, CALCULIX_QUANTITIES, SLOPE_SCALE,
                       calculix_result, calculix_studies)
 from .verdict import COMPARISON, document, judge, main, write_report
 
-__all__ = ["SlipPointsResult", "slip_from_points", "stick_ends", "friction_pitfalls",
+__all__ = ["SlipPointsResult", "slip_from_points", "friction_pitfalls",
            "PointsResult", "from_points", "square_root_end", "check_points", "read_pressure", "Pitfall",
            "diagnose", "oscillation", "judge", "document", "write_report", "main", "calculix_result",
            "calculix_studies", "CALCULIX_CASE", "SLOPE_SCALE", "CALCULIX_N", "CALCULIX_K", "CALCULIX_K_MESH",

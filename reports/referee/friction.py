@@ -12,10 +12,9 @@ what typically goes wrong in a frictional FE model, each with its number.
 Names
 -----
 SlipPointsResult  -- a SlipResult whose shear interpolates given points
-slip_from_points  -- build one: the stick zone where ``|q| < (1 - STICK_MARGIN) f p``
-stick_ends        -- the ends of the longest run of sticking points
+slip_from_points  -- build one: the stick zone's ends by threepart.fields.stick_ends
 friction_pitfalls -- the friction pitfalls the points show against the reference
-STICK_MARGIN, SHIFT, SLOPE, SLIPPING -- the limits, read from the tolerance table
+STICK_MARGIN (threepart.fields), SHIFT, SLOPE, SLIPPING (the tolerance table) -- the limits
 """
 from __future__ import annotations
 
@@ -26,18 +25,16 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from threepart.errors import InputError
+from threepart.fields import STICK_MARGIN, stick_ends
 from threepart.results import SlipResult
 from threepart.tolerances import tolerance
 
 from .pitfalls import PITFALLS, Pitfall
 from .points import from_points
 
-__all__ = ["SlipPointsResult", "slip_from_points", "stick_ends", "friction_pitfalls", "STICK_MARGIN",
-           "SHIFT", "SLOPE", "SLIPPING"]
+__all__ = ["SlipPointsResult", "slip_from_points", "friction_pitfalls", "STICK_MARGIN", "SHIFT", "SLOPE",
+           "SLIPPING"]
 
-#: a point sticks where ``|q| < (1 - STICK_MARGIN) f p``: below the FE models' own noise in q/p on the
-#: slip zones, and the stick end it gives lies (margin p / K*)^2 inside the true one, ~1e-5 W
-STICK_MARGIN = tolerance(PITFALLS, "stick_margin").limit
 #: a stick zone shifted (of W) past this while its width is right names the normal-shear coupling
 SHIFT = tolerance(PITFALLS, "stick_shift").limit
 #: the stick slope's creep ``1/(K_t A W)`` past which the slope is named too soft
@@ -53,7 +50,7 @@ class SlipPointsResult(SlipResult):
     ``normal`` is the :class:`~.points.PointsResult` of the same points'
     pressure; ``Q`` is the applied shear force (the reference's), so that the
     comparison's ``∫q = Q`` judges the points; ``d``, ``e`` are the stick zone
-    found in the points (:func:`stick_ends`).
+    found in the points (:func:`threepart.fields.stick_ends`).
     """
 
     checks_answer = False    # another code's shear, judged by the comparison, not refused
@@ -66,35 +63,6 @@ class SlipPointsResult(SlipResult):
         x = np.asarray(x, dtype=float)
         q = np.interp(x, self.x_nodes, self.q_nodes, left=0.0, right=0.0)
         return np.where((x >= -self.a) & (x <= self.c), q, 0.0)
-
-
-def stick_ends(x: np.ndarray, p: np.ndarray, q: np.ndarray, f: float,
-               margin: float = STICK_MARGIN) -> tuple[float, float]:
-    """The ends of the longest run of points that stick, ``|q| < (1 - margin) f p``.
-
-    Each end is where the ratio ``|q|/(f p)`` crosses ``1 - margin``, linear
-    between the last sticking point and the next; ``x`` ascending. Raises
-    :class:`InputError` when no loaded point sticks.
-    """
-    loaded = p > 0
-    ratio = np.where(loaded, np.abs(q) / np.where(loaded, f * p, 1.0), np.inf)
-    stick = ratio < 1.0 - margin
-    if not stick.any():
-        raise InputError(f"no point sticks (|q| < (1 - {margin:g}) f p nowhere): the points slide as "
-                         "a whole, there is no stick zone to judge")
-    edges = np.diff(np.concatenate(([0], stick.astype(np.int8), [0])))
-    starts, stops = np.flatnonzero(edges == 1), np.flatnonzero(edges == -1) - 1
-    k = int(np.argmax(x[stops] - x[starts] + 1e-300 * (stops - starts)))
-    i, j = int(starts[k]), int(stops[k])
-    level = 1.0 - margin
-
-    def cross(inside: int, outside: int) -> float:
-        if not 0 <= outside < x.size or not math.isfinite(ratio[outside]):
-            return float(x[inside])
-        t = (level - ratio[inside]) / (ratio[outside] - ratio[inside])
-        return float(x[inside] + t * (x[outside] - x[inside]))
-
-    return cross(i, i - 1), cross(j, j + 1)
 
 
 def slip_from_points(x: ArrayLike, p: ArrayLike, q: ArrayLike, ref: SlipResult, *,
@@ -115,6 +83,9 @@ def slip_from_points(x: ArrayLike, p: ArrayLike, q: ArrayLike, ref: SlipResult, 
     order = np.argsort(x, kind="stable")
     xs, qs = x[order], q[order]
     lo, hi = stick_ends(xs, normal.p_nodes, qs, ref.f)
+    if not (math.isfinite(lo) and math.isfinite(hi)):
+        raise InputError(f"no two points stick (1 - |q|/(f p) > {STICK_MARGIN:g} at fewer than two): the "
+                         "points slide as a whole, there is no stick zone to judge")
     return SlipPointsResult(normal=normal, Q=ref.Q, f=ref.f, d=0.5 * (hi - lo), e=-0.5 * (hi + lo),
                             method=method, sigma_bulk=ref.sigma_bulk,
                             diagnostics=normal.diagnostics, info=dict(normal.info),

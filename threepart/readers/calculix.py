@@ -1,10 +1,14 @@
 """CalculiX's ``.frd`` and ``.dat``: the contact pressure from the nodal contact forces,
-read by :func:`threepart.calculix.read.contact_pressure` (the one reader of CalculiX's output)."""
+read by :func:`threepart.calculix.read.contact_pressure` (the one reader of CalculiX's output);
+a friction run's ``.frd`` (surface-to-surface contact, threepart's friction deck) gives
+``x``, ``p`` and the shear ``q`` the punch exerts on the block along ``+x``
+(:func:`threepart.calculix.friction.read_traction`)."""
 from __future__ import annotations
 
 from pathlib import Path
 from typing import Any
 
+from threepart.calculix.friction import read_traction
 from threepart.calculix.read import contact_pressure
 
 from . import Record, register_reader
@@ -18,6 +22,9 @@ def read_calculix(path: Path, *, arg: str = "path", **options: Any) -> Record:
     if options:
         raise InputError(f"`{arg}` = {str(path)!r}: CalculiX's files take no options, not "
                          f"{', '.join(options)}")
+    traction = read_traction(path, arg=arg)
+    if traction is not None:        # a friction run (surface to surface): p and the shear q
+        return Record(*traction)
     x, p, info = contact_pressure(path, arg=arg)
     return Record(x, p, None, info)
 

@@ -1,0 +1,453 @@
+"""CalculiX with Coulomb friction: partial slip and the fretting cycle of two similar bodies (issue 38).
+
+The punch is an elastic body of the block's material (Dundurs ``beta = 0``), so the normal
+and the tangential problems uncouple as in the closed form (a rigid or a stiffened punch
+couples them: ``beta`` about 0.29 at ``nu = 0.3``). The deck loads ``P`` at ``x = s`` in a
+first ``*STEP``, then the shear force ``Q`` on the punch's top in further steps, each ramped
+in equal increments: partial slip ``0 -> Q``, or the fretting cycle ``0 -> Q -> -Q -> Q``.
+
+Names
+-----
+SLOPE_FACTOR     -- the default stick slope ``lambda`` in units of ``E / h``
+PENALTY_FACTOR   -- the default normal penalty ``K`` in units of ``E / h`` (two similar bodies)
+friction_deck    -- the deck of a model under ``P`` at ``s`` and a history of ``Q`` (``*FRICTION``)
+FrictionResult   -- one state's ``x``, ``p``, ``q``, the stick zone, ``∫p``, ``∫q`` and the run's info
+partial_slip     -- mesh, write, run and read one partial-slip problem (``P``, ``s``, ``Q``, ``f``)
+fretting_cycle   -- the same for the cycle ``0 -> Q -> -Q -> Q``: every state, the energy per cycle
+read_frd_states  -- every recorded increment of an ``.frd`` (step, time, blocks)
+contact_traction -- ``(x, p, q)`` along the block's face from one increment (surface to surface)
+stick_ends       -- the stick zone's ends from ``1 - |q| / (f p)`` at the nodes
+control_history  -- the punch's control nodes' displacements at each increment (``.dat``)
+cycle_energy     -- the energy per cycle, ``-∮ u·dF`` of the punch's loads (Simpson's rule)
+read_traction    -- ``(x, p, q, info)`` of a friction run's ``.frd`` (threepart.readers.read uses it)
+"""
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import TYPE_CHECKING, Any, Sequence
+
+import numpy as np
+
+from ..validate import finite, positive
+from .deck import (CONVENTIONS, DeckSettings, _deck_head, _lid, boundary_text, elements_text,
+                   material_text, nodes_text, nset_text, surface_text)
+from threepart.errors import InputError
+from threepart.fields import stick_ends
+
+if TYPE_CHECKING:   # pragma: no cover
+    from ..punch import Punch
+    from .mesh import Model
+
+__all__ = ["SLOPE_FACTOR", "PENALTY_FACTOR", "friction_deck", "FrictionResult", "partial_slip",
+           "fretting_cycle", "read_frd_states", "contact_traction", "stick_ends", "control_history",
+           "cycle_energy", "read_traction"]
+
+#: the stick slope lambda (shear stress per tangential slip) in units of E/h: as stiff as the
+#: normal penalty (at 2 E/h the normal step of slip_Q0.4 did not converge at W/h = 50; a softer
+#: slope lets the stick zone creep q/lambda and moves its ends, docs/CALCULIX.md)
+SLOPE_FACTOR = 20.0
+#: the normal penalty K in units of E/h for two similar bodies (the validity map's referee's
+#: setting: 200 E/h did not settle in one increment on this pair, docs/CALCULIX.md)
+PENALTY_FACTOR = 20.0
+
+FRICTION_CONVENTIONS = """\
+** Friction (threepart's friction deck, issue 38): Coulomb, *FRICTION mu = f and the stick
+**   slope lambda (shear stress per unit tangential slip, MPa/mm) below. A stick node carries
+**   q = lambda * slip: too soft a slope lets the stick zone creep by q/lambda, which shrinks
+**   the shear's peak at the stick zone's ends and moves them; check that a stiffer lambda
+**   changes nothing you use.
+** Two similar bodies: the punch (PUNCH) is elastic with the block's E and nu (Dundurs beta =
+**   0), so the normal load does not cause shear, nor the shear pressure; a rigid or stiffened
+**   punch couples them (beta about 0.29 at nu = 0.3) and Cattaneo-Mindlin does not hold.
+** Steps: 1 the normal load P at x = s; then Q, the horizontal force on the punch's top (every
+**   top node's u_x tied to the left corner's, which nothing else holds: the contact's stick
+**   fixes the punch in x), ramped in equal increments per step to each target below. With
+**   free tilt the corners' vertical forces are shifted so that P and Q act at (s, 0): the
+**   moment of Q about the surface (Q times the top's height) is balanced; with the tilt
+**   suppressed the guided lid reacts it. The punch exerts the shear on the block along +x
+**   for Q > 0.
+** Contact: SURFACE TO SURFACE penalty (PRESSURE-OVERCLOSURE=LINEAR, stiffness K below): on
+**   these quadratic faces ccx's node-to-surface friction cycled between two stick/slip states
+**   and did not converge; surface to surface converged in 7 to 10 iterations an increment.
+** Output: *CONTACT FILE CDIS, CSTR (CPRESS, CSHEAR1, CSHEAR2), CELS at every increment, at the
+**   block's (slave) nodes: p = CPRESS, q = -CSHEAR1 (ccx's first tangent of the block's face
+**   points along -x), the shear the punch exerts on the block along +x (threepart.readers.read
+**   returns x, p, q from this .frd).
+"""
+
+
+# --------------------------------------------------------------------------- the deck
+def friction_deck(model: Model, *, P: float, s: float, E: float, nu: float, f: float,
+                  Q: Sequence[float], increments: int = 8, settings: DeckSettings | None = None,
+                  slope: float | None = None, descent: float | None = None, title: str = "") -> str:
+    """The CalculiX deck of ``model`` under ``P`` at ``x = s``, then the shear force history ``Q``.
+
+    Parameters
+    ----------
+    model
+        A whole model (:func:`threepart.calculix.build_model`), meshed with ``pair=True``.
+    P, s
+        The normal load (per unit thickness) and its line of action, held from step 1 on.
+    E, nu
+        The modulus and Poisson's ratio of both bodies (two similar bodies).
+    f
+        The coefficient of friction (``*FRICTION``'s ``mu``).
+    Q
+        The targets of the shear force, one ``*STEP`` each after the normal step:
+        ``[Q]`` partial slip, ``[Q, -Q, Q]`` the fretting cycle; each ``|Q| < f P``.
+    increments
+        Equal increments per shear step (ccx may cut one that does not converge).
+    settings
+        Mesh and normal penalty (default: ``pair=True``, ``K = PENALTY_FACTOR E/h``).
+    slope
+        The stick slope ``lambda`` (MPa/mm); default ``SLOPE_FACTOR E / h``.
+    descent
+        Instead of the force ``P``, the punch's top is lowered by ``descent`` in step 1 and
+        held there (``P`` is then the base's reaction, an outcome; with
+        ``settings.tilt = "suppressed"`` only). A face that first touches at one point
+        (Hertz) does not start under a force in ccx: no contact element closes in its first
+        iterations and the punch, held by contact alone, is free.
+    """
+    settings = settings or DeckSettings(pair=True, penalty_factor=PENALTY_FACTOR)
+    P, s, E, nu, f, Qs, lam, descent = _checked(model, P=P, s=s, E=E, nu=nu, f=f, Q=Q,
+                                                increments=increments, settings=settings,
+                                                slope=slope, descent=descent)
+    W = model.a + model.c
+    h, K = settings.size(W), settings.K(E, W)
+    tl, tr = model.control_nodes()
+    T = float(model.xy[tl - 1, 1])             # the top's height above the contact
+    base, top = model.nsets["block_base"], model.nsets["punch_top"]
+    p_est = 2 * P / (math.pi * W)
+    head = _deck_head(model, P=P, s=s, E=E, K=K, settings=settings, title=title)
+    head = head.replace(CONVENTIONS, "") + (
+        f"** friction: f = {f:.6g}, stick slope lambda = {lam:.6g} ({lam * h / E:.3g} E/h); Q steps "
+        f"{', '.join(f'{q:.6g}' for q in Qs)} ({increments} increments each); Q/fP up to "
+        f"{max(abs(q) for q in Qs) / (f * P):.3g}\n" + FRICTION_CONVENTIONS
+        + CONVENTIONS.split("** Contact:")[0])
+    parts = [head, "*HEADING\nthreepart: a three-part punch on an elastic block with friction\n",
+             nodes_text(model.xy),
+             elements_text(model.elements["block"], model.numbers["block"], "BLOCK"),
+             elements_text(model.elements["punch"], model.numbers["punch"], "PUNCH"),
+             nset_text("NSURF", model.nsets["block_surface"]),
+             nset_text("NPROFILE", model.nsets["punch_profile"]),
+             nset_text("NBASE", base), nset_text("NTOP", top), nset_text("NCTRL", np.array([tl, tr])),
+             nset_text("NOUT", np.union1d(model.nsets["block_surface"], model.nsets["punch_profile"])),
+             material_text("BLOCK_MAT", E, nu, "BLOCK"), material_text("PUNCH_MAT", E, nu, "PUNCH"),
+             surface_text("SSLAVE", faces=model.slave), surface_text("SMASTER", faces=model.master),
+             f"*CONTACT PAIR, INTERACTION=SI, TYPE=SURFACE TO SURFACE\nSSLAVE, SMASTER\n"
+             f"*SURFACE INTERACTION, NAME=SI\n*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR\n"
+             f"{K:.6g}, {1e-6 * p_est:.6g}\n*FRICTION\n{f:.15g}, {lam:.6g}\n"]
+    rows, _ = _lid(model, P=P, s=s, tilt=settings.tilt, half=False)
+    rows += [f"2\n{int(n)}, 1, 1., {tl}, 1, -1." for n in top if int(n) != tl]
+    parts.append("*EQUATION\n" + "\n".join(rows) + "\n")
+    parts.append(boundary_text([("NBASE", 1), ("NBASE", 2)]))
+    parts.append(_step(model, P=P, s=s, Q=0.0, T=T, tilt=settings.tilt, n=1, first=True,
+                       descent=descent))
+    for q in Qs:
+        parts.append(_step(model, P=P, s=s, Q=q, T=T, tilt=settings.tilt, n=increments, first=False,
+                           descent=descent))
+    return "".join(parts)
+
+
+def _checked(model: Model, *, P: float, s: float, E: float, nu: float, f: float, Q: Sequence[float],
+             increments: int, settings: DeckSettings, slope: float | None, descent: float | None
+             ) -> tuple[float, float, float, float, float, list[float], float, float | None]:
+    """:func:`friction_deck`'s input, checked: ``(P, s, E, nu, f, Q targets, lambda, descent)``."""
+    P, s = positive("P", P, (1e-12, 1e15)), finite("s", s)
+    E, nu = positive("E", E, (1e-6, 1e15)), finite("nu", nu)
+    f = positive("f", f, (1e-6, 10.0))
+    if not settings.pair:
+        raise InputError("`settings.pair` must be True: friction is modelled on two similar bodies "
+                         "(a stiffened punch couples the normal and the tangential problems)")
+    Qs = [finite("Q", q) for q in Q]
+    if not Qs or any(abs(q) >= f * P for q in Qs):
+        raise InputError(f"`Q` = {Qs} must hold at least one target, each |Q| < f P = {f * P:.6g}")
+    if not isinstance(increments, int) or not 1 <= increments <= 1000:
+        raise InputError(f"`increments` = {increments!r} must be an integer from 1 to 1000")
+    W = model.a + model.c
+    lam = (positive("slope", slope, (1e-9, 1e20)) if slope is not None
+           else SLOPE_FACTOR * E / settings.size(W))
+    tl, tr = model.control_nodes()
+    xL, xR, T = model.xy[tl - 1, 0], model.xy[tr - 1, 0], float(model.xy[tl - 1, 1])
+    for q in [0.0, *Qs] if settings.tilt == "free" else []:
+        if not xL < s - T * q / P < xR:
+            raise InputError(f"`Q` = {q:g} moves the top's load to x = {s - T * q / P:g}, off the "
+                             f"punch's top [{xL:g}, {xR:g}]: lower Q or widen the block")
+    if descent is not None:
+        descent = positive("descent", descent, (1e-12, 0.1 * W))
+        if settings.tilt != "suppressed":
+            raise InputError("`descent` needs `settings.tilt` = 'suppressed' (the lid held level)")
+    return P, s, E, nu, f, Qs, lam, descent
+
+
+def _step(model: Model, *, P: float, s: float, Q: float, T: float, tilt: str, n: int,
+          first: bool, descent: float | None = None) -> str:
+    """One static step to the shear force ``Q`` in ``n`` equal increments (the normal step: ``first``);
+    ``descent``: the top held lowered by it instead of loaded by ``P``."""
+    # free tilt: the corners' forces balance Q's moment about the surface; tilt suppressed: the
+    # guided lid reacts it (and P acts at the left corner, s an outcome)
+    _, loads = _lid(model, P=P, s=s - T * Q / P if tilt == "free" else s, tilt=tilt, half=False)
+    tl, _ = model.control_nodes()
+    dt = 1.0 / n
+    held = "" if descent is None else f"{tl}, 2, 2, {-descent:.15g}\n"
+    if descent is not None:
+        loads = ""
+    # the descent, once set, holds in the later steps (CalculiX keeps a step's boundary conditions)
+    release = f"*BOUNDARY\n{held}" if first and held else ""
+    return ("*STEP, INC=1000\n*CONTROLS, PARAMETERS=TIME INCREMENTATION\n40, 60, 9, 200, 10, 4, 12, 40\n"
+            f"*STATIC\n{dt:.15g}, 1., {dt / 256:.15g}, {dt:.15g}\n{release}*CLOAD\n{loads}"
+            f"{tl}, 1, {Q:.15g}\n"
+            "*NODE FILE, NSET=NOUT\nU\n*CONTACT FILE\nCDIS, CSTR, CELS\n"
+            "*NODE PRINT, NSET=NBASE, TOTALS=ONLY\nRF\n*NODE PRINT, NSET=NCTRL\nU\n*END STEP\n")
+
+
+# --------------------------------------------------------------------------- reading a run
+def read_frd_states(stem: Path) -> list[tuple[int, float, dict[str, dict[int, np.ndarray]]]]:
+    """Every recorded increment of ``stem.frd``: ``(step, total time, {block: {node: values}})``.
+
+    :func:`threepart.calculix.read_frd` keeps the last increment only; a load
+    history needs each. The step and the time are read from the ``1PSTEP`` and
+    ``100CL`` records that open each increment's blocks.
+    """
+    states: list[tuple[int, float, dict[str, dict[int, np.ndarray]]]] = []
+    step, t = 0, math.nan
+    current: dict[int, np.ndarray] | None = None
+    with open(f"{stem}.frd") as fh:
+        for line in fh:
+            if line.startswith("    1PSTEP"):
+                step = int(line.split()[3]) if len(line.split()) > 3 else step
+            elif line.startswith("  100CL"):
+                t = float(line[12:24])
+                if not states or states[-1][1] != t or states[-1][0] != step:
+                    states.append((step, t, {}))
+            elif line.startswith(" -4") and states:
+                current = {}
+                states[-1][2][line.split()[1]] = current
+            elif line.startswith(" -1") and current is not None:
+                vals = line[13:].rstrip("\n")
+                current[int(line[3:13])] = np.array([float(vals[12 * j:12 * j + 12])
+                                                     for j in range(len(vals) // 12)])
+            elif line.startswith(" -3"):
+                current = None
+    return states
+
+
+def contact_traction(state: dict[str, dict[int, np.ndarray]], xy: dict[int, np.ndarray]
+                     ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """``(x, p, q)`` along the block's face from one increment of a surface-to-surface run.
+
+    ``state`` holds the increment's CONTACT block (COPEN, CSLIP1, CSLIP2, CPRESS,
+    CSHEAR1, CSHEAR2 at the slave nodes) and DISP; ``xy`` the nodes' undeformed
+    coordinates. ``x`` is the slave nodes' deformed position (sorted), ``p`` CPRESS
+    (compressive positive) and ``q = -CSHEAR1``: on the block's upward face
+    CalculiX's first tangent points along ``-x`` (measured: ``-∫CSHEAR1 dx = Q``
+    for ``Q > 0`` along ``+x`` on the punch), so ``q`` is the shear the punch
+    exerts on the block along ``+x``, the project's convention. A node whose
+    contact output is all zero (never paired) is left out.
+    """
+    contact, disp = state["CONTACT"], state.get("DISP", {})
+    nodes = [k for k, v in contact.items() if k in xy and np.any(v != 0.0)]
+    if len(nodes) < 8:
+        raise InputError(f"{len(nodes)} slave nodes carry contact output; at least 8 are needed")
+    x = np.array([xy[k][0] + (disp[k][0] if k in disp else 0.0) for k in nodes])
+    v = np.array([contact[k] for k in nodes])
+    order = np.argsort(x)
+    return x[order], v[order, 3], -v[order, 4]
+
+
+def control_history(stem: Path) -> tuple[np.ndarray, np.ndarray]:
+    """The times and the displacements ``(u_x, u_y)`` of the two control nodes (``NCTRL``) at each
+    increment, from ``stem.dat``: ``(t, u)`` with ``u[i] = (ux_L, uy_L, ux_R, uy_R)``."""
+    times, rows = [], []
+    lines = Path(f"{stem}.dat").read_text().splitlines()
+    for i, ln in enumerate(lines):
+        if ln.strip().startswith("displacements") and "NCTRL" in ln:
+            times.append(float(ln.split()[-1]))
+            a, b = (lines[i + 2 + j].split() for j in (0, 1))
+            rows.append([float(a[1]), float(a[2]), float(b[1]), float(b[2])])
+    return np.array(times), np.array(rows)
+
+
+@dataclass(frozen=True)
+class FrictionResult:
+    """One state of a CalculiX friction run: the traction along the block's face and its reading.
+
+    Attributes
+    ----------
+    x, p, q
+        The block's slave nodes (deformed ``x``, sorted), CPRESS and the shear the punch
+        exerts on the block along ``+x`` (:func:`contact_traction`).
+    Q, P
+        The loads the deck applied at this state (``P``: the base's reaction with a descent).
+    stick
+        The stick zone's ends (:func:`stick_ends`).
+    P_int, Q_int
+        ``∫p dx`` and ``∫q dx`` of the nodes (trapezoidal).
+    info
+        ``h``, ``nodes``, ``time`` (ccx's wall and CPU seconds), ``increments`` per step, the
+        run's directory ``stem``, and for a cycle ``energy`` (``∮ F·du`` of the punch's top).
+    """
+
+    x: np.ndarray
+    p: np.ndarray
+    q: np.ndarray
+    Q: float
+    P: float
+    stick: tuple[float, float]
+    P_int: float
+    Q_int: float
+    info: dict[str, Any] = field(default_factory=dict)
+
+
+def _increments(stem: Path) -> dict[int, int]:
+    """The converged increments of each step (``stem.sta``)."""
+    out: dict[int, int] = {}
+    sta = Path(f"{stem}.sta")
+    for r in (ln.split() for ln in sta.read_text().splitlines()[2:]) if sta.is_file() else []:
+        if len(r) >= 3 and not r[2].endswith("U"):
+            out[int(r[0])] = out.get(int(r[0]), 0) + 1
+    return out
+
+
+def _run(punch: Punch, P: float, s: float, Qs: list[float], f: float, E: float, nu: float, *,
+         n: float, increments: int, slope: float | None, tilt: str, workdir: Path, name: str
+         ) -> tuple[Model, Path, dict[str, Any]]:
+    """Mesh the pair for the closed form's normal contact, write the friction deck, run ccx."""
+    import resource
+
+    from ..material import compliance
+    from ..methods import solve
+    from .mesh import build_model
+    from .run import run_ccx
+
+    normal = solve(punch, P, s, A=compliance(E, nu, E, nu), tilt=tilt)
+    settings = DeckSettings(n=n, pair=True, penalty_factor=PENALTY_FACTOR, tilt=tilt)
+    model = build_model(punch, normal.a, normal.c, settings)
+    deck = friction_deck(model, P=P, s=s, E=E, nu=nu, f=f, Q=Qs, increments=increments,
+                         settings=settings, slope=slope, title=name)
+    t0, c0 = time.perf_counter(), resource.getrusage(resource.RUSAGE_CHILDREN).ru_utime
+    stem = run_ccx(deck, workdir, name, timeout=3600.0)
+    info = {"h": model.h0, "nodes": model.n_nodes, "stem": stem,
+            "wall": time.perf_counter() - t0,
+            "cpu": resource.getrusage(resource.RUSAGE_CHILDREN).ru_utime - c0,
+            "increments": _increments(stem)}
+    return model, stem, info
+
+
+def _state(state: dict[str, dict[int, np.ndarray]], xy: dict[int, np.ndarray], *,
+           P: float, Q: float, f: float, info: dict[str, Any]) -> FrictionResult:
+    """One recorded state as a :class:`FrictionResult`."""
+    x, p, q = contact_traction(state, xy)
+    return FrictionResult(x, p, q, Q, P, stick_ends(x, p, q, f), float(np.trapezoid(p, x)),
+                          float(np.trapezoid(q, x)), info)
+
+
+def partial_slip(punch: Punch, P: float, s: float, Q: float, f: float, E: float, nu: float, *,
+                 n: float = 100.0, increments: int = 4, slope: float | None = None,
+                 tilt: str = "free", workdir: Path, name: str = "slip") -> FrictionResult:
+    """Partial slip by CalculiX: ``P`` at ``s``, then ``Q`` in ``increments`` steps; the last state.
+
+    Two similar bodies (``E``, ``nu``), meshed for the closed form's normal contact at
+    ``W / n``; surface-to-surface penalty contact with ``*FRICTION`` (``f``, the stick
+    slope ``slope``, default :data:`SLOPE_FACTOR` ``E/h``). A Hertz punch (``b = 0``) is
+    symmetric: give ``tilt="suppressed"`` (``s = 0``), which holds the lid level and lets it
+    react ``Q``'s moment. Raises ``CcxMissing`` without ``ccx``, ``CcxError`` if it fails.
+    """
+    from .read import read_frd_nodes
+
+    model, stem, info = _run(punch, P, s, [Q], f, E, nu, n=n, increments=increments, slope=slope,
+                             tilt=tilt, workdir=workdir, name=name)
+    xy = read_frd_nodes(stem)
+    states = read_frd_states(stem)
+    return _state(states[-1][2], xy, P=P, Q=Q, f=f, info=info)
+
+
+def fretting_cycle(punch: Punch, P: float, s: float, Q_max: float, f: float, E: float, nu: float, *,
+                   n: float = 100.0, increments: int = 8, slope: float | None = None,
+                   tilt: str = "free", workdir: Path, name: str = "fretting"
+                   ) -> list[FrictionResult]:
+    """The fretting cycle ``0 -> Q_max -> -Q_max -> Q_max`` by CalculiX: every recorded state.
+
+    As :func:`partial_slip`, with three shear steps of ``increments`` each. Each state's
+    ``info["energy"]`` is the energy dissipated per cycle (:func:`cycle_energy`).
+    """
+    from .read import read_frd_nodes
+
+    Qs = [Q_max, -Q_max, Q_max]
+    model, stem, info = _run(punch, P, s, Qs, f, E, nu, n=n, increments=increments, slope=slope,
+                             tilt=tilt, workdir=workdir, name=name)
+    t, u = control_history(stem)
+    tl, tr = model.control_nodes()
+    xL, xR = model.xy[tl - 1, 0], model.xy[tr - 1, 0]
+    T = float(model.xy[tl - 1, 1])
+
+    def loads(tt: np.ndarray) -> np.ndarray:
+        """The control nodes' forces ``(Fx_L, Fy_L, Fx_R, Fy_R)`` at the total times ``tt``."""
+        Qt = np.interp(tt, [0.0, 1.0, 2.0, 3.0, 4.0], [0.0, 0.0, *Qs])
+        Pt = P * np.minimum(tt, 1.0)
+        FR = (Pt * s - T * Qt - Pt * xL) / (xR - xL) if tilt == "free" else np.zeros_like(tt)
+        return np.c_[Qt, -(Pt - FR), np.zeros_like(tt), -FR]
+
+    energy = cycle_energy(t, u, loads)
+    info = dict(info, energy=energy)
+    xy = read_frd_nodes(stem)
+    return [_state(blk, xy, P=P, Q=float(np.interp(tt, [0.0, 1.0, 2.0, 3.0, 4.0], [0.0, 0.0, *Qs])),
+                   f=f, info=dict(info, time=tt, step=step))
+            for step, tt, blk in read_frd_states(stem)]
+
+
+def cycle_energy(t: np.ndarray, u: np.ndarray, loads: Any) -> float:
+    """The energy dissipated per cycle: the work ``∮ F·du`` of the loads on the punch's control
+    nodes over the closed loop of steps 3 and 4 (``Q_max -> -Q_max -> Q_max``, total times 2 to 4).
+
+    Over a closed loop the elastic work cancels, and ``∮ F·du = -∮ u·dF``; the loads ``F =
+    loads(t)`` are linear in ``t`` within a step, so each step is ``-F' · ∫u dt``, by Simpson's
+    rule over its equal increments (the trapezoidal rule where ccx cut one, or their count is
+    odd). On ``fretting_Q0.4`` at W/h = 50 with 8 increments a step, Simpson's rule read the
+    closed form's energy to +0.25 %, the trapezoidal rule on ``∮ F·du`` to -1.4 %.
+    """
+    from scipy.integrate import simpson
+
+    total = 0.0
+    for a in (2.0, 3.0):
+        m = (t >= a - 1e-9) & (t <= a + 1 + 1e-9)
+        tt, uu = t[m], u[m]
+        dF = (loads(np.array([a + 1.0])) - loads(np.array([a])))[0]
+        even = len(tt) % 2 == 1 and np.allclose(np.diff(tt), np.diff(tt)[0])
+        integral = (simpson(uu, x=tt, axis=0) if even
+                    else np.sum(0.5 * (uu[1:] + uu[:-1]) * np.diff(tt)[:, None], axis=0))
+        total -= float(np.dot(dF, integral))
+    return total
+
+
+def read_traction(path: str | Path, *, arg: str = "path"
+                  ) -> tuple[np.ndarray, np.ndarray, np.ndarray, dict[str, Any]] | None:
+    """``(x, p, q, info)`` at the last increment of a surface-to-surface run's ``.frd``, or ``None``
+    if the file's contact output is node-to-surface (written on the expanded nodes, numbered past
+    the plane model's: :func:`threepart.calculix.contact_pressure` reads those).
+
+    ``q`` as :func:`contact_traction`; ``info`` holds the source, the states' count and the
+    increments (``.sta`` beside it).
+    """
+    from .read import read_frd_nodes
+
+    path = Path(path)
+    stem = path.with_suffix("")
+    if path.suffix.lower() != ".frd":
+        return None
+    states = read_frd_states(stem)
+    if not states or "CONTACT" not in states[-1][2]:
+        return None
+    xy = read_frd_nodes(stem)
+    contact = states[-1][2]["CONTACT"]
+    if not contact or max(contact) > max(xy):
+        return None
+    try:
+        x, p, q = contact_traction(states[-1][2], xy)
+    except InputError as exc:
+        raise InputError(f"`{arg}` = {str(path)!r}: {exc}") from None
+    return x, p, q, {"source": "frd (surface to surface)", "states": len(states),
+                     "increments": _increments(stem)}
