@@ -20,6 +20,11 @@ SieNormalResult     -- NormalResult with n, scheme and the interpolating pressur
 SieSlipResult       -- SlipResult with n, scheme, corrective pressure and shear
 SieFrettingResult   -- FrettingResult with n, scheme; shear, slip and slip amplitude at any Q of a branch
 SieSteadyResult     -- SteadyStateResult with n, scheme and the corrective pressure p*
+WornProfile         -- the punch less a worn depth w(x) (linear or pchip knots; from_csv reads (x, h))
+solve_profile       -- normal contact on a worn profile, bounded ends or a given contact with unbounded ends
+ProfileNormalResult -- SieNormalResult with its profile
+solve_profile_slip  -- partial slip on a worn profile
+profile_fretting_cycle -- the fretting cycle on a worn profile (the wear march: threepart.wear, sie.wear)
 NoConvergenceError  -- raised when a root iteration fails (never a silent NaN)
 
 Discretisation
@@ -52,6 +57,8 @@ from .slip import SieSlipResult, solve_partial_slip
 from .steady import SieSteadyResult, steady_state
 from .fretting import SieFrettingResult, fretting_cycle
 from .history import load_history
+from .profile import ProfileNormalResult, WornProfile, solve_profile
+from .wear import profile_fretting_cycle, solve_profile_slip
 
 __all__ = [
     "solve_normal", "solve_partial_slip", "lift_off", "SieNormalResult", "SieSlipResult", "NoConvergenceError",
@@ -60,5 +67,7 @@ __all__ = [
     "convergence_study", "pressure_by_quadrature",
 ]
 __all__ += ["steady_state", "SieSteadyResult"]
+__all__ += ["WornProfile", "solve_profile", "ProfileNormalResult", "solve_profile_slip",
+            "profile_fretting_cycle"]
 
 from . import method as _method  # registers this solver in threepart.registry

@@ -43,6 +43,9 @@ steady_state        -- the periodic steady state of an in-phase cycle between tw
                        (P, s, Q, sigma_bulk), by method "auto", "closedform" or "sie"
 fretting            -- one fretting cycle Q = 0 -> Q_max -> -Q_max -> Q_max at constant P, by
                        method "auto" (closed form where it holds, else SIE), "closedform", "sie" or "fem"
+wear                -- fretting wear at constant P, s, Q between +-Q_max: the worn depth marched by
+                       Archard's or the energy law with cycle jumping (method "sie"; threepart.fretting_wear)
+WearResult          -- its result: cycles, energy, stick_zones, depths, volume, final (a fretting cycle)
 METHODS, CHOICES    -- the three methods; what `method` may be
 
 Results
@@ -109,6 +112,7 @@ _HOMES = {
     "stress_history": "fatigue", "von_mises_range": "fatigue",
     "swt": "fatigue", "findley": "fatigue", "ruiz": "fatigue", "HotSpot": "fatigue",
     "steady_state": "methods", "fretting": "methods",
+    "wear": "fretting_wear", "WearResult": "fretting_wear",
 }
 _SUBPACKAGES = ("closedform", "sie", "fem", "meshes", "reports")
 
@@ -126,6 +130,7 @@ if TYPE_CHECKING:   # pragma: no cover - for type checkers and IDEs only
     from .cycles import HistoryResult, SteadyStateResult
     from .fatigue import HotSpot, findley, ruiz, stress_history, swt, von_mises_range
     from .stress import Stress, hilbert
+    from .fretting_wear import WearResult, wear
     from .validate import TILTS
 
 

@@ -1,0 +1,330 @@
+"""Partial slip, the fretting cycle and fretting wear on a worn profile, by the SIE (issue 39).
+
+Partial slip and the fretting cycle on a :class:`sie.profile.WornProfile` are
+those of :mod:`sie.slip` and :mod:`sie.fretting` with the profile's scheme
+(:class:`sie.profile.ProfileScheme`): Ciavarella–Jäger's corrective problem on
+the same worn profile, Masing's rule for the cycle. P and s stay constant, so
+the pressure does not change over a cycle.
+
+Wear per cycle (docs/WEAR.md, section 5). A point of a slip zone travels
+``∮|ds| = 4 |s_Q_max(x)|`` per cycle (Masing: twice the loading slip at
+``Q_max`` each half-cycle), ``s_Q_max = f G*(x)`` with ``G*`` the gap of the
+corrective contact at ``Q_max`` (:func:`sie.profile.profile_gap`), and slips
+only where ``|q| = f p``. So per cycle
+
+    Archard:  Δw = k p ∮|ds| = 4 k f p G*,       energy:  Δw = k ∮ q·ds = 4 k f² p G*,
+
+and the friction work is ``W = ∫ 4 f² p G* dx``: under the energy law the
+worn volume per cycle is ``k W`` (eq. W15). ``w`` is the two bodies' wear
+together, the combined depth of the gap (docs/WEAR.md, section 4): how they
+share it does not change the contact.
+
+Cycle jumping (``jump=None``): a step of ``ΔN`` cycles grows the depth by
+``ΔN Δw`` (explicit Euler in ``N``). ``ΔN`` is the largest whole number with
+
+* ``max ΔN Δw <= DEPTH_STEP A P/π`` (the depth per jump a fraction of the elastic
+  approach ``A P/π``), and
+* ``ΔN (Δw/p)_i <= STABILITY A Δx_i/π`` at every knot ``i`` (local spacing ``Δx_i``):
+  a depth ripple of wavenumber ``κ`` changes the pressure by ``κ/A`` times itself, so
+  Euler is stable for ``ΔN (Δw/p) κ/A < 2`` up to the knots' ``κ = π/Δx``;
+  :data:`STABILITY` < 2 keeps it so.
+
+The depth lives at knots (``"pchip"``): :data:`GRID_POINTS` uniform over the unworn
+contact and :data:`GRID_MARGIN` of it beyond each end (the scar outgrows the contact,
+docs/WEAR.md section 4), and one at each end of the unworn stick zone at ``Q_max``:
+without them the depth interpolated between two knots reached into the stick zone
+and moved it (6.4e-3 W on 151 knots). Knots graded towards the stick zone's ends,
+where the limit's depth rises like ``sqrt`` and its pressure is singular, made the
+bounded contact tensile there by 11 % of the peak: the march does not resolve the
+limit's singular ends (what is left is the energy stalling above 0). Each step's normal contact has
+bounded ends; as the slip zones unload, the truncated series rings below 0 next to
+the stick zone's ends (the limit's singular pressure forming) and at the scar's
+outer edge: a marched state accepts ``p >= -MARCH_TENSILE p_max`` there, wears
+only where ``p > 0``, and reports the least ``p/p_max`` as ``info["least"]``. Past
+that floor the march ends early: ``cycles[-1]`` is the last state solved, and
+``info["stopped"]`` says why (never silently: the requested count is ``info["requested"]``).
+
+ProfileFrettingResult   -- SieFrettingResult on a worn profile
+solve_profile_slip      -- partial slip on a worn profile
+profile_fretting_cycle  -- the fretting cycle on a worn profile: energy from the loop (ln h/h*)
+wear_rate               -- the depth worn per cycle, the friction work and the stick zone at Q_max
+march                   -- the wear march of threepart.wear (registered as method "sie")
+"""
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass
+
+import numpy as np
+
+from threepart.errors import InputError, NoConvergenceError, SeparationError, StickSeparationError
+from threepart.fretting_wear import WearResult, register_marcher
+from threepart.punch import Punch
+from threepart.results import Diagnostics
+from threepart.validate import SLIP_RATIO_LIMIT, check_shear, check_states
+
+from .fretting import SieFrettingResult, _gauss, _Zones
+from .profile import (DEFAULT_TERMS, ProfileNormalResult, WornProfile, profile_approach, profile_gap,
+                      solve_profile)
+from .slip import SieSlipResult, stick_zone
+
+__all__ = ["ProfileFrettingResult", "solve_profile_slip", "profile_fretting_cycle", "wear_rate",
+           "march", "DEPTH_STEP", "STABILITY", "GRID_POINTS", "GRID_MARGIN"]
+
+#: the depth worn per jump, as a fraction of the elastic approach A P/π
+DEPTH_STEP = 0.01
+#: ΔN (Δw/p) π/(A Δx): Euler's stability bound for the grid's shortest ripple is 2
+STABILITY = 1.5
+#: knots of the worn depth over the unworn contact and its margins
+GRID_POINTS = 301
+#: the grid reaches this fraction of the contact's width beyond each end (the scar outgrows it)
+GRID_MARGIN = 0.15
+#: Gauss–Legendre nodes per slip zone of the friction work, u = lo + L s^2 (3 - 2s)
+WORK_NODES = 96
+#: Gauss–Legendre nodes per panel of the loop's energy, and the coarser level that checks it
+LOOP_NODES = (24, 48)
+#: a marched state's pressure may dip below 0 by this fraction of its peak (measured on Hertz,
+#: 151 knots: -12 % transiently, -3.6 % settled), in a lobe just outside the stick zone's ends
+#: where the limit's singular pressure forms and the bounded contact's series rings; wear acts
+#: only where p > 0; the least is WearResult.info["least"]
+MARCH_TENSILE = 0.15
+#: Coulomb's check: p - p* may fall below 0 by this fraction of the peak (the worn terms' truncation)
+COULOMB_FLOOR = 1e-6
+
+
+def _coulomb(normal: ProfileNormalResult, stick, lo: float, hi: float, Q: float, f: float) -> None:
+    """``p >= p*`` on the stick zone ``[lo, hi]``, sampled at 801 points clustered at its ends."""
+    x = 0.5 * (lo + hi) + 0.5 * (hi - lo) * np.cos(np.linspace(0, np.pi, 803)[1:-1])
+    p = normal.pressure(x)
+    excess = p - stick(x)
+    i = int(np.argmin(excess))
+    if excess[i] < -COULOMB_FLOOR * float(np.max(p)):
+        raise StickSeparationError(f"`Q`/(f P) = {abs(Q) / (f * normal.P):.6g} on the worn profile: the "
+                                   f"corrective pressure exceeds p by {-excess[i]:.4g} at x = {x[i]:.6g}; "
+                                   "the stick zone is not one interval")
+
+
+def solve_profile_slip(normal: ProfileNormalResult, Q: float, f: float) -> SieSlipResult:
+    """Partial slip on a worn profile: the stick zone and shear ``q = sign(Q) f (p - p*)``.
+
+    As :func:`sie.solve_partial_slip`, the corrective ``p*`` the bounded pressure
+    of the worn profile on the stick zone at the normal tilt, load ``P - |Q|/f``.
+
+    Raises
+    ------
+    StickSeparationError
+        ``p* > p`` somewhere on the stick zone.
+    """
+    if not isinstance(normal, ProfileNormalResult):
+        raise InputError("`normal` must be a worn profile's normal result (sie.profile.solve_profile)")
+    Q, f = check_shear(normal, Q, f, limit=SLIP_RATIO_LIMIT)
+    sch = normal.scheme
+    t0 = time.perf_counter()
+    m, h, its, res = stick_zone(normal, Q, f, sch)
+    stick, extra = sch.pressure(normal.punch, normal.A, m, h)
+    _coulomb(normal, stick, m - h, m + h, Q, f)
+    return SieSlipResult(normal=normal, Q=float(Q), f=float(f), d=h, e=-m, method="sie",
+                         diagnostics=Diagnostics(n=sch.n, scheme=sch.name, iterations=its, residual=res,
+                                                 timings={"total": time.perf_counter() - t0}),
+                         info={"P_star": normal.P - abs(Q) / f, **extra}, stick=stick)
+
+
+@dataclass(frozen=True)
+class ProfileFrettingResult(SieFrettingResult):
+    """A fretting cycle on a worn profile (:func:`profile_fretting_cycle`); ``normal`` carries the profile."""
+
+    def pressure(self, x: np.ndarray) -> np.ndarray:
+        """The pressure of the cycle's worn profile (constant over the cycle: P and s are)."""
+        return self.normal.pressure(x)
+
+    def _load(self, u: float) -> SieSlipResult:
+        nrm = self.normal
+        assert isinstance(nrm, ProfileNormalResult)
+        sch = nrm.scheme
+        m, h, _, _ = stick_zone(nrm, u, self.f, sch)
+        stick, _ = sch.pressure(nrm.punch, nrm.A, m, h)
+        return SieSlipResult(normal=nrm, Q=u, f=self.f, d=h, e=-m, method="sie",
+                             diagnostics=Diagnostics(n=sch.n, scheme=sch.name), stick=stick)
+
+    def _s_load(self, x: np.ndarray, u: float) -> np.ndarray:
+        nrm = self.normal
+        assert isinstance(nrm, ProfileNormalResult) and nrm.profile is not None
+        if u == 0:
+            return np.zeros(x.shape)
+        sl = self._load(u)
+        gap = profile_gap(nrm.profile, nrm.alpha, -sl.e, sl.d, x)
+        return np.where((x > -nrm.a) & (x < nrm.c), self.f * gap, 0.0)
+
+
+def _loop_energy(zones: _Zones, Q_max: float, top: tuple[float, float]) -> tuple[float, float]:
+    """``W = (4A/π) ∫_0^Q_max (2u - Q_max) ln(h/h*(u)) du`` (sie.fretting) and its two-level estimate.
+
+    Composite Gauss–Legendre with a panel end where a stick-zone end crosses a
+    join, ``u = lo + L s^2 (3 - 2s)`` on each panel, at :data:`LOOP_NODES`.
+    """
+    edges = [0.0, *zones.crossings(Q_max, top), Q_max]
+    values = []
+    for n in LOOP_NODES:
+        s, w = _gauss(n)
+        total = 0.0
+        for lo, hi in zip(edges[:-1], edges[1:]):
+            u = lo + (hi - lo) * s * s * (3 - 2 * s)
+            weights = 6 * (hi - lo) * s * (1 - s) * w
+            h_star = np.array([zones(float(v))[1] for v in u])
+            total += float(np.sum(weights * (2 * u - Q_max) * np.log(zones.h0 / h_star)))
+        values.append(4 * zones.normal.A / math.pi * total)
+    return values[-1], abs(values[-1] - values[0])
+
+
+def profile_fretting_cycle(normal: ProfileNormalResult, Q_max: float, f: float, *,
+                           states: int = 21) -> ProfileFrettingResult:
+    """One fretting cycle ``0 -> Q_max -> -Q_max -> Q_max`` on a worn profile (as :func:`sie.fretting_cycle`).
+
+    ``energy`` is the loop's area from the loading stick zones (``ln h/h*``);
+    ``info`` holds ``energy_estimate`` (against the coarser rule) and
+    ``friction_work``, ``∫ 4 f² p G* dx`` of the slip (the local route, eq. W15).
+    """
+    if not isinstance(normal, ProfileNormalResult):
+        raise InputError("`normal` must be a worn profile's normal result (sie.profile.solve_profile)")
+    Q_max, f = check_shear(normal, Q_max, f, "Q_max", "there is no fretting cycle", limit=SLIP_RATIO_LIMIT)
+    states = check_states(states)
+    t0 = time.perf_counter()
+    sch = normal.scheme
+    zones = _Zones(normal, f, sch)
+    u = np.linspace(0.0, Q_max, states)
+    mh = np.array([zones(float(v)) for v in u])
+    prof, A, alpha = normal.profile, normal.A, normal.alpha
+    assert prof is not None
+    D0 = profile_approach(prof, A, alpha, normal.P, zones.m0, zones.h0)
+    F = np.array([f * (D0 - profile_approach(prof, A, alpha, normal.P - v / f, m, h)) if v > 0 else 0.0
+                  for v, (m, h) in zip(u, mh)])
+    top = (float(mh[-1, 0]), float(mh[-1, 1]))
+    energy, estimate = _loop_energy(zones, Q_max, top)
+    stick = np.column_stack([mh[:, 0] - mh[:, 1], mh[:, 0] + mh[:, 1]])
+    work = wear_rate(normal, Q_max, f, np.array([0.0]))[1]
+    info = {"energy_estimate": estimate, "friction_work": work, "solves": zones.solves}
+    diagnostics = Diagnostics(n=sch.n, scheme=sch.name, steps=states,
+                              timings={"total": time.perf_counter() - t0})
+    return ProfileFrettingResult.from_loading(normal, Q_max, f, u, stick, F, energy=energy, method="sie",
+                                              diagnostics=diagnostics, info=info)
+
+
+def wear_rate(normal: ProfileNormalResult, Q_max: float, f: float, x: np.ndarray
+              ) -> tuple[np.ndarray, float, tuple[float, float], np.ndarray]:
+    """``4 f p G*`` at ``x`` (the Archard depth per cycle and unit ``k``), the friction work, the stick zone.
+
+    Returns
+    -------
+    rate, work, stick, travel
+        ``p ∮|ds|`` at ``x``; ``W = ∫ f p ∮|ds| dx`` over both slip zones
+        (Gauss–Legendre, :data:`WORK_NODES`, ``u = lo + L s^2(3 - 2s)`` each);
+        the stick zone at ``Q_max``; ``∮|ds| = 4 f G*`` at ``x``.
+    """
+    prof = normal.profile
+    assert prof is not None
+    sch = normal.scheme
+    m, h, _, _ = stick_zone(normal, Q_max, f, sch)
+    lo, hi = m - h, m + h
+
+    s, w = _gauss(WORK_NODES)
+    nodes, weights = [], []
+    for a_, b_ in ((-normal.a, lo), (hi, normal.c)):
+        if b_ > a_:
+            nodes.append(a_ + (b_ - a_) * s * s * (3 - 2 * s))
+            weights.append(6 * (b_ - a_) * s * (1 - s) * w)
+    x = np.asarray(x, dtype=float)
+    t = np.concatenate([*nodes, x])
+    inside = (t > -normal.a) & (t < normal.c) & ((t < lo) | (t > hi))
+    gap = profile_gap(prof, normal.alpha, m, h, np.where(inside, t, m))
+    travel = np.where(inside, 4.0 * f * np.maximum(gap, 0.0), 0.0)
+    p_travel = np.maximum(normal.pressure(t), 0.0) * travel
+    q = t.size - x.size
+    work = f * float(np.sum(np.concatenate(weights or [np.zeros(0)]) * p_travel[:q]))
+    rate, tr = p_travel[q:], travel[q:]
+    return rate, work, (lo, hi), tr
+
+
+def _step(rate: np.ndarray, travel: np.ndarray, k: float, A: float, P: float, spacing: np.ndarray,
+          law_factor: float) -> int:
+    """The jump's ``ΔN`` (module docstring): the depth bound and Euler's stability bound, at least 1.
+
+    The stability bound is taken knot by knot with the local spacing ``Δx_i``:
+    ``ΔN c_i π/(A Δx_i) <= STABILITY``, ``c_i = k ∮|ds|`` there.
+    """
+    top = k * law_factor * float(np.max(rate))
+    c = k * law_factor * travel
+    stiff = float(np.max(c / spacing))
+    bounds = [DEPTH_STEP * A * P / math.pi / top if top > 0 else math.inf,
+              STABILITY * A / (math.pi * stiff) if stiff > 0 else math.inf]
+    dN = min(bounds)
+    return max(1, int(dN)) if math.isfinite(dN) else 0
+
+
+def knots(normal: ProfileNormalResult, stick: tuple[float, float], points: int) -> np.ndarray:
+    """Knots of the worn depth: ``points`` uniform over the contact and :data:`GRID_MARGIN` of it beyond,
+    and one at each end of the stick zone at ``Q_max``, so that no interpolated depth reaches into it."""
+    W = normal.a + normal.c
+    grid = np.linspace(-normal.a - GRID_MARGIN * W, normal.c + GRID_MARGIN * W, points)
+    return np.unique(np.concatenate([grid, stick]))
+
+
+def march(punch: Punch, P: float, s: float, Q_max: float, f: float, *, A: float, law: str, k: float,
+          cycles: int, jump: int | None = None, tilt: str = "free", n: int = DEFAULT_TERMS,
+          points: int = GRID_POINTS) -> WearResult:
+    """Fretting wear at constant ``P``, ``s`` with ``Q`` between ``±Q_max``: threepart.wear's SIE march.
+
+    Input is checked by :func:`threepart.fretting_wear.wear`. Each step solves the
+    worn profile's normal contact (bounded ends), the stick zone at ``Q_max`` and
+    the slip, and grows the depth at :data:`GRID_POINTS` knots (``"pchip"``)
+    by ``ΔN`` cycles' wear: ``jump`` cycles, or the module docstring's control.
+    """
+    t0 = time.perf_counter()
+    law_factor = f if law == "energy" else 1.0
+    base = solve_profile(WornProfile(punch, np.array([-1.0, 1.0]), np.zeros(2)), P, s, A=A, tilt=tilt, n=n)
+    grid = knots(base, wear_rate(base, Q_max, f, np.zeros(1))[2], points)
+    gaps = np.diff(grid)
+    spacing = np.minimum(np.concatenate([gaps[:1], gaps]), np.concatenate([gaps, gaps[-1:]]))
+    depth = np.zeros(grid.size)
+    N, start, least, stopped = 0, None, 0.0, ""
+    rec: dict[str, list] = {"cycles": [], "energy": [], "stick_zones": [], "depths": [], "volume": [],
+                            "contacts": [], "alpha": []}
+    while True:
+        prof = WornProfile(punch, grid, depth)
+        try:
+            trial = solve_profile(prof, P, s, A=A, tilt=tilt, n=n, start=start, tensile_floor=MARCH_TENSILE)
+        except SeparationError as exc:
+            if not rec["cycles"]:
+                raise
+            stopped = f"at cycle {N} the worn profile's bounded contact is tensile past the march's floor: {exc}"
+            break       # the knots do not resolve the limit's singular ends any further (module docstring)
+        normal = trial
+        least = min(least, normal.info["least"])
+        start = (0.5 * (normal.c - normal.a), 0.5 * (normal.a + normal.c))
+        rate, work, stick, travel = wear_rate(normal, Q_max, f, grid)
+        for key, value in (("cycles", N), ("energy", work), ("stick_zones", stick), ("depths", depth.copy()),
+                           ("volume", float(np.trapezoid(depth, grid))), ("contacts", (-normal.a, normal.c)),
+                           ("alpha", normal.alpha)):
+            rec[key].append(value)
+        if N >= cycles:
+            break
+        dN = jump if jump is not None else _step(rate, travel, k, A, P, spacing, law_factor)
+        if dN == 0:     # nothing slips: the worn limit
+            dN = cycles - N
+        dN = min(dN, cycles - N)
+        depth = depth + dN * k * law_factor * rate
+        N += dN
+    if not np.all(np.isfinite(depth)):
+        raise NoConvergenceError("sie wear: the worn depth is not finite; no result is returned")
+    final = profile_fretting_cycle(normal, Q_max, f)
+    return WearResult(punch=punch, P=P, s=s, Q_max=Q_max, f=f, A=A, law=law, k=k, x=grid,
+                      cycles=np.array(rec["cycles"]), energy=np.array(rec["energy"]),
+                      stick_zones=np.array(rec["stick_zones"]), depths=np.array(rec["depths"]),
+                      volumes=np.array(rec["volume"]), contacts=np.array(rec["contacts"]),
+                      alphas=np.array(rec["alpha"]), final=final, method="sie",
+                      info={"time": time.perf_counter() - t0, "steps": len(rec["cycles"]) - 1,
+                            "jump": "auto" if jump is None else jump, "n": n, "points": grid.size,
+                            "least": least, "stopped": stopped, "requested": cycles})
+
+
+register_marcher("sie", march)

@@ -1,0 +1,162 @@
+"""Fretting wear at constant ``P``, ``s`` and ``Q`` between ``±Q_max`` (issue 39; docs/WEAR.md).
+
+``threepart.wear(...)`` marches the worn depth through fretting cycles by a
+method's marcher, registered here by name as readers register themselves
+(:func:`register_marcher`); the SIE's is :func:`threepart.sie.wear.march`. The
+worn depth is the two bodies' wear together (the gap they open), shared in any
+fixed proportion: the contact sees only the sum (docs/WEAR.md, section 4).
+
+wear             -- the march: ``cycles``, ``energy``, ``stick_zones``, ``depths``, ``volume``, ``final``
+WearResult       -- its result
+register_marcher -- a method's march under its name
+LAWS             -- "archard" (``Δw = k p |slip|``) and "energy" (``Δw = k q·slip``, Fouvry)
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any, Callable
+
+import numpy as np
+
+from threepart.errors import InputError, InputTypeError
+from threepart.punch import Punch
+from threepart.results import FrettingResult
+from threepart.validate import check_punch, check_tilt, integer, lever_arm, positive
+
+__all__ = ["wear", "WearResult", "register_marcher", "LAWS"]
+
+LAWS = ("archard", "energy")
+#: the most cycles a march takes (a fan-blade flank's life is 1e6 to 1e8)
+MAX_CYCLES = 10**10
+
+_MARCHERS: dict[str, Callable[..., "WearResult"]] = {}
+
+
+def register_marcher(name: str, march: Callable[..., "WearResult"]) -> None:
+    """Register ``march(punch, P, s, Q_max, f, *, A, law, k, cycles, jump, tilt, **options)`` as ``name``."""
+    _MARCHERS[name] = march
+
+
+@dataclass(frozen=True)
+class WearResult:
+    """A fretting-wear march (:func:`wear`) at its recorded cycles (every jump).
+
+    Attributes
+    ----------
+    x
+        Knots of the worn depth.
+    cycles
+        The recorded cycle counts, from 0.
+    energy
+        Friction work per cycle at each (``∫ q·slip dx`` over a cycle).
+    stick_zones
+        ``(x1, x2)`` of the stick zone at ``Q_max`` at each.
+    depths
+        The worn depth at the knots at each, ``(len(cycles), len(x))``: both bodies together
+        (the gap they open). A body that takes the fixed fraction ``φ`` of the wear is worn
+        ``φ depths``; the contact, the shear and the energy do not depend on ``φ``.
+    volumes
+        ``∫ w dx`` at each: the worn area per unit length (both bodies).
+    contacts, alphas
+        The contact ``(-a, c)`` and the tilt at each.
+    final
+        The fretting cycle on the last worn profile: ``pressure(x)``, ``shear``, ``stress``, ``edges()``.
+    """
+
+    punch: Punch
+    P: float
+    s: float
+    Q_max: float
+    f: float
+    A: float
+    law: str
+    k: float
+    x: np.ndarray = field(repr=False)
+    cycles: np.ndarray = field(repr=False)
+    energy: np.ndarray = field(repr=False)
+    stick_zones: np.ndarray = field(repr=False)
+    depths: np.ndarray = field(repr=False)
+    volumes: np.ndarray = field(repr=False)
+    contacts: np.ndarray = field(repr=False)
+    alphas: np.ndarray = field(repr=False)
+    final: FrettingResult = field(repr=False)
+    method: str = ""
+    info: dict[str, Any] = field(default_factory=dict, repr=False)
+
+    @property
+    def volume(self) -> float:
+        """The worn area per unit length at the last cycle (both bodies)."""
+        return float(self.volumes[-1])
+
+    def depth(self, x: Any, record: int = -1) -> np.ndarray:
+        """The worn depth at ``x`` at a recorded cycle (the last by default), linear between knots."""
+        return np.interp(np.asarray(x, dtype=float), self.x, self.depths[record])
+
+
+def _wear_iv(punch: Punch, P: float, s: float, Q_max: float, f: float, A: float, law: str, k: float,
+             cycles: int, jump: int | None, tilt: str) -> tuple[float, float, float, float, float, float, int]:
+    check_punch(punch)
+    P, A, f, k = positive("P", P), positive("A", A), positive("f", f), positive("k", k)
+    Q_max = positive("Q_max", Q_max)
+    s = lever_arm(punch, s)
+    check_tilt(tilt)
+    if Q_max >= f * P:
+        raise InputError(f"`Q_max` = {Q_max:.6g} must be below f P = {f * P:.6g}: full sliding, "
+                         "there is no stick zone to fret about")
+    if law not in LAWS:
+        raise InputError(f"`law` = {law!r} must be one of {', '.join(LAWS)}")
+    cycles = integer("cycles", cycles, 0, MAX_CYCLES)
+    if jump is not None:
+        jump = integer("jump", jump, 1, MAX_CYCLES)
+    return P, s, Q_max, f, A, k, cycles
+
+
+def wear(punch: Punch, P: float, s: float, Q_max: float, f: float, *, A: float, law: str = "archard",
+         k: float, cycles: int, method: str = "sie", jump: int | None = None, tilt: str = "free",
+         **options: Any) -> WearResult:
+    """Fretting cycles at constant ``P``, ``s`` with ``Q`` between ``±Q_max``, the depth grown by wear.
+
+    Parameters
+    ----------
+    punch, P, s, A, tilt
+        The problem (eq. 2, eq. 4), as :func:`threepart.solve`.
+    Q_max, f
+        The shear amplitude and the coefficient of friction, ``0 < Q_max < f P``.
+    law
+        ``"archard"``: depth ``k p |slip|`` per unit slip; ``"energy"``: ``k q·slip``
+        (Fouvry), so that the worn area per cycle is ``k`` times the friction work (eq. W15).
+    k
+        The wear coefficient (mm²/N for Archard, mm³/(N mm) per unit length for the energy law).
+    cycles
+        Cycles to march, >= 0.
+    method
+        The marcher: ``"sie"``.
+    jump
+        Cycles per step; None (default): the method's stated step control
+        (:mod:`threepart.sie.wear`: the depth per jump and Euler's stability bound).
+    options
+        The marcher's own (``n``, ``points`` for the SIE).
+
+    Returns
+    -------
+    WearResult
+
+    Raises
+    ------
+    ValueError
+        A bad value, named with its limit; ``Q_max >= f P``; an unknown ``law`` or ``method``.
+    TypeError
+        ``punch`` not a Punch, ``cycles`` or ``jump`` not an integer.
+    """
+    if not isinstance(method, str):
+        raise InputTypeError(f"`method` must be a string, not {type(method).__name__}")
+    P, s, Q_max, f, A, k, cycles = _wear_iv(punch, P, s, Q_max, f, A, law, k, cycles, jump, tilt)
+    if method not in _MARCHERS:
+        from threepart import registry
+        if method in registry.BUILTIN:
+            registry.get(method)      # the solver package registers its marcher on import
+    if method not in _MARCHERS:
+        raise InputError(f"`method` = {method!r} has no wear march; marchers: {', '.join(sorted(_MARCHERS)) or 'none'}")
+    return _MARCHERS[method](punch, P, s, Q_max, f, A=A, law=law, k=k, cycles=cycles, jump=jump,
+                             tilt=tilt, **options)
+
