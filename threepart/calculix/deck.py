@@ -31,7 +31,8 @@ if TYPE_CHECKING:   # pragma: no cover - the models' types only; mesh.py imports
 
 __all__ = ["DeckSettings", "check_mesh_size", "W_OVER_H", "Material", "write_deck", "half_deck",
            "CONVENTIONS", "nodes_text", "elements_text", "nset_text", "surface_text", "material_text",
-           "contact_text", "equation_text", "boundary_text", "step_text", "Keyword", "parse_deck"]
+           "contact_text", "equation_text", "boundary_text", "step_text", "Keyword", "parse_deck",
+           "deck_head", "lid_nodes"]
 
 #: the admissible mesh, in elements across the contact width W = a + c (W/h): at least 4
 #: resolve it at all; at most 1000, 5 x the default 200 (caseA_sym at W/h = 1000: 38 975
@@ -329,7 +330,7 @@ def write_deck(model: Model, *, P: float, s: float, E: float, nu: float,
     mid = int(base[np.argmin(np.abs(model.xy[base - 1, 0] - 0.5 * (model.c - model.a)))])
     E_punch = E if settings.pair else E * settings.stiffening
     p_est = 2 * P / (math.pi * W)
-    parts = [_deck_head(model, P=P, s=s, E=E, K=K, settings=settings, title=title),
+    parts = [deck_head(model, P=P, s=s, E=E, K=K, settings=settings, title=title),
              "*HEADING\nthreepart: a three-part punch on an elastic block, plane strain\n",
              nodes_text(model.xy),
              elements_text(model.elements["block"], model.numbers["block"], "BLOCK"),
@@ -343,7 +344,7 @@ def write_deck(model: Model, *, P: float, s: float, E: float, nu: float,
              material_text("PUNCH_MAT", E_punch, nu, "PUNCH"),
              surface_text("SSLAVE", faces=model.slave), surface_text("SMASTER", faces=model.master),
              contact_text("SSLAVE", "SMASTER", K, 1e-6 * p_est)]
-    rows, loads = _lid(model, P=P, s=s, tilt=settings.tilt, half=half)
+    rows, loads = lid_nodes(model, P=P, s=s, tilt=settings.tilt, half=half)
     parts.append("*EQUATION\n" + "\n".join(rows) + "\n")
     if half:
         parts.append(nset_text("NSYM", np.union1d(model.nsets["block_sym"], model.nsets["punch_sym"])))
@@ -359,7 +360,7 @@ def write_deck(model: Model, *, P: float, s: float, E: float, nu: float,
     return "".join(parts)
 
 
-def _deck_head(model: Model, *, P: float, s: float, E: float, K: float, settings: DeckSettings,
+def deck_head(model: Model, *, P: float, s: float, E: float, K: float, settings: DeckSettings,
                title: str) -> str:
     """The deck's comment header: the punch, the load, the mesh, the slopes, then :data:`CONVENTIONS`."""
     W = model.a + model.c
@@ -374,7 +375,7 @@ def _deck_head(model: Model, *, P: float, s: float, E: float, K: float, settings
             f"{P / (W * E):.3g}\n" + CONVENTIONS)
 
 
-def _lid(model: Model, *, P: float, s: float, tilt: str, half: bool) -> tuple[list[str], str]:
+def lid_nodes(model: Model, *, P: float, s: float, tilt: str, half: bool) -> tuple[list[str], str]:
     """The punch's top as a lid: the ``*EQUATION`` rows tying its nodes to its two control
     nodes, and the ``*CLOAD`` lines that put ``P`` at ``s`` on them (``P / 2`` on a half model)."""
     tl, tr = model.control_nodes()

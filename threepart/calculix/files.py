@@ -21,7 +21,7 @@ import numpy as np
 from threepart.errors import ReaderError
 from threepart.textfile import finite_row, read_text
 
-__all__ = ["run_file", "file_label", "frd_blocks", "last_printed", "FRD_LINE_VALUES"]
+__all__ = ["run_file", "file_label", "frd_blocks", "last_printed", "FRD_LINE_VALUES", "frd_row"]
 
 #: the values on one ``-1`` line of an ``.frd`` (more components continue on ``-2`` lines)
 FRD_LINE_VALUES = 6
@@ -41,7 +41,7 @@ def file_label(path: Path, arg: str | None) -> str:
     return f"`{arg}` = {str(path)!r}" if arg else f"CalculiX's file {str(path)!r}"
 
 
-def _frd_row(line: str, i: int, label: str, block: str) -> tuple[int, list[float]]:
+def frd_row(line: str, i: int, label: str, block: str) -> tuple[int, list[float]]:
     """The node and the finite values of the ``-1`` line ``i`` of an ``.frd`` block: the node
     number in columns 4-13, the values 12 columns each; ReaderError naming the line otherwise."""
     where = f"{label}, line {i}"
@@ -80,7 +80,7 @@ def frd_blocks(path: Path, label: str) -> dict[str, dict[int, np.ndarray]]:
             words = line.split()
             width += not (len(words) > 6 and words[6][:1] == "1")      # "1ALL": not in the data
         elif line.startswith(" -1") and current is not None:
-            n, values = _frd_row(line, i, label, block)
+            n, values = frd_row(line, i, label, block)
             if width and len(values) != min(width, FRD_LINE_VALUES):
                 raise ReaderError(f"{label}, line {i}: node {n} has {len(values)} values in the {block} "
                                   f"block, which has {width} components: a truncated or edited file?")

@@ -32,10 +32,11 @@ from typing import TYPE_CHECKING, Any, Sequence
 import numpy as np
 
 from ..validate import finite, positive
-from .deck import (CONVENTIONS, DeckSettings, _deck_head, _lid, boundary_text, elements_text,
+from .deck import (CONVENTIONS, DeckSettings, deck_head, lid_nodes, boundary_text, elements_text,
                    material_text, nodes_text, nset_text, surface_text)
-from threepart.errors import InputError
+from threepart.errors import InputError, ReaderError
 from threepart.fields import stick_ends
+from threepart.textfile import finite_row
 
 if TYPE_CHECKING:   # pragma: no cover
     from ..punch import Punch
@@ -121,7 +122,7 @@ def friction_deck(model: Model, *, P: float, s: float, E: float, nu: float, f: f
     T = float(model.xy[tl - 1, 1])             # the top's height above the contact
     base, top = model.nsets["block_base"], model.nsets["punch_top"]
     p_est = 2 * P / (math.pi * W)
-    head = _deck_head(model, P=P, s=s, E=E, K=K, settings=settings, title=title)
+    head = deck_head(model, P=P, s=s, E=E, K=K, settings=settings, title=title)
     head = head.replace(CONVENTIONS, "") + (
         f"** friction: f = {f:.6g}, stick slope lambda = {lam:.6g} ({lam * h / E:.3g} E/h); Q steps "
         f"{', '.join(f'{q:.6g}' for q in Qs)} ({increments} increments each); Q/fP up to "
@@ -140,7 +141,7 @@ def friction_deck(model: Model, *, P: float, s: float, E: float, nu: float, f: f
              f"*CONTACT PAIR, INTERACTION=SI, TYPE=SURFACE TO SURFACE\nSSLAVE, SMASTER\n"
              f"*SURFACE INTERACTION, NAME=SI\n*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR\n"
              f"{K:.6g}, {1e-6 * p_est:.6g}\n*FRICTION\n{f:.15g}, {lam:.6g}\n"]
-    rows, _ = _lid(model, P=P, s=s, tilt=settings.tilt, half=False)
+    rows, _ = lid_nodes(model, P=P, s=s, tilt=settings.tilt, half=False)
     rows += [f"2\n{int(n)}, 1, 1., {tl}, 1, -1." for n in top if int(n) != tl]
     parts.append("*EQUATION\n" + "\n".join(rows) + "\n")
     parts.append(boundary_text([("NBASE", 1), ("NBASE", 2)]))
@@ -189,7 +190,7 @@ def _step(model: Model, *, P: float, s: float, Q: float, T: float, tilt: str, n:
     ``descent``: the top held lowered by it instead of loaded by ``P``."""
     # free tilt: the corners' forces balance Q's moment about the surface; tilt suppressed: the
     # guided lid reacts it (and P acts at the left corner, s an outcome)
-    _, loads = _lid(model, P=P, s=s - T * Q / P if tilt == "free" else s, tilt=tilt, half=False)
+    _, loads = lid_nodes(model, P=P, s=s - T * Q / P if tilt == "free" else s, tilt=tilt, half=False)
     tl, _ = model.control_nodes()
     dt = 1.0 / n
     held = "" if descent is None else f"{tl}, 2, 2, {-descent:.15g}\n"
@@ -212,26 +213,31 @@ def read_frd_states(stem: Path) -> list[tuple[int, float, dict[str, dict[int, np
     history needs each. The step and the time are read from the ``1PSTEP`` and
     ``100CL`` records that open each increment's blocks.
     """
+    from threepart.textfile import read_text
+
+    from .files import file_label, frd_row, run_file
+
+    path = run_file(stem, ".frd")
+    label = file_label(path, None)
     states: list[tuple[int, float, dict[str, dict[int, np.ndarray]]]] = []
     step, t = 0, math.nan
     current: dict[int, np.ndarray] | None = None
-    with open(f"{stem}.frd") as fh:
-        for line in fh:
-            if line.startswith("    1PSTEP"):
-                step = int(line.split()[3]) if len(line.split()) > 3 else step
-            elif line.startswith("  100CL"):
-                t = float(line[12:24])
-                if not states or states[-1][1] != t or states[-1][0] != step:
-                    states.append((step, t, {}))
-            elif line.startswith(" -4") and states:
-                current = {}
-                states[-1][2][line.split()[1]] = current
-            elif line.startswith(" -1") and current is not None:
-                vals = line[13:].rstrip("\n")
-                current[int(line[3:13])] = np.array([float(vals[12 * j:12 * j + 12])
-                                                     for j in range(len(vals) // 12)])
-            elif line.startswith(" -3"):
-                current = None
+    block = ""
+    for i, line in enumerate(read_text(path, label).splitlines(), start=1):
+        if line.startswith("    1PSTEP"):
+            step = int(line.split()[3]) if len(line.split()) > 3 else step
+        elif line.startswith("  100CL"):
+            t = finite_row([line[12:24]], f"{label}, line {i} (the increment's time)")[0]
+            if not states or states[-1][1] != t or states[-1][0] != step:
+                states.append((step, t, {}))
+        elif line.startswith(" -4") and states:
+            current, block = {}, line.split()[1]
+            states[-1][2][block] = current
+        elif line.startswith(" -1") and current is not None:
+            n, values = frd_row(line, i, label, block)
+            current[n] = np.array(values)
+        elif line.startswith(" -3"):
+            current = None
     return states
 
 
@@ -432,22 +438,20 @@ def read_traction(path: str | Path, *, arg: str = "path"
     ``q`` as :func:`contact_traction`; ``info`` holds the source, the states' count and the
     increments (``.sta`` beside it).
     """
-    from .read import read_frd_nodes
+    from .read import read_frd, read_frd_nodes
 
     path = Path(path)
-    stem = path.with_suffix("")
     if path.suffix.lower() != ".frd":
         return None
-    states = read_frd_states(stem)
-    if not states or "CONTACT" not in states[-1][2]:
+    last = read_frd(path, arg=arg)          # the checked reader, the file as given
+    if not last.get("CONTACT"):
         return None
-    xy = read_frd_nodes(stem)
-    contact = states[-1][2]["CONTACT"]
-    if not contact or max(contact) > max(xy):
+    xy = read_frd_nodes(path, arg=arg)
+    contact = last["CONTACT"]
+    if max(contact) > max(xy):
         return None
     try:
-        x, p, q = contact_traction(states[-1][2], xy)
+        x, p, q = contact_traction(last, xy)
     except InputError as exc:
-        raise InputError(f"`{arg}` = {str(path)!r}: {exc}") from None
-    return x, p, q, {"source": "frd (surface to surface)", "states": len(states),
-                     "increments": _increments(stem)}
+        raise ReaderError(f"`{arg}` = {str(path)!r}: {exc}") from None
+    return x, p, q, {"source": "frd (surface to surface)", "increments": _increments(path.with_suffix(""))}
