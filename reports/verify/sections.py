@@ -40,7 +40,8 @@ __all__ = ["Status", "Verdict", "Code", "Link", "Item", "Bullets", "Table", "Fig
 ENERGY_UNIT = f"N·{UNITS['d']}/{UNITS['b']}"
 ENERGY_UNIT_TEXT = f"N·{UNITS['d']} per {UNITS['b']} of contact length, per cycle"
 #: how the report names a referee that is not a method of the registry (another code's results)
-REFEREE_NAMES = {"calculix": "CalculiX"}
+REFEREE_NAMES = {"calculix": "CalculiX", "calculix-friction": "CalculiX with friction",
+                 "getfem-friction": "GetFEM with friction"}
 
 
 def method_name(method: str) -> str:
