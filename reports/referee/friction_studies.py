@@ -90,7 +90,7 @@ def _calculix() -> Referee:
 
     return Referee("calculix", calculix.ccx_available, friction.partial_slip, fretting,
                    "`ccx` (CalculiX) is not on the PATH (Debian: apt-get install calculix-ccx)",
-                   (CcxError,), (50.0, 100.0, 200.0))
+                   (CcxError,), (50.0, 100.0))
 
 
 def _getfem() -> Referee:
