@@ -33,7 +33,7 @@ from __future__ import annotations
 import functools
 import math
 import time
-from typing import Any
+from typing import Any, Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -53,7 +53,8 @@ from .schemes import Plain, Projected
 from .slip import (SieSlipResult, check_slip_direction, coulomb_violation, stick_zone,
                    stick_zone_by_continuation)
 
-__all__ = ["SieFrettingResult", "fretting_cycle", "mean_profile", "approach", "stick_gap"]
+__all__ = ["SieFrettingResult", "fretting_cycle", "mean_profile", "approach", "stick_gap", "Zones", "gauss01",
+           "loop_integral"]
 
 #: Chebyshev terms of the gap series: a kink at θ_b truncated at N terms leaves ~1/(N^2 φ) of
 #: the gap at x = m + h cosh φ, large next to a tiny slip zone: 5.6e-6 of the gap (3e-7 of the
@@ -66,10 +67,28 @@ ENERGY_RTOL = 1e-12
 
 
 @functools.lru_cache(maxsize=16)
-def _gauss(n: int) -> tuple[np.ndarray, np.ndarray]:
+def gauss01(n: int) -> tuple[np.ndarray, np.ndarray]:
     """Gauss–Legendre nodes and weights on ``[0, 1]``."""
     t, w = scipy.special.roots_legendre(n)     # O(n); numpy's leggauss solves an n x n eigenproblem
     return 0.5 * (t + 1), 0.5 * w
+
+
+def loop_integral(zones: Any, Q_max: float, edges: Sequence[float], n: int) -> float:
+    """``∫_0^Q_max (2u - Q_max) ln(h/h*(u)) du`` of the loop energy, composite Gauss–Legendre.
+
+    ``edges`` cut ``[0, Q_max]`` into panels (a stick-zone end crossing a join);
+    each is mapped by ``u = lo + L s^2 (3 - 2s)``, which removes the square-root
+    behaviour at its ends, and integrated at ``n`` nodes. ``zones(u)[1]`` is the
+    stick zone's half-width ``h*`` at ``u``, ``zones.h0`` the contact's.
+    """
+    s, w = gauss01(n)
+    total = 0.0
+    for lo, hi in zip(edges[:-1], edges[1:]):
+        u = lo + (hi - lo) * s * s * (3 - 2 * s)
+        weights = 6 * (hi - lo) * s * (1 - s) * w
+        h_star = np.array([zones(float(v))[1] for v in u])
+        total += float(np.sum(weights * (2 * u - Q_max) * np.log(zones.h0 / h_star)))
+    return total
 
 
 def mean_profile(punch: Punch, m: float, h: float) -> float:
@@ -80,7 +99,7 @@ def mean_profile(punch: Punch, m: float, h: float) -> float:
     """
     cuts = [math.acos((j - m) / h) for j in sorted({punch.b, -punch.b}) if abs(j - m) < h]
     edges = np.array(sorted({0.0, math.pi, *cuts}))
-    s, w = _gauss(16)
+    s, w = gauss01(16)
     total = 0.0
     for lo, hi in zip(edges[:-1], edges[1:]):
         theta = lo + (hi - lo) * s
@@ -242,7 +261,7 @@ def _check_fretting(normal: NormalResult, Q_max: float, f: float, states: int
     return Q_max, f, check_states(states)
 
 
-class _Zones:
+class Zones:
     """Loading stick zones ``(m*, h*)`` of one normal solution, by :func:`sie.normal.solve_ends`."""
 
     def __init__(self, normal: NormalResult, f: float, sch: Plain | Projected,
@@ -283,7 +302,7 @@ class _Zones:
         return sorted(out)
 
 
-def _energy(zones: _Zones, Q_max: float, top: tuple[float, float]) -> tuple[float, int, list[float]]:
+def _energy(zones: Zones, Q_max: float, top: tuple[float, float]) -> tuple[float, int, list[float]]:
     """``W = (4A/π) ∫_0^Q_max (2u - Q_max) ln(h/h*(u)) du``, composite Gauss–Legendre doubled until it settles.
 
     The panels end where a stick-zone end crosses a join (a ``|u - u_c|^(3/2)``
@@ -298,14 +317,7 @@ def _energy(zones: _Zones, Q_max: float, top: tuple[float, float]) -> tuple[floa
     floor = 1e-13 * nrm.A * Q_max**2
     n, previous = ENERGY_NODES, math.nan
     while n <= MAX_ENERGY_NODES:
-        s, w = _gauss(n)
-        total = 0.0
-        for lo, hi in zip(edges[:-1], edges[1:]):
-            u = lo + (hi - lo) * s * s * (3 - 2 * s)
-            weights = 6 * (hi - lo) * s * (1 - s) * w
-            h_star = np.array([zones(float(v))[1] for v in u])
-            total += float(np.sum(weights * (2 * u - Q_max) * np.log(zones.h0 / h_star)))
-        W = 4 * nrm.A / math.pi * total
+        W = 4 * nrm.A / math.pi * loop_integral(zones, Q_max, edges, n)
         if abs(W - previous) <= ENERGY_RTOL * abs(W) + floor:
             return W, n, cuts
         previous, n = W, 2 * n
@@ -325,7 +337,7 @@ def _check_coulomb(normal: NormalResult, f: float, tilt_rate: float, u: np.ndarr
                 f"Coulomb's law: {why}")
 
 
-def _cycle_energy(zones: _Zones, normal: NormalResult, Q_max: float, f: float, tilt_rate: float,
+def _cycle_energy(zones: Zones, normal: NormalResult, Q_max: float, f: float, tilt_rate: float,
                   sigma_bulk: float, mh1: tuple[float, float]) -> tuple[float, Any, list[float]]:
     """The cycle's energy, its quadrature nodes and the join crossings (none under a bulk stress:
     the friction work, :func:`threepart.bulk.slip_dissipation`); ``mh1`` the stick zone at ``Q_max``."""
@@ -398,7 +410,7 @@ def fretting_cycle(normal: NormalResult, Q_max: float, f: float, *, n: int | Non
     sigma_bulk = check_sigma_bulk(sigma_bulk, normal, Q_max)
     t0 = time.perf_counter()
     tilt_rate = float(corrective_tilt(0.0, normal.A, 1.0, f, sigma_bulk)) / Q_max
-    zones = _Zones(normal, f, sch, tilt_rate)
+    zones = Zones(normal, f, sch, tilt_rate)
     u = np.linspace(0.0, Q_max, states)
     mh = np.array([zones(float(v)) for v in u])
     check_slip_direction(normal, Q_max, f, sigma_bulk, sch, (float(mh[-1, 0]), float(mh[-1, 1])))

@@ -64,7 +64,7 @@ from threepart.punch import Punch
 from threepart.results import Diagnostics
 from threepart.validate import SLIP_RATIO_LIMIT, check_shear, check_states
 
-from .fretting import SieFrettingResult, _gauss, _Zones
+from .fretting import SieFrettingResult, Zones, gauss01, loop_integral
 from .profile import (DEFAULT_TERMS, ProfileNormalResult, WornProfile, profile_approach, profile_gap,
                       solve_profile)
 from .slip import SieSlipResult, stick_zone
@@ -157,7 +157,7 @@ class ProfileFrettingResult(SieFrettingResult):
         return np.where((x > -nrm.a) & (x < nrm.c), self.f * gap, 0.0)
 
 
-def _loop_energy(zones: _Zones, Q_max: float, top: tuple[float, float]) -> tuple[float, float]:
+def _loop_energy(zones: Zones, Q_max: float, top: tuple[float, float]) -> tuple[float, float]:
     """``W = (4A/π) ∫_0^Q_max (2u - Q_max) ln(h/h*(u)) du`` (sie.fretting) and its two-level estimate.
 
     Composite Gauss–Legendre with a panel end where a stick-zone end crosses a
@@ -166,14 +166,7 @@ def _loop_energy(zones: _Zones, Q_max: float, top: tuple[float, float]) -> tuple
     edges = [0.0, *zones.crossings(Q_max, top), Q_max]
     values = []
     for n in LOOP_NODES:
-        s, w = _gauss(n)
-        total = 0.0
-        for lo, hi in zip(edges[:-1], edges[1:]):
-            u = lo + (hi - lo) * s * s * (3 - 2 * s)
-            weights = 6 * (hi - lo) * s * (1 - s) * w
-            h_star = np.array([zones(float(v))[1] for v in u])
-            total += float(np.sum(weights * (2 * u - Q_max) * np.log(zones.h0 / h_star)))
-        values.append(4 * zones.normal.A / math.pi * total)
+        values.append(4 * zones.normal.A / math.pi * loop_integral(zones, Q_max, edges, n))
     return values[-1], abs(values[-1] - values[0])
 
 
@@ -191,7 +184,7 @@ def profile_fretting_cycle(normal: ProfileNormalResult, Q_max: float, f: float, 
     states = check_states(states)
     t0 = time.perf_counter()
     sch = normal.scheme
-    zones = _Zones(normal, f, sch)
+    zones = Zones(normal, f, sch)
     u = np.linspace(0.0, Q_max, states)
     mh = np.array([zones(float(v)) for v in u])
     prof, A, alpha = normal.profile, normal.A, normal.alpha
@@ -227,7 +220,7 @@ def wear_rate(normal: ProfileNormalResult, Q_max: float, f: float, x: np.ndarray
     m, h, _, _ = stick_zone(normal, Q_max, f, sch)
     lo, hi = m - h, m + h
 
-    s, w = _gauss(WORK_NODES)
+    s, w = gauss01(WORK_NODES)
     nodes, weights = [], []
     for a_, b_ in ((-normal.a, lo), (hi, normal.c)):
         if b_ > a_:
