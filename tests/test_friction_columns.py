@@ -16,6 +16,7 @@ from threepart.tolerances import tolerance
 
 
 def _sampled(punch, P, s, Q, f, E, nu, *, n, tilt, workdir):
+    assert workdir.is_dir()           # a code writes its deck there (CalculiX's run_ccx does not make it)
     ref = fs.friction_problem()["slip"]
     W = ref.a + ref.c
     x = np.arange(-1.2 * ref.a, 1.2 * ref.c, W / n)

@@ -158,9 +158,10 @@ def friction_studies(say: Callable[[str], None] = print, codes: tuple[str, ...] 
             continue
         with tempfile.TemporaryDirectory(prefix=f"threepart-{name}-friction-") as tmp:
             def level(n: float) -> tuple[float, dict[str, float], dict[str, Any], dict[str, float]]:
+                workdir = Path(tmp) / f"slip_n{n:g}"
+                workdir.mkdir()
                 run = code.partial_slip(problem["punch"], problem["P"], 0.0, problem["Q"], problem["f"],
-                                        problem["E"], problem["nu"], n=n, tilt="suppressed",
-                                        workdir=Path(tmp) / f"slip_n{n:g}")
+                                        problem["E"], problem["nu"], n=n, tilt="suppressed", workdir=workdir)
                 res = slip_from_points(run.x, run.p, run.q, ref, method=name)
                 checks = {c.quantity: c for c in compare(ref, res, "referee", stresses=False)}
                 err = {q: checks[q].error for q in FRICTION_QUANTITIES}
@@ -185,10 +186,11 @@ def _energy_note(code: Referee, problem: dict[str, Any], cycle: Any, n: float, t
                  say: Callable[[str], None]) -> str:
     """The fretting energy per cycle of ``code`` at ``n`` elements across W against the closed form's, as a note."""
     limit = tolerance("referee", "energy").limit
+    workdir = tmp / f"fretting_n{n:g}"
+    workdir.mkdir()
     try:
         run = code.fretting(problem["punch"], problem["P"], 0.0, problem["Q"], problem["f"],
-                            problem["E"], problem["nu"], n=n, tilt="suppressed",
-                            workdir=tmp / f"fretting_n{n:g}")
+                            problem["E"], problem["nu"], n=n, tilt="suppressed", workdir=workdir)
     except code.errors as exc:
         return f"the fretting cycle at W/h = {n:g} failed: {exc}"
     energy = float(getattr(run, "energy", None) or run.info["energy"])
