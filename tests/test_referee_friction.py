@@ -167,3 +167,18 @@ def test_compare_of_a_partial_slip_needs_the_files_shear(tmp_path, capsys, ref):
     assert main(["compare", "--pressure", str(csv), *HERTZ, "--Q", repr(ref.Q), "--f", repr(F),
                  "--out", str(tmp_path / "r")]) == 2
     assert "carries no shear q" in capsys.readouterr().err
+
+
+def test_noise_outside_the_contact_does_not_move_the_stick_ends(ref):
+    """A code's multiplier leaves p ~ 1e-4 of the peak outside the contact with |q|/(f p) = 0.98
+    (GetFEM at W/h = 32): those nodes are not judged, and the ends stay Mindlin's."""
+    from threepart.fields import stick_ends
+
+    x, p, q = _nodes(ref, n=241)
+    clean = stick_ends(x, p, q, F)
+    outside = p == 0
+    p_noisy = np.where(outside, 1e-4 * p.max(), p)
+    q_noisy = np.where(outside, 0.98 * F * p_noisy, q)
+    assert stick_ends(x, p_noisy, q_noisy, F) == pytest.approx(clean, abs=ROUNDING)
+    W = ref.a + ref.c
+    assert np.abs(np.array(clean) - np.array(ref.stick_zone)).max() < ENDS * W

@@ -29,7 +29,7 @@ from numpy.typing import ArrayLike
 from .errors import InputError, MeshResolutionError
 
 __all__ = ["peak", "FIT_SAMPLES", "edge_multipliers", "WINDOWS", "DEGREES", "JOIN_SHARE", "MIN_NODES",
-           "stick_ends", "STICK_MARGIN", "STICK_NODES"]
+           "stick_ends", "STICK_MARGIN", "STICK_NODES", "STICK_LOAD"]
 
 #: points on which a least-squares fit is searched for its maximum, over ``± half_width``
 FIT_SAMPLES = 2001
@@ -156,6 +156,10 @@ def edge_multipliers(x: np.ndarray, p: np.ndarray, a: float, c: float, b: float
 STICK_MARGIN = 0.02
 #: the sticking nodes next to each end that the fit of ``(1 - |q|/(f p))^2`` takes
 STICK_NODES = 6
+#: nodes loaded below this fraction of the peak pressure are not judged: next to a contact end (within
+#: ~1e-4 of its width) or outside it, where a code's noise in p makes q/p meaningless (GetFEM's
+#: multiplier at W/h = 32: p ~ 1e-4 of the peak outside the contact, with |q|/(f p) = 0.98)
+STICK_LOAD = 1e-2
 
 
 def stick_ends(x: ArrayLike, p: ArrayLike, q: ArrayLike, f: float, *, margin: float = STICK_MARGIN,
@@ -165,22 +169,30 @@ def stick_ends(x: ArrayLike, p: ArrayLike, q: ArrayLike, f: float, *, margin: fl
     In a slip zone ``|q| = f p``; inside the stick zone ``f p - |q|`` rises from its
     ends as a square root (Ciavarella–Jäger: the corrective pressure ``p*`` of eq.
     integral_equation_2 is bounded at the stick zone's ends), so ``(1 - |q|/(f p))^2``
-    is linear in ``x`` there. A polynomial of degree up to 2 is fitted to it over the
-    ``k`` sticking nodes next to each end (ratio above ``margin``), and its root nearest
-    them is the end: on Mindlin's traction at nodes ``h`` apart within ``0.2 h``
-    (W/h = 50) and ``0.05 h`` (W/h = 100). ``x`` ascending; ``(nan, nan)`` if fewer than
-    two nodes stick.
+    is linear in ``x`` there. The stick zone is the longest run of nodes loaded above
+    :data:`STICK_LOAD` of the peak whose ratio exceeds ``margin``; a polynomial of
+    degree up to 2 is fitted to the squared ratio over the ``k`` nodes of the run next
+    to each end, and its root nearest them, kept between the run's end node and its
+    outer neighbour, is the end: on Mindlin's traction at nodes ``h`` apart within
+    ``0.2 h`` (W/h = 50) and ``0.05 h`` (W/h = 100). ``x`` ascending; ``(nan, nan)`` if
+    fewer than two nodes stick.
     """
     x, p, q = (np.asarray(v, dtype=float) for v in (x, p, q))
-    on = p > 0
+    on = p > STICK_LOAD * float(np.max(p, initial=0.0))
     r = np.zeros(len(x))
     r[on] = 1.0 - np.abs(q[on]) / (f * p[on])
-    stick = np.flatnonzero(on & (r > margin))
-    if stick.size < 2:
+    sticks = (on & (r > margin)).astype(np.int8)
+    edges = np.diff(np.concatenate(([0], sticks, [0])))
+    starts, stops = np.flatnonzero(edges == 1), np.flatnonzero(edges == -1)
+    if starts.size == 0 or int(np.max(stops - starts)) < 2:
         return math.nan, math.nan
+    longest = int(np.argmax(x[stops - 1] - x[starts]))
+    run = np.arange(starts[longest], stops[longest])
     ends = []
-    for idx in (stick[:k], stick[::-1][:k]):
+    for idx, outer in ((run[:k], run[0] - 1), (run[::-1][:k], run[-1] + 1)):
+        bracket = sorted((float(x[idx[0]]), float(x[min(max(outer, 0), len(x) - 1)])))
         roots = np.roots(np.polyfit(x[idx], r[idx] ** 2, min(2, idx.size - 1)))
         roots = roots[np.isreal(roots)].real
-        ends.append(float(roots[np.argmin(np.abs(roots - x[idx[0]]))]) if roots.size else float(x[idx[0]]))
+        end = float(roots[np.argmin(np.abs(roots - x[idx[0]]))]) if roots.size else float(x[idx[0]])
+        ends.append(float(np.clip(end, *bracket)))
     return ends[0], ends[1]
