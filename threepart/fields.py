@@ -190,9 +190,9 @@ def stick_ends(x: ArrayLike, p: ArrayLike, q: ArrayLike, f: float, *, margin: fl
     run = np.arange(starts[longest], stops[longest])
     ends = []
     for idx, outer in ((run[:k], run[0] - 1), (run[::-1][:k], run[-1] + 1)):
-        bracket = sorted((float(x[idx[0]]), float(x[min(max(outer, 0), len(x) - 1)])))
+        lo, hi = sorted((float(x[idx[0]]), float(x[min(max(outer, 0), len(x) - 1)])))
         roots = np.roots(np.polyfit(x[idx], r[idx] ** 2, min(2, idx.size - 1)))
         roots = roots[np.isreal(roots)].real
         end = float(roots[np.argmin(np.abs(roots - x[idx[0]]))]) if roots.size else float(x[idx[0]])
-        ends.append(float(np.clip(end, *bracket)))
+        ends.append(min(max(end, lo), hi))
     return ends[0], ends[1]
