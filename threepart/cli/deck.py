@@ -146,8 +146,8 @@ def _friction(args: argparse.Namespace, pr: dict[str, Any], shear: dict[str, flo
     settings = calculix.DeckSettings(h=args.h, penalty=args.penalty, pair=True, tilt=pr["tilt"])
     model = calculix.build_model(pr["punch"], ref.a, ref.c, settings)
     Qs = [amplitude] if "Q" in shear else [amplitude, -amplitude, amplitude]
-    deck = friction_deck(model, P=pr["P"], s=pr["s"], E=E, nu=nu, f=f, Q=Qs,
-                                           settings=settings, title=title)
+    deck = friction_deck(model, P=pr["P"], s=pr["s"], E=E, nu=nu, f=f, Q=Qs, settings=settings,
+                         title=title)
     write_file(args.out, deck, arg="--out")
     print(f"wrote {args.out}: CalculiX, two similar bodies of E = {E:.6g} MPa, nu = {nu:g}, {path} "
           f"at {name} = {amplitude:g}, f = {f:g}: {model.n_nodes} nodes, h = {model.h0:.4g}; judge its "
