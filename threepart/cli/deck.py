@@ -134,6 +134,9 @@ def _friction(args: argparse.Namespace, pr: dict[str, Any], shear: dict[str, flo
         from pathlib import Path
 
         stem = Path(args.out).name.split(".")[0]
+        if not stem.isidentifier():
+            raise InputError(f"`--out` = {args.out!r}: a GetFEM script's name must be a plain stem "
+                             "(letters, digits, _), as its files are named after it")
         text = getfem.write_script(pr["punch"], pr["P"], pr["s"], a=ref.a, c=ref.c, E=E, nu=nu, f=f,
                                    Q=shear.get("Q"), Q_max=shear.get("Q_max"), tilt=pr["tilt"],
                                    title=title, name=stem)
