@@ -2,7 +2,9 @@
 
 * a missing baseline is written and the test fails;
 * a mismatch writes ``<name>.obtained.json`` beside the baseline and fails;
-* only ``--force-regen`` (the pytest-regressions option) renews a baseline.
+* only ``--force-regen`` (the pytest-regressions option) renews a baseline;
+* rows are matched by their ``"case"`` name where the data have that column, so a new
+  catalogue case is named as new and every other case is still compared.
 
 JSON is used instead of ``num_regression`` (which needs pandas) so that the
 committed baselines are readable and diff well.
@@ -17,6 +19,8 @@ from typing import Any, Mapping, Sequence
 import pytest
 
 BASELINES = Path(__file__).with_name("baselines")
+#: the column that names a baseline's rows: rows are matched by it, not by position
+KEY = "case"
 
 
 def _close(x: float | None, y: float | None, rtol: float, atol: float) -> bool:
@@ -27,21 +31,44 @@ def _close(x: float | None, y: float | None, rtol: float, atol: float) -> bool:
     return math.isclose(float(x), float(y), rel_tol=rtol, abs_tol=atol)
 
 
+def _rows(data: Mapping[str, Sequence[Any]]) -> dict[str, int] | None:
+    """Each row's index by its case name, when the data name their rows (a ``"case"`` column)."""
+    names = data.get(KEY)
+    if names is None:
+        return None
+    names = [str(n) for n in names]
+    if len(set(names)) != len(names):
+        raise ValueError(f"the baseline's {KEY!r} column repeats a name: {names}")
+    return {n: i for i, n in enumerate(names)}
+
+
 def _differences(expected: Mapping[str, Sequence[Any]], obtained: Mapping[str, Sequence[Any]],
                  tolerances: Mapping[str, Mapping[str, float]], default: Mapping[str, float]) -> list[str]:
+    """Every figure that differs, named ``quantity[case]`` (rows keyed by case name) or ``quantity[i]``.
+
+    With a ``"case"`` column on both sides the rows are matched by name, so that a case added
+    to (or removed from) the catalogue is named once and the other cases are still compared.
+    """
     out = []
+    rows_e, rows_o = _rows(expected), _rows(obtained)
+    if rows_e is not None and rows_o is not None:
+        out += [f"case {n!r}: only in {'obtained' if n in rows_o else 'baseline'}"
+                for n in sorted(set(rows_e) ^ set(rows_o))]
+        pairs = [(n, rows_e[n], rows_o[n]) for n in rows_e if n in rows_o]
     for key in sorted(set(expected) | set(obtained)):
         if key not in expected or key not in obtained:
             out.append(f"{key}: only in {'obtained' if key in obtained else 'baseline'}")
             continue
         e, o = list(expected[key]), list(obtained[key])
-        if len(e) != len(o):
-            out.append(f"{key}: {len(o)} values, baseline has {len(e)}")
-            continue
+        if rows_e is None or rows_o is None:
+            if len(e) != len(o):
+                out.append(f"{key}: {len(o)} values, baseline has {len(e)}")
+                continue
+            pairs = [(str(i), i, i) for i in range(len(e))]
         tol = {**default, **tolerances.get(key, {})}
-        for i, (x, y) in enumerate(zip(e, o)):
-            if not _close(x, y, tol.get("rtol", 0.0), tol.get("atol", 0.0)):
-                out.append(f"{key}[{i}]: obtained {y!r}, baseline {x!r} "
+        for name, i, j in pairs:
+            if not _close(e[i], o[j], tol.get("rtol", 0.0), tol.get("atol", 0.0)):
+                out.append(f"{key}[{name}]: obtained {o[j]!r}, baseline {e[i]!r} "
                            f"(rtol {tol.get('rtol', 0.0):g}, atol {tol.get('atol', 0.0):g})")
     return out
 

@@ -126,10 +126,26 @@ def test_baseline_mechanism(tmp_path):
                    directory=tmp_path)  # within rtol
     assert not (tmp_path / "demo.obtained.json").exists()
     bad = {"a": [1.1, 2.0], "case": ["x", "y"]}
-    with pytest.raises(pytest.fail.Exception, match=r"a\[0\]"):
+    with pytest.raises(pytest.fail.Exception, match=r"a\[x\]"):
         check_baseline(_Config(False), "demo", bad, tol, directory=tmp_path)
     assert (tmp_path / "demo.obtained.json").exists()
     assert '"a": [\n  1.0,' in (tmp_path / "demo.json").read_text()  # baseline unchanged
     with pytest.raises(pytest.fail.Exception, match="regenerated"):
         check_baseline(_Config(True), "demo", bad, tol, directory=tmp_path)
     check_baseline(_Config(False), "demo", bad, tol, directory=tmp_path)
+
+
+def test_baseline_rows_keyed_by_case_name(tmp_path):
+    """A case added to the catalogue (issue 40) is named once; the others are matched by name, not position."""
+    tol = {"a": {"rtol": 1e-6}}
+    with pytest.raises(pytest.fail.Exception, match="created"):
+        check_baseline(_Config(False), "keyed", {"case": ["x", "y"], "a": [1.0, 2.0]}, tol, directory=tmp_path)
+    # reordered: still the same figures
+    check_baseline(_Config(False), "keyed", {"case": ["y", "x"], "a": [2.0, 1.0]}, tol, directory=tmp_path)
+    # a new case between the others: only it is named, and a changed figure still by its case
+    grown = {"case": ["x", "new", "y"], "a": [1.0, 5.0, 2.5]}
+    with pytest.raises(pytest.fail.Exception) as info:
+        check_baseline(_Config(False), "keyed", grown, tol, directory=tmp_path)
+    lines = str(info.value).splitlines()[1:]
+    assert lines == ["case 'new': only in obtained",
+                     "a[y]: obtained 2.5, baseline 2.0 (rtol 1e-06, atol 0)"]
