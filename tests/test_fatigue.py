@@ -486,6 +486,8 @@ def test_a_flight_cycle_at_constant_load_is_the_fretting_cycle_at_the_command_li
     assert main([*FLIGHT_BASE, "--P", "400", "--s", "0.1", "--Q-max", "80", "--states", "2"]) == 0
     fretting = json.loads(capsys.readouterr().out)
     assert flight["shakedown"] is False and flight["energy"] > 0
+    # the flight cycle's two load states and the count of distinct stress states are two keys
+    assert flight["states"] == [[400, 0.1, -80, 0], [400, 0.1, 80, 0]] and flight["stress_states"] == 2
     for name, spot in fretting["hot_spots"].items():
         got = flight["hot_spots"][name]
         assert (got["x"], got["z"]) == (spot["x"], spot["z"]), name

@@ -12,7 +12,7 @@ from pathlib import Path
 import pytest
 
 ROOT = Path(__file__).resolve().parent.parent
-#: the most lines of a module (STYLE.md: "One idea per module, usually 100-400 lines")
+#: the most lines of a module (the house style, stated in ARCHITECTURE.md: one idea per module, usually 100-400 lines)
 MAX_MODULE_LINES = 600
 #: the most lines of a function or method, its docstring and decorators included
 MAX_FUNCTION_LINES = 80

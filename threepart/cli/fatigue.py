@@ -326,7 +326,7 @@ def _fatigue_print(args: argparse.Namespace, res: Any, cycle: Any, A: float, hea
         {"P": args.P, "s": args.s, "Q_max": args.Q_max, "sigma_bulk": args.sigma_bulk})
     doc = {"method": cycle.method, **({"case": args.case} if args.case else {}), "A": A, "E": args.E, "nu": args.nu, "k": args.k, "constants": args.constants,
            **loads, "f": args.f, "a": normal.a, "c": normal.c,
-           "states": res.states, "grid": {"nx": args.nx, "nz": args.nz, "depth_W": args.depth},
+           "stress_states": res.states, "grid": {"nx": args.nx, "nz": args.nz, "depth_W": args.depth},
            "hot_spots": hot}
     if args.json:
         print_json(doc, {"A": "1/MPa", "E": "MPa", "P": "N/mm", "s": "mm", "Q_max": "N/mm", "a": "mm",
