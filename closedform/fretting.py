@@ -62,17 +62,16 @@ cycle is the slip at ``Q_max`` on loading: the state at ``-Q_max`` is its mirror
 """
 from __future__ import annotations
 
-import functools
 import math
 import time
 from dataclasses import dataclass
 
 import numpy as np
-import scipy.special
 from numpy.typing import ArrayLike
 
 from threepart.bulk import check_sigma_bulk, corrective_tilt, slip_dissipation
 from threepart.errors import LiftOffError, NoConvergenceError, StickZoneError
+from threepart.legendre import gauss01
 from threepart.punch import Punch
 from threepart.results import Diagnostics, MasingCycle, NormalResult
 from threepart.validate import check_shear, check_states
@@ -255,13 +254,6 @@ def _stick_zones(normal: NormalResult, u: np.ndarray, f: float, Q_max: float,
     return a_s, c_s
 
 
-@functools.lru_cache(maxsize=16)
-def _gauss_rule(n: int) -> tuple[np.ndarray, np.ndarray]:
-    """Nodes ``tau`` in ``[0, 1]`` and weights of the ``n``-point Gauss–Legendre rule."""
-    t, w = scipy.special.roots_legendre(n)     # O(n); numpy's leggauss solves an n x n eigenproblem
-    return 0.5 * (t + 1), 0.5 * w
-
-
 def _energy(normal: NormalResult, Q_max: float, f: float) -> tuple[float, int]:
     """The loop area ``W`` by Gauss–Legendre quadrature, doubled until it settles.
 
@@ -275,7 +267,7 @@ def _energy(normal: NormalResult, Q_max: float, f: float) -> tuple[float, int]:
     floor = 1e-14 * normal.A * Q_max**2
     n, previous = ENERGY_NODES, math.nan
     while n <= MAX_ENERGY_NODES:
-        tau, w = _gauss_rule(n)
+        tau, w = gauss01(n)
         u, weights = Q_max * (1 - tau * tau), 2 * Q_max * tau * w
         a_s, c_s = _stick_zones(normal, u, f, Q_max)
         W = loop_energy(h, 0.5 * (a_s + c_s), u, weights, normal.A, Q_max)

@@ -30,19 +30,18 @@ they end on the central segment:
 """
 from __future__ import annotations
 
-import functools
 import math
 import time
 from typing import Any, Sequence
 from dataclasses import dataclass
 
 import numpy as np
-import scipy.special
 from numpy.typing import ArrayLike
 from scipy.optimize import brentq
 
 from threepart.bulk import check_sigma_bulk, corrective_tilt, slip_dissipation
 from threepart.errors import InputError, NoConvergenceError, StickSeparationError
+from threepart.legendre import gauss01
 from threepart.punch import Punch
 from threepart.results import Diagnostics, MasingCycle, NormalResult
 from threepart.validate import SLIP_RATIO_LIMIT, check_shear, check_states
@@ -64,13 +63,6 @@ GAP_TERMS = 16384
 ENERGY_NODES = 16
 MAX_ENERGY_NODES = 1024
 ENERGY_RTOL = 1e-12
-
-
-@functools.lru_cache(maxsize=16)
-def gauss01(n: int) -> tuple[np.ndarray, np.ndarray]:
-    """Gauss–Legendre nodes and weights on ``[0, 1]``."""
-    t, w = scipy.special.roots_legendre(n)     # O(n); numpy's leggauss solves an n x n eigenproblem
-    return 0.5 * (t + 1), 0.5 * w
 
 
 def loop_integral(zones: Any, Q_max: float, edges: Sequence[float], n: int) -> float:

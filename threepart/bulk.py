@@ -16,16 +16,15 @@ the direction that opposes ``q`` at every stage of the proportional load path;
 """
 from __future__ import annotations
 
-import functools
 import math
 from typing import Any, Callable
 
 import numpy as np
-import scipy.special
 from numpy.typing import ArrayLike
 
 from .errors import NoConvergenceError, SlipReversalError
 from .checks import finite
+from .legendre import gauss01
 
 __all__ = ["check_sigma_bulk", "corrective_tilt", "slip_direction_margin", "slip_dissipation"]
 
@@ -114,13 +113,6 @@ NOISE_FACTOR = 10.0
 NOISE_STEP = 8 * np.finfo(float).eps
 
 
-@functools.lru_cache(maxsize=8)
-def _gauss(n: int) -> tuple[np.ndarray, np.ndarray]:
-    """Gauss–Legendre in ``θ`` on ``[0, π]``; scipy's O(n) roots (numpy's eigenvalues took 100 s at 4096)."""
-    t, w = scipy.special.roots_legendre(n)
-    return 0.5 * np.pi * (t + 1), 0.5 * np.pi * w
-
-
 def slip_dissipation(pressure: Callable[[np.ndarray], np.ndarray], gap: Callable[[np.ndarray], np.ndarray],
                      f: float, a: float, c: float, stick: tuple[float, float],
                      joins: ArrayLike = ()) -> tuple[float, int]:
@@ -157,7 +149,8 @@ def _dissipation(pressure: Callable[[np.ndarray], np.ndarray], gap: Callable[[np
                  f: float, a: float, c: float, stick: tuple[float, float], joins: ArrayLike,
                  nodes: int) -> tuple[float, float]:
     """``W`` with ``nodes`` per panel, and its rounding: the same sum of ``|Δgap|`` at abscissae moved by a few ulps."""
-    theta, w = _gauss(nodes)
+    theta, w = gauss01(nodes)                  # Gauss–Legendre in θ on [0, π]
+    theta, w = np.pi * theta, np.pi * w
     total = noise = 0.0
     for lo, hi in ((-a, stick[0]), (stick[1], c)):
         if hi <= lo:

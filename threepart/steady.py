@@ -26,7 +26,6 @@ permanent stick zone is that of ``lam = 1``.
 """
 from __future__ import annotations
 
-import functools
 import math
 from typing import Any, Callable, Mapping, Sequence
 
@@ -36,6 +35,7 @@ from numpy.typing import ArrayLike
 from .bulk import _psi
 from .errors import (DisjointContactsError, InputError, InputTypeError, NoConvergenceError, OneSidedSlipError,
                      StickZoneError,                      full_sliding)
+from .legendre import gauss01
 from .validate import finite, positive, show
 
 __all__ = ["STATE_KEYS", "state_values", "shakes_down", "common_contact", "cycle_states", "check_cycle_states", "ramp", "corrective_load", "corrective_tilt_cycle", "tilt_rate",
@@ -171,13 +171,6 @@ def cycle_margin(left: ArrayLike, right: ArrayLike, a: ArrayLike, c: ArrayLike, 
     return (lead * _psi((m + np.asarray(a)) / h - 1.0) - tail, lead * _psi((np.asarray(c) - m) / h - 1.0) + tail)
 
 
-@functools.lru_cache(maxsize=16)
-def _gauss(n: int) -> tuple[np.ndarray, np.ndarray]:
-    """Gauss–Legendre nodes and weights on ``[0, 1]``."""
-    t, w = np.polynomial.legendre.leggauss(n)
-    return 0.5 * (t + 1), 0.5 * w
-
-
 #: ``path(lam)`` -> (pressure(x) broadcasting over lam, a, c, left, right, dP*, dalpha*) on a half-cycle
 Path = Callable[[np.ndarray], tuple[Callable[[np.ndarray], np.ndarray], np.ndarray, np.ndarray,
                                      np.ndarray, np.ndarray, float, np.ndarray]]
@@ -185,7 +178,7 @@ Path = Callable[[np.ndarray], tuple[Callable[[np.ndarray], np.ndarray], np.ndarr
 
 def lam_rule(n: int, breaks: tuple[float, ...]) -> tuple[np.ndarray, np.ndarray]:
     """Fractions ``lam`` and weights: ``n`` Gauss nodes per panel between the ``breaks``, in ``(1 - cos πt)/2``."""
-    t, wt = _gauss(n)
+    t, wt = gauss01(n)
     edges = np.array(sorted({0.0, 1.0, *breaks}))
     lo, span = edges[:-1, None], np.diff(edges)[:, None]
     lam = lo + span * 0.5 * (1 - np.cos(math.pi * t))     # smooth at both ends of each panel
@@ -196,7 +189,7 @@ def _work(path: Path, A: float, f: float, b: float, n: int, breaks: tuple[float,
     """:func:`half_cycle_work` on ``n`` nodes per panel in ``lam`` and per slip-zone panel."""
     lam, wl = lam_rule(n, breaks)
     pressure, a, c, left, right, dP, dalpha = path(lam)
-    theta, wth = _gauss(n)
+    theta, wth = gauss01(n)
     theta, wth = theta * math.pi, wth * math.pi
     xs, ws = [], []                     # the six panels side by side, one evaluation of each factor
     for lo, hi in ((-a, left), (right, c)):
