@@ -326,14 +326,14 @@ def _newton_2d(punch: Punch, dAP: Any, target: str, value: Any, xp: Any, sign: f
     which = _KERNEL_TARGET[target]
     phi0 = _phi_guess(punch)
     if xp is SCALAR:
-        r = _r_guess(punch, dAP, xp) if r0 is None else r0
+        r = r_guess(punch, dAP, xp) if r0 is None else r0
         r, phi, ok, n = kernel.newton_2d(*const, float(dAP), which, float(value), float(sign), float(r),
                                          phi0, float(xtol), NEWTON_2D_ITER)
         EVALUATIONS[0] += n
         return r, phi, ok
     dAP = np.asarray(dAP, dtype=float)
     shape = dAP.shape
-    r = _r_guess(punch, dAP, np) if r0 is None else r0
+    r = r_guess(punch, dAP, np) if r0 is None else r0
 
     def flat(v: Any) -> np.ndarray:
         return np.ascontiguousarray(np.broadcast_to(np.asarray(v, dtype=float), shape)).ravel()
@@ -366,7 +366,7 @@ def _solve_phi_nested(punch: Punch, dAP: Any, target: str, value: Any, xp: Any =
     """
     get = _TARGETS[target]
     if r0 is None:
-        r0 = solve_r(punch, dAP, HALF_PI / 2 + 0.0 * dAP, _r_guess(punch, dAP, xp), xp, xtol)
+        r0 = solve_r(punch, dAP, HALF_PI / 2 + 0.0 * dAP, r_guess(punch, dAP, xp), xp, xtol)
     radius = [r0]
 
     def fun(phi: Any) -> tuple[Any, Any]:
@@ -388,7 +388,7 @@ def _solve_phi_nested(punch: Punch, dAP: Any, target: str, value: Any, xp: Any =
     return r, phi, below, above
 
 
-def _r_guess(punch: Punch, dAP: Any, xp: Any) -> Any:
+def r_guess(punch: Punch, dAP: Any, xp: Any) -> Any:
     """Starting radius: the Hertz half-width on the mean edge curvature, ``r^2 = 2 (h - b)``."""
     k = 0.5 * (1.0 / punch.R1 + 1.0 / punch.R2)
     return xp.sqrt(2 * xp.sqrt(2 * dAP / (math.pi * k)))

@@ -31,7 +31,7 @@ from threepart.validate import (LENGTH_RANGE, check_arcs, check_contact, check_p
                                 first_refused, flag, lever_arm, load_scale, positive, reals)
 
 from . import formulas
-from .newton import (HALF_PI, SCALAR, XTOL, XTOL_RANGE, State, _r_guess, evaluations, ray_state, solve_phi,
+from .newton import (HALF_PI, SCALAR, XTOL, XTOL_RANGE, State, r_guess, evaluations, ray_state, solve_phi,
                      solve_r)
 
 __all__ = ["NormalSolution", "NormalBatch", "LiftOff", "solve_normal", "solve_normal_batch",
@@ -183,7 +183,7 @@ def _below_P0(punch: Punch, P: float, pmin: float) -> str:
 
 
 # -- the nested roots ----------------------------------------------------------------
-def _solve(punch: Punch, P: Any, s: Any, A: float, tilt: str, xp: Any,
+def solve_state(punch: Punch, P: Any, s: Any, A: float, tilt: str, xp: Any,
            xtol: float = XTOL) -> tuple[State, Any, Any]:
     """State of the solution, and the flags below/above the lift-off range."""
     dAP = A * P - 0.5 * math.pi * punch.kappa0 * punch.b**2   # A (P - P_0), > 0
@@ -200,7 +200,7 @@ def _lift_off_states(punch: Punch, P: Any, A: float, xp: Any = np) -> tuple[Stat
     out = []
     for phi in (0.0, HALF_PI):
         ph = phi + 0.0 * dAP
-        r0 = _r_guess(punch, dAP, xp)
+        r0 = r_guess(punch, dAP, xp)
         out.append(ray_state(punch, solve_r(punch, dAP, ph, r0, xp), ph, xp))
     return out[0], out[1]
 
@@ -272,7 +272,7 @@ def _centre_minima(punch: Punch, a: np.ndarray, c: np.ndarray, A: float, grid: n
     return np.minimum(best, np.minimum(f1, f2))
 
 
-def _check_separation(punch: Punch, a: np.ndarray, c: np.ndarray, A: float, P: np.ndarray,
+def check_separation(punch: Punch, a: np.ndarray, c: np.ndarray, A: float, P: np.ndarray,
                       s: np.ndarray, tilt: str) -> None:
     """A concave centre must not separate: the pressure stays >= 0 on ``[-b, b]``.
 
@@ -308,7 +308,7 @@ def _separation_load(punch: Punch, A: float, s: float, tilt: str) -> float:
     from scipy.optimize import brentq
 
     def margin(P: float) -> float:
-        st, below, above = _solve(punch, P, s, A, tilt, SCALAR)
+        st, below, above = solve_state(punch, P, s, A, tilt, SCALAR)
         if below or above:
             return -1.0
         x, p = _centre_pressure_min(punch, st.a, st.c, A)
@@ -387,14 +387,14 @@ def solve_normal(punch: Punch, P: float, s: float = 0.0, *, A: float,
         raise InputError(f"`s` = {s!r} is an output when tilt='suppressed' (the lever arm s*); pass s=0")
     A = _normal_iv(punch, P, A, tilt)
     n0 = evaluations()
-    st, below, above = _solve(punch, P, s, A, tilt, SCALAR, xtol)
+    st, below, above = solve_state(punch, P, s, A, tilt, SCALAR, xtol)
     n_eval = evaluations() - n0
     if below or above:
         _refuse_lift_off(punch, np.array([P]), np.array([s]), A, tilt, np.array([below]),
                          np.array([above]))
     alpha, s = (st.alpha, s) if tilt == "free" else (0.0, st.T / st.AP)
     if punch.kappa0 < 0 and punch.b > 0:   # a concave centre may separate
-        _check_separation(punch, np.array([st.a]), np.array([st.c]), A, np.array([P]), np.array([s]), tilt)
+        check_separation(punch, np.array([st.a]), np.array([st.c]), A, np.array([P]), np.array([s]), tilt)
     if not beyond_small_slopes:
         check_contact(punch, st.a, st.c, alpha)
     return NormalSolution(punch, A, st.a, st.c, alpha, P, s, tilt,
@@ -429,13 +429,13 @@ def solve_normal_batch(punch: Punch, P: ArrayLike, s: ArrayLike = 0.0, *, A: flo
     if tilt == "suppressed" and np.any(s_arr != 0):
         raise InputError("`s` is an output when tilt='suppressed' (the lever arm s*); pass s=0")
     n0 = evaluations()
-    st, below, above = _solve(punch, P_arr, s_arr, A, tilt, np, xtol)
+    st, below, above = solve_state(punch, P_arr, s_arr, A, tilt, np, xtol)
     n_eval = (evaluations() - n0) / P_arr.size
     if np.any(below | above):
         _refuse_lift_off(punch, P_arr, s_arr, A, tilt, np.asarray(below), np.asarray(above))
     alpha = st.alpha if tilt == "free" else np.zeros_like(st.h)
     s_out = s_arr if tilt == "free" else st.T / st.AP
-    _check_separation(punch, st.a, st.c, A, P_arr, s_out, tilt)
+    check_separation(punch, st.a, st.c, A, P_arr, s_out, tilt)
     k = first_refused(punch, st.a, st.c, alpha)   # the first case past the arcs or the slope limit
     if k is not None:
         i = k

@@ -53,7 +53,7 @@ class SlipSolution(SlipResult):
             np.zeros(np.shape(x))
 
 
-def _least(fun, lo: float, hi: float) -> tuple[float, float]:
+def least_on(fun, lo: float, hi: float) -> tuple[float, float]:
     """``(x, fun(x))`` at the least value of ``fun`` on ``[lo, hi]``: a grid brackets it, Brent refines.
 
     ``fun`` is smooth on ``[lo, hi]`` (one segment of the punch), so the least
@@ -80,7 +80,7 @@ def coulomb_margin(normal: NormalResult, a_star: float, c_star: float
     ``>= 0``. ``p*`` is eq. (pressure_abbreviated) on ``[-a*, c*]`` and ``p``
     the normal solution's pressure; both are smooth on each segment, so each
     piece of the stick zone between the joins ``x = ±b`` (ends and joins
-    included) is searched by :func:`_least`.
+    included) is searched by :func:`least_on`.
 
     Returns
     -------
@@ -97,7 +97,7 @@ def coulomb_margin(normal: NormalResult, a_star: float, c_star: float
 
     out = []
     for fun in (p_star, excess):
-        out.append(min((_least(fun, lo, hi) for lo, hi in zip(cuts[:-1], cuts[1:])),
+        out.append(min((least_on(fun, lo, hi) for lo, hi in zip(cuts[:-1], cuts[1:])),
                        key=lambda t: t[1]))
     return out[0], out[1]
 
@@ -191,7 +191,7 @@ def check_slip_direction(normal: NormalResult, Q: float, f: float, sigma_bulk: f
 
     The least of :func:`threepart.bulk.slip_direction_margin` over the load
     fraction ``lam`` in ``[0, 1]`` (a grid brackets it, Brent refines it,
-    :func:`_least`, where the grid's least is within 5 % of ``|Q|/π`` of
+    :func:`least_on`, where the grid's least is within 5 % of ``|Q|/π`` of
     zero) must be ``>= 0``; at ``lam = 0`` it is
     ``|Q|/π - |sigma_bulk| (a + c)/8``. The message gives the largest
     ``|sigma_bulk|`` of the same sign that passes at this ``Q`` (bisection).
@@ -231,8 +231,8 @@ def _least_margin(normal: NormalResult, Q: float, f: float, sigma_bulk: float,
     # Brent refines only a grid minimum within 5 % of |Q|/π of zero (as _check_separation)
     if not refine or grid[0] > 0.05 * abs(Q) / math.pi:
         return grid
-    left = _least(lambda t: both(t)[0], 0.0, 1.0)
-    right = _least(lambda t: both(t)[1], 0.0, 1.0)
+    left = least_on(lambda t: both(t)[0], 0.0, 1.0)
+    right = least_on(lambda t: both(t)[1], 0.0, 1.0)
     return (left[1], "left") if left[1] < right[1] else (right[1], "right")
 
 

@@ -43,8 +43,8 @@ from threepart.validate import check_punch
 from . import formulas
 from .fretting import stick_gap
 from .newton import State, ray_state, solve_phi
-from .normal import NormalSolution, _check_separation, _solve, solve_normal_batch
-from .slip import _least, stick_zone_leaves
+from .normal import NormalSolution, check_separation, solve_state, solve_normal_batch
+from .slip import least_on, stick_zone_leaves
 
 __all__ = ["SteadySolution", "steady_state", "MARGIN_GRID"]
 
@@ -135,7 +135,7 @@ class _Cycle:
 
     def prime(self, *lams: np.ndarray) -> None:
         """Solve the states at several sets of fractions in one call of the root finders, for :meth:`__call__`."""
-        both = self._solve(np.concatenate(lams))
+        both = self.solve_state(np.concatenate(lams))
         start = 0
         for lam in lams:
             idx = slice(start, start + lam.size)
@@ -147,7 +147,7 @@ class _Cycle:
         """The half-cycles ``0 -> 1`` and ``1 -> 0`` at the fractions ``lam``: ends, stick zones, rates."""
         lam = np.atleast_1d(np.asarray(lam, dtype=float))
         hit = self._memo.get(lam.tobytes())
-        return hit if hit is not None else self._solve(lam)
+        return hit if hit is not None else self.solve_state(lam)
 
     def normals(self, lam: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
         """``(a, c, alpha, P, s)`` at the fractions ``lam`` of ``0 -> 1``, lift-off and separation refused."""
@@ -160,18 +160,18 @@ class _Cycle:
         a, c, ok = _newton_ends(punch, A * P, "moment", A * P * s, h0 + lam * (h1 - h0), m0 + lam * (m1 - m0))
         if np.all(ok):
             st = State(punch, np.sqrt(a - punch.b), np.sqrt(c - punch.b), np)
-            _check_separation(punch, st.a, st.c, A, P, s, "free")
+            check_separation(punch, st.a, st.c, A, P, s, "free")
             return st.a, st.c, st.alpha, P, s
-        st, below, above = _solve(punch, P, s, A, "free", np)
+        st, below, above = solve_state(punch, P, s, A, "free", np)
         if np.any(below | above):
             i = int(np.argmax(below | above))
             raise LiftOffError(f"the state at {lam[i]:.4g} of the way from {self.states[0]} to "
                                f"{self.states[1]} (`P` = {P[i]:.6g}, `s` = {s[i]:.6g}) lifts a contact "
                                "edge off the outer segments, outside the closed form")
-        _check_separation(punch, st.a, st.c, A, P, s, "free")
+        check_separation(punch, st.a, st.c, A, P, s, "free")
         return st.a, st.c, st.alpha, P, s
 
-    def _solve(self, lam: np.ndarray) -> tuple[dict[str, Any], dict[str, Any]]:
+    def solve_state(self, lam: np.ndarray) -> tuple[dict[str, Any], dict[str, Any]]:
         punch, A, f = self.punch, self.A, self.f
         k = lam.size
         a, c, alpha, P, s = self.normals(np.concatenate([lam, 1.0 - lam]))
@@ -268,7 +268,7 @@ class _Cycle:
             return best
         for j in (0, 1):
             for e, end in enumerate(("left", "right")):
-                x, v = _least(lambda t, j=j, e=e: margins(t)[j][e], float(lam[0]), 1.0)
+                x, v = least_on(lambda t, j=j, e=e: margins(t)[j][e], float(lam[0]), 1.0)
                 if v < best[0]:
                     best = (v, x, j, end)
         return best
@@ -315,7 +315,7 @@ def _check_coulomb(normals: tuple[NormalSolution, NormalSolution], left: float, 
     funs = (p_star, lambda x: 0.5 * (normals[0].pressure(x) + normals[1].pressure(x)) - p_star(x))
     tol = 1e-9 * min(n.P / (n.a + n.c) for n in normals)
     for fun, what in zip(funs, ("p* < 0", "p* > (p_0 + p_1)/2")):
-        x, v = min((_least(fun, lo, hi) for lo, hi in zip(cuts[:-1], cuts[1:])), key=lambda t: t[1])
+        x, v = min((least_on(fun, lo, hi) for lo, hi in zip(cuts[:-1], cuts[1:])), key=lambda t: t[1])
         if v < -tol:
             raise StickSeparationError(
                 f"the permanent stick zone [{left:.6g}, {right:.6g}] on the concave centre R = "

@@ -97,9 +97,9 @@ def test_separation_claim_is_true():
     punch, P = Punch(10.0, 20.0, 1.0, R=-200.0), 400.0
     # the load/consistency conditions still have a root; its pressure is negative at the centre
     from threepart.closedform.newton import SCALAR
-    from threepart.closedform.normal import _solve
+    from threepart.closedform.normal import solve_state
 
-    st, below, above = _solve(punch, P, 0.0, A, "free", SCALAR)
+    st, below, above = solve_state(punch, P, 0.0, A, "free", SCALAR)
     assert not (below or above)
     assert ref.pressure(punch, st.a, st.c, A, 0.0) < 0
 

@@ -349,7 +349,7 @@ def match(flank_result: Any, edge: str, R: float | None = None, P: float | None 
     FullSlidingError
         If no pad of the given size reproduces the edge without sliding.
     """
-    from .results import NU
+    from .material import NU
     k, R, P = _match_iv(flank_result, edge, R, P)
     nu = NU if nu is None else nu
     target = edges(flank_result)[k]

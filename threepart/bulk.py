@@ -65,7 +65,7 @@ def corrective_tilt(alpha: ArrayLike, A: float, Q: float, f: float, sigma_bulk: 
     return np.asarray(alpha, dtype=float) - math.copysign(1.0, Q) * A * np.asarray(sigma_bulk) / (4 * f)
 
 
-def _psi(t: np.ndarray) -> np.ndarray:
+def psi(t: np.ndarray) -> np.ndarray:
     """``arccosh(1 + t)/sqrt(t (t + 2))`` for ``t >= 0`` (1 at ``t = 0``), free of cancellation."""
     t = np.maximum(np.asarray(t, dtype=float), 0.0)
     root = np.sqrt(t * (t + 2.0))
@@ -95,8 +95,8 @@ def slip_direction_margin(Q: float, sigma_bulk: float, a: float, c: float, left:
     left, right = np.asarray(left, dtype=float), np.asarray(right, dtype=float)
     h = 0.5 * (right - left)
     st = math.copysign(1.0, Q) * sigma_bulk
-    g_right = abs(Q) / math.pi * _psi((c - right) / h) - st * h / 4
-    g_left = abs(Q) / math.pi * _psi((left + a) / h) + st * h / 4
+    g_right = abs(Q) / math.pi * psi((c - right) / h) - st * h / 4
+    g_left = abs(Q) / math.pi * psi((left + a) / h) + st * h / 4
     return g_left, g_right
 
 

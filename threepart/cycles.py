@@ -23,7 +23,9 @@ from numpy.typing import ArrayLike
 
 from .answer import check_coulomb
 from .punch import Punch
-from .results import NU, Diagnostics, NormalResult, _Answer, _Edged, _kinks
+from .asymptotics import Edged
+from .material import NU
+from .results import Diagnostics, NormalResult, Answer, interior_kinks
 from .checks import LENGTH_RANGE, show
 from .steady import common_contact
 from .stress import Stress, stress
@@ -45,7 +47,7 @@ AMPLITUDE_ROUNDS, AMPLITUDE_XTOL = 8, 1e-10
 
 
 @dataclass(frozen=True)
-class SteadyStateResult(_Edged, _Answer):
+class SteadyStateResult(Edged, Answer):
     """The periodic steady state of a cycle between two states, the loads moving linearly, in phase.
 
     Attributes
@@ -195,7 +197,7 @@ class SteadyStateResult(_Edged, _Answer):
         n = self.normals[k := self._state(state)]
         _in_range(x, z)
         return stress(x, z, pressure=n.pressure, shear=lambda t: self.shear(t, k), ends=(-n.a, n.c),
-                      sigma_bulk=self.states[k][3], nu=nu, kinks=_kinks(n.punch.b, -n.a, n.c, *self.stick_zone))
+                      sigma_bulk=self.states[k][3], nu=nu, kinks=interior_kinks(n.punch.b, -n.a, n.c, *self.stick_zone))
 
 
 def _in_range(x: ArrayLike, z: ArrayLike) -> None:
@@ -254,7 +256,7 @@ class _End:
 
 
 @dataclass(frozen=True)
-class HistoryResult(_Answer):
+class HistoryResult(Answer):
     """A contact marched through a load history ``(P, s, Q, sigma_bulk)_k`` with the memory of slip.
 
     Attributes
@@ -484,4 +486,4 @@ class MarchedSteadyResult(SteadyStateResult):
         _in_range(x, z)
         cuts = [t for zone in self.stick_intervals for t in zone]
         return stress(x, z, pressure=n.pressure, shear=lambda t: self.shear(t, k), ends=(-n.a, n.c),
-                      sigma_bulk=self.states[k][3], nu=nu, kinks=_kinks(n.punch.b, -n.a, n.c, *cuts))
+                      sigma_bulk=self.states[k][3], nu=nu, kinks=interior_kinks(n.punch.b, -n.a, n.c, *cuts))

@@ -47,13 +47,12 @@ from dataclasses import dataclass
 from typing import Any, Callable, Sequence
 
 import numpy as np
-from numpy.typing import ArrayLike
 
 from .cycles import SteadyStateResult
-from .fatigue_history import Cycle, History, _check_cycle, _history, stress_history
-from .results import BRANCHES, NU
+from .fatigue_history import Cycle, History, check_cycle, as_history, stress_history
+from .results import BRANCHES
 from .stress import Stress
-from .validate import finite, poisson, positive, reals
+from .validate import finite, positive
 from threepart.errors import InputError
 
 __all__ = ["HotSpot", "Parameter", "Ruiz", "Fatigue", "History", "stress_history",
@@ -115,7 +114,7 @@ class Parameter:
     hot: HotSpot
 
 
-def _parameter(name: str, x: np.ndarray, z: np.ndarray, value: np.ndarray,
+def hot_spot_parameter(name: str, x: np.ndarray, z: np.ndarray, value: np.ndarray,
                theta: np.ndarray | None = None) -> Parameter:
     top = float(np.max(value))
     # the first point within HOT_SPOT_TIE of the largest value: mirror-image peaks (a symmetric
@@ -137,7 +136,7 @@ def von_mises_range(history: History | Sequence[Stress]) -> Parameter:
     history
         The states' stresses (:func:`stress_history`, or a sequence of ``Stress``).
     """
-    h = _history(history)
+    h = as_history(history)
     nu = h.nu
     best = np.zeros(h.x.shape)
     for i in range(h.states - 1):
@@ -145,7 +144,7 @@ def von_mises_range(history: History | Sequence[Stress]) -> Parameter:
         dyy = nu * (dxx + dzz)
         vm2 = 0.5 * ((dxx - dyy) ** 2 + (dyy - dzz) ** 2 + (dzz - dxx) ** 2) + 3.0 * dxz ** 2
         best = np.maximum(best, np.sqrt(vm2.max(axis=0)))
-    return _parameter("von_mises_range", h.x, h.z, best)
+    return hot_spot_parameter("von_mises_range", h.x, h.z, best)
 
 
 #: a plane function: (σn, τ, σxx + σzz) histories of shape (m, N) -> the parameter, shape (N,)
@@ -187,7 +186,7 @@ def critical_plane(history: History | Sequence[Stress], func: PlaneFunction,
     scan is vectorised over the points and states; the loop is over the angles only.
     tests/test_fatigue.py checks it against a brute-force scan of 10⁵ angles.
     """
-    h = _history(history)
+    h = as_history(history)
     m = h.states
     shape = h.x.shape
     flat = History(h.x.ravel(), h.z.ravel(), h.sxx.reshape(m, -1), h.szz.reshape(m, -1),
@@ -241,7 +240,7 @@ def swt(history: History | Sequence[Stress], *, E: float) -> Parameter:
     E
         Young's modulus of the substrate, > 0, in the stresses' unit.
     """
-    h = _history(history)
+    h = as_history(history)
     E = positive("E", E)
     factor = (1.0 + h.nu) / E
     nu = h.nu
@@ -251,7 +250,7 @@ def swt(history: History | Sequence[Stress], *, E: float) -> Parameter:
         return sn.max(axis=0) * factor * (eps.max(axis=0) - eps.min(axis=0)) / 2.0
 
     value, theta = critical_plane(h, plane)
-    return _parameter("swt", h.x, h.z, value, theta)
+    return hot_spot_parameter("swt", h.x, h.z, value, theta)
 
 
 def findley_k(k: Any) -> float:
@@ -276,14 +275,14 @@ def findley(history: History | Sequence[Stress], *, k: float = K_FINDLEY) -> Par
     k
         Findley's material constant, ``0 <= k <= 10``; default :data:`K_FINDLEY` = 0.3.
     """
-    h = _history(history)
+    h = as_history(history)
     k = findley_k(k)
 
     def plane(sn: np.ndarray, tau: np.ndarray, trace: np.ndarray) -> np.ndarray:
         return 0.5 * (tau.max(axis=0) - tau.min(axis=0)) + k * sn.max(axis=0)
 
     value, theta = critical_plane(h, plane)
-    return _parameter("findley", h.x, h.z, value, theta)
+    return hot_spot_parameter("findley", h.x, h.z, value, theta)
 
 
 @dataclass(frozen=True)
@@ -335,8 +334,8 @@ def ruiz(cycle: Cycle, history: History) -> Ruiz:
     history
         Its states' stresses; only the points at ``z = 0`` are used (at least one).
     """
-    cycle = _check_cycle(cycle)
-    s = _history(history).surface()
+    cycle = check_cycle(cycle)
+    s = as_history(history).surface()
     x = s.x
     sxx_max = np.maximum(s.sxx.max(axis=0), 0.0)
     if isinstance(cycle, SteadyStateResult):
@@ -346,8 +345,8 @@ def ruiz(cycle: Cycle, history: History) -> Ruiz:
     delta = np.asarray(cycle.slip_amplitude(x), float)
     fdp = q * delta
     zero = np.zeros_like(x)
-    return Ruiz(x, sxx_max, q, delta, _parameter("ruiz_fdp", x, zero, fdp),
-                _parameter("ruiz_ffdp", x, zero, sxx_max * fdp))
+    return Ruiz(x, sxx_max, q, delta, hot_spot_parameter("ruiz_fdp", x, zero, fdp),
+                hot_spot_parameter("ruiz_ffdp", x, zero, sxx_max * fdp))
 
 
 def __getattr__(name: str) -> Any:

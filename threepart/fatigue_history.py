@@ -19,7 +19,8 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from .cycles import SteadyStateResult
-from .results import NU, FrettingResult, MasingCycle, masing
+from .material import NU
+from .results import FrettingResult, MasingCycle, masing
 from .stress import Stress
 from .validate import integer, poisson, reals
 from threepart.errors import InputError, InputTypeError
@@ -107,7 +108,7 @@ class History:
                        pick(self.sxz), self.nu, self.Q, self.branch)
 
 
-def _history(history: Any) -> History:
+def as_history(history: Any) -> History:
     if isinstance(history, History):
         return history
     if isinstance(history, (list, tuple)):
@@ -121,7 +122,7 @@ def _history(history: Any) -> History:
 Cycle = FrettingResult | SteadyStateResult
 
 
-def _check_cycle(cycle: Any) -> Cycle:
+def check_cycle(cycle: Any) -> Cycle:
     if not isinstance(cycle, (FrettingResult, SteadyStateResult)):
         raise InputTypeError(f"`cycle` must be a FrettingResult (from a fretting_cycle) or a SteadyStateResult "
                         f"(from a steady_state), not {type(cycle).__name__}")
@@ -219,7 +220,7 @@ def stress_history(cycle: Cycle, x: ArrayLike, z: ArrayLike, *, states: Any = No
     -------
     History
     """
-    cycle = _check_cycle(cycle)
+    cycle = check_cycle(cycle)
     xb, zb = _points(x, z)
     nu = poisson(nu)
     if isinstance(cycle, SteadyStateResult):

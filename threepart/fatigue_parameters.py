@@ -39,9 +39,10 @@ from typing import Any, Callable, Mapping, Sequence
 import numpy as np
 from numpy.typing import ArrayLike
 
-from .fatigue import (K_FINDLEY, Cycle, History, Parameter, Ruiz, _history, _parameter, findley,
+from .fatigue import (K_FINDLEY, Cycle, History, Parameter, Ruiz, hot_spot_parameter, findley,
                       findley_k, ruiz, stress_history, swt, von_mises_range)
-from .results import NU
+from .fatigue_history import as_history
+from .material import NU
 from .stress import Stress
 from .validate import finite, poisson, positive, reals
 from threepart.errors import InputError, InputTypeError
@@ -196,7 +197,7 @@ def deviatoric_amplitude(history: History | Sequence[Stress]) -> np.ndarray:
     ``σvM(Δσ)/(2√3)`` (half the von Mises range over √3). The ball is the farthest
     pair's where it holds every state, else Welzl's (*LNCS* 555, 1991) at that point.
     """
-    h = _history(history)
+    h = as_history(history)
     m = h.states
     b = h.nu * (h.sxx + h.szz)
     y = np.stack([0.5 * (h.sxx - h.szz), (h.sxx + h.szz - 2.0 * b) / (2.0 * math.sqrt(3.0)), h.sxz],
@@ -239,13 +240,13 @@ def crossland(history: History | Sequence[Stress], *, kappa: float = KAPPA_CROSS
         in torsion ``t-1`` and bending ``f-1``, ``κ = 3 t-1/f-1 - √3``. Default
         :data:`KAPPA_CROSSLAND` = 0.368, from ``t-1/f-1`` = 0.7.
     """
-    h = _history(history)
+    h = as_history(history)
     kappa = finite("kappa", kappa)
     if not 0.0 <= kappa <= 10.0:
         raise InputError(f"`kappa` = {kappa!r} must lie in [0, 10] (Crossland's constant, "
                          "3 t-1/f-1 - sqrt(3))")
     sh = ((1.0 + h.nu) * (h.sxx + h.szz) / 3.0).max(axis=0)
-    return _parameter("crossland", h.x, h.z, deviatoric_amplitude(h) + kappa * sh)
+    return hot_spot_parameter("crossland", h.x, h.z, deviatoric_amplitude(h) + kappa * sh)
 
 
 # --- the table ----------------------------------------------------------------------------

@@ -21,7 +21,7 @@ from scipy.optimize import minimize_scalar
 
 from .material import NU   # re-exported: Poisson's ratio by default (its home, with why)
 from .answer import check_coulomb, check_pressure
-from .asymptotics import Edged as _Edged
+from .asymptotics import Edged
 from .punch import Punch
 from .checks import coordinates, finite, integer
 from threepart.errors import InputError
@@ -130,7 +130,7 @@ class Diagnostics:
         return self.timings.get("total")
 
 
-def _kinks(b: float, lo: float, hi: float, *more: float) -> list[float]:
+def interior_kinks(b: float, lo: float, hi: float, *more: float) -> list[float]:
     """The joins ``x = ±b`` and the points ``more`` that lie strictly inside ``(lo, hi)``."""
     return sorted({float(k) for k in (-b, b, *more) if lo < k < hi})
 
@@ -160,7 +160,7 @@ def _check_coordinates(cls: type) -> None:
             setattr(cls, name, _checked(cls.__dict__[name], args))
 
 
-class _Answer:
+class Answer:
     """What every result shares: coordinates checked in every method, and the answer checked once built.
 
     A subclass's ``pressure``, ``shear``, ``slip``, ``slip_amplitude`` and ``stress``
@@ -187,7 +187,7 @@ class _Answer:
 
 
 @dataclass(frozen=True)
-class NormalResult(_Edged, _Answer):
+class NormalResult(Edged, Answer):
     """Solution of the normal problem on the contact ``[-a, c]``.
 
     Attributes
@@ -235,7 +235,7 @@ class NormalResult(_Edged, _Answer):
         """
         from .stress import stress
         return stress(x, z, pressure=self.pressure, ends=(-self.a, self.c), nu=nu,
-                      kinks=_kinks(self.punch.b, -self.a, self.c))
+                      kinks=interior_kinks(self.punch.b, -self.a, self.c))
 
     @property
     def width(self) -> float:
@@ -291,7 +291,7 @@ class NormalResult(_Edged, _Answer):
 
     def _side_peak(self, lo: float, hi: float, n: int) -> Peak:
         """The largest pressure on ``[lo, hi]``: the grid's largest maxima, each refined by Brent."""
-        x = np.union1d(np.linspace(lo, hi, n), _kinks(self.punch.b, lo, hi))
+        x = np.union1d(np.linspace(lo, hi, n), interior_kinks(self.punch.b, lo, hi))
         p = self.pressure(x)
         pad = np.concatenate([[-np.inf], p, [-np.inf]])
         maxima = np.flatnonzero((pad[1:-1] >= pad[:-2]) & (pad[1:-1] >= pad[2:]))
@@ -324,7 +324,7 @@ class NormalResult(_Edged, _Answer):
 
 
 @dataclass(frozen=True)
-class SlipResult(_Edged, _Answer):
+class SlipResult(Edged, Answer):
     """Partial-slip solution: stick zone ``[-(d+e), d-e]`` inside the contact.
 
     Attributes
@@ -412,7 +412,7 @@ class SlipResult(_Edged, _Answer):
         from .stress import stress
         return stress(x, z, pressure=self.pressure, shear=self.shear, ends=(-self.a, self.c),
                       sigma_bulk=self.sigma_bulk, nu=nu,
-                      kinks=_kinks(self.normal.punch.b, -self.a, self.c, *self.stick_zone))
+                      kinks=interior_kinks(self.normal.punch.b, -self.a, self.c, *self.stick_zone))
 
     def check(self) -> None:
         """Coulomb's law over the contact (:func:`threepart.answer.check_coulomb`); its normal was checked when built."""
@@ -420,7 +420,7 @@ class SlipResult(_Edged, _Answer):
 
 
 @dataclass(frozen=True)
-class FrettingResult(_Edged, _Answer):
+class FrettingResult(Edged, Answer):
     """One fretting cycle at constant ``P`` and ``s``: ``Q`` from 0 to ``Q_max``, to ``-Q_max`` and back.
 
     The states are recorded along the load path, branch by branch (:data:`BRANCHES`).
@@ -489,7 +489,7 @@ class FrettingResult(_Edged, _Answer):
         The joins ``x = ±b`` and the ends of every recorded zone that has not
         slipped; :meth:`stress` puts quadrature panel ends there.
         """
-        return _kinks(self.normal.punch.b, -self.normal.a, self.normal.c, *np.ravel(self.stick))
+        return interior_kinks(self.normal.punch.b, -self.normal.a, self.normal.c, *np.ravel(self.stick))
 
     def stress(self, x: ArrayLike, z: ArrayLike, Q: float, branch: str, *, nu: float = NU) -> Stress:
         """Stresses in the substrate at ``(x, z)`` in the state ``(Q, branch)`` of the cycle.
@@ -547,7 +547,7 @@ class MasingCycle(FrettingResult):
         """
         c_max, c_u, u = masing(self.Q_max, Q, branch)
         ends = [*(self._stick_load(self.Q_max) if c_max else ()), *(self._stick_load(u) if u > 0 else ())]
-        return _kinks(self.normal.punch.b, -self.normal.a, self.normal.c, *ends)
+        return interior_kinks(self.normal.punch.b, -self.normal.a, self.normal.c, *ends)
 
     def _s_load(self, x: np.ndarray, u: float) -> np.ndarray:
         raise NotImplementedError

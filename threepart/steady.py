@@ -32,7 +32,7 @@ from typing import Any, Callable, Mapping, Sequence
 import numpy as np
 from numpy.typing import ArrayLike
 
-from .bulk import _psi
+from .bulk import psi
 from .errors import (DisjointContactsError, InputError, InputTypeError, NoConvergenceError, OneSidedSlipError,
                      StickZoneError,                      full_sliding)
 from .legendre import gauss01
@@ -168,7 +168,7 @@ def cycle_margin(left: ArrayLike, right: ArrayLike, a: ArrayLike, c: ArrayLike, 
     lead = -f * dP_star / math.pi
     tail = f / A * np.asarray(dalpha_star) * h
     # ψ(ξ) = arccosh ξ/sqrt(ξ^2 - 1), as threepart.bulk's (of ξ - 1)
-    return (lead * _psi((m + np.asarray(a)) / h - 1.0) - tail, lead * _psi((np.asarray(c) - m) / h - 1.0) + tail)
+    return (lead * psi((m + np.asarray(a)) / h - 1.0) - tail, lead * psi((np.asarray(c) - m) / h - 1.0) + tail)
 
 
 #: ``path(lam)`` -> (pressure(x) broadcasting over lam, a, c, left, right, dP*, dalpha*) on a half-cycle

@@ -261,7 +261,7 @@ def _ends_kinks(ends: Any, kinks: Any) -> tuple[float, float, np.ndarray]:
     return lo, hi, k
 
 
-def _reference_rule(n: int, ratio: float, levels: int) -> tuple[np.ndarray, np.ndarray]:
+def reference_rule(n: int, ratio: float, levels: int) -> tuple[np.ndarray, np.ndarray]:
     """Nodes ``u`` and weights on ``[0, 1]``, panels graded geometrically toward ``u = 0``."""
     g, w = np.polynomial.legendre.leggauss(n)
     edges = np.concatenate([[0.0], ratio ** np.arange(levels, -1, -1.0)])
@@ -349,7 +349,7 @@ def _integrals_at_depth(x: np.ndarray, z: np.ndarray, funcs: dict[str, Traction]
     whose tractions are evaluated once; the interval holding ``x`` is replaced, for each
     point, by its two parts on either side of ``x`` (clipped into the contact).
     """
-    U, Wu = _reference_rule(rule["n"], rule["ratio"], rule["levels"])
+    U, Wu = reference_rule(rule["n"], rule["ratio"], rule["levels"])
     F = np.concatenate([[lo], kinks, [hi]])
     nint = F.size - 1
     sE, s_hu2, s_wt = _halves(F[:-1], F[1:], U, Wu)

@@ -55,9 +55,9 @@ def is_grid(xb: np.ndarray, zb: np.ndarray) -> tuple[np.ndarray, np.ndarray, lis
 
 def _row_rule(z: float, F: np.ndarray, rule: dict[str, Any]) -> tuple[np.ndarray, np.ndarray]:
     """Nodes and weights in ``t`` of the row at depth ``z`` over the intervals between break points ``F``."""
-    from .stress import _reference_rule
+    from .stress import reference_rule
 
-    U, Wu = _reference_rule(rule["n"], rule["ratio"], rule["min_levels"])
+    U, Wu = reference_rule(rule["n"], rule["ratio"], rule["min_levels"])
     g, w = np.polynomial.legendre.leggauss(GRID_NODES)
     nodes, weights = [], []
     for A, B in zip(F[:-1], F[1:]):

@@ -136,7 +136,7 @@ def _problem(args: argparse.Namespace) -> dict[str, Any]:
     """The checked problem, before any numerics: ``name``, ``punch``, ``A``, ``E``, ``nu``, ``f``, ``states``."""
     from threepart.errors import FullSlidingError
     from threepart.output import check_out
-    from threepart.results import NU
+    from threepart.material import NU
 
     if args.history is not None and (args.state0 is not None or args.state1 is not None):
         raise InputError("give the ends `--state0`/`--state1` or `--history`, not both")
