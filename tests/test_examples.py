@@ -93,7 +93,7 @@ def number(pattern: str, text: str) -> float:
 def test_every_example_script_is_run_by_a_test():
     scripts = {p.name for p in (ROOT / "examples").glob("*.py") if not p.name.startswith("test_")}
     assert scripts == set(EXAMPLES), scripts ^ set(EXAMPLES)
-    for name in scripts:
+    for name in scripts - set(OWN_PROBLEM):
         text = (ROOT / "examples" / name).read_text(encoding="utf-8")
         assert "A = similar_pair(E=210e3, nu=0.3)" in text and "400.0" in text, name
 
@@ -232,4 +232,28 @@ PRINTED_5 = 5e-6
 
 #: each example script and its test above
 EXAMPLES = ("normal_contact.py", "partial_slip.py", "fretting_cycle.py", "judge_a_csv.py",
-            "flight_cycle.py", "stresses_and_fatigue.py", "edges.py", "load_history.py")
+            "flight_cycle.py", "stresses_and_fatigue.py", "edges.py", "load_history.py",
+            "judge_a_calculix_file.py")
+#: the examples that judge a kept file, whose problem is the file's own (not the shared one above)
+OWN_PROBLEM = ("judge_a_calculix_file.py",)
+
+
+#: the kept CalculiX run's load (its deck: ``--P 72.115``) and element size (``--h 0.16``)
+CCX_P, CCX_H = 72.115, 0.16
+#: ∫p dx of that coarse run's nodes (trapezoidal, W/h about 14) against P: each square-root end
+#: spans about two elements (measured 1.2e-2; tests/test_referee.py's COARSE_LOAD)
+CCX_COARSE_LOAD = 5e-2
+
+
+def test_judging_a_calculix_file_reads_its_load_and_names_its_coarse_ends(tmp_path):
+    """The kept .frd's ∫p is the deck's P to the coarse mesh's error, its contact the closed form's
+    within an element, and the judge fails it naming the unresolved ends (exit status 1)."""
+    out = run_example("judge_a_calculix_file.py", tmp_path)
+    load = number(r"integral of p by the trapezoid rule: (\S+) N/mm", out)
+    assert abs(load - CCX_P) <= CCX_COARSE_LOAD * CCX_P
+    # Hertz-like ends of the closed form (b = 1, R = 200: a flat with rounded corners), written out:
+    first, last = number(r"from x = (\S+) to", out), number(r"from x = \S+ to (\S+) mm", out)
+    left, right = number(r"closed form: contact \[(\S+),", out), number(r"closed form: contact \[\S+, (\S+)\]", out)
+    assert abs(first - left) <= CCX_H and abs(last - right) <= CCX_H   # measured 0.035 and 0.054 mm
+    assert "pitfall end-resolution: the left end is resolved by 2 nodes" in out
+    assert out.rstrip().endswith("exit status 1")
