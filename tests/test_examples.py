@@ -233,7 +233,7 @@ PRINTED_5 = 5e-6
 #: each example script and its test above
 EXAMPLES = ("normal_contact.py", "partial_slip.py", "fretting_cycle.py", "judge_a_csv.py",
             "flight_cycle.py", "stresses_and_fatigue.py", "edges.py", "load_history.py",
-            "judge_a_calculix_file.py")
+            "judge_a_calculix_file.py", "match_a_pad.py")
 #: the examples that judge a kept file, whose problem is the file's own (not the shared one above)
 OWN_PROBLEM = ("judge_a_calculix_file.py",)
 
@@ -257,3 +257,23 @@ def test_judging_a_calculix_file_reads_its_load_and_names_its_coarse_ends(tmp_pa
     assert abs(first - left) <= CCX_H and abs(last - right) <= CCX_H   # measured 0.035 and 0.054 mm
     assert "pitfall end-resolution: the left end is resolved by 2 nodes" in out
     assert out.rstrip().endswith("exit status 1")
+
+
+#: K_N and K_T of Hertz's cylinder from the pad's R, P and Q printed with 10 significant digits,
+#: against the flank's: the print's rounding carried through a and p0 (measured 1.8e-10)
+PAD_FROM_PRINT = 1e-9
+
+
+def test_the_matched_pads_are_hertz_cylinders_with_the_flanks_edge_multipliers(tmp_path):
+    """E9: each pad's own K_N = p0 sqrt(2/a) and K_T = Q/(pi sqrt(2a)), by Hertz's formulas from
+    its printed R, P and Q, are the flank's at that edge (docs/EDGES.md §6)."""
+    out = run_example("match_a_pad.py", tmp_path)
+    for edge in ("left", "right"):
+        line = next(ln for ln in out.splitlines() if ln.startswith(f"{edge} edge:"))
+        K_N, K_T = number(r"flank K_N = (\S+),", line), number(r"flank K_N = \S+, K_T = (\S+);", line)
+        R, P_pad = number(r"pad R = (\S+) mm", line), number(r"P = (\S+) N/mm, Q", line)
+        Q = number(r"Q = (\S+) N/mm;", line)
+        a = math.sqrt(2 * A * R * P_pad / math.pi)
+        p0 = 2 * P_pad / (math.pi * a)
+        assert abs(p0 * math.sqrt(2 / a) / K_N - 1) <= PAD_FROM_PRINT, edge
+        assert abs(Q / (math.pi * math.sqrt(2 * a)) / abs(K_T) - 1) <= PAD_FROM_PRINT, edge
