@@ -233,9 +233,9 @@ PRINTED_5 = 5e-6
 #: each example script and its test above
 EXAMPLES = ("normal_contact.py", "partial_slip.py", "fretting_cycle.py", "judge_a_csv.py",
             "flight_cycle.py", "stresses_and_fatigue.py", "edges.py", "load_history.py",
-            "judge_a_calculix_file.py", "match_a_pad.py")
-#: the examples that judge a kept file, whose problem is the file's own (not the shared one above)
-OWN_PROBLEM = ("judge_a_calculix_file.py",)
+            "judge_a_calculix_file.py", "match_a_pad.py", "validity_map.py")
+#: the examples whose problem is their own (a kept file's, the map's scale-free points), not the shared one above
+OWN_PROBLEM = ("judge_a_calculix_file.py", "validity_map.py")
 
 
 #: the kept CalculiX run's load (its deck: ``--P 72.115``) and element size (``--h 0.16``)
@@ -277,3 +277,25 @@ def test_the_matched_pads_are_hertz_cylinders_with_the_flanks_edge_multipliers(t
         p0 = 2 * P_pad / (math.pi * a)
         assert abs(p0 * math.sqrt(2 / a) / K_N - 1) <= PAD_FROM_PRINT, edge
         assert abs(Q / (math.pi * math.sqrt(2 * a)) / abs(K_T) - 1) <= PAD_FROM_PRINT, edge
+
+
+#: the map's control limit on the closed form against a model of its own assumptions (``threepart
+#: map``: the control within 1e-3), here on the contact's extent at the small overhang
+MAP_CONTROL = 1e-3
+#: how far past the FE model's own error estimate the large overhang's error must lie to be the
+#: formulas' (measured 44 x)
+MAP_RESOLVED = 10.0
+
+
+def test_the_validity_map_sees_the_formulas_hold_at_small_slopes_and_stop_at_large(tmp_path):
+    """Against the finite-body FEM (another method): at (a - b)/R1 = 0.01 the closed form's a is within
+    the map's control limit (plus the FE estimate); at 0.3 its error is 10 x past the FE estimate."""
+    out = run_example("validity_map.py", tmp_path)
+    small, large = (next(ln for ln in out.splitlines() if ln.startswith(f"overhang (a - b)/R1 = {o}:"))
+                    for o in ("0.01", "0.3"))
+    for line, bound in ((small, None), (large, MAP_RESOLVED)):
+        err, fe = number(r"error in a (\S+),", line), number(r"own error estimate (\S+)", line)
+        if bound is None:
+            assert abs(err) <= MAP_CONTROL + fe
+        else:
+            assert abs(err) >= bound * fe
