@@ -10,7 +10,9 @@ excluded at each edge) relative to the largest peak, with DOFs and times. Then,
 side by side in the same run (every FE solve cold: no cached contact estimate or
 mesh, with its time per stage), the FFT-BEM peer tamaas (:mod:`peer_tamaas`, a
 benchmark extra) on the tilt-free cases, with the ratio of each FEM preset's time
-to tamaas' time to 4e-5 (``--peer``: that table only). ``--pressure``: only where the nodal pressure's
+to tamaas' time to 4e-5 (``--peer``: that table only): cold (nothing remembered,
+an empty cache directory), read from threepart's cache by a later run, and at
+another load on the cached mesh (issue 41). ``--pressure``: only where the nodal pressure's
 error lies and how it falls with the mesh (:func:`pressure`). Last, when CHOLMOD is
 installed (the ``fast`` extra), the two condensation backends side by side on the
 same meshes: the condensation and the whole cold solve with each, their ratios,
@@ -21,13 +23,14 @@ from __future__ import annotations
 import contextlib
 import os
 import sys
+import tempfile
 import time
 from dataclasses import replace
 from typing import Iterator
 
 import numpy as np
 
-from threepart import closedform, fem
+from threepart import cache, closedform, fem
 from threepart.catalogue import load_cases
 from threepart.fem import elasticity
 
@@ -54,14 +57,65 @@ def errors(fe, ref) -> dict[str, float]:
 STAGES = ("locate", "mesh", "assemble", "factorise", "contact")
 
 
-def cold_solve(case, mesh: str):
-    """One FE solve of ``case`` without the run's cached contact estimate and meshes; its wall time."""
+@contextlib.contextmanager
+def environ(name: str, value: str) -> Iterator[None]:
+    """The environment variable ``name`` set to ``value`` inside the block."""
+    old = os.environ.get(name)
+    os.environ[name] = value
+    try:
+        yield
+    finally:
+        if old is None:
+            del os.environ[name]
+        else:
+            os.environ[name] = old
+
+
+def forget_run() -> None:
+    """Forget what this run remembers: contact estimates, meshes, condensations (the disk cache stays)."""
     fem.solve.locate_ends.cache_clear()
     fem.mesh._meshed.cache_clear()
+    elasticity.forget()
+
+
+def timed_solve(case, mesh, P: float | None = None):
+    """One FE solve of ``case`` (at load ``P``, default the case's); its wall time."""
     t0 = time.perf_counter()
-    fe = fem.solve_normal(case.punch, case.P, case.s_load, E=case.block_E, nu=case.nu, tilt=case.tilt,
-                          mesh=mesh)
+    fe = fem.solve_normal(case.punch, case.P if P is None else P, case.s_load, E=case.block_E,
+                          nu=case.nu, tilt=case.tilt, mesh=mesh)
     return fe, time.perf_counter() - t0
+
+
+def cold_solve(case, mesh: str):
+    """One FE solve of ``case`` with nothing remembered: no contact estimate, mesh or condensation in
+    memory, an empty cache directory of threepart's (:mod:`threepart.cache`); its wall time."""
+    forget_run()
+    with tempfile.TemporaryDirectory(prefix="threepart-bench-") as d, environ(cache.CACHE_VARIABLE, d):
+        return timed_solve(case, mesh)
+
+
+def cached_solves(case, mesh: str, load: float = 1.05):
+    """The cache's two gains on ``case``, side by side with :func:`cold_solve` in one run.
+
+    Returns ``(disk, other)``, each ``(result, seconds)``: ``disk`` a later run's
+    solve (the run's memory forgotten, threepart's cache directory filled by an
+    earlier solve: meshes and condensations are read, not made), ``other`` a
+    solve of ``load`` times the case's load on the mesh just solved on
+    (:class:`~fem.mesh.Substrate` given; its condensation in memory).
+    """
+    forget_run()
+    with tempfile.TemporaryDirectory(prefix="threepart-bench-") as d, environ(cache.CACHE_VARIABLE, d):
+        first, _ = timed_solve(case, mesh)
+        forget_run()
+        disk = timed_solve(case, mesh)
+        pre = fem.mesh.preset(mesh)
+        pre = replace(pre, refine=pre.refine * first.info["refined"])
+        guess = fem.locate_contact(case.punch, case.P, case.s_load, E=case.block_E, nu=case.nu,
+                                   tilt=case.tilt)
+        sub = fem.make_substrate(pre.spec(*guess, (-case.punch.b, case.punch.b)))
+        timed_solve(case, sub)
+        other = timed_solve(case, sub, load * case.P)
+    return disk, other
 
 
 def main(meshes: list[str]) -> None:
@@ -81,49 +135,64 @@ def main(meshes: list[str]) -> None:
             err = errors(fe, ref)
             print(f"{case.name:14s} {mesh:8s} {fe.diagnostics.dofs:7d} {t_fe:6.2f} {t_cf:7.4f} "
                   + " ".join(f"{v:+9.1e}" for v in err.values())
-                  + "   " + " ".join(f"{fe.diagnostics.timings[k]:.2f}" for k in STAGES), flush=True)
+                  + "   " + " ".join(f"{fe.diagnostics.timings.get(k, 0.0):.2f}" for k in STAGES),
+                  flush=True)
 
 
 #: the tilt-free cases the FFT-BEM peer can solve (it has no rigid-body tilt unknown)
 PEER_CASES = ("caseA_sym", "suppressed")
 #: tamaas grid densities (cells per contact width), on a period of 64 W
 PEER_CELLS = (512, 1024, 2048)
+#: the other load of a solve on a cached mesh, a multiple of the case's
+OTHER_LOAD = 1.05
 
 
 def peer(meshes: list[str]) -> None:
     """FEM presets and tamaas on the same tilt-free cases, timed side by side in this run.
 
     Errors are against the closed form: a, c in units of W, pressure at each
-    method's own nodes more than 5 % of W inside the ends, of the peak.
+    method's own nodes more than 5 % of W inside the ends, of the peak. Each
+    FEM preset is solved cold (:func:`cold_solve`), by a later run that reads
+    threepart's cache (``disk``), and at another load on the cached mesh
+    (``other load``, :func:`cached_solves`), judged against its own closed form.
     """
     from peer_tamaas import available, solve_peer
 
     if not available():
         print("tamaas is not installed: pip install -e '.[bench]' to time the FFT-BEM peer")
         return
-    print(f"\n{'case':12s} {'method':16s} {'time s':>7s} {'a/W':>9s} {'c/W':>9s} {'p':>9s}")
+    print(f"\n{'case':12s} {'method':24s} {'time s':>7s} {'a/W':>9s} {'c/W':>9s} {'p':>9s}")
     for name in PEER_CASES:
         case = next(c for c in load_cases("fem") if c.name == name).resolved()
-        ref = closedform.solve_normal(case.punch, case.P, case.s_load, A=case.A, tilt=case.tilt)
-        W = ref.a + ref.c
-        peak = max(q.p for q in ref.peaks())
 
         def row(method: str, dt: float, a: float, c: float, x: np.ndarray,
-                p: np.ndarray) -> tuple[float, float]:
+                p: np.ndarray, ref) -> tuple[float, float]:
+            W = ref.a + ref.c
+            peak = max(q.p for q in ref.peaks())
             inner = (x > -ref.a + 0.05 * W) & (x < ref.c - 0.05 * W)
             perr = float(np.max(np.abs(p[inner] - ref.pressure(x[inner])))) / peak
             ends = max(abs(a - ref.a) / W, abs(c - ref.c) / W)
-            print(f"{name:12s} {method:16s} {dt:7.2f} {abs(a - ref.a) / W:9.1e} "
+            print(f"{name:12s} {method:24s} {dt:7.2f} {abs(a - ref.a) / W:9.1e} "
                   f"{abs(c - ref.c) / W:9.1e} {perr:9.1e}", flush=True)
             return ends, max(ends, perr)
 
+        ref = closedform.solve_normal(case.punch, case.P, case.s_load, A=case.A, tilt=case.tilt)
+        ref_other = closedform.solve_normal(case.punch, OTHER_LOAD * case.P, case.s_load, A=case.A,
+                                            tilt=case.tilt)
+        W = ref.a + ref.c
         times: dict[str, tuple[float, tuple[float, float]]] = {}
         for mesh in meshes:
             fe, dt = cold_solve(case, mesh)
-            times[f"fem {mesh}"] = (dt, row(f"fem {mesh}", dt, fe.a, fe.c, fe.x_nodes, fe.p_nodes))
+            times[f"fem {mesh}"] = (dt, row(f"fem {mesh}", dt, fe.a, fe.c, fe.x_nodes, fe.p_nodes, ref))
+            (fd, td), (fo, to) = cached_solves(case, mesh, OTHER_LOAD)
+            times[f"fem {mesh} disk"] = (td, row(f"fem {mesh} disk", td, fd.a, fd.c, fd.x_nodes,
+                                                 fd.p_nodes, ref))
+            times[f"fem {mesh} other load"] = (to, row(f"fem {mesh} other load", to, fo.a, fo.c,
+                                                       fo.x_nodes, fo.p_nodes, ref_other))
         for cells in PEER_CELLS:
             r = solve_peer(case.punch, case.P, E=case.block_E, nu=case.nu, width=W, cells=cells)
-            times[f"tamaas {cells}/W"] = (r.time_s, row(f"tamaas {cells}/W", r.time_s, r.a, r.c, r.x, r.p))
+            times[f"tamaas {cells}/W"] = (r.time_s, row(f"tamaas {cells}/W", r.time_s, r.a, r.c, r.x,
+                                                        r.p, ref))
         # tamaas' time to 4e-5: its coarsest grid that gets there, else its finest (said so);
         # judged on a and c alone, then on a, c and the pressure
         for which, label in ((0, "a, c"), (1, "a, c, p")):
@@ -228,7 +297,7 @@ def backends(meshes: list[str], repeat: int = 2) -> None:
                                        tilt=case.tilt)
             sub = fem.make_substrate(pre.spec(*guess, (-case.punch.b, case.punch.b)))
             first = (case, sub) if k == 0 else first
-            cond = {b: min((elasticity.condense(sub, case.block_E, case.nu, backend=b)
+            cond = {b: min((elasticity.condense(sub, case.block_E, case.nu, backend=b, cached=False)
                             for _ in range(repeat)), key=lambda sc: sc.timings["factorise"])
                     for b in names}
             C_s, C_c = cond["scipy"].C, cond["cholmod"].C
@@ -252,7 +321,8 @@ def backends(meshes: list[str], repeat: int = 2) -> None:
           + f" {total['scipy']['solve'] / total['cholmod']['solve']:6.2f}")
     if first is not None:
         case, sub = first
-        two = {b: min((elasticity.condense(sub, case.block_E, case.nu, ("u^1", "u^2"), backend=b)
+        two = {b: min((elasticity.condense(sub, case.block_E, case.nu, ("u^1", "u^2"), backend=b,
+                                            cached=False)
                        for _ in range(repeat)), key=lambda sc: sc.timings["factorise"])
                for b in names}
         t2 = {b: two[b].timings["factorise"] for b in names}

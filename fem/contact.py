@@ -28,6 +28,7 @@ from dataclasses import dataclass, replace
 from typing import Any, Callable
 
 import numpy as np
+from scipy.linalg import cho_factor, cho_solve
 from threadpoolctl import threadpool_limits
 
 from threepart.errors import InputError, InputTypeError, NoConvergenceError
@@ -142,24 +143,41 @@ class ContactSolution:
 
 
 def _solve_active(C: np.ndarray, x: np.ndarray, g0: np.ndarray, active: np.ndarray,
-                  P: float, s: float, free_tilt: bool) -> tuple[np.ndarray, float, float]:
-    """Forces on the active set with ``gap = 0`` there, plus the equilibrium rows."""
+                  P: float, s: float, free_tilt: bool, symmetric: bool = False
+                  ) -> tuple[np.ndarray, float, float]:
+    """Forces on the active set with ``gap = 0`` there, plus the equilibrium rows.
+
+    The system ``C_AA f + B lam = -g0_A``, ``D^T f = e`` (``lam = (delta, alpha)``,
+    ``B = (-1, x)``, ``D = (1, x)``, ``e = (P, P s)``). A symmetric ``C``
+    (``symmetric``; the small-slope compliance) is positive definite: a Cholesky
+    factor of ``C_AA`` and the ``k x k`` Schur complement of the bordered rows
+    (half the work of an LU of the whole); otherwise, or if that factor fails,
+    one LU of the bordered matrix.
+    """
     idx = np.flatnonzero(active)
     m = len(idx)
     k = 2 if free_tilt else 1
-    M = np.zeros((m + k, m + k))
-    rhs = np.zeros(m + k)
-    M[:m, :m] = C[np.ix_(idx, idx)]
-    M[:m, m] = -1.0  # -delta
-    M[m, :m] = 1.0
-    rhs[:m] = -g0[idx]
-    rhs[m] = P
+    A = C[np.ix_(idx, idx)]
+    D = np.ones((m, k))
     if free_tilt:
-        M[:m, m + 1] = x[idx]  # + alpha x
-        M[m + 1, :m] = x[idx]
-        rhs[m + 1] = P * s
-    sol = np.linalg.solve(M, rhs)
+        D[:, 1] = x[idx]
+    B = D.copy()
+    B[:, 0] = -1.0
+    e = np.array([P, P * s][:k])
     f = np.zeros(len(x))
+    if symmetric:
+        try:
+            factor = cho_factor(A, lower=True, overwrite_a=True, check_finite=False)
+        except np.linalg.LinAlgError:
+            A = C[np.ix_(idx, idx)]
+        else:
+            Y = cho_solve(factor, np.column_stack([-g0[idx], B]), check_finite=False)
+            lam = np.linalg.solve(D.T @ Y[:, 1:], D.T @ Y[:, 0] - e)
+            f[idx] = Y[:, 0] - Y[:, 1:] @ lam
+            return f, float(lam[0]), float(lam[1]) if free_tilt else 0.0
+    M = np.zeros((m + k, m + k))
+    M[:m, :m], M[:m, m:], M[m:, :m] = A, B, D.T
+    sol = np.linalg.solve(M, np.concatenate([-g0[idx], e]))
     f[idx] = sol[:m]
     return f, float(sol[m]), float(sol[m + 1]) if free_tilt else 0.0
 
@@ -273,6 +291,7 @@ def _iterate(C: np.ndarray, x: np.ndarray, g0: np.ndarray, P: float, s: float, f
     """The primal-dual active-set iteration from ``act``; :class:`_Breakdown` if it leaves the admissible sets."""
     n = len(x)
     cpd = 1.0 / float(np.mean(np.diag(C)))  # force per unit gap: balances the two terms
+    symmetric = bool(np.array_equal(C, C.T))
     with threadpool_limits(limits=1, user_api="blas"):
         for it in range(1, max_iter + 1):
             if not act.any():
@@ -281,7 +300,7 @@ def _iterate(C: np.ndarray, x: np.ndarray, g0: np.ndarray, P: float, s: float, f
             if why is not None:
                 raise _Breakdown(f"at iteration {it}: {why}")
             try:
-                f, delta, alpha = _solve_active(C, x, g0, act, P, s, free_tilt)
+                f, delta, alpha = _solve_active(C, x, g0, act, P, s, free_tilt, symmetric)
             except np.linalg.LinAlgError:
                 raise _Breakdown(f"at iteration {it}: a singular active-set system "
                                  f"({int(act.sum())} active nodes)") from None

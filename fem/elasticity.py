@@ -22,13 +22,22 @@ about 1e-12 relative:
 ``"scipy"``
     SciPy's SuperLU, always there: minimum degree on the rest, ``S = L22 U22``
     and ``C = U22^-1 L22^-1`` by ``dtrtri``.
+
+One condensation per mesh and material (issue 41): ``x``, ``weights`` and ``C``
+are kept in memory for the run (the last :data:`MEMORY_ENTRIES`, with their
+factorisations) and on disk in threepart's cache (:mod:`threepart.cache`),
+keyed by :func:`compliance_key` (the mesh's nodes, elements and groups, ``E``,
+``nu``, the components, the element, the backend). An entry read from disk
+factorises the stiffness again only when a displacement field is asked for
+(:meth:`SurfaceCompliance.displacement`).
 """
 from __future__ import annotations
 
 import functools
 import os
 import time
-from dataclasses import dataclass, field
+from collections import OrderedDict
+from dataclasses import dataclass, field, replace
 from types import ModuleType
 from typing import Any, Callable
 
@@ -36,17 +45,20 @@ import numpy as np
 import scipy.sparse as sp
 import scipy.sparse.linalg as sla
 from scipy.linalg.lapack import dpotri, dtrtri
+import skfem
 from skfem import Basis, ElementTriP2, ElementVector, FacetBasis, LinearForm, asm
 from skfem.models.elasticity import lame_parameters, linear_elasticity
 from threadpoolctl import threadpool_limits
 
+from threepart import cache
 from threepart.errors import InputError, InputTypeError, NoConvergenceError
 
 from ._boundary import boundary
 from ._iv import material
 from .mesh import Substrate
 
-__all__ = ["SurfaceCompliance", "condense", "choose_backend", "backends", "BACKEND_VARIABLE"]
+__all__ = ["SurfaceCompliance", "condense", "choose_backend", "backends", "BACKEND_VARIABLE",
+           "compliance_key", "forget", "MEMORY_ENTRIES", "FACTORS_KEPT"]
 
 _LU_OPTIONS: dict[str, Any] = dict(diag_pivot_thresh=0.0, options=dict(SymmetricMode=True))
 
@@ -126,31 +138,43 @@ class SurfaceCompliance:
     @property
     def basis(self) -> Basis:
         """The vector P2 basis of the body's displacement field."""
-        return self._solver[0]
+        return self._solver.get()[0]
 
     @property
     def surface_dofs(self) -> np.ndarray:
         """The condensed DOFs in the order of :attr:`C` (``u_x`` then ``u_y`` for two components)."""
-        return self._solver[1]
+        return self._solver.get()[1]
 
     def displacement(self, f: np.ndarray) -> tuple[Basis, np.ndarray]:
         """The P2 displacement field for nodal forces at the candidates.
 
         ``f`` holds downward forces on the vertical DOFs, or, for a two-component
         condensation, forces in the global directions ordered as :attr:`C`.
+        A condensation read from the cache factorises the stiffness here, once.
         """
-        basis, dofs, free, order, solve = self._solver
-        F = np.zeros(basis.N)
-        f = np.asarray(f, dtype=float)
-        F[dofs] = -f if len(dofs) == len(self.x) else f
-        u = np.zeros(basis.N)
-        rhs = F[free][order]
-        with threadpool_limits(limits=1, user_api="blas"):
-            sol = solve(rhs)
-        u_free = np.empty_like(sol)
-        u_free[order] = sol
-        u[free] = u_free
-        return basis, u
+        return _displace(self._solver, len(self.x), f)
+
+    def displacement_later(self, f: np.ndarray) -> Callable[[], tuple[Basis, np.ndarray]]:
+        """:meth:`displacement` of ``f``, deferred: a call that holds the factorisation's
+        handle but not ``C``, and (for a cached condensation) factorises again only if the
+        run has let the factor go (:data:`FACTORS_KEPT`)."""
+        return functools.partial(_displace, self._solver, len(self.x), np.array(f, dtype=float))
+
+
+def _displace(factor: "_Factor", n: int, f: np.ndarray) -> tuple[Basis, np.ndarray]:
+    """:meth:`SurfaceCompliance.displacement` for ``n`` candidate nodes."""
+    basis, dofs, free, order, solve = factor.get()
+    F = np.zeros(basis.N)
+    f = np.asarray(f, dtype=float)
+    F[dofs] = -f if len(dofs) == n else f
+    u = np.zeros(basis.N)
+    rhs = F[free][order]
+    with threadpool_limits(limits=1, user_api="blas"):
+        sol = solve(rhs)
+    u_free = np.empty_like(sol)
+    u_free[order] = sol
+    u[free] = u_free
+    return basis, u
 
 
 def _ordering(K: sp.csc_matrix, last: np.ndarray) -> np.ndarray:
@@ -216,8 +240,8 @@ _FACTORISE: dict[str, Callable[[sp.csc_matrix, np.ndarray], _Factorised]] = {
 
 @boundary
 def condense(substrate: Substrate, E: float, nu: float,
-             components: tuple[str, ...] = ("u^2",), backend: str | None = None
-             ) -> SurfaceCompliance:
+             components: tuple[str, ...] = ("u^2",), backend: str | None = None,
+             cached: bool = True) -> SurfaceCompliance:
     """Assemble the plane-strain stiffness and condense it onto the candidate nodes.
 
     Parameters
@@ -231,10 +255,15 @@ def condense(substrate: Substrate, E: float, nu: float,
         both, for the frictional interface.
     backend
         ``"cholmod"`` or ``"scipy"``; ``None``: :func:`choose_backend`'s choice.
+    cached
+        ``True`` (default): the run's memory, else threepart's disk cache, else
+        condensed and kept in both (:func:`compliance_key`; ``timings`` then hold
+        ``cache``, the seconds of the look-up). ``False``: condensed afresh, kept nowhere.
 
     Returns
     -------
     SurfaceCompliance
+        Its ``C`` is read-only: every solve on the mesh shares it.
 
     Raises
     ------
@@ -249,6 +278,125 @@ def condense(substrate: Substrate, E: float, nu: float,
     if components not in (("u^2",), ("u^1", "u^2")):
         raise InputError(f"`components` = {components!r} must be ('u^2',) or ('u^1', 'u^2')")
     chosen = choose_backend(backend)
+    if not isinstance(cached, (bool, np.bool_)):
+        raise InputTypeError(f"`cached` must be a bool, not {type(cached).__name__}")
+    if not cached:
+        return _condense(substrate, E, nu, components, chosen)
+    t0 = time.perf_counter()
+    k = compliance_key(substrate, E, nu, components, chosen)
+    sc = _MEMORY.get(k)
+    if sc is None:
+        sc = _from_disk(k, substrate, E, nu, components, chosen)
+    if sc is None:
+        sc = _condense(substrate, E, nu, components, chosen)
+        sc._solver._make = _remake(substrate, E, nu, components, chosen)
+        cache.store(_KIND, k, {"x": sc.x, "weights": sc.weights, "C": sc.C})
+    else:
+        sc = replace(sc, timings={"assemble": 0.0, "factorise": 0.0,
+                                  "cache": time.perf_counter() - t0})
+    _MEMORY[k] = sc
+    _MEMORY.move_to_end(k)
+    while len(_MEMORY) > MEMORY_ENTRIES:
+        _MEMORY.popitem(last=False)[1]._solver.drop()
+    for old in list(_MEMORY.values())[:-FACTORS_KEPT]:
+        old._solver.drop()
+    return sc
+
+
+class _Factor:
+    """The factorised stiffness behind a :class:`SurfaceCompliance`: given, or made when first
+    needed (``make``), and let go again when the run keeps too many (:meth:`drop`)."""
+
+    def __init__(self, parts: tuple[Any, ...] | None = None,
+                 make: Callable[[], tuple[Any, ...]] | None = None) -> None:
+        self._parts, self._make = parts, make
+
+    def get(self) -> tuple[Any, ...]:
+        """``(basis, dofs, free, order, solve)``, factorising on the first call if need be."""
+        if self._parts is None:
+            assert self._make is not None
+            self._parts = self._make()
+        return self._parts
+
+    def drop(self) -> None:
+        """Let the factorisation go, if it can be made again."""
+        if self._make is not None:
+            self._parts = None
+
+
+#: the kind of the condensations' entries in threepart's cache
+_KIND = "compliance"
+#: condensations kept in memory for the run, with their factorisations (a default mesh's
+#: ``C`` is about 17 MB, its CHOLMOD factor about as much again)
+MEMORY_ENTRIES = 8
+#: of those, how many keep their factorisation (a default mesh's CHOLMOD factor is some 100 MB);
+#: the others factorise again if a displacement field is asked of them
+FACTORS_KEPT = 2
+_MEMORY: "OrderedDict[str, SurfaceCompliance]" = OrderedDict()
+
+
+def forget() -> None:
+    """Empty the run's memory of condensations (the disk cache stays): the next one is read or made."""
+    _MEMORY.clear()
+
+
+def compliance_key(substrate: Substrate, E: float, nu: float, components: tuple[str, ...],
+                   backend: str) -> str:
+    """The cache key of a condensation: everything that changes ``C``, hashed (:func:`threepart.cache.key`).
+
+    The mesh's nodes and elements (their bytes), its ``"contact"`` and ``"base"``
+    facets, ``E``, ``nu``, the components, the element and its quadrature, the
+    backend and scikit-fem's version (its DOF numbering).
+    """
+    mesh, groups = substrate.mesh, substrate.boundaries
+    return cache.key({"p": np.asarray(mesh.p, dtype=float), "t": np.asarray(mesh.t, dtype=np.int64),
+                      "contact": np.asarray(groups["contact"], dtype=np.int64),
+                      "base": np.asarray(groups["base"], dtype=np.int64),
+                      "E": float(E), "nu": float(nu), "components": tuple(components),
+                      "element": "ElementVector(ElementTriP2), intorder 2", "backend": backend,
+                      "skfem": skfem.__version__})
+
+
+def _surface(substrate: Substrate) -> tuple[int, int, float]:
+    """The candidate nodes' count (P2: the contact facets' vertices and midpoints), the
+    number of DOFs and the largest element size along the contact, from the mesh alone."""
+    mesh, contact = substrate.mesh, substrate.boundaries["contact"]
+    f = mesh.facets[:, contact]
+    h = float(np.abs(mesh.p[0, f[1]] - mesh.p[0, f[0]]).max())
+    return len(np.unique(f)) + len(contact), 2 * (mesh.p.shape[1] + mesh.facets.shape[1]), h
+
+
+def _from_disk(k: str, substrate: Substrate, E: float, nu: float, components: tuple[str, ...],
+               backend: str) -> SurfaceCompliance | None:
+    """The condensation of key ``k`` from threepart's cache, checked against the mesh; else None."""
+    n, dofs, h = _surface(substrate)
+    m = n * len(components)
+
+    def fits(a: dict[str, np.ndarray]) -> bool:
+        x, w, C = a.get("x"), a.get("weights"), a.get("C")
+        return (x is not None and w is not None and C is not None and x.shape == (n,)
+                and w.shape == (n,) and C.shape == (m, m) and bool(np.all(np.diff(x) > 0)))
+
+    got = cache.load(_KIND, k, fits)
+    if got is None:
+        return None
+    for a in got.values():
+        a.flags.writeable = False
+    return SurfaceCompliance(
+        x=got["x"], weights=got["weights"], C=got["C"], dofs=dofs, h=h, timings={}, backend=backend,
+        _solver=_Factor(make=_remake(substrate, E, nu, components, backend)))
+
+
+def _remake(substrate: Substrate, E: float, nu: float, components: tuple[str, ...],
+            backend: str) -> Callable[[], tuple[Any, ...]]:
+    """The call that factorises the stiffness of ``substrate`` again (a copy of it, kept)."""
+    own = Substrate(mesh=substrate.mesh, boundaries=dict(substrate.boundaries), path=substrate.path)
+    return lambda: _condense(own, E, nu, components, backend)._solver.get()
+
+
+def _condense(substrate: Substrate, E: float, nu: float, components: tuple[str, ...],
+              chosen: str) -> SurfaceCompliance:
+    """:func:`condense` of checked input, without the cache: assemble and factorise."""
     t0 = time.perf_counter()
     mesh, groups = substrate.mesh, substrate.boundaries
     # intorder 2 integrates the P2 stiffness (products of linear gradients) exactly on
@@ -279,9 +427,10 @@ def condense(substrate: Substrate, E: float, nu: float,
     with threadpool_limits(limits=1, user_api="blas"):
         C, order, solve = _FACTORISE[chosen](Kf, cand)
     C = 0.5 * (C + C.T)
+    for a in (x, weights, C):   # shared by every solve on this mesh (the cache)
+        a.flags.writeable = False
     t2 = time.perf_counter()
-    f = mesh.facets[:, groups["contact"]]
-    h = float(np.abs(mesh.p[0, f[1]] - mesh.p[0, f[0]]).max())
+    h = _surface(substrate)[2]
     return SurfaceCompliance(x=x, weights=weights, C=C, dofs=int(basis.N), h=h,
-                             timings={"assemble": t1 - t0, "factorise": t2 - t1},
-                             backend=chosen, _solver=(basis, dofs, free, order, solve))
+                             timings={"assemble": t1 - t0, "factorise": t2 - t1}, backend=chosen,
+                             _solver=_Factor(parts=(basis, dofs, free, order, solve)))

@@ -173,7 +173,7 @@ def zone_margin(b: float, left: float, right: float, margin: float) -> float:
     return min(margin, max(0.02, (W - 2 * b) / W))
 
 
-def _finite_iv(punch: Any, P: Any, s: Any, E: Any, nu: Any, H: Any, theta: Any, profile: Any,
+def finite_iv(punch: Any, P: Any, s: Any, E: Any, nu: Any, H: Any, theta: Any, profile: Any,
                tilt: Any, mesh: Any, max_iter: Any, progress: Any,
                kinematics: Any = "small") -> tuple[Any, ...]:
     """The checked input of :func:`solve_finite`, before any numerics."""
@@ -242,7 +242,7 @@ def solve_finite(punch: Punch, P: float, s: float = 0.0, *, E: float, nu: float,
     ContactZoneError, SeparationError, NoConvergenceError
         As :func:`fem.solve_normal`.
     """
-    P, s, E, nu, H, theta, profile, tilt, pre, max_iter, progress, kinematics = _finite_iv(
+    P, s, E, nu, H, theta, profile, tilt, pre, max_iter, progress, kinematics = finite_iv(
         punch, P, s, E, nu, H, theta, profile, tilt, mesh, max_iter, progress, kinematics)
     say = Progress(progress)
     t_start = time.perf_counter()

@@ -51,7 +51,7 @@ from ._boundary import boundary
 from ._iv import STEPS
 from ._progress import Progress, ProgressArg
 from .ends import REFINE_ATTEMPTS, end_size, refined
-from .finite import _finite_iv, locate_finite, punch_body, zone_margin
+from .finite import finite_iv, locate_finite, punch_body, zone_margin
 from .friction import FemSlipResult, shear_path
 from .mesh import MeshPreset, make_substrate
 from .twobody import TwoBodyModel, with_nodes
@@ -90,7 +90,7 @@ def _slip_finite_iv(punch: Any, P: Any, s: Any, Q: Any, f: Any, E: Any, nu: Any,
                     theta: Any, profile: Any, tilt: Any, mesh: Any, steps: Any, max_iter: Any,
                     progress: Any) -> tuple[Any, ...]:
     """The checked input of :func:`solve_finite_slip`: :func:`fem.solve_finite`'s, ``Q``, ``f``, ``steps``."""
-    P, s, E, nu, H, theta, profile, tilt, pre, max_iter, progress, _ = _finite_iv(
+    P, s, E, nu, H, theta, profile, tilt, pre, max_iter, progress, _ = finite_iv(
         punch, P, s, E, nu, H, theta, profile, tilt, mesh, max_iter, progress)
     Q, f = shear_load(Q, f, P)
     steps = integer("steps", steps, *STEPS)

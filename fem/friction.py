@@ -62,7 +62,8 @@ from numpy.typing import ArrayLike
 
 from threepart.meshes import SubstrateSpec
 from threepart.punch import Punch
-from threepart.results import BRANCHES, NU, FrettingResult, NormalResult, SlipResult
+from threepart.material import NU
+from threepart.results import BRANCHES, FrettingResult, NormalResult, SlipResult
 from threepart.stress import Stress
 from threepart.validate import check_states, finite, integer, shear_load
 
@@ -103,11 +104,11 @@ class FemSlipResult(SlipResult):
 
     def shear(self, x: ArrayLike) -> np.ndarray:
         """Shear traction, linear between nodes, 0 outside the contact."""
-        return _interp(self.normal, self.x_nodes, self.q_nodes, x)
+        return interp_nodes(self.normal, self.x_nodes, self.q_nodes, x)
 
     def slip(self, x: ArrayLike) -> np.ndarray:
         """Relative slip of the punch over the substrate since ``Q = 0`` (0 in the stick zone)."""
-        return _interp(self.normal, self.x_nodes, self.slip_nodes, x)
+        return interp_nodes(self.normal, self.x_nodes, self.slip_nodes, x)
 
     def stress(self, x: ArrayLike, z: ArrayLike, *, nu: float | None = None) -> Stress:  # type: ignore[override]
         """Stresses in the substrate at ``(x, z)`` from the FE field, ``sigma_bulk`` included.
@@ -121,7 +122,7 @@ class FemSlipResult(SlipResult):
         return self.stress_field.at(x, z)
 
 
-def _interp(normal: NormalResult, xn: np.ndarray, values: np.ndarray, x: ArrayLike) -> np.ndarray:
+def interp_nodes(normal: NormalResult, xn: np.ndarray, values: np.ndarray, x: ArrayLike) -> np.ndarray:
     """Nodal ``values`` interpolated linearly over the contact ``[-a, c]``, 0 outside."""
     x = np.asarray(x, dtype=float)
     inside = (xn > -normal.a) & (xn < normal.c)
@@ -156,11 +157,11 @@ class FemFrettingResult(FrettingResult):
 
     def shear(self, x: ArrayLike, Q: float, branch: str) -> np.ndarray:
         st = self._state(Q, branch)
-        return _interp(self.normal, self.x_nodes, st.t / self.weights, x)
+        return interp_nodes(self.normal, self.x_nodes, st.t / self.weights, x)
 
     def slip_amplitude(self, x: ArrayLike) -> np.ndarray:
         w = np.array([st.w for st in self.history if st.branch != "loading"])
-        return _interp(self.normal, self.x_nodes, 0.5 * np.ptp(w, axis=0), x)
+        return interp_nodes(self.normal, self.x_nodes, 0.5 * np.ptp(w, axis=0), x)
 
     def stress(self, x: ArrayLike, z: ArrayLike, Q: float, branch: str, *,  # type: ignore[override]
                nu: float | None = None) -> Stress:

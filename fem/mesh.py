@@ -19,6 +19,7 @@ import meshio
 import numpy as np
 from skfem import MeshTri
 
+from threepart import cache
 from threepart.errors import InputError, InputTypeError, NoConvergenceError
 from threepart.meshes import SubstrateSpec, build_substrate
 from threepart.output import scratch_dir
@@ -228,11 +229,58 @@ def make_substrate(spec: SubstrateSpec) -> Substrate:
 
 @functools.lru_cache(maxsize=MESH_CACHE_SIZE)
 def _meshed(spec: SubstrateSpec) -> Substrate:
-    """The cached mesh of ``spec``; never handed out (:func:`make_substrate` copies it)."""
+    """The cached mesh of ``spec``; never handed out (:func:`make_substrate` copies it).
+
+    Kept on disk too, in threepart's cache (:func:`_from_disk`), so that gmsh runs once
+    per spec across runs as well.
+    """
+    k = _mesh_key(spec)
+    sub = _from_disk(k)
+    if sub is not None:
+        return sub
     with scratch_dir("threepart-mesh-") as tmp:   # marked: a killed run's is cleaned by the next
         with gmsh_failure("the substrate"):
             path = build_substrate(spec, Path(tmp) / "substrate.msh")
-            return read_substrate(path)
+            sub = read_substrate(path)
+    cache.store(_KIND, k, {"p": sub.mesh.p, "t": sub.mesh.t,
+                           **{f"group_{name}": f for name, f in sub.boundaries.items()}})
+    return sub
+
+
+#: the kind of the meshes' entries in threepart's cache
+_KIND = "mesh"
+
+
+@functools.cache
+def _mesh_key(spec: SubstrateSpec) -> str:
+    """The cache key of the mesh of ``spec``: the spec, gmsh's version and the meshing code's source."""
+    import gmsh
+
+    import threepart.meshes as meshes
+
+    source = sorted((f.name, f.read_bytes()) for f in Path(meshes.__file__).parent.glob("*.py"))
+    return cache.key({"spec": repr(spec), "gmsh": gmsh.__version__, "source": repr(source)})
+
+
+def _from_disk(k: str) -> Substrate | None:
+    """The mesh of key ``k`` from threepart's cache, if whole and consistent; else None."""
+    def fits(a: dict[str, np.ndarray]) -> bool:
+        p, t = a.get("p"), a.get("t")
+        groups = {n for n in a if n.startswith("group_")}
+        return (p is not None and t is not None and p.ndim == t.ndim == 2 and p.shape[0] == 2
+                and t.shape[0] == 3 and t.dtype.kind in "iu" and t.size > 0
+                and int(t.min()) >= 0 and int(t.max()) < p.shape[1]
+                and {"group_contact", "group_base"} <= groups
+                and all(a[n].dtype.kind in "iu" for n in groups))
+
+    got = cache.load(_KIND, k, fits)
+    if got is None:
+        return None
+    mesh = MeshTri(np.ascontiguousarray(got["p"]), np.ascontiguousarray(got["t"]))
+    groups = {n.removeprefix("group_"): got[n] for n in got if n.startswith("group_")}
+    if any(len(f) and int(f.max()) >= mesh.facets.shape[1] for f in groups.values()):
+        return None
+    return Substrate(mesh=mesh, boundaries=groups, path="<threepart cache>")
 
 
 @contextlib.contextmanager

@@ -15,7 +15,7 @@ it; threepart's ``z = -y`` is the depth. So ``σzz = σyy(mesh)`` and
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, Callable
 
 import numpy as np
 import scipy.sparse.linalg as sla
@@ -29,7 +29,7 @@ from threepart.validate import finite
 from .export import plane_strain_stress
 from threepart.errors import InputError
 
-__all__ = ["StressField", "model_nu"]
+__all__ = ["StressField", "lazy_field", "model_nu"]
 
 
 def model_nu(nu: Any, own: float) -> float:
@@ -120,3 +120,34 @@ class StressField:
         return Stress(x=xb.copy(), z=zb.copy(), sxx=(probe @ nodal["sxx"]).reshape(shape),
                       szz=(probe @ nodal["syy"]).reshape(shape),
                       sxz=-(probe @ nodal["sxy"]).reshape(shape), nu=self.nu)
+
+
+class _LazyField(StressField):
+    """A :class:`StressField` whose ``basis`` and ``u`` are made on first use (:func:`lazy_field`)."""
+
+    def __init__(self, make: Callable[[], tuple[Basis, np.ndarray]], E: float, nu: float) -> None:
+        object.__setattr__(self, "_make", make)
+        object.__setattr__(self, "E", E)
+        object.__setattr__(self, "nu", nu)
+        object.__setattr__(self, "_nodal", {})
+
+    def __getattr__(self, name: str) -> Any:
+        if name not in ("basis", "u"):
+            raise AttributeError(name)
+        basis, u = self.__dict__["_make"]()
+        object.__setattr__(self, "basis", basis)
+        object.__setattr__(self, "u", u)
+        object.__setattr__(self, "_make", None)   # let the factorisation's handle go
+        return self.__dict__[name]
+
+    def __reduce__(self) -> tuple[Any, ...]:
+        return (StressField, (self.basis, self.u, self.E, self.nu))
+
+
+def lazy_field(make: Callable[[], tuple[Basis, np.ndarray]], E: float, nu: float) -> StressField:
+    """A :class:`StressField` whose displacement ``make()`` (``(basis, u)``) runs when first needed.
+
+    A solve on a condensation read from the cache (:func:`fem.elasticity.condense`)
+    then factorises the stiffness only if a stress or a displacement is asked for.
+    """
+    return _LazyField(make, E, nu)

@@ -27,13 +27,14 @@ from threepart.punch import Punch
 from threepart.validate import check_contact, integer
 from threepart.errors import ContactZoneError, InputError, InputTypeError, SeparationError
 from threepart.material import rigid_punch
-from threepart.results import NU, Diagnostics, NormalResult
+from threepart.material import NU
+from threepart.results import Diagnostics, NormalResult
 from threepart.stress import Stress
 from threepart.meshes import SubstrateSpec
 
 from .contact import ContactSolution, check_kinematics, solve_contact, solve_kinematic
 from .export import Fields, fields_of
-from .recovery import StressField, model_nu
+from .recovery import StressField, lazy_field, model_nu
 from .elasticity import SurfaceCompliance, condense
 from ._boundary import boundary
 from ._iv import mesh_arg, normal_iv
@@ -341,7 +342,11 @@ def _normal_result(run: _Refined, punch: Punch, E: float, nu: float, tilt: str, 
     sc, sol, left, right, t2 = run.sc, run.sol, run.left, run.right, run.t_contact
     # the nodal forces on the block: downward f (small), or (v' f, -f) in the global directions
     F = sol.f if kinematics == "small" else np.concatenate([sol.slope * sol.f, -sol.f])
-    flds = fields_of(*sc.displacement(F), E, nu) if fields else None
+    if fields:
+        basis, u = sc.displacement(F)
+        flds, stress_field = fields_of(basis, u, E, nu), StressField(basis=basis, u=u, E=E, nu=nu)
+    else:   # a condensation read from the cache factorises only if a stress is asked for
+        flds, stress_field = None, lazy_field(sc.displacement_later(F), E, nu)
     t3 = time.perf_counter()
     timings = {"locate": run.t_locate, "mesh": run.t_mesh, **sc.timings, "contact": t3 - t2,
                "total": t3 - t_start}
@@ -354,12 +359,11 @@ def _normal_result(run: _Refined, punch: Punch, E: float, nu: float, tilt: str, 
         info["kinematics"] = kinematics
     diag = Diagnostics(h=sc.h, h_end=run.h_end, dofs=sc.dofs, L=run.L, iterations=sol.iterations,
                        residual=sol.residual, timings=timings)
-    basis, u = sc.displacement(F)
     return FemResult(punch=punch, A=rigid_punch(E, nu), a=-left, c=right,
                      alpha=sol.alpha, P=float(np.sum(sol.f)),
                      s=s_out, tilt=tilt, method="fem", diagnostics=diag, info=info,
                      delta=sol.delta, x_nodes=sc.x, p_nodes=sol.f / sc.weights, fields=flds,
-                     stress_field=StressField(basis=basis, u=u, E=E, nu=nu))
+                     stress_field=stress_field)
 
 
 def deformed_ends(result: FemResult) -> tuple[float, float]:

@@ -36,8 +36,8 @@ from ._iv import mesh_arg, normal_iv
 from ._progress import Progress, ProgressArg, progress_iv
 from .contact import ContactSolution
 from .coulomb import Step
-from .friction import _interp
-from .history import Carry, Marched, _march, _normal, _setup, _stick_intervals
+from .friction import interp_nodes
+from .history import Carry, Marched, march_states, normal_state, setup_history, stick_intervals
 from .mesh import MeshPreset, Substrate
 from .recovery import model_nu
 from .solve import FemResult, MeshArg
@@ -88,7 +88,7 @@ class FemSteadyResult(SteadyStateResult):
         that of its first loading; in shakedown too.
         """
         k = self._state(state)
-        return _interp(self.normals[k], self.x_nodes, self.q_ends[k], x)
+        return interp_nodes(self.normals[k], self.x_nodes, self.q_ends[k], x)
 
     def slip_amplitude(self, x: ArrayLike) -> np.ndarray:
         """Half the slip over a half-cycle, linear between the nodes, 0 outside the larger contact."""
@@ -160,15 +160,19 @@ class _Marcher:
     def __init__(self, punch: Punch, states: list[LoadState], f: float, E: float, nu: float, pre: Any,
                  max_iter: int, say: Progress) -> None:
         self.f, self.E, self.nu, self.say = f, E, nu, say
-        self.model, self.L, self.timings = _setup(punch, check_history(states), E, nu, pre, max_iter, f, say)
+        self.model, self.L, self.timings = setup_history(punch, check_history(states), E, nu, pre, max_iter, f, say)
         self.cache: dict[tuple[float, float], tuple[ContactSolution, FemResult]] = {}
+        self.active: np.ndarray | None = None
 
     def normal(self, P: float, s: float) -> tuple[ContactSolution, FemResult]:
-        return _normal(self.model, P, s, self.E, self.nu, self.cache)
+        """The state's normal contact, started from the last one solved (warm start)."""
+        sol = normal_state(self.model, P, s, self.E, self.nu, self.cache, self.active)
+        self.active = sol[0].active
+        return sol
 
     def march(self, states: list[LoadState], carry: Carry | None) -> Marched:
         sols = [self.normal(P, s)[0] for P, s, _, _ in states]
-        return _march(self.model, check_history(states), self.f, sols, self.say, carry)
+        return march_states(self.model, check_history(states), self.f, sols, self.say, carry)
 
 
 def _settled(energies: list[float], scale: float) -> bool:
@@ -188,7 +192,7 @@ def _work_scale(run: Marched, st0: LoadState, st1: LoadState, f: float) -> float
 
 def _permanent(run: Marched, x: np.ndarray) -> tuple[float, float] | None:
     """The widest run of nodes stuck in every step of the cycle ``run``, as ``(left, right)``."""
-    zones = _stick_intervals(np.all(run.stuck, axis=0), x)
+    zones = stick_intervals(np.all(run.stuck, axis=0), x)
     return max(zones, key=lambda z: z[1] - z[0]) if zones else None
 
 

@@ -86,7 +86,11 @@ class TwoBodyModel:
         t0 = time.perf_counter()
         itf = self.itf
         g0 = self.gap(itf.x) - itf.C_nt @ t
-        active = None if self.guess is None else (itf.x >= self.guess[0]) & (itf.x <= self.guess[1])
+        # warm start: the last normal solution's active set (a coupled re-solve, a next step),
+        # else the located contact
+        last = getattr(self, "normal", None)
+        active = (last.active if last is not None else None if self.guess is None
+                  else (itf.x >= self.guess[0]) & (itf.x <= self.guess[1]))
         sol = solve_contact(itf.C_nn, itf.x, g0, self.P, self.s, free_tilt=self.tilt == "free",
                             max_iter=self.max_iter, active=active)
         self.timings["normal"] += time.perf_counter() - t0

@@ -1,8 +1,11 @@
-"""Shared test set-up: threepart's per-user signing key lives in a temporary directory.
+"""Shared test set-up: threepart's per-user signing key and its cache live in temporary directories.
 
 Every output threepart writes is signed with a per-user key
 (:func:`threepart.output.state_dir`); the tests keep theirs out of the home
-directory. Worker processes (dask, subprocesses) inherit the variable.
+directory. The FE condensations are cached on disk (:mod:`threepart.cache`): a test run
+never writes the user's cache, but shares one temporary cache between its xdist workers,
+unless ``THREEPART_CACHE`` names one. Worker processes (xdist, dask, subprocesses)
+inherit both variables.
 """
 from __future__ import annotations
 
@@ -10,6 +13,25 @@ import os
 import tempfile
 
 import pytest
+
+
+#: the temporary cache this run made (removed at its end), if ``THREEPART_CACHE`` was unset
+_RUN_CACHE: list[tempfile.TemporaryDirectory] = []
+
+
+def pytest_configure(config: pytest.Config) -> None:
+    """On the controller, before the xdist workers start: one temporary cache for the whole run."""
+    if hasattr(config, "workerinput") or os.environ.get("THREEPART_CACHE"):
+        return
+    _RUN_CACHE.append(tempfile.TemporaryDirectory(prefix="threepart-test-cache-"))
+    os.environ["THREEPART_CACHE"] = _RUN_CACHE[0].name
+
+
+def pytest_unconfigure(config: pytest.Config) -> None:
+    """Remove the run's temporary cache (the controller's, after its workers have ended)."""
+    while _RUN_CACHE:
+        os.environ.pop("THREEPART_CACHE", None)
+        _RUN_CACHE.pop().cleanup()
 
 
 @pytest.fixture(scope="session", autouse=True)
