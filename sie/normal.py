@@ -88,7 +88,7 @@ def check_scheme(scheme: str, n: int) -> Plain | Projected:
     return make_scheme(scheme, n)
 
 
-def _check_normal(punch: Punch, P: float, s: float, A: float, tilt: str, n: int,
+def check_normal(punch: Punch, P: float, s: float, A: float, tilt: str, n: int,
                   scheme: str) -> tuple[float, float, float, Plain | Projected]:
     """Validate before any numerics; return ``P``, ``s``, ``A`` as float64 and the scheme."""
     check_punch(punch)
@@ -332,7 +332,7 @@ def solve_normal(punch: Punch, P: float, s: float = 0.0, *, A: float, tilt: str 
         If the Newton iteration fails, or (``n`` not given) the estimate has not
         met the target at the scheme's largest ``n``.
     """
-    P, s, A, sch = _check_normal(punch, P, s, A, tilt, DEFAULT_N if n is None else n, scheme)
+    P, s, A, sch = check_normal(punch, P, s, A, tilt, DEFAULT_N if n is None else n, scheme)
     t0 = time.perf_counter()
     if n is not None:
         res = _solve_at(punch, P, s, A, tilt, sch)

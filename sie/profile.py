@@ -55,7 +55,7 @@ from threepart.textfile import finite_row, read_text
 from threepart.validate import check_contact, check_punch
 
 from .fretting import approach as punch_approach, stick_gap
-from .normal import SieNormalResult, _check_normal, solve_ends
+from .normal import SieNormalResult, check_normal, solve_ends
 from .schemes import Projected
 from .series import ChebyshevPressure
 
@@ -386,7 +386,7 @@ def solve_profile(profile: WornProfile, P: float, s: float = 0.0, *, A: float, t
     if (ends == "unbounded") != (contact is not None):
         raise InputError("`contact` is given exactly when `ends` = 'unbounded'")
     punch = profile.punch
-    P, s, A, _ = _check_normal(punch, P, s, A, tilt, n, "projected")
+    P, s, A, _ = check_normal(punch, P, s, A, tilt, n, "projected")
     sch = ProfileScheme(n=n, profile=profile)
     t0 = time.perf_counter()
     if ends == "unbounded":

@@ -41,8 +41,9 @@ bounded ends; as the slip zones unload, the truncated series rings below 0 next 
 the stick zone's ends (the limit's singular pressure forming) and at the scar's
 outer edge: a marched state accepts ``p >= -MARCH_TENSILE p_max`` there, wears
 only where ``p > 0``, and reports the least ``p/p_max`` as ``info["least"]``. Past
-that floor the march ends early: ``cycles[-1]`` is the last state solved, and
-``info["stopped"]`` says why (never silently: the requested count is ``info["requested"]``).
+that floor, or where a step's contact or stick zone is not found (a named error), the march ends
+early: ``cycles[-1]`` is the last state solved, and ``info["stopped"]`` says why (never silently:
+the requested count is ``info["requested"]``).
 
 ProfileFrettingResult   -- SieFrettingResult on a worn profile
 solve_profile_slip      -- partial slip on a worn profile
@@ -58,7 +59,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from threepart.errors import InputError, NoConvergenceError, SeparationError, StickSeparationError
+from threepart.errors import (InputError, NoConvergenceError, SeparationError, StickSeparationError,
+                              StickZoneError)
 from threepart.fretting_wear import WearResult, register_marcher
 from threepart.punch import Punch
 from threepart.results import Diagnostics
@@ -262,6 +264,19 @@ def knots(normal: ProfileNormalResult, stick: tuple[float, float], points: int) 
     return np.unique(np.concatenate([grid, stick]))
 
 
+def _knot_pressure(normal: ProfileNormalResult, grid: np.ndarray) -> np.ndarray:
+    """The pressure at the knots: the series inside the contact, 0 outside."""
+    inside = (grid > -normal.a) & (grid < normal.c)
+    return np.where(inside, normal.pressure(np.where(inside, grid, 0.5 * (normal.c - normal.a))), 0.0)
+
+
+def _stop_reason(exc: Exception) -> str:
+    """Why a march ended before its cycles: the state after the last recorded one is not trusted."""
+    if isinstance(exc, SeparationError):
+        return f"the worn profile's bounded contact is tensile past the march's floor: {exc}"
+    return f"the worn profile's contact or its stick zone at Q_max was not found ({type(exc).__name__}): {exc}"
+
+
 def march(punch: Punch, P: float, s: float, Q_max: float, f: float, *, A: float, law: str, k: float,
           cycles: int, jump: int | None = None, tilt: str = "free", n: int = DEFAULT_TERMS,
           points: int = GRID_POINTS) -> WearResult:
@@ -281,23 +296,24 @@ def march(punch: Punch, P: float, s: float, Q_max: float, f: float, *, A: float,
     depth = np.zeros(grid.size)
     N, start, least, stopped = 0, None, 0.0, ""
     rec: dict[str, list] = {"cycles": [], "energy": [], "stick_zones": [], "depths": [], "volume": [],
-                            "contacts": [], "alpha": []}
+                            "contacts": [], "alpha": [], "pressure": []}
     while True:
         prof = WornProfile(punch, grid, depth)
         try:
             trial = solve_profile(prof, P, s, A=A, tilt=tilt, n=n, start=start, tensile_floor=MARCH_TENSILE)
-        except SeparationError as exc:
+            rated = wear_rate(trial, Q_max, f, grid)
+        except (SeparationError, NoConvergenceError, StickZoneError) as exc:
             if not rec["cycles"]:
                 raise
-            stopped = f"at cycle {N} the worn profile's bounded contact is tensile past the march's floor: {exc}"
+            stopped = f"at cycle {N} {_stop_reason(exc)}"
             break       # the knots do not resolve the limit's singular ends any further (module docstring)
         normal = trial
         least = min(least, normal.info["least"])
         start = (0.5 * (normal.c - normal.a), 0.5 * (normal.a + normal.c))
-        rate, work, stick, travel = wear_rate(normal, Q_max, f, grid)
+        rate, work, stick, travel = rated
         for key, value in (("cycles", N), ("energy", work), ("stick_zones", stick), ("depths", depth.copy()),
                            ("volume", float(np.trapezoid(depth, grid))), ("contacts", (-normal.a, normal.c)),
-                           ("alpha", normal.alpha)):
+                           ("alpha", normal.alpha), ("pressure", _knot_pressure(normal, grid))):
             rec[key].append(value)
         if N >= cycles:
             break
@@ -309,15 +325,17 @@ def march(punch: Punch, P: float, s: float, Q_max: float, f: float, *, A: float,
         N += dN
     if not np.all(np.isfinite(depth)):
         raise NoConvergenceError("sie wear: the worn depth is not finite; no result is returned")
-    final = profile_fretting_cycle(normal, Q_max, f)
+    last = normal
     return WearResult(punch=punch, P=P, s=s, Q_max=Q_max, f=f, A=A, law=law, k=k, x=grid,
                       cycles=np.array(rec["cycles"]), energy=np.array(rec["energy"]),
                       stick_zones=np.array(rec["stick_zones"]), depths=np.array(rec["depths"]),
                       volumes=np.array(rec["volume"]), contacts=np.array(rec["contacts"]),
-                      alphas=np.array(rec["alpha"]), final=final, method="sie",
+                      alphas=np.array(rec["alpha"]), method="sie",
+                      final_cycle=lambda: profile_fretting_cycle(last, Q_max, f),
+                      pressures=np.array(rec["pressure"]),
                       info={"time": time.perf_counter() - t0, "steps": len(rec["cycles"]) - 1,
                             "jump": "auto" if jump is None else jump, "n": n, "points": grid.size,
-                            "least": least, "stopped": stopped, "requested": cycles})
+                            "least": least, "stopped": stopped, "requested": cycles, "tilt": tilt})
 
 
 register_marcher("sie", march)

@@ -84,7 +84,7 @@ def test_a_case_marked_rigid_punch_gets_the_half_plane_compliance():
     assert sym.A == pytest.approx(2.0 * (1.0 - 0.3**2) / 210e3, rel=SAME)
     # every case with a material says which bodies it is; only the Ti-on-Ti ones are pairs
     pairs = {c.name for c in load_cases(None) if c.material is not None and c.bodies == "similar pair"}
-    assert pairs == {"fan_blade_flank", "fan_blade_flank_bulk", "fan_blade_flight_cycle"}
+    assert pairs == {"fan_blade_flank", "fan_blade_flank_bulk", "fan_blade_flight_cycle", "fan_blade_flank_wear"}
 
 
 def _catalogue(tmp_path, **fields):

@@ -9,6 +9,8 @@ invariants (the stick zone of a symmetric contact does not move).
 """
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
 import pytest
 
@@ -27,7 +29,7 @@ P, F = 400.0, 0.5
 HERTZ = Punch(R1=10, R2=10, b=0)
 ISSUE = Punch(R1=10, R2=5, b=1)
 #: a march short enough for the default run: Hertz, Q_max = f P/2, 301 knots, 1024 terms
-SHORT = dict(k=1e-5, cycles=60, points=301, n=1024)
+SHORT: dict[str, Any] = dict(k=1e-5, cycles=60, points=301, n=1024)
 #: rounding of a few operations on the same numbers
 ROUNDING = tolerance("wear-limit", "round_off").limit
 
@@ -262,3 +264,28 @@ def test_the_energy_falls_monotonically_below_5_percent(long_march):
     r = long_march
     assert np.all(np.diff(r.energy) <= 0)
     assert r.energy[-1] <= tolerance("wear", "energy_left").limit * r.energy[0]
+
+
+def test_a_step_that_cannot_be_solved_ends_the_march_with_its_records(monkeypatch):
+    """A step's contact not found (a named error) ends the march early, says why, and keeps the states solved."""
+    import threepart.sie.wear as sw
+    from threepart.errors import NoConvergenceError
+
+    calls = {"n": 0}
+    real = sw.solve_profile
+
+    def failing(*args, **kwargs):
+        calls["n"] += 1
+        if calls["n"] > 4:     # the unworn profile that places the knots, then the states of cycles 0, 1, 2
+            raise NoConvergenceError("sie.profile: contact ends: line search failed (stand-in)")
+        return real(*args, **kwargs)
+
+    monkeypatch.setattr(sw, "solve_profile", failing)
+    r = threepart.wear(HERTZ, P, 0.0, 0.5 * F * P, F, A=A, k=1e-5, cycles=10, jump=1, points=101, n=512)
+    assert list(r.cycles) == [0, 1, 2] and r.info["requested"] == 10
+    assert "at cycle 3" in r.info["stopped"] and "NoConvergenceError" in r.info["stopped"]
+    assert r.depths.shape == (3, r.x.size) and r.pressures.shape == (3, r.x.size)
+    # the first step's failure is the caller's: nothing was recorded
+    calls["n"] = 3
+    with pytest.raises(NoConvergenceError, match="stand-in"):
+        threepart.wear(HERTZ, P, 0.0, 0.5 * F * P, F, A=A, k=1e-5, cycles=10, jump=1, points=101, n=512)

@@ -25,14 +25,25 @@ from .registry import lift_off
 from .validate import finite, positive, show
 from threepart.errors import InputError
 
-__all__ = ["Case", "CASES_FILE", "SUITES", "LIFT_OFF_METHOD", "load_cases", "get_case", "slip_loads"]
+__all__ = ["Case", "Wear", "CASES_FILE", "SUITES", "LIFT_OFF_METHOD", "load_cases", "get_case", "slip_loads"]
 
 CASES_FILE = Path(__file__).with_name("cases.json")
 #: who reads a case: the verification run, the FEM tests and benchmark, the SIE tests and benchmark
-SUITES = ("verify", "fem", "sie")
+SUITES = ("verify", "fem", "sie", "wear")
 #: the method whose lift-off range resolves ``s_lift_off_fraction``: the paper's closed form,
 #: whose framework (both contact ends on the edge arcs) the fraction measures
 LIFT_OFF_METHOD = "closedform"
+
+
+@dataclass(frozen=True)
+class Wear:
+    """A wear case's march (issue 39, :func:`threepart.wear`): its ``law``, coefficient ``k``, ``cycles``
+    and where ``k`` comes from (``source``)."""
+
+    law: str
+    k: float
+    cycles: int
+    source: str = ""
 
 
 @dataclass(frozen=True)
@@ -78,6 +89,7 @@ class Case:
     sigma_bulk: float = 0.0
     states: tuple[tuple[float, float, float, float], tuple[float, float, float, float]] | None = None
     bodies: str = BODIES[0]
+    wear: Wear | None = None
 
     @property
     def beyond(self) -> bool:
@@ -131,8 +143,10 @@ class Case:
 
     @property
     def kind(self) -> str:
-        """``"steady"`` with two ``states``, ``"fretting"`` for a cycle, ``"slip"`` when a shear
-        load is applied, else ``"normal"``."""
+        """``"wear"`` with a ``wear`` march (a fretting cycle worn), ``"steady"`` with two ``states``,
+        ``"fretting"`` for a cycle, ``"slip"`` when a shear load is applied, else ``"normal"``."""
+        if self.wear is not None:
+            return "wear"
         if self.states is not None:
             return "steady"
         if self.Q_over_fP is None:
@@ -221,6 +235,9 @@ def _checked_case(c: Any, default_material: Any, path: str | Path | None, i: int
             if value is not None:
                 finite(key, value)
         finite("sigma_bulk", case.sigma_bulk)
+        if case.wear is not None and (case.f is None or case.Q_over_fP is None):
+            raise InputError(f"has no field {'f' if case.f is None else 'Q_over_fP'!r} (a wear case is a "
+                             "fretting cycle of amplitude Q_over_fP f P)")
         if case.states is not None and case.f is None:
             raise InputError("`states` (a cycle) needs the coefficient of friction `f`")
         if case.material is not None:
@@ -247,7 +264,21 @@ def _case(c: dict[str, Any], default_material: dict[str, float]) -> Case:
                 f=c.get("f"), Q_over_fP=c.get("Q_over_fP"), suites=tuple(c["suites"]),
                 closedform_refuses=c.get("closedform_refuses"), cycle=bool(c.get("cycle", False)),
                 sigma_bulk=float(c.get("sigma_bulk", 0.0)), states=_states(c.get("states")),
-                bodies=c.get("bodies", BODIES[0]))
+                bodies=c.get("bodies", BODIES[0]), wear=_wear(c.get("wear")))
+
+
+def _wear(spec: Any) -> Wear | None:
+    """A case's ``wear``: None, or its law, ``k > 0``, whole ``cycles >= 1`` and source."""
+    if spec is None:
+        return None
+    if not isinstance(spec, dict):
+        raise InputError(f"`wear` must be an object {{law, k, cycles, source}}, not {show(spec)}")
+    law, k, cycles = spec["law"], positive("k", spec["k"]), spec["cycles"]
+    if not isinstance(law, str):
+        raise InputError(f"`law` must be a string, not {show(law)}")
+    if isinstance(cycles, bool) or not isinstance(cycles, int) or cycles < 1:
+        raise InputError(f"`cycles` = {show(cycles)} must be a whole number >= 1")
+    return Wear(law, float(k), cycles, str(spec.get("source", "")))
 
 
 def _states(states: Any) -> tuple[tuple[float, float, float, float], tuple[float, float, float, float]] | None:

@@ -9,21 +9,28 @@ fixed proportion: the contact sees only the sum (docs/WEAR.md, section 4).
 wear             -- the march: ``cycles``, ``energy``, ``stick_zones``, ``depths``, ``volume``, ``final``
 WearResult       -- its result
 register_marcher -- a method's march under its name
+has_marcher      -- whether a method marches wear (its solver package loaded to register it)
+WearCase         -- a catalogue wear case: a fretting case of threepart/cases.json with its law, ``k`` and cycles
+wear_cases       -- the catalogue's wear cases (suite ``"wear"``: fretting cases with a ``wear`` law, ``k``, cycles)
+wear_case        -- one of them by name
 LAWS             -- "archard" (``Δw = k p |slip|``) and "energy" (``Δw = k q·slip``, Fouvry)
 """
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from functools import cached_property
 from typing import Any, Callable
 
 import numpy as np
 
+from threepart.catalogue import Case
 from threepart.errors import InputError, InputTypeError
 from threepart.punch import Punch
 from threepart.results import FrettingResult
 from threepart.validate import check_punch, check_tilt, integer, lever_arm, positive
 
-__all__ = ["wear", "WearResult", "register_marcher", "LAWS"]
+__all__ = ["wear", "WearResult", "register_marcher", "has_marcher", "WearCase", "wear_cases", "wear_case",
+           "LAWS"]
 
 LAWS = ("archard", "energy")
 #: the most cycles a march takes (a fan-blade flank's life is 1e6 to 1e8)
@@ -59,8 +66,11 @@ class WearResult:
         ``∫ w dx`` at each: the worn area per unit length (both bodies).
     contacts, alphas
         The contact ``(-a, c)`` and the tilt at each.
-    final
-        The fretting cycle on the last worn profile: ``pressure(x)``, ``shear``, ``stress``, ``edges()``.
+    final_cycle
+        Solves the fretting cycle on the last worn profile: :attr:`final` calls it once.
+    pressures
+        The pressure at the knots ``x`` at each recorded cycle, ``(len(cycles), len(x))`` (0 off the
+        contact), or None where the marcher does not record it.
     """
 
     punch: Punch
@@ -79,9 +89,20 @@ class WearResult:
     volumes: np.ndarray = field(repr=False)
     contacts: np.ndarray = field(repr=False)
     alphas: np.ndarray = field(repr=False)
-    final: FrettingResult = field(repr=False)
+    final_cycle: Callable[[], FrettingResult] = field(repr=False, compare=False)
     method: str = ""
     info: dict[str, Any] = field(default_factory=dict, repr=False)
+    pressures: np.ndarray | None = field(default=None, repr=False)
+
+    @cached_property
+    def final(self) -> FrettingResult:
+        """The fretting cycle on the last worn profile: ``pressure(x)``, ``shear``, ``stress``, ``edges()``.
+
+        Solved when first asked for: it costs more than the march's steps together (measured 60 %
+        of the fan-blade flank's march with it). It raises the solver's named error where the cycle
+        cannot be solved (a stick zone of the cycle's lower loads not found on the scar's steep edge).
+        """
+        return self.final_cycle()
 
     @property
     def volume(self) -> float:
@@ -151,12 +172,76 @@ def wear(punch: Punch, P: float, s: float, Q_max: float, f: float, *, A: float, 
     if not isinstance(method, str):
         raise InputTypeError(f"`method` must be a string, not {type(method).__name__}")
     P, s, Q_max, f, A, k, cycles = _wear_iv(punch, P, s, Q_max, f, A, law, k, cycles, jump, tilt)
+    if not has_marcher(method):
+        raise InputError(f"`method` = {method!r} has no wear march (not yet); marchers: "
+                         f"{', '.join(sorted(_MARCHERS)) or 'none'}")
+    return _MARCHERS[method](punch, P, s, Q_max, f, A=A, law=law, k=k, cycles=cycles, jump=jump,
+                             tilt=tilt, **options)
+
+
+def has_marcher(method: str) -> bool:
+    """Whether ``method`` marches wear: a built-in method's package is loaded first (it registers its march)."""
     if method not in _MARCHERS:
         from threepart import registry
         if method in registry.BUILTIN:
             registry.get(method)      # the solver package registers its marcher on import
-    if method not in _MARCHERS:
-        raise InputError(f"`method` = {method!r} has no wear march; marchers: {', '.join(sorted(_MARCHERS)) or 'none'}")
-    return _MARCHERS[method](punch, P, s, Q_max, f, A=A, law=law, k=k, cycles=cycles, jump=jump,
-                             tilt=tilt, **options)
+    return method in _MARCHERS
 
+
+@dataclass(frozen=True)
+class WearCase:
+    """A catalogue wear case (threepart/cases.json, suite ``"wear"``): a fretting ``case`` (punch, material,
+    ``P``, ``s``, ``f``, ``Q_max``) worn by ``law`` with coefficient ``k`` over ``cycles``."""
+
+    case: Case
+    law: str
+    k: float
+    cycles: int
+    source: str = ""
+
+    @classmethod
+    def of(cls, case: Case) -> "WearCase":
+        """The wear case of a catalogue ``case`` of kind ``"wear"``; its law is checked here."""
+        if case.wear is None or case.Q is None or case.f is None:
+            raise InputError(f"case {case.name!r} is not a wear case (it has no `wear`, `f` and `Q_over_fP`)")
+        if case.wear.law not in LAWS:
+            raise InputError(f"case {case.name!r}: `law` = {case.wear.law!r} must be one of {', '.join(LAWS)}")
+        return cls(case, case.wear.law, case.wear.k, case.wear.cycles, case.wear.source)
+
+    @property
+    def name(self) -> str:
+        """The case's name (``threepart wear --case NAME``)."""
+        return self.case.name
+
+    @property
+    def Q_max(self) -> float:
+        """The shear amplitude ``Q_over_fP f P``."""
+        assert self.case.Q is not None      # checked by :meth:`of`
+        return self.case.Q
+
+    def run(self, **options: Any) -> WearResult:
+        """:func:`wear` of this case; ``options`` replace its ``law``, ``k``, ``cycles`` or add the marcher's."""
+        c = self.case
+        kw: dict[str, Any] = {"law": self.law, "k": self.k, "cycles": self.cycles, **options}
+        return wear(c.punch, c.P, c.s_load, self.Q_max, c.f, A=c.A, tilt=c.tilt, **kw)   # type: ignore[arg-type]
+
+
+def wear_cases(path: str | None = None) -> list[WearCase]:
+    """The catalogue's wear cases (suite ``"wear"`` of :func:`threepart.catalogue.load_cases`), in file order."""
+    from threepart.catalogue import CASES_FILE, load_cases
+
+    cases = load_cases("wear", path)          # names the file in its own errors
+    try:
+        return [WearCase.of(c) for c in cases]
+    except InputError as exc:
+        raise InputError(f"`path` = {str(path or CASES_FILE)!r}, {exc}") from None
+
+
+def wear_case(name: str, path: str | None = None) -> WearCase:
+    """The catalogue's wear case ``name``; ``InputError`` listing the wear cases if there is none."""
+    cases = wear_cases(path)
+    for c in cases:
+        if c.name == name:
+            return c
+    raise InputError(f"`name` = {name!r} is not a wear case of the catalogue (its wear cases: "
+                     f"{', '.join(c.name for c in cases) or 'none'})")

@@ -1,0 +1,223 @@
+"""The report's "Fretting wear" section: the catalogue's wear case marched and judged (issue 39; docs/WEAR.md).
+
+The march of :data:`WEAR_CASE` (:func:`threepart.fretting_wear.wear_case`, the SIE)
+is set against the closed-form worn limit (:func:`threepart.closedform.wear_limit`)
+and its own identities, each judged by a row of the tolerance table:
+
+* the pressure's approach to the limit, L2 over the limit's stick zone less
+  :data:`INTERIOR` of it at each end, relative to the limit's (``("wear", "limit_L2")``),
+  and whether that distance falls at every recorded cycle;
+* the stick zone at ``Q_max`` against the limit's, of the unworn contact's width W
+  (``("wear", "stick_zone")``): issue 39 states it for a symmetric contact, where the limit's
+  is the cycle's (docs/WEAR.md, section 1); under a moment the limit's receding end moves
+  (the rule :data:`LIMIT_RULE`, section 3), and the march's drift from its start is shown beside;
+* the energy per cycle falling, monotonically, below ``("wear", "energy_left")`` of its start;
+* the volume identity, eq. W15: the worn area per cycle (the knots' increments,
+  trapezoidal) equals ``k W`` under the energy law; Archard's ``k`` is the energy
+  law's ``k/f`` (docs/WEAR.md, section 5), so ``k/f`` there (``("wear", "identity")``).
+
+Targets missed are shown as such, as the speed section does; they do not fail the run.
+
+march_record  -- a march's figures against the limit and its identities, with each target judged
+draw          -- the worn depth, the pressure, the energy per cycle and the distance to the limit (PNG)
+wear_study    -- the catalogue case's march, its record and its plot (the verification run)
+study_record  -- a march's record for report.json, its plot drawn
+wear_section  -- the section, or None when the document has no wear record
+"""
+from __future__ import annotations
+
+import math
+from pathlib import Path
+from typing import Any, Callable
+
+import numpy as np
+
+from threepart.tolerances import tolerance
+
+from .sections import Figure, Section, Status, Table, fmt
+
+__all__ = ["march_record", "draw", "wear_study", "study_record", "wear_section", "WEAR_CASE", "WEAR_PLOT", "INTERIOR",
+           "LIMIT_RULE", "TARGETS"]
+
+#: the catalogue's wear case the verification run marches
+WEAR_CASE = "fan_blade_flank_wear"
+#: where the report draws its march
+WEAR_PLOT = "plots/wear.png"
+#: the fraction of the limit's stick zone left out at each end of the L2 distance (its singular ends)
+INTERIOR = 0.1
+#: the placement of the limit's stick zone under a free tilt (closedform.wear.STICK_RULES; the default)
+LIMIT_RULE = "pinned"
+#: target -> (label, tolerance row or None for a yes/no figure)
+TARGETS: dict[str, tuple[str, tuple[str, str] | None]] = {
+    "limit_L2": ("pressure's L2 distance to the worn limit at the last cycle", ("wear", "limit_L2")),
+    "limit_monotone": ("that distance falls at every recorded cycle", None),
+    "stick_zone": ("stick zone at Q_max against the worn limit's, largest end difference, of W",
+                   ("wear", "stick_zone")),
+    "energy_left": ("energy per cycle at the last cycle, of its start", ("wear", "energy_left")),
+    "energy_monotone": ("energy per cycle falls at every recorded cycle", None),
+    "identity": ("worn area per cycle against k W (eq. W15), largest relative error", ("wear", "identity")),
+}
+#: recorded cycles drawn in the depth and pressure panels
+DRAWN = 7
+
+
+def _limit(r: Any) -> Any:
+    from threepart.closedform import solve_normal, wear_limit
+
+    normal = solve_normal(r.punch, r.P, r.s, A=r.A, tilt=r.info.get("tilt", "free"))
+    return wear_limit(normal, r.Q_max, r.f, stick=LIMIT_RULE)
+
+
+def _distances(r: Any, limit: Any) -> list[float]:
+    """L2 distance of each recorded pressure (at the knots) to the limit's, over the stick zone's interior."""
+    x1, x2 = limit.stick_zone
+    inner = (r.x > x1 + INTERIOR * (x2 - x1)) & (r.x < x2 - INTERIOR * (x2 - x1))
+    ref = limit.pressure(r.x[inner])
+    norm = float(np.sqrt(np.mean(ref ** 2)))
+    return [float(np.sqrt(np.mean((p[inner] - ref) ** 2)) / norm) for p in r.pressures]
+
+
+def _identity(r: Any) -> float:
+    """The largest relative error of the worn area per cycle against ``k' W`` over the steps (eq. W15)."""
+    k = r.k if r.law == "energy" else r.k / r.f
+    dN = np.diff(r.cycles)
+    if not dN.size:
+        return math.nan
+    rate = np.diff(r.volumes) / dN
+    return float(np.max(np.abs(rate - k * r.energy[:-1]) / (k * r.energy[:-1])))
+
+
+def march_record(r: Any) -> dict[str, Any]:
+    """A march's figures: the limit, the distances, the drift, the energy, the identity, each target judged."""
+    limit = _limit(r)
+    distance = _distances(r, limit)
+    W = float(r.contacts[0, 1] - r.contacts[0, 0])
+    energy = np.asarray(r.energy)
+    figures = {"limit_L2": distance[-1], "limit_monotone": bool(np.all(np.diff(distance) < 0)),
+               "stick_zone": float(np.max(np.abs(r.stick_zones[-1] - np.asarray(limit.stick_zone)))) / W,
+               "energy_left": float(energy[-1] / energy[0]),
+               "energy_monotone": bool(np.all(np.diff(energy) <= 0)), "identity": _identity(r)}
+    targets: dict[str, dict[str, Any]] = {}
+    for key, (_, row) in TARGETS.items():
+        value = figures[key]
+        if row is None:
+            targets[key] = {"limit": None, "met": bool(value)}
+        else:
+            lim = tolerance(*row).limit
+            targets[key] = {"limit": lim, "met": bool(value <= lim)}
+    return {"limit": {"rule": LIMIT_RULE, "stick_zone": [float(v) for v in limit.stick_zone],
+                      "alpha": float(limit.alpha)},
+            "distance": distance, "energy_ratio": figures["energy_left"],
+            "energy_monotone": figures["energy_monotone"],
+            "stick_drift": float(np.max(np.abs(r.stick_zones - r.stick_zones[0]))) / W,
+            "identity": figures["identity"], "figures": figures, "targets": targets, "W": W,
+            "_limit": limit}
+
+
+def _picks(n: int) -> list[int]:
+    return sorted(set(np.linspace(0, n - 1, min(DRAWN, n)).astype(int).tolist()))
+
+
+def draw(r: Any, rec: dict[str, Any], path: Path) -> None:
+    """The worn depth and the pressure at recorded cycles, the energy per cycle and the distance to the limit."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    limit = rec["_limit"]
+    fig, ((ax, bx), (cx, dx)) = plt.subplots(2, 2, figsize=(12, 8.5), constrained_layout=True)
+    cmap = plt.get_cmap("viridis")
+    picks = _picks(len(r.cycles))
+    for i, j in enumerate(picks):
+        colour = cmap(i / max(len(picks) - 1, 1))
+        label = f"N = {int(r.cycles[j]):,}"
+        ax.plot(r.x, 1e3 * r.depths[j], color=colour, label=label)
+        bx.plot(r.x, r.pressures[j], color=colour, label=label)
+    x1, x2 = limit.stick_zone
+    xl = np.linspace(x1, x2, 2001)[1:-1]
+    xs = np.linspace(r.x[0], r.x[-1], 2001)
+    ax.plot(xs, 1e3 * limit.depth(xs), "k--", label=f"worn limit ({rec['limit']['rule']})")
+    bx.plot(xl, limit.pressure(xl), "k--", label="worn limit (eq. W3)")
+    bx.set_ylim(min(0.0, float(np.min(r.pressures))), 1.6 * float(np.max(r.pressures)))
+    for axis, ylabel, title in ((ax, "worn depth [µm] (both bodies)", "worn profile"),
+                                (bx, "p [MPa]", "pressure")):
+        for k, v in enumerate(limit.stick_zone):
+            axis.axvline(v, color="grey", lw=0.6, ls=":", label="limit's stick zone" if k == 0 else None)
+        axis.set_xlabel("x [mm]")
+        axis.set_ylabel(ylabel)
+        axis.set_title(title + " at the recorded cycles")
+        axis.legend(fontsize=7)
+    N = np.maximum(r.cycles, 1)
+    cx.semilogx(N, r.energy / r.energy[0], "C0.-")
+    cx.axhline(rec["targets"]["energy_left"]["limit"], color="C3", ls="--", label="target")
+    cx.set_xlabel("cycles N (0 drawn at 1)")
+    cx.set_ylabel("energy per cycle / its start")
+    cx.set_title("friction energy per cycle")
+    cx.legend(fontsize=8)
+    dx.loglog(N, rec["distance"], "C1.-")
+    dx.axhline(rec["targets"]["limit_L2"]["limit"], color="C3", ls="--", label="target")
+    dx.set_xlabel("cycles N (0 drawn at 1)")
+    dx.set_ylabel(f"L2 distance of p to the limit (stick zone less {INTERIOR:.0%} at each end)")
+    dx.set_title("approach to the worn limit")
+    dx.legend(fontsize=8)
+    fig.suptitle(f"fretting wear, {r.law} law, k = {r.k:g} mm²/N, {int(r.cycles[-1]):,} of "
+                 f"{int(r.info['requested']):,} cycles ({r.method})")
+    try:
+        fig.savefig(path, format="png", dpi=100)
+    finally:
+        plt.close(fig)
+
+
+def wear_study(root: Path, say: Callable[[str], None]) -> dict[str, Any]:
+    """The catalogue's wear case marched, judged and drawn into ``root / WEAR_PLOT``: the report's record."""
+    import time
+
+    from threepart.fretting_wear import wear_case
+
+    wc = wear_case(WEAR_CASE)
+    t0 = time.perf_counter()
+    r = wc.run()
+    rec = study_record(r, root, WEAR_CASE, time.perf_counter() - t0)
+    say(f"[study] wear: {WEAR_CASE}, {rec['reached']} of {rec['requested']} cycles in {rec['steps']} steps, "
+        f"{rec['time_s']:.1f} s")
+    return rec
+
+
+def study_record(r: Any, root: Path, name: str, seconds: float) -> dict[str, Any]:
+    """A march's record for ``report.json`` (:func:`march_record` and the run), its plot drawn into ``root``."""
+    rec = march_record(r)
+    (root / WEAR_PLOT).parent.mkdir(parents=True, exist_ok=True)
+    draw(r, rec, root / WEAR_PLOT)
+    rec.pop("_limit")
+    return {"case": name, "law": r.law, "k": r.k, "requested": int(r.info["requested"]),
+            "reached": int(r.cycles[-1]), "steps": int(r.info["steps"]), "stopped": r.info["stopped"],
+            "time_s": seconds, "cycles": [int(n) for n in r.cycles], "energy": [float(v) for v in r.energy],
+            "plot": WEAR_PLOT, **rec}
+
+
+def wear_section(doc: dict[str, Any]) -> Section | None:
+    """The report's section "Fretting wear", or None when ``doc`` holds no wear record."""
+    rec = doc.get("wear")
+    if not rec:
+        return None
+    rows = []
+    for key, (label, _) in TARGETS.items():
+        t, value = rec["targets"][key], rec["figures"][key]
+        shown = ("yes" if value else "no") if t["limit"] is None else fmt(value)
+        rows.append((label, shown, "yes" if t["limit"] is None else f"<= {t['limit']:g}",
+                     "met" if t["met"] else "MISSED"))
+    stopped = (f" The march stopped early: {rec['stopped'].rstrip('.')}." if rec["stopped"] else "")
+    intro = (f"The catalogue's wear case {rec['case']} ({rec['law']} law, k = {rec['k']:g} mm²/N), marched "
+             f"by the SIE over {rec['reached']:,} of its {rec['requested']:,} cycles in {rec['steps']} steps "
+             f"({rec['time_s']:.1f} s), against the closed-form worn limit "
+             f"(closedform.wear_limit, stick zone '{rec['limit']['rule']}': "
+             f"[{rec['limit']['stick_zone'][0]:.6g}, {rec['limit']['stick_zone'][1]:.6g}] mm; docs/WEAR.md)."
+             f"{stopped} The stick zone at Q_max moved by {fmt(rec['stick_drift'])} W from its start. Each "
+             "target is a row of the tolerance table; a target missed is shown, and does not fail the run.",)
+    met = all(t["met"] for t in rec["targets"].values())
+    return Section("Fretting wear", "wear", (intro,),
+                   (Table(("target", "measured", "limit", ""), tuple(rows)),),
+                   (Figure(rec["plot"], "the worn depth and the pressure at recorded cycles, the energy per "
+                                        "cycle and the pressure's distance to the worn limit"),),
+                   status=Status.of(met))
