@@ -112,8 +112,8 @@ def test_the_quick_map_grid_has_at_least_twelve_feasible_points():
 
 def test_a_point_is_evaluated_at_the_overhang_it_names():
     pt = validity.map_points(quick=True)[2]
-    P = validity._load(pt)
-    ref = closedform.solve_normal(validity._punch(pt), P, 0.0, A=similar_pair(E, NU))
+    P = validity.point_load(pt)
+    ref = closedform.solve_normal(validity.point_punch(pt), P, 0.0, A=similar_pair(E, NU))
     assert math.isclose(ref.a - ref.punch.b, pt.a_minus_b_over_R1 * validity.R1, rel_tol=OVERHANG)
 
 
@@ -122,7 +122,7 @@ def test_the_control_s_edges_are_the_closed_form_s():
     K_N fitted over the finite body's nodes against the closed form's (E1), within the FEM's
     quick-mesh K_N limit; a tall punch's edges carry the map's K_N columns as numbers."""
     point = validity.MapPoint(1.0, 0.3, 0.1, 4.0)
-    punch, P = validity._punch(point), validity._load(point)
+    punch, P = validity.point_punch(point), validity.point_load(point)
     cf = closedform.solve_normal(punch, P, 0.0, A=similar_pair(E, NU))
     fe = fem.solve_finite(punch, P, 0.0, E=E, nu=NU, H=None, mesh=validity.MESHES["quick"][0])
     errors = validity.edge_errors(fe, cf)

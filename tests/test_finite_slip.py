@@ -190,9 +190,9 @@ def test_a_map_point_reports_signed_errors_of_the_closed_form():
     point = validity.MapPoint(1.0, 0.1, 0.03, 4.0)
     out = validity_slip.evaluate_slip(point, quick=True)
     assert set(out) == set(validity_slip.SLIP_RESULT_KEYS)
-    P = validity._load(point)
+    P = validity.point_load(point)
     ref = closedform.solve_partial_slip(
-        closedform.solve_normal(validity._punch(point), P, 0.0, A=A),
+        closedform.solve_normal(validity.point_punch(point), P, 0.0, A=A),
         validity_slip.Q_OVER_FP * validity_slip.F * P, validity_slip.F)
     assert out["d_rel_error"] == pytest.approx((ref.d - out["d"]) / abs(out["d"]), rel=COULOMB)
     assert out["e_rel_error"] == pytest.approx((ref.e - out["e"]) / abs(out["d"]), rel=COULOMB)

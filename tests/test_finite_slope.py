@@ -164,7 +164,7 @@ def test_the_map_point_costs_have_the_rigid_punchs_sign_and_the_load_level_is_p0
     assert tuple(out) == SLOPE_RESULT_KEYS
     assert out["slope_a_rel_error"] < 0 < out["slope_peak_rel_error"]
     A = similar_pair(validity.E, validity.NU)
-    cf = validity._closed_form(validity._punch(point), validity._load(point), 0.0, A=A)
+    cf = validity.closed_form(validity.point_punch(point), validity.point_load(point), 0.0, A=A)
     p0 = float(np.max(cf.pressure(np.linspace(-cf.a, cf.c, 20001))))
     assert out["load_level"] == pytest.approx(0.5 * A * p0, rel=LEVEL_GRID)
 
@@ -205,7 +205,7 @@ def test_the_finite_punch_has_no_spike_where_its_centre_joins_its_edges(mesh):
     from threepart.reports.map import validity
 
     point = validity.MapPoint(1.0, 0.3, 0.3, 4.0)
-    punch, P = validity._punch(point), validity._load(point)
+    punch, P = validity.point_punch(point), validity.point_load(point)
     runs = {k: fem.solve_finite(punch, P, 0.0, E=validity.E, nu=validity.NU, H=4.0 * punch.b,
                                 theta=validity.THETA, mesh=mesh, kinematics=k, progress=False)
             for k in ("small", "first_order")}

@@ -41,7 +41,8 @@ A_TEST, C_TEST = 1.0, 1.2
 def _script(**kw) -> str:
     args = dict(a=A_TEST, c=C_TEST, E=E, nu=NU, f=0.5, Q=0.4 * 0.5 * 1442.3)
     args.update(kw)
-    return getfem.write_script(Punch(R1=200.0, R2=100.0, b=1.0), 1442.3, 0.2, **args)
+    P, s = (None, 0.0) if kw.get("history") is not None and kw.get("Q", 0) is None else (1442.3, 0.2)
+    return getfem.write_script(Punch(R1=200.0, R2=100.0, b=1.0), P, s, **args)
 
 
 def test_the_script_states_what_it_models_compiles_and_carries_its_loads():
@@ -57,7 +58,9 @@ def test_the_script_states_what_it_models_compiles_and_carries_its_loads():
     assert (params["P"], params["s"], params["f"], params["E"], params["nu"]) == (1442.3, 0.2, 0.5, E, NU)
     assert params["h"] == pytest.approx(2.2 / 64, rel=EXACT)
     assert params["zone"][0] < -A_TEST and params["zone"][1] > C_TEST   # the zone holds the contact
-    assert params["legs"] == [{"branch": "loading", "Q": 0.4 * 0.5 * 1442.3, "steps": 5}]
+    assert params["legs"] == [{"branch": "loading", "P": 1442.3, "s": 0.2, "Q": 0.4 * 0.5 * 1442.3,
+                               "sigma_bulk": 0.0, "steps": 5}]
+    assert "The substrate's base is clamped" in head
     assert params["ktheta"] == 0.0 and getfem.params_of(_script(tilt="suppressed"))["ktheta"] > 0
 
 
@@ -65,6 +68,41 @@ def test_a_cycle_runs_zero_to_Q_max_to_minus_Q_max_and_back_with_twice_the_steps
     path = getfem.params_of(_script(Q=None, Q_max=100.0, settings=getfem.JobSettings(steps=3)))["legs"]
     assert [(leg["branch"], leg["Q"], leg["steps"]) for leg in path] == [
         ("loading", 100.0, 3), ("unloading", -100.0, 6), ("reloading", 100.0, 6)]
+
+
+def test_the_bulk_stress_rises_with_the_shear_and_frees_the_substrates_base():
+    """docs/BULK_STRESS.md's load path: P first, then Q and sigma_bulk together; in a cycle in phase."""
+    text = _script(sigma_bulk=80.0)
+    compile(text, "job.py", "exec")
+    head = text[:text.index("HEADER = __doc__")]
+    assert "sigma_bulk together, in proportion" in head and "moves with the uniform" in head
+    assert [(leg["Q"], leg["sigma_bulk"]) for leg in getfem.params_of(text)["legs"]] == [(0.4 * 0.5 * 1442.3, 80.0)]
+    cycle = getfem.params_of(_script(Q=None, Q_max=100.0, sigma_bulk=20.0))["legs"]
+    assert [(leg["Q"], leg["sigma_bulk"]) for leg in cycle] == [(100.0, 20.0), (-100.0, -20.0), (100.0, 20.0)]
+    with pytest.raises(InputError, match="`sigma_bulk`"):
+        _script(sigma_bulk=float("nan"))
+
+
+#: a flight cycle of slip_Q0.4 x 20's punch: P, Q and the bulk stress swing in phase (both ends slip)
+FLIGHT = [(0.9 * 1442.3, 0.2, -0.3 * 0.5 * 1442.3, -30.0), (1442.3, 0.2, 0.4 * 0.5 * 1442.3, 40.0)]
+
+
+def test_a_load_history_is_each_state_in_turn_from_the_first_states_normal_load(tmp_path):
+    text = _script(Q=None, history=FLIGHT * 2, settings=getfem.JobSettings(steps=4))
+    compile(text, "job.py", "exec")
+    params = getfem.params_of(text)
+    assert (params["P"], params["s"]) == FLIGHT[0][:2]
+    assert [(leg["P"], leg["s"], leg["Q"], leg["sigma_bulk"], leg["steps"]) for leg in params["legs"]] == \
+        [(*st, 4) for st in FLIGHT * 2]
+    assert "state 3: P = 1442.3, s = 0.2, Q = 288.46, sigma_bulk = 40 (4 steps)" in text
+    csv = tmp_path / "h.csv"
+    csv.write_text("P,s,Q,sigma_bulk\n" + "\n".join(",".join(map(repr, st)) for st in FLIGHT * 2) + "\n")
+    assert getfem.params_of(_script(Q=None, history=str(csv), settings=getfem.JobSettings(steps=4)))["legs"] \
+        == params["legs"]
+    with pytest.raises(InputError, match="`history` alone"):
+        _script(history=FLIGHT)
+    with pytest.raises(FullSlidingError, match=r"`history\[1\].Q`"):
+        _script(Q=None, history=[FLIGHT[0], (100.0, 0.2, 60.0, 0.0)])
 
 
 @pytest.mark.parametrize("punch", [Punch(R1=10.0, R2=5.0, b=1.0), Punch(R1=10.0, R2=6.0, b=1.0, R=40.0),
@@ -234,3 +272,57 @@ def test_slip_ends_recover_the_stick_zone_of_a_three_halves_power_slip():
     assert max(abs(lo - left), abs(hi - right)) <= 100 * EXACT   # the slipping nodes are exact: rounding
     with pytest.raises(ReaderError, match="reaches an end"):
         getfem.slip_ends(x, np.where(x < left, slip, 0.0), (-0.99, 0.99))
+
+
+def _need_getfem() -> None:
+    if not getfem.getfem_available():
+        pytest.skip("no interpreter imports getfem (apt-get install python3-getfem, or set "
+                    "THREEPART_GETFEM_PYTHON)")
+
+
+#: slip_Q0.4 x 20 (caseA_moment's punch, radii x 20, P / 20, tilt free) and its bulk tension (MPa):
+#: about half the slip-direction margin 8 Q/(pi W) = 167 MPa at the start of the load path (eq. B8)
+SLIP_PUNCH, SLIP_P, SLIP_S, SIGMA_BULK = Punch(R1=200.0, R2=100.0, b=1.0), 28846.0 / SCALE, 0.2, 80.0
+
+
+@pytest.mark.slow
+def test_getfem_partial_slip_under_a_bulk_stress_moves_the_stick_zone_as_the_closed_form(tmp_path):
+    """slip_Q0.4 x 20 with sigma_bulk = 80 MPa rising with Q (docs/BULK_STRESS.md), W/h = 64: the stick
+    zone, its centre moved by 0.036 W towards +x by the bulk stress, within 5e-3 W of the closed
+    form's at both ends (read from the slip), ∫q = Q, q within 2 % of its peak away from the ends."""
+    _need_getfem()
+    f = 0.5
+    Q = 0.4 * f * SLIP_P
+    res = getfem.partial_slip(SLIP_PUNCH, SLIP_P, SLIP_S, Q, f, E, NU, sigma_bulk=SIGMA_BULK, n=64, workdir=tmp_path)
+    ref = threepart.solve(SLIP_PUNCH, SLIP_P, SLIP_S, A=similar_pair(E, NU), Q=Q, f=f, sigma_bulk=SIGMA_BULK,
+                          method="closedform")
+    W, (lo, hi) = ref.a + ref.c, ref.stick_zone
+    left, right = getfem.slip_ends(res.x, res.slip, (-ref.a, ref.c))
+    assert max(abs(left - lo), abs(right - hi)) / W <= tolerance("getfem", "stick_end").limit, (left, right)
+    assert abs(res.info["Q_integral"] / Q - 1) <= tolerance("getfem", "q_integral").limit
+    away = ((res.x > -ref.a + 0.05 * W) & (res.x < ref.c - 0.05 * W) & (np.abs(res.x - lo) > 0.05 * W)
+            & (np.abs(res.x - hi) > 0.05 * W))
+    q_ref = ref.shear(res.x)
+    assert np.max(np.abs(res.q - q_ref)[away]) / np.max(q_ref) <= tolerance("getfem", "q_interior_max").limit
+    assert "moves with the uniform" in (tmp_path / "job.py").read_text()
+
+
+@pytest.mark.slow
+def test_getfem_flight_cycle_dissipates_the_steady_states_energy(tmp_path):
+    """The flight cycle [state0, state1, state0, state1] of slip_Q0.4 x 20's punch (P, Q and the bulk
+    stress in phase), W/h = 64, 16 steps a state: over its last cycle the friction energy and the
+    largest slip amplitude within issue 38's 2 % of the closed form's periodic steady state
+    (docs/STEADY_STATE.md), judged by `threepart compare`'s own judge of a file's states, with no
+    pitfall (16 states per half-cycle resolve the reversal)."""
+    _need_getfem()
+    from threepart.reports.referee.friction_cycle import flight_reference, judge_cycle
+
+    f = 0.5
+    states = [(0.9 * SLIP_P, SLIP_S, -0.3 * f * SLIP_P, -30.0), (SLIP_P, SLIP_S, 0.4 * f * SLIP_P, 40.0)]
+    run = getfem.load_history(SLIP_PUNCH, states * 2, f, E, NU, n=64, steps=16, workdir=tmp_path)
+    ref = flight_reference(SLIP_PUNCH, *states, A=similar_pair(E, NU), f=f)
+    doc = judge_cycle(run.states, ref, source="flight")
+    assert doc["passed"], (doc["checks"], doc["pitfalls"])
+    assert run.energy == pytest.approx(doc["obtained"]["energy"], rel=EXACT)
+    assert abs(run.energy / ref.energy - 1) <= tolerance("referee", "energy").limit
+    assert all(step["converged"] for step in run.info["newton"])

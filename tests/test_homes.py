@@ -1,7 +1,7 @@
 """One home each (issue 30): the material defaults and the map's levels are defined once, in the core.
 
 The reference is the source itself, read as a syntax tree (not imported): no
-module outside ``threepart/material.py`` and ``threepart/tolerances.py`` binds
+module outside ``threepart/material.py`` and ``threepart/tolerances/`` binds
 a module-level name to Poisson's default 0.3 under the name ``NU``, to the
 steel modulus, or to the map's 1 % level.
 """
@@ -18,7 +18,7 @@ from threepart import material, tolerances
 ROOT = Path(__file__).resolve().parent.parent
 #: the packages whose modules must take these values from their homes
 PACKAGES = ("threepart", "reports", "fem", "sie", "closedform", "meshes")
-HOMES = {"threepart/material.py", "threepart/tolerances.py"}
+HOMES = {"threepart/material.py", "threepart/tolerances/__init__.py", "threepart/tolerances/outside.py"}
 
 
 def _bindings(path: Path):

@@ -924,7 +924,7 @@ def test_a_point_with_a_moment_is_loaded_at_its_overhang_and_half_its_lift_off_a
     from threepart.material import similar_pair
     from threepart.reports.map import validity
 
-    punch, P, s = validity._load_case(point)
+    punch, P, s = validity.point_case(point)
     A = similar_pair(validity.E, validity.NU)
     s_max = registry.lift_off("closedform", punch, P, A)[1]
     assert s == point.s_over_lift * s_max
@@ -985,7 +985,7 @@ def test_the_errors_are_signed_closed_form_minus_finite_body():
     from threepart.reports.map import validity
     from threepart.reports.compare import normal_figures
 
-    punch, A = validity._punch(MapPoint(0.5, 0.3, 0.1, 4.0)), similar_pair(validity.E, validity.NU)
+    punch, A = validity.point_punch(MapPoint(0.5, 0.3, 0.1, 4.0)), similar_pair(validity.E, validity.NU)
     light = closedform.solve_normal(punch, 0.1, 0.05, A=A, beyond_small_slopes=True)
     heavy = closedform.solve_normal(punch, 0.12, 0.05, A=A, beyond_small_slopes=True)
     for fe, cf, sign in ((light, heavy, 1.0), (heavy, light, -1.0)):

@@ -22,7 +22,7 @@ __all__ = ["main", "COMMANDS", "INTERRUPTED", "program"]
 #: the sub-commands (kept in step with :func:`threepart.cli.build_parser` by tests/test_cli.py;
 #: one module each in threepart/cli/, ``solve`` and ``slip`` both in solve.py)
 COMMANDS = ("solve", "slip", "cases", "verify", "figures", "map", "export-refs", "fatigue", "cycle", "match", "deck",
-            "compare")
+            "compare", "cache", "wear")
 #: the exit status of an interrupted command: 128 + SIGINT, as a shell reports a process it ended
 INTERRUPTED = 130
 

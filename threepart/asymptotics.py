@@ -339,7 +339,7 @@ def match(flank_result: Any, edge: str, R: float | None = None, P: float | None 
         Also compare the fatigue parameters near the edge over a fretting cycle of
         amplitude ``Q`` (flank and pad, :func:`threepart.fatigue.fatigue`).
     nu
-        Poisson's ratio of the substrate for the stresses (default :data:`threepart.results.NU`);
+        Poisson's ratio of the substrate for the stresses (default :data:`threepart.material.NU`);
         ``E = 4 (1 - nu²)/A`` (similar bodies) for the fatigue parameters.
 
     Raises

@@ -29,7 +29,7 @@ from numpy.typing import ArrayLike
 from .errors import InputError, MeshResolutionError
 
 __all__ = ["peak", "FIT_SAMPLES", "edge_multipliers", "WINDOWS", "DEGREES", "JOIN_SHARE", "MIN_NODES",
-           "stick_ends", "STICK_MARGIN", "STICK_NODES", "STICK_LOAD"]
+           "stick_ends", "STICK_MARGIN", "STICK_NODES", "STICK_LOAD", "contact_run", "CONTACT_LOAD"]
 
 #: points on which a least-squares fit is searched for its maximum, over ``± half_width``
 FIT_SAMPLES = 2001
@@ -160,6 +160,30 @@ STICK_NODES = 6
 #: ~1e-4 of its width) or outside it, where a code's noise in p makes q/p meaningless (GetFEM's
 #: multiplier at W/h = 32: p ~ 1e-4 of the peak outside the contact, with |q|/(f p) = 0.98)
 STICK_LOAD = 1e-2
+
+
+#: nodes loaded below this fraction of the peak pressure are outside the contact: another code's noise
+#: there (GetFEM's multiplier: p ~ 1e-4 of the peak outside the contact at W/h = 64) must not move its
+#: ends. A node inside a square-root end at distance r carries p/p_max ~ sqrt(r/W), so this floor
+#: leaves out only nodes within ~1e-6 W of an end, where the fit of p^2 lands anyway
+CONTACT_LOAD = 1e-3
+
+
+def contact_run(p: ArrayLike) -> np.ndarray:
+    """The indices of the contact: the run of consecutive nodes loaded above :data:`CONTACT_LOAD` of the
+    peak that holds the peak (nodes in order along the surface; empty if no node is loaded)."""
+    p = np.asarray(p, dtype=float)
+    top = float(np.max(p, initial=0.0))
+    if not top > 0:
+        return np.zeros(0, dtype=int)
+    on = p > CONTACT_LOAD * top
+    k = int(np.argmax(p))
+    lo, hi = k, k
+    while lo > 0 and on[lo - 1]:
+        lo -= 1
+    while hi + 1 < p.size and on[hi + 1]:
+        hi += 1
+    return np.arange(lo, hi + 1)
 
 
 def stick_ends(x: ArrayLike, p: ArrayLike, q: ArrayLike, f: float, *, margin: float = STICK_MARGIN,

@@ -19,7 +19,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 from scipy.optimize import minimize_scalar
 
-from .material import NU   # re-exported: Poisson's ratio by default (its home, with why)
+from .material import NU   # the default Poisson's ratio of the stresses (its home, with why)
 from .answer import check_coulomb, check_pressure
 from .asymptotics import Edged
 from .punch import Punch
@@ -30,7 +30,7 @@ if TYPE_CHECKING:
     from .stress import Stress
 
 __all__ = ["NormalResult", "SlipResult", "FrettingResult", "MasingCycle", "Peak", "Diagnostics", "SEGMENTS",
-           "BRANCHES", "NU", "masing", "segments_in_contact", "PEAK_N", "PEAK_GRID"]
+           "BRANCHES", "masing", "segments_in_contact", "PEAK_N", "PEAK_GRID"]
 
 
 #: the bounds of ``n``, the grid points per side, of :meth:`NormalResult.peaks`: two points

@@ -28,6 +28,7 @@ referee        -- CalculiX at one point, with its signed differences from the FE
 read_run       -- CalculiX's ``p_left``, ``p_right``, ``a``, ``c`` from one run of the finite deck
 fitted_peak    -- a peak of nodal pressures: the maximum of a local quartic fit
 finite_deck    -- the CalculiX model and deck of one point (its half when the point is symmetric)
+partial_slip_point -- opt-in: the partial-slip column at a point (an outside code's stick zone, judged)
 
 Symmetric points (``R1 = R2``, ``s = 0``, both referee points) are modelled as
 their half ``x >= 0`` (``build_finite_model(..., half=True)``: ``u_x = 0`` on
@@ -36,7 +37,6 @@ finer mesh at the same cost.
 """
 from __future__ import annotations
 
-import math
 import tempfile
 import time
 from pathlib import Path
@@ -49,10 +49,10 @@ from threepart import calculix
 from threepart.calculix import read as ccx_read
 from threepart.material import similar_pair
 
-from .validity import MESHES, NU, THETA, E, MapPoint, _closed_form, _load, _punch
+from .validity import MESHES, NU, THETA, E, MapPoint, closed_form, point_load, point_case, point_punch
 
 __all__ = ["REFEREE_POINTS", "REFEREE_N", "REFEREE_LEVELS", "REFEREE_PENALTY", "REFEREE_INCREMENT",
-           "PEAK_WINDOW", "referee", "read_run", "finite_deck", "fitted_peak", "symmetric"]
+           "PEAK_WINDOW", "referee", "read_run", "finite_deck", "fitted_peak", "symmetric", "partial_slip_point"]
 
 #: the issue's two points: the closed form's peak about 1 % too high at 0.03, 0.3-0.6 % too low at 0.1
 REFEREE_POINTS = (MapPoint(1.0, 0.1, 0.03, 4.0), MapPoint(1.0, 0.1, 0.1, 4.0))
@@ -99,8 +99,8 @@ def finite_deck(point: MapPoint, *, n: float = REFEREE_N, penalty_factor: float 
     ``half``: model the half ``x >= 0`` (``None``: when the point is :func:`symmetric`).
     """
     half = symmetric(point) if half is None else half
-    punch, P = _punch(point), _load(point)
-    cf = _closed_form(punch, P, 0.0, A=similar_pair(E, NU))
+    punch, P = point_punch(point), point_load(point)
+    cf = closed_form(punch, P, 0.0, A=similar_pair(E, NU))
     settings = calculix.DeckSettings(n=n, penalty_factor=penalty_factor, pair=True)
     model = calculix.build_finite_model(punch, cf.a, cf.c, H=point.H_over_b * punch.b, theta=THETA,
                                         settings=settings, half=half)
@@ -207,7 +207,7 @@ def referee(point: MapPoint, *, n: float = REFEREE_N, penalty_factor: float = RE
     else:
         model, ccx, cf = _run(point, n, penalty_factor, False, workdir)
     t_ccx = time.perf_counter() - t0
-    punch, P = _punch(point), _load(point)
+    punch, P = point_punch(point), point_load(point)
     fe = fem.solve_finite(punch, P, 0.0, E=E, nu=NU, H=point.H_over_b * punch.b, theta=THETA,
                           mesh=MESHES["full"][0])
     t_fem = time.perf_counter() - t0 - t_ccx
@@ -224,13 +224,71 @@ def referee(point: MapPoint, *, n: float = REFEREE_N, penalty_factor: float = RE
                                                                  *([study["penalty"]] if study else [])])}
 
 
+def partial_slip_point(point: MapPoint, *, code: str = "calculix", n: float | None = None,
+                       workdir: Path | None = None, say: Any = print) -> dict[str, Any]:
+    """The partial-slip column of a referee point: an outside code's stick zone against the
+    closed form (the SIE where it refuses), judged as the verification run's friction columns.
+
+    Opt-in (``python -m threepart.reports.map.referee --friction``; not run by ``threepart
+    map``, whose cost is unchanged): the map's points carry no shear, and CalculiX's friction
+    run costs minutes. The point's punch (``R1``, ``R2``, ``b``: the profile of eq. 2 that its
+    arcs follow) and load, with the radii times :data:`~reports.referee.studies.SLOPE_SCALE`
+    and ``P`` over it as in the columns (the same contact, slopes / 20), of two similar steel
+    bodies at the load of the same ``P A`` as the map's (the same contact), at ``Q = 0.4 f P`` (:mod:`reports.referee.friction_problems`), at
+    ``W/h = n`` (default: the code's finest level).
+
+    Returns
+    -------
+    dict
+        ``point``, ``code``, ``n``, ``h``, ``errors`` (``stick_width``, ``stick_shift`` of W,
+        ``q_interior_max``, ``q_integral``), ``rows`` (the verdict of
+        :func:`reports.referee.verdict.column_verdict`), ``passed``; a code that is not
+        installed gives ``status`` "not installed" and its ``note``, no numbers.
+    """
+    from dataclasses import replace
+
+    from ..referee.friction_problems import FrictionProblem, pair_problem
+    from ..referee.friction_studies import referee as friction_referee
+    from ..referee.friction_studies import run_level
+    from ..referee.studies import SLOPE_SCALE
+    from ..referee.verdict import column_verdict
+
+    ref = friction_referee(code)
+    if not ref.available():
+        return {"point": point.as_dict(), "code": code, "status": "not installed", "note": ref.missing}
+    from threepart.material import E_STEEL
+
+    punch, P, s = point_case(point)
+    punch = replace(punch, R1=SLOPE_SCALE * punch.R1, R2=SLOPE_SCALE * punch.R2, R=SLOPE_SCALE * punch.R)
+    P *= similar_pair(E, NU) / similar_pair(E_STEEL, NU) / SLOPE_SCALE   # steel, the same P A: the same contact
+    pr = pair_problem(punch, P, s, tilt="free", E=E_STEEL, nu=NU, method="auto",
+                      title=f"validity map point {point.key()} (steel, the same P A), radii x {SLOPE_SCALE:g}, "
+                            f"P / {SLOPE_SCALE:g}")
+    level = float(n if n is not None else ref.levels[-1])
+    problem = FrictionProblem(f"map {point.key()}", lambda: pr, "slip", "full")
+    with tempfile.TemporaryDirectory(prefix="threepart-map-friction-") as tmp:
+        where = Path(workdir) if workdir else Path(tmp)
+        where.mkdir(parents=True, exist_ok=True)
+        h, values, _, errors = run_level(ref, problem, pr, level, where, say)
+    slip = pr["slip"]
+    study = {"sizes": [h], "labels": [str(level)], "errors": {q: [e] for q, e in errors.items()},
+             "orders": {}, "values": {q: [v] for q, v in values.items()},
+             "reference": {"d": slip.d, "e": slip.e, "q_integral": slip.Q}}
+    rows = column_verdict(study, ref.documented)
+    return {"point": point.as_dict(), "code": code, "status": "run", "n": level, "h": h,
+            "reference_method": slip.method, "errors": errors, "rows": rows,
+            "passed": all(r["passed"] for r in rows)}
+
+
 def _main() -> None:  # pragma: no cover - a measurement, run by hand
     import json
     import sys
 
-    points = [REFEREE_POINTS[int(k)] for k in sys.argv[1:]] or list(REFEREE_POINTS)
+    args = [a for a in sys.argv[1:] if a != "--friction"]
+    points = [REFEREE_POINTS[int(k)] for k in args] or list(REFEREE_POINTS)
+    run = partial_slip_point if "--friction" in sys.argv[1:] else referee
     for pt in points:
-        print(json.dumps(referee(pt), indent=1, default=float), flush=True)
+        print(json.dumps(run(pt), indent=1, default=float), flush=True)
 
 
 if __name__ == "__main__":  # pragma: no cover

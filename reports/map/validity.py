@@ -100,16 +100,16 @@ SLOPE_SUBSET: dict[str, tuple[float, ...]] = {"s_over_lift": (0.0,), "H_over_b":
 MESHES = {"quick": ("quick", 0.5), "full": ("default", 0.5)}
 
 
-def _mode(quick: bool) -> str:
+def map_mode(quick: bool) -> str:
     """The map mode, the key of :data:`GRID` and :data:`MESHES`."""
     return "quick" if quick else "full"
 
 
-def _punch(point: MapPoint) -> Punch:
+def point_punch(point: MapPoint) -> Punch:
     return Punch(R1=R1, R2=point.R2_over_R1 * R1, b=point.b_over_R1 * R1)
 
 
-def _closed_form(punch: Punch, P: float, s: float, *, A: float) -> Any:
+def closed_form(punch: Punch, P: float, s: float, *, A: float) -> Any:
     """The paper's formulas at any load: the map measures their error past the small slopes too."""
     return closedform.solve_normal(punch, P, s, A=A, beyond_small_slopes=True)
 
@@ -121,17 +121,17 @@ def _lever_arm(point: MapPoint, punch: Punch, P: float, A: float) -> float:
     return point.s_over_lift * closedform.lift_off(punch, P, A, beyond_small_slopes=True).s_max
 
 
-def _load(point: MapPoint) -> float:
+def point_load(point: MapPoint) -> float:
     """The load at which the closed form's larger overhang is ``max(a, c) - b = (a_minus_b_over_R1) R1``.
 
     The lever arm follows the load (:func:`_lever_arm`), so the pair ``(P, s)``
     is solved together: ``s = (s_over_lift) s_max(P)`` inside the root function.
     """
-    punch, A = _punch(point), similar_pair(E, NU)
+    punch, A = point_punch(point), similar_pair(E, NU)
     target = point.a_minus_b_over_R1 * R1
 
     def overhang(P: float) -> float:
-        cf = _closed_form(punch, P, _lever_arm(point, punch, P, A), A=A)
+        cf = closed_form(punch, P, _lever_arm(point, punch, P, A), A=A)
         return max(cf.a, cf.c) - punch.b - target
 
     hi = 1e-3
@@ -140,16 +140,16 @@ def _load(point: MapPoint) -> float:
     return float(brentq(overhang, hi / 4 if hi > 1e-3 else 1e-12, hi, xtol=1e-14, rtol=1e-13))
 
 
-def _load_case(point: MapPoint) -> tuple[Punch, float, float]:
+def point_case(point: MapPoint) -> tuple[Punch, float, float]:
     """The punch, the load ``P`` and the lever arm ``s`` of ``point``."""
-    punch, P = _punch(point), _load(point)
+    punch, P = point_punch(point), point_load(point)
     return punch, P, _lever_arm(point, punch, P, similar_pair(E, NU))
 
 
 def feasible(point: MapPoint) -> bool:
     """Whether the punch's lower face and height hold the contact with a margin (before any FE)."""
-    punch, P, s = _load_case(point)
-    ref = _closed_form(punch, P, s, A=similar_pair(E, NU))
+    punch, P, s = point_case(point)
+    ref = closed_form(punch, P, s, A=similar_pair(E, NU))
     H = point.H_over_b * punch.b
     # the solver's locate margin with 50 % to spare for the finite body's larger contact
     margin = 1.5 * zone_margin(punch.b, -ref.a, ref.c, 0.15) * ref.width
@@ -163,7 +163,7 @@ def feasible(point: MapPoint) -> bool:
 
 def map_points(quick: bool = False) -> list[MapPoint]:
     """The grid of the map (:data:`GRID`) less the points whose punch cannot hold the contact."""
-    g = GRID[_mode(quick)]
+    g = GRID[map_mode(quick)]
     return [pt for pt in (MapPoint(r, b, ab, hb, sl) for r in g["R2_over_R1"]
                           for hb in g["H_over_b"] for sl in g["s_over_lift"]
                           for b in g["b_over_R1"] for ab in g["a_minus_b_over_R1"])
@@ -212,9 +212,9 @@ def evaluate(point: MapPoint, quick: bool = False) -> dict[str, Any]:
     (a magnitude).
     """
     t0 = time.perf_counter()
-    punch, P, s = _load_case(point)
-    cf = _closed_form(punch, P, s, A=similar_pair(E, NU))
-    name, coarse = MESHES[_mode(quick)]
+    punch, P, s = point_case(point)
+    cf = closed_form(punch, P, s, A=similar_pair(E, NU))
+    name, coarse = MESHES[map_mode(quick)]
     runs = [fem.solve_finite(punch, P, s, E=E, nu=NU, H=point.H_over_b * punch.b, theta=THETA,
                              mesh=m) for m in (PRESETS[name].scaled(coarse), name)]
     fine, rough = _errors(runs[1], cf), _errors(runs[0], cf)
@@ -244,9 +244,9 @@ def control(quick: bool = False) -> dict[str, Any]:
     """
     t0 = time.perf_counter()
     point = MapPoint(1.0, 0.3, 0.1, 4.0)
-    punch, P = _punch(point), _load(point)
-    cf = _closed_form(punch, P, 0.0, A=similar_pair(E, NU))
-    fe = fem.solve_finite(punch, P, 0.0, E=E, nu=NU, H=None, mesh=MESHES[_mode(quick)][0])
+    punch, P = point_punch(point), point_load(point)
+    cf = closed_form(punch, P, 0.0, A=similar_pair(E, NU))
+    fe = fem.solve_finite(punch, P, 0.0, E=E, nu=NU, H=None, mesh=MESHES[map_mode(quick)][0])
     err = _errors(fe, cf)
     studies = [convergence(pt, STUDY_N[:-1] if quick else STUDY_N) for pt in STUDY_POINTS]
     return {"control_rel_error": abs(err["peak_rel_error"]), **err, "point": point.as_dict(), "P": P,
@@ -267,7 +267,7 @@ def convergence(point: MapPoint, ns: tuple[int, ...] = STUDY_N) -> dict[str, Any
     only where the values converge monotonically (the one driver,
     :func:`threepart.convergence.run_study`).
     """
-    punch, P = _punch(point), _load(point)
+    punch, P = point_punch(point), point_load(point)
 
     def level(n: int) -> tuple[float, dict[str, float], dict[str, Any]]:
         res = fem.solve_finite(punch, P, 0.0, E=E, nu=NU, H=point.H_over_b * punch.b, theta=THETA,

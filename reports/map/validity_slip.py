@@ -23,7 +23,7 @@ from threepart.fem.mesh import PRESETS
 from threepart.material import similar_pair
 
 from ..compare import slip_figures
-from .validity import E, MESHES, NU, THETA, MapPoint, _closed_form, _load, _mode, _punch
+from .validity import E, MESHES, NU, THETA, MapPoint, closed_form, point_load, map_mode, point_punch
 
 __all__ = ["Q_OVER_FP", "F", "SLIP_RESULT_KEYS", "evaluate_slip"]
 
@@ -62,10 +62,10 @@ def evaluate_slip(point: MapPoint, quick: bool = False) -> dict[str, Any]:
         centre, where its formulas do not hold.
     """
     t0 = time.perf_counter()
-    punch, P = _punch(point), _load(point)
+    punch, P = point_punch(point), point_load(point)
     Q = Q_OVER_FP * F * P
-    cf = closedform.solve_partial_slip(_closed_form(punch, P, 0.0, A=similar_pair(E, NU)), Q, F)
-    name, coarse = MESHES[_mode(quick)]
+    cf = closedform.solve_partial_slip(closed_form(punch, P, 0.0, A=similar_pair(E, NU)), Q, F)
+    name, coarse = MESHES[map_mode(quick)]
     runs = [fem.solve_finite_slip(punch, P, 0.0, Q=Q, f=F, E=E, nu=NU, H=point.H_over_b * punch.b,
                                   theta=THETA, mesh=m) for m in (PRESETS[name].scaled(coarse), name)]
     rough, fine = (_signed(r, cf) for r in runs)

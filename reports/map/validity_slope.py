@@ -39,7 +39,7 @@ from threepart.fields import peak
 from threepart.material import similar_pair
 from threepart.tolerances import MAP_LIMIT
 
-from .validity import E, GRID, MESHES, NU, THETA, MapPoint, _closed_form, _load, _punch, \
+from .validity import E, GRID, MESHES, NU, THETA, MapPoint, closed_form, point_load, point_punch, \
     feasible
 
 __all__ = ["evaluate_slope", "slope_crossing", "load_level", "SLOPE_RESULT_KEYS", "SLOPE_LEVEL",
@@ -58,8 +58,8 @@ CROSSING_RTOL = 0.02
 
 def load_level(point: MapPoint) -> float:
     """``p0 / E* = p0 A / 2`` of the closed form at ``point`` (``p0`` its larger peak, eq. 4's ``A``)."""
-    punch, P, A = _punch(point), _load(point), similar_pair(E, NU)
-    cf = _closed_form(punch, P, 0.0, A=A)
+    punch, P, A = point_punch(point), point_load(point), similar_pair(E, NU)
+    cf = closed_form(punch, P, 0.0, A=A)
     return 0.5 * A * _peak(cf)
 
 
@@ -81,7 +81,7 @@ def evaluate_slope(point: MapPoint, quick: bool = False) -> dict[str, float]:
     first-order, of the larger peak and of the left half-width ``a``.
     """
     t0 = time.perf_counter()
-    punch, P = _punch(point), _load(point)
+    punch, P = point_punch(point), point_load(point)
     mesh = MESHES["quick" if quick else "full"][0]
     runs = {k: fem.solve_finite(punch, P, 0.0, E=E, nu=NU, H=point.H_over_b * punch.b,
                                 theta=THETA, mesh=mesh, kinematics=k, progress=False)

@@ -18,6 +18,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from threepart import readers
+from threepart.fields import contact_run
 from threepart.results import Diagnostics, NormalResult
 from threepart.errors import InputError
 
@@ -49,9 +50,12 @@ class PointsResult(NormalResult):
 def square_root_end(x: np.ndarray, p: np.ndarray, k: int = 4) -> float:
     """The right end of a square-root pressure: the root of ``p^2``, linear over the last ``k`` nodes.
 
-    ``x`` ascending; the end lies between the last node with ``p > 0`` and the next one.
+    ``x`` ascending; the contact is the loaded run of nodes that holds the peak
+    (:func:`threepart.fields.contact_run`: a code's noise outside it, below
+    :data:`~threepart.fields.CONTACT_LOAD` of the peak, is no contact), and the end lies
+    between its last node and the next one.
     """
-    on = np.flatnonzero(p > 0)
+    on = contact_run(p)
     last = int(on[-1])
     j = on[max(0, len(on) - k):]
     hi = x[last + 1] if last + 1 < len(x) else x[last]
@@ -84,7 +88,8 @@ def from_points(x: ArrayLike, p: ArrayLike, ref: NormalResult, *, alpha: float |
 
     The ends ``a``, ``c`` come from the points (the root of ``p^2`` fitted over
     the last four loaded nodes at each end); ``P = ∫p dx`` and ``s = ∫x p dx / P``
-    by the trapezoidal rule over the positive pressures.
+    by the trapezoidal rule over the contact's pressures (the loaded run of nodes that
+    holds the peak, :func:`threepart.fields.contact_run`).
     """
     x = np.asarray(x, dtype=float).ravel()
     p = np.asarray(p, dtype=float).ravel()
@@ -106,7 +111,9 @@ def from_points(x: ArrayLike, p: ArrayLike, ref: NormalResult, *, alpha: float |
         a = square_root_end(-x[::-1], p[::-1])       # the left end, mirrored
     else:
         a, c = (float(v) for v in ends)
-    pp = np.maximum(p, 0.0)
+    pp = np.zeros_like(p)                             # the contact's pressures; noise outside it is none
+    run = contact_run(p)
+    pp[run] = p[run]
     P = float(np.trapezoid(pp, x))
     s = float(np.trapezoid(x * pp, x) / P)
     return PointsResult(punch=ref.punch, A=ref.A, a=a, c=c,

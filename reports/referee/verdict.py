@@ -8,11 +8,14 @@ judge        -- compare and diagnose: the JSON-safe document of the report (a pr
 document     -- that document as the report's sections (checks, pitfalls)
 write_report -- the report directory (md, html, json) through threepart.output
 main         -- read, judge and report (``threepart compare``); 0 when all holds, else 1
+column_verdict   -- a friction column's finest level judged, quantity by quantity (verify)
+FRICTION_TARGETS -- issue 38's targets of the friction columns: the tolerance table's rows
 """
 from __future__ import annotations
 
+import math
 from pathlib import Path
-from typing import Any, Callable
+from typing import Any, Callable, Mapping
 
 from threepart.asymptotics import SIDES
 from threepart.errors import MeshResolutionError
@@ -28,10 +31,55 @@ from .friction import SlipPointsResult, friction_pitfalls, slip_from_points
 from .pitfalls import diagnose
 from .points import PointsResult, from_points
 
-__all__ = ["COMPARISON", "judge", "edges", "document", "write_report", "main"]
+__all__ = ["COMPARISON", "judge", "edges", "document", "write_report", "main", "column_verdict",
+           "FRICTION_TARGETS"]
 
 #: the tolerance table's rows a pressure from outside is judged by
 COMPARISON = "referee"
+#: issue 38's targets of the friction columns, by the quantity judged (units: ERROR_UNITS): the
+#: stick zone's ends, and its half-width and centre by the ends' row
+FRICTION_TARGETS = {"stick_ends": (COMPARISON, "stick_ends"), "stick_width": (COMPARISON, "stick_ends"),
+                    "stick_shift": (COMPARISON, "stick_ends"),
+                    **{q: (COMPARISON, q) for q in ("q_interior_max", "q_integral", "energy")}}
+#: the value a judged quantity's error is of, in the column's ``values`` and ``reference``
+FRICTION_VALUES = {"stick_ends": "d", "stick_width": "d", "stick_shift": "e", "q_integral": "q_integral",
+                   "energy": "energy"}
+
+
+def column_verdict(study: Mapping[str, Any], documented: Mapping[str, tuple[str, str]]
+                   ) -> list[dict[str, Any]]:
+    """A friction column's finest level judged, one row per quantity of :data:`FRICTION_TARGETS`.
+
+    ``study`` is the column's :meth:`Study.as_dict <threepart.convergence.Study.as_dict>`
+    (:mod:`.friction_studies`); ``documented`` maps a quantity (or ``"problem/quantity"``, the
+    study's ``case`` the problem) to the tolerance row of the code's own documented figure. A quantity is judged by issue 38's target, or, where the
+    code is documented not to meet it (its row wider than the target), by that row, with
+    the target shown beside it and ``target_met`` false unless the level meets it anyway.
+    A level whose run failed has no error (None) and fails. A column without levels has no rows.
+    """
+    if not study["sizes"]:
+        return []
+    i = len(study["sizes"]) - 1
+    rows = []
+    for q, key in FRICTION_TARGETS.items():
+        if q not in study["errors"]:
+            continue
+        error = study["errors"][q][i]
+        target = tolerance(*key)
+        own = documented.get(f"{study.get('case', '')}/{q}", documented.get(q))
+        row = own if own is not None and tolerance(*own).limit > target.limit else key
+        judged, by_target = tolerance(*row), row == key
+        known = error is not None and math.isfinite(error)
+        v = FRICTION_VALUES.get(q, "")
+        rows.append({"quantity": q, "level": study["labels"][i], "error": error if known else None,
+                     "reference": study.get("reference", {}).get(v),
+                     "obtained": study.get("values", {}).get(v, [None] * (i + 1))[i],
+                     "target": target.limit, "target_met": bool(known and error <= target.limit),
+                     "comparison": row[0], "row": row[1], "limit": judged.limit, "by_target": by_target,
+                     "passed": bool(known and error <= judged.limit),
+                     "reason": target.reason if by_target else judged.reason,
+                     "errors": study["errors"][q], "order": study["orders"].get(q)})
+    return rows
 
 
 def edges(res: PointsResult, ref: NormalResult) -> list[dict[str, Any]]:

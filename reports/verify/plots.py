@@ -26,7 +26,7 @@ from .sections import ENERGY_UNIT, method_name, order_text
 from .studies import Study
 
 __all__ = ["new_figure", "save", "overlay", "error_curves", "stress_surface", "von_mises", "sie_convergence",
-           "fem_convergence", "step_convergence", "fretting", "steady", "style"]
+           "fem_convergence", "step_convergence", "fretting", "steady", "style", "friction_stick"]
 
 
 def _method(method: str) -> Method | None:
@@ -496,4 +496,26 @@ def von_mises(results: dict[str, Any], title: str, path: str | Path, *, nu: floa
     ax.set_title(f"{title}: von Mises stress in the substrate (ν = {nu:g})\n{_methods(results)}, "
                  "the same levels for every method;\nthe white bar is the contact", fontsize=10)
     ax.legend(handles=handles, loc="lower right", fontsize=7)
+    return save(fig, path)
+
+
+def friction_stick(columns: list[dict[str, Any]], target: float, path: str | Path) -> Path:
+    """The friction referee columns' stick zone against W/h (log-log): the worst end's error
+    (``stick_ends``, of W) per code and problem (:mod:`reports.verify.friction`), the target dashed."""
+    fig, axes = new_figure()
+    ax = axes[0, 0]
+    for col in columns:
+        errs = col["errors"]
+        if col["status"] != "run" or "stick_ends" not in errs:
+            continue
+        n = np.asarray([float(v) for v in col["levels"]])
+        e = np.asarray([math.nan if v is None else v for v in errs["stick_ends"]], dtype=float)
+        ax.loglog(n, np.where(e > 0, e, np.nan), marker="o", ms=4, lw=1.0,
+                  label=f"{method_name(col['code'] + '-friction')}, {col['problem']}")
+    ax.axhline(target, color="0.3", ls="--", lw=0.9, label=f"issue 38 target {target:g} W")
+    ax.set_xlabel("elements across the contact width, W/h")
+    ax.set_ylabel("worst stick-zone end's error (of W)")
+    ax.set_title("friction referees: the stick zone's ends against the closed form", fontsize=10)
+    ax.grid(True, which="both", color="0.9", lw=0.6)
+    ax.legend(loc="best", fontsize=7)
     return save(fig, path)

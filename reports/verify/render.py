@@ -11,6 +11,7 @@ fold away (``<details>``) and stay complete in ``report.json``.
 from __future__ import annotations
 
 import base64
+import dataclasses
 import html as _html
 from pathlib import Path
 from typing import Any
@@ -83,9 +84,21 @@ def render_markdown(d: Document) -> str:
     return "\n".join(out).rstrip("\n") + "\n"
 
 
+def _document(doc: dict[str, Any], map_link: str | None = None) -> Document:
+    """:func:`build`'s sections, the fretting-wear section (issue 39) before the environment's."""
+    from .wear_section import wear_section
+
+    d = build(doc, map_link)
+    wear = wear_section(doc)
+    if wear is None:
+        return d
+    at = next((i for i, sec in enumerate(d.sections) if sec.anchor == "environment"), len(d.sections))
+    return dataclasses.replace(d, sections=(*d.sections[:at], wear, *d.sections[at:]))
+
+
 def markdown(doc: dict[str, Any], map_link: str | None = None) -> str:
     """The report as Markdown (plots linked, not embedded); see :func:`reports.verify.sections.build`."""
-    return render_markdown(build(doc, map_link))
+    return render_markdown(_document(doc, map_link))
 
 
 # -- HTML ------------------------------------------------------------------------------------
@@ -220,4 +233,4 @@ def render_html(d: Document, root: Path) -> str:
 
 def html(doc: dict[str, Any], root: Path, map_link: str | None = None) -> str:
     """The report as one HTML file with the PNGs under ``root`` embedded; see :func:`reports.verify.sections.build`."""
-    return render_html(build(doc, map_link), root)
+    return render_html(_document(doc, map_link), root)

@@ -31,14 +31,17 @@ from . import render
 from .runs import FRETTING_STATES, MODES, CaseRun, Mode, run_case
 from ..referee import CALCULIX_CASE, CALCULIX_K, CALCULIX_N, calculix_studies
 from ..referee.friction_studies import FRICTION_METHOD, friction_studies
+from .friction import FRICTION_PLOT, friction_record, friction_runs
 from ..compare import is_steady, normal_of
 from .sections import MAP_JSON, plot_path, study_plot_path
 from .edges import ASYMPTOTE_PLOT, asymptote_study, draw_asymptote
 from .speed import speed_record
+from .wear_section import wear_study
 from .stress import case_hot_spots, fatigue_hot_spots, stress_nu
 from ..solvers import METHODS
 from .studies import STEP_STATES, Study, fem_slip_study, fem_step_study, fem_study, sie_study
 from threepart.errors import InputError
+from threepart.tolerances import tolerance
 
 __all__ = ["main", "run", "build_report", "write_report", "stress_record",
            "SCHEMA_FILE", "load_schema", "validate", "STUDY_CASE", "SLIP_STUDY_CASE",
@@ -192,10 +195,13 @@ def _studies(mode: Mode, cases: Sequence[Case], runs: list[CaseRun], say: Callab
             studies.extend(calculix_studies(say))
         timings["calculix_study_s"] = time.perf_counter() - t1
         t1 = time.perf_counter()
-        say("[study] the friction referees (CalculiX, GetFEM): Hertz partial slip of two similar "
-            "bodies, converging in h" + (", and its fretting energy per cycle" if mode.name == "full" else ""))
+        say("[study] the friction referees (CalculiX, GetFEM): partial slip of two similar bodies "
+            "(Hertz, slip_Q0.4), converging in h" + (", its bulk-stress case, the fretting and the "
+                                                     "flight cycles" if mode.name == "full" else ""))
         with heartbeat(say, lambda: "[study]   friction referees"):
-            studies.extend(friction_studies(say, fretting=mode.name == "full"))
+            friction = friction_studies(say, fretting=mode.name == "full")
+        studies.extend(friction)
+        runs.extend(friction_runs(friction))   # each column's verdict: checks counted in the total
         timings["friction_referee_s"] = time.perf_counter() - t1
     cycle = next((r for r in runs if r.case.kind == "fretting" and REFERENCE in r.results), None)
     if cycle is not None:
@@ -366,14 +372,22 @@ def write_report(tmp: Path, mode: Mode, runs: Sequence[CaseRun], studies: Sequen
             {"n": plots.sie_convergence, "h": plots.fem_convergence,
              "dQ": plots.step_convergence}[st.param](st, tmp / name)
             drawn["_studies"].append(name)
+        friction = friction_record(studies)     # issue 38: the friction referee columns
+        if friction and any(c["rows"] for c in friction["columns"]):
+            plots.friction_stick(friction["columns"], tolerance("referee", "stick_ends").limit,
+                                 tmp / FRICTION_PLOT)
+            friction["plot"] = FRICTION_PLOT
         edge_study = asymptote_study()          # issue 32: the asymptotic slip zone as Q/fP -> 0
         draw_asymptote(edge_study, tmp / ASYMPTOTE_PLOT)
     timings = dict(timings, plots_s=time.perf_counter() - t0)
     timings["total_s"] = timings.get("solve_s", 0.0) + timings["plots_s"]
     doc = build_report(mode, runs, studies, timings, drawn, stressed, tired)
     doc["edge_asymptote"] = json_safe({**edge_study, "plot": ASYMPTOTE_PLOT})
+    if friction:
+        doc["friction_referees"] = json_safe(friction)
     if mode.name != "quick":   # issue 33: the speed ratios, measured in the run (reports/verify/speed.py)
         doc["speed"] = json_safe(speed_record(False, say))
+        doc["wear"] = json_safe(wear_study(tmp, say))   # issue 39 (reports/verify/wear_section.py)
     validate(doc)
     map_link = MAP_JSON if (tmp / MAP_JSON).is_file() else None
     (tmp / "report.json").write_text(strict_json(doc, indent=1), encoding="utf-8")

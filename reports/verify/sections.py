@@ -464,6 +464,8 @@ def _study_title(st: dict[str, Any]) -> str:
 def _studies(doc: dict[str, Any]) -> Section:
     children = []
     for st in doc["studies"]:
+        if st["method"].endswith("-friction"):    # the friction referees' own section (.friction)
+            continue
         path = study_plot_path(st["method"], st.get("scheme"), st["case"])
         figs = (Figure(path, _study_title(st)),) if path in doc["plots"] else ()
         children.append(Section(_study_title(st), f"study-{path.split('/')[-1][:-4]}",
@@ -540,6 +542,7 @@ def build(doc: dict[str, Any], map_link: str | None = None) -> Document:
         (it exists); otherwise the section says how to make one.
     """
     from .edges import edges_section
+    from .friction import friction_section
     from .speed import speed_section
     from .stress_section import stress_section
 
@@ -564,6 +567,7 @@ def build(doc: dict[str, Any], map_link: str | None = None) -> Document:
                 (("Each case's input, the results of each method, every check and the error "
                   "plots.",),), children=tuple(_case_section(c, shown) for c in doc["cases"])),
         _studies(doc),
+        *filter(None, (friction_section(doc),)),   # issue 38: the friction referee columns
         _map(map_link),
         Section("Tolerance table", "tolerances", (), (_tolerances(doc),)),
         *filter(None, (speed_section(doc),)),   # issue 33: the speed ratios against their targets

@@ -10,7 +10,9 @@ Names
 -----
 SLOPE_FACTOR     -- the default stick slope ``lambda`` in units of ``E / h``
 PENALTY_FACTOR   -- the default normal penalty ``K`` in units of ``E / h`` (two similar bodies)
-friction_deck    -- the deck of a model under ``P`` at ``s`` and a history of ``Q`` (``*FRICTION``)
+friction_deck    -- the deck of a model under ``P`` at ``s`` and a history of ``Q`` (``*FRICTION``),
+                    with the block's bulk stress, or a load history of states ``(P, s, Q, sigma_bulk)``
+side_weights     -- the block's sides' nodal forces per unit bulk stress
 FrictionResult   -- one state's ``x``, ``p``, ``q``, the stick zone, ``∫p``, ``∫q`` and the run's info
 partial_slip     -- mesh, write, run and read one partial-slip problem (``P``, ``s``, ``Q``, ``f``)
 fretting_cycle   -- the same for the cycle ``0 -> Q -> -Q -> Q``: every state, the energy per cycle
@@ -19,7 +21,6 @@ contact_traction -- ``(x, p, q)`` along the block's face from one increment (sur
 stick_ends       -- the stick zone's ends from ``1 - |q| / (f p)`` at the nodes
 control_history  -- the punch's control nodes' displacements at each increment (``.dat``)
 cycle_energy     -- the energy per cycle, ``-∮ u·dF`` of the punch's loads (Simpson's rule)
-read_traction    -- ``(x, p, q, info)`` of a friction run's ``.frd`` (threepart.readers.read uses it)
 """
 from __future__ import annotations
 
@@ -34,7 +35,7 @@ import numpy as np
 from ..validate import finite, positive
 from .deck import (CONVENTIONS, DeckSettings, deck_head, lid_nodes, boundary_text, elements_text,
                    material_text, nodes_text, nset_text, surface_text)
-from threepart.errors import InputError, ReaderError
+from threepart.errors import InputError
 from threepart.fields import stick_ends
 from threepart.textfile import finite_row
 
@@ -42,9 +43,9 @@ if TYPE_CHECKING:   # pragma: no cover
     from ..punch import Punch
     from .mesh import Model
 
-__all__ = ["SLOPE_FACTOR", "PENALTY_FACTOR", "friction_deck", "FrictionResult", "partial_slip",
+__all__ = ["SLOPE_FACTOR", "PENALTY_FACTOR", "friction_deck", "side_weights", "FrictionResult", "partial_slip",
            "fretting_cycle", "read_frd_states", "contact_traction", "stick_ends", "control_history",
-           "cycle_energy", "read_traction"]
+           "cycle_energy"]
 
 #: the stick slope lambda (shear stress per tangential slip) in units of E/h: as stiff as the
 #: normal penalty (at 2 E/h the normal step of slip_Q0.4 did not converge at W/h = 50; a softer
@@ -70,6 +71,8 @@ FRICTION_CONVENTIONS = """\
 **   moment of Q about the surface (Q times the top's height) is balanced; with the tilt
 **   suppressed the guided lid reacts it. The punch exerts the shear on the block along +x
 **   for Q > 0.
+** States: the steps' targets (P, s, Q, sigma_bulk) are listed above; within a step the corners'
+**   forces, Q and the sides' forces move linearly from the last target to the next.
 ** Contact: SURFACE TO SURFACE penalty (PRESSURE-OVERCLOSURE=LINEAR, stiffness K below): on
 **   these quadratic faces ccx's node-to-surface friction cycled between two stick/slip states
 **   and did not converge; surface to surface converged in 7 to 10 iterations an increment.
@@ -79,11 +82,24 @@ FRICTION_CONVENTIONS = """\
 **   returns x, p, q from this .frd).
 """
 
+BULK_CONVENTIONS = """\
+** Bulk stress: a tension sigma_bulk (MPa) along x in the block (the substrate) only, as the
+**   sides' consistent nodal forces (NSIDES: -sigma on the left side, +sigma on the right, per
+**   unit length of side), rising with Q in proportion (the closed form's load path: P first,
+**   then Q and sigma_bulk together); the block's base on rollers (y held), one base node held
+**   in x, so that the bulk strain is free. The punch carries none.
+"""
 
 # --------------------------------------------------------------------------- the deck
-def friction_deck(model: Model, *, P: float, s: float, E: float, nu: float, f: float,
-                  Q: Sequence[float], increments: int = 8, settings: DeckSettings | None = None,
-                  slope: float | None = None, descent: float | None = None, title: str = "") -> str:
+#: one state of a friction deck's shear steps: ``(P, s, Q, sigma_bulk)``
+State = tuple[float, float, float, float]
+
+
+def friction_deck(model: Model, *, P: float | None = None, s: float | None = None, E: float, nu: float,
+                  f: float, Q: Sequence[float] = (), increments: int = 8,
+                  settings: DeckSettings | None = None, slope: float | None = None,
+                  descent: float | None = None, title: str = "", sigma_bulk: float = 0.0,
+                  history: Any = None) -> str:
     """The CalculiX deck of ``model`` under ``P`` at ``x = s``, then the shear force history ``Q``.
 
     Parameters
@@ -91,7 +107,8 @@ def friction_deck(model: Model, *, P: float, s: float, E: float, nu: float, f: f
     model
         A whole model (:func:`threepart.calculix.build_model`), meshed with ``pair=True``.
     P, s
-        The normal load (per unit thickness) and its line of action, held from step 1 on.
+        The normal load (per unit thickness) and its line of action, held from step 1 on
+        (with ``history``: leave them out, or give its first state's).
     E, nu
         The modulus and Poisson's ratio of both bodies (two similar bodies).
     f
@@ -111,83 +128,178 @@ def friction_deck(model: Model, *, P: float, s: float, E: float, nu: float, f: f
         ``settings.tilt = "suppressed"`` only). A face that first touches at one point
         (Hertz) does not start under a force in ccx: no contact element closes in its first
         iterations and the punch, held by contact alone, is free.
+    sigma_bulk
+        The block's bulk stress ``sigma_xx`` (tension positive) at the first target ``Q[0]``,
+        rising with ``Q`` in proportion (``sigma_bulk Q_k / Q[0]`` at target ``k``), as the
+        closed form's (docs/BULK_STRESS.md): a traction on the block's two sides only, its base
+        on rollers with one node held in ``x`` (so that it strains freely).
+    history
+        A load history instead of ``P``, ``s``, ``Q``, ``sigma_bulk``: states ``(P, s, Q,
+        sigma_bulk)`` (:func:`threepart.history.check_history`: a sequence, a CSV path or a
+        ``History``). Step 1 loads the first state's ``P`` at its ``s``; then one step per
+        state, the four moving linearly together (the corners' forces, so ``P`` and ``P s``;
+        ``s`` is then linear where ``P`` is constant). A flight cycle is ``[state0, state1,
+        state0, state1]``.
     """
     settings = settings or DeckSettings(pair=True, penalty_factor=PENALTY_FACTOR)
-    P, s, E, nu, f, Qs, lam, descent = _checked(model, P=P, s=s, E=E, nu=nu, f=f, Q=Q,
-                                                increments=increments, settings=settings,
-                                                slope=slope, descent=descent)
+    P0, s0, E, nu, f, states, lam, descent = _checked(
+        model, P=P, s=s, E=E, nu=nu, f=f, Q=Q, increments=increments, settings=settings,
+        slope=slope, descent=descent, sigma_bulk=sigma_bulk, history=history)
     W = model.a + model.c
     h, K = settings.size(W), settings.K(E, W)
-    tl, tr = model.control_nodes()
+    tl, _ = model.control_nodes()
     T = float(model.xy[tl - 1, 1])             # the top's height above the contact
     base, top = model.nsets["block_base"], model.nsets["punch_top"]
-    p_est = 2 * P / (math.pi * W)
-    head = deck_head(model, P=P, s=s, E=E, K=K, settings=settings, title=title)
-    head = head.replace(CONVENTIONS, "") + (
-        f"** friction: f = {f:.6g}, stick slope lambda = {lam:.6g} ({lam * h / E:.3g} E/h); Q steps "
-        f"{', '.join(f'{q:.6g}' for q in Qs)} ({increments} increments each); Q/fP up to "
-        f"{max(abs(q) for q in Qs) / (f * P):.3g}\n" + FRICTION_CONVENTIONS
-        + CONVENTIONS.split("** Contact:")[0])
-    parts = [head, "*HEADING\nthreepart: a three-part punch on an elastic block with friction\n",
-             nodes_text(model.xy),
-             elements_text(model.elements["block"], model.numbers["block"], "BLOCK"),
-             elements_text(model.elements["punch"], model.numbers["punch"], "PUNCH"),
-             nset_text("NSURF", model.nsets["block_surface"]),
-             nset_text("NPROFILE", model.nsets["punch_profile"]),
-             nset_text("NBASE", base), nset_text("NTOP", top), nset_text("NCTRL", np.array([tl, tr])),
-             nset_text("NOUT", np.union1d(model.nsets["block_surface"], model.nsets["punch_profile"])),
-             material_text("BLOCK_MAT", E, nu, "BLOCK"), material_text("PUNCH_MAT", E, nu, "PUNCH"),
-             surface_text("SSLAVE", faces=model.slave), surface_text("SMASTER", faces=model.master),
-             f"*CONTACT PAIR, INTERACTION=SI, TYPE=SURFACE TO SURFACE\nSSLAVE, SMASTER\n"
-             f"*SURFACE INTERACTION, NAME=SI\n*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR\n"
-             f"{K:.6g}, {1e-6 * p_est:.6g}\n*FRICTION\n{f:.15g}, {lam:.6g}\n"]
-    rows, _ = lid_nodes(model, P=P, s=s, tilt=settings.tilt, half=False)
+    bulk = any(st[3] != 0.0 for st in states)
+    p_est = 2 * P0 / (math.pi * W)
+    head = deck_head(model, P=P0, s=s0, E=E, K=K, settings=settings, title=title)
+    head = head.replace(CONVENTIONS, "") + _friction_head(f, lam, lam * h / E, states, increments)
+    parts = [head, *_model_text(model, E=E, nu=nu, K=K, sigma_inf=1e-6 * p_est, f=f, lam=lam)]
+    sides = side_weights(model) if bulk else {}
+    if bulk:
+        parts.append(nset_text("NSIDES", np.array(sorted(sides))))
+    rows, _ = lid_nodes(model, P=P0, s=s0, tilt=settings.tilt, half=False)
     rows += [f"2\n{int(n)}, 1, 1., {tl}, 1, -1." for n in top if int(n) != tl]
     parts.append("*EQUATION\n" + "\n".join(rows) + "\n")
-    parts.append(boundary_text([("NBASE", 1), ("NBASE", 2)]))
-    parts.append(_step(model, P=P, s=s, Q=0.0, T=T, tilt=settings.tilt, n=1, first=True,
-                       descent=descent))
-    for q in Qs:
-        parts.append(_step(model, P=P, s=s, Q=q, T=T, tilt=settings.tilt, n=increments, first=False,
-                           descent=descent))
+    if bulk:        # rollers: the base strains with the bulk stress; one node holds it in x
+        mid = int(base[np.argmin(np.abs(model.xy[base - 1, 0] - 0.5 * (model.c - model.a)))])
+        parts.append(boundary_text([("NBASE", 2), (str(mid), 1)]))
+    else:
+        parts.append(boundary_text([("NBASE", 1), ("NBASE", 2)]))
+    parts.append(_step(model, (P0, s0, 0.0, 0.0), T=T, tilt=settings.tilt, n=1, first=True,
+                       descent=descent, sides=sides))
+    for st in states:
+        parts.append(_step(model, st, T=T, tilt=settings.tilt, n=increments, first=False,
+                           descent=descent, sides=sides))
     return "".join(parts)
 
 
-def _checked(model: Model, *, P: float, s: float, E: float, nu: float, f: float, Q: Sequence[float],
-             increments: int, settings: DeckSettings, slope: float | None, descent: float | None
-             ) -> tuple[float, float, float, float, float, list[float], float, float | None]:
-    """:func:`friction_deck`'s input, checked: ``(P, s, E, nu, f, Q targets, lambda, descent)``."""
-    P, s = positive("P", P, (1e-12, 1e15)), finite("s", s)
+def _model_text(model: Model, *, E: float, nu: float, K: float, sigma_inf: float, f: float,
+                lam: float) -> list[str]:
+    """The deck's model data: nodes, the two bodies, the sets, materials and the contact pair."""
+    tl, tr = model.control_nodes()
+    return ["*HEADING\nthreepart: a three-part punch on an elastic block with friction\n",
+            nodes_text(model.xy),
+            elements_text(model.elements["block"], model.numbers["block"], "BLOCK"),
+            elements_text(model.elements["punch"], model.numbers["punch"], "PUNCH"),
+            nset_text("NSURF", model.nsets["block_surface"]),
+            nset_text("NPROFILE", model.nsets["punch_profile"]),
+            nset_text("NBASE", model.nsets["block_base"]), nset_text("NTOP", model.nsets["punch_top"]),
+            nset_text("NCTRL", np.array([tl, tr])),
+            nset_text("NOUT", np.union1d(model.nsets["block_surface"], model.nsets["punch_profile"])),
+            material_text("BLOCK_MAT", E, nu, "BLOCK"), material_text("PUNCH_MAT", E, nu, "PUNCH"),
+            surface_text("SSLAVE", faces=model.slave), surface_text("SMASTER", faces=model.master),
+            f"*CONTACT PAIR, INTERACTION=SI, TYPE=SURFACE TO SURFACE\nSSLAVE, SMASTER\n"
+            f"*SURFACE INTERACTION, NAME=SI\n*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR\n"
+            f"{K:.6g}, {sigma_inf:.6g}\n*FRICTION\n{f:.15g}, {lam:.6g}\n"]
+
+
+def _friction_head(f: float, lam: float, lam_h: float, states: list[State], increments: int) -> str:
+    """The friction deck's header after :func:`deck_head`'s first lines: the friction, each step's
+    state (the reader's loads, :func:`threepart.calculix.cycle.step_loads`), the conventions."""
+    bulk = any(st[3] != 0.0 for st in states)
+    return (f"** friction: f = {f:.6g}, stick slope lambda = {lam:.6g} ({lam_h:.3g} E/h); "
+            f"{len(states)} shear steps ({increments} increments each); |Q|/fP up to "
+            f"{max(abs(st[2]) / st[0] for st in states) / f:.3g}\n"
+            + "".join(f"** state {k + 1} (step {k + 2}): P = {st[0]:.10g}, s = {st[1]:.10g}, "
+                      f"Q = {st[2]:.10g}, sigma_bulk = {st[3]:.10g}\n" for k, st in enumerate(states))
+            + FRICTION_CONVENTIONS + (BULK_CONVENTIONS if bulk else "") + CONVENTIONS.split("** Contact:")[0])
+
+
+def side_weights(model: Model) -> dict[int, float]:
+    """The block's side nodes' consistent forces along ``x`` per unit bulk stress (MPa -> N/mm).
+
+    A tension ``sigma`` on the sides is the traction ``-sigma`` (left side) and ``+sigma``
+    (right side) along ``x``; on each quadratic edge of length ``L`` it is ``L/6, 2L/3, L/6``
+    at its corner, middle and corner nodes. Their sum is zero; each side's ``±`` the depth.
+    """
+    from .mesh import face_elements
+
+    out: dict[int, float] = {}
+    for name, sign in (("block_left", -1.0), ("block_right", 1.0)):
+        nodes = model.nsets.get(name)
+        if nodes is None:
+            raise InputError(f"the model has no `{name}` node set: mesh it with build_model (a bulk "
+                             "stress acts on the block's sides)")
+        for num, face in face_elements(model.elements["block"], model.numbers["block"], nodes, model.xy, math.inf):
+            kind, conn = model.elements["block"][int(num) - int(model.numbers["block"][0])]
+            nc = 4 if kind == "CPE8" else 3
+            k = int(face[1:]) - 1
+            i, j, m = int(conn[k]), int(conn[(k + 1) % nc]), int(conn[nc + k])
+            L = float(np.hypot(*(model.xy[j - 1] - model.xy[i - 1])))
+            for node, w in ((i, L / 6), (j, L / 6), (m, 2 * L / 3)):
+                out[node] = out.get(node, 0.0) + sign * w
+    return out
+
+
+def _checked(model: Model, *, P: float | None, s: float | None, E: float, nu: float, f: float,
+             Q: Sequence[float], increments: int, settings: DeckSettings, slope: float | None,
+             descent: float | None, sigma_bulk: float, history: Any
+             ) -> tuple[float, float, float, float, float, list[State], float, float | None]:
+    """:func:`friction_deck`'s input, checked: ``(P, s, E, nu, f, states, lambda, descent)``."""
     E, nu = positive("E", E, (1e-6, 1e15)), finite("nu", nu)
     f = positive("f", f, (1e-6, 10.0))
     if not settings.pair:
         raise InputError("`settings.pair` must be True: friction is modelled on two similar bodies "
                          "(a stiffened punch couples the normal and the tangential problems)")
-    Qs = [finite("Q", q) for q in Q]
-    if not Qs or any(abs(q) >= f * P for q in Qs):
-        raise InputError(f"`Q` = {Qs} must hold at least one target, each |Q| < f P = {f * P:.6g}")
     if not isinstance(increments, int) or not 1 <= increments <= 1000:
         raise InputError(f"`increments` = {increments!r} must be an integer from 1 to 1000")
+    states = _states(P=P, s=s, f=f, Q=Q, sigma_bulk=sigma_bulk, history=history)
+    P0, s0 = states[0][0], states[0][1]       # the normal step's load: the first state's
     W = model.a + model.c
     lam = (positive("slope", slope, (1e-9, 1e20)) if slope is not None
            else SLOPE_FACTOR * E / settings.size(W))
     tl, tr = model.control_nodes()
     xL, xR, T = model.xy[tl - 1, 0], model.xy[tr - 1, 0], float(model.xy[tl - 1, 1])
-    for q in [0.0, *Qs] if settings.tilt == "free" else []:
-        if not xL < s - T * q / P < xR:
-            raise InputError(f"`Q` = {q:g} moves the top's load to x = {s - T * q / P:g}, off the "
+    for Pk, sk, q, _ in [(P0, s0, 0.0, 0.0), *states] if settings.tilt == "free" else []:
+        if not xL < sk - T * q / Pk < xR:
+            raise InputError(f"`Q` = {q:g} moves the top's load to x = {sk - T * q / Pk:g}, off the "
                              f"punch's top [{xL:g}, {xR:g}]: lower Q or widen the block")
     if descent is not None:
         descent = positive("descent", descent, (1e-12, 0.1 * W))
         if settings.tilt != "suppressed":
             raise InputError("`descent` needs `settings.tilt` = 'suppressed' (the lid held level)")
-    return P, s, E, nu, f, Qs, lam, descent
+        if history is not None or any(st[3] != 0.0 for st in states):
+            raise InputError("`descent` holds one normal load: not with `history` or `sigma_bulk`")
+    return P0, s0, E, nu, f, states, lam, descent
 
 
-def _step(model: Model, *, P: float, s: float, Q: float, T: float, tilt: str, n: int,
-          first: bool, descent: float | None = None) -> str:
-    """One static step to the shear force ``Q`` in ``n`` equal increments (the normal step: ``first``);
-    ``descent``: the top held lowered by it instead of loaded by ``P``."""
+def _states(*, P: float | None, s: float | None, f: float, Q: Sequence[float], sigma_bulk: float,
+            history: Any) -> list[State]:
+    """The shear steps' states ``(P, s, Q, sigma_bulk)``, checked (each ``|Q| < f P``)."""
+    if history is not None:
+        from threepart.history import check_history
+
+        if len(Q) or sigma_bulk:
+            raise InputError("`history` gives the states: leave `Q` and `sigma_bulk` out")
+        hist = check_history(history)
+        states = [hist.state(k) for k in range(len(hist))]
+        if P is not None and (P != states[0][0] or (s is not None and s != states[0][1])):
+            raise InputError(f"`P`, `s` = {P:g}, {s} must be the history's first state's "
+                             f"({states[0][0]:g}, {states[0][1]:g}), or left out")
+    else:
+        if P is None or s is None:
+            raise InputError("`P` and `s` are needed without a `history`")
+        P, s = positive("P", P, (1e-12, 1e15)), finite("s", s)
+        sb = finite("sigma_bulk", sigma_bulk)
+        Qs = [finite("Q", q) for q in Q]
+        if not Qs or (sb and Qs[0] == 0.0):
+            raise InputError(f"`Q` = {Qs} must hold at least one target (the first nonzero with "
+                             "`sigma_bulk`)")
+        states = [(P, s, q, sb * q / Qs[0] if sb else 0.0) for q in Qs]
+    bad = [st for st in states if not abs(st[2]) < f * st[0]]
+    if bad:
+        raise InputError(f"`Q` = {bad[0][2]:g} at P = {bad[0][0]:g}: each target needs |Q| < f P = "
+                         f"{f * bad[0][0]:.6g}")
+    return states
+
+
+def _step(model: Model, state: State, *, T: float, tilt: str, n: int, first: bool,
+          descent: float | None = None, sides: dict[int, float] | None = None) -> str:
+    """One static step to ``state = (P, s, Q, sigma_bulk)`` in ``n`` equal increments (the normal
+    step: ``first``); ``descent``: the top held lowered by it instead of loaded by ``P``;
+    ``sides``: the block's side nodes' forces per unit bulk stress (:func:`side_weights`)."""
+    P, s, Q, sigma = state
     # free tilt: the corners' forces balance Q's moment about the surface; tilt suppressed: the
     # guided lid reacts it (and P acts at the left corner, s an outcome)
     _, loads = lid_nodes(model, P=P, s=s - T * Q / P if tilt == "free" else s, tilt=tilt, half=False)
@@ -196,13 +308,16 @@ def _step(model: Model, *, P: float, s: float, Q: float, T: float, tilt: str, n:
     held = "" if descent is None else f"{tl}, 2, 2, {-descent:.15g}\n"
     if descent is not None:
         loads = ""
+    loads += "".join(f"{node}, 1, {sigma * w:.15g}\n" for node, w in (sides or {}).items())
     # the descent, once set, holds in the later steps (CalculiX keeps a step's boundary conditions)
     release = f"*BOUNDARY\n{held}" if first and held else ""
+    side_print = "*NODE PRINT, NSET=NSIDES\nU\n" if sides else ""
     return ("*STEP, INC=1000\n*CONTROLS, PARAMETERS=TIME INCREMENTATION\n40, 60, 9, 200, 10, 4, 12, 40\n"
             f"*STATIC\n{dt:.15g}, 1., {dt / 256:.15g}, {dt:.15g}\n{release}*CLOAD\n{loads}"
             f"{tl}, 1, {Q:.15g}\n"
             "*NODE FILE, NSET=NOUT\nU\n*CONTACT FILE\nCDIS, CSTR, CELS\n"
-            "*NODE PRINT, NSET=NBASE, TOTALS=ONLY\nRF\n*NODE PRINT, NSET=NCTRL\nU\n*END STEP\n")
+            "*NODE PRINT, NSET=NBASE, TOTALS=ONLY\nRF\n*NODE PRINT, NSET=NCTRL\nU\n"
+            f"{side_print}*END STEP\n")
 
 
 # --------------------------------------------------------------------------- reading a run
@@ -246,22 +361,45 @@ def contact_traction(state: dict[str, dict[int, np.ndarray]], xy: dict[int, np.n
     """``(x, p, q)`` along the block's face from one increment of a surface-to-surface run.
 
     ``state`` holds the increment's CONTACT block (COPEN, CSLIP1, CSLIP2, CPRESS,
-    CSHEAR1, CSHEAR2 at the slave nodes) and DISP; ``xy`` the nodes' undeformed
-    coordinates. ``x`` is the slave nodes' deformed position (sorted), ``p`` CPRESS
+    CSHEAR1, CSHEAR2 at the slave nodes); ``xy`` the nodes' undeformed coordinates.
+    ``x`` is the slave nodes' undeformed position (sorted: the material point, as the
+    half-plane theory's ``x``; the deformed one moves with the block's surface, by
+    ``2.5e-3 W`` along ``+x`` on ``slip_Q0.4`` at ``Q = 0.4 fP``, which read as the stick
+    zone's "offset", docs/CALCULIX.md), ``p`` CPRESS
     (compressive positive) and ``q = -CSHEAR1``: on the block's upward face
     CalculiX's first tangent points along ``-x`` (measured: ``-∫CSHEAR1 dx = Q``
     for ``Q > 0`` along ``+x`` on the punch), so ``q`` is the shear the punch
     exerts on the block along ``+x``, the project's convention. A node whose
     contact output is all zero (never paired) is left out.
     """
+    x, v = contact_rows(state, xy)
+    return x, v[:, 3], -v[:, 4]
+
+
+def contact_rows(state: dict[str, dict[int, np.ndarray]], xy: dict[int, np.ndarray]
+                  ) -> tuple[np.ndarray, np.ndarray]:
+    """The slave nodes' undeformed ``x`` (sorted) and their CONTACT rows (COPEN, CSLIP1, CSLIP2,
+    CPRESS, CSHEAR1, CSHEAR2), CPRESS and CSHEAR per unit undeformed length; nodes whose
+    output is all zero (never paired) left out.
+
+    ccx's contact stresses are per unit deformed length (its contact is solved on the
+    deformed faces): times the surface's stretch ``dx_deformed / dx`` (from DISP, when the
+    increment holds it) they are per unit undeformed length, as the half-plane theory's,
+    and ``∫p dx``, ``∫q dx`` are the contact's forces (the surface strain is about ``p/E``,
+    1e-3 on the small-slope cases: ``∫p`` read 7.7e-4 off ``P`` without it, 7e-5 with it).
+    """
     contact, disp = state["CONTACT"], state.get("DISP", {})
     nodes = [k for k, v in contact.items() if k in xy and np.any(v != 0.0)]
     if len(nodes) < 8:
         raise InputError(f"{len(nodes)} slave nodes carry contact output; at least 8 are needed")
-    x = np.array([xy[k][0] + (disp[k][0] if k in disp else 0.0) for k in nodes])
+    x = np.array([xy[k][0] for k in nodes])
     v = np.array([contact[k] for k in nodes])
     order = np.argsort(x)
-    return x[order], v[order, 3], -v[order, 4]
+    x, v = x[order], v[order]
+    u = np.array([disp[k][0] if k in disp else 0.0 for k in np.asarray(nodes)[order]])
+    if np.all(np.diff(x) > 0):
+        v[:, 3:] *= np.gradient(x + u, x)[:, None]
+    return x, v
 
 
 def control_history(stem: Path) -> tuple[np.ndarray, np.ndarray]:
@@ -284,7 +422,7 @@ class FrictionResult:
     Attributes
     ----------
     x, p, q
-        The block's slave nodes (deformed ``x``, sorted), CPRESS and the shear the punch
+        The block's slave nodes (undeformed ``x``, sorted), CPRESS and the shear the punch
         exerts on the block along ``+x`` (:func:`contact_traction`).
     Q, P
         The loads the deck applied at this state (``P``: the base's reaction with a descent).
@@ -308,7 +446,7 @@ class FrictionResult:
     info: dict[str, Any] = field(default_factory=dict)
 
 
-def _increments(stem: Path) -> dict[int, int]:
+def step_increments(stem: Path) -> dict[int, int]:
     """The converged increments of each step (``stem.sta``)."""
     out: dict[int, int] = {}
     sta = Path(f"{stem}.sta")
@@ -318,10 +456,11 @@ def _increments(stem: Path) -> dict[int, int]:
     return out
 
 
-def _run(punch: Punch, P: float, s: float, Qs: list[float], f: float, E: float, nu: float, *,
-         n: float, increments: int, slope: float | None, tilt: str, workdir: Path, name: str
-         ) -> tuple[Model, Path, dict[str, Any]]:
-    """Mesh the pair for the closed form's normal contact, write the friction deck, run ccx."""
+def run_steps(punch: Punch, P: float, s: float, Qs: list[float], f: float, E: float, nu: float, *,
+         n: float, increments: int, slope: float | None, tilt: str, workdir: Path, name: str,
+         **deck: Any) -> tuple[Model, Path, dict[str, Any]]:
+    """Mesh the pair for the closed form's normal contact, write the friction deck (``deck``: its
+    ``sigma_bulk`` or ``history``), run ccx."""
     import resource
 
     from ..material import compliance
@@ -332,18 +471,19 @@ def _run(punch: Punch, P: float, s: float, Qs: list[float], f: float, E: float, 
     normal = solve(punch, P, s, A=compliance(E, nu, E, nu), tilt=tilt)
     settings = DeckSettings(n=n, pair=True, penalty_factor=PENALTY_FACTOR, tilt=tilt)
     model = build_model(punch, normal.a, normal.c, settings)
-    deck = friction_deck(model, P=P, s=s, E=E, nu=nu, f=f, Q=Qs, increments=increments,
-                         settings=settings, slope=slope, title=name)
+    text = friction_deck(model, P=None if deck.get("history") is not None else P,
+                         s=None if deck.get("history") is not None else s, E=E, nu=nu, f=f, Q=Qs,
+                         increments=increments, settings=settings, slope=slope, title=name, **deck)
     t0, c0 = time.perf_counter(), resource.getrusage(resource.RUSAGE_CHILDREN).ru_utime
-    stem = run_ccx(deck, workdir, name, timeout=3600.0)
+    stem = run_ccx(text, workdir, name, timeout=7200.0)
     info = {"h": model.h0, "nodes": model.n_nodes, "stem": stem,
             "wall": time.perf_counter() - t0,
             "cpu": resource.getrusage(resource.RUSAGE_CHILDREN).ru_utime - c0,
-            "increments": _increments(stem)}
+            "increments": step_increments(stem)}
     return model, stem, info
 
 
-def _state(state: dict[str, dict[int, np.ndarray]], xy: dict[int, np.ndarray], *,
+def traction_state(state: dict[str, dict[int, np.ndarray]], xy: dict[int, np.ndarray], *,
            P: float, Q: float, f: float, info: dict[str, Any]) -> FrictionResult:
     """One recorded state as a :class:`FrictionResult`."""
     x, p, q = contact_traction(state, xy)
@@ -353,8 +493,12 @@ def _state(state: dict[str, dict[int, np.ndarray]], xy: dict[int, np.ndarray], *
 
 def partial_slip(punch: Punch, P: float, s: float, Q: float, f: float, E: float, nu: float, *,
                  n: float = 100.0, increments: int = 4, slope: float | None = None,
-                 tilt: str = "free", workdir: Path, name: str = "slip") -> FrictionResult:
+                 tilt: str = "free", workdir: Path, name: str = "slip", sigma_bulk: float = 0.0
+                 ) -> FrictionResult:
     """Partial slip by CalculiX: ``P`` at ``s``, then ``Q`` in ``increments`` steps; the last state.
+
+    ``sigma_bulk``: the block's bulk stress at ``Q``, rising with ``Q`` in proportion (the
+    closed form's load path, docs/BULK_STRESS.md; :func:`friction_deck`).
 
     Two similar bodies (``E``, ``nu``), meshed for the closed form's normal contact at
     ``W / n``; surface-to-surface penalty contact with ``*FRICTION`` (``f``, the stick
@@ -364,11 +508,11 @@ def partial_slip(punch: Punch, P: float, s: float, Q: float, f: float, E: float,
     """
     from .read import read_frd_nodes
 
-    model, stem, info = _run(punch, P, s, [Q], f, E, nu, n=n, increments=increments, slope=slope,
-                             tilt=tilt, workdir=workdir, name=name)
+    model, stem, info = run_steps(punch, P, s, [Q], f, E, nu, n=n, increments=increments, slope=slope,
+                             tilt=tilt, workdir=workdir, name=name, sigma_bulk=sigma_bulk)
     xy = read_frd_nodes(stem)
     states = read_frd_states(stem)
-    return _state(states[-1][2], xy, P=P, Q=Q, f=f, info=info)
+    return traction_state(states[-1][2], xy, P=P, Q=Q, f=f, info=dict(info, sigma_bulk=sigma_bulk))
 
 
 def fretting_cycle(punch: Punch, P: float, s: float, Q_max: float, f: float, E: float, nu: float, *,
@@ -383,7 +527,7 @@ def fretting_cycle(punch: Punch, P: float, s: float, Q_max: float, f: float, E: 
     from .read import read_frd_nodes
 
     Qs = [Q_max, -Q_max, Q_max]
-    model, stem, info = _run(punch, P, s, Qs, f, E, nu, n=n, increments=increments, slope=slope,
+    model, stem, info = run_steps(punch, P, s, Qs, f, E, nu, n=n, increments=increments, slope=slope,
                              tilt=tilt, workdir=workdir, name=name)
     t, u = control_history(stem)
     tl, tr = model.control_nodes()
@@ -400,14 +544,15 @@ def fretting_cycle(punch: Punch, P: float, s: float, Q_max: float, f: float, E: 
     energy = cycle_energy(t, u, loads)
     info = dict(info, energy=energy)
     xy = read_frd_nodes(stem)
-    return [_state(blk, xy, P=P, Q=float(np.interp(tt, [0.0, 1.0, 2.0, 3.0, 4.0], [0.0, 0.0, *Qs])),
+    return [traction_state(blk, xy, P=P, Q=float(np.interp(tt, [0.0, 1.0, 2.0, 3.0, 4.0], [0.0, 0.0, *Qs])),
                    f=f, info=dict(info, time=tt, step=step))
             for step, tt, blk in read_frd_states(stem)]
 
 
-def cycle_energy(t: np.ndarray, u: np.ndarray, loads: Any) -> float:
+def cycle_energy(t: np.ndarray, u: np.ndarray, loads: Any, span: tuple[int, int] = (2, 4)) -> float:
     """The energy dissipated per cycle: the work ``∮ F·du`` of the loads on the punch's control
-    nodes over the closed loop of steps 3 and 4 (``Q_max -> -Q_max -> Q_max``, total times 2 to 4).
+    nodes over the closed loop of the steps between the total times ``span`` (default steps 3
+    and 4, ``Q_max -> -Q_max -> Q_max``, total times 2 to 4; each step one unit of time).
 
     Over a closed loop the elastic work cancels, and ``∮ F·du = -∮ u·dF``; the loads ``F =
     loads(t)`` are linear in ``t`` within a step, so each step is ``-F' · ∫u dt``, by Simpson's
@@ -418,7 +563,7 @@ def cycle_energy(t: np.ndarray, u: np.ndarray, loads: Any) -> float:
     from scipy.integrate import simpson
 
     total = 0.0
-    for a in (2.0, 3.0):
+    for a in map(float, range(span[0], span[1])):
         m = (t >= a - 1e-9) & (t <= a + 1 + 1e-9)
         tt, uu = t[m], u[m]
         dF = (loads(np.array([a + 1.0])) - loads(np.array([a])))[0]
@@ -427,31 +572,3 @@ def cycle_energy(t: np.ndarray, u: np.ndarray, loads: Any) -> float:
                     else np.sum(0.5 * (uu[1:] + uu[:-1]) * np.diff(tt)[:, None], axis=0))
         total -= float(np.dot(dF, integral))
     return total
-
-
-def read_traction(path: str | Path, *, arg: str = "path"
-                  ) -> tuple[np.ndarray, np.ndarray, np.ndarray, dict[str, Any]] | None:
-    """``(x, p, q, info)`` at the last increment of a surface-to-surface run's ``.frd``, or ``None``
-    if the file's contact output is node-to-surface (written on the expanded nodes, numbered past
-    the plane model's: :func:`threepart.calculix.contact_pressure` reads those).
-
-    ``q`` as :func:`contact_traction`; ``info`` holds the source, the states' count and the
-    increments (``.sta`` beside it).
-    """
-    from .read import read_frd, read_frd_nodes
-
-    path = Path(path)
-    if path.suffix.lower() != ".frd":
-        return None
-    last = read_frd(path, arg=arg)          # the checked reader, the file as given
-    if not last.get("CONTACT"):
-        return None
-    xy = read_frd_nodes(path, arg=arg)
-    contact = last["CONTACT"]
-    if max(contact) > max(xy):
-        return None
-    try:
-        x, p, q = contact_traction(last, xy)
-    except InputError as exc:
-        raise ReaderError(f"`{arg}` = {str(path)!r}: {exc}") from None
-    return x, p, q, {"source": "frd (surface to surface)", "increments": _increments(path.with_suffix(""))}

@@ -142,8 +142,8 @@ def build_half_mesh(punch: Punch, a: float, *, h0: float, x_fine: float, grading
     for body in ("block", "punch"):
         numbers[body] = np.arange(n + 1, n + 1 + len(elements[body]))
         n += len(elements[body])
-    master = _faces(elements["punch"], numbers["punch"], nsets["punch_contact"], xy, x_fine)
-    slave = _faces(elements["block"], numbers["block"], nsets["block_fine"], xy, x_fine)
+    master = face_elements(elements["punch"], numbers["punch"], nsets["punch_contact"], xy, x_fine)
+    slave = face_elements(elements["block"], numbers["block"], nsets["block_fine"], xy, x_fine)
     return Mesh(xy, elements, nsets, master, slave, h0, numbers)
 
 
@@ -169,7 +169,7 @@ def _half_size_field(gmsh: Any, curves: list[int], *, h0: float, x_fine: float, 
     gmsh.model.mesh.setOrder(2)
 
 
-def _faces(elements: list[tuple[str, np.ndarray]], numbers: np.ndarray, on: np.ndarray,
+def face_elements(elements: list[tuple[str, np.ndarray]], numbers: np.ndarray, on: np.ndarray,
            xy: np.ndarray, x_max: float) -> list[tuple[int, str]]:
     """Element faces ``(element, "Sk")`` with both corners in the node set ``on`` and ``x <= x_max``.
 
@@ -210,7 +210,9 @@ class Model:
         The punch and the contact ``[-a, c]`` the mesh was sized for.
     xy, elements, numbers, nsets, master, slave, h0
         As :class:`Mesh`; ``nsets`` holds ``"block_surface"`` (the block's top over
-        the fine zone), ``"punch_profile"``, ``"block_base"``, ``"punch_top"``.
+        the fine zone), ``"punch_profile"``, ``"block_base"``, ``"punch_top"`` and, on
+        :func:`build_model`'s pair, the block's sides ``"block_left"``, ``"block_right"``
+        (where a friction deck's bulk stress acts).
     lift
         How far the punch's profile was lowered from eq. (2)'s so that it just touches ``y = 0``.
     """
@@ -316,6 +318,7 @@ def build_model(punch: Punch, a: float, c: float, settings: DeckSettings = DeckS
         occ.synchronize()
         groups = {"block": (2, [s_block]), "punch": (2, [s_punch]),
                   "block_surface": (1, [lb[1]]), "block_base": (1, [lb[4]]),
+                  "block_left": (1, [lb[5]]), "block_right": (1, [lb[3]]),
                   "punch_profile": (1, face), "punch_top": (1, [top])}
         xy, elements, nsets = _mesh_pair(gmsh, groups, [lb[1], *fine], face, h0=h0,
                                          growth=settings.growth, span=xf1 - xf0, depth=depth)
@@ -497,8 +500,8 @@ def _model(punch: Punch, a: float, c: float, xy: np.ndarray,
     for body in ("block", "punch"):
         numbers[body] = np.arange(n + 1, n + 1 + len(elements[body]))
         n += len(elements[body])
-    master = _faces(elements["punch"], numbers["punch"], nsets["punch_profile"], xy, math.inf)
-    slave = _faces(elements["block"], numbers["block"], nsets["block_surface"], xy, math.inf)
+    master = face_elements(elements["punch"], numbers["punch"], nsets["punch_profile"], xy, math.inf)
+    slave = face_elements(elements["block"], numbers["block"], nsets["block_surface"], xy, math.inf)
     return Model(punch, a, c, xy, elements, numbers, nsets, master, slave, h0, lift)
 
 

@@ -16,15 +16,16 @@ from typing import Any, Iterator, Sequence
 
 from threepart.__main__ import INTERRUPTED, program
 
-from . import cases, compare, cycle, deck, export_refs, fatigue, figures, match, solve, verify
+from . import cache, cases, compare, cycle, deck, export_refs, fatigue, figures, match, solve, verify
 from . import map as map_   # the module, not the builtin
+from . import wear
 from ._args import Parser, UsageError, join_negative_numbers, real_arg
 
 __all__ = ["build_parser", "main", "SUBCOMMANDS", "HELP"]
 
 #: the sub-command modules, in the order ``threepart --help`` lists them; each has
 #: ``add_parser(subparsers)`` (which sets ``func``) and ``run(args) -> int``
-SUBCOMMANDS = (solve, cases, verify, figures, map_, export_refs, fatigue, cycle, match, deck, compare)
+SUBCOMMANDS = (solve, cases, verify, figures, map_, export_refs, fatigue, cycle, match, deck, compare, cache, wear)
 
 #: the description ``threepart --help`` prints
 HELP = """The ``threepart`` command line.
@@ -43,6 +44,8 @@ cycle    the flight cycle: steady state of an in-phase cycle (or a load history)
 match    the Hertzian pad test that reproduces one edge of a flank: its K_N, K_T and slip zone
 deck     a ready-to-run CalculiX input deck of a catalogue case or of a punch and loads
 compare  judge another code's contact pressure (CSV, CalculiX .frd/.dat, VTU/XDMF/MED/Exodus) against threepart
+cache    the cache of condensed FE compliances ($THREEPART_CACHE): show it, --clear threepart's entries
+wear     fretting wear over N cycles: worn profile, pressure, stick zone, energy per cycle, the worn limit
 
 A problem is a catalogue case, --case NAME (`threepart cases` lists them), or
 the punch, material and loads as options; the punch and loads beside --case

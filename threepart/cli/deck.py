@@ -4,17 +4,20 @@ The model is built around the contact that :func:`threepart.solve` predicts; its
 title carries the compliance to judge it with (``threepart compare --A``).
 Without a shear it is the normal problem (CalculiX: a stiff punch or, with
 ``--pair``, two similar bodies); with ``--Q --f`` (partial slip: the normal load
-first, then ``Q`` in steps) or ``--Q-max --f`` (the fretting cycle
-``0 -> Q -> -Q -> Q``) it is two similar elastic bodies with Coulomb friction
-(:mod:`threepart.calculix.friction`, :mod:`threepart.getfem`), which every
-format writes. See docs/CALCULIX.md and docs/GETFEM.md.
+first, then ``Q`` in steps, with ``--sigma-bulk`` the substrate's bulk stress
+rising with it), ``--Q-max --f`` (the fretting cycle ``0 -> Q -> -Q -> Q``),
+``--state0 --state1 --f`` (a flight cycle, ``[state0, state1, state0, state1]``)
+or ``--history FILE.csv --f`` (a load history) it is two similar elastic bodies
+with Coulomb friction (:mod:`threepart.calculix.friction`, :mod:`threepart.getfem`),
+which every format writes. A ``--case`` with a shear, a bulk stress or two states
+gives its own. See docs/CALCULIX.md and docs/GETFEM.md.
 """
 from __future__ import annotations
 
 import argparse
 from typing import Any
 
-from ._args import labelled, problem, problem_args
+from ._args import labelled, problem, problem_args, state_arg
 from threepart.errors import InputError
 
 __all__ = ["add_parser", "run"]
@@ -37,6 +40,17 @@ def add_parser(sub: Any) -> None:
     g.add_argument("--Q-max", type=float, dest="Q_max",
                    help=labelled("a fretting cycle 0 -> Q_max -> -Q_max -> Q_max instead", "Q"))
     g.add_argument("--f", type=float, help="the coefficient of friction")
+    g.add_argument("--sigma-bulk", type=float, dest="sigma_bulk",
+                   help=labelled("the substrate's bulk stress at Q (or Q_max), rising with it in proportion "
+                                 "after P (tension positive; docs/BULK_STRESS.md)", "sigma_bulk"))
+    for k in (0, 1):
+        g.add_argument(f"--state{k}", type=state_arg, metavar="P,s,Q,SIGMA",
+                       help=f"end {k} of a flight cycle (N/mm, mm, N/mm, MPa), instead of --P, --s and --Q: "
+                            "the deck loads state0's P, then state0, state1, state0, state1 (the four moving "
+                            "linearly together); judge it with `threepart compare --state0 --state1`")
+    g.add_argument("--history", metavar="FILE.csv",
+                   help="a load history instead: a CSV file with the columns P, s, Q, sigma_bulk, each "
+                        "state reached in turn after the first state's P")
     p.add_argument("--out", required=True, metavar="FILE",
                    help="the deck to write (FILE.inp for calculix, FILE.py for getfem: a new file, "
                         "or one threepart wrote there, unchanged)")
@@ -63,8 +77,8 @@ def run(args: argparse.Namespace) -> int:
     from threepart.methods import solve
     from threepart.output import write_file
 
-    pr = problem(args)
     shear = _shear_iv(args)
+    pr = problem(args)
     if shear:
         return _friction(args, pr, shear)
     settings = calculix.DeckSettings(h=args.h, penalty=args.penalty, pair=args.pair,
@@ -88,34 +102,74 @@ def run(args: argparse.Namespace) -> int:
     return 0
 
 
-def _shear_iv(args: argparse.Namespace) -> dict[str, float]:
-    """``{"Q": ...}`` or ``{"Q_max": ...}`` with ``f`` for a friction deck, ``{}`` for the normal one."""
+def _shear_iv(args: argparse.Namespace) -> dict[str, Any]:
+    """The friction deck's loads with ``f``: ``{"Q"}`` or ``{"Q_max"}`` (with ``sigma_bulk``), or
+    ``{"history"}`` (a flight cycle's four states or a CSV file's); ``{}`` for the normal one."""
+    states = [k for k in (0, 1) if getattr(args, f"state{k}") is not None]
+    if len(states) == 1:
+        raise InputError(f"a flight cycle needs both `--state0` and `--state1` (got only `--state{states[0]}`)")
+    modes = [m for m, given in (("--Q", args.Q is not None), ("--Q-max", args.Q_max is not None),
+                                ("--state0/--state1", bool(states)), ("--history", args.history is not None))
+             if given]
     if args.Q is not None and args.Q_max is not None:
         raise InputError("give `--Q` (partial slip) or `--Q-max` (a fretting cycle), not both")
-    given = args.Q is not None or args.Q_max is not None
-    if not given and args.f is None and args.case is not None:   # a case's own shear load, if any
-        from threepart.catalogue import get_case
+    if len(modes) > 1:
+        raise InputError(f"give one load of a friction deck, not {' and '.join(f'`{m}`' for m in modes)}")
+    if args.sigma_bulk is not None:
+        from threepart.validate import finite
 
-        case = get_case(args.case).resolved()
-        if case.kind in ("slip", "fretting") and case.Q is not None and case.f is not None:
-            return {"Q" if case.kind == "slip" else "Q_max": float(case.Q), "f": float(case.f)}
-    if given != (args.f is not None):
-        raise InputError("a friction deck needs `--f` with `--Q` or `--Q-max`; a normal one neither")
-    if not given and args.format == "getfem":
-        raise InputError("`--format getfem` writes friction only: give `--Q` or `--Q-max`, and `--f`")
-    if given and args.pair is False and args.stiffening is not None:
+        finite("--sigma-bulk", args.sigma_bulk)
+        if args.Q is None and args.Q_max is None:
+            raise InputError("`--sigma-bulk` rises with the shear: give it with `--Q` or `--Q-max` (a history's "
+                             "states carry their own)")
+    if not modes and args.f is None and args.case is not None:   # a case's own shear load, if any
+        return _case_shear(args)
+    if bool(modes) != (args.f is not None):
+        raise InputError("a friction deck needs `--f` with `--Q`, `--Q-max`, `--state0/--state1` or "
+                         "`--history`; a normal one neither")
+    if not modes and args.format == "getfem":
+        raise InputError("`--format getfem` writes friction only: give `--Q`, `--Q-max`, `--state0/--state1` "
+                         "or `--history`, and `--f`")
+    if modes and args.pair is False and args.stiffening is not None:
         raise InputError("`--stiffening` is the normal deck's stiff punch; a friction deck is two "
                          "similar bodies")
-    if not given:
+    if not modes:
         return {}
-    return {"Q": float(args.Q), "f": float(args.f)} if args.Q is not None else \
-        {"Q_max": float(args.Q_max), "f": float(args.f)}
+    f = float(args.f)
+    if modes[0] in ("--state0/--state1", "--history"):
+        if args.P is not None or args.s is not None:
+            raise InputError(f"`{modes[0]}` gives P and s: leave out `--P` and `--s`")
+        from threepart.history import check_history
+
+        hist = check_history(args.history if args.history is not None else
+                             [args.state0, args.state1, args.state0, args.state1])
+        if args.case is None:
+            args.P, args.s = float(hist.P[0]), float(hist.s[0])      # the first state's normal load
+        return {"history": hist, "f": f, "flight": bool(states)}
+    bulk = {"sigma_bulk": float(args.sigma_bulk)} if args.sigma_bulk else {}
+    return ({"Q": float(args.Q)} if args.Q is not None else {"Q_max": float(args.Q_max)}) | {"f": f} | bulk
 
 
-def _friction(args: argparse.Namespace, pr: dict[str, Any], shear: dict[str, float]) -> int:
+def _case_shear(args: argparse.Namespace) -> dict[str, Any]:
+    """A catalogue case's own friction loads: its shear (and bulk stress), or its two states (a flight cycle)."""
+    from threepart.catalogue import get_case
+    from threepart.history import check_history
+
+    case = get_case(args.case).resolved()
+    if case.f is None:
+        return {}
+    if case.kind == "steady" and case.states is not None:
+        st0, st1 = case.states
+        return {"history": check_history([st0, st1, st0, st1]), "f": float(case.f), "flight": True}
+    if case.kind in ("slip", "fretting") and case.Q is not None:
+        bulk = {"sigma_bulk": float(case.sigma_bulk)} if case.sigma_bulk else {}
+        return {"Q" if case.kind == "slip" else "Q_max": float(case.Q), "f": float(case.f)} | bulk
+    return {}
+
+
+def _friction(args: argparse.Namespace, pr: dict[str, Any], shear: dict[str, Any]) -> int:
     """Write the friction deck (two similar bodies of the problem's A) and say what it holds."""
-    from threepart import calculix, getfem
-    from threepart.calculix.friction import friction_deck
+    from threepart import calculix
     from threepart.errors import full_sliding
     from threepart.material import similar_pair_modulus
     from threepart.methods import solve
@@ -123,37 +177,70 @@ def _friction(args: argparse.Namespace, pr: dict[str, Any], shear: dict[str, flo
 
     nu, f = pr["nu"], shear["f"]
     E = similar_pair_modulus(pr["A"], nu)
-    name = "Q" if "Q" in shear else "Q_max"
-    amplitude = shear[name]
-    if not abs(amplitude) < f * pr["P"]:
-        raise full_sliding(name, amplitude, f, pr["P"], "the deck would slide")
-    ref = solve(pr["punch"], pr["P"], pr["s"], A=pr["A"], tilt=pr["tilt"])
+    hist = shear.get("history")
+    loads = [(pr["P"], pr["s"])] if hist is None else list(dict.fromkeys(zip(hist.P.tolist(), hist.s.tolist())))
+    if hist is None:
+        name = "Q" if "Q" in shear else "Q_max"
+        if not abs(shear[name]) < f * pr["P"]:
+            raise full_sliding(name, shear[name], f, pr["P"], "the deck would slide")
+        bulk = f", sigma_bulk = {shear['sigma_bulk']:g} MPa rising with it" if shear.get("sigma_bulk") else ""
+        path = ("partial slip 0 -> Q" if name == "Q" else "fretting cycle 0 -> Q -> -Q -> Q") + \
+            f" at {name} = {shear[name]:g}{bulk}"
+        judge = f"--{name.replace('_', '-')} {shear[name]:g}" + (f" --sigma-bulk {shear['sigma_bulk']:g}" if bulk else "")
+    else:
+        for k in range(len(hist)):
+            if not abs(hist.Q[k]) < f * hist.P[k]:
+                raise full_sliding(f"state {k}: Q", float(hist.Q[k]), f, float(hist.P[k]), "the deck would slide")
+        path = (f"flight cycle state0 -> state1 -> state0 -> state1 ({', '.join(map('{:g}'.format, hist.state(0)))} "
+                f"<-> {', '.join(map('{:g}'.format, hist.state(1)))})" if shear.get("flight") else
+                f"load history of {len(hist)} states (P, s, Q, sigma_bulk)")
+        judge = (f"--state0 {','.join(map('{:.10g}'.format, hist.state(0)))} "
+                 f"--state1 {','.join(map('{:.10g}'.format, hist.state(1)))}") if shear.get("flight") else ""
+    normals = [solve(pr["punch"], P, s, A=pr["A"], tilt=pr["tilt"]) for P, s in loads]
+    a, c = max(n.a for n in normals), max(n.c for n in normals)
     title = (pr["name"] or "a punch from the command line") + f"; judge it with A = {pr['A']:.10g}"
-    path = "partial slip 0 -> Q" if "Q" in shear else "fretting cycle 0 -> Q -> -Q -> Q"
+    case = f"--case {pr['name']} " if pr["name"] else ""
+    how = f"`threepart compare {case}{judge} --f {f:g} --A {pr['A']:.10g}`" if judge else \
+        f"`threepart compare {case}--A {pr['A']:.10g}`"
     if args.format == "getfem":
-        from pathlib import Path
-
-        stem = Path(args.out).name.split(".")[0]
-        if not stem.isidentifier():
-            raise InputError(f"`--out` = {args.out!r}: a GetFEM script's name must be a plain stem "
-                             "(letters, digits, _), as its files are named after it")
-        text = getfem.write_script(pr["punch"], pr["P"], pr["s"], a=ref.a, c=ref.c, E=E, nu=nu, f=f,
-                                   Q=shear.get("Q"), Q_max=shear.get("Q_max"), tilt=pr["tilt"],
-                                   title=title, name=stem)
-        write_file(args.out, text, arg="--out")
-        print(f"wrote {args.out}: GetFEM, two similar bodies of E = {E:.6g} MPa, nu = {nu:g}, "
-              f"{path} at {name} = {amplitude:g}, f = {f:g}; run it with the interpreter that imports "
-              f"getfem in its folder (it writes {stem}.vtu and {stem}.getfem.json); expected contact "
-              f"[{-ref.a:.6g}, {ref.c:.6g}]")
-        return 0
+        return _getfem(args, pr, shear, E, a, c, title, path, how)
     settings = calculix.DeckSettings(h=args.h, penalty=args.penalty, pair=True, tilt=pr["tilt"])
-    model = calculix.build_model(pr["punch"], ref.a, ref.c, settings)
-    Qs = [amplitude] if "Q" in shear else [amplitude, -amplitude, amplitude]
-    deck = friction_deck(model, P=pr["P"], s=pr["s"], E=E, nu=nu, f=f, Q=Qs, settings=settings,
-                         title=title)
+    model = calculix.build_model(pr["punch"], a, c, settings)
+    from threepart.calculix.friction import friction_deck
+
+    if hist is None:
+        Qs = [shear[name]] if name == "Q" else [shear[name], -shear[name], shear[name]]
+        deck = friction_deck(model, P=pr["P"], s=pr["s"], E=E, nu=nu, f=f, Q=Qs, settings=settings, title=title,
+                             sigma_bulk=shear.get("sigma_bulk", 0.0))
+    else:
+        deck = friction_deck(model, E=E, nu=nu, f=f, settings=settings, title=title, history=hist)
     write_file(args.out, deck, arg="--out")
-    print(f"wrote {args.out}: CalculiX, two similar bodies of E = {E:.6g} MPa, nu = {nu:g}, {path} "
-          f"at {name} = {amplitude:g}, f = {f:g}: {model.n_nodes} nodes, h = {model.h0:.4g}; judge its "
-          f".frd with `threepart compare --Q {amplitude:g} --f {f:g} --A {pr['A']:.10g}`; expected contact "
-          f"[{-ref.a:.6g}, {ref.c:.6g}]")
+    print(f"wrote {args.out}: CalculiX, two similar bodies of E = {E:.6g} MPa, nu = {nu:g}, {path}, f = {f:g}: "
+          f"{model.n_nodes} nodes, h = {model.h0:.4g}; judge its .frd with {how}; expected contact "
+          f"[{-a:.6g}, {c:.6g}]")
+    return 0
+
+
+def _getfem(args: argparse.Namespace, pr: dict[str, Any], shear: dict[str, Any], E: float, a: float, c: float,
+            title: str, path: str, how: str) -> int:
+    """Write the GetFEM script of the friction deck and say what it holds."""
+    from pathlib import Path
+
+    from threepart import getfem
+    from threepart.output import write_file
+
+    stem = Path(args.out).name.split(".")[0]
+    if not stem.isidentifier():
+        raise InputError(f"`--out` = {args.out!r}: a GetFEM script's name must be a plain stem "
+                         "(letters, digits, _), as its files are named after it")
+    hist = shear.get("history")
+    loads: dict[str, Any] = {"history": hist} if hist is not None else {
+        "Q": shear.get("Q"), "Q_max": shear.get("Q_max"), "sigma_bulk": shear.get("sigma_bulk", 0.0)}
+    text = getfem.write_script(pr["punch"], None if hist is not None else pr["P"], pr["s"], a=a, c=c, E=E,
+                               nu=pr["nu"], f=shear["f"], tilt=pr["tilt"], title=title, name=stem, **loads)
+    write_file(args.out, text, arg="--out")
+    print(f"wrote {args.out}: GetFEM, two similar bodies of E = {E:.6g} MPa, nu = {pr['nu']:g}, {path}, "
+          f"f = {shear['f']:g}; run it with the interpreter that imports getfem in its folder (it writes "
+          f"{stem}.vtu and {stem}.getfem.json; judge the sidecar with {how}); expected contact "
+          f"[{-a:.6g}, {c:.6g}]")
     return 0

@@ -14,9 +14,10 @@ core (``threepart/*.py``) never imports it. docs/GETFEM.md has the figures.
 Scripts (threepart.getfem.script)
 ---------------------------------
 JobSettings  -- mesh (elements across W), block, augmentation, Newton's limits, shear steps
-write_script -- the script of partial slip (``Q``) or a fretting cycle (``Q_max``): header, PARAMS, body
+write_script -- the script of partial slip (``Q``, ``sigma_bulk``), a fretting cycle (``Q_max``) or a load
+                history (``history``): header, PARAMS, body
 header       -- the header alone (what the script models, its conventions, what it writes)
-legs         -- the shear path: 0 -> Q, or 0 -> Q_max -> -Q_max -> Q_max
+legs         -- the load path: 0 -> Q, 0 -> Q_max -> -Q_max -> Q_max, or a history's states in turn
 gap_text     -- the profile v(x) of eq. 2 in GetFEM's weak-form language
 params_of    -- the PARAMS of a script's text, read without running it
 BODY         -- the script's body
@@ -36,20 +37,26 @@ GetfemRun    -- what read_run returns; State -- one recorded state
 loop_energy  -- the energy per cycle: the area of the Q-delta loop (Simpson's rule per branch)
 slip_ends    -- the stick zone's ends from the slip field (slip^(2/3) extrapolated to zero)
 SLIP_NOISE   -- the slip below which a node sticks, of the largest
+last_cycle   -- the last complete cycle of recorded states (any code's)
+friction_work -- their friction work, Σ ∫ (q_k + q_k+1)/2 (slip_k+1 - slip_k) dx
+slip_amplitude -- half the range of each node's slip over recorded states
 
 One call per problem (threepart.getfem.solve)
 ---------------------------------------------
-partial_slip   -- write, run and read partial slip: a GetfemSlip (x, p, q, slip, info)
+partial_slip   -- write, run and read partial slip (with a bulk stress): a GetfemSlip (x, p, q, slip, info)
 fretting_cycle -- the same for a fretting cycle: a GetfemCycle (states, energy, info)
+load_history   -- the same for a load history (a flight cycle: [state0, state1, state0, state1]): a GetfemCycle
 """
 from __future__ import annotations
 
-from .read import SLIP_NOISE, GetfemRun, State, loop_energy, read_run, slip_ends
+from .read import (SLIP_NOISE, GetfemRun, State, friction_work, last_cycle, loop_energy, read_run, slip_amplitude,
+                   slip_ends)
 from .run import GetfemError, GetfemMissing, getfem_available, getfem_python, run_getfem
 from .script import BODY, JobSettings, gap_text, header, legs, params_of, write_script
-from .solve import GetfemCycle, GetfemSlip, fretting_cycle, partial_slip
+from .solve import GetfemCycle, GetfemSlip, fretting_cycle, load_history, partial_slip
 
 __all__ = ["JobSettings", "write_script", "header", "legs", "gap_text", "params_of", "BODY",
            "getfem_python", "getfem_available", "run_getfem", "GetfemError", "GetfemMissing",
            "read_run", "GetfemRun", "State", "loop_energy", "slip_ends", "SLIP_NOISE",
-           "partial_slip", "fretting_cycle", "GetfemSlip", "GetfemCycle"]
+           "partial_slip", "fretting_cycle", "load_history", "GetfemSlip", "GetfemCycle", "last_cycle",
+           "friction_work", "slip_amplitude"]

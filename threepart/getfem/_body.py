@@ -23,7 +23,7 @@ T0 = time.time()
 E, NU, F = PARAMS["E"], PARAMS["nu"], PARAMS["f"]
 H, L, D = PARAMS["h"], PARAMS["half_width"], PARAMS["depth"]
 X_LO, X_HI = PARAMS["zone"]
-CONTACT, BOTTOM, TOP = 1, 2, 3
+CONTACT, BOTTOM, TOP, LEFT, RIGHT = 1, 2, 3, 4, 5
 
 
 def graded(lo, hi, h, growth, far):
@@ -63,6 +63,8 @@ def build():
     tol = 1e-9 * L
     m1.set_region(CONTACT, m1.outer_faces_in_box([X_LO - tol, -tol], [X_HI + tol, tol]))
     m1.set_region(BOTTOM, m1.outer_faces_in_box([-L - tol, -D - tol], [L + tol, -D + tol]))
+    m1.set_region(LEFT, m1.outer_faces_in_box([-L - tol, -D - tol], [-L + tol, tol]))
+    m1.set_region(RIGHT, m1.outer_faces_in_box([L - tol, -D - tol], [L + tol, tol]))
     m2.set_region(TOP, m2.outer_faces_in_box([-L - tol, D - tol], [L + tol, D + tol]))
     mfu1, mfu2, mfl, mfm = (gf.MeshFem(m, 2) for m in (m1, m2, m1, m2))
     mfu1.set_classical_fem(2)                          # P2 displacements
@@ -82,15 +84,21 @@ def build():
     md.add_initialized_data("mu_L", [E / (2 * (1 + NU))])
     md.add_isotropic_linearized_elasticity_brick(mim1, "u1", "lam_L", "mu_L")
     md.add_isotropic_linearized_elasticity_brick(mim2, "u2", "lam_L", "mu_L")
-    md.add_Dirichlet_condition_with_simplification("u1", BOTTOM)
+    # the substrate's base moves with the bulk strain of sigma_bulk (its uniform plane-strain field,
+    # exact in the block with sigma_bulk on its sides): the base restrains the contact's
+    # displacements only, as the clamped base does without a bulk stress
+    md.add_fem_data("u1_base", mfu1)
+    md.add_Dirichlet_condition_with_simplification("u1", BOTTOM, "u1_base")
     rigid = "[{0}(1) - {0}(3)*X(2); {0}(2) + {0}(3)*X(1)]"
     md.add_linear_term(mim2, "mu.(Test_u2 - " + rigid.format("Test_U") + ") + (u2 - "
                        + rigid.format("U") + ").Test_mu", TOP)
-    for name, value in (("Pd", 0.0), ("Qd", 0.0), ("Md", 0.0), ("ktheta", PARAMS["ktheta"]),
+    for name, value in (("Pd", 0.0), ("Qd", 0.0), ("Md", 0.0), ("sbd", 0.0), ("ktheta", PARAMS["ktheta"]),
                         ("r", PARAMS["r"]), ("f", F)):
         md.add_initialized_data(name, [value])
     md.add_linear_term(mim2, "(-(Qd*Test_U(1) - Pd*Test_U(2) + Md*Test_U(3)) + ktheta*U(3)*Test_U(3))/%r"
                        % (2.0 * L), TOP)
+    md.add_linear_term(mim1, "-sbd*Test_u1(1)", RIGHT)     # sigma_bulk on the substrate's sides
+    md.add_linear_term(mim1, "sbd*Test_u1(1)", LEFT)
     md.add_interpolate_transformation_from_expression("T", m1, m2, "X")
     gap = "(" + PARAMS["gap"] + " + Interpolate(u2,T)(2) - u1(2))"
     slip = "(u1 - Interpolate(u2,T) - u1_prev + Interpolate(u2_prev,T))"
@@ -105,34 +113,42 @@ def build():
 
 
 MD, MFU1, MFU2, MFL, MIMC, GRID = build()
+_XY = MFU1.basic_dof_nodes()
+#: the uniform field of a unit bulk stress (plane strain, sigma_yy = 0) at the substrate's dofs
+BULK_FIELD = np.where(np.arange(MFU1.nbdof()) % 2 == 0, (1 - NU * NU) / E * _XY[0],
+                      -NU * (1 + NU) / E * _XY[1])
 SURF = MFL.basic_dof_on_region(CONTACT)
 XS = MFL.basic_dof_nodes(SURF[::2])[0]
 ORDER = np.argsort(XS)
 NAMES = ("u1", "u2", "lambda", "mu", "U")
 
 
-def solve_state(P, Q):
-    """Newton at the loads (P, Q), the moment -P s about the origin; (iterations, converged)."""
+def solve_state(P, s, Q, sb):
+    """Newton at the loads (P at x = s: the moment -P s about the origin; Q; sigma_bulk sb);
+    (iterations, converged)."""
     MD.set_variable("Pd", [P])
     MD.set_variable("Qd", [Q])
-    MD.set_variable("Md", [-P * PARAMS["s"]])
+    MD.set_variable("Md", [-P * s])
+    MD.set_variable("sbd", [sb])
+    MD.set_variable("u1_base", sb * BULK_FIELD)
     it, conv = MD.solve("max_iter", PARAMS["max_iter"], "max_res", PARAMS["max_res"] * PARAMS["P"],
                         "lsearch", "simplest", "lsolver", PARAMS["lsolver"])
     return int(it), bool(conv)
 
 
 def advance(start, end, log, label):
-    """From the loads ``start`` to ``end`` (each (P, Q)), halving a step whose Newton fails."""
+    """From the loads ``start`` to ``end`` (each (P, s, Q, sigma_bulk), moving linearly together),
+    halving a step whose Newton fails."""
     step, done = 1.0, 0.0
     while done < 1.0 - 1e-12:
         step = min(step, 1.0 - done)
         t = done + step
-        P, Q = (start[i] + t * (end[i] - start[i]) for i in range(2))
+        P, s, Q, sb = (start[i] + t * (end[i] - start[i]) for i in range(4))
         saved = {k: MD.variable(k).copy() for k in NAMES}
         t0 = time.time()
-        it, conv = solve_state(P, Q)
-        log.append({"leg": label, "P": P, "Q": Q, "fraction": step, "iterations": it,
-                    "converged": conv, "time": time.time() - t0})
+        it, conv = solve_state(P, s, Q, sb)
+        log.append({"leg": label, "P": P, "s": s, "Q": Q, "sigma_bulk": sb, "fraction": step,
+                    "iterations": it, "converged": conv, "time": time.time() - t0})
         if conv:
             done = t
             MD.set_variable("u1_prev", MD.variable("u1"))
@@ -142,9 +158,9 @@ def advance(start, end, log, label):
                 MD.set_variable(k, v)
             step /= 2
             if step < PARAMS["min_step"]:
-                sys.stderr.write("GETFEM-FAILED: Newton did not converge from P = %.6g, Q = %.6g "
-                                 "with a step of %.3g of the leg '%s' (%d iterations)\n"
-                                 % (P, Q, step * 2, label, it))
+                sys.stderr.write("GETFEM-FAILED: Newton did not converge from P = %.6g, Q = %.6g, "
+                                 "sigma_bulk = %.6g with a step of %.3g of the leg '%s' (%d iterations)\n"
+                                 % (P, Q, sb, step * 2, label, it))
                 sys.exit(3)
 
 
@@ -189,20 +205,23 @@ def write_vtu(path, x, fields):
 
 def main():
     name, log, states = PARAMS["name"], [], []
-    P = PARAMS["P"]
-    advance((0.0, 0.0), (P, 0.0), log, "normal")
+    load = (PARAMS["P"], PARAMS["s"], 0.0, 0.0)
+    advance((0.0,) + load[1:], load, log, "normal")
     w0 = surface()[3]
-    Q, U0 = 0.0, MD.variable("U").copy()
+    U0 = MD.variable("U").copy()
     for leg in PARAMS["legs"]:
+        start, end = load, (leg["P"], leg["s"], leg["Q"], leg["sigma_bulk"])
         for k in range(leg["steps"]):
-            Q1 = Q + (leg["Q"] - Q) / (leg["steps"] - k)
-            advance((P, Q), (P, Q1), log, leg["branch"])
-            Q = Q1
+            t = (k + 1.0) / leg["steps"]
+            nxt = end if k + 1 == leg["steps"] else tuple(a + t * (b - a) for a, b in zip(start, end))
+            advance(load, nxt, log, leg["branch"])
+            load = nxt
             x, p, q, w = surface()
             U = MD.variable("U")
             fname = "%s_%03d.vtu" % (name, len(states) + 1)
             write_vtu(fname, x, {"contact_pressure": p, "contact_shear": q, "slip": w - w0})
-            states.append({"file": fname, "branch": leg["branch"], "P": P, "Q": Q,
+            states.append({"file": fname, "branch": leg["branch"], "P": load[0], "s": load[1],
+                           "Q": load[2], "sigma_bulk": load[3],
                            "delta": float(U[0] - U0[0]), "approach": float(-U[1]),
                            "rotation": float(U[2]), "resultant": resultant(),
                            "x": x.tolist(), "p": p.tolist(), "q": q.tolist(), "slip": (w - w0).tolist()})

@@ -12,19 +12,24 @@ read_run     -- read a ``.getfem.json`` sidecar
 loop_energy  -- the energy per cycle, the area of the ``Q``-``delta`` loop (Simpson's rule per branch)
 slip_ends    -- the stick zone's ends from the slip field: where it starts, ``slip^(2/3)`` extrapolated
 SLIP_NOISE   -- the slip below which a node counts as sticking, of the largest slip
+last_cycle   -- the last complete cycle of recorded states (any code's: P, s, Q, sigma_bulk, x, q, slip)
+friction_work -- the friction work of recorded states, ``Σ ∫ (q_k + q_k+1)/2 (slip_k+1 - slip_k) dx``
+slip_amplitude -- half the range of each node's slip over recorded states
 """
 from __future__ import annotations
 
 import json
+import math
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import Any, Sequence
 
 import numpy as np
 
 from threepart.errors import ReaderError
 
-__all__ = ["State", "GetfemRun", "read_run", "loop_energy", "slip_ends", "SLIP_NOISE", "FORMAT"]
+__all__ = ["State", "GetfemRun", "read_run", "loop_energy", "slip_ends", "SLIP_NOISE", "FORMAT", "last_cycle",
+           "friction_work", "slip_amplitude"]
 
 #: the sidecar's format tag (the script writes it)
 FORMAT = "threepart-getfem-1"
@@ -50,6 +55,8 @@ class State:
         the punch's tangential displacement relative to the substrate since the normal load.
     file
         The state's VTU file.
+    s, sigma_bulk
+        The lever arm of ``P`` and the substrate's bulk stress (a sidecar before them: NaN, 0).
     """
 
     P: float
@@ -62,6 +69,8 @@ class State:
     q: np.ndarray
     slip: np.ndarray
     file: str = ""
+    s: float = float("nan")
+    sigma_bulk: float = 0.0
 
 
 @dataclass(frozen=True)
@@ -103,7 +112,9 @@ def read_run(path: str | Path, *, arg: str = "path") -> GetfemRun:
                         resultant=tuple(float(v) for v in s["resultant"]),  # type: ignore[arg-type]
                         x=np.asarray(s["x"], float), p=np.asarray(s["p"], float),
                         q=np.asarray(s["q"], float), slip=np.asarray(s["slip"], float),
-                        file=str(s.get("file", ""))) for s in data["states"]]
+                        file=str(s.get("file", "")),
+                        s=float(s.get("s", data["params"].get("s", float("nan")))),
+                        sigma_bulk=float(s.get("sigma_bulk", 0.0))) for s in data["states"]]
         run = GetfemRun(states=states, steps=list(data["steps"]), params=dict(data["params"]),
                         time=float(data["time"]), dofs=int(data["dofs"]), model=str(data.get("model", "")),
                         path=path, info={"grid": data.get("grid"), "getfem": data.get("getfem")})
@@ -190,3 +201,64 @@ def slip_ends(x: np.ndarray, slip: np.ndarray, inside: tuple[float, float],
         return float(x[near] - s2[0] * (x[far] - x[near]) / (s2[1] - s2[0]))
 
     return root(first - 1, first - 2), root(last + 1, last + 2)
+
+
+def _loads(st: Any) -> tuple[float, float, float, float]:
+    """A recorded state's ``(P, s, Q, sigma_bulk)``; a code that records no ``s`` or bulk stress: 0
+    (no ``P`` or ``Q``: NaN, which closes no cycle)."""
+    def value(name: str, missing: float) -> float:
+        v = getattr(st, name, None)
+        v = missing if v is None else float(v)
+        return missing if math.isnan(v) else v
+
+    return value("P", math.nan), value("s", 0.0), value("Q", math.nan), value("sigma_bulk", 0.0)
+
+
+def last_cycle(states: Sequence[Any]) -> tuple[int, int] | None:
+    """``(start, end)``: the indices of the last complete cycle of recorded states, or None.
+
+    A cycle ends at the last state and starts at the state before it that has the
+    same loads ``(P, s, Q, sigma_bulk)`` reached the same way
+    (:meth:`threepart.history.History.cycles`): a fretting run's ``Q_max`` at the end
+    of loading, a flight cycle's second-last ``state1``. Any code's states that carry
+    ``P`` and ``Q`` (``s``, ``sigma_bulk`` where recorded).
+    """
+    from threepart.history import History
+
+    if len(states) < 2:
+        return None
+    P, s, Q, sb = (np.array(col) for col in zip(*(_loads(st) for st in states)))
+    cycles = History(P=P, s=s, Q=Q, sigma_bulk=sb).cycles()
+    return cycles[-1] if cycles else None
+
+
+def _fields(states: Sequence[Any]) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """``x`` (the first state's nodes) and every state's ``q`` and ``slip`` on them, ``(K, n)``."""
+    x = np.asarray(states[0].x, float)
+    q, w = [], []
+    for st in states:
+        xs = np.asarray(st.x, float)
+        same = xs.shape == x.shape and np.array_equal(xs, x)
+        q.append(np.asarray(st.q, float) if same else np.interp(x, xs, st.q, left=0.0, right=0.0))
+        w.append(np.asarray(st.slip, float) if same else np.interp(x, xs, st.slip))
+    return x, np.array(q), np.array(w)
+
+
+def friction_work(states: Sequence[Any], stride: int = 1) -> float:
+    """The friction work of ``states`` in order, ``Σ_k ∫ (q_k + q_k+1)/2 (slip_k+1 - slip_k) dx``.
+
+    ``q`` the shear the punch exerts on the substrate along +x and ``slip`` the punch's
+    tangential displacement relative to the substrate: a slipping point's shear has
+    the sign of its slip increment, so the work is positive. Per unit length (N mm/mm),
+    the trapezoid rule in the state index (``stride``: every so many states, the
+    first and last kept when they fall on it) and over the nodes.
+    """
+    x, q, w = _fields(states[::stride])
+    rate = 0.5 * (q[1:] + q[:-1]) * np.diff(w, axis=0)
+    return float(np.sum(np.trapezoid(rate, x, axis=1)))
+
+
+def slip_amplitude(states: Sequence[Any]) -> tuple[np.ndarray, np.ndarray]:
+    """``(x, amplitude)``: half the range of each node's slip over ``states`` (those of one cycle)."""
+    x, _, w = _fields(states)
+    return x, 0.5 * (w.max(axis=0) - w.min(axis=0))

@@ -3,7 +3,7 @@
 Names
 -----
 JobSettings  -- the mesh (elements across W), the block, the augmentation, Newton's limits, the steps
-legs         -- the shear path of a partial-slip run (0 -> Q) or of a fretting cycle (0 -> Q -> -Q -> Q)
+legs         -- the load path: partial slip (0 -> Q), a fretting cycle (0 -> Q -> -Q -> Q) or a load history
 gap_text     -- the profile v(x) of eq. 2 in GetFEM's weak-form language
 write_script -- the whole script: its header (what it models), its ``PARAMS`` and :data:`BODY`
 header       -- the header alone
@@ -17,6 +17,7 @@ from dataclasses import asdict, dataclass
 from typing import Any
 
 from ..checks import check_tilt, finite, integer, poisson, positive
+from ..history import History, check_history
 from ..punch import Punch
 from ..validate import shear_load
 from threepart.errors import InputError, InputTypeError
@@ -87,19 +88,30 @@ class JobSettings:
         object.__setattr__(self, "lambda_degree", integer("lambda_degree", self.lambda_degree, 1, 2))
 
 
-def legs(Q: float | None = None, Q_max: float | None = None, steps: int = 8) -> list[dict[str, Any]]:
-    """The shear path: ``Q`` alone (partial slip), or ``Q_max`` (a fretting cycle ``0 -> Q_max -> -Q_max -> Q_max``).
+def legs(Q: float | None = None, Q_max: float | None = None, steps: int = 8, *, P: float = 1.0,
+         s: float = 0.0, sigma_bulk: float = 0.0, history: History | None = None) -> list[dict[str, Any]]:
+    """The load path after the normal load ``P`` at ``s``: each leg ``{"branch", "P", "s", "Q",
+    "sigma_bulk" (its end), "steps"}``, the four moving linearly together along it.
 
-    Each leg is ``{"branch", "Q" (its end), "steps"}``; the cycle's reversals take ``2 steps``.
+    ``Q`` (partial slip): one leg to ``(P, s, Q, sigma_bulk)``, the bulk stress rising with
+    the shear in proportion (docs/BULK_STRESS.md). ``Q_max`` (a fretting cycle
+    ``0 -> Q_max -> -Q_max -> Q_max``): the bulk stress in phase, ``sigma_bulk`` at ``Q_max``,
+    each reversal in ``2 steps``. ``history``: one leg to each of its states in turn, from the
+    first state's normal load (``P``, ``s`` are then its first state's), ``steps`` each.
     """
-    if (Q is None) == (Q_max is None):
-        raise InputError("give `Q` (partial slip) or `Q_max` (a fretting cycle), not both nor neither")
+    if sum(v is not None for v in (Q, Q_max, history)) != 1:
+        raise InputError("give `Q` (partial slip), `Q_max` (a fretting cycle) or `history`, one of them")
+    if history is not None:
+        return [{"branch": f"state {k}", "P": P_k, "s": s_k, "Q": Q_k, "sigma_bulk": sb_k, "steps": steps}
+                for k, (P_k, s_k, Q_k, sb_k) in enumerate(history.state(k) for k in range(len(history)))]
+    end = {"P": float(P), "s": float(s)}
     if Q is not None:
-        return [{"branch": "loading", "Q": float(Q), "steps": steps}]
+        return [{"branch": "loading", **end, "Q": float(Q), "sigma_bulk": float(sigma_bulk), "steps": steps}]
     assert Q_max is not None
-    return [{"branch": "loading", "Q": float(Q_max), "steps": steps},
-            {"branch": "unloading", "Q": -float(Q_max), "steps": 2 * steps},
-            {"branch": "reloading", "Q": float(Q_max), "steps": 2 * steps}]
+    sb = float(sigma_bulk)
+    return [{"branch": "loading", **end, "Q": float(Q_max), "sigma_bulk": sb, "steps": steps},
+            {"branch": "unloading", **end, "Q": -float(Q_max), "sigma_bulk": -sb, "steps": 2 * steps},
+            {"branch": "reloading", **end, "Q": float(Q_max), "sigma_bulk": sb, "steps": 2 * steps}]
 
 
 def gap_text(punch: Punch) -> str:
@@ -118,7 +130,19 @@ def header(title: str, punch: Punch, P: float, s: float, tilt: str, E: float, nu
            path: list[dict[str, Any]], settings: JobSettings, a: float, c: float, name: str = "job") -> str:
     """The script's header: what it models, its units and conventions, what it writes."""
     W = a + c
-    shear = " -> ".join(["0"] + [f"{leg['Q']:.6g} ({leg['steps']} steps)" for leg in path])
+    bulk = any(leg["sigma_bulk"] for leg in path)
+    if any(leg["branch"].startswith("state") for leg in path):      # a load history: every state in turn
+        shear = "the states (P, s, Q, sigma_bulk) in turn, the four moving linearly together:\n" + "\n".join(
+            f"    {leg['branch']}: P = {leg['P']:.6g}, s = {leg['s']:.6g}, Q = {leg['Q']:.6g}, "
+            f"sigma_bulk = {leg['sigma_bulk']:.6g} ({leg['steps']} steps)" for leg in path)
+    else:
+        shear = "the shear Q" + (" and the bulk stress sigma_bulk together, in proportion" if bulk else "") + \
+            " (force control on the cap): " + " -> ".join(
+                ["0"] + [f"{leg['Q']:.6g}" + (f" (sigma_bulk {leg['sigma_bulk']:.6g} MPa)" if bulk else "")
+                         + f" ({leg['steps']} steps)" for leg in path])
+    base = ("The substrate's base moves with the uniform\n  strain of the bulk stress (not restraining it) and "
+            "its sides carry sigma_bulk: a tension\n  along x in the substrate only, the half-plane theory's "
+            "(docs/BULK_STRESS.md)." if bulk else "The substrate's base is clamped.")
     return f'''"""threepart GetFEM job: {title}
 
 What it models
@@ -126,14 +150,14 @@ What it models
   substrate y <= 0 and the punch body y >= 0, its mirror image, each {2 * settings.half_width:g} W wide
   and {settings.depth:g} W deep (W = a + c = {W:.6g} mm, the half-plane theory's contact width),
   h = W/{settings.n:g} = {W / settings.n:.4g} mm over [{-a - settings.margin * W:.6g}, {c + settings.margin * W:.6g}] mm,
-  growing by {settings.growth:g} away from it. The substrate's base is clamped; the punch body's
+  growing by {settings.growth:g} away from it. {base} The punch body's
   top is a rigid cap (U_x, U_y, rotation) carrying the loads.
   The gap is the half-plane theory's: the punch profile v(x) of eq. 2 ({punch!r})
   measured along the fixed normal [0; 1] between the two surfaces y = 0.
   Coulomb friction f = {f:g} by the weak-form term Coulomb_friction_coupled_projection with a
   P{settings.lambda_degree} multiplier on the substrate's surface, augmentation r = {settings.r_factor:g} E/W.
-  Loads: the normal load P = {P:.6g} N/mm at x = s = {s:g} mm (tilt {tilt}) first, then the
-  shear Q (force control on the cap): {shear}.
+  Loads: the normal load P = {P:.6g} N/mm at x = s = {s:g} mm (tilt {tilt}) first, then
+  {shear}.
   Each step is solved by GetFEM's Newton (line search 'simplest') from the last converged
   state; a step Newton fails is halved, down to {settings.min_step:g} of it.
 
@@ -145,7 +169,7 @@ Conventions
 
 What it writes (in the folder it runs in)
   {name}_NNN.vtu   the substrate's surface nodes over the contact zone at each recorded state
-                     (one per shear step)
+                     (one per load step)
   {name}.vtu       the last state
   {name}.getfem.json  the loads, cap displacement, resultants and fields of every state,
                      and what each Newton step needed
@@ -155,23 +179,33 @@ Run it in its folder with the interpreter that imports getfem (GetFEM 5.4): pyth
 '''
 
 
-def write_script(punch: Punch, P: float, s: float = 0.0, *, a: float, c: float, E: float, nu: float,
-                 f: float, Q: float | None = None, Q_max: float | None = None, tilt: str = "free",
+def write_script(punch: Punch, P: float | None = None, s: float = 0.0, *, a: float, c: float, E: float,
+                 nu: float, f: float, Q: float | None = None, Q_max: float | None = None,
+                 sigma_bulk: float = 0.0, history: Any = None, tilt: str = "free",
                  settings: JobSettings | None = None, title: str = "", name: str = "job") -> str:
-    """The GetFEM script of partial slip (``Q``) or a fretting cycle (``Q_max``) of ``punch``.
+    """The GetFEM script of partial slip (``Q``), a fretting cycle (``Q_max``) or a load history of ``punch``.
 
     Parameters
     ----------
     punch
         The punch profile (eq. 2); its gap is the half-plane theory's ``v(x)``.
     P, s
-        The normal load (> 0) and its lever arm (eqs. vertical, rotational).
+        The normal load (> 0) and its lever arm (eqs. vertical, rotational); a history's are its
+        first state's (``P`` None, or that state's).
     a, c
-        The expected contact ends (the closed form's): they place the fine zone.
+        The expected contact ends (the closed form's; a history's: the union over its states):
+        they place the fine zone.
     E, nu
         The bodies' modulus and Poisson's ratio (plane strain).
     f, Q, Q_max
         The coefficient of friction and the shear (``|Q| < f P``), or a cycle's amplitude.
+    sigma_bulk
+        The substrate's bulk stress (tension positive) at ``Q`` (``Q_max``), rising with the shear
+        in proportion after the normal load (docs/BULK_STRESS.md).
+    history
+        Instead of ``Q``/``Q_max``: the states ``(P, s, Q, sigma_bulk)`` in turn, each reached in
+        ``settings.steps`` steps from the first state's normal load
+        (:func:`threepart.history.check_history`: states, a CSV path or a History).
     tilt
         ``"free"`` (the moment ``P s`` applied) or ``"suppressed"`` (the cap's rotation held).
     settings
@@ -187,16 +221,29 @@ def write_script(punch: Punch, P: float, s: float = 0.0, *, a: float, c: float, 
     if not isinstance(punch, Punch):
         raise InputTypeError(f"`punch` = {punch!r} must be a threepart.Punch")
     settings = JobSettings() if settings is None else settings
+    hist = None if history is None else check_history(history)
+    if hist is not None:
+        if Q is not None or Q_max is not None or sigma_bulk:
+            raise InputError("give `history` alone, or `Q`/`Q_max` with `sigma_bulk`, not both")
+        if P is not None and P != hist.P[0]:
+            raise InputError(f"`P` = {P!r} is not the history's first normal load {hist.P[0]!r}: give P=None")
+        P, s = float(hist.P[0]), float(hist.s[0])
+        for k in range(len(hist)):
+            shear_load(hist.Q[k], f, float(hist.P[k]), f"history[{k}].Q")
+    if P is None:
+        raise InputError("give `P`, the normal load (> 0), or a `history`")
     P, E, a, c = (positive(k, v) for k, v in (("P", P), ("E", E), ("a", a), ("c", c)))
     s, nu, tilt = finite("s", s), poisson(nu), check_tilt(tilt)
-    shear = Q_max if Q is None else Q
-    if shear is None:
-        raise InputError("give `Q` (partial slip) or `Q_max` (a fretting cycle)")
-    shear_load(shear, f, P, "Q" if Q is not None else "Q_max")
+    sigma_bulk = finite("sigma_bulk", sigma_bulk)
+    if hist is None:
+        shear = Q_max if Q is None else Q
+        if shear is None:
+            raise InputError("give `Q` (partial slip), `Q_max` (a fretting cycle) or a `history`")
+        shear_load(shear, f, P, "Q" if Q is not None else "Q_max")
     if not name.isidentifier():
         raise InputError(f"`name` = {name!r} must be a plain file stem (letters, digits, _)")
     W = a + c
-    path = legs(Q, Q_max, settings.steps)
+    path = legs(Q, Q_max, settings.steps, P=P, s=s, sigma_bulk=sigma_bulk, history=hist)
     params = {"name": name, "E": E, "nu": nu, "f": float(f), "P": P, "s": s, "tilt": tilt,
               "h": W / settings.n, "W": W, "zone": [-a - settings.margin * W, c + settings.margin * W],
               "half_width": settings.half_width * W, "depth": settings.depth * W,

@@ -2,13 +2,15 @@
 read by :func:`threepart.calculix.read.contact_pressure` (the one reader of CalculiX's output);
 a friction run's ``.frd`` (surface-to-surface contact, threepart's friction deck) gives
 ``x``, ``p`` and the shear ``q`` the punch exerts on the block along ``+x``
-(:func:`threepart.calculix.friction.read_traction`)."""
+(:func:`threepart.calculix.cycle.read_traction`), and in ``info["states"]`` every recorded
+increment (:func:`threepart.calculix.cycle.frd_states`: ``P, s, Q, sigma_bulk, x, p, q, slip``,
+the loads from threepart's deck beside the file, as GetFEM's sidecar gives its states)."""
 from __future__ import annotations
 
 from pathlib import Path
 from typing import Any
 
-from threepart.calculix.friction import read_traction
+from threepart.calculix.cycle import frd_states, read_traction
 from threepart.calculix.read import contact_pressure
 
 from . import Record, register_reader
@@ -24,7 +26,9 @@ def read_calculix(path: Path, *, arg: str = "path", **options: Any) -> Record:
                          f"{', '.join(options)}")
     traction = read_traction(path, arg=arg)
     if traction is not None:        # a friction run (surface to surface): p and the shear q
-        return Record(*traction)
+        x, p, q, info = traction
+        # every recorded increment: loads (from the deck beside it), x, p, q, slip
+        return Record(x, p, q, dict(info, states=frd_states(path, arg=arg)))
     x, p, info = contact_pressure(path, arg=arg)
     return Record(x, p, None, info)
 

@@ -115,6 +115,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from .outside import OUTSIDE
+
 __all__ = ["Tolerance", "TOLERANCES", "COMPARISONS", "QUANTITIES", "NORMAL_QUANTITIES",
            "SLIP_QUANTITIES", "STRESS_QUANTITIES", "FRETTING_QUANTITIES", "STEADY_QUANTITIES", "tolerance", "fem_comparison", "VALUE_UNITS", "ERROR_UNITS",
            "NORMALISATION", "MAP_LIMIT", "MAP_LEVELS", "Baseline", "BASELINES"]
@@ -151,7 +153,7 @@ VALUE_UNITS: dict[str, str] = {
     "p_L2": "MPa·mm^½", "q_L2": "MPa·mm^½", "closedform": "1 = refused",
     "energy": "N·mm/mm", "stick": "mm", "loop": "mm", "q_states": "MPa",
     "stick_ends": "mm", "cycle_energy": "N·mm/mm", "q_range": "MPa", "slip_amplitude": "mm",
-    "stick_end": "mm",
+    "stick_end": "mm", "stick_width": "mm", "stick_shift": "mm",   # the friction referee columns: d, e
     "q_integral": "N/mm", "q_bound": "1",
     "sxx_surface": "MPa", "sxx_peak": "MPa", "stress_depth": "MPa",
     # robustness study (reports.verify.robustness): the least pressure of an answer, and counts of draws
@@ -165,7 +167,7 @@ ERROR_UNITS: dict[str, str] = {
     "d": "d", "e": "d", "q_interior_max": "max|q|", "q_L2": "L2", "closedform": "0/1",
     "energy": "energy", "stick": "d", "loop": "loop", "q_states": "max|q|",
     "stick_ends": "W", "cycle_energy": "energy", "q_range": "max|q|", "slip_amplitude": "max δ",
-    "stick_end": "h",
+    "stick_end": "h", "stick_width": "W", "stick_shift": "W",   # the last two: the friction referee columns
     "q_integral": "Q", "q_bound": "f p_max",
     "sxx_surface": "peak", "sxx_peak": "max|σxx|", "stress_depth": "peak",
     # robustness study (reports.verify.robustness)
@@ -286,42 +288,13 @@ TOLERANCES: dict[tuple[str, str], Tolerance] = {
     ("fem-quick", "q_states"): _T(3e-2, "as q_interior_max on the quick mesh, at three states; measured 1.2e-2"),
     ("fem-quick", "load_integral"): _T(2e-3, "∫p dx of the linear interpolant misses the sqrt edges; measured <= 1.3e-3 (moment 2e-4 W)"),
     ("fem-quick", "mirror"): _T(1e-3, "mirrored punch and load give a <-> c, α -> -α up to mesh asymmetry; measured <= 1.1e-4"),
-    # --- a pressure from another code (threepart compare --pressure; the CalculiX column) -------
-    ("referee", "a"): _T(1e-3, "issue 22 target for an outside FE model: a and c within 1e-3 W"),
-    ("referee", "c"): _T(1e-3, "as a"),
-    ("referee", "alpha"): _T(1e-2, "a tilt read off another model's rigid-body rotation (only when given)"),
-    ("referee", "P"): _T(1e-3, "∫p dx of the points by the trapezoidal rule against P: the sqrt ends cost ~h^1.5/W^1.5, 2e-4 at W/h = 100"),
-    ("referee", "s"): _T(1e-3, "the points' centroid against s, units of W"),
-    ("referee", "p_left"): _T(1e-3, "issue 22 target: the peak within 1e-3"),
-    ("referee", "p_right"): _T(1e-3, "as p_left"),
-    ("referee", "x_left"): _T(1e-2, "flat peaks read at nodes: ~h sqrt of the peak error"),
-    ("referee", "x_right"): _T(1e-2, "as x_left"),
-    ("referee", "p_interior_max"): _T(1e-2, "pointwise at the points, 5 % of W in from the ends: linear interpolation next to the log kinks at ±b"),
-    ("referee", "p_L2"): _T(1e-2, "includes the sqrt edges, which the points resolve to their spacing"),
-    ("referee", "K_N"): _T(1e-2, "issue 32: another code's edge multiplier, fitted over its nodes as the FEM's (threepart.fields), within 1 % as the FEM's default-mesh target, widened by the fit's own error; shown, not part of the verdict"),
-    # another code's partial slip (threepart compare --pressure FILE --Q --f; issue 38's targets)
-    ("referee", "d"): _T(1e-2, "issue 38 target: stick-zone ends within 5e-3 W of the reference; d is about W/2 at Q = 0.4 fP, so 1e-2 of d; the ends read where |q|/(f p) crosses 1 - STICK_MARGIN between nodes"),
-    ("referee", "e"): _T(1e-2, "as d (the stick zone's centre, units of d)"),
-    ("referee", "q_interior_max"): _T(2e-2, "issue 38 target: the shear within 2 % of its peak, 5 % of W in from the contact ends, at the points (next to the sqrt kinks at the stick-zone ends too)"),
-    ("referee", "q_L2"): _T(3e-2, "includes the sqrt kinks at the contact and stick-zone ends, which the points resolve to their spacing"),
-    ("referee", "q_integral"): _T(1e-3, "issue 38 target: ∫q dx of the points by the trapezoidal rule against Q"),
-    ("referee", "energy"): _T(2e-2, "issue 38 target: an outside code's fretting energy per cycle within 2 % of the closed form's (Masing)"),
-    ("referee", "q_bound"): _T(1e-2, "|q| - f p of the points over f p_max: a penalty or augmented Lagrangian friction law lets |q| pass f p by its own tolerance"),
-    # --- the referee's pitfalls: when `threepart compare` names one (reports/referee/pitfalls.py) ---
-    ("referee-pitfall", "negative"): _T(1e-3, "tension (of the peak) past which negative pressures are named: CalculiX writes CPRESS = -K COPEN at open nodes, a tension; the points' own noise stays below"),
-    ("referee-pitfall", "load"): _T(1e-3, "|∫p dx - P| / P past which the load is named: as the referee's own P row; a second increment's 1.8e-2 overshoot is far past it"),
-    ("referee-pitfall", "end_nodes"): _T(3.0, "the fewest loaded nodes within EDGE_FRACTION W of a contact end (a lower bound on a count, not an error): the end is read by a fit of p^2 over the last four nodes, and fewer than three of them near it leave the end to the mesh"),
-    ("referee-pitfall", "oscillation"): _T(2e-3, "node-to-node (odd-even) oscillation of the peak past which the peak is the mesh's: twice the referee's 1e-3 peak target, as a peak read at one node carries it; CalculiX's raw CPRESS alternates by up to a factor 2 on quadratic faces"),
-    ("referee-pitfall", "stick_shift"): _T(5e-3, "the stick zone's centre off the reference's by more than issue 38's 5e-3 W (and twice its width error) names the normal-shear coupling: a rigid punch at nu = 0.3 shifts it by ~0.05 a (the GetFEM trial, shared/notes)"),
-    ("referee-pitfall", "stick_slope"): _T(1e-2, "the stick slope's creep q/K_t over the elastic displacements A q W across the contact, past which K_t is named too soft: the stick zone's error grows with it"),
-    ("referee-pitfall", "slipping"): _T(0.5, "fewer than half of the reference's slip zones slipping in the points names an unapplied shear or a creeping stick slope (a coarse mesh misses at most a few elements of them)"),
-    ("referee-pitfall", "penetration"): _T(1e-3, "the penalty's overclosure p_max/K over the profile's rise across the contact, past which the penalty is named: the peak's error falls as 1/K; 1e-3 as the referee's peak target"),
     # --- the finite-body validity map (issue 12) --------------------------------------------------
     ("map", "control"): _T(1e-3, "issue 12 target: the paper's model (eq. 2 profile, large bodies) in the finite-body code against the closed form, peak pressure; measured 1.9e-4 (quick)"),
     # --- FEM on the committed reference mesh and the slow Hertz study ----------------------------
     ("fem-reference", "a"): _T(2e-2, "reference.msh has 24 elements on the 1.2-wide zone (h = 0.05); measured 4.5e-3 W"),
     ("fem-reference", "contact_law"): _T(1e-12, "brentq (xtol 2e-12) inverts the flat rounded punch's contact law to its target a"),
     ("fem-export", "round_trip"): _T(1e-12, "meshio writes and reads float64: fields come back to rounding (measured 0)"),
+    ("fem-cache", "same"): _T(1e-12, "a condensation read from threepart's cache against one made afresh: the same numbers (C stored bit for bit; a rebuilt field differs by the factorisation's rounding), measured 0 for C and <= 1e-14 for u"),
     ("fem-export", "surface"): _T(1e-9, "inside the contact u_y = profile - approach is imposed node by node (measured 2.8e-15 of it)"),
     ("fem-hertz-study", "edge_order"): _T(0.7, "the edge fit converges about as h (measured 0.98 over W/h = 20..160)"),
     ("fem-hertz-study", "edge_level"): _T(1.5e-4, "edge error at W/h = 160, units of W (measured 8.3e-5)"),
@@ -519,26 +492,9 @@ TOLERANCES.update({
 })
 
 
-# --- GetFEM, the outside referee of friction (issue 38, threepart.getfem, docs/GETFEM.md): two similar
-# bodies, P2, Coulomb_friction_coupled_projection; tests/test_getfem.py and the GetFEM column -------------
-TOLERANCES.update({
-    ("getfem", "stick_end"): _T(5e-3, "issue 38 target: each stick-zone end within 5e-3 W of the closed form's (Hertz: Mindlin's c = a sqrt(1 - Q/fP)); measured from the slip (threepart.getfem.slip_ends) 7e-5 W on Hertz at W/h = 64, 2e-4 W at 128 and <= 2e-4 W on slip_Q0.4 at 128; from the tractions (|q| < 0.99 f p, reports.referee.friction) 2.7e-3 W on Hertz at W/h = 64 and 128, 6.7e-3 W on slip_Q0.4's right end at 64 and <= 2.8e-3 W at 128 (docs/GETFEM.md)"),
-    ("getfem", "q_integral"): _T(1e-3, "issue 38 target: ∫q of the multiplier against Q; measured <= 1e-8 at every mesh (the multiplier is the traction: exact to Newton's residual)"),
-    ("getfem", "P"): _T(1e-3, "∫p of the multiplier against P, as q_integral; measured <= 1e-9"),
-    ("getfem", "q_interior_max"): _T(2e-2, "issue 38 target: q within 2 % of its peak away from the ends (5 % of W in from the contact's and the stick zone's ends); measured on Hertz 3.9e-3 at W/h = 64 and 1.4e-3 at 128 (3.7e-2 at 32), on slip_Q0.4 9.8e-3 at 64 and 1.3e-3 at 128"),
-    ("getfem", "energy"): _T(2e-2, "issue 38 target: the energy per fretting cycle (the Q-delta loop's area, Simpson's rule per branch) within 2 % of the closed form's; measured -0.97 % on fretting_Q0.4 x 20 at W/h = 64 and -1.06 % at 128 with Q_max/8 steps (trapezoids -1.39 %, -1.45 %): a 1 % deficit that does not fall with h (docs/GETFEM.md)"),
-})
-
-# --- CalculiX with friction (issue 38, threepart.calculix.friction, docs/CALCULIX.md): two similar
-# bodies, surface-to-surface penalty contact, *FRICTION; tests/test_calculix_friction.py ----------------
-TOLERANCES.update({
-    ("calculix-friction", "stick_end"): _T(5e-3, "issue 38 target, on the stick zone's half-width against Mindlin's c = a sqrt(1 - Q/fP) (Hertz) or the closed form's d, in W; measured -2.9e-4 W on Hertz at W/h = 100, 4.1e-3, 1.6e-3, 1.4e-4 W on slip_Q0.4 at W/h = 50, 100, 200 (ends from threepart.calculix.friction.stick_ends)"),
-    ("calculix-friction", "stick_shift"): _T(1e-2, "the stick zone's centre against the closed form's, in W: CalculiX's zone sits toward +x by 5.5e-3 W on Hertz at W/h = 100 (7.5e-3 at W/h = 50) and by 5.5e-3, 4.0e-3, 5.3e-3 W on slip_Q0.4 at W/h = 50, 100, 200 (an offset of the model, not the mesh; a block 80 W instead of 20 W changed nothing), past the issue's 5e-3 W for each end; not explained"),
-    ("calculix-friction", "P"): _T(1e-3, "∫CPRESS dx at the block's nodes against P; measured 1.1e-4 (Hertz) and 6.9e-5 (slip_Q0.4) at W/h = 100, 2.8e-3 and 3.5e-3 at W/h = 50"),
-    ("calculix-friction", "q_integral"): _T(3e-3, "∫(-CSHEAR1) dx at the block's nodes against Q, wider than the issue's 1e-3, which CalculiX's nodal CSTR (extrapolated from the faces' integration points) does not meet: measured 1.6e-3 (Hertz) and 1.2e-3 (slip_Q0.4) at W/h = 100, 9e-3 and 8e-3 at W/h = 50, 2.9e-3 (slip_Q0.4) at W/h = 200"),
-    ("calculix-friction", "q_interior_max"): _T(2e-2, "issue 38 target: q within 2 % of its peak 5 % of W in from the contact's and the stick zone's ends; measured 1.1e-2 on slip_Q0.4 at W/h = 100 (Hertz: 3.0e-2, the zone's offset)"),
-    ("calculix-friction", "energy"): _T(2e-2, "issue 38 target: the energy per fretting cycle (∮ F·du of the punch's loads, Simpson's rule) within 2 % of the closed form's; measured +0.25 % and -0.48 % on fretting_Q0.4 x 20 at W/h = 50 and 100 (the trapezoidal rule: -1.4 % at 50)"),
-})
+# --- the outside codes: another code's points judged (the referee), GetFEM and CalculiX with friction
+# (threepart/tolerances/outside.py, one row each as here) ------------------------------------------------
+TOLERANCES.update({key: Tolerance(limit, reason) for key, (limit, reason) in OUTSIDE.items()})
 
 # --- limits outside the (comparison, quantity) table, each with its reason --------------------------
 #: the validity map's designer limit (issue 23): the closed form within 1 % of the finite body's peak
