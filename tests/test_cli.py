@@ -698,3 +698,22 @@ def test_ctrl_c_while_the_command_line_loads_is_one_line_and_130(loading):
                           preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
     assert proc.returncode == 130, proc.stderr
     assert proc.stderr == "threepart solve: interrupted\n"
+
+
+def test_each_sub_commands_help_line_comes_from_its_own_module():
+    """``threepart --help`` lists every sub-command with the ``help=`` its module gave (issue 40): a new
+    sub-command's line is written once, in its module; and a module's line reaches the listing."""
+    import argparse
+
+    from threepart.cli import build_parser
+    from threepart.cli._main import command_lines
+
+    parser = build_parser()
+    sub = next(a for a in parser._actions if isinstance(a, argparse._SubParsersAction))
+    listed = {ln.split()[0]: ln.split(None, 1)[1] for ln in command_lines(sub).splitlines()}
+    assert listed == {a.dest: a.help for a in sub._choices_actions}
+    assert all(f"{name}" in parser.description and help_ in parser.description for name, help_ in listed.items())
+    # a module's own line, not a copy: a sub-parser added here is listed with its help
+    extra = argparse.ArgumentParser().add_subparsers()
+    extra.add_parser("toy", help="a toy sub-command")
+    assert command_lines(extra) == "toy  a toy sub-command"

@@ -27,25 +27,13 @@ __all__ = ["build_parser", "main", "SUBCOMMANDS", "HELP"]
 #: ``add_parser(subparsers)`` (which sets ``func``) and ``run(args) -> int``
 SUBCOMMANDS = (solve, cases, verify, figures, map_, export_refs, fatigue, cycle, match, deck, compare, cache, wear)
 
-#: the description ``threepart --help`` prints
+#: the description ``threepart --help`` prints; ``{commands}`` is each sub-command's line, from the
+#: ``help=`` its own module gives (:func:`command_lines`)
 HELP = """The ``threepart`` command line.
 
 Sub-commands
 ------------
-solve    normal problem: a, c, alpha, peak pressures, segments in contact, lift-off lever arms
-slip     partial slip: adds the stick zone for a shear load Q and friction f
-cases    the catalogue's cases, each with its kind and description, for --case NAME
-verify   verification run: closed form against SIE and FEM, tolerance report
-figures  the paper's result figures, with the SIE solution as markers
-map      where the half-plane formulas stop: the finite-body validity map, on dask.distributed
-export-refs  the catalogue's reference solutions as a versioned dataset (JSON + CSV, JSON schema)
-fatigue  fretting-fatigue parameters of a fretting cycle: hot spots, CSV, VTU and a contour plot
-cycle    the flight cycle: steady state of an in-phase cycle (or a load history), CSV and plot
-match    the Hertzian pad test that reproduces one edge of a flank: its K_N, K_T and slip zone
-deck     a ready-to-run CalculiX input deck of a catalogue case or of a punch and loads
-compare  judge another code's contact pressure (CSV, CalculiX .frd/.dat, VTU/XDMF/MED/Exodus) against threepart
-cache    the cache of condensed FE compliances ($THREEPART_CACHE): show it, --clear threepart's entries
-wear     fretting wear over N cycles: worn profile, pressure, stick zone, energy per cycle, the worn limit
+{commands}
 
 A problem is a catalogue case, --case NAME (`threepart cases` lists them), or
 the punch, material and loads as options; the punch and loads beside --case
@@ -78,13 +66,20 @@ line on stderr), 130 interrupted (map: run it again to resume).
 """
 
 
+def command_lines(sub: Any) -> str:
+    """One line per sub-command, its name and the ``help=`` its own module gave ``add_parser``."""
+    helps = {a.dest: a.help for a in sub._choices_actions}
+    width = max(len(name) for name in helps) + 2
+    return "\n".join(f"{name:<{width}}{helps[name]}" for name in sub.choices)
+
+
 def build_parser() -> argparse.ArgumentParser:
     """The parser of every sub-command; its usage errors raise :class:`UsageError`."""
-    parser = Parser(prog="threepart", description=HELP,
-                    formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser = Parser(prog="threepart", formatter_class=argparse.RawDescriptionHelpFormatter)
     sub = parser.add_subparsers(dest="command", required=True, parser_class=Parser)
     for module in SUBCOMMANDS:
         module.add_parser(sub)
+    parser.description = HELP.format(commands=command_lines(sub))
     for action in _actions(parser):   # one reader of numbers: every `type=float` option's
         if action.type is float:
             action.type = real_arg
