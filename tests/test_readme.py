@@ -1,4 +1,4 @@
-"""The README's Python snippets run as a new user runs them: each one alone, and all of them twice.
+"""The README's and the user's guide's Python snippets run as a new user runs them: each one alone, and all of them twice.
 
 A snippet that needs a name defined in an earlier one fails when pasted on its
 own; a walkthrough that writes a file must be rerunnable in the same directory.
@@ -18,7 +18,12 @@ import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
 README = ROOT / "README.md"
-SNIPPETS = re.findall(r"```python\n(.*?)```", README.read_text(encoding="utf-8"), flags=re.S)
+#: the README and the user's guide it points to (issue 40: the README keeps what a user needs first)
+GUIDE = sorted((ROOT / "docs" / "guide").glob("*.md"))
+SNIPPETS = [s for page in (README, *GUIDE)
+            for s in re.findall(r"```python\n(.*?)```", page.read_text(encoding="utf-8"), flags=re.S)]
+#: the most lines of the README (issue 40: what it is, install, the two commands, a quick start, links)
+README_LINES = 250
 #: the set-up commands of the quick start: install and verify, and the test command .ci/run runs
 SETUP = ('python -m pip install -e ".[test]" && threepart verify',
          'python -m pip install -e ".[test]" && python -m pytest')
@@ -33,6 +38,14 @@ def run(code: str, cwd: Path) -> subprocess.CompletedProcess[str]:
 
 def test_the_readme_has_its_snippets():
     assert len(SNIPPETS) >= 4
+
+
+def test_the_readme_is_short_and_links_every_guide_page():
+    text = README.read_text(encoding="utf-8")
+    assert len(text.splitlines()) <= README_LINES
+    assert GUIDE and all(f"(docs/guide/{page.name})" in text for page in GUIDE)
+    index = (ROOT / "docs" / "index.rst").read_text(encoding="utf-8")
+    assert all(f"guide/{page.stem}" in index for page in GUIDE)
 
 
 @pytest.mark.parametrize("i", range(len(SNIPPETS)))

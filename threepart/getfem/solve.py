@@ -165,6 +165,8 @@ def load_history(punch: Punch, history: Any, f: float, E: float, nu: float, *, n
                  timeout: float = 7200.0, title: str = "") -> GetfemCycle:
     """A load history of two similar bodies by GetFEM: the first state's normal load, then each state.
 
+    The arguments not listed below are as :func:`partial_slip`'s.
+
     Parameters
     ----------
     history
@@ -173,8 +175,6 @@ def load_history(punch: Punch, history: Any, f: float, E: float, nu: float, *, n
         each reached in ``steps`` steps. A flight cycle is ``[state0, state1, state0, state1]``.
     steps
         Steps per state (default ``settings.steps``).
-
-    Other arguments as :func:`partial_slip`.
 
     Returns
     -------
