@@ -52,7 +52,7 @@ from .schemes import Plain, Projected
 from .slip import (SieSlipResult, check_slip_direction, coulomb_violation, stick_zone,
                    stick_zone_by_continuation)
 
-__all__ = ["SieFrettingResult", "fretting_cycle", "mean_profile", "approach", "stick_gap", "Zones", "gauss01",
+__all__ = ["SieFrettingResult", "fretting_cycle", "mean_profile", "approach", "stick_gap", "Zones",
            "loop_integral"]
 
 #: Chebyshev terms of the gap series: a kink at θ_b truncated at N terms leaves ~1/(N^2 φ) of

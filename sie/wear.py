@@ -64,9 +64,10 @@ from threepart.errors import (InputError, NoConvergenceError, SeparationError, S
 from threepart.fretting_wear import WearResult, register_marcher
 from threepart.punch import Punch
 from threepart.results import Diagnostics
+from threepart.legendre import gauss01
 from threepart.validate import SLIP_RATIO_LIMIT, check_shear, check_states
 
-from .fretting import SieFrettingResult, Zones, gauss01, loop_integral
+from .fretting import SieFrettingResult, Zones, loop_integral
 from .profile import (DEFAULT_TERMS, ProfileNormalResult, WornProfile, profile_approach, profile_gap,
                       solve_profile)
 from .slip import SieSlipResult, stick_zone
