@@ -16,11 +16,19 @@ write_grid_vtu      -- fields on a grid under the surface as a VTU structured gr
 """
 from __future__ import annotations
 
-from typing import Any, Sequence
+import sys
+from typing import Any, Callable, Sequence
 
 from threepart.units import UNITS
 
-__all__ = ["UNITS", "print_result", "print_json", "write_points_csv", "write_csv", "write_grid_vtu"]
+__all__ = ["UNITS", "print_result", "print_json", "write_points_csv", "write_csv", "write_grid_vtu", "say_for"]
+
+
+def say_for(command: str) -> Callable[[str], None]:
+    """A progress line of ``threepart <command>`` on stderr (what :func:`threepart.progress.heartbeat` says with)."""
+    def say(msg: str) -> None:
+        print(f"threepart {command}: {msg}", file=sys.stderr, flush=True)
+    return say
 
 
 def _quantities(d: dict[str, Any]) -> set[str]:

@@ -15,12 +15,12 @@ from __future__ import annotations
 
 import argparse
 import math
-import sys
 from typing import Any
 
 from threepart.progress import heartbeat
 
 from ._args import given_punch_and_material, labelled, method_options, state_arg
+from ._output import say_for
 from threepart.errors import InputError
 
 __all__ = ["add_parser", "run"]
@@ -82,8 +82,7 @@ def add_parser(sub: Any) -> None:
     p.set_defaults(func=run)
 
 
-def _say(msg: str) -> None:
-    print(f"threepart cycle: {msg}", file=sys.stderr, flush=True)
+_say = say_for("cycle")
 
 
 def _case(args: argparse.Namespace) -> dict[str, Any]:

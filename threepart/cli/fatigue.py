@@ -12,14 +12,13 @@ docs/FATIGUE.md.
 from __future__ import annotations
 
 import argparse
-import sys
 from typing import Any
 
 from threepart.progress import heartbeat
 
 from ._args import (case_arg, catalogue_case, constant_arg, given_R, labelled, method_args, method_options,
                     need_options, punch_args, state_args)
-from ._output import print_json, write_csv, write_grid_vtu
+from ._output import print_json, say_for, write_csv, write_grid_vtu
 from threepart.errors import InputError
 
 __all__ = ["add_parser", "run", "MAX_FATIGUE_POINTS", "MAX_FATIGUE_STATES"]
@@ -276,10 +275,7 @@ def run(args: argparse.Namespace) -> int:
     punch = Punch(R1=args.R1, R2=args.R2, b=args.b, R=given_R(args))
     _fatigue_iv(args)
     A = similar_pair(args.E, args.nu) if case_A is None else case_A
-    # a long run says it is still running every 15 s on stderr, as the verification run does
-
-    def say(msg: str) -> None:
-        print(f"threepart fatigue: {msg}", file=sys.stderr, flush=True)
+    say = say_for("fatigue")   # a long run says it is still running every 15 s on stderr, as verify does
 
     steady = args.state0 is not None
     with heartbeat(say, lambda: "the flight cycle's steady state" if steady else

@@ -21,13 +21,13 @@ Building the parser loads no numpy: every numerical import is inside ``run``.
 from __future__ import annotations
 
 import argparse
-import sys
 from typing import Any
 
 from threepart.errors import InputError
 from threepart.progress import heartbeat
 
 from ._args import E_HELP, NU_HELP, case_arg, given_punch_and_material, labelled
+from ._output import say_for
 
 __all__ = ["add_parser", "run"]
 
@@ -78,8 +78,7 @@ def add_parser(sub: Any) -> None:
     p.set_defaults(func=run)
 
 
-def _say(msg: str) -> None:
-    print(f"threepart wear: {msg}", file=sys.stderr, flush=True)
+_say = say_for("wear")
 
 
 #: the options of the problem, refused beside ``--case``
