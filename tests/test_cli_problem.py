@@ -25,7 +25,7 @@ TRAPEZOID_LEVEL = 3e-5
 CATALOGUE = json.loads((Path(__file__).resolve().parents[1] / "threepart" / "cases.json").read_text("utf-8"))
 RAW = {c["name"]: c for c in CATALOGUE["cases"]}
 #: the commands that take a problem (issue 37: solve, slip and fatigue lacked --case)
-PROBLEM_COMMANDS = ("solve", "slip", "fatigue", "cycle", "match", "deck", "compare")
+PROBLEM_COMMANDS = ("solve", "slip", "fatigue", "cycle", "match", "deck", "compare", "wear")
 #: a minimal problem of each command besides --case, for the refusal beside --case
 REQUIRED = {"match": ["--edge", "left"], "deck": ["--out", "x.inp"], "compare": ["--pressure", "p.csv"]}
 

@@ -17,7 +17,7 @@ from __future__ import annotations
 import argparse
 from typing import Any
 
-from ._args import labelled, problem, problem_args, state_arg
+from ._args import catalogue_case, labelled, problem, problem_args, state_arg
 from threepart.errors import InputError
 
 __all__ = ["add_parser", "run"]
@@ -152,10 +152,9 @@ def _shear_iv(args: argparse.Namespace) -> dict[str, Any]:
 
 def _case_shear(args: argparse.Namespace) -> dict[str, Any]:
     """A catalogue case's own friction loads: its shear (and bulk stress), or its two states (a flight cycle)."""
-    from threepart.catalogue import get_case
     from threepart.history import check_history
 
-    case = get_case(args.case).resolved()
+    case = catalogue_case(args, own=())      # a name the catalogue does not hold is refused, its names listed
     if case.f is None:
         return {}
     if case.kind == "steady" and case.states is not None:

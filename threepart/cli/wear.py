@@ -26,7 +26,7 @@ from typing import Any
 from threepart.errors import InputError
 from threepart.progress import heartbeat
 
-from ._args import E_HELP, NU_HELP, case_arg, given_punch_and_material, labelled
+from ._args import E_HELP, NU_HELP, case_arg, catalogue_case, given_punch_and_material, labelled
 from ._output import say_for
 
 __all__ = ["add_parser", "run"]
@@ -88,22 +88,18 @@ OWN = ("R1", "R2", "b", "R", "E", "nu", "A", "P", "s", "Q_max", "f")
 def _case(args: argparse.Namespace) -> dict[str, Any]:
     """The problem of ``--case``: a wear case (with its law, k, cycles) or a fretting case of the catalogue."""
     from threepart.catalogue import load_cases
-    from threepart.fretting_wear import wear_cases
+    from threepart.fretting_wear import WearCase
 
-    given = [o for o in OWN if getattr(args, o) is not None]
-    if given:
-        raise InputError(f"give `--case` or the punch, material and loads, not both (also got "
-                         f"`--{given[0].replace('_', '-')}`)")
-    worn = {c.name: c for c in wear_cases()}
-    cycles = {c.name: c for c in load_cases(None) if c.kind == "fretting"}
-    if args.case in worn:
-        wc = worn[args.case]
+    case = catalogue_case(args, OWN)         # the options beside it, or a name not in the catalogue, refused
+    if case.kind == "wear":
+        wc = WearCase.of(case)
         c, law, k, n = wc.case, wc.law, wc.k, wc.cycles
-    elif args.case in cycles:
-        c, law, k, n = cycles[args.case].resolved(), "archard", None, None
+    elif case.kind == "fretting":
+        c, law, k, n = case, "archard", None, None
     else:
-        raise InputError(f"`--case` = {args.case!r} is neither a wear case ({', '.join(worn) or 'none'}) nor "
-                         f"a fretting case of the catalogue ({', '.join(cycles) or 'none'})")
+        worn = [x.name for x in load_cases(None) if x.kind in ("wear", "fretting")]
+        raise InputError(f"`--case` = {args.case!r} is a {case.kind} case: give a wear case or a fretting "
+                         f"case of the catalogue ({', '.join(worn)})")
     return {"name": c.name, "punch": c.punch, "A": c.A, "P": c.P, "s": c.s_load, "Q_max": c.Q, "f": c.f,
             "tilt": c.tilt, "law": law, "k": k, "cycles": n}
 
