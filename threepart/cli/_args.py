@@ -205,13 +205,15 @@ def given_R(args: argparse.Namespace) -> float:
     return math.inf if args.R is None else float(args.R)
 
 
-def state_args(group: Any) -> None:
-    """``--state0 --state1``: a flight cycle's two ends, instead of one load (``fatigue``)."""
+def state_args(group: Any, instead: str = "--P, --s, --Q-max and --sigma-bulk",
+               then: str = "the fatigue of its periodic steady state at its two ends (docs/STEADY_STATE.md, "
+                           "docs/FATIGUE.md)") -> None:
+    """``--state0 --state1``: a flight cycle's two ends, ``instead`` of one load; ``then`` what the command
+    does with them (the defaults are ``fatigue``'s)."""
     for k in (0, 1):
         group.add_argument(f"--state{k}", type=state_arg, metavar="P,s,Q,SIGMA",
                            help=f"end {k} of an in-phase flight cycle (N/mm, mm, N/mm, MPa), instead of "
-                                "--P, --s, --Q-max and --sigma-bulk: the fatigue of its periodic steady "
-                                "state at its two ends (docs/STEADY_STATE.md, docs/FATIGUE.md)")
+                                f"{instead}: {then}")
 
 
 def method_args(p: argparse.ArgumentParser) -> Any:

@@ -16,7 +16,7 @@ from __future__ import annotations
 import argparse
 from typing import Any
 
-from ._args import labelled, problem, problem_args, state_arg
+from ._args import labelled, problem, problem_args, state_args
 from threepart.errors import InputError
 
 __all__ = ["add_parser", "run"]
@@ -50,10 +50,7 @@ def add_parser(sub: Any) -> None:
     c.add_argument("--Q-max", type=float, dest="Q_max",
                    help=labelled("a fretting cycle 0 -> Q_max -> -Q_max -> Q_max at P: its friction energy "
                                  "per cycle and slip amplitude", "Q"))
-    for k in (0, 1):
-        c.add_argument(f"--state{k}", type=state_arg, metavar="P,s,Q,SIGMA",
-                       help=f"end {k} of an in-phase flight cycle (N/mm, mm, N/mm, MPa), instead of --P and --s: "
-                            "the file's last cycle against the periodic steady state (docs/STEADY_STATE.md)")
+    state_args(c, "--P and --s", "the file's last cycle against the periodic steady state (docs/STEADY_STATE.md)")
     p.add_argument("--alpha", type=float, help=labelled("the model's tilt, if known", "alpha"))
     p.add_argument("--penalty", type=float, metavar="K",
                    help="the model's penalty stiffness [MPa/mm], for the penalty diagnosis")

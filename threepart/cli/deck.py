@@ -17,7 +17,7 @@ from __future__ import annotations
 import argparse
 from typing import Any
 
-from ._args import catalogue_case, labelled, problem, problem_args, state_arg
+from ._args import catalogue_case, labelled, problem, problem_args, state_args
 from threepart.errors import InputError
 
 __all__ = ["add_parser", "run"]
@@ -43,11 +43,8 @@ def add_parser(sub: Any) -> None:
     g.add_argument("--sigma-bulk", type=float, dest="sigma_bulk",
                    help=labelled("the substrate's bulk stress at Q (or Q_max), rising with it in proportion "
                                  "after P (tension positive; docs/BULK_STRESS.md)", "sigma_bulk"))
-    for k in (0, 1):
-        g.add_argument(f"--state{k}", type=state_arg, metavar="P,s,Q,SIGMA",
-                       help=f"end {k} of a flight cycle (N/mm, mm, N/mm, MPa), instead of --P, --s and --Q: "
-                            "the deck loads state0's P, then state0, state1, state0, state1 (the four moving "
-                            "linearly together); judge it with `threepart compare --state0 --state1`")
+    state_args(g, "--P, --s and --Q", "the deck loads state0's P, then state0, state1, state0, state1 (the four "
+                                      "moving linearly together); judge it with `threepart compare --state0 --state1`")
     g.add_argument("--history", metavar="FILE.csv",
                    help="a load history instead: a CSV file with the columns P, s, Q, sigma_bulk, each "
                         "state reached in turn after the first state's P")
