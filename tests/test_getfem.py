@@ -140,40 +140,36 @@ def test_an_interpreter_without_getfem_is_named(monkeypatch, tmp_path):
     assert not getfem.getfem_available()
 
 
-def test_a_failed_run_is_a_getfem_error_with_its_reason(monkeypatch, tmp_path):
-    """A stand-in ``getfem`` module lets this interpreter run the script's error paths."""
+@pytest.fixture
+def stub_getfem(monkeypatch, tmp_path):
+    """A stand-in ``getfem`` module (an empty file) that this interpreter imports, named as the
+    interpreter of the scripts: the script's error paths run here without GetFEM."""
     stub = tmp_path / "stub"
     stub.mkdir()
     (stub / "getfem.py").write_text("")
     monkeypatch.setenv("PYTHONPATH", str(stub))
     monkeypatch.setenv(getfem_run.PYTHON_VARIABLE, sys.executable)
     getfem_run._imports_getfem.cache_clear()
-    try:
-        failing = "import sys\nsys.stderr.write('GETFEM-FAILED: Newton did not converge at Q = 3\\n')\nsys.exit(3)\n"
-        with pytest.raises(GetfemError, match="Newton did not converge at Q = 3"):
-            getfem.run_getfem(failing, tmp_path / "a")
-        with pytest.raises(GetfemError, match="no result"):
-            getfem.run_getfem("pass\n", tmp_path / "b")
-        with pytest.raises(GetfemError, match="timeout"):
-            getfem.run_getfem("import time\ntime.sleep(30)\n", tmp_path / "c", timeout=1.0)
-    finally:
-        getfem_run._imports_getfem.cache_clear()
+    yield
+    getfem_run._imports_getfem.cache_clear()
 
 
-def test_partial_slip_writes_the_script_of_its_problem_before_running_it(monkeypatch, tmp_path):
+def test_a_failed_run_is_a_getfem_error_with_its_reason(stub_getfem, tmp_path):
+    """A stand-in ``getfem`` module lets this interpreter run the script's error paths."""
+    failing = "import sys\nsys.stderr.write('GETFEM-FAILED: Newton did not converge at Q = 3\\n')\nsys.exit(3)\n"
+    with pytest.raises(GetfemError, match="Newton did not converge at Q = 3"):
+        getfem.run_getfem(failing, tmp_path / "a")
+    with pytest.raises(GetfemError, match="no result"):
+        getfem.run_getfem("pass\n", tmp_path / "b")
+    with pytest.raises(GetfemError, match="timeout"):
+        getfem.run_getfem("import time\ntime.sleep(30)\n", tmp_path / "c", timeout=1.0)
+
+
+def test_partial_slip_writes_the_script_of_its_problem_before_running_it(stub_getfem, tmp_path):
     """The one call grades the mesh to the closed form's contact at the ``h`` asked; a stand-in
     ``getfem`` fails the run by name, and the script stays in the folder."""
-    stub = tmp_path / "stub"
-    stub.mkdir()
-    (stub / "getfem.py").write_text("")
-    monkeypatch.setenv("PYTHONPATH", str(stub))
-    monkeypatch.setenv(getfem_run.PYTHON_VARIABLE, sys.executable)
-    getfem_run._imports_getfem.cache_clear()
-    try:
-        with pytest.raises(GetfemError, match="job.py"):
-            getfem.partial_slip(HERTZ, P_HERTZ, 0.0, 0.2 * P_HERTZ, 0.5, E, NU, h=0.05, workdir=tmp_path / "run")
-    finally:
-        getfem_run._imports_getfem.cache_clear()
+    with pytest.raises(GetfemError, match="job.py"):
+        getfem.partial_slip(HERTZ, P_HERTZ, 0.0, 0.2 * P_HERTZ, 0.5, E, NU, h=0.05, workdir=tmp_path / "run")
     params = getfem.params_of((tmp_path / "run" / "job.py").read_text())
     a = threepart.solve(HERTZ, P_HERTZ, 0.0, A=similar_pair(E, NU), method="closedform").a
     assert params["h"] == pytest.approx(0.05, rel=EXACT) and params["W"] == pytest.approx(2 * a, rel=EXACT)

@@ -15,6 +15,7 @@ read            -- read a file by its suffix (or a format named): one :class:`Re
 formats         -- the table's formats, in the order they registered
 format_of       -- the format a path's suffix picks (ValueError naming the formats when none does)
 describe        -- one line per format (name, suffixes, help), for the command line's help
+no_options      -- a reader's refusal of options it does not take, naming the file
 
 Built-in formats (:data:`BUILTIN`, each its own module)
 -------------------------------------------------------
@@ -36,7 +37,8 @@ from typing import Any, Callable
 import numpy as np
 from threepart.errors import InputError, InputTypeError, ReaderError
 
-__all__ = ["Record", "Format", "register_reader", "read", "formats", "format_of", "describe", "BUILTIN"]
+__all__ = ["Record", "Format", "register_reader", "read", "formats", "format_of", "describe", "BUILTIN",
+           "no_options"]
 
 #: the modules of the built-in formats, imported (and so registered) on the table's first use
 BUILTIN = ("csv", "calculix", "meshfile", "getfem")
@@ -82,6 +84,12 @@ class Format:
 _FORMATS: dict[str, Format] = {}
 _SUFFIXES: dict[str, str] = {}
 _loaded = False
+
+
+def no_options(path: Path, arg: str, options: dict[str, Any], what: str) -> None:
+    """Refuse ``options`` of a reader that takes none: one line naming the file and ``what`` it is."""
+    if options:
+        raise InputError(f"`{arg}` = {str(path)!r}: {what} no options, not {', '.join(options)}")
 
 
 def register_reader(name: str, suffixes: list[str] | tuple[str, ...], read_function: ReadFunction,

@@ -13,17 +13,14 @@ from typing import Any
 from threepart.calculix.cycle import frd_states, read_traction
 from threepart.calculix.read import contact_pressure
 
-from . import Record, register_reader
-from threepart.errors import InputError
+from . import Record, no_options, register_reader
 
 __all__ = ["read_calculix"]
 
 
 def read_calculix(path: Path, *, arg: str = "path", **options: Any) -> Record:
     """The contact pressure of one CalculiX run's ``.frd`` or ``.dat`` (the deck ``.inp`` beside a ``.dat``)."""
-    if options:
-        raise InputError(f"`{arg}` = {str(path)!r}: CalculiX's files take no options, not "
-                         f"{', '.join(options)}")
+    no_options(path, arg, options, "CalculiX's files take")
     traction = read_traction(path, arg=arg)
     if traction is not None:        # a friction run (surface to surface): p and the shear q
         x, p, q, info = traction

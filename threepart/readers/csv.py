@@ -12,8 +12,8 @@ from typing import Any
 
 import numpy as np
 
-from . import Record, register_reader
-from threepart.errors import InputError, ReaderError
+from . import Record, no_options, register_reader
+from threepart.errors import ReaderError
 from threepart.textfile import finite_row, read_text
 
 __all__ = ["read_csv", "COLUMNS"]
@@ -33,8 +33,7 @@ def read_csv(path: Path, *, arg: str = "path", **options: Any) -> Record:
         is not finite (``nan``, ``inf``, ``1e400``), no rows: one line naming
         the file and the row (counted as the file's lines).
     """
-    if options:
-        raise InputError(f"`{arg}` = {str(path)!r}: a CSV takes no options, not {', '.join(options)}")
+    no_options(path, arg, options, "a CSV takes")
     label = f"`{arg}` = {str(path)!r}"
     rows: list[list[float]] = []
     header_seen = False

@@ -11,19 +11,16 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any
 
-from threepart.errors import InputError
 from threepart.getfem.read import read_run
 
-from . import Record, register_reader
+from . import Record, no_options, register_reader
 
 __all__ = ["read_getfem"]
 
 
 def read_getfem(path: Path, *, arg: str = "path", **options: Any) -> Record:
     """The last state of a GetFEM run's sidecar: ``x``, ``p``, ``q``; every state in ``info["states"]``."""
-    if options:
-        raise InputError(f"`{arg}` = {str(path)!r}: a GetFEM sidecar takes no options, not "
-                         f"{', '.join(options)}")
+    no_options(path, arg, options, "a GetFEM sidecar takes")
     run = read_run(path, arg=arg)
     last = run.last
     info = {"source": "getfem", "states": run.states, "steps": run.steps, "params": run.params,
