@@ -15,7 +15,7 @@ import json
 import numpy as np
 
 from threepart import closedform as cf
-from threepart.catalogue import get_case
+from threepart.problem.catalogue import get_case
 from threepart.closedform import formulas
 from threepart.reports.benchmark import best_of
 from threepart.reports.benchmark import naive as _naive

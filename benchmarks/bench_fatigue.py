@@ -31,7 +31,7 @@ import numpy as np
 
 from threepart import closedform as cf
 from threepart import fatigue as fat
-from threepart.catalogue import get_case
+from threepart.problem.catalogue import get_case
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from bench_sie import best_time  # noqa: E402  (the benchmarks' one timer)

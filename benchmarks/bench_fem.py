@@ -31,7 +31,7 @@ from typing import Iterator
 import numpy as np
 
 from threepart import cache, closedform, fem
-from threepart.catalogue import load_cases
+from threepart.problem.catalogue import load_cases
 from threepart.fem import elasticity
 
 

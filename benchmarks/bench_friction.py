@@ -31,10 +31,10 @@ import time
 import numpy as np
 
 from threepart import fem
-from threepart.catalogue import get_case
+from threepart.problem.catalogue import get_case
 from threepart.fem.method import pair_modulus
-from threepart.material import similar_pair
-from threepart.punch import Punch
+from threepart.problem.material import similar_pair
+from threepart.problem.punch import Punch
 from threepart.reports.compare import compare
 from threepart.reports import solvers
 

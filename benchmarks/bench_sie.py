@@ -15,7 +15,7 @@ import numpy as np
 
 from threepart import closedform as cf
 from threepart import sie
-from threepart.catalogue import load_cases, slip_loads
+from threepart.problem.catalogue import load_cases, slip_loads
 from threepart.convergence import fitted_order
 from threepart.reports.compare import compare
 from threepart.sie.schemes import Plain, Projected

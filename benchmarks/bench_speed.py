@@ -32,7 +32,7 @@ MEMORY_CHILD = """
 import resource, sys, time
 import numpy as np
 from threepart import closedform as cf
-from threepart.catalogue import get_case
+from threepart.problem.catalogue import get_case
 from threepart.stress import stress
 n, scattered = int(sys.argv[1]), sys.argv[2] == "scattered"
 case = get_case("caseA_moment")

@@ -31,8 +31,8 @@ import numpy as np
 from threepart import closedform as cf
 from threepart import fem, sie
 from threepart.fem.method import pair_modulus
-from threepart.punch import Punch
-from threepart.steady import ramp
+from threepart.problem.punch import Punch
+from threepart.halfplane.steady import ramp
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from bench_sie import best_time  # noqa: E402  (the benchmarks' one timer)

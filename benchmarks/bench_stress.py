@@ -24,9 +24,9 @@ from pathlib import Path
 
 import numpy as np
 
-import threepart.stress as st
+import threepart.stress.flamant as st
 from threepart import closedform as cf
-from threepart.catalogue import get_case
+from threepart.problem.catalogue import get_case
 from threepart.stress import stress
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))   # the tests' references

@@ -17,7 +17,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from threepart.punch import Punch
+from threepart.problem.punch import Punch
 
 __all__ = ["PeerResult", "solve_peer", "available"]
 

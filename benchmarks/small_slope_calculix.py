@@ -45,14 +45,14 @@ from pathlib import Path
 
 import numpy as np
 
-from threepart.fields import peak
+from threepart.results.fields import peak
 from threepart.calculix import Material, Mesh, run_ccx
 from threepart.calculix import build_half_mesh as build_mesh
 from threepart.calculix import half_deck as write_deck
 from threepart.calculix.read import (centre_pressure, contact_edge, element_vertices, read_descent,
                                      read_frd, read_reaction, surface_gap)
 from threepart.closedform import solve_normal
-from threepart.punch import Punch
+from threepart.problem.punch import Punch
 
 __all__ = ["ContactProfile", "peak_pressure", "profile", "neo_hooke", "Row", "load_for_slope", "run_case", "fit_law", "slope_at",
            "table", "main"]
@@ -299,7 +299,7 @@ def main(argv: list[str] | None = None) -> int:
     if args.case == "hertz":
         punch = Punch(10.0, 10.0, 0.0)    # Hertz: the peak is at x = 0
     else:
-        from threepart.catalogue import get_case
+        from threepart.problem.catalogue import get_case
         punch = get_case(args.case).punch   # its peaks lie off the centre (peak_pressure)
     mat = Material()
     rows = []

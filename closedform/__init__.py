@@ -37,8 +37,8 @@ from __future__ import annotations
 from threepart.errors import (ArcExtentError, CycleSlipReversalError, FullSlidingError, LiftOffError,
                               NoConvergenceError, OneSidedSlipError, SeparationError, SlopeLimitError,
                               StickSeparationError, StickZoneError)
-from threepart.material import compliance, rigid_punch, similar_pair
-from threepart.punch import Punch
+from threepart.problem.material import compliance, rigid_punch, similar_pair
+from threepart.problem.punch import Punch
 from threepart.results import NormalResult, Peak, SlipResult
 
 from . import formulas, special

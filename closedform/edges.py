@@ -17,7 +17,7 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import ArrayLike
 
-from threepart.punch import Punch
+from threepart.problem.punch import Punch
 from threepart.results import NormalResult
 
 from .formulas import F0, beta

@@ -21,7 +21,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 from scipy.special import xlogy
 
-from threepart.punch import Punch
+from threepart.problem.punch import Punch
 
 from .kernel import chi_v as _chi
 from .kernel import psi_v as _psi

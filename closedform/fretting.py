@@ -69,12 +69,12 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
-from threepart.bulk import check_sigma_bulk, corrective_tilt, slip_dissipation
+from threepart.halfplane.bulk import check_sigma_bulk, corrective_tilt, slip_dissipation
 from threepart.errors import LiftOffError, NoConvergenceError, StickZoneError
-from threepart.legendre import gauss01
-from threepart.punch import Punch
+from threepart.halfplane.legendre import gauss01
+from threepart.problem.punch import Punch
 from threepart.results import Diagnostics, MasingCycle, NormalResult
-from threepart.validate import check_shear, check_states
+from threepart.problem.validate import check_shear, check_states
 
 from . import formulas
 
@@ -236,7 +236,7 @@ def _stick_zones(normal: NormalResult, u: np.ndarray, f: float, Q_max: float,
 
     As :func:`closedform.solve_partial_slip`: load ``P - u/f`` (eq.
     horizontal_equilibrium) at the normal solution's tilt (eq. consistency_condition),
-    shifted by the bulk stress ``sigma_bulk u/Q_max`` (:func:`threepart.bulk.corrective_tilt`).
+    shifted by the bulk stress ``sigma_bulk u/Q_max`` (:func:`threepart.halfplane.bulk.corrective_tilt`).
 
     Raises
     ------
@@ -305,7 +305,7 @@ def fretting_cycle(normal_solution: NormalResult, Q_max: float, f: float, *,
         reversal; the whole contact at ``Q = 0`` and at each reversal), ``delta``
         (Masing's rule on ``F(u) = f [D(P) - D(P - u/f)]``, :func:`approach`),
         ``energy`` (:func:`loop_energy`; under a bulk stress, which also works on
-        the substrate, the friction work :func:`threepart.bulk.slip_dissipation`).
+        the substrate, the friction work :func:`threepart.halfplane.bulk.slip_dissipation`).
         ``diagnostics`` hold ``steps`` (the recorded states per branch) and the
         time; ``info`` holds ``energy_nodes`` (of the energy quadrature).
 

@@ -33,7 +33,7 @@ from typing import Any, Callable
 
 import numpy as np
 
-from threepart.punch import Punch
+from threepart.problem.punch import Punch
 
 from . import kernel
 

@@ -23,12 +23,12 @@ import numpy as np
 from numpy.typing import ArrayLike
 from scipy.optimize import minimize_scalar
 
-from threepart.answer import check_pressure
+from threepart.results.answer import check_pressure
 from threepart.errors import InputError, LiftOffError, NoConvergenceError, SeparationError
-from threepart.punch import Punch
+from threepart.problem.punch import Punch
 from threepart.results import Diagnostics, NormalResult
-from threepart.validate import (LENGTH_RANGE, check_arcs, check_contact, check_punch, check_tilt, finite,
-                                first_refused, flag, lever_arm, load_scale, positive, reals)
+from threepart.problem.validate import (LENGTH_RANGE, check_arcs, check_contact, check_punch, check_tilt,
+                                        finite, first_refused, flag, lever_arm, load_scale, positive, reals)
 
 from . import formulas
 from .newton import (HALF_PI, SCALAR, XTOL, XTOL_RANGE, State, r_guess, evaluations, ray_state, solve_phi,
@@ -47,7 +47,7 @@ class NormalSolution(NormalResult):
         return formulas.pressure(self.punch, self.a, self.c, self.A, x)
 
     def check(self) -> None:
-        """The answer check (:func:`threepart.answer.check_pressure`) wherever it could refuse.
+        """The answer check (:func:`threepart.results.answer.check_pressure`) wherever it could refuse.
 
         The pressure is eq. (inverted_IE) bounded at both ends; as
         ``PV int dt/(w(t)(t-x)) = 0`` inside the contact, it is, for every ``[-a, c]``,
@@ -350,7 +350,7 @@ def solve_normal(punch: Punch, P: float, s: float = 0.0, *, A: float,
         the lever arm ``s*`` that holds the punch without a support.
     beyond_small_slopes
         Evaluate the paper's formulas even past half-plane theory's small-slope
-        limit and the arcs' extents (no :func:`threepart.validate.check_contact`),
+        limit and the arcs' extents (no :func:`threepart.problem.validate.check_contact`),
         for a study of the formulas' own error such as the validity map
         (:mod:`threepart.reports.map.validity`); such an answer lies outside the
         theory. Default False: refused. A bool (Python's or numpy's); anything
@@ -365,12 +365,12 @@ def solve_normal(punch: Punch, P: float, s: float = 0.0, *, A: float,
     ValueError
         Non-finite, non-positive or unrepresentably large ``P``/``A`` (outside
         ``LENGTH_RANGE``), an unknown ``tilt``, ``s`` outside the punch's
-        footprint ``(-(b + R1), b + R2)`` (:func:`threepart.validate.lever_arm`).
+        footprint ``(-(b + R1), b + R2)`` (:func:`threepart.problem.validate.lever_arm`).
     TypeError
         A ``punch`` that is not a :class:`Punch`, a number of the wrong type.
     ArcExtentError, SlopeLimitError
         The solved contact runs past an arc's extent or past the small-slope
-        limit (:func:`threepart.validate.check_contact`).
+        limit (:func:`threepart.problem.validate.check_contact`).
     LiftOffError
         ``s`` outside the lift-off lever arms, or ``P`` at or below :func:`P_min` of a convex centre.
     SeparationError
@@ -451,7 +451,7 @@ def lift_off(punch: Punch, P: float, A: float, *, beyond_small_slopes: bool = Fa
 
     ``s_min`` is where the right edge reaches the join (``c -> b``): ``a_min``
     solves ``P_lift-off(a) = P``. ``s_max`` is the mirror image (``a -> b``).
-    Both lift-off contacts must lie on the arcs (:func:`threepart.validate.check_arcs`),
+    Both lift-off contacts must lie on the arcs (:func:`threepart.problem.validate.check_arcs`),
     as :func:`solve_normal`'s must, so that every ``s`` strictly between them
     is one :func:`solve_normal` solves, but where the tilt there passes the
     small-slope limit (``SlopeLimitError``; the lift-off lever arms are still

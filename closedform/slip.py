@@ -23,9 +23,9 @@ from numpy.typing import ArrayLike
 from scipy.optimize import minimize_scalar
 
 from . import formulas
-from threepart.bulk import check_sigma_bulk, corrective_tilt, slip_direction_margin
+from threepart.halfplane.bulk import check_sigma_bulk, corrective_tilt, slip_direction_margin
 from threepart.errors import SlipReversalError, StickSeparationError, StickZoneError
-from threepart.validate import check_shear
+from threepart.problem.validate import check_shear
 from .newton import HALF_PI, SCALAR, bracketed_root, ray_state, solve_phi
 from threepart.results import Diagnostics, NormalResult, SlipResult
 
@@ -168,7 +168,7 @@ def stick_zones_on_path(normal: NormalResult, Q: float, f: float, sigma_bulk: fl
 
     The load ``P - lam |Q|/f`` (eq. horizontal_equilibrium, eq.
     equilibrium_condition_1) at the tilt ``alpha*`` of
-    :func:`threepart.bulk.corrective_tilt` (eq. consistency_condition), by the
+    :func:`threepart.halfplane.bulk.corrective_tilt` (eq. consistency_condition), by the
     vectorised bracketed roots of :mod:`closedform.newton`. ``lam = 0`` is the
     contact itself. The flag is True where the stick zone would end on the
     central segment (outside the closed form).
@@ -189,7 +189,7 @@ def stick_zones_on_path(normal: NormalResult, Q: float, f: float, sigma_bulk: fl
 def check_slip_direction(normal: NormalResult, Q: float, f: float, sigma_bulk: float) -> None:
     """Refuse a bulk stress that reverses the slip anywhere on the load path (:class:`SlipReversalError`).
 
-    The least of :func:`threepart.bulk.slip_direction_margin` over the load
+    The least of :func:`threepart.halfplane.bulk.slip_direction_margin` over the load
     fraction ``lam`` in ``[0, 1]`` (a grid brackets it, Brent refines it,
     :func:`least_on`, where the grid's least is within 5 % of ``|Q|/π`` of
     zero) must be ``>= 0``; at ``lam = 0`` it is

@@ -18,7 +18,7 @@ equilibrium_condition_2, consistency_condition), warm-started between the
 known states, and the bracketed roots of :mod:`closedform.newton` (with a
 target tilt, as the partial-slip stick zone) where it does not settle. The
 energy per cycle is the friction work of the two half-cycles (eq. S11,
-:func:`threepart.steady.half_cycle_work`).
+:func:`threepart.halfplane.steady.half_cycle_work`).
 """
 from __future__ import annotations
 
@@ -32,13 +32,13 @@ from numpy.typing import ArrayLike
 
 from threepart.errors import (CycleSlipReversalError, InputError, LiftOffError,
                               StickSeparationError, StickZoneError)
-from threepart.punch import Punch
-from threepart.cycles import SteadyStateResult
+from threepart.problem.punch import Punch
+from threepart.results.cycles import SteadyStateResult
 from threepart.results import Diagnostics
-from threepart.steady import (WORK_NODES, LoadState, Path, check_cycle_states, common_contact,
-                              corrective_load, corrective_tilt_cycle, cycle_margin, half_cycle_work, lam_rule, ramp,
-                              shakes_down, tilt_rate)
-from threepart.validate import check_punch
+from threepart.halfplane.steady import (WORK_NODES, LoadState, Path, check_cycle_states, common_contact,
+                                        corrective_load, corrective_tilt_cycle, cycle_margin,
+                                        half_cycle_work, lam_rule, ramp, shakes_down, tilt_rate)
+from threepart.problem.validate import check_punch
 
 from . import formulas
 from .fretting import stick_gap
@@ -236,7 +236,7 @@ class _Cycle:
         return self._permanent
 
     def path(self, j: int) -> Path:
-        """The pieces :func:`threepart.steady.half_cycle_work` integrates, on the half-cycle ``j``."""
+        """The pieces :func:`threepart.halfplane.steady.half_cycle_work` integrates, on the half-cycle ``j``."""
         def pieces(lam: np.ndarray) -> Any:
             z = self(lam)[j]
             a, c = z["a"][:, None], z["c"][:, None]

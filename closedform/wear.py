@@ -31,7 +31,7 @@ from numpy.typing import ArrayLike
 from scipy.optimize import brentq
 
 from threepart.errors import NoConvergenceError, StickZoneError
-from threepart.punch import Punch
+from threepart.problem.punch import Punch
 from threepart.results import NormalResult
 
 from . import formulas

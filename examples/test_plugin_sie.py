@@ -19,7 +19,7 @@ from typing import Any
 import pytest
 
 from threepart import sie
-from threepart.catalogue import Case
+from threepart.problem.catalogue import Case
 
 
 def my_solver(case: Case) -> Any:

@@ -21,7 +21,7 @@ locate_contact      -- coarse trial and locate solves that place the zone and th
 Every solver checks all of its input before any meshing or numerics (a wrong type is a
 ``TypeError``, a value out of range a ``ValueError`` naming the argument and the limit),
 raises only threepart's errors (a foreign numerical failure becomes ``NoConvergenceError``),
-checks its contact against ``threepart.validate.check_contact``, and with ``progress=True``
+checks its contact against ``threepart.problem.validate.check_contact``, and with ``progress=True``
 (default: when stderr is a terminal) prints one line per stage to stderr.
 
 Building blocks

@@ -1,11 +1,11 @@
-"""Input checks of the FE entry points, built from :mod:`threepart.validate`.
+"""Input checks of the FE entry points, built from :mod:`threepart.problem.validate`.
 
 Each public FE call validates all of its input here, before any numerics or
 meshing, in the style of SciPy's ``_*_iv`` helpers: a wrong type is a
 ``TypeError``, a value out of range a ``ValueError`` whose message names the
 argument and the limit. What is FE-specific lives here (the material, the
 physical load scale, the mesh argument and the bounds on counts and sizes);
-the rest is :mod:`threepart.validate`'s.
+the rest is :mod:`threepart.problem.validate`'s.
 
 Bounds
 ------
@@ -20,10 +20,10 @@ import math
 from pathlib import Path
 from typing import Any
 
-from threepart.material import rigid_punch, similar_pair
-from threepart.punch import Punch
-from threepart.validate import (check_punch, check_tilt, finite, integer, lever_arm, load_scale,
-                                poisson, positive)
+from threepart.problem.material import rigid_punch, similar_pair
+from threepart.problem.punch import Punch
+from threepart.problem.validate import (check_punch, check_tilt, finite, integer, lever_arm, load_scale,
+                                        poisson, positive)
 from threepart.errors import InputError, InputTypeError
 
 __all__ = ["FE_LENGTH_RANGE", "MAX_ITER", "STEPS", "MAX_FE_STATES", "H_FACTOR", "material", "load",

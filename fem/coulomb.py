@@ -5,7 +5,7 @@ tangential displacement ``w_i`` of the punch keeps its value of the previous
 step) or slip (``t_i = ±f fn_i`` with the sign of the slip increment). The
 states are found by a primal-dual active-set iteration on the complementarity
 function ``t_i = proj_[-f fn_i, f fn_i](t_i + c Δw_i)`` (Hüeber, Stadler &
-Wohlmuth 2008), :func:`threepart.coulomb.coulomb_state`, which the SIE's load
+Wohlmuth 2008), :func:`threepart.halfplane.coulomb.coulomb_state`, which the SIE's load
 history shares. Notation as in :mod:`fem.friction`: ``fn`` the normal nodal
 forces, ``t`` the shear nodal forces the punch drags the substrate with,
 ``f`` (here ``mu``) the coefficient of friction.
@@ -16,7 +16,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from threepart.coulomb import coulomb_state
+from threepart.halfplane.coulomb import coulomb_state
 
 from .interface import Interface
 
@@ -68,7 +68,7 @@ def tangential(itf: Interface, fn: np.ndarray, w_prev: np.ndarray, w_fixed: np.n
     with ``w_fixed`` its part that does not depend on the shear (the normal
     forces' coupling ``C_tn fn`` and the bulk strain of the substrate). Stick
     nodes keep ``w_prev``; slip nodes carry ``t_i = ±mu fn_i``; ``sum t = Q``.
-    The active set is :func:`threepart.coulomb.coulomb_state`'s, on ``C_tt``
+    The active set is :func:`threepart.halfplane.coulomb.coulomb_state`'s, on ``C_tt``
     with the bounds ``mu fn``.
 
     Returns

@@ -20,7 +20,7 @@ from dataclasses import replace
 import numpy as np
 
 from threepart.errors import MeshResolutionError, SeparationError
-from threepart.punch import Punch
+from threepart.problem.punch import Punch
 
 from .mesh import MeshPreset
 

@@ -50,13 +50,13 @@ from typing import Any
 import numpy as np
 
 from threepart.errors import ContactZoneError, InputError
-from threepart.material import similar_pair
+from threepart.problem.material import similar_pair
 from threepart.meshes import SubstrateSpec
 from threepart.output import scratch_dir
 from threepart.meshes.punch import PunchSpec, build_punch
-from threepart.punch import Punch
+from threepart.problem.punch import Punch
 from threepart.results import Diagnostics
-from threepart.validate import check_contact, check_punch
+from threepart.problem.validate import check_contact, check_punch
 
 from .contact import ContactSolution, check_kinematics, solve_kinematic
 from .elasticity import SurfaceCompliance, condense
@@ -233,7 +233,7 @@ def solve_finite(punch: Punch, P: float, s: float = 0.0, *, E: float, nu: float,
     ArcExtentError, SlopeLimitError
         With ``H = None`` (the paper's model): if the contact runs past an arc's
         extent or its surface slope exceeds the small-slope limit
-        (:func:`threepart.validate.check_contact`), as :func:`fem.solve_normal`.
+        (:func:`threepart.problem.validate.check_contact`), as :func:`fem.solve_normal`.
         With a finite ``H`` the punch's exact face bounds the contact (it ends at
         the flank angle, ``b + R sin theta < b + R``: a zone past it is a
         ``ValueError``), and the slope limit is not applied: this model measures

@@ -44,8 +44,8 @@ import numpy as np
 from threepart.errors import ContactZoneError
 from threepart.meshes import SubstrateSpec
 from threepart.meshes.punch import PunchSpec
-from threepart.punch import Punch
-from threepart.validate import check_contact, integer, shear_load
+from threepart.problem.punch import Punch
+from threepart.problem.validate import check_contact, integer, shear_load
 
 from ._boundary import boundary
 from ._iv import STEPS

@@ -61,11 +61,11 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from threepart.meshes import SubstrateSpec
-from threepart.punch import Punch
-from threepart.material import NU
+from threepart.problem.punch import Punch
+from threepart.problem.material import NU
 from threepart.results import BRANCHES, FrettingResult, NormalResult, SlipResult
 from threepart.stress import Stress
-from threepart.validate import check_states, finite, integer, shear_load
+from threepart.problem.validate import check_states, finite, integer, shear_load
 
 from .coulomb import Step, reversal
 from ._boundary import boundary

@@ -6,7 +6,7 @@ stress on the substrate's end faces. The mesh is made **once**, for the union
 of the contacts of the history's states (a preset is meshed around the contacts
 of its largest load and of its extreme lever arms), and condensed once; each
 state then costs a frictionless normal contact solve on ``C_nn`` (one per
-distinct ``(P, s)``) and one Coulomb state (:func:`threepart.coulomb.coulomb_state`)
+distinct ``(P, s)``) and one Coulomb state (:func:`threepart.halfplane.coulomb.coulomb_state`)
 on ``C_tt``: stick nodes keep the relative tangential displacement ``w`` of the
 previous state, slip nodes carry ``t_i = ±f fn_i`` in the direction of their slip,
 nodes out of contact carry nothing and re-enter with no memory. The mirrored
@@ -14,7 +14,7 @@ pair uncouples the normal and tangential problems (``C_nt = 0`` to round-off),
 as the paper assumes.
 
 The friction work of a step is ``Σ |Δw_i| (f fn_(k-1),i + f fn_k,i)/2`` over the
-slipping nodes (:func:`threepart.history.step_work`), as the SIE's.
+slipping nodes (:func:`threepart.halfplane.load_history.step_work`), as the SIE's.
 """
 from __future__ import annotations
 
@@ -25,15 +25,15 @@ from typing import Any, NamedTuple
 import numpy as np
 from threadpoolctl import threadpool_limits
 
-from threepart.coulomb import coulomb_state
+from threepart.halfplane.coulomb import coulomb_state
 from threepart.errors import ContactZoneError, FullSlidingError
-from threepart.history import History, check_history, check_period, step_work, stuck
-from threepart.material import similar_pair
+from threepart.halfplane.load_history import History, check_history, check_period, step_work, stuck
+from threepart.problem.material import similar_pair
 from threepart.meshes import SubstrateSpec
-from threepart.punch import Punch
-from threepart.cycles import HistoryResult
+from threepart.problem.punch import Punch
+from threepart.results.cycles import HistoryResult
 from threepart.results import Diagnostics
-from threepart.validate import check_contact, shear_load
+from threepart.problem.validate import check_contact, shear_load
 
 from ._boundary import boundary
 from ._iv import mesh_arg, normal_iv

@@ -2,12 +2,12 @@
 
 The FE models are bodies of finite size and need Young's modulus and Poisson's
 ratio; the adapter converts the compliance ``A`` (eq. 4) at ``nu`` (default
-:data:`NU`) by the one mapping of :mod:`threepart.material`: the normal problem is
+:data:`NU`) by the one mapping of :mod:`threepart.problem.material`: the normal problem is
 a rigid punch on a block of modulus ``2(1 - nu^2)/A``
-(:func:`threepart.material.rigid_punch_modulus`: ``E/2`` for two similar bodies of
+(:func:`threepart.problem.material.rigid_punch_modulus`: ``E/2`` for two similar bodies of
 ``E``, the catalogue's and the command line's convention); partial slip and the
 fretting cycle are two similar bodies, each of modulus ``4(1 - nu^2)/A``
-(:func:`threepart.material.similar_pair_modulus`), which solve their own normal problem with
+(:func:`threepart.problem.material.similar_pair_modulus`), which solve their own normal problem with
 the shear; so is the steady state of an in-phase cycle (:func:`fem.steady_state`). In half-plane theory the solution depends on the material only
 through ``A``; ``nu`` affects only the finite block's far field.
 
@@ -17,14 +17,14 @@ from __future__ import annotations
 
 from typing import Any
 
-from threepart import material
-from threepart.material import NU   # re-exported: the FE models' nu when only A is given
-from threepart.punch import Punch
+from threepart.problem import material
+from threepart.problem.material import NU   # re-exported: the FE models' nu when only A is given
+from threepart.problem.punch import Punch
 from threepart.registry import Method, register
-from threepart.cycles import HistoryResult, SteadyStateResult
+from threepart.results.cycles import HistoryResult, SteadyStateResult
 from threepart.results import FrettingResult, NormalResult, SlipResult
 from threepart.tolerances import fem_comparison
-from threepart.validate import poisson, positive
+from threepart.problem.validate import poisson, positive
 
 from .edges import edges
 from .friction import fretting_cycle, solve_partial_slip

@@ -22,12 +22,12 @@ from typing import Any, NamedTuple, Union
 import numpy as np
 from numpy.typing import ArrayLike
 
-from threepart.punch import Punch
+from threepart.problem.punch import Punch
 
-from threepart.validate import check_contact, integer
+from threepart.problem.validate import check_contact, integer
 from threepart.errors import ContactZoneError, InputError, InputTypeError, SeparationError
-from threepart.material import rigid_punch
-from threepart.material import NU
+from threepart.problem.material import rigid_punch
+from threepart.problem.material import NU
 from threepart.results import Diagnostics, NormalResult
 from threepart.stress import Stress
 from threepart.meshes import SubstrateSpec
@@ -306,11 +306,11 @@ def solve_normal(punch: Punch, P: float, s: float = 0.0, *, E: float, nu: float,
     TypeError, ValueError
         For invalid input, naming the argument and its limit, before any numerics:
         ``P`` > 0 with ``A P max(R1, R2, b)`` representable, ``s`` inside the
-        punch's footprint (:func:`threepart.validate.lever_arm`), ``nu`` in
+        punch's footprint (:func:`threepart.problem.validate.lever_arm`), ``nu`` in
         ``(-1, 0.5)``, ``E`` > 0, ``tilt``, ``mesh``, ``max_iter``, ``kinematics``.
     ArcExtentError, SlopeLimitError
         If the solved contact runs past an arc's extent or its surface slope
-        exceeds the small-slope limit (:func:`threepart.validate.check_contact`).
+        exceeds the small-slope limit (:func:`threepart.problem.validate.check_contact`).
     NoConvergenceError
         If the contact iteration does not converge, or a numerical step (gmsh,
         a factorisation) fails.

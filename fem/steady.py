@@ -3,7 +3,7 @@
 No superposition: the two-body model of :func:`fem.load_history` (meshed and
 condensed once) is marched from rest to state 0 (the first loading), then
 ``0 -> 1 -> 0`` again and again, ``steps`` states a half-cycle with the loads
-``(P, s, Q, sigma_bulk)`` linear between the ends (:func:`threepart.steady.ramp`,
+``(P, s, Q, sigma_bulk)`` linear between the ends (:func:`threepart.halfplane.steady.ramp`,
 docs/STEADY_STATE.md §0), until the friction work of a cycle settles. The last
 cycle gives the permanent stick zone (the run of nodes that did not slip in any
 of its steps), the energy (eq. S11 as the sum of its steps' friction work), the
@@ -21,15 +21,15 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from threepart.errors import InputError, NoConvergenceError
-from threepart.history import History, check_history
+from threepart.halfplane.load_history import History, check_history
 from threepart.meshes import SubstrateSpec
-from threepart.punch import Punch
-from threepart.cycles import SteadyStateResult
+from threepart.problem.punch import Punch
+from threepart.results.cycles import SteadyStateResult
 from threepart.results import Diagnostics
-from threepart.steady import LoadState, check_cycle_states, ramp
+from threepart.halfplane.steady import LoadState, check_cycle_states, ramp
 from threepart.stress import Stress
 from threepart.tolerances import tolerance
-from threepart.validate import integer, shear_load
+from threepart.problem.validate import integer, shear_load
 
 from ._boundary import boundary
 from ._iv import mesh_arg, normal_iv

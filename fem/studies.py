@@ -13,7 +13,7 @@ from __future__ import annotations
 from typing import Any, Callable, Mapping, Sequence
 
 from threepart.convergence import Study, run_study
-from threepart.punch import Punch
+from threepart.problem.punch import Punch
 
 from ._boundary import boundary
 from .mesh import MeshPreset

@@ -20,11 +20,11 @@ import numpy as np
 from threadpoolctl import threadpool_limits
 
 from threepart.errors import NoConvergenceError
-from threepart.material import similar_pair
+from threepart.problem.material import similar_pair
 from threepart.meshes import SubstrateSpec
-from threepart.punch import Punch
+from threepart.problem.punch import Punch
 from threepart.results import Diagnostics
-from threepart.validate import check_contact
+from threepart.problem.validate import check_contact
 
 from .contact import ContactSolution, solve_contact
 from .coulomb import Step, tangential
@@ -197,7 +197,7 @@ def two_body_model(punch: Punch, P: float, s: float, E: float, nu: float, tilt: 
     nodes with fine elements around them, as the contact ends are. An end
     within ``MIN_END_ELEMENTS`` of a join refines the preset, or is refused, as
     in :func:`fem.solve_normal`. The normal contact is checked against the
-    limits of half-plane theory (:func:`threepart.validate.check_contact`)
+    limits of half-plane theory (:func:`threepart.problem.validate.check_contact`)
     before any shear is applied.
     """
     t0 = time.perf_counter()

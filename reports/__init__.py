@@ -3,7 +3,7 @@
 The only package that knows more than one solver: it runs the case catalogue
 through :mod:`closedform`, :mod:`sie` and :mod:`fem` and compares them.
 
-The cases come from the one catalogue (:mod:`threepart.catalogue`) and the limits
+The cases come from the one catalogue (:mod:`threepart.problem.catalogue`) and the limits
 from the one tolerance table (:mod:`threepart.tolerances`). ``threepart verify``
 is :func:`reports.verify.report.main` and ``threepart figures`` :func:`reports.figures.main`;
 the report is one list of sections (:mod:`reports.verify.sections`) rendered as

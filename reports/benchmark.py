@@ -21,8 +21,8 @@ from scipy.optimize import fsolve
 
 from threepart import closedform as cf
 from threepart import fatigue as fat
-from threepart import fatigue_history as fh
-from threepart.catalogue import get_case
+from threepart.fatigue import history as fh
+from threepart.problem.catalogue import get_case
 from threepart.closedform import formulas
 from threepart.closedform.newton import evaluations
 from threepart.stress import stress
@@ -126,7 +126,7 @@ def _stress(size: dict[str, Any]) -> dict[str, float]:
 def _fatigue(size: dict[str, Any]) -> dict[str, float]:
     """The history of the fan-blade flank's fretting cycle (README), superposed and state by state."""
     from threepart import Punch
-    from threepart.material import compliance
+    from threepart.problem.material import compliance
 
     punch, A = Punch(60.0, 40.0, 1.0), compliance(115000.0, 0.32)
     normal = cf.solve_normal(punch, 1500.0, 0.28, A=A)

@@ -25,8 +25,8 @@ from typing import Any
 
 import numpy as np
 
-from threepart.material import E_STEEL, NU as NU_DEFAULT
-from threepart.punch import Punch
+from threepart.problem.material import E_STEEL, NU as NU_DEFAULT
+from threepart.problem.punch import Punch
 from threepart.results import NormalResult, SlipResult
 
 __all__ = ["main", "figure_data", "curves", "check_admissible", "Curve", "GEOMETRY", "SETS",

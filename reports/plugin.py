@@ -5,7 +5,7 @@ fixtures and a marker to every pytest run; a test that asks for neither is
 left alone (not parametrised, nothing imported).
 
 ``threepart_case``
-    A catalogue case (:class:`threepart.catalogue.Case`, resolved): a test
+    A catalogue case (:class:`threepart.problem.catalogue.Case`, resolved): a test
     that asks for it runs once per case of the one case catalogue, or per
     case the marker selects.
 ``threepart_check(result, case, *, comparison="fem-default", tolerances=None)``
@@ -43,7 +43,7 @@ import pytest
 from threepart.errors import InputError, InputTypeError
 
 if TYPE_CHECKING:  # pragma: no cover
-    from threepart.catalogue import Case
+    from threepart.problem.catalogue import Case
     from threepart.reports.compare import Check
 
 __all__ = ["threepart_case", "threepart_check", "check", "reference", "margins_table"]
@@ -63,7 +63,7 @@ def pytest_configure(config: pytest.Config) -> None:
 
 
 def _selected(marker: pytest.Mark | None) -> list[Case]:
-    from threepart.catalogue import SUITES, load_cases
+    from threepart.problem.catalogue import SUITES, load_cases
 
     cases = load_cases(None)
     if marker is None:
@@ -203,7 +203,7 @@ def check(result: Any, case: Case, *, comparison: str = DEFAULT_COMPARISON,
         Anything with ``a``, ``c`` and ``pressure(x)``; see the module docstring.
     case
         A catalogue case (the ``threepart_case`` fixture, or
-        :func:`threepart.catalogue.get_case`).
+        :func:`threepart.problem.catalogue.get_case`).
     comparison
         Row group of :data:`threepart.tolerances.TOLERANCES` whose limits apply.
     tolerances

@@ -1,7 +1,7 @@
 """``threepart export-refs``: the catalogue's reference solutions as a versioned dataset.
 
-Every case of the one case catalogue (:mod:`threepart.catalogue`) is solved by
-its reference method (:attr:`threepart.catalogue.Case.reference`): the closed
+Every case of the one case catalogue (:mod:`threepart.problem.catalogue`) is solved by
+its reference method (:attr:`threepart.problem.catalogue.Case.reference`): the closed
 form where the paper's framework holds, and past it the SIE, whose projected
 scheme gives the contact and stick-zone ends exactly for any ``n``; its
 tractions are then evaluated by the bounded inversion integral at those ends
@@ -48,7 +48,7 @@ import numpy as np
 from scipy.optimize import minimize_scalar
 
 from threepart.registry import REFERENCE
-from threepart.catalogue import Case, load_cases
+from threepart.problem.catalogue import Case, load_cases
 from threepart.output import atomic_dir, json_safe, strict_json, validate_json
 from threepart.tolerances import TOLERANCES
 
@@ -171,7 +171,7 @@ class _Source:
 
 
 def _units(case: Case) -> str:
-    """The units of a case and what its material means (the one convention, :mod:`threepart.material`)."""
+    """The units of a case and what its material means (the one convention, :mod:`threepart.problem.material`)."""
     if case.material is None:
         return "nondimensional (consistent units; A given)"
     if case.bodies == "rigid punch":
@@ -191,7 +191,7 @@ def _inputs(case: Case) -> dict[str, Any]:
     return inputs
 
 
-#: the kinds of case the dataset holds (:attr:`Case.kind <threepart.catalogue.Case.kind>`)
+#: the kinds of case the dataset holds (:attr:`Case.kind <threepart.problem.catalogue.Case.kind>`)
 KINDS = ("normal", "slip", "fretting")
 
 

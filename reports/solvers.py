@@ -10,12 +10,12 @@ from __future__ import annotations
 from typing import TYPE_CHECKING, Any
 
 from threepart import registry
-from threepart.cycles import SteadyStateResult
+from threepart.results.cycles import SteadyStateResult
 from threepart.results import FrettingResult, NormalResult, SlipResult
 from threepart.errors import InputError
 
 if TYPE_CHECKING:  # pragma: no cover
-    from threepart.catalogue import Case
+    from threepart.problem.catalogue import Case
 
 __all__ = ["METHODS", "normal", "slip", "fretting", "steady"]
 

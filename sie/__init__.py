@@ -41,7 +41,7 @@ convergence_study   -- errors against a reference over a list of n, fitted order
 pressure_by_quadrature -- independent pointwise reference (adaptive quadrature of the inversion formula)
 
 The fitted order and the Richardson step are :mod:`threepart.convergence`'s; the
-cases and tolerances of the SIE tests are :mod:`threepart.catalogue`'s (suite
+cases and tolerances of the SIE tests are :mod:`threepart.problem.catalogue`'s (suite
 ``"sie"``) and :mod:`threepart.tolerances`'.
 """
 from __future__ import annotations

@@ -39,12 +39,12 @@ import numpy as np
 from numpy.typing import ArrayLike
 from scipy.optimize import brentq
 
-from threepart.bulk import check_sigma_bulk, corrective_tilt, slip_dissipation
+from threepart.halfplane.bulk import check_sigma_bulk, corrective_tilt, slip_dissipation
 from threepart.errors import InputError, NoConvergenceError, StickSeparationError
-from threepart.legendre import gauss01
-from threepart.punch import Punch
+from threepart.halfplane.legendre import gauss01
+from threepart.problem.punch import Punch
 from threepart.results import Diagnostics, MasingCycle, NormalResult
-from threepart.validate import SLIP_RATIO_LIMIT, check_shear, check_states
+from threepart.problem.validate import SLIP_RATIO_LIMIT, check_shear, check_states
 
 from .normal import DEFAULT_N, DEFAULT_SCHEME, check_scheme, solve_ends
 from .projection import slope_coefficients
@@ -332,7 +332,7 @@ def _check_coulomb(normal: NormalResult, f: float, tilt_rate: float, u: np.ndarr
 def _cycle_energy(zones: Zones, normal: NormalResult, Q_max: float, f: float, tilt_rate: float,
                   sigma_bulk: float, mh1: tuple[float, float]) -> tuple[float, Any, list[float]]:
     """The cycle's energy, its quadrature nodes and the join crossings (none under a bulk stress:
-    the friction work, :func:`threepart.bulk.slip_dissipation`); ``mh1`` the stick zone at ``Q_max``."""
+    the friction work, :func:`threepart.halfplane.bulk.slip_dissipation`); ``mh1`` the stick zone at ``Q_max``."""
     if sigma_bulk == 0:
         return _energy(zones, Q_max, mh1)
     punch, (m1, h1) = normal.punch, mh1
@@ -392,7 +392,7 @@ def fretting_cycle(normal: NormalResult, Q_max: float, f: float, *, n: int | Non
     Notes
     -----
     Under a bulk stress ``energy`` is the friction work
-    (:func:`threepart.bulk.slip_dissipation`): the bulk stress works on the
+    (:func:`threepart.halfplane.bulk.slip_dissipation`): the bulk stress works on the
     substrate too, so it is no longer the ``Q``–``delta`` loop's area.
     """
     Q_max, f, states = _check_fretting(normal, Q_max, f, states)

@@ -17,10 +17,10 @@ the elements in contact stick (``w_i`` keeps its previous value) or slip
 slip increment, i.e. opposing the substrate's slip); out of contact ``q = 0``,
 and an element that enters the contact starts from the ``w`` it has there (no
 memory); ``∫ q = Q`` (eq. horizontal_equilibrium). The sets come from the
-active set of :func:`threepart.coulomb.coulomb_state`.
+active set of :func:`threepart.halfplane.coulomb.coulomb_state`.
 
 The friction work of a step is ``Σ |Δw_i| (f p̄_(k-1),i + f p̄_k,i) h/2`` over
-the slipping elements (:func:`threepart.history.step_work`); a completed
+the slipping elements (:func:`threepart.halfplane.load_history.step_work`); a completed
 cycle's energy is the sum over its steps.
 """
 from __future__ import annotations
@@ -33,14 +33,14 @@ from typing import Any, Callable
 import numpy as np
 from threadpoolctl import threadpool_limits
 
-from threepart.coulomb import coulomb_state
+from threepart.halfplane.coulomb import coulomb_state
 from threepart.errors import FullSlidingError, InputTypeError
 from threepart.progress import heartbeat
-from threepart.history import History, check_history, check_period, step_work, stuck
-from threepart.punch import Punch
-from threepart.cycles import HistoryResult
+from threepart.halfplane.load_history import History, check_history, check_period, step_work, stuck
+from threepart.problem.punch import Punch
+from threepart.results.cycles import HistoryResult
 from threepart.results import Diagnostics, NormalResult
-from threepart.validate import check_punch, integer, lever_arm, load_scale, positive, shear_load, show
+from threepart.problem.validate import check_punch, integer, lever_arm, load_scale, positive, shear_load, show
 
 from .normal import DEFAULT_N, SieNormalResult, solve_normal
 
@@ -177,7 +177,7 @@ def load_history(punch: Punch, history: Any, f: float, *, A: float, n: int = DEF
         A sequence of states ``(P, s, Q, sigma_bulk)`` (normal load > 0, its lever
         arm, the shear force the punch exerts on the substrate along +x, the
         substrate's bulk stress, tension positive), or the path of a CSV file
-        with those columns (:func:`threepart.history.read_history`). The body
+        with those columns (:func:`threepart.halfplane.load_history.read_history`). The body
         starts unloaded; the first state is applied in one step, and between two
         states the loads move linearly.
     f
@@ -191,7 +191,7 @@ def load_history(punch: Punch, history: Any, f: float, *, A: float, n: int = DEF
     period
         States per cycle, the cycles ending at the last state; by default a
         cycle ends at each return to the last state along the way it was reached
-        (:meth:`threepart.history.History.cycles`).
+        (:meth:`threepart.halfplane.load_history.History.cycles`).
     substeps
         Sub-steps of each step, in ``[1, MAX_SUBSTEPS]``; by default enough that no contact end
         moves more than :data:`SUBSTEP_SHARE` of the widest contact in one (the work: :func:`_march`).
@@ -320,7 +320,7 @@ def _march(states: np.ndarray, given: np.ndarray, f: float, A: float, C: np.ndar
     """The marched states in order, recorded at the ``given`` ones: shear, accumulated slip, stick
     intervals, work per step (its sub-steps' sum), rigid shift, iterations, residual, slip-zone spans.
 
-    A step's friction work is :func:`threepart.history.step_work` of the elements slipping in contact
+    A step's friction work is :func:`threepart.halfplane.load_history.step_work` of the elements slipping in contact
     at both its ends, plus that of the elements a contact end passes in it (which enter or leave
     the contact: :func:`_passing_slip`) over the share of the step they are in contact
     (:func:`_in_contact_share`, the ends moving linearly): issue 37, docs/STEADY_STATE.md §5.

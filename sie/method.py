@@ -6,7 +6,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from threepart.punch import Punch
+from threepart.problem.punch import Punch
 from threepart.registry import Method, register
 from threepart.results import FrettingResult, NormalResult, SlipResult
 

@@ -28,10 +28,10 @@ import numpy as np
 from numpy.typing import ArrayLike
 from scipy.optimize import brentq
 
-from threepart.punch import Punch
+from threepart.problem.punch import Punch
 
-from threepart.validate import (check_arcs, check_contact, check_punch, check_tilt, lever_arm,
-                                load_scale, positive)
+from threepart.problem.validate import (check_arcs, check_contact, check_punch, check_tilt, lever_arm,
+                                        load_scale, positive)
 from threepart.errors import InputError, NoConvergenceError, SeparationError
 from threepart.results import Diagnostics, NormalResult
 
@@ -321,13 +321,13 @@ def solve_normal(punch: Punch, P: float, s: float = 0.0, *, A: float, tilt: str 
         A ``punch`` that is not a :class:`Punch`, a number or ``n`` of the wrong type.
     ValueError
         For invalid input: ``P``, ``A`` outside ``LENGTH_RANGE``, ``s`` outside
-        the punch's footprint (:func:`threepart.validate.lever_arm`), ``n``
+        the punch's footprint (:func:`threepart.problem.validate.lever_arm`), ``n``
         outside ``[2, MAX_N]``.
     SeparationError
         A concave centre whose single contact would be tensile or penetrate.
     ArcExtentError, SlopeLimitError
         The solved contact runs past an arc or past the small-slope limit
-        (:func:`threepart.validate.check_contact`).
+        (:func:`threepart.problem.validate.check_contact`).
     NoConvergenceError
         If the Newton iteration fails, or (``n`` not given) the estimate has not
         met the target at the scheme's largest ``n``.

@@ -49,10 +49,10 @@ from numpy.typing import ArrayLike
 from scipy.interpolate import PchipInterpolator
 
 from threepart.errors import InputError, InputTypeError, SeparationError
-from threepart.punch import Punch
+from threepart.problem.punch import Punch
 from threepart.results import Diagnostics
 from threepart.textfile import finite_row, read_text
-from threepart.validate import check_contact, check_punch
+from threepart.problem.validate import check_contact, check_punch
 
 from .fretting import approach as punch_approach, stick_gap
 from .normal import SieNormalResult, check_normal, solve_ends
@@ -297,7 +297,7 @@ class ProfileNormalResult(SieNormalResult):
     tensile_floor: float = 0.0
 
     def check(self) -> None:
-        """The answer check (:func:`threepart.answer.check_pressure`); a wear march's state takes its own floor.
+        """The answer check (:func:`threepart.results.answer.check_pressure`); a wear march's state takes its own floor.
 
         With ``tensile_floor > 0`` (a marched state, :mod:`sie.wear`) the pressure may
         dip below 0 by that fraction of its peak where the knots do not resolve a
@@ -310,7 +310,7 @@ class ProfileNormalResult(SieNormalResult):
             _check_tensile(self, f"`P` = {self.P:g} at `s` = {self.s:g}", self.tensile_floor)
 
     def edges(self) -> Any:
-        """Edge multipliers (:meth:`threepart.asymptotics.Edged.edges`) of bounded ends only.
+        """Edge multipliers (:meth:`threepart.results.edges.Edged.edges`) of bounded ends only.
 
         Square-root singular ends have no ``K_N``; their strengths are ``info["K"]`` (eq. W10).
         """

@@ -28,7 +28,7 @@ import math
 import numpy as np
 from numpy.typing import ArrayLike
 
-from threepart.punch import Punch
+from threepart.problem.punch import Punch
 
 __all__ = ["ramp_coefficients", "ramp_coefficients_dbeta", "slope_coefficients", "kinks",
            "ramp_remainder"]

@@ -21,7 +21,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 from scipy.integrate import IntegrationWarning, quad
 
-from threepart.punch import Punch
+from threepart.problem.punch import Punch
 
 
 def quiet_quad(*args, **kwargs):

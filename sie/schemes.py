@@ -35,7 +35,7 @@ from numpy.typing import ArrayLike
 import numpy as np
 import scipy.fft
 
-from threepart.punch import Punch
+from threepart.problem.punch import Punch
 
 from .projection import kinks, ramp_remainder, slope_coefficients
 from .quadrature import plain_functionals

@@ -22,8 +22,8 @@ from dataclasses import dataclass, field
 import numpy as np
 from numpy.typing import ArrayLike
 
-from threepart.bulk import check_sigma_bulk, corrective_tilt, slip_direction_margin
-from threepart.validate import SLIP_RATIO_LIMIT, check_shear
+from threepart.halfplane.bulk import check_sigma_bulk, corrective_tilt, slip_direction_margin
+from threepart.problem.validate import SLIP_RATIO_LIMIT, check_shear
 from threepart.errors import (InputError, NoConvergenceError, SeparationError, SlipReversalError,
                               StickSeparationError)
 from threepart.results import Diagnostics, NormalResult, SlipResult
@@ -140,7 +140,7 @@ def stick_zone(normal: NormalResult, Q: float, f: float, sch: Plain | Projected,
     """``(m*, h*, iterations, residual)`` of the stick zone ``[m* - h*, m* + h*]`` for ``|Q| < f P``.
 
     Newton (:func:`sie.normal.solve_ends`, tilt held at ``normal.alpha``, shifted
-    under a bulk stress by :func:`threepart.bulk.corrective_tilt`) from
+    under a bulk stress by :func:`threepart.halfplane.bulk.corrective_tilt`) from
     the contact scaled by ``sqrt(P*/P)``. On a concave centre the equations may
     have several roots: a root that breaks Coulomb's law (:func:`coulomb_violation`) is
     set aside and the others are found by a scan (:func:`sie.normal.scan_ends`).
@@ -202,7 +202,7 @@ def check_slip_direction(normal: NormalResult, Q: float, f: float, sigma_bulk: f
                          sch: Plain | Projected, top: tuple[float, float]) -> None:
     """Refuse a bulk stress that reverses the slip on the load path (:class:`SlipReversalError`).
 
-    :func:`threepart.bulk.slip_direction_margin` at ``lam = 0`` (the contact,
+    :func:`threepart.halfplane.bulk.slip_direction_margin` at ``lam = 0`` (the contact,
     exact), at :data:`PATH_STATES` - 2 interior fractions (stick zones by
     :func:`stick_zone`) and at ``lam = 1`` (``top = (m*, h*)``) must be ``>= 0``.
     The SIE does not model a reversed slip zone; it refuses by name.
@@ -249,7 +249,7 @@ def solve_partial_slip(normal: NormalResult, Q: float, f: float, *, n: int | Non
         Bulk stress ``σxx`` in the substrate at ``Q`` (tension positive), rising
         with ``Q`` in proportion: its strain ``A sigma_bulk/4`` enters the
         tangential equation, which shifts the corrective tilt
-        (:func:`threepart.bulk.corrective_tilt`, docs/BULK_STRESS.md).
+        (:func:`threepart.halfplane.bulk.corrective_tilt`, docs/BULK_STRESS.md).
 
     Returns
     -------
@@ -268,7 +268,7 @@ def solve_partial_slip(normal: NormalResult, Q: float, f: float, *, n: int | Non
         ``normal`` not a NormalResult, a number of the wrong type.
     ValueError
         For invalid input (``FullSlidingError`` for ``|Q| >= f P``, and for
-        ``|Q|/(fP)`` past ``threepart.validate.SLIP_RATIO_LIMIT = 1 - 1e-6``).
+        ``|Q|/(fP)`` past ``threepart.problem.validate.SLIP_RATIO_LIMIT = 1 - 1e-6``).
     StickSeparationError
         On a concave centre, when no single stick zone obeys Coulomb's law
         ``|q| <= f p`` (the true one splits in two).

@@ -10,7 +10,7 @@ Here every contact and every stick zone comes from the discretised load and
 consistency equations (:func:`sie.normal.solve_ends`), so the stick zone may end
 on the central segment, as in :mod:`sie.slip`. The slip direction is checked at
 :data:`PATH_STATES` fractions of each half-cycle, and the energy is the
-friction work of :func:`threepart.steady.half_cycle_work` on the SIE's
+friction work of :func:`threepart.halfplane.steady.half_cycle_work` on the SIE's
 pressures, contacts and stick zones.
 """
 from __future__ import annotations
@@ -26,12 +26,13 @@ from scipy.optimize import brentq
 
 from threepart.errors import (CycleSlipReversalError, NoConvergenceError,
                               StickSeparationError)
-from threepart.punch import Punch
-from threepart.cycles import SteadyStateResult
+from threepart.problem.punch import Punch
+from threepart.results.cycles import SteadyStateResult
 from threepart.results import Diagnostics
-from threepart.steady import (LoadState, Path, check_cycle_states, common_contact, corrective_load,
-                              corrective_tilt_cycle, cycle_margin, half_cycle_work, ramp, shakes_down, tilt_rate)
-from threepart.validate import check_punch
+from threepart.halfplane.steady import (LoadState, Path, check_cycle_states, common_contact, corrective_load,
+                                        corrective_tilt_cycle, cycle_margin, half_cycle_work, ramp,
+                                        shakes_down, tilt_rate)
+from threepart.problem.validate import check_punch
 
 from .fretting import stick_gap
 from .normal import DEFAULT_N, DEFAULT_SCHEME, SieNormalResult, check_scheme, solve_ends, solve_normal
@@ -135,7 +136,7 @@ class _SieCycle:
                 "dalpha_star": 0.5 * rate - self.sign[j] * self.A * (end[3] - start[3]) / (8 * self.f)}
 
     def path(self, j: int) -> Path:
-        """The pieces :func:`threepart.steady.half_cycle_work` integrates, on the half-cycle ``j``."""
+        """The pieces :func:`threepart.halfplane.steady.half_cycle_work` integrates, on the half-cycle ``j``."""
         def pieces(lam: np.ndarray) -> Any:
             z = self.half(j, lam)
             dens = [self.density(float(mm), float(hh)) for mm, hh in zip(z["m"], z["h"])]

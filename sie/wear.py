@@ -62,10 +62,10 @@ import numpy as np
 from threepart.errors import (InputError, NoConvergenceError, SeparationError, StickSeparationError,
                               StickZoneError)
 from threepart.fretting_wear import WearResult, register_marcher
-from threepart.punch import Punch
+from threepart.problem.punch import Punch
 from threepart.results import Diagnostics
-from threepart.legendre import gauss01
-from threepart.validate import SLIP_RATIO_LIMIT, check_shear, check_states
+from threepart.halfplane.legendre import gauss01
+from threepart.problem.validate import SLIP_RATIO_LIMIT, check_shear, check_states
 
 from .fretting import SieFrettingResult, Zones, loop_integral
 from .profile import (DEFAULT_TERMS, ProfileNormalResult, WornProfile, profile_approach, profile_gap,

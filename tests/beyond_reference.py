@@ -30,7 +30,7 @@ import numpy as np
 from scipy.optimize import root
 
 from threepart import closedform as cf
-from threepart.punch import Punch
+from threepart.problem.punch import Punch
 
 
 def _shifted(punch: Punch, left: float) -> tuple[Punch, float]:

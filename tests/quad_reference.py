@@ -17,7 +17,7 @@ from __future__ import annotations
 import math
 from typing import Callable
 
-from threepart.punch import Punch
+from threepart.problem.punch import Punch
 from threepart.sie.reference import pressure_by_quadrature, quiet_quad
 
 EPS = 1e-13

@@ -34,7 +34,7 @@ from threepart.closedform.newton import SCALAR
 from threepart.errors import (ArcExtentError, CoulombError, FullSlidingError, LiftOffError,
                               NoConvergenceError, SeparationError, SlopeLimitError, StickZoneError)
 from threepart.tolerances import tolerance
-from threepart.validate import SLOPE_LIMIT
+from threepart.problem.validate import SLOPE_LIMIT
 from tests.test_robustness import cases
 
 A = rigid_punch(210e3, 0.3)
@@ -301,7 +301,7 @@ def test_on_a_convex_profile_the_closed_forms_pressure_is_the_divided_difference
     the joins is >= -1e-12 of its peak (rounding; measured: no negative value at all, and the
     identity within 1.7e-12): the check's 1e-6 could never refuse it.
     """
-    from threepart.answer import _points
+    from threepart.results.answer import _points
 
     worst_identity = worst_sign = 0.0
     for i, (punch, a, c) in enumerate(_convex_contacts(400, seed=33)):

@@ -24,7 +24,7 @@ import pytest
 from threepart import readers
 from threepart.cli import main
 from threepart.errors import InputError, InputTypeError, ReaderError
-from threepart.history import read_history
+from threepart.halfplane.load_history import read_history
 
 from .test_readers import FORMATS, HERTZ_ARGS, NX, a_H, hertz, plane_mesh, point_fields
 

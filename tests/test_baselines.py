@@ -10,7 +10,7 @@ import math
 
 import pytest
 
-from threepart.catalogue import get_case, load_cases
+from threepart.problem.catalogue import get_case, load_cases
 from threepart.reports import figures
 from threepart.reports.compare import normal_of
 from threepart.reports.verify.runs import MODES, run_case

@@ -17,7 +17,7 @@ import pytest
 from scipy.integrate import quad
 
 from threepart import Punch, closedform as cf, rigid_punch, sie, solve
-from threepart.catalogue import get_case
+from threepart.problem.catalogue import get_case
 from threepart.cli import main
 from threepart.errors import LiftOffError, SeparationError, StickZoneError
 from threepart.tolerances import tolerance

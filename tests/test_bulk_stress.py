@@ -19,7 +19,7 @@ import pytest
 from threepart import Punch, rigid_punch, solve
 from threepart import closedform as cf
 from threepart import sie
-from threepart.bulk import corrective_tilt, slip_direction_margin
+from threepart.halfplane.bulk import corrective_tilt, slip_direction_margin
 from threepart.closedform.fretting import stick_gap
 from threepart.closedform.slip import stick_zones_on_path
 from threepart.errors import SlipReversalError, StickZoneError
@@ -195,7 +195,7 @@ def test_fretting_energy_is_the_friction_work():
     """4 f^2 ∫ p gap* (friction work) equals the Q-delta loop area at sigma_bulk = 0; SIE = closed form under a bulk stress."""
     n = cf.solve_normal(CASE_A, 400.0, 0.1, A=A)
     c0 = cf.fretting_cycle(n, 80.0, 0.5, states=3)
-    from threepart.bulk import slip_dissipation
+    from threepart.halfplane.bulk import slip_dissipation
     sl = cf.solve_partial_slip(n, 80.0, 0.5)
     W, _ = slip_dissipation(n.pressure, lambda x: stick_gap(CASE_A, sl.d + sl.e, sl.d - sl.e, x), 0.5,
                             n.a, n.c, sl.stick_zone)

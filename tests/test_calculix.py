@@ -22,7 +22,7 @@ import numpy as np
 import pytest
 
 from threepart import calculix
-from threepart.catalogue import get_case
+from threepart.problem.catalogue import get_case
 from threepart.cli import main
 from threepart.tolerances import tolerance
 
@@ -97,7 +97,7 @@ def test_deck_parses_and_holds_the_model(tmp_path):
         xl, xr = nodes[ctrl[0]][0], nodes[ctrl[1]][0]
         assert t == pytest.approx((nodes[n][0] - xl) / (xr - xl), abs=EXACT)
     # the penalty: K = 200 E / h, E the block's: 210000/2 under the stiff punch for two similar
-    # bodies of --E 210000 (threepart.material.rigid_punch_modulus, the one material convention)
+    # bodies of --E 210000 (threepart.problem.material.rigid_punch_modulus, the one material convention)
     K = float(next(c for c in cards if c.name == "SURFACE BEHAVIOR").data[0][0])
     assert K == pytest.approx(200 * 105000 / 0.4, rel=PRINTED)
 

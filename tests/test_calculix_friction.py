@@ -18,7 +18,7 @@ import pytest
 
 from threepart import Punch, calculix
 from threepart.calculix.friction import SLOPE_FACTOR, contact_traction, friction_deck, partial_slip
-from threepart.fields import stick_ends
+from threepart.results.fields import stick_ends
 from threepart.errors import InputError
 from threepart.tolerances import tolerance
 
@@ -167,7 +167,7 @@ def test_ccx_hertz_partial_slip_meets_mindlin(tmp_path):
 
     Without ``ccx`` the run is refused with the named error and the install hint.
     """
-    from threepart.material import compliance
+    from threepart.problem.material import compliance
     from threepart.methods import solve
 
     punch, P, Q = Punch(200.0, 200.0, 0.0), 1442.3, 0.4 * F * 1442.3
@@ -398,7 +398,7 @@ def test_ccx_bulk_stress_moves_the_stick_zone_as_the_closed_form(tmp_path):
     0.068 W (docs/BULK_STRESS.md); CalculiX's ends against the closed form's with the bulk stress
     (measured +6.0e-4 and +1.2e-4 W); about 120 s of ccx CPU."""
     from threepart.calculix.friction import partial_slip
-    from threepart.material import similar_pair
+    from threepart.problem.material import similar_pair
     from threepart.methods import solve
 
     b = BULK
@@ -424,7 +424,7 @@ def test_ccx_flight_cycle_energy_against_the_steady_state(tmp_path):
     recorded with its loads; the energy of the last cycle against threepart.steady_state's."""
     import threepart
     from threepart.calculix.cycle import load_history
-    from threepart.material import similar_pair
+    from threepart.problem.material import similar_pair
 
     b = BULK
     ref = threepart.steady_state(b["punch"], list(FLIGHT), b["f"], A=similar_pair(b["E"], b["nu"]))

@@ -6,7 +6,7 @@ import json
 import pytest
 
 from threepart import closedform, rigid_punch, sie
-from threepart.catalogue import CASES_FILE, SUITES, get_case, load_cases, slip_loads
+from threepart.problem.catalogue import CASES_FILE, SUITES, get_case, load_cases, slip_loads
 from threepart.tolerances import tolerance
 
 CASES = load_cases(None)

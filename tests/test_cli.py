@@ -543,8 +543,8 @@ def test_compare_refuses_a_pressure_whose_load_overflows_before_writing(capsys, 
 @pytest.mark.parametrize("E, unit", [("210", "GPa"), ("210e9", "Pa")])
 def test_a_modulus_in_other_units_is_refused_before_any_solve(capsys, E, unit):
     """--E 210 (steel in GPa) or 210e9 (in Pa) lies outside the moduli of engineering solids in MPa
-    (threepart.units.E_RANGE): one line naming --E and the range, exit 2, whatever the load."""
-    from threepart.units import E_RANGE
+    (threepart.problem.units.E_RANGE): one line naming --E and the range, exit 2, whatever the load."""
+    from threepart.problem.units import E_RANGE
 
     base = ["solve", "--R1", "10", "--R2", "5", "--b", "1", "--nu", "0.3", "--s", "0.1", "--P", "400"]
     assert main([*base, "--E", E]) == 2
@@ -574,7 +574,7 @@ def test_fatigue_states_are_bounded_and_the_bound_is_in_the_help(capsys):
 def test_fatigue_constant_reaches_its_row_and_crossland_is_affine_in_kappa(capsys, tmp_path):
     """``--constant kappa=...`` reaches Crossland's row: its field is affine in kappa (Crossland's
     definition, sqrt(J2,a) + kappa sigma_h,max), kappa moves it, and no option gives its default."""
-    from threepart.fatigue_parameters import KAPPA_CROSSLAND
+    from threepart.fatigue.table import KAPPA_CROSSLAND
 
     def field(*extra):
         out = tmp_path / f"f{len(list(tmp_path.iterdir()))}.csv"

@@ -10,7 +10,7 @@ from typing import Any, Iterator
 import numpy as np
 import pytest
 
-from threepart import catalogue
+from threepart.problem import catalogue
 from threepart import closedform as cf
 from threepart.cli import main
 from threepart.tolerances import tolerance
@@ -77,7 +77,7 @@ def test_the_flight_case_prints_the_closed_forms_stick_zone_and_energy(capsys):
 
 def test_a_punch_on_the_command_line_prints_the_closed_forms_stick_zone_and_energy(capsys):
     text = _run(capsys, [*PUNCH_ARGS, "--state0", _state(STATES[0]), "--state1", _state(STATES[1])])
-    from threepart.punch import Punch
+    from threepart.problem.punch import Punch
 
     A = 4 * (1 - 0.3 ** 2) / 210000.0    # similar bodies, eq. (4)
     ref = cf.steady_state(Punch(R1=10.0, R2=5.0, b=1.0), STATES, 0.5, A=A)
@@ -274,7 +274,7 @@ ONE_SIDED = ["--R1", "10", "--R2", "5", "--b", "1", "--A", "1.7333e-5", "--f", "
 def test_auto_marches_a_cycle_the_superposition_refuses_and_says_so(capsys):
     """The stick zone printed reaches the right edge of the contacts' common part (the normals alone)."""
     from threepart import sie
-    from threepart.punch import Punch
+    from threepart.problem.punch import Punch
 
     text = _run(capsys, ONE_SIDED)
     assert re.match(r"method: sie-march \(the superposition does not model this cycle: .* would reach the right "

@@ -21,7 +21,7 @@ ROUND_OFF = tolerance("closedform", "round_off").limit
 #: the trapezoid rule on the shear of a partial slip at 8001 points: square-root ends and kinks at
 #: the stick-zone ends, the error falls as h^1.5 (tests/test_cli.py measures the pressure's below this)
 TRAPEZOID_LEVEL = 3e-5
-#: the catalogue file, read as plain JSON (not through threepart.catalogue)
+#: the catalogue file, read as plain JSON (not through threepart.problem.catalogue)
 CATALOGUE = json.loads((Path(__file__).resolve().parents[1] / "threepart" / "cases.json").read_text("utf-8"))
 RAW = {c["name"]: c for c in CATALOGUE["cases"]}
 #: the commands that take a problem (issue 37: solve, slip and fatigue lacked --case)
@@ -59,7 +59,7 @@ def test_solve_case_gives_hertz_contact_of_the_catalogues_cylinder(capsys):
 def test_slip_case_carries_the_catalogues_shear_and_integrates_to_it(capsys):
     """slip_Q0.4: Q = 0.4 f P of the file; the shear at 8001 points integrates to Q (equilibrium),
     and the case gives what the same problem typed out gives."""
-    from threepart.catalogue import get_case
+    from threepart.problem.catalogue import get_case
 
     c = RAW["slip_Q0.4"]
     Q = c["Q_over_fP"] * c["f"] * c["P"]

@@ -14,7 +14,7 @@ import numpy as np
 import pytest
 
 from threepart import Punch
-from threepart.catalogue import get_case
+from threepart.problem.catalogue import get_case
 from threepart.cli import main
 from threepart.closedform import solve_normal, wear_limit
 from threepart.fretting_wear import wear_case, wear_cases
@@ -75,7 +75,7 @@ def test_the_wear_case_is_the_fan_blade_flank_fretted():
     (lambda w: w.update(P=-1.0), "`P` = -1"),
 ])
 def test_a_bad_wear_case_is_named_with_its_file(tmp_path, change, match):
-    from threepart.catalogue import CASES_FILE
+    from threepart.problem.catalogue import CASES_FILE
     from threepart.errors import InputError
 
     data = json.loads(CASES_FILE.read_text(encoding="utf-8"))

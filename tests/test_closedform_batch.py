@@ -23,7 +23,7 @@ from threepart import closedform as cf
 from threepart.closedform import formulas
 from threepart.closedform.newton import _solve_phi_nested, ray_state
 from threepart.errors import ArcExtentError, LiftOffError, SeparationError, SlopeLimitError
-from threepart.punch import Punch
+from threepart.problem.punch import Punch
 from threepart.tolerances import tolerance
 
 #: issue 33's target for the forward evaluations per case of a batch (7.6 measured on caseA_moment)
@@ -162,7 +162,7 @@ def test_evaluation_count_on_the_wide_draw():
 
 def test_evaluation_count_on_the_benchmark_draw():
     """The benchmark's draw (caseA_moment, 2,000 cases): at most MAX_EVALUATIONS per case, also alone."""
-    from threepart.catalogue import get_case
+    from threepart.problem.catalogue import get_case
 
     case = get_case("caseA_moment")
     rng = np.random.default_rng(0)

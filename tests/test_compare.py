@@ -11,8 +11,9 @@ import pytest
 
 from threepart import closedform as cf
 from threepart.closedform import FrettingSolution
-from threepart import catalogue, rigid_punch
-from threepart.punch import Punch
+from threepart.problem import catalogue
+from threepart import rigid_punch
+from threepart.problem.punch import Punch
 from threepart.reports.verify import report as verify
 from threepart.reports.compare import compare
 from threepart.tolerances import (COMPARISONS, FRETTING_QUANTITIES, NORMAL_QUANTITIES, QUANTITIES, STRESS_QUANTITIES,

@@ -21,7 +21,7 @@ from threepart import Punch
 from threepart.cli import main
 from threepart.getfem import friction_work, last_cycle, slip_amplitude
 from threepart.getfem.read import FORMAT, State
-from threepart.material import similar_pair
+from threepart.problem.material import similar_pair
 from threepart.tolerances import tolerance
 
 E, NU, F = 210000.0, 0.3, 0.5

@@ -23,11 +23,11 @@ import pytest
 
 import threepart
 from threepart import Punch, closedform as cf, sie
-from threepart.cycles import MarchedSteadyResult
+from threepart.results.cycles import MarchedSteadyResult
 from threepart.errors import DisjointContactsError, StickZoneError, ThreepartError
-from threepart.material import similar_pair
+from threepart.problem.material import similar_pair
 from threepart.methods import MARCH_ON, march_steady_state
-from threepart.steady import cycle_states
+from threepart.halfplane.steady import cycle_states
 from threepart.tolerances import tolerance
 
 from .steady_march import history as panel_march

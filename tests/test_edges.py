@@ -22,10 +22,11 @@ import pytest
 from scipy.integrate import IntegrationWarning, quad
 
 import threepart
-from threepart import Punch, asymptotics, registry, rigid_punch, solve, steady_state
-from threepart.catalogue import get_case, load_cases
+from threepart import Punch, registry, rigid_punch, solve, steady_state
+from threepart.results import edges as asymptotics
+from threepart.problem.catalogue import get_case, load_cases
 from threepart.tolerances import tolerance
-from threepart.units import UNITS
+from threepart.problem.units import UNITS
 
 A = rigid_punch(210e3, 0.3)
 F = 0.5            # the coefficient of friction (an input, not a limit)
@@ -274,7 +275,7 @@ def test_fem_slip_edges():
 def test_units_and_export():
     for key in ("K_N", "K_T", "K_sigma", "slip_zone", "fit_error"):
         assert key in UNITS
-    assert threepart.asymptotics is asymptotics
+    assert threepart.results.edges is asymptotics
 
 
 def test_refuses_a_method_without_edges():

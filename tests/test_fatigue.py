@@ -177,7 +177,7 @@ def test_critical_plane_matches_a_brute_force_scan(random_history, kind, monkeyp
     else:
         there = (tau.max(0) - tau.min(0)) / 2 + K * sn.max(0)
     assert np.allclose(there, ours.value, rtol=0, atol=ROUNDING * scale)
-    monkeypatch.setattr(fat, "ZOOM_LEVELS", 0)
+    monkeypatch.setattr(fat.functions, "ZOOM_LEVELS", 0)
     coarse = call(h)
     assert np.min(coarse.value - ref) < -COARSE_MISS * scale   # the coarse scan alone misses: the test can fail
 

@@ -12,9 +12,9 @@ import numpy as np
 import pytest
 
 import threepart.fatigue as fat
-import threepart.fatigue_history as fh
+import threepart.fatigue.history as fh
 from threepart import closedform as cf
-from threepart.catalogue import get_case
+from threepart.problem.catalogue import get_case
 from threepart.stress import stress
 
 #: the quadrature of threepart.stress is accurate to 1e-8 of p0 (docs/STRESS.md); the two
@@ -70,7 +70,7 @@ def test_superposition_makes_one_evaluation_per_loading_state(monkeypatch):
         calls.append((kwargs["pressure"] is not None) + (kwargs.get("shear") is not None))
         return real(*args, **kwargs)
 
-    monkeypatch.setattr("threepart.stress.stress", counting)
+    monkeypatch.setattr("threepart.stress.flamant.stress", counting)
     fat.stress_history(cycle, x, z)
     assert sorted(calls) == [1] * 5
 

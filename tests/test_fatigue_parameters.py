@@ -1,4 +1,4 @@
-"""The fatigue parameters' table (threepart.fatigue_parameters) and Crossland's parameter, its one new row.
+"""The fatigue parameters' table (threepart.fatigue.table) and Crossland's parameter, its one new row.
 
 References: closed forms of Crossland's parameter for uniaxial, shear and
 90-degree out-of-phase histories (the deviatoric path a segment or an ellipse,
@@ -18,7 +18,7 @@ import numpy as np
 import pytest
 
 from threepart import fatigue as fat
-from threepart import fatigue_parameters as fp
+from threepart.fatigue import table as fp
 from threepart.stress import Stress
 
 NU = 0.3

@@ -15,8 +15,8 @@ import pytest
 from scipy.optimize import brentq
 
 from threepart import closedform, fem, meshes, rigid_punch
-from threepart.catalogue import get_case, load_cases
-from threepart.punch import Punch
+from threepart.problem.catalogue import get_case, load_cases
+from threepart.problem.punch import Punch
 from threepart.reports.compare import compare
 from threepart.tolerances import tolerance
 
@@ -296,7 +296,7 @@ def test_a_contact_past_half_plane_theory_is_refused(R, a_hertz, error):
     half-width ``a`` (plane strain, rigid punch: a^2 = 2 A P R / pi): past the
     small-slope limit or the arc's extent the FE answer is refused, named."""
     from threepart import errors
-    from threepart.validate import SLOPE_LIMIT
+    from threepart.problem.validate import SLOPE_LIMIT
 
     A = rigid_punch(1.0, 0.3)
     P = math.pi * a_hertz**2 / (2 * A * R)

@@ -23,8 +23,8 @@ import pytest
 
 from threepart import fem
 from threepart.fem.mesh import PRESETS
-from threepart.material import similar_pair
-from threepart.punch import Punch
+from threepart.problem.material import similar_pair
+from threepart.problem.punch import Punch
 from threepart.stress import stress
 
 E, NU, R, P, F, RATIO = 1.0, 0.3, 1.0, 0.01, 0.5, 0.4

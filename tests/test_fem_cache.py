@@ -21,7 +21,7 @@ from threepart import cache, fem
 from threepart.cli import main
 from threepart.fem import elasticity
 from threepart.meshes import SubstrateSpec
-from threepart.punch import Punch
+from threepart.problem.punch import Punch
 from threepart.tolerances import tolerance
 
 #: the small graded block of tests/test_fem_linalg.py: about 4,300 DOFs, 37 candidate nodes

@@ -14,9 +14,9 @@ import numpy as np
 import pytest
 
 from threepart import closedform, fem, sie
-from threepart.catalogue import get_case
+from threepart.problem.catalogue import get_case
 from threepart.errors import FullSlidingError
-from threepart.punch import Punch
+from threepart.problem.punch import Punch
 from threepart.results import FrettingResult
 from threepart.reports.compare import compare
 from threepart.reports import solvers

@@ -16,7 +16,7 @@ import pytest
 
 from threepart import fem, sie
 from threepart.errors import ContactZoneError
-from threepart.punch import Punch
+from threepart.problem.punch import Punch
 from threepart.tolerances import tolerance
 
 #: a small nondimensional problem (E = 1: loads of order 1e-2), as tests/test_fem_friction.py's

@@ -20,7 +20,7 @@ import pytest
 from threepart import fem, meshes
 from threepart.errors import NoConvergenceError
 from threepart.meshes import SubstrateSpec
-from threepart.punch import Punch
+from threepart.problem.punch import Punch
 
 PUNCH = Punch(R1=10.0, R2=5.0, b=1.0)
 REFERENCE_MSH = Path(meshes.__file__).parent / "reference.msh"

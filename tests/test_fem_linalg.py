@@ -111,7 +111,7 @@ def test_backends_agree_through_a_whole_solve():
     The contact estimate that places the mesh is snapped to a grid (fem.mesh.snap), so the
     rounding between backends must not change the mesh. Without CHOLMOD this is SciPy twice.
     """
-    from threepart.catalogue import get_case
+    from threepart.problem.catalogue import get_case
 
     case = get_case("caseA_moment").resolved()
     out = {}

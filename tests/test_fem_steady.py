@@ -19,7 +19,7 @@ from threepart import closedform as cf
 from threepart import fem
 from threepart.errors import FullSlidingError, NoConvergenceError
 from threepart.fem.method import NU as FEM_NU, pair_modulus
-from threepart.punch import Punch
+from threepart.problem.punch import Punch
 from threepart.stress import stress
 from threepart.tolerances import tolerance
 

@@ -7,7 +7,7 @@ import pytest
 
 from threepart import rigid_punch, sie
 from threepart.output import MARKER, OutputExistsError, read_marker
-from threepart.punch import Punch
+from threepart.problem.punch import Punch
 from threepart.tolerances import tolerance
 from threepart.reports import figures
 

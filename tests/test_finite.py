@@ -14,9 +14,9 @@ import pytest
 from threepart import closedform, fem
 from threepart.fem.finite import punch_body
 from threepart.fem.mesh import PRESETS
-from threepart.material import similar_pair
+from threepart.problem.material import similar_pair
 from threepart.meshes.punch import PunchSpec
-from threepart.punch import Punch
+from threepart.problem.punch import Punch
 from threepart.reports.map import validity
 from threepart.reports.compare import normal_figures
 from threepart.tolerances import tolerance

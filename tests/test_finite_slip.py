@@ -18,8 +18,8 @@ from threepart.fem.friction import shear_path
 from threepart.fem._progress import Progress
 from threepart.fem.twobody import TwoBodyModel
 from threepart.errors import FullSlidingError
-from threepart.material import similar_pair
-from threepart.punch import Punch
+from threepart.problem.material import similar_pair
+from threepart.problem.punch import Punch
 from threepart.reports.map import validity
 from threepart.reports.map import validity_slip
 from threepart.tolerances import tolerance

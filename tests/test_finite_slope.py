@@ -23,8 +23,8 @@ from threepart.fem.elasticity import condense
 from threepart.fem.interface import mirror
 from threepart.fem.mesh import PRESETS, make_substrate
 from threepart.fem.solve import deformed_ends
-from threepart.material import rigid_punch
-from threepart.punch import Punch
+from threepart.problem.material import rigid_punch
+from threepart.problem.punch import Punch
 
 DATA = Path(__file__).parent / "data" / "small_slope_calculix.json"
 E, NU = 210000.0, 0.3
@@ -155,7 +155,7 @@ def test_the_map_point_costs_have_the_rigid_punchs_sign_and_the_load_level_is_p0
     """evaluate_slope on one map point: the small kinematics narrow the contact and raise the
     peak, as against the rigid punch and CalculiX; ``load_level`` is the closed form's
     ``p0 A / 2`` (``A = 4 (1 - nu^2)/E``, eq. 4), computed here from its pressure."""
-    from threepart.material import similar_pair
+    from threepart.problem.material import similar_pair
     from threepart.reports.map import validity
     from threepart.reports.map.validity_slope import SLOPE_RESULT_KEYS, evaluate_slope
 

@@ -15,9 +15,9 @@ import numpy as np
 import pytest
 
 from threepart import closedform as cf
-from threepart import catalogue
+from threepart.problem import catalogue
 from threepart.fatigue import fatigue
-from threepart.punch import Punch
+from threepart.problem.punch import Punch
 from threepart.reports.compare import compare
 from threepart.reports.verify.flight import HISTORY_QUANTITIES, history_checks
 from threepart.tolerances import STEADY_QUANTITIES, tolerance

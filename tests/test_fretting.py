@@ -25,10 +25,10 @@ from scipy.integrate import simpson
 
 from threepart import closedform as cf
 from threepart import sie
-from threepart.catalogue import get_case, slip_loads
+from threepart.problem.catalogue import get_case, slip_loads
 from threepart.closedform.slip import stick_zone_bound
 from threepart.errors import FullSlidingError, StickZoneError
-from threepart.punch import Punch
+from threepart.problem.punch import Punch
 from threepart.tolerances import tolerance
 
 F = 0.5

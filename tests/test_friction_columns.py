@@ -17,7 +17,7 @@ from types import SimpleNamespace
 import numpy as np
 import pytest
 
-from threepart.material import similar_pair
+from threepart.problem.material import similar_pair
 from threepart.methods import fretting, solve
 from threepart.reports.referee import friction_problems as fp
 from threepart.reports.referee import friction_studies as fs

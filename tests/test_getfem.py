@@ -23,7 +23,7 @@ from threepart.errors import (FullSlidingError, GetfemError, GetfemMissing, Inpu
                               ThreepartError)
 from threepart.getfem import run as getfem_run
 from threepart.getfem.read import FORMAT, GetfemRun, State, loop_energy, read_run
-from threepart.material import similar_pair
+from threepart.problem.material import similar_pair
 from threepart.tolerances import tolerance
 
 #: sums of a few floats: exact up to rounding (the table's closed-form entry)
@@ -236,7 +236,7 @@ def test_getfem_hertz_partial_slip_gives_mindlins_stick_zone_and_carries_Q(tmp_p
     if not getfem.getfem_available():
         pytest.skip("no interpreter imports getfem (apt-get install python3-getfem, or set "
                     "THREEPART_GETFEM_PYTHON)")
-    from threepart.fields import stick_ends
+    from threepart.results.fields import stick_ends
 
     f, P = 0.5, P_HERTZ
     Q = 0.4 * f * P

@@ -9,7 +9,7 @@ from __future__ import annotations
 import pytest
 
 from threepart.calculix import parse_deck
-from threepart.catalogue import get_case
+from threepart.problem.catalogue import get_case
 from threepart.cli import main
 from threepart.getfem.script import params_of
 

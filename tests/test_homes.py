@@ -1,7 +1,7 @@
 """One home each (issue 30): the material defaults and the map's levels are defined once, in the core.
 
 The reference is the source itself, read as a syntax tree (not imported): no
-module outside ``threepart/material.py`` and ``threepart/tolerances/`` binds
+module outside ``threepart/problem/material.py`` and ``threepart/tolerances/`` binds
 a module-level name to Poisson's default 0.3 under the name ``NU``, to the
 steel modulus, or to the map's 1 % level.
 """
@@ -13,12 +13,13 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from threepart import material, tolerances
+from threepart.problem import material
+from threepart import tolerances
 
 ROOT = Path(__file__).resolve().parent.parent
 #: the packages whose modules must take these values from their homes
 PACKAGES = ("threepart", "reports", "fem", "sie", "closedform", "meshes")
-HOMES = {"threepart/material.py", "threepart/tolerances/__init__.py", "threepart/tolerances/outside.py"}
+HOMES = {"threepart/problem/material.py", "threepart/tolerances/__init__.py", "threepart/tolerances/outside.py"}
 
 
 def _bindings(path: Path):
@@ -45,8 +46,8 @@ def _files():
 
 
 @pytest.mark.parametrize("name, value, home", [
-    ("NU", material.NU, "threepart.material.NU"),
-    ("E", material.E_STEEL, "threepart.material.E_STEEL"),
+    ("NU", material.NU, "threepart.problem.material.NU"),
+    ("E", material.E_STEEL, "threepart.problem.material.E_STEEL"),
     ("LIMIT", tolerances.MAP_LIMIT, "threepart.tolerances.MAP_LIMIT"),
     ("LEVEL", tolerances.MAP_LIMIT, "threepart.tolerances.MAP_LIMIT"),
 ])
@@ -67,14 +68,14 @@ def test_the_scan_finds_a_second_home():
                                         (2, "SLOPE_LEVEL", 0.01)]
 
 
-# --- the peak of a nodal field: threepart.fields.peak ----------------------------------------------
+# --- the peak of a nodal field: threepart.results.fields.peak ----------------------------------------------
 #: a parabola's vertex and a polynomial's even fit are exact up to rounding
 ROUNDING = 1e-12
 
 
 def test_the_peak_of_a_parabola_s_nodes_is_its_vertex():
     """p = 3 - 2 (x - 0.37)^2 at uneven nodes: the vertex (0.37, 3), wherever the nodes fall."""
-    from threepart.fields import peak
+    from threepart.results.fields import peak
 
     x = np.sort(np.random.default_rng(1).uniform(-1.0, 1.0, 40))
     xp, pp = peak(x, 3.0 - 2.0 * (x - 0.37) ** 2)
@@ -85,7 +86,7 @@ def test_the_peak_of_a_parabola_s_nodes_is_its_vertex():
 
 def test_the_windowed_peak_of_a_quartic_is_its_maximum_to_the_sampling():
     """An exact quartic over its window: the fit is exact and its maximum is found to the sample step."""
-    from threepart.fields import FIT_SAMPLES, peak
+    from threepart.results.fields import FIT_SAMPLES, peak
 
     x = np.linspace(-1.0, 1.0, 201)
     p = 5.0 - (x - 0.123) ** 2 - 0.5 * (x - 0.123) ** 4
@@ -98,7 +99,7 @@ def test_the_windowed_peak_of_a_quartic_is_its_maximum_to_the_sampling():
 
 
 def test_the_symmetric_peak_is_the_even_fit_at_the_centre():
-    from threepart.fields import peak
+    from threepart.results.fields import peak
 
     x = np.linspace(-1.0, 1.0, 101)
     assert peak(x, 2.0 - x ** 2 + 0.25 * x ** 4, half_width=0.5, degree=4, symmetric=True)[1] == \
@@ -114,7 +115,7 @@ def test_the_symmetric_peak_is_the_even_fit_at_the_centre():
     ("benchmarks/small_slope_calculix.py", "peak_pressure"),
 ])
 def test_every_peak_of_nodal_values_is_read_by_the_one_rule(path, function):
-    """Each former home of a nodal peak now calls threepart.fields.peak (syntax tree)."""
+    """Each former home of a nodal peak now calls threepart.results.fields.peak (syntax tree)."""
     tree = ast.parse((ROOT / path).read_text(encoding="utf-8"))
     body = next(n for n in ast.walk(tree) if isinstance(n, ast.FunctionDef) and n.name == function)
     calls = {getattr(c.func, "id", getattr(c.func, "attr", "")) for c in ast.walk(body) if isinstance(c, ast.Call)}

@@ -1,6 +1,6 @@
 """Hostile input to every solver entry point: a named refusal, never a crash or a quiet answer.
 
-The validation contract (:mod:`threepart.validate`): a value of the wrong type
+The validation contract (:mod:`threepart.problem.validate`): a value of the wrong type
 is a ``TypeError``; a value out of range a ``ValueError`` (or a subclass from
 :mod:`threepart.errors`) that names the argument; every real number that
 passes is computed in float64. Hypothesis draws an entry point of
@@ -260,7 +260,7 @@ def test_beyond_small_slopes_refuses_what_is_not_a_bool(value):
 
 
 def test_an_unknown_case_is_a_value_error_listing_the_cases():
-    from threepart.catalogue import get_case
+    from threepart.problem.catalogue import get_case
     with pytest.raises(ValueError, match=r"`name` = 'nope' is not a case of cases\.json \(its cases: "
                                          r"general, caseA_sym, "):
         get_case("nope")
@@ -285,7 +285,7 @@ _CASE = '{"name": "x", "suites": ["verify"], "punch": {"R1": 10, "R2": 5, "b": 1
     ('{"cases": [%s]}' % (_CASE % ', "P": -1, "A": 1'), r"case 'x': `P` = -1.0 must be > 0"),
 ])
 def test_a_bad_catalogue_file_is_a_value_error_naming_path_and_field(tmp_path, text, match):
-    from threepart.catalogue import load_cases
+    from threepart.problem.catalogue import load_cases
     path = str(tmp_path / "missing.json") if text is None else _catalogue(tmp_path, text)
     with pytest.raises(ValueError, match=match):
         load_cases(path=path)

@@ -17,10 +17,10 @@ import pytest
 
 from threepart import closedform as cf
 from threepart import sie
-from threepart.catalogue import load_cases
+from threepart.problem.catalogue import load_cases
 from threepart.convergence import fitted_order
-from threepart.history import History, check_history, read_history
-from threepart.punch import Punch
+from threepart.halfplane.load_history import History, check_history, read_history
+from threepart.problem.punch import Punch
 from threepart.tolerances import tolerance
 
 CASES = {c.name: c.resolved() for c in load_cases("sie")}

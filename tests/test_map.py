@@ -921,7 +921,7 @@ def test_a_point_with_a_moment_is_loaded_at_its_overhang_and_half_its_lift_off_a
     import numpy as np
 
     from threepart import closedform, registry
-    from threepart.material import similar_pair
+    from threepart.problem.material import similar_pair
     from threepart.reports.map import validity
 
     punch, P, s = validity.point_case(point)
@@ -981,7 +981,7 @@ def test_the_errors_are_signed_closed_form_minus_finite_body():
     """A heavier load presses harder: as the 'closed form' against a lighter 'finite body' every
     error is positive, swapped every one is negative, and each magnitude is the comparator's."""
     from threepart import closedform
-    from threepart.material import similar_pair
+    from threepart.problem.material import similar_pair
     from threepart.reports.map import validity
     from threepart.reports.compare import normal_figures
 

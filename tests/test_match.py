@@ -1,4 +1,4 @@
-"""The matching pad test (issue 32, docs/EDGES.md section 6): threepart.asymptotics.match and `threepart match`.
+"""The matching pad test (issue 32, docs/EDGES.md section 6): threepart.results.edges.match and `threepart match`.
 
 References, each independent of the code under test:
 
@@ -15,8 +15,9 @@ import re
 
 import pytest
 
-from threepart import Punch, asymptotics, similar_pair, solve
-from threepart.catalogue import get_case
+from threepart import Punch, similar_pair, solve
+from threepart.results import edges as asymptotics
+from threepart.problem.catalogue import get_case
 from threepart.errors import FullSlidingError
 from threepart.tolerances import tolerance
 

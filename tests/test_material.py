@@ -16,10 +16,10 @@ import pytest
 
 import threepart
 from threepart import sie
-from threepart.catalogue import CASES_FILE, get_case, load_cases
+from threepart.problem.catalogue import CASES_FILE, get_case, load_cases
 from threepart.cli import main
 from threepart.errors import InputError
-from threepart.material import E_RANGE, material_compliance, rigid_punch_modulus, similar_pair
+from threepart.problem.material import E_RANGE, material_compliance, rigid_punch_modulus, similar_pair
 from threepart.tolerances import tolerance
 
 #: the catalogue's Ti-on-Ti flank and its material, as the issue typed it by hand
@@ -140,7 +140,7 @@ def test_every_command_refuses_a_unit_slip_of_E_in_one_line(argv, E, capsys, tmp
 
 
 def test_the_fe_normal_model_of_two_similar_bodies_is_a_block_of_half_their_modulus():
-    """The one mapping (threepart.material): the rigid punch's block of E/2 has the pair's A; the FE
+    """The one mapping (threepart.problem.material): the rigid punch's block of E/2 has the pair's A; the FE
     model run through the registry on the Ti flank has that A and the SIE's contact."""
     assert rigid_punch_modulus(similar_pair(E_TI, NU_TI), NU_TI) == pytest.approx(0.5 * E_TI, rel=SAME)
     assert TI.block_E == pytest.approx(0.5 * E_TI, rel=SAME)

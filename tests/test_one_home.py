@@ -12,12 +12,14 @@ from pathlib import Path
 
 import pytest
 
-from threepart import catalogue, registry
+import threepart
+from threepart.problem import catalogue
+from threepart import registry
 from threepart.registry import Method
 from threepart.reports.verify.runs import Mode
 from threepart.tolerances import tolerance
 
-SHARED = Path(catalogue.__file__).resolve().parent
+SHARED = Path(threepart.__file__).resolve().parent
 SOLVERS = ("closedform", "sie", "fem")
 
 
@@ -145,48 +147,90 @@ def test_no_test_imports_a_solver_folder_as_a_top_level_package():
     assert offending == []
 
 
-def _module_level_imports(path: Path) -> set[str]:
-    """The core modules ``path`` imports at module level (not inside a function, not for typing only)."""
-    tree = ast.parse(path.read_text(encoding="utf-8"))
+def _module_name(path: Path) -> str:
+    """``threepart/results/contact.py`` -> ``threepart.results.contact`` (a package: its ``__init__``)."""
+    parts = path.relative_to(SHARED.parent).with_suffix("").parts
+    return ".".join(parts[:-1] if parts[-1] == "__init__" else parts)
+
+
+def _core_graph(module_level: bool) -> dict[str, set[str]]:
+    """Each core module and the core modules it imports (at module level only, or at any depth:
+    imports inside functions too; never those under ``if TYPE_CHECKING``)."""
+    modules = {_module_name(p): p for p in _core_files()}
+    graph: dict[str, set[str]] = {}
+    for name, path in modules.items():
+        package = name.split(".") if path.name == "__init__.py" else name.split(".")[:-1]
+        tree = ast.parse(path.read_text(encoding="utf-8"))
+        nodes = [n for n in tree.body if isinstance(n, (ast.Import, ast.ImportFrom))] if module_level \
+            else [n for n in ast.walk(tree) if isinstance(n, (ast.Import, ast.ImportFrom))
+                  and not any(n in ast.walk(t) for t in _type_checking_blocks(tree))]
+        found: set[str] = set()
+        for imported in _imports_of(nodes, package):
+            parts = imported.split(".")
+            home = next((".".join(parts[:k]) for k in range(len(parts), 0, -1)
+                         if ".".join(parts[:k]) in modules), None)
+            if home is not None and home != name:
+                found.add(home)
+        graph[name] = found
+    return graph
+
+
+def _type_checking_blocks(tree: ast.AST) -> list[ast.If]:
+    return [n for n in ast.walk(tree) if isinstance(n, ast.If) and "TYPE_CHECKING" in ast.unparse(n.test)]
+
+
+def _imports_of(nodes: list[ast.AST], package: list[str]) -> set[str]:
+    """The absolute names the import statements ``nodes`` of a module of ``package`` import."""
     found: set[str] = set()
-    for node in tree.body:
-        if isinstance(node, ast.ImportFrom):
-            if node.level == 1:
-                found |= {node.module.split(".")[0]} if node.module else {a.name for a in node.names}
-            elif node.module and node.module.startswith("threepart."):
-                found.add(node.module.split(".")[1])
-            elif node.module == "threepart":
-                found |= {a.name for a in node.names}
-    return {m for m in found if (SHARED / f"{m}.py").exists()} - {path.stem}
+    for node in nodes:
+        if isinstance(node, ast.Import):
+            found |= {a.name for a in node.names}
+        elif isinstance(node, ast.ImportFrom):
+            base = package[:len(package) - node.level + 1] if node.level else []
+            module = ".".join([*base, *(node.module.split(".") if node.module else [])])
+            found |= {module, *(f"{module}.{a.name}" for a in node.names)}
+    return found
+
+
+def _cycle(graph: dict[str, set[str]]) -> list[str] | None:
+    """One import cycle of ``graph`` (its modules in order, the first repeated at the end), or None."""
+    done: set[str] = set()
+
+    def visit(node: str, path: tuple[str, ...]) -> list[str] | None:
+        if node in path:
+            return [*path[path.index(node):], node]
+        if node in done:
+            return None
+        for nxt in sorted(graph.get(node, ())):
+            if (found := visit(nxt, (*path, node))) is not None:
+                return found
+        done.add(node)
+        return None
+
+    for start in sorted(graph):
+        if (found := visit(start, ())) is not None:
+            return found
+    return None
 
 
 def test_the_core_has_no_import_circle_at_module_level():
     """No chain of module-level imports among the core's modules leads back to where it started
     (issue 30: punch, validate, results and stress once imported each other in a circle)."""
-    graph = {p.stem: _module_level_imports(p) for p in _core_files() if p.parent == SHARED}
+    graph = _core_graph(module_level=True)
     assert len(graph) > 20
-    done: set[str] = set()
-
-    def visit(node: str, path: tuple[str, ...]) -> None:
-        assert node not in path, " -> ".join((*path, node))
-        if node in done:
-            return
-        for nxt in sorted(graph.get(node, ())):
-            visit(nxt, (*path, node))
-        done.add(node)
-
-    for start in sorted(graph):
-        visit(start, ())
+    cycle = _cycle(graph)
+    assert cycle is None, " -> ".join(cycle or ())
 
 
-@pytest.mark.parametrize("module", ["punch", "results", "stress", "stress_grid", "checks"])
+@pytest.mark.parametrize("module", ["problem/punch", "results/contact", "stress/flamant", "stress/grid",
+                                    "problem/checks"])
 def test_the_problem_types_check_their_input_with_the_leaf_checks_only(module):
-    """punch, results and stress take their argument checks from threepart.checks (which imports no
-    threepart module but the leaf errors), never from threepart.validate (which imports them), even
+    """punch, results and stress take their argument checks from threepart.problem.checks (which imports no
+    threepart module but the leaf errors), never from threepart.problem.validate (which imports them), even
     lazily."""
     names = _imports(SHARED / f"{module}.py")
-    assert not any(n == "threepart.validate" or n.startswith("threepart.validate.") for n in names)
-    if module == "checks":
+    assert not any(n == "threepart.problem.validate" or n.startswith("threepart.problem.validate.") for n in names)
+    if module == "problem/checks":
         leaf = {"threepart.errors"} | {f"threepart.errors.{e}" for e in ("InputError", "InputTypeError")}
         assert not any(n.startswith("threepart") and n not in leaf for n in names), names
         assert not any(n.startswith("threepart") for n in _imports(SHARED / "errors.py"))
@@ -200,5 +244,5 @@ def test_the_scan_sees_lazy_and_relative_imports(tmp_path):
     found = _imports(path, package=["threepart", "output"])
     assert {"threepart.output.calculix", "threepart.readers", "threepart.reports.map.sweep"} <= found
     assert [_layer(n) for n in ("threepart.calculix.read", "threepart.reports.map", "threepart.cli",
-                                "threepart.sie.normal", "threepart.fields", "numpy")] == \
+                                "threepart.sie.normal", "threepart.results.fields", "numpy")] == \
         ["foreign", "reports", "cli", "solvers", "core", None]

@@ -19,7 +19,7 @@ import pytest
 
 from threepart import output
 from threepart.output import MARKER, OutputExistsError, atomic_dir, read_marker, strict_json
-from threepart.catalogue import load_cases
+from threepart.problem.catalogue import load_cases
 from threepart.reports import figures
 from threepart.reports.verify import report as verify
 

@@ -19,7 +19,7 @@ import threepart.reports.verify.runs  # noqa: F401 - loaded before pytester's in
 import threepart.sie  # noqa: F401      unload what they import (numpy's extensions load only once)
 import threepart.closedform  # noqa: F401
 from threepart import registry
-from threepart.catalogue import get_case
+from threepart.problem.catalogue import get_case
 from threepart.reports.plugin import check
 from threepart.tolerances import tolerance
 
@@ -95,7 +95,7 @@ def test_every_case(threepart_case):
 def test_slip_cases(threepart_case):
     assert threepart_case.kind == "slip"
 ''')
-    from threepart.catalogue import load_cases
+    from threepart.problem.catalogue import load_cases
 
     cases = load_cases(None)
     slips = [c for c in cases if c.kind == "slip" and "verify" in c.suites]

@@ -21,7 +21,7 @@ import pytest
 
 from threepart import readers
 from threepart.cli import main
-from threepart.material import rigid_punch
+from threepart.problem.material import rigid_punch
 
 
 #: Hertz: a cylinder of radius R under P on a steel half-plane (rigid punch compliance)

@@ -13,10 +13,10 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from threepart.catalogue import get_case
+from threepart.problem.catalogue import get_case
 from threepart.cli import main
 from threepart.methods import solve
-from threepart.punch import Punch
+from threepart.problem.punch import Punch
 from threepart.tolerances import tolerance
 from threepart.reports.referee import (END_NODES, LOAD, NEGATIVE, OSCILLATION, diagnose, from_points,
                                        judge, oscillation, read_pressure)
@@ -393,7 +393,7 @@ def test_fitted_peak_reads_a_scattered_peak():
     """``fitted_peak`` against the closed form's own peak (``peaks()``, a bounded search on the
     exact pressure): its pressure sampled on W/h = 100's nodes with a planted alternating +-1 %
     scatter; the largest nodal value is off by about the scatter, the fit is not."""
-    from threepart.material import similar_pair
+    from threepart.problem.material import similar_pair
     from threepart.reports.map.referee import PEAK_WINDOW, REFEREE_POINTS, fitted_peak
     from threepart.reports.map.validity import NU, E, closed_form, point_load, point_punch
 

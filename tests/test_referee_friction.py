@@ -172,7 +172,7 @@ def test_compare_of_a_partial_slip_needs_the_files_shear(tmp_path, capsys, ref):
 def test_noise_outside_the_contact_does_not_move_the_stick_ends(ref):
     """A code's multiplier leaves p ~ 1e-4 of the peak outside the contact with |q|/(f p) = 0.98
     (GetFEM at W/h = 32): those nodes are not judged, and the ends stay Mindlin's."""
-    from threepart.fields import stick_ends
+    from threepart.results.fields import stick_ends
 
     x, p, q = _nodes(ref, n=241)
     clean = stick_ends(x, p, q, F)

@@ -21,7 +21,7 @@ import numpy as np
 import pytest
 
 from threepart import registry
-from threepart.catalogue import get_case, load_cases
+from threepart.problem.catalogue import get_case, load_cases
 from threepart.output import OutputExistsError
 from threepart.reports import refs
 from threepart.sie.reference import pressure_by_quadrature, quiet_quad

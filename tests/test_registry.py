@@ -52,7 +52,7 @@ def test_a_toy_method_is_one_module_and_every_caller_finds_it(toy, capsys):
     with pytest.raises(ValueError, match="has no partial-slip model"):
         threepart.solve(HERTZ, 400.0, 0.0, A=A, method="toy", Q=10.0, f=0.5)
     # the verification run's adapter: a catalogue case in, the shared result out
-    from threepart import catalogue
+    from threepart.problem import catalogue
     from threepart.reports import solvers
     from threepart.reports.compare import normal_figures
     case = next(c for c in catalogue.load_cases() if c.name == "hertz")
@@ -70,7 +70,7 @@ def test_the_verification_run_judges_a_method_by_the_group_it_names(toy, monkeyp
     """``reports.verify.runs.run_case`` asks the method for its tolerance group: no method is special-cased."""
     from dataclasses import replace
 
-    from threepart import catalogue
+    from threepart.problem import catalogue
     from threepart.reports.verify.runs import MODES, run_case
     from threepart.tolerances import TOLERANCES, fem_comparison
 
@@ -148,7 +148,7 @@ def test_a_method_that_declares_no_bulk_stress_is_refused_one_by_name_before_it_
         threepart.fretting(HERTZ, 400.0, 0.0, **cycle, method="normal_only")
 def test_a_toy_method_s_label_and_style_reach_the_report_without_edits(toy, monkeypatch, tmp_path):
     """The toy's label (Method.label) heads its rows and its legend entry, drawn in its style."""
-    from threepart import catalogue
+    from threepart.problem import catalogue
     from threepart.reports import solvers
     from threepart.reports.verify import plots
     from threepart.reports.verify.sections import method_name

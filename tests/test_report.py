@@ -14,7 +14,8 @@ from pathlib import Path
 
 import pytest
 
-from threepart import catalogue, progress
+from threepart.problem import catalogue
+from threepart import progress
 from threepart.convergence import is_monotone
 from threepart.errors import LiftOffError
 from threepart.reports.verify import render
@@ -323,7 +324,7 @@ def drawn(monkeypatch):
 
 def test_every_curve_is_drawn_over_its_own_contact_to_its_ends_with_zero_pressure(drawn):
     """The punch on one corner: the contact [-a, c] lies right of x = 0 (a < 0)."""
-    from threepart.punch import Punch
+    from threepart.problem.punch import Punch
     from threepart.reports.verify import plots
 
     from .fakes import _normal
@@ -346,7 +347,7 @@ def test_every_curve_is_drawn_over_its_own_contact_to_its_ends_with_zero_pressur
 
 
 def test_a_nondimensional_overlay_is_scaled_by_the_peak_and_the_width(drawn):
-    from threepart.punch import Punch
+    from threepart.problem.punch import Punch
     from threepart.reports.verify import plots
 
     from .fakes import _normal
@@ -462,7 +463,7 @@ def test_the_hot_spot_tables_carry_units_and_four_significant_digits():
     """Stress and fatigue hot spots: each value with its unit (MPa; FFDP MPa²·mm) and its
     position in mm, to SPOT_DIGITS significant digits of the document's figure; none for a
     nondimensional case."""
-    from threepart.fatigue_parameters import parameters
+    from threepart.fatigue.table import parameters
     from threepart.reports.verify.stress_section import FATIGUE_NAMES, HOT_SPOTS, SPOT_DIGITS, sig, stress_section
 
     spot = {"x": -1.2345678, "z": 0.012345678, "value": 1234.5678}
@@ -497,7 +498,7 @@ def _significant(number: str) -> int:
 def test_no_plot_text_is_clipped(drawn):
     """Every text of the stress plots, the overlay and the error curves of the case with the
     longest name lies inside its figure (a von Mises title ran past the right edge)."""
-    from threepart.catalogue import get_case, load_cases
+    from threepart.problem.catalogue import get_case, load_cases
     from threepart.reports import solvers
     from threepart.reports.verify import plots
 

@@ -5,8 +5,8 @@ import numpy as np
 import pytest
 
 from threepart import sie
-from threepart.catalogue import load_cases
-from threepart.punch import Punch
+from threepart.problem.catalogue import load_cases
+from threepart.problem.punch import Punch
 from threepart.sie.schemes import Plain, Projected
 from threepart.tolerances import tolerance
 

@@ -16,8 +16,8 @@ from scipy.integrate import quad
 from scipy.optimize import brentq
 
 from threepart import sie
-from threepart.catalogue import load_cases
-from threepart.punch import Punch
+from threepart.problem.catalogue import load_cases
+from threepart.problem.punch import Punch
 from threepart.reports.compare import compare
 from threepart.sie.roots import newton
 from threepart.tolerances import tolerance
@@ -339,5 +339,5 @@ def test_partial_slip_closer_to_full_sliding_is_refused_by_name():
 
     normal = sie.solve_normal(Punch(10.0, 10.0, 0.0), 1000.0, 0.2, A=rigid_punch(210e3, 0.3))
     with pytest.raises(FullSlidingError, match=r"\|`Q`\|/\(f P\) = 0.999999.* is within 1e-06 of "
-                       r"full sliding, past 0.999999 \(threepart.validate.SLIP_RATIO_LIMIT\)"):
+                       r"full sliding, past 0.999999 \(threepart.problem.validate.SLIP_RATIO_LIMIT\)"):
         sie.solve_partial_slip(normal, (1 - 1e-8) * 0.3 * 1000.0, 0.3)

@@ -8,7 +8,7 @@ import pytest
 from scipy.integrate import quad
 from scipy.special import beta as beta_fn
 
-from threepart.punch import Punch
+from threepart.problem.punch import Punch
 from threepart.sie.projection import ramp_coefficients, slope_coefficients
 from threepart.sie.quadrature import cauchy_matrix, gauss_chebyshev, plain_functionals
 from threepart.sie.series import log_kink, sine_series

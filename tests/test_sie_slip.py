@@ -8,8 +8,8 @@ from scipy.integrate import quad
 import pytest
 
 from threepart import sie
-from threepart.catalogue import load_cases, slip_loads
-from threepart.punch import Punch
+from threepart.problem.catalogue import load_cases, slip_loads
+from threepart.problem.punch import Punch
 from threepart.reports.compare import compare
 from threepart.tolerances import tolerance
 

@@ -31,7 +31,7 @@ from threepart.closedform.fretting import stick_gap
 from threepart.closedform.steady import _Cycle
 from threepart.errors import (CycleSlipReversalError, FullSlidingError, LiftOffError, OneSidedSlipError,
                               SeparationError, StickSeparationError, StickZoneError)
-from threepart.steady import gap_rate, tilt_rate
+from threepart.halfplane.steady import gap_rate, tilt_rate
 from threepart.tolerances import tolerance
 
 A = rigid_punch(210e3, 0.3)

@@ -15,7 +15,7 @@ import pytest
 from scipy.integrate import quad
 
 from threepart import closedform as cf
-from threepart.catalogue import get_case
+from threepart.problem.catalogue import get_case
 from threepart.stress import Stress, flamant_normal, flamant_tangential, hilbert, stress
 
 from .stress_reference import mcewen as _mcewen
@@ -265,7 +265,7 @@ def test_case_a_subsurface_converges(case_a):
     to the full depth everywhere, to 1e-8 p0 (a self-consistency bound: the independent
     references above fix the rule's accuracy; this one checks the grading depth chosen per
     point where p and q have kinks)."""
-    import threepart.stress as st
+    import threepart.stress.flamant as st
 
     case, n, slip = case_a
     b = case.punch.b
@@ -353,7 +353,7 @@ def _random_points(n, seed):
 def test_points_in_chunks_give_the_same_stresses(monkeypatch):
     """2000 points in chunks of 7 (the last one short) and in one piece: the same to rounding, and
     each within the module's accuracy of McEwen's closed form; hilbert alike."""
-    from threepart import stress as stress_mod
+    from threepart.stress import flamant as stress_mod
 
     x, z = _random_points(2000, 3)
     whole = stress(x, z, pressure=p_hertz, shear=q_hertz, ends=(-A_H, A_H))
@@ -372,7 +372,7 @@ def test_the_working_memory_does_not_grow_with_the_points(monkeypatch):
     In one piece the quadrature's nodes (hundreds per point) grew with the points."""
     import tracemalloc
 
-    from threepart import stress as stress_mod
+    from threepart.stress import flamant as stress_mod
 
     chunk = 500
     monkeypatch.setattr(stress_mod, "POINTS_PER_CHUNK", chunk)

@@ -14,7 +14,7 @@ import pytest
 
 from threepart import Punch, closedform
 from threepart.reports.compare import compare, stress_figures
-from threepart.material import NU
+from threepart.problem.material import NU
 from threepart.stress import Stress
 from threepart.tolerances import COMPARISONS, STRESS_QUANTITIES, tolerance
 

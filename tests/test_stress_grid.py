@@ -1,7 +1,7 @@
 """The grid path of ``stress`` (one rule per depth, issue 33) against the pointwise path and McEwen.
 
 The pointwise rule grades each point's own panels; a grid's deeper rows share one
-rule per depth (:mod:`threepart.stress_grid`). Both must give the same stresses
+rule per depth (:mod:`threepart.stress.grid`). Both must give the same stresses
 to the quadrature's accuracy, for the pressure alone and with a partial-slip
 shear (kinks at the joins and the stick-zone ends), for grids laid out along
 either axis; and a sliding Hertz grid must match McEwen's closed form.
@@ -13,11 +13,11 @@ import re
 import numpy as np
 import pytest
 
-import threepart.stress as st
+import threepart.stress.flamant as st
 from threepart import closedform as cf
-from threepart.catalogue import get_case
+from threepart.problem.catalogue import get_case
 from threepart.stress import stress
-from threepart.stress_grid import GRID_DEPTH, is_grid
+from threepart.stress.grid import GRID_DEPTH, is_grid
 
 from .stress_reference import mcewen
 

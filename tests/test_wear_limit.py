@@ -25,7 +25,7 @@ from scipy.integrate import quad
 from threepart import closedform as cf
 from threepart.closedform.wear import STICK_RULES, wear_limit
 from threepart.errors import FullSlidingError, StickZoneError
-from threepart.punch import Punch
+from threepart.problem.punch import Punch
 from threepart.tolerances import tolerance
 
 A = 4 * (1 - 0.09) / 210e3   # compliance of two similar steel bodies, eq. (4)

@@ -13,7 +13,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from threepart.punch import Punch
+from threepart.problem.punch import Punch
 from threepart.registry import Method, register
 from threepart.results import NormalResult
 

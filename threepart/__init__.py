@@ -16,14 +16,15 @@ readers             -- readers of other codes' contact results, registered by fo
 
 Shared modules
 --------------
-catalogue           -- the one case catalogue (cases.json): verify, fem and sie suites
 tolerances          -- the one tolerance table, with a physical reason per entry
 convergence         -- fitted and three-level observed orders, GCI, Richardson step
-asymptotics         -- edge multipliers K_N, K_T, the asymptotic slip zone, the matching pad test
+problem             -- the punch (eq. 2), the material (eq. 4), the input checks, the case catalogue
+results             -- the one result shape, the load cycles, the check of every answer, edge multipliers
+halfplane           -- what the half-plane methods share: bulk stress, steady cycles, load histories, Coulomb
+stress              -- the stresses in the substrate from any method's tractions
+fatigue             -- fretting-fatigue parameters and their table
+studies             -- studies above the methods: the matching pad test
 output              -- atomic, marked output directories; strict JSON
-validate            -- the input checks behind every entry point's ``_*_iv`` helper
-history             -- load histories (P, s, Q, sigma_bulk): the CSV reader, the cycles, a step's friction work
-coulomb             -- one load state's Coulomb stick/slip sets by an active set (SIE and FEM histories, FEM steps)
 cli                 -- the ``threepart`` command line
 
 Problem
@@ -53,8 +54,8 @@ Results
 NormalResult        -- a, c, alpha, P, s, pressure(x), peaks(): the shape every solver returns
 SlipResult          -- adds Q, f, d, e, stick_zone and shear(x)
 Peak                -- a pressure maximum p at x
-SteadyStateResult   -- the periodic steady state of an in-phase cycle: d, e, energy, shakedown (threepart.cycles)
-HistoryResult       -- a load history marched with the memory of slip: stick, shear(x, k), energy (threepart.cycles)
+SteadyStateResult   -- the periodic steady state of an in-phase cycle: d, e, energy, shakedown (threepart.results.cycles)
+HistoryResult       -- a load history marched with the memory of slip: stick, shear(x, k), energy (threepart.results.cycles)
 
 Stresses (threepart.stress)
 --------
@@ -84,7 +85,7 @@ ContactZoneError    -- the FE contact reached the end of its mesh zone (RuntimeE
 MeshResolutionError -- a contact end too close to a join for the FE mesh (a ContactZoneError)
 SlopeLimitError     -- the contact's slope is past half-plane theory's small-slope limit (ValueError)
 ArcExtentError      -- a contact end runs past an edge arc's extent (ValueError)
-CoulombError        -- an answer's shear breaks |q| <= f p (a StickZoneError; threepart.answer)
+CoulombError        -- an answer's shear breaks |q| <= f p (a StickZoneError; threepart.results.answer)
 ReaderError         -- another code's file that cannot be read, named with why (ValueError)
 (the rest of the family, and its tree: ``threepart.errors``)
 """
@@ -97,20 +98,21 @@ from typing import TYPE_CHECKING, Any
 #: ``import threepart`` (and the console script, before it parses its arguments) loads
 #: neither numpy nor scipy, and Ctrl-C during those imports is the command line's to handle
 _HOMES = {
-    "Punch": "punch", "compliance": "material", "similar_pair": "material",
-    "rigid_punch": "material", "material_compliance": "material", "TILTS": "validate",
-    "NormalResult": "results", "SlipResult": "results", "Peak": "results",
-    "SteadyStateResult": "cycles", "HistoryResult": "cycles",
+    "Punch": "problem.punch", "compliance": "problem.material", "similar_pair": "problem.material",
+    "rigid_punch": "problem.material", "material_compliance": "problem.material", "TILTS": "problem.validate",
+    "NormalResult": "results.contact", "SlipResult": "results.contact", "Peak": "results.contact",
+    "SteadyStateResult": "results.cycles", "HistoryResult": "results.cycles",
     "LiftOffError": "errors", "SeparationError": "errors", "FullSlidingError": "errors",
     "StickZoneError": "errors", "StickSeparationError": "errors",
     "NoConvergenceError": "errors", "ContactZoneError": "errors",
     "MeshResolutionError": "errors", "SlopeLimitError": "errors", "ArcExtentError": "errors",
     "CoulombError": "errors", "ThreepartError": "errors", "ReaderError": "errors",
     "solve": "methods", "METHODS": "methods", "CHOICES": "methods",
-    "Stress": "stress",
-    "hilbert": "stress",
-    "stress_history": "fatigue", "von_mises_range": "fatigue",
-    "swt": "fatigue", "findley": "fatigue", "ruiz": "fatigue", "HotSpot": "fatigue",
+    "Stress": "stress.flamant",
+    "hilbert": "stress.flamant",
+    "stress_history": "fatigue.functions", "von_mises_range": "fatigue.functions",
+    "swt": "fatigue.functions", "findley": "fatigue.functions", "ruiz": "fatigue.functions",
+    "HotSpot": "fatigue.functions",
     "steady_state": "methods", "fretting": "methods",
     "wear": "fretting_wear", "WearResult": "fretting_wear",
 }
@@ -123,15 +125,15 @@ if TYPE_CHECKING:   # pragma: no cover - for type checkers and IDEs only
                          LiftOffError, MeshResolutionError, NoConvergenceError, SeparationError,
                          ReaderError, SlopeLimitError, StickSeparationError, StickZoneError,
                          ThreepartError)
-    from .material import compliance, material_compliance, rigid_punch, similar_pair
+    from .problem.material import compliance, material_compliance, rigid_punch, similar_pair
     from .methods import CHOICES, METHODS, fretting, solve, steady_state
-    from .punch import Punch
-    from .results import NormalResult, Peak, SlipResult
-    from .cycles import HistoryResult, SteadyStateResult
-    from .fatigue import HotSpot, findley, ruiz, stress_history, swt, von_mises_range
-    from .stress import Stress, hilbert
+    from .problem.punch import Punch
+    from .results.contact import NormalResult, Peak, SlipResult
+    from .results.cycles import HistoryResult, SteadyStateResult
+    from .fatigue.functions import HotSpot, findley, ruiz, stress_history, swt, von_mises_range
+    from .stress.flamant import Stress, hilbert
     from .fretting_wear import WearResult, wear
-    from .validate import TILTS
+    from .problem.validate import TILTS
 
 
 def __getattr__(name: str) -> Any:
@@ -139,10 +141,10 @@ def __getattr__(name: str) -> Any:
         value = getattr(importlib.import_module(f".{_HOMES[name]}", __name__), name)
         globals()[name] = value
         return value
-    if name in _SUBPACKAGES or name == "asymptotics":
+    if name in _SUBPACKAGES:
         return importlib.import_module(f".{name}", __name__)
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
 def __dir__() -> list[str]:
-    return sorted({*globals(), *_HOMES, *_SUBPACKAGES, "asymptotics"})
+    return sorted({*globals(), *_HOMES, *_SUBPACKAGES})

@@ -90,7 +90,7 @@ class SlipReversalError(StickZoneError):
 class CoulombError(StickZoneError):
     """A partial-slip answer's shear breaks Coulomb's law: ``|q| > f p`` somewhere in the contact.
 
-    Raised by the one check of every answer (:func:`threepart.answer.check_coulomb`)
+    Raised by the one check of every answer (:func:`threepart.results.answer.check_coulomb`)
     whatever the method: the stick zone found is not one that friction can
     hold (too coarse a discretisation, or too near full sliding for it). A
     ``StickZoneError``, so that ``method="auto"`` falls back from the closed form.
@@ -141,7 +141,7 @@ class SlopeLimitError(ThreepartError, ValueError):
     """The contact's surface slope ``max |v'|`` exceeds the small-slope limit of half-plane theory.
 
     Half-plane theory measures the gap vertically and applies the tractions to
-    the undeformed surface; the limit is ``threepart.validate.SLOPE_LIMIT``.
+    the undeformed surface; the limit is ``threepart.problem.validate.SLOPE_LIMIT``.
     """
 
 

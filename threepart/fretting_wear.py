@@ -10,7 +10,7 @@ wear             -- the march: ``cycles``, ``energy``, ``stick_zones``, ``depths
 WearResult       -- its result
 register_marcher -- a method's march under its name
 has_marcher      -- whether a method marches wear (its solver package loaded to register it)
-WearCase         -- a catalogue wear case: a fretting case of threepart/cases.json with its law, ``k`` and cycles
+WearCase         -- a catalogue wear case: a fretting case of threepart/problem/cases.json with its law, ``k`` and cycles
 wear_cases       -- the catalogue's wear cases (suite ``"wear"``: fretting cases with a ``wear`` law, ``k``, cycles)
 wear_case        -- one of them by name
 LAWS             -- "archard" (``Δw = k p |slip|``) and "energy" (``Δw = k q·slip``, Fouvry)
@@ -23,11 +23,11 @@ from typing import Any, Callable
 
 import numpy as np
 
-from threepart.catalogue import Case
+from threepart.problem.catalogue import Case
 from threepart.errors import InputError, InputTypeError
-from threepart.punch import Punch
+from threepart.problem.punch import Punch
 from threepart.results import FrettingResult
-from threepart.validate import check_punch, check_tilt, integer, lever_arm, positive
+from threepart.problem.validate import check_punch, check_tilt, integer, lever_arm, positive
 
 __all__ = ["wear", "WearResult", "register_marcher", "has_marcher", "WearCase", "wear_cases", "wear_case",
            "LAWS"]
@@ -190,7 +190,7 @@ def has_marcher(method: str) -> bool:
 
 @dataclass(frozen=True)
 class WearCase:
-    """A catalogue wear case (threepart/cases.json, suite ``"wear"``): a fretting ``case`` (punch, material,
+    """A catalogue wear case (threepart/problem/cases.json, suite ``"wear"``): a fretting ``case`` (punch, material,
     ``P``, ``s``, ``f``, ``Q_max``) worn by ``law`` with coefficient ``k`` over ``cycles``."""
 
     case: Case
@@ -227,8 +227,8 @@ class WearCase:
 
 
 def wear_cases(path: str | None = None) -> list[WearCase]:
-    """The catalogue's wear cases (suite ``"wear"`` of :func:`threepart.catalogue.load_cases`), in file order."""
-    from threepart.catalogue import CASES_FILE, load_cases
+    """The catalogue's wear cases (suite ``"wear"`` of :func:`threepart.problem.catalogue.load_cases`), in file order."""
+    from threepart.problem.catalogue import CASES_FILE, load_cases
 
     cases = load_cases("wear", path)          # names the file in its own errors
     try:

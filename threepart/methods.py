@@ -27,7 +27,7 @@ Every method is reached through :mod:`threepart.registry`; the solvers are
 imported only when called: importing :mod:`threepart` loads none of them.
 
 Whatever the method, and whether it is called here or directly, its answer
-has passed one check when it was built (:mod:`threepart.answer`, from the
+has passed one check when it was built (:mod:`threepart.results.answer`, from the
 results' ``__post_init__``): a compressive pressure, else
 ``SeparationError``, and for partial slip ``|q| <= f p``, else
 ``CoulombError`` (a ``StickZoneError``, on which ``auto`` falls back).
@@ -39,11 +39,11 @@ from typing import Any, Callable
 from . import registry
 from .errors import (CycleSlipReversalError, DisjointContactsError, InputError, LiftOffError, NoConvergenceError,
                      OneSidedSlipError, SeparationError, StickZoneError)
-from .punch import Punch
-from .cycles import MarchedSteadyResult, SteadyStateResult
-from .results import FrettingResult, NormalResult, SlipResult
-from .bulk import check_sigma_bulk
-from .validate import check_positive, integer
+from .problem.punch import Punch
+from .results.cycles import MarchedSteadyResult, SteadyStateResult
+from .results.contact import FrettingResult, NormalResult, SlipResult
+from .halfplane.bulk import check_sigma_bulk
+from .problem.validate import check_positive, integer
 
 __all__ = ["METHODS", "CHOICES", "AUTO", "solve", "steady_state", "march_steady_state", "fretting", "describe"]
 
@@ -252,10 +252,10 @@ def march_steady_state(punch: Punch, states: Any, f: float, *, A: float, why: st
                        steps: int = MARCH_STEPS) -> MarchedSteadyResult:
     """The steady state of the cycle between ``states[0]`` and ``states[1]``, by the SIE's load history.
 
-    The cycle is marched from rest (:func:`threepart.steady.cycle_states`, ``steps``
+    The cycle is marched from rest (:func:`threepart.halfplane.steady.cycle_states`, ``steps``
     states a half-cycle), :data:`MARCH_FIRST` cycles, then twice as many, ... until the
     energies of the last two cycles agree to ``tolerance("auto-march", "settle")``;
-    the last cycle is the steady state (:class:`~threepart.cycles.MarchedSteadyResult`).
+    the last cycle is the steady state (:class:`~threepart.results.cycles.MarchedSteadyResult`).
 
     Returns
     -------
@@ -269,7 +269,7 @@ def march_steady_state(punch: Punch, states: Any, f: float, *, A: float, why: st
     NoConvergenceError
         If the energies have not settled in :data:`MARCH_CYCLES` cycles.
     """
-    from .steady import check_cycle_states, cycle_states
+    from .halfplane.steady import check_cycle_states, cycle_states
     from .tolerances import tolerance
 
     check_positive(A=A)

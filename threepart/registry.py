@@ -65,9 +65,9 @@ from typing import TYPE_CHECKING, Any, Callable, Mapping
 from threepart.errors import InputError, InputTypeError
 
 if TYPE_CHECKING:  # pragma: no cover
-    from .punch import Punch
-    from .cycles import HistoryResult, SteadyStateResult
-    from .results import FrettingResult, NormalResult, SlipResult
+    from .problem.punch import Punch
+    from .results.cycles import HistoryResult, SteadyStateResult
+    from .results.contact import FrettingResult, NormalResult, SlipResult
 
 __all__ = ["Method", "register", "get", "names", "lift_off", "BUILTIN", "REFERENCE"]
 
@@ -117,12 +117,12 @@ class Method:
     history
         ``history(punch, states, f, *, A, nu, **options)``: a load history of
         ``(P, s, Q, sigma_bulk)`` states marched with the memory of slip
-        (:class:`~threepart.cycles.HistoryResult`), or None where the method
+        (:class:`~threepart.results.cycles.HistoryResult`), or None where the method
         has none.
     edges
         ``edges(normal)``: the pressure's edge multipliers ``((K_N, fit_error),
         (K_N, fit_error))`` at ``-a`` and ``c`` of a normal result of this
-        method (:mod:`threepart.asymptotics`, docs/EDGES.md); ``fit_error`` is
+        method (:mod:`threepart.results.edges`, docs/EDGES.md); ``fit_error`` is
         None where ``K_N`` is exact. None where the method has none.
     comparison
         The row group of :data:`threepart.tolerances.TOLERANCES` that judges

@@ -44,10 +44,10 @@ from typing import Any
 
 import numpy as np
 
-from threepart.fields import peak
+from threepart.results.fields import peak
 from threepart import calculix
 from threepart.calculix import read as ccx_read
-from threepart.material import similar_pair
+from threepart.problem.material import similar_pair
 
 from .validity import MESHES, NU, THETA, E, MapPoint, closed_form, point_load, point_case, point_punch
 
@@ -84,7 +84,7 @@ def symmetric(point: MapPoint) -> bool:
 
 def fitted_peak(x: np.ndarray, p: np.ndarray, half_width: float) -> tuple[float, float]:
     """The peak ``(x, p)`` of the nodal pressures ``p`` at ``x`` (sorted): the maximum of the
-    least-squares quartic over the nodes within ``half_width`` of it (:func:`threepart.fields.peak`
+    least-squares quartic over the nodes within ``half_width`` of it (:func:`threepart.results.fields.peak`
     with a window: centred on the largest five-node moving average, then on the first fit's maximum).
     """
     return peak(x, p, half_width=half_width, degree=4)
@@ -256,7 +256,7 @@ def partial_slip_point(point: MapPoint, *, code: str = "calculix", n: float | No
     ref = friction_referee(code)
     if not ref.available():
         return {"point": point.as_dict(), "code": code, "status": "not installed", "note": ref.missing}
-    from threepart.material import E_STEEL
+    from threepart.problem.material import E_STEEL
 
     punch, P, s = point_case(point)
     punch = replace(punch, R1=SLOPE_SCALE * punch.R1, R2=SLOPE_SCALE * punch.R2, R=SLOPE_SCALE * punch.R)

@@ -31,11 +31,11 @@ from threepart.convergence import run_study
 from threepart.errors import MeshResolutionError
 from threepart.fem.finite import zone_margin
 from threepart.fem.mesh import PRESETS
-from threepart.material import NU as NU_DEFAULT, similar_pair
+from threepart.problem.material import NU as NU_DEFAULT, similar_pair
 from threepart.meshes import SubstrateSpec
 from threepart.meshes.punch import PunchSpec
-from threepart.fields import edge_multipliers
-from threepart.punch import Punch
+from threepart.results.fields import edge_multipliers
+from threepart.problem.punch import Punch
 
 from ..compare import normal_figures
 
@@ -48,7 +48,7 @@ __all__ = ["MapPoint", "map_points", "evaluate", "control", "feasible", "converg
 RESULT_KEYS = ("peak_rel_error", "p_left_rel_error", "p_right_rel_error", "a_rel_error",
                "c_rel_error", "alpha_error", "fem_error_estimate", "P", "s", "time_s")
 #: issue 32: each edge's K_N (docs/EDGES.md), closed form minus finite body over the finite
-#: body's (its fit over the fine mesh's nodes, :func:`threepart.fields.edge_multipliers`); None
+#: body's (its fit over the fine mesh's nodes, :func:`threepart.results.fields.edge_multipliers`); None
 #: where the fit finds too few nodes. Not part of ``fem_error_estimate``
 EDGE_KEYS = ("K_N_left_rel_error", "K_N_right_rel_error")
 

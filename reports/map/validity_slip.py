@@ -20,7 +20,7 @@ from typing import Any
 
 from threepart import closedform, fem
 from threepart.fem.mesh import PRESETS
-from threepart.material import similar_pair
+from threepart.problem.material import similar_pair
 
 from ..compare import slip_figures
 from .validity import E, MESHES, NU, THETA, MapPoint, closed_form, point_load, map_mode, point_punch

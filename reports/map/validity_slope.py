@@ -35,8 +35,8 @@ import numpy as np
 from scipy.optimize import brentq
 
 from threepart import fem
-from threepart.fields import peak
-from threepart.material import similar_pair
+from threepart.results.fields import peak
+from threepart.problem.material import similar_pair
 from threepart.tolerances import MAP_LIMIT
 
 from .validity import E, GRID, MESHES, NU, THETA, MapPoint, closed_form, point_load, point_punch, \
@@ -64,7 +64,7 @@ def load_level(point: MapPoint) -> float:
 
 
 def _peak(result: Any) -> float:
-    """The larger pressure peak of a result: of its FE nodes (:func:`threepart.fields.peak`), else
+    """The larger pressure peak of a result: of its FE nodes (:func:`threepart.results.fields.peak`), else
     of its pressure function (:meth:`~threepart.results.NormalResult.peaks`)."""
     if hasattr(result, "p_nodes") and len(result.p_nodes):
         return peak(result.x_nodes, result.p_nodes)[1]

@@ -53,7 +53,7 @@ square_root_end -- a square-root end from the last loaded points
 check_points    -- refuse points that overflow, and a tilt that is no small slope
 read_pressure   -- the points ``(x, p, info)`` of a file, by the reader its suffix picks
 SlipPointsResult -- a SlipResult whose shear interpolates given points (its normal a PointsResult)
-slip_from_points -- build one: the stick zone by threepart.fields.stick_ends
+slip_from_points -- build one: the stick zone by threepart.results.fields.stick_ends
 friction_pitfalls -- the friction pitfalls a partial slip's points show
 Pitfall         -- one diagnosed pitfall: its name, the number and what to do
 diagnose        -- every pitfall a pressure shows

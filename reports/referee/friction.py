@@ -12,9 +12,9 @@ what typically goes wrong in a frictional FE model, each with its number.
 Names
 -----
 SlipPointsResult  -- a SlipResult whose shear interpolates given points
-slip_from_points  -- build one: the stick zone's ends by threepart.fields.stick_ends
+slip_from_points  -- build one: the stick zone's ends by threepart.results.fields.stick_ends
 friction_pitfalls -- the friction pitfalls the points show against the reference
-STICK_MARGIN (threepart.fields), SHIFT, SLOPE, SLIPPING (the tolerance table) -- the limits
+STICK_MARGIN (threepart.results.fields), SHIFT, SLOPE, SLIPPING (the tolerance table) -- the limits
 """
 from __future__ import annotations
 
@@ -25,7 +25,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from threepart.errors import InputError
-from threepart.fields import STICK_MARGIN, stick_ends
+from threepart.results.fields import STICK_MARGIN, stick_ends
 from threepart.results import SlipResult
 from threepart.tolerances import tolerance
 
@@ -50,7 +50,7 @@ class SlipPointsResult(SlipResult):
     ``normal`` is the :class:`~.points.PointsResult` of the same points'
     pressure; ``Q`` is the applied shear force (the reference's), so that the
     comparison's ``∫q = Q`` judges the points; ``d``, ``e`` are the stick zone
-    found in the points (:func:`threepart.fields.stick_ends`).
+    found in the points (:func:`threepart.results.fields.stick_ends`).
     """
 
     checks_answer = False    # another code's shear, judged by the comparison, not refused

@@ -39,7 +39,7 @@ from typing import Any, Callable, Sequence
 import numpy as np
 
 from threepart.errors import InputError
-from threepart.fields import STICK_LOAD
+from threepart.results.fields import STICK_LOAD
 from threepart.output import atomic_dir, json_safe, strict_json
 from threepart.tolerances import tolerance
 
@@ -141,7 +141,7 @@ def _check(quantity: str, reference: float, obtained: float, reason: str) -> dic
 
 
 def _in_contact(states: Sequence[Any], x: np.ndarray) -> np.ndarray:
-    """The nodes loaded above :data:`threepart.fields.STICK_LOAD` of the peak at some state of the cycle."""
+    """The nodes loaded above :data:`threepart.results.fields.STICK_LOAD` of the peak at some state of the cycle."""
     p = np.array([np.interp(x, np.asarray(st.x, float), np.asarray(st.p, float), left=0.0, right=0.0)
                   for st in states])
     return np.any(p > STICK_LOAD * float(np.max(p)), axis=0)

@@ -62,7 +62,7 @@ def pair_problem(punch: Any, P: float, s: float, *, tilt: str, title: str, sigma
     """A problem of two similar bodies (default: steel) at ``Q = FRICTION_RATIO f P`` with its
     partial slip by ``method`` (the closed form; ``"auto"``: the SIE where it refuses) and, with
     ``fretting``, its fretting cycle: the dict a column runs (:class:`FrictionProblem`)."""
-    from threepart.material import E_STEEL, NU, similar_pair
+    from threepart.problem.material import E_STEEL, NU, similar_pair
     from threepart.methods import fretting as cycle
     from threepart.methods import solve
 
@@ -81,7 +81,7 @@ def pair_problem(punch: Any, P: float, s: float, *, tilt: str, title: str, sigma
 def hertz() -> dict[str, Any]:
     """The Hertz pair: radius ``10 SLOPE_SCALE`` mm, ``P = 400 / SLOPE_SCALE`` N/mm (a = 0.21 mm
     unscaled), ``Q = FRICTION_RATIO f P``, the tilt suppressed (symmetric), with its fretting cycle."""
-    from threepart.punch import Punch
+    from threepart.problem.punch import Punch
 
     R, P = 10.0 * SLOPE_SCALE, 400.0 / SLOPE_SCALE
     return pair_problem(Punch(R1=R, R2=R, b=0.0), P, 0.0, tilt="suppressed", fretting=True,
@@ -92,7 +92,7 @@ def _scaled(name: str) -> tuple[Any, float, float]:
     """The catalogue case ``name``'s punch with its radii times SLOPE_SCALE, ``P`` over it, ``s``."""
     from dataclasses import replace
 
-    from threepart.catalogue import get_case
+    from threepart.problem.catalogue import get_case
 
     case = get_case(name).resolved()
     p = case.punch
@@ -125,7 +125,7 @@ def flight() -> dict[str, Any]:
     slip zones the codes' meshes resolve: between ``(0.9 P, s, -0.3 f P, -30 MPa)`` and ``(P, s,
     0.4 f P, 40 MPa)``, in phase; the closed form's steady state (docs/STEADY_STATE.md) is the reference.
     (``fan_blade_flight_cycle`` x 20 slips over 0.8 % and 0.2 % of W, under one element at W/h = 100.)"""
-    from threepart.material import E_STEEL, NU, similar_pair
+    from threepart.problem.material import E_STEEL, NU, similar_pair
     from threepart.methods import solve, steady_state
 
     punch, P, s = _scaled("slip_Q0.4")

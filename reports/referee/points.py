@@ -18,7 +18,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from threepart import readers
-from threepart.fields import contact_run
+from threepart.results.fields import contact_run
 from threepart.results import Diagnostics, NormalResult
 from threepart.errors import InputError
 
@@ -51,8 +51,8 @@ def square_root_end(x: np.ndarray, p: np.ndarray, k: int = 4) -> float:
     """The right end of a square-root pressure: the root of ``p^2``, linear over the last ``k`` nodes.
 
     ``x`` ascending; the contact is the loaded run of nodes that holds the peak
-    (:func:`threepart.fields.contact_run`: a code's noise outside it, below
-    :data:`~threepart.fields.CONTACT_LOAD` of the peak, is no contact), and the end lies
+    (:func:`threepart.results.fields.contact_run`: a code's noise outside it, below
+    :data:`~threepart.results.fields.CONTACT_LOAD` of the peak, is no contact), and the end lies
     between its last node and the next one.
     """
     on = contact_run(p)
@@ -89,7 +89,7 @@ def from_points(x: ArrayLike, p: ArrayLike, ref: NormalResult, *, alpha: float |
     The ends ``a``, ``c`` come from the points (the root of ``p^2`` fitted over
     the last four loaded nodes at each end); ``P = ∫p dx`` and ``s = ∫x p dx / P``
     by the trapezoidal rule over the contact's pressures (the loaded run of nodes that
-    holds the peak, :func:`threepart.fields.contact_run`).
+    holds the peak, :func:`threepart.results.fields.contact_run`).
     """
     x = np.asarray(x, dtype=float).ravel()
     p = np.asarray(p, dtype=float).ravel()
@@ -127,11 +127,11 @@ def from_points(x: ArrayLike, p: ArrayLike, ref: NormalResult, *, alpha: float |
 def check_points(x: np.ndarray, p: np.ndarray, alpha: float | None) -> None:
     """Refuse points whose load or centroid overflows, and a tilt that is no small slope.
 
-    ``x`` and ``p`` stay within :data:`threepart.validate.LENGTH_RANGE` in magnitude
+    ``x`` and ``p`` stay within :data:`threepart.problem.validate.LENGTH_RANGE` in magnitude
     (lengths and loads, so that ``∫p dx`` and ``∫x p dx`` stay finite); ``alpha``
-    is finite and within :data:`threepart.validate.SLOPE_LIMIT`.
+    is finite and within :data:`threepart.problem.validate.SLOPE_LIMIT`.
     """
-    from threepart.validate import LENGTH_RANGE, SLOPE_LIMIT, finite
+    from threepart.problem.validate import LENGTH_RANGE, SLOPE_LIMIT, finite
 
     hi = LENGTH_RANGE[1]
     for name, v in (("x", x), ("p", p)):

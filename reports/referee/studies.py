@@ -48,7 +48,7 @@ def calculix_result(case: Any, n: float, penalty_factor: float, workdir: Path,
     from dataclasses import replace as _replace
 
     from threepart import calculix
-    from threepart.material import compliance
+    from threepart.problem.material import compliance
     from threepart.methods import solve
 
     case = case.resolved()
@@ -78,7 +78,7 @@ def calculix_studies(say: Callable[[str], None] = print) -> list[Any]:
     import tempfile
 
     from threepart import calculix
-    from threepart.catalogue import get_case
+    from threepart.problem.catalogue import get_case
     from threepart.convergence import Study, run_study
 
     from ..compare import normal_figures

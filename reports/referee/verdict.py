@@ -17,9 +17,9 @@ import math
 from pathlib import Path
 from typing import Any, Callable, Mapping
 
-from threepart.asymptotics import SIDES
+from threepart.results.edges import SIDES
 from threepart.errors import MeshResolutionError
-from threepart.fields import edge_multipliers
+from threepart.results.fields import edge_multipliers
 from threepart.output import atomic_dir, json_safe, strict_json
 from threepart.errors import InputError
 from threepart.results import NormalResult, SlipResult
@@ -84,7 +84,7 @@ def column_verdict(study: Mapping[str, Any], documented: Mapping[str, tuple[str,
 
 def edges(res: PointsResult, ref: NormalResult) -> list[dict[str, Any]]:
     """Each edge's ``K_N`` (docs/EDGES.md) of the points, fitted over their nodes
-    (:func:`threepart.fields.edge_multipliers`), against the reference's own.
+    (:func:`threepart.results.fields.edge_multipliers`), against the reference's own.
 
     An edge agrees when its relative error is within the tolerance table's
     ``("referee", "K_N")`` limit widened by the fit's own error. Too few points near

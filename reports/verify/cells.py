@@ -11,7 +11,7 @@ from __future__ import annotations
 import math
 from typing import Any
 
-from threepart.units import UNITS
+from threepart.problem.units import UNITS
 
 __all__ = ["fmt", "with_unit", "physical", "unit_of", "head_unit"]
 

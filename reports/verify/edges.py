@@ -1,7 +1,7 @@
 """The report's "Edge multipliers" section: K_N, K_T and the slip zone of every case's edges, by method.
 
 :func:`edge_rows` computes the rows from a run's results (each result's
-``edges()``, :mod:`threepart.asymptotics`, docs/EDGES.md) into ``report.json``'s
+``edges()``, :mod:`threepart.results.edges`, docs/EDGES.md) into ``report.json``'s
 ``edges``; :func:`edges_section` turns them into the section. K_N of each method
 is set against the reference's (the closed form, or the SIE past it); the FEM's
 fit error is shown beside its own error, which it must cover; where a result has
@@ -12,7 +12,7 @@ from __future__ import annotations
 from typing import Any, Sequence
 
 from threepart import registry
-from threepart.asymptotics import exact_slip
+from threepart.results.edges import exact_slip
 
 from .sections import Cell, Figure, Section, Status, Table, fmt, head_unit, unit_of, with_unit, words
 
@@ -112,8 +112,8 @@ def asymptote_study() -> dict[str, Any]:
     """
     import numpy as np
 
-    from threepart import asymptotics
-    from threepart.catalogue import get_case
+    from threepart.results import edges as asymptotics
+    from threepart.problem.catalogue import get_case
     from threepart.registry import REFERENCE, get
 
     out, failed = [], []

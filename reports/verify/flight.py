@@ -1,7 +1,7 @@
 """The flight cycle's marched history: the steady state reached by marching the load path.
 
 A steady case of the catalogue (two ``states``, :attr:`Case.kind
-<threepart.catalogue.Case.kind>` ``"steady"``) is solved by every method with
+<threepart.problem.catalogue.Case.kind>` ``"steady"``) is solved by every method with
 a steady state (:mod:`reports.verify.runs`); this module adds the independent
 reference of docs/STEADY_STATE.md §6: the load history marched with the memory
 of slip over a few cycles (``sie.load_history``), whose last cycle must have
@@ -28,8 +28,8 @@ from typing import Any
 import numpy as np
 
 from threepart import registry
-from threepart.catalogue import Case
-from threepart.cycles import HistoryResult
+from threepart.problem.catalogue import Case
+from threepart.results.cycles import HistoryResult
 from threepart.tolerances import tolerance
 
 from ..compare import Check

@@ -46,7 +46,7 @@ def _documented(code: str) -> dict[str, tuple[str, str]]:
 
 def _case(problem: str, code: str, level: str) -> Any:
     """The catalogue-shaped case of a judged column: its problem's punch, loads and material."""
-    from threepart.catalogue import Case
+    from threepart.problem.catalogue import Case
 
     row = next(p for p in FRICTION_PROBLEMS if p.name == problem)
     pr = row.build()

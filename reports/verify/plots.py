@@ -2,7 +2,7 @@
 
 Each function takes numbers or results, draws one figure and writes it to
 ``path``; nothing here solves anything. A case with a material is drawn in
-its units (:data:`threepart.units.UNITS`: x in mm, p in MPa); a nondimensional
+its units (:data:`threepart.problem.units.UNITS`: x in mm, p in MPa); a nondimensional
 one as p over the reference's peak against x over its contact width. Every
 title names the case, the methods and the reference; every axis its unit.
 """
@@ -18,7 +18,7 @@ from matplotlib.figure import Figure
 
 from threepart import registry
 from threepart.registry import REFERENCE, Method
-from threepart.units import UNITS
+from threepart.problem.units import UNITS
 from threepart.convergence import ROUND_OFF
 
 from ..compare import EDGE_FRACTION, field_errors, is_slip, normal_of

@@ -21,8 +21,8 @@ from importlib import metadata
 from pathlib import Path
 from typing import Any, Callable, Sequence
 
-from threepart.catalogue import Case, load_cases
-from threepart.fatigue_parameters import reported
+from threepart.problem.catalogue import Case, load_cases
+from threepart.fatigue.table import reported
 from threepart.registry import REFERENCE
 from threepart.progress import heartbeat
 from threepart.output import atomic_dir, json_safe, strict_json, validate_json

@@ -14,7 +14,7 @@ thousands from a seeded :class:`numpy.random.Generator`, as a designer's sweep w
 * for partial slip a shear ratio of either sign, ``f`` and, for half the draws, a
   bulk stress; fretting cycles with a bulk stress.
 
-Each draw is a :class:`~threepart.catalogue.Case` solved through the registry
+Each draw is a :class:`~threepart.problem.catalogue.Case` solved through the registry
 (:mod:`reports.solvers`) and judged by the rules of the tests: where both methods
 answer they agree (contact ends, fields, stick zones, friction work); where one
 refuses, the other refuses too, by the named error the SIE's ``within_paper``
@@ -43,9 +43,9 @@ from typing import Any, Callable
 import numpy as np
 
 from threepart import Punch, closedform, sie
-from threepart.catalogue import Case
+from threepart.problem.catalogue import Case
 from threepart.errors import NoConvergenceError, StickZoneError
-from threepart.material import E_STEEL, NU
+from threepart.problem.material import E_STEEL, NU
 from threepart.tolerances import tolerance
 
 from ..compare import Check

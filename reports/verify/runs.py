@@ -1,7 +1,7 @@
 """Runs of the catalogue's cases: every method on one case, timed and compared.
 
-A :class:`~threepart.catalogue.Case` of the one case catalogue
-(:mod:`threepart.catalogue`, ``threepart/cases.json``) holds the inputs of one
+A :class:`~threepart.problem.catalogue.Case` of the one case catalogue
+(:mod:`threepart.problem.catalogue`, ``threepart/problem/cases.json``) holds the inputs of one
 case; :func:`run_case` solves it with each method of the registry
 (:mod:`threepart.registry`) and compares the others with the reference. Like
 scikit-fem's examples, a case exposes its numbers (a :class:`CaseRun` holds
@@ -27,7 +27,7 @@ from typing import Any, Callable
 
 from threepart import registry
 from threepart.registry import REFERENCE
-from threepart.catalogue import Case
+from threepart.problem.catalogue import Case
 from threepart.tolerances import tolerance
 
 from ..compare import Check, compare

@@ -22,7 +22,7 @@ from dataclasses import dataclass, field
 from enum import Enum
 from typing import Any, Sequence, Union
 
-from threepart.units import UNITS
+from threepart.problem.units import UNITS
 from threepart import registry
 from threepart.registry import REFERENCE
 from threepart.tolerances import ERROR_UNITS, NORMALISATION, VALUE_UNITS

@@ -15,7 +15,7 @@ from typing import Any, Mapping
 import numpy as np
 
 from threepart.fatigue import HotSpot
-from threepart.material import NU, similar_pair_modulus
+from threepart.problem.material import NU, similar_pair_modulus
 
 from ..compare import STRESS_REACH, is_steady, normal_of, surface_line
 
@@ -28,7 +28,7 @@ FIELD_GRID = (97, 49)
 
 
 def stress_nu(case_material: tuple[float, float] | None) -> float:
-    """Poisson's ratio for the stresses of a case: its material's, else :data:`threepart.material.NU`."""
+    """Poisson's ratio for the stresses of a case: its material's, else :data:`threepart.problem.material.NU`."""
     return float(case_material[1]) if case_material is not None else NU
 
 
@@ -97,10 +97,10 @@ def fatigue_hot_spots(results: Mapping[str, Any], material: tuple[float, float] 
     Every method is evaluated on the reference's points and the same states.
     The substrate's Young's modulus for the SWT strains is the case's
     ``material`` ``(E, nu)``; a case given by its compliance alone is read as a
-    similar pair, ``E = 4(1 - ν²)/A`` (eq. 4) with :data:`threepart.material.NU`.
+    similar pair, ``E = 4(1 - ν²)/A`` (eq. 4) with :data:`threepart.problem.material.NU`.
     """
     from threepart.fatigue import K_FINDLEY
-    from threepart.fatigue_parameters import fatigue, reported
+    from threepart.fatigue.table import fatigue, reported
 
     ref = results[reference]
     nu = stress_nu(material)

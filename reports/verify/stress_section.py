@@ -2,7 +2,7 @@
 
 Part of :func:`reports.verify.sections.build` (kept apart for its size): every number
 is read from the ``report.json`` document, each with its unit (the report's
-:data:`threepart.units.UNITS`; the fatigue parameters' from their table, :mod:`threepart.fatigue_parameters`)
+:data:`threepart.problem.units.UNITS`; the fatigue parameters' from their table, :mod:`threepart.fatigue.table`)
 and :data:`SPOT_DIGITS` significant digits.
 """
 from __future__ import annotations
@@ -10,7 +10,7 @@ from __future__ import annotations
 import math
 from typing import Any
 
-from threepart.fatigue_parameters import parameter, parameters
+from threepart.fatigue.table import parameter, parameters
 
 from .sections import (method_name, PLOT_KINDS, Block, Code, Figure, Section, Status, Table, plot_kind,
                        unit_of, with_unit, fmt, physical)

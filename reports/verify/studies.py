@@ -12,7 +12,7 @@ import math
 from typing import Any, Callable, Sequence
 
 from threepart import registry
-from threepart.catalogue import Case
+from threepart.problem.catalogue import Case
 from threepart.registry import REFERENCE
 from threepart.convergence import Study, fitted_order, run_study
 

@@ -1,7 +1,7 @@
 """CalculiX load histories with friction: a flight cycle, and every recorded state of a run (issue 38).
 
 A load history is a sequence of states ``(P, s, Q, sigma_bulk)``
-(:func:`threepart.history.check_history`): the deck of :func:`~.friction.friction_deck`
+(:func:`threepart.halfplane.load_history.check_history`): the deck of :func:`~.friction.friction_deck`
 loads the first state's ``P`` at its ``s``, then reaches each state in turn in a step of
 equal increments, the corners' forces, ``Q`` and the block's sides' forces moving linearly.
 A flight cycle is ``[state0, state1, state0, state1]``; its steady state is the
@@ -31,7 +31,7 @@ from .friction import (FrictionResult, contact_rows, step_increments, run_steps,
                        cycle_energy, read_frd_states, side_weights)
 
 if TYPE_CHECKING:   # pragma: no cover
-    from ..punch import Punch
+    from ..problem.punch import Punch
 
 __all__ = ["load_history", "CcxState", "frd_states", "step_loads", "printed_displacements", "read_traction"]
 
@@ -154,7 +154,7 @@ def load_history(punch: Punch, history: Any, f: float, E: float, nu: float, *, n
     punch, f, E, nu
         The punch (eq. 2), the coefficient of friction and both bodies' material.
     history
-        The states ``(P, s, Q, sigma_bulk)`` (:func:`threepart.history.check_history`: states,
+        The states ``(P, s, Q, sigma_bulk)`` (:func:`threepart.halfplane.load_history.check_history`: states,
         a CSV path or a ``History``); a flight cycle is ``[state0, state1, state0, state1]``.
     n, tilt, workdir, increments, slope
         As :func:`~.friction.partial_slip`: ``W / h`` of the mesh (sized for the first state's
@@ -169,7 +169,7 @@ def load_history(punch: Punch, history: Any, f: float, E: float, nu: float, *, n
         :func:`~.friction.cycle_energy`; ``None`` if it closes none), ``info["cycle"]`` its
         state indices.
     """
-    from threepart.history import check_history
+    from threepart.halfplane.load_history import check_history
 
     from .read import read_frd_nodes
 

@@ -22,8 +22,8 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from ..material import compliance
-from ..validate import check_tilt, finite, positive
+from ..problem.material import compliance
+from ..problem.validate import check_tilt, finite, positive
 from threepart.errors import InputError, InputTypeError
 
 if TYPE_CHECKING:   # pragma: no cover - the models' types only; mesh.py imports this module

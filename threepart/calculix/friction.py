@@ -32,15 +32,15 @@ from typing import TYPE_CHECKING, Any, Sequence
 
 import numpy as np
 
-from ..validate import finite, positive
+from ..problem.validate import finite, positive
 from .deck import (CONVENTIONS, DeckSettings, deck_head, lid_nodes, boundary_text, elements_text,
                    material_text, nodes_text, nset_text, surface_text)
 from threepart.errors import InputError
-from threepart.fields import stick_ends
+from threepart.results.fields import stick_ends
 from threepart.textfile import finite_row
 
 if TYPE_CHECKING:   # pragma: no cover
-    from ..punch import Punch
+    from ..problem.punch import Punch
     from .mesh import Model
 
 __all__ = ["SLOPE_FACTOR", "PENALTY_FACTOR", "friction_deck", "side_weights", "FrictionResult", "partial_slip",
@@ -135,7 +135,7 @@ def friction_deck(model: Model, *, P: float | None = None, s: float | None = Non
         on rollers with one node held in ``x`` (so that it strains freely).
     history
         A load history instead of ``P``, ``s``, ``Q``, ``sigma_bulk``: states ``(P, s, Q,
-        sigma_bulk)`` (:func:`threepart.history.check_history`: a sequence, a CSV path or a
+        sigma_bulk)`` (:func:`threepart.halfplane.load_history.check_history`: a sequence, a CSV path or a
         ``History``). Step 1 loads the first state's ``P`` at its ``s``; then one step per
         state, the four moving linearly together (the corners' forces, so ``P`` and ``P s``;
         ``s`` is then linear where ``P`` is constant). A flight cycle is ``[state0, state1,
@@ -268,7 +268,7 @@ def _states(*, P: float | None, s: float | None, f: float, Q: Sequence[float], s
             history: Any) -> list[State]:
     """The shear steps' states ``(P, s, Q, sigma_bulk)``, checked (each ``|Q| < f P``)."""
     if history is not None:
-        from threepart.history import check_history
+        from threepart.halfplane.load_history import check_history
 
         if len(Q) or sigma_bulk:
             raise InputError("`history` gives the states: leave `Q` and `sigma_bulk` out")
@@ -463,7 +463,7 @@ def run_steps(punch: Punch, P: float, s: float, Qs: list[float], f: float, E: fl
     ``sigma_bulk`` or ``history``), run ccx."""
     import resource
 
-    from ..material import compliance
+    from ..problem.material import compliance
     from ..methods import solve
     from .mesh import build_model
     from .run import run_ccx

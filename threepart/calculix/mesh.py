@@ -18,8 +18,8 @@ from typing import Any
 
 import numpy as np
 
-from ..punch import Punch
-from ..validate import positive
+from ..problem.punch import Punch
+from ..problem.validate import positive
 from .deck import DeckSettings
 from threepart.errors import InputError, InputTypeError
 

@@ -41,7 +41,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from threepart.fields import peak
+from threepart.results.fields import peak
 
 from .deck import parse_deck
 from .files import file_label, frd_blocks, last_printed, run_file

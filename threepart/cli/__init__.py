@@ -37,13 +37,13 @@ real_arg         -- the type of every number option: a float, or a one-line refu
 UsageError       -- a command-line usage error, already formatted as one line
 NUMERIC_OPTIONS  -- the options that take a number (``--s -1e-3`` is read as ``--s=-1e-3``)
 LIST_OPTIONS     -- the options that take a comma-separated list of numbers
-UNITS            -- the unit of each printed quantity (threepart.units)
+UNITS            -- the unit of each printed quantity (threepart.problem.units)
 COMMANDS         -- the sub-commands' names (threepart.__main__)
 """
 from __future__ import annotations
 
 from threepart.__main__ import COMMANDS
-from threepart.units import UNITS
+from threepart.problem.units import UNITS
 
 from ._args import LIST_OPTIONS, NUMERIC_OPTIONS, UsageError, real_arg
 from ._main import build_parser, main

@@ -33,7 +33,7 @@ import sys
 from typing import Any, NoReturn, Sequence
 
 from threepart.errors import InputError, ThreepartError
-from threepart.units import E_RANGE, UNITS
+from threepart.problem.units import E_RANGE, UNITS
 
 __all__ = ["UsageError", "Parser", "NUMERIC_OPTIONS", "LIST_OPTIONS", "join_negative_numbers",
            "real_arg", "number_list", "state_arg", "constant_arg", "labelled", "punch_args", "state_args", "method_args", "method_options",
@@ -58,7 +58,7 @@ class UsageError(ThreepartError):
     """A command-line usage error, already formatted as one line."""
 
 
-#: the help of ``--E``: the one material convention (:mod:`threepart.material`), for every command
+#: the help of ``--E``: the one material convention (:mod:`threepart.problem.material`), for every command
 E_HELP = ("Young's modulus of BOTH bodies (two similar elastic bodies, A = 4(1 - nu^2)/E), in MPa "
           f"inside [{E_RANGE[0]:g}, {E_RANGE[1]:g}] (steel: 210000)")
 #: the help of ``--nu``
@@ -69,7 +69,7 @@ class Parser(argparse.ArgumentParser):
     """An argument parser whose usage errors are one line (raised, so that main returns 2).
 
     Every command's ``--E`` is checked here, once, against the moduli of engineering solids in MPa
-    (:func:`threepart.material.modulus`): ``--E 210e9`` (Pa) or ``--E 210`` (GPa) is a usage error.
+    (:func:`threepart.problem.material.modulus`): ``--E 210e9`` (Pa) or ``--E 210`` (GPa) is a usage error.
     """
 
     def error(self, message: str) -> NoReturn:
@@ -81,7 +81,7 @@ class Parser(argparse.ArgumentParser):
         ns, rest = super().parse_known_args(args, namespace)
         E = getattr(ns, "E", None)
         if E is not None:
-            from threepart.material import modulus
+            from threepart.problem.material import modulus
 
             try:
                 modulus(E, "--E")
@@ -184,7 +184,7 @@ def state_arg(text: str) -> tuple[float, float, float, float]:
 
 
 def labelled(help_text: str, quantity: str) -> str:
-    """``help_text`` with the unit of ``quantity`` (:data:`threepart.units.UNITS`) in brackets."""
+    """``help_text`` with the unit of ``quantity`` (:data:`threepart.problem.units.UNITS`) in brackets."""
     return f"{help_text} [{UNITS[quantity]}]"
 
 
@@ -249,20 +249,20 @@ def method_options(args: argparse.Namespace, nu: float | None) -> dict[str, Any]
 CASE_RULE = "`threepart cases` lists them; the punch and the loads beside it are refused"
 
 
-def case_arg(group: Any, what: str = "a case of the catalogue (threepart/cases.json)", rule: str = CASE_RULE) -> None:
+def case_arg(group: Any, what: str = "a case of the catalogue (threepart/problem/cases.json)", rule: str = CASE_RULE) -> None:
     """``--case NAME`` in ``group``: the problem of a catalogue case (:func:`catalogue_case`)."""
     group.add_argument("--case", metavar="NAME", help=f"{what}; {rule}")
 
 
 def catalogue_case(args: argparse.Namespace, own: Sequence[str],
                    what: str = "the punch, material and loads") -> Any:
-    """The resolved :class:`threepart.catalogue.Case` of ``--case``, before any numerics.
+    """The resolved :class:`threepart.problem.catalogue.Case` of ``--case``, before any numerics.
 
     ``own`` are the command's options of the problem (``dest`` names): beside ``--case``
     the first one given is refused, as is a name the catalogue does not hold (its names
     listed). A ``store_true`` option counts as given when set. ``what`` names ``own`` in the refusal.
     """
-    from threepart.catalogue import get_case, load_cases
+    from threepart.problem.catalogue import get_case, load_cases
 
     given = [o for o in own if getattr(args, o, None) not in (None, False)]
     if given:
@@ -312,8 +312,8 @@ def given_punch_and_material(args: argparse.Namespace, needs: Sequence[str]) -> 
     """
     import math
 
-    from threepart.punch import Punch
-    from threepart.validate import poisson
+    from threepart.problem.punch import Punch
+    from threepart.problem.validate import poisson
 
     need_options(args, needs)
     if args.A is not None and args.E is not None:
@@ -328,10 +328,10 @@ def problem(args: argparse.Namespace) -> dict[str, Any]:
     """The punch, loads and material of ``--case`` or of the command line's options.
 
     ``A`` is the problem's compliance: the case's, or that of ``--E``/``--nu`` as two similar bodies
-    (:func:`threepart.material.material_compliance`; a case's ``bodies`` kept when it is a rigid punch).
+    (:func:`threepart.problem.material.material_compliance`; a case's ``bodies`` kept when it is a rigid punch).
     """
-    from threepart.material import material_compliance
-    from threepart.punch import Punch
+    from threepart.problem.material import material_compliance
+    from threepart.problem.punch import Punch
 
     if args.case is not None:
         case = catalogue_case(args, ("R1", "R2", "b", "R", "P", "s"), "the punch and loads")

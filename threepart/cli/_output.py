@@ -1,13 +1,13 @@
 """What the sub-commands share in output: printing (text and ``--json``), CSV and VTU files.
 
-Every number is printed with its unit from :data:`threepart.units.UNITS` (the
+Every number is printed with its unit from :data:`threepart.problem.units.UNITS` (the
 library is unit-agnostic; the labels are one consistent set: mm, N/mm, MPa).
 Every file is written through :func:`threepart.output.write_file`: a new file,
 or one threepart wrote there and that is unchanged, never anything else.
 
 Names
 -----
-UNITS               -- the unit of each printed quantity, by its key (threepart.units)
+UNITS               -- the unit of each printed quantity, by its key (threepart.problem.units)
 print_result        -- a result's figures as text, or as strict JSON with a "units" object
 print_json          -- a document as strict JSON with the given "units" object
 write_points_csv    -- the fields at points (``x``, ``p``, ``q``) as CSV, each column with its unit
@@ -19,7 +19,7 @@ from __future__ import annotations
 import sys
 from typing import Any, Callable, Sequence
 
-from threepart.units import UNITS
+from threepart.problem.units import UNITS
 
 __all__ = ["UNITS", "print_result", "print_json", "write_points_csv", "write_csv", "write_grid_vtu", "say_for"]
 

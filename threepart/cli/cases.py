@@ -1,8 +1,8 @@
-"""``threepart cases``: the catalogue's cases (threepart/cases.json), each with its kind and description.
+"""``threepart cases``: the catalogue's cases (threepart/problem/cases.json), each with its kind and description.
 
 Every command that takes a problem takes one of them by name (``--case NAME``);
 this lists them, and the commands that take ``--case``. ``--json`` prints each
-case's inputs (:meth:`threepart.catalogue.Case.as_dict`).
+case's inputs (:meth:`threepart.problem.catalogue.Case.as_dict`).
 
 Building the parser loads no numpy: the catalogue is read inside ``run``.
 """
@@ -13,11 +13,11 @@ from typing import Any
 
 __all__ = ["add_parser", "run", "KINDS"]
 
-#: the kinds of case (:attr:`threepart.catalogue.Case.kind`), each with what it holds
+#: the kinds of case (:attr:`threepart.problem.catalogue.Case.kind`), each with what it holds
 KINDS = {"normal": "P and s", "slip": "P, s, Q, f (and a bulk stress)",
          "fretting": "P, s and the amplitude Q_max of Q = 0 -> Q_max -> -Q_max -> Q_max",
          "steady": "a flight cycle's two states (P, s, Q, sigma_bulk) and f"}
-#: the keys of :meth:`Case.as_dict` that are ratios (the others' units are threepart.units.UNITS')
+#: the keys of :meth:`Case.as_dict` that are ratios (the others' units are threepart.problem.units.UNITS')
 RATIOS = ("s_lift_off_fraction", "load_4PA_over_b", "Q_over_fP")
 
 
@@ -42,8 +42,8 @@ def _commands() -> list[str]:
 
 def run(args: argparse.Namespace) -> int:
     """Print the cases (of ``--kind``), as text or ``--json``; the exit status."""
-    from threepart.catalogue import load_cases
-    from threepart.units import UNITS
+    from threepart.problem.catalogue import load_cases
+    from threepart.problem.units import UNITS
 
     from ._output import print_json
 

@@ -87,7 +87,7 @@ _say = say_for("cycle")
 
 def _case(args: argparse.Namespace) -> dict[str, Any]:
     """Punch, compliance, material and friction (and states) of ``--case``; refuses a case without states."""
-    from threepart.catalogue import get_case, load_cases
+    from threepart.problem.catalogue import get_case, load_cases
 
     given = [o for o in ("R1", "R2", "b", "R", "E", "nu", "A", "f", "state0", "state1")
              if getattr(args, o) is not None]
@@ -112,8 +112,8 @@ def _case(args: argparse.Namespace) -> dict[str, Any]:
 
 def _given(args: argparse.Namespace) -> dict[str, Any]:
     """Punch, compliance, material, friction and states of the command line's options."""
-    from threepart.material import similar_pair
-    from threepart.validate import positive
+    from threepart.problem.material import similar_pair
+    from threepart.problem.validate import positive
 
     punch, nu = given_punch_and_material(args, ("R1", "R2", "b", "f"))
     if args.A is not None:
@@ -135,7 +135,7 @@ def _problem(args: argparse.Namespace) -> dict[str, Any]:
     """The checked problem, before any numerics: ``name``, ``punch``, ``A``, ``E``, ``nu``, ``f``, ``states``."""
     from threepart.errors import FullSlidingError
     from threepart.output import check_out
-    from threepart.material import NU
+    from threepart.problem.material import NU
 
     if args.history is not None and (args.state0 is not None or args.state1 is not None):
         raise InputError("give the ends `--state0`/`--state1` or `--history`, not both")
@@ -156,7 +156,7 @@ def _problem(args: argparse.Namespace) -> dict[str, Any]:
                 raise FullSlidingError(f"`--state{k}`: |Q| = {abs(Q):g} >= f P = {f * P:g} (`--f` = {f:g}, "
                                        f"P = {P:g}): the contact slides as a whole, there is no stick zone")
     else:
-        from threepart.history import read_history
+        from threepart.halfplane.load_history import read_history
 
         pr["history"] = read_history(args.history)
     if args.out is not None:
@@ -220,7 +220,7 @@ LOOP_STEPS, LOOP_CYCLES = 20, 2
 def _steady_loop(pr: dict[str, Any]) -> Any:
     """``(delta, Q)`` of the steady cycle, marched by the SIE's load history (the loop's only source)."""
     from threepart import registry
-    from threepart.steady import cycle_states
+    from threepart.halfplane.steady import cycle_states
 
     start, end = pr["states"]
     states = cycle_states(start, end, LOOP_STEPS, LOOP_CYCLES)
@@ -336,7 +336,7 @@ def _print_steady(pr: dict[str, Any], res: Any, figures: dict[str, Any], hot: di
         print("hot spots  none: the cycle has shaken down, its stresses are locked in by the load history")
         return
     print(f"hot spots of the steady cycle (E = {pr['E']:g} MPa, nu = {pr['nu']:g}):")
-    from threepart.fatigue_parameters import parameter
+    from threepart.fatigue.table import parameter
 
     for name, h in hot.items():
         label, unit = parameter(name).label, parameter(name).unit

@@ -70,7 +70,7 @@ FORMATS = ("calculix", "getfem")
 def run(args: argparse.Namespace) -> int:
     """Write the deck to ``--out`` and say what it holds; the exit status."""
     from threepart import calculix
-    from threepart.material import compliance, rigid_punch_modulus, similar_pair_modulus
+    from threepart.problem.material import compliance, rigid_punch_modulus, similar_pair_modulus
     from threepart.methods import solve
     from threepart.output import write_file
 
@@ -81,7 +81,7 @@ def run(args: argparse.Namespace) -> int:
     settings = calculix.DeckSettings(h=args.h, penalty=args.penalty, pair=args.pair,
                                      tilt=pr["tilt"], **({} if args.stiffening is None
                                                          else {"stiffening": args.stiffening}))
-    # the problem's A (both bodies of --E/--nu, or the case's) onto the model by threepart.material's
+    # the problem's A (both bodies of --E/--nu, or the case's) onto the model by threepart.problem.material's
     # one mapping: two similar bodies of 4(1 - nu^2)/A each, or the block of 2(1 - nu^2)/A under the
     # stiff punch (E/2 for two similar bodies of E); A is then the model's own, stiffening included
     nu = pr["nu"]
@@ -113,7 +113,7 @@ def _shear_iv(args: argparse.Namespace) -> dict[str, Any]:
     if len(modes) > 1:
         raise InputError(f"give one load of a friction deck, not {' and '.join(f'`{m}`' for m in modes)}")
     if args.sigma_bulk is not None:
-        from threepart.validate import finite
+        from threepart.problem.validate import finite
 
         finite("--sigma-bulk", args.sigma_bulk)
         if args.Q is None and args.Q_max is None:
@@ -136,7 +136,7 @@ def _shear_iv(args: argparse.Namespace) -> dict[str, Any]:
     if modes[0] in ("--state0/--state1", "--history"):
         if args.P is not None or args.s is not None:
             raise InputError(f"`{modes[0]}` gives P and s: leave out `--P` and `--s`")
-        from threepart.history import check_history
+        from threepart.halfplane.load_history import check_history
 
         hist = check_history(args.history if args.history is not None else
                              [args.state0, args.state1, args.state0, args.state1])
@@ -149,7 +149,7 @@ def _shear_iv(args: argparse.Namespace) -> dict[str, Any]:
 
 def _case_shear(args: argparse.Namespace) -> dict[str, Any]:
     """A catalogue case's own friction loads: its shear (and bulk stress), or its two states (a flight cycle)."""
-    from threepart.history import check_history
+    from threepart.halfplane.load_history import check_history
 
     case = catalogue_case(args, own=())      # a name the catalogue does not hold is refused, its names listed
     if case.f is None:
@@ -167,7 +167,7 @@ def _friction(args: argparse.Namespace, pr: dict[str, Any], shear: dict[str, Any
     """Write the friction deck (two similar bodies of the problem's A) and say what it holds."""
     from threepart import calculix
     from threepart.errors import full_sliding
-    from threepart.material import similar_pair_modulus
+    from threepart.problem.material import similar_pair_modulus
     from threepart.methods import solve
     from threepart.output import write_file
 

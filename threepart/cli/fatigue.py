@@ -35,8 +35,8 @@ PROBLEM_OPTIONS = ("R1", "R2", "b", "R", "E", "nu", "P", "s", "Q_max", "f", "sig
 
 
 def _fatigue_units() -> dict[str, str]:
-    """The fatigue parameters' units (their table's, :mod:`threepart.fatigue_parameters`) and the plane's."""
-    from threepart.fatigue_parameters import parameters
+    """The fatigue parameters' units (their table's, :mod:`threepart.fatigue.table`) and the plane's."""
+    from threepart.fatigue.table import parameters
 
     return {**{p.name: p.unit for p in parameters()}, "theta": "deg"}
 
@@ -66,7 +66,7 @@ def _fatigue_args(p: argparse.ArgumentParser) -> None:
                    help="Findley's constant, in [0, 10] (default {k_findley})")
     m.add_argument("--constant", action="append", default=[], type=constant_arg, metavar="NAME=VALUE",
                    help="another fatigue parameter's constant, by the name its row of "
-                        "threepart.fatigue_parameters gives it, e.g. kappa=0.5 (Crossland's, in [0, 10]; "
+                        "threepart.fatigue.table gives it, e.g. kappa=0.5 (Crossland's, in [0, 10]; "
                         "default 0.368); repeatable")
     ld = p.add_argument_group("loads, unless --case: P at s, then the cycle Q = 0 -> Q_max -> -Q_max -> "
                               "Q_max; or a flight cycle's two ends, --state0 and --state1")
@@ -133,7 +133,7 @@ def _problem_iv(args: argparse.Namespace) -> float | None:
         return None
     c = catalogue_case(args, PROBLEM_OPTIONS)
     if c.material is None or c.f is None or (c.Q is None and c.states is None):
-        from threepart.catalogue import load_cases
+        from threepart.problem.catalogue import load_cases
 
         fit = ", ".join(k.name for k in load_cases(None) if k.material is not None and k.f is not None)
         raise InputError(f"case {c.name!r} has no material (E, nu), f and shear load or `states` for a "
@@ -154,7 +154,7 @@ def _fatigue_iv(args: argparse.Namespace) -> None:
 
     from threepart.fatigue import K_FINDLEY, findley_k
     from threepart.output import check_file
-    from threepart.validate import finite, integer, poisson, positive
+    from threepart.problem.validate import finite, integer, poisson, positive
 
     positive("--E", args.E)
     poisson(args.nu)
@@ -189,7 +189,7 @@ def _fatigue_iv(args: argparse.Namespace) -> None:
 
 def _constants_iv(given: list[tuple[str, float]]) -> dict[str, float]:
     """``--constant`` as ``{name: value}``: each a constant some row of the table names, once; not ``k``."""
-    from threepart.fatigue_parameters import parameters
+    from threepart.fatigue.table import parameters
 
     known = sorted({c for p in parameters() for c in p.constants} - {"k"})
     out: dict[str, float] = {}
@@ -267,9 +267,9 @@ def run(args: argparse.Namespace) -> int:
     import numpy as np
 
     from threepart.fatigue import fatigue
-    from threepart.material import similar_pair
+    from threepart.problem.material import similar_pair
     from threepart.methods import describe
-    from threepart.punch import Punch
+    from threepart.problem.punch import Punch
 
     case_A = _problem_iv(args)
     punch = Punch(R1=args.R1, R2=args.R2, b=args.b, R=given_R(args))
@@ -348,7 +348,7 @@ def _fatigue_print(args: argparse.Namespace, res: Any, cycle: Any, A: float, hea
     constants = ", ".join(f"{name} {value:g}" for name, value in {"k": args.k, **args.constants}.items())
     print(f"constants  {constants} (the parameters' own defaults for the others)")
     print("hot spots (units: mm, N/mm, MPa, or any consistent set):")
-    from threepart.fatigue_parameters import parameter
+    from threepart.fatigue.table import parameter
 
     for name, row in hot.items():
         unit = _fatigue_units()[name]
@@ -362,7 +362,7 @@ def _fatigue_print(args: argparse.Namespace, res: Any, cycle: Any, A: float, hea
 def _fatigue_columns(res: Any) -> dict[str, Any]:
     import numpy as np
 
-    from threepart.fatigue_parameters import parameters as fatigue_parameters
+    from threepart.fatigue.table import parameters as fatigue_parameters
 
     fields = [p for p in fatigue_parameters() if not p.surface]
     cols = {"x": res.parameters[fields[0].name].x, "z": res.parameters[fields[0].name].z}
@@ -376,7 +376,7 @@ def _fatigue_csv(path: str, res: Any) -> None:
     """The fields at the grid points, one row each; Ruiz's (surface) columns only where z = 0."""
     import numpy as np
 
-    from threepart.fatigue_parameters import parameters as fatigue_parameters
+    from threepart.fatigue.table import parameters as fatigue_parameters
 
     cols = _fatigue_columns(res)
     tops = [p.name for p in fatigue_parameters() if p.surface]
@@ -407,7 +407,7 @@ def _fatigue_plot(path: str, res: Any, cycle: Any) -> None:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    from threepart.fatigue_parameters import parameter, parameters as fatigue_parameters
+    from threepart.fatigue.table import parameter, parameters as fatigue_parameters
     from threepart.output import write_file
 
     units = _fatigue_units()

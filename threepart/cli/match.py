@@ -4,7 +4,7 @@ The flank is a catalogue case with a shear load (``--case``) or a punch, materia
 and loads; ``--edge`` picks its edge. The pad (a cylinder of radius ``R`` on a flat,
 the same material and ``f``, under the flank's bulk stress) gets the load ``P`` and
 shear ``Q`` whose edge has the flank's ``K_N`` and ``K_T``, hence its slip zone
-(:func:`threepart.asymptotics.match`). Give the pad's radius (``--pad-R``) or its
+(:func:`threepart.results.edges.match`). Give the pad's radius (``--pad-R``) or its
 load (``--pad-P``), or neither for the pad whose surface σxx over the slip zone is
 closest to the flank's. It prints
 both edges' multipliers, the pad's loads, the surface σxx agreement over the slip
@@ -28,7 +28,7 @@ METHODS = ("auto", "closedform", "sie", "fem")
 
 def add_parser(sub: Any) -> None:
     """Add the ``match`` sub-command to ``sub`` (the sub-parsers of :func:`threepart.cli.build_parser`)."""
-    from threepart.units import UNITS
+    from threepart.problem.units import UNITS
 
     def unit(text: str, key: str) -> str:
         return f"{text} [{UNITS[key]}]"
@@ -69,9 +69,9 @@ def add_parser(sub: Any) -> None:
 
 def _flank_problem(args: argparse.Namespace) -> dict[str, Any]:
     """The flank's punch, compliance, Poisson ratio and loads, checked before any numerics."""
-    from threepart.catalogue import load_cases
-    from threepart.material import NU, similar_pair
-    from threepart.validate import finite, positive
+    from threepart.problem.catalogue import load_cases
+    from threepart.problem.material import NU, similar_pair
+    from threepart.problem.validate import finite, positive
 
     own = ("R1", "R2", "b", "R", "E", "nu", "A", "P", "s", "Q", "f", "sigma_bulk")
     if args.case is not None:
@@ -94,7 +94,7 @@ def _flank_problem(args: argparse.Namespace) -> dict[str, Any]:
 
 def _problem(args: argparse.Namespace) -> dict[str, Any]:
     """Every check of the input, before anything is solved: the flank's problem and the pad's size."""
-    from threepart.validate import positive, shear_load
+    from threepart.problem.validate import positive, shear_load
 
     if args.pad_R is not None and args.pad_P is not None:
         raise InputError("give `--pad-R` or `--pad-P` (or neither: the pad of least surface-stress "
@@ -107,14 +107,14 @@ def _problem(args: argparse.Namespace) -> dict[str, Any]:
 
 
 def _line(label: str, value: float, key: str) -> str:
-    from threepart.units import UNITS
+    from threepart.problem.units import UNITS
     return f"  {label:<28} {value:.6g} {UNITS[key]}"
 
 
 def _print(pr: dict[str, Any], flank: Any, m: Any) -> None:
     """The flank's and the pad's edges, the pad's loads and how well the edge field agrees."""
-    from threepart import asymptotics
-    from threepart.units import UNITS
+    from threepart.results import edges as asymptotics
+    from threepart.problem.units import UNITS
 
     print(f"flank: {flank.method}, contact [{-flank.a:.6g}, {flank.c:.6g}] {UNITS['a']}, "
           f"Q = {flank.Q:.6g} {UNITS['Q']}, f = {flank.f:g}, sigma_bulk = {flank.sigma_bulk:g} {UNITS['sigma_bulk']}")
@@ -130,7 +130,7 @@ def _print(pr: dict[str, Any], flank: Any, m: Any) -> None:
     exact = [asymptotics.exact_slip(r, k) for r in (flank, m.result)]
     print(f"  {'slip zone (exact)':<24} {exact[0]:14.6g} {exact[1]:14.6g} {UNITS['slip_zone']}")
     print(f"surface sigma_xx over the slip zone: largest difference {m.sxx_error:.3g} of the flank's largest")
-    from threepart.fatigue_parameters import parameter
+    from threepart.fatigue.table import parameter
 
     for name, (a, b) in m.fatigue.items():
         label, unit = parameter(name).label, parameter(name).unit
@@ -139,7 +139,8 @@ def _print(pr: dict[str, Any], flank: Any, m: Any) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Run ``threepart match``: check the input, solve the flank and the pad, print; the exit status."""
-    from threepart import asymptotics, solve
+    from threepart.results import edges as asymptotics
+    from threepart import solve
 
     pr = _problem(args)
     options: dict[str, Any] = {"nu": pr["nu"]} if args.method == "fem" else {}

@@ -98,7 +98,7 @@ def _finite_body(args: argparse.Namespace) -> Any:
 
 def _compliance(args: argparse.Namespace) -> float:
     """The compliance A (eq. 4) from ``--A``, or from ``--E``/``--nu`` (and ``--rigid``)."""
-    from threepart.material import compliance, rigid_punch
+    from threepart.problem.material import compliance, rigid_punch
 
     if args.A is not None:
         if args.E is not None:
@@ -130,8 +130,8 @@ def _options(args: argparse.Namespace, nu: float | None) -> tuple[dict[str, Any]
 def _problem(args: argparse.Namespace, slip: bool) -> dict[str, Any]:
     """The checked problem of ``--case`` or of the options, before any numerics: ``name``, ``punch``,
     ``A``, ``nu`` (None: not given), ``P``, ``s``, ``tilt`` and for ``slip`` the ``loads`` Q, f, sigma_bulk."""
-    from threepart.catalogue import load_cases
-    from threepart.punch import Punch
+    from threepart.problem.catalogue import load_cases
+    from threepart.problem.punch import Punch
 
     if args.case is not None:
         c = catalogue_case(args, PROBLEM_OPTIONS + (SHEAR_OPTIONS if slip else ()))
@@ -199,7 +199,7 @@ def _figures(args: argparse.Namespace, slip: bool) -> dict[str, Any]:
 
 def _slope_note(slope: float) -> dict[str, str]:
     """A note past the slope where half-plane theory's measured error reaches 5 %."""
-    from threepart.validate import SLOPE_LIMIT, SLOPE_WARNING
+    from threepart.problem.validate import SLOPE_LIMIT, SLOPE_WARNING
 
     if slope <= SLOPE_WARNING:
         return {}
@@ -220,7 +220,7 @@ def _peak(peak: Any, side: str) -> dict[str, Any]:
 
 def _lift_off(punch: Any, P: float, A: float) -> dict[str, float] | None:
     """The closed form's admissible lever arms at ``P`` (through the registry), or None where it has none."""
-    from threepart.catalogue import LIFT_OFF_METHOD
+    from threepart.problem.catalogue import LIFT_OFF_METHOD
     from threepart.registry import lift_off
 
     try:

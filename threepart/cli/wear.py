@@ -35,7 +35,7 @@ __all__ = ["add_parser", "run"]
 METHODS = ("sie", "fem")
 #: the laws of :data:`threepart.fretting_wear.LAWS`, named here so that the parser loads no numpy
 LAWS = ("archard", "energy")
-#: the units of the figures this command prints beside :data:`threepart.units.UNITS`'s
+#: the units of the figures this command prints beside :data:`threepart.problem.units.UNITS`'s
 WEAR_UNITS = {"energy": "N*mm/mm per cycle", "volume": "mm^2", "depth": "mm", "k": "mm^2/N",
               "drift": "mm", "cycles": "1", "distance": "1"}
 
@@ -87,7 +87,7 @@ OWN = ("R1", "R2", "b", "R", "E", "nu", "A", "P", "s", "Q_max", "f")
 
 def _case(args: argparse.Namespace) -> dict[str, Any]:
     """The problem of ``--case``: a wear case (with its law, k, cycles) or a fretting case of the catalogue."""
-    from threepart.catalogue import load_cases
+    from threepart.problem.catalogue import load_cases
     from threepart.fretting_wear import WearCase
 
     case = catalogue_case(args, OWN)         # the options beside it, or a name not in the catalogue, refused
@@ -106,8 +106,8 @@ def _case(args: argparse.Namespace) -> dict[str, Any]:
 
 def _given(args: argparse.Namespace) -> dict[str, Any]:
     """The problem of the punch, material and load options."""
-    from threepart.material import NU, similar_pair
-    from threepart.validate import finite, positive
+    from threepart.problem.material import NU, similar_pair
+    from threepart.problem.validate import finite, positive
 
     punch, nu = given_punch_and_material(args, ("R1", "R2", "b", "P", "Q_max", "f"))
     A = positive("--A", args.A) if args.A is not None else similar_pair(positive("--E", args.E),
@@ -121,7 +121,7 @@ def _problem(args: argparse.Namespace) -> dict[str, Any]:
     """Every check of the input, before anything is solved; the problem and the march's settings."""
     from threepart.fretting_wear import MAX_CYCLES, has_marcher
     from threepart.output import check_out
-    from threepart.validate import integer, positive
+    from threepart.problem.validate import integer, positive
 
     if not has_marcher(args.method):
         raise InputError(f"`--method` = {args.method}: no wear march yet (not yet built for this method; sie has one)")

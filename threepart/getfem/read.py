@@ -219,11 +219,11 @@ def last_cycle(states: Sequence[Any]) -> tuple[int, int] | None:
 
     A cycle ends at the last state and starts at the state before it that has the
     same loads ``(P, s, Q, sigma_bulk)`` reached the same way
-    (:meth:`threepart.history.History.cycles`): a fretting run's ``Q_max`` at the end
+    (:meth:`threepart.halfplane.load_history.History.cycles`): a fretting run's ``Q_max`` at the end
     of loading, a flight cycle's second-last ``state1``. Any code's states that carry
     ``P`` and ``Q`` (``s``, ``sigma_bulk`` where recorded).
     """
-    from threepart.history import History
+    from threepart.halfplane.load_history import History
 
     if len(states) < 2:
         return None

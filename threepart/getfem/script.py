@@ -16,10 +16,10 @@ import ast
 from dataclasses import asdict, dataclass
 from typing import Any
 
-from ..checks import check_tilt, finite, integer, poisson, positive
-from ..history import History, check_history
-from ..punch import Punch
-from ..validate import shear_load
+from ..problem.checks import check_tilt, finite, integer, poisson, positive
+from ..halfplane.load_history import History, check_history
+from ..problem.punch import Punch
+from ..problem.validate import shear_load
 from threepart.errors import InputError, InputTypeError
 
 from ._body import BODY
@@ -205,7 +205,7 @@ def write_script(punch: Punch, P: float | None = None, s: float = 0.0, *, a: flo
     history
         Instead of ``Q``/``Q_max``: the states ``(P, s, Q, sigma_bulk)`` in turn, each reached in
         ``settings.steps`` steps from the first state's normal load
-        (:func:`threepart.history.check_history`: states, a CSV path or a History).
+        (:func:`threepart.halfplane.load_history.check_history`: states, a CSV path or a History).
     tilt
         ``"free"`` (the moment ``P s`` applied) or ``"suppressed"`` (the cap's rotation held).
     settings

@@ -17,11 +17,11 @@ from typing import Any
 
 import numpy as np
 
-from ..checks import positive
-from ..material import similar_pair
+from ..problem.checks import positive
+from ..problem.material import similar_pair
 from ..methods import solve
-from ..punch import Punch
-from ..history import check_history
+from ..problem.punch import Punch
+from ..halfplane.load_history import check_history
 from .read import GetfemRun, friction_work, last_cycle, loop_energy, read_run, slip_amplitude
 from .run import run_getfem
 from .script import JobSettings, write_script
@@ -170,7 +170,7 @@ def load_history(punch: Punch, history: Any, f: float, E: float, nu: float, *, n
     Parameters
     ----------
     history
-        The states ``(P, s, Q, sigma_bulk)`` in turn (:func:`threepart.history.check_history`:
+        The states ``(P, s, Q, sigma_bulk)`` in turn (:func:`threepart.halfplane.load_history.check_history`:
         states, a CSV path or a History); the four move linearly together between states,
         each reached in ``steps`` steps. A flight cycle is ``[state0, state1, state0, state1]``.
     steps

@@ -36,7 +36,7 @@ from typing import Any
 import numpy as np
 
 from . import Record, register_reader
-from threepart.checks import integer
+from threepart.problem.checks import integer
 from threepart.errors import InputError, ReaderError
 
 __all__ = ["read_mesh_file", "FIELDS", "SURFACE_TOLERANCE", "MESHIO_FORMATS", "MAX_COMPONENT"]

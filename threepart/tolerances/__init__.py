@@ -89,7 +89,7 @@ normalised error (``_level``: at the finest discretisation of a study).
     resolution (``end_nodes``: the fewest nodes, a lower bound), node-to-node
     oscillation, the penalty's overclosure.
 ``catalogue``
-    Numbers stored in ``threepart/cases.json`` against what they stand for.
+    Numbers stored in ``threepart/problem/cases.json`` against what they stand for.
 ``flight``
     The fatigue parameters of a steady (flight) cycle against the fretting cycle's
     Masing states at constant load (``tests/test_flight_cycle.py``).
@@ -108,7 +108,7 @@ normalised error (``_level``: at the finest discretisation of a study).
 ``convergence``
     The convergence tools (:mod:`threepart.convergence`) on manufactured sequences.
 ``answer``
-    The one check of every method's answer (:mod:`threepart.answer`): the
+    The one check of every method's answer (:mod:`threepart.results.answer`): the
     least pressure (of the peak) and Coulomb's bound (of ``f p_max``).
 """
 from __future__ import annotations
@@ -417,14 +417,14 @@ TOLERANCES: dict[tuple[str, str], Tolerance] = {
     ("fem-default", "cycle_energy"): _T(1e-2, "issue 31 target: energy per cycle within 1 % on the default mesh, 40 steps a half-cycle; measured 2.8e-3 on fan_blade_flight_cycle"),
     ("fem-default", "q_range"): _T(1e-3, "shear range q_1 - q_0 at the default mesh's nodes, interior: measured 1.7e-4"),
     ("fem-default", "slip_amplitude"): _T(3e-2, "as on the quick mesh, with half its elements: measured 5.2e-3 of the largest on the Ti-on-Ti flight cycle, 1.3e-2 on the fine mesh (the nodal slip's peak between nodes: not monotone in h; quick 6.0e-2); issue 37 §9: 0.24 under a limit of 0.35 when the case was a rigid punch, its slip zones 1.4 to 4.7 times narrower; no target in the issue"),
-    # --- the one check of every answer (threepart.answer), of every method -----------------------
+    # --- the one check of every answer (threepart.results.answer), of every method -----------------------
     ("answer", "p_min"): _T(1e-6, "the least pressure over the contact, of the peak: the closed form's is exact (rounding, 1e-15) and the SIE's (n = 1024) errs by <= 5e-8 of the peak (the table's 'refs' 'stress'); the SIE's answer to issue 29's case below its separation load dipped by -2.4e-5 of the peak (sharp R1 = 0.037 b), so 1e-6 refuses it and no rounding; measured on 300 random cases at n = 1024: no dip at all (min p >= 0)"),
     ("answer", "q_bound"): _T(1e-6, "|q| - f p, of f p_max: 0 in the slip zones by construction (q = f p), and in the stick zone as the corrective p*'s pointwise error, <= 5e-8 of the peak for the SIE at n = 1024 (as 'sie' 'q_bound'); the FEM holds |t_i| <= f f_i node by node (1e-12)"),
     # --- the convergence tools on manufactured sequences -----------------------------------------
     ("convergence", "exact"): _T(1e-12, "err = C h^p exactly: the fit and the extrapolation are exact up to rounding"),
     ("convergence", "iterated"): _T(1e-8, "the three-level fixed point stops when p moves by < 1e-10"),
 }
-# --- edge asymptotics (issue 32, threepart.asymptotics, docs/EDGES.md): tests/test_edges.py, tests/test_match.py
+# --- edge asymptotics (issue 32, threepart.results.edges, docs/EDGES.md): tests/test_edges.py, tests/test_match.py
 TOLERANCES.update({
     ("edges", "K_N_exact"): _T(1e-8, "issue 32 target: K_N of the closed form (E1), the SIE's density (E4) and Hertz's p0 sqrt(2/a) agree to 1e-8; measured <= 3.1e-15 (rounding)"),
     ("edges", "K_N_quadrature"): _T(1e-8, "closed-form K_N (E1) against p/sqrt(r) of eq. inverted_IE by adaptive quadrature at r = 1e-8 W and 2e-8 W, Richardson-extrapolated (the r term is 1.5e-8 of K_N there); measured <= 9.6e-13"),

@@ -28,13 +28,13 @@ ruiz                -- Ruiz's FDP τδ and FFDP σxx τ δ at the surface (Ruiz,
 
 The table of parameters (name, label, unit, function, critical plane or not) that
 :func:`fatigue`, the command line and the report loop over, and Crossland's
-parameter, are in :mod:`threepart.fatigue_parameters`.
+parameter, are in :mod:`threepart.fatigue.table`.
 
 Building blocks
 ---------------
 History             -- stacked σxx, σzz, σxz of several states at the same points
 stress_history      -- the history of a cycle's states at points (x, z)
-fatigue             -- every parameter of the table on points (x, z) (:mod:`threepart.fatigue_parameters`)
+fatigue             -- every parameter of the table on points (x, z) (:mod:`threepart.fatigue.table`)
 HotSpot             -- where a parameter peaks, how much, and on which plane
 critical_plane      -- max over plane angles of a function of (σn, τ) histories
 findley_k           -- Findley's constant checked: a float in [0, 10]
@@ -48,11 +48,11 @@ from typing import Any, Callable, Sequence
 
 import numpy as np
 
-from .cycles import SteadyStateResult
-from .fatigue_history import Cycle, History, check_cycle, as_history, stress_history
-from .results import BRANCHES
-from .stress import Stress
-from .validate import finite, positive
+from ..results.cycles import SteadyStateResult
+from .history import Cycle, History, check_cycle, as_history, stress_history
+from ..results.contact import BRANCHES
+from ..stress.flamant import Stress
+from ..problem.validate import finite, positive
 from threepart.errors import InputError
 
 __all__ = ["HotSpot", "Parameter", "Ruiz", "Fatigue", "History", "stress_history",
@@ -93,7 +93,7 @@ class Parameter:
     Attributes
     ----------
     name
-        A row's name in :mod:`threepart.fatigue_parameters` (``"swt"``, ``"ruiz_fdp"``, ...).
+        A row's name in :mod:`threepart.fatigue.table` (``"swt"``, ``"ruiz_fdp"``, ...).
     x, z
         The points (broadcast against each other).
     value
@@ -350,8 +350,8 @@ def ruiz(cycle: Cycle, history: History) -> Ruiz:
 
 
 def __getattr__(name: str) -> Any:
-    """``fatigue`` and ``Fatigue`` live in :mod:`threepart.fatigue_parameters`, beside the table they loop over."""
+    """``fatigue`` and ``Fatigue`` live in :mod:`threepart.fatigue.table`, beside the table they loop over."""
     if name in ("fatigue", "Fatigue"):
-        from . import fatigue_parameters
+        from . import table as fatigue_parameters
         return getattr(fatigue_parameters, name)
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

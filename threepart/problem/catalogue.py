@@ -1,4 +1,4 @@
-"""The one case catalogue: ``threepart/cases.json`` read into :class:`Case` records.
+"""The one case catalogue: ``threepart/problem/cases.json`` read into :class:`Case` records.
 
 Every test, benchmark and the verification run take their cases from here; a
 case's ``suites`` says who uses it (``"verify"``, ``"fem"``, ``"sie"``, see the
@@ -21,7 +21,7 @@ from typing import Any
 
 from .material import BODIES, block_modulus, material_compliance, modulus
 from .punch import Punch
-from .registry import lift_off
+from ..registry import lift_off
 from .validate import finite, positive, show
 from threepart.errors import InputError
 
@@ -53,7 +53,7 @@ class Case:
     Exactly one of ``material`` (``(E, nu)``, E in MPa) and ``compliance``
     (``A`` itself, for a nondimensional case) is given. A material is that of
     both bodies, two similar elastic bodies, ``A = 4 (1 - nu^2)/E`` (the one
-    convention, :func:`threepart.material.material_compliance`), unless
+    convention, :func:`threepart.problem.material.material_compliance`), unless
     ``bodies`` says ``"rigid punch"``: a rigid punch on an elastic half-plane of
     that material, ``A = 2 (1 - nu^2)/E``. ``s`` is the lever arm; when ``s_lift_off_fraction`` is set
     instead, :meth:`resolved` computes ``s`` from the lift-off range, using the
@@ -137,7 +137,7 @@ class Case:
     @property
     def block_E(self) -> float:
         """The modulus of the FE normal model's block under its rigid punch that has this case's ``A``
-        (:func:`threepart.material.block_modulus`): ``E`` for a ``"rigid punch"`` case, ``E/2`` for two
+        (:func:`threepart.problem.material.block_modulus`): ``E`` for a ``"rigid punch"`` case, ``E/2`` for two
         similar bodies of ``E``, the same ``nu``. ``ValueError`` for a nondimensional case."""
         return block_modulus(self._material()[0], self.bodies)
 

@@ -55,7 +55,7 @@ def is_grid(xb: np.ndarray, zb: np.ndarray) -> tuple[np.ndarray, np.ndarray, lis
 
 def _row_rule(z: float, F: np.ndarray, rule: dict[str, Any]) -> tuple[np.ndarray, np.ndarray]:
     """Nodes and weights in ``t`` of the row at depth ``z`` over the intervals between break points ``F``."""
-    from .stress import reference_rule
+    from .flamant import reference_rule
 
     U, Wu = reference_rule(rule["n"], rule["ratio"], rule["min_levels"])
     g, w = np.polynomial.legendre.leggauss(GRID_NODES)
@@ -76,7 +76,7 @@ def _row_rule(z: float, F: np.ndarray, rule: dict[str, Any]) -> tuple[np.ndarray
 def grid_integrals(x: np.ndarray, z: float, funcs: dict[str, Callable[[np.ndarray], np.ndarray]],
                    F: np.ndarray, rule: dict[str, Any],
                    evaluate: Callable[[str, Any, np.ndarray], np.ndarray]) -> dict[str, tuple[np.ndarray, ...]]:
-    """``∫ w(t) K(x - t, z) dt`` for the four kernels of :func:`threepart.stress._kernels`, one row.
+    """``∫ w(t) K(x - t, z) dt`` for the four kernels of :func:`threepart.stress.flamant._kernels`, one row.
 
     With ``C = 1/r²``, ``A = C²``, ``s = x - t``: ``z s²/r⁴ = z (C - z² A)``,
     ``z³/r⁴ = z³ A``, ``z² s/r⁴ = z² s A`` and ``s³/r⁴ = s C - z² s A``, so that

@@ -14,7 +14,7 @@ the method's own contact ``[-a, c]`` (eq. E3), the same for every method.
 Names
 -----
 Edged       -- the ``edges()`` method every normal, slip, fretting and steady-state result inherits
-Edge        -- the multipliers of one edge (left ``-a`` or right ``c``), with units (threepart.units)
+Edge        -- the multipliers of one edge (left ``-a`` or right ``c``), with units (threepart.problem.units)
 edges       -- the two :class:`Edge` records of a normal, slip, fretting or steady-state result
 K_T_stuck   -- ``(K_T_left, K_T_right)`` of the fully stuck shear under ``Q`` and ``sigma_bulk`` (E3)
 K_sigma     -- the bulk stress's share of ``K_T`` at each edge (E3)
@@ -34,11 +34,11 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from . import registry
+from .. import registry
 from threepart.errors import InputError, InputTypeError
 
 if TYPE_CHECKING:
-    from .results import NormalResult
+    from .contact import NormalResult
 
 __all__ = ["Edge", "Edged", "edges", "K_T_stuck", "K_sigma", "slip_zone", "exact_slip", "hertz_K_N", "SIDES",
            "Match", "match", "pad_loads", "SXX_POINTS", "FATIGUE_GRID", "FATIGUE_STATES", "FATIGUE_PARAMETERS"]
@@ -49,7 +49,7 @@ SIDES = ("left", "right")
 
 @dataclass(frozen=True)
 class Edge:
-    """The asymptotic multipliers of one contact edge (docs/EDGES.md); units in :data:`threepart.units.UNITS`.
+    """The asymptotic multipliers of one contact edge (docs/EDGES.md); units in :data:`threepart.problem.units.UNITS`.
 
     Attributes
     ----------
@@ -172,7 +172,7 @@ def edges(result: Any) -> tuple[Edge, Edge]:
         A :class:`~threepart.results.NormalResult`, :class:`~threepart.results.SlipResult`
         (``K_T`` of its ``Q`` and ``sigma_bulk``, E3), :class:`~threepart.results.FrettingResult`
         (``K_T`` of the change from ``-Q_max`` to ``Q_max``, reloading) or
-        :class:`~threepart.cycles.SteadyStateResult` (of the change from state 0 to 1).
+        :class:`~threepart.results.cycles.SteadyStateResult` (of the change from state 0 to 1).
 
     Raises
     ------
@@ -184,7 +184,7 @@ def edges(result: Any) -> tuple[Edge, Edge]:
         nodes near an edge for the fit).
     """
     from .cycles import SteadyStateResult
-    from .results import FrettingResult, NormalResult, SlipResult
+    from .contact import FrettingResult, NormalResult, SlipResult
     if isinstance(result, NormalResult):
         return _edges_normal(result)
     if isinstance(result, SlipResult):
@@ -269,8 +269,8 @@ class Match:
 
 def _match_iv(flank: Any, edge: Any, R: Any, P: Any) -> tuple[int, float | None, float | None]:
     """Checks of :func:`match`'s input, before anything is solved: ``(side index, R, P)``."""
-    from .results import SlipResult
-    from .validate import positive, show
+    from .contact import SlipResult
+    from ..problem.validate import positive, show
     if not isinstance(flank, SlipResult):
         raise InputTypeError(f"`flank_result` must be a partial-slip result (threepart.solve with Q and f), "
                         f"not {type(flank).__name__}")
@@ -296,7 +296,7 @@ def pad_loads(K_N: float, K_T: float, share: float, sigma_bulk: float, f: float,
     FullSlidingError
         If that ``Q`` is not below ``f P``: no pad of that size reproduces the edge.
     """
-    from .errors import FullSlidingError
+    from ..errors import FullSlidingError
     given = f"`R` = {R:.6g}" if R is not None else f"`P` = {P:.6g}"
     if R is not None:
         a = 0.5 * (K_N * A * R) ** 2
@@ -339,7 +339,7 @@ def match(flank_result: Any, edge: str, R: float | None = None, P: float | None 
         Also compare the fatigue parameters near the edge over a fretting cycle of
         amplitude ``Q`` (flank and pad, :func:`threepart.fatigue.fatigue`).
     nu
-        Poisson's ratio of the substrate for the stresses (default :data:`threepart.material.NU`);
+        Poisson's ratio of the substrate for the stresses (default :data:`threepart.problem.material.NU`);
         ``E = 4 (1 - nu²)/A`` (similar bodies) for the fatigue parameters.
 
     Raises
@@ -349,7 +349,7 @@ def match(flank_result: Any, edge: str, R: float | None = None, P: float | None 
     FullSlidingError
         If no pad of the given size reproduces the edge without sliding.
     """
-    from .material import NU
+    from ..problem.material import NU
     k, R, P = _match_iv(flank_result, edge, R, P)
     nu = NU if nu is None else nu
     target = edges(flank_result)[k]
@@ -373,7 +373,7 @@ def _slip_zone_iv(flank: Any, edge: str, k: int) -> None:
     ``tolerance("match", "slip_zone_min")`` of the contact width the rounding of the
     contact and stick-zone ends sets its size (issue 37).
     """
-    from .tolerances import tolerance
+    from ..tolerances import tolerance
     slip, width = _exact_slip(flank, k), flank.normal.width
     least = tolerance("match", "slip_zone_min").limit
     if slip > least * width:
@@ -395,8 +395,8 @@ def _pad(flank: Any, k: int, target: Edge, method: str, nu: float, *, R: float |
     """The pad of radius ``R`` (or load ``P``) reproducing ``target``, solved, and its surface σxx
     over the slip zone against the flank's: ``(punch, R, P, Q, result, edge, r, sxx_flank, sxx_pad,
     error)``."""
-    from .methods import solve
-    from .punch import Punch
+    from ..methods import solve
+    from ..problem.punch import Punch
     sign = 1.0 if k == 0 else -1.0
     A, f, sigma = flank.normal.A, flank.f, flank.sigma_bulk
     assert target.K_T is not None          # a flank with a shear (checked by match)
@@ -459,8 +459,8 @@ def _exact_slip(res: Any, k: int) -> float:
 def _fatigue(flank: Any, pad: Any, e_flank: Edge, e_pad: Edge, slip: float, sign: float,
              nu: float) -> dict[str, tuple[float, float]]:
     """Each fatigue parameter's largest value near the edge, over a fretting cycle of amplitude ``Q``, flank and pad."""
-    from .fatigue_parameters import fatigue
-    from .material import similar_pair_modulus
+    from ..fatigue.table import fatigue
+    from ..problem.material import similar_pair_modulus
     n, m = FATIGUE_GRID
     r = np.linspace(-0.5 * slip, 2.0 * slip, n)[:, None]
     z = np.linspace(0.0, slip, m)[None, :]

@@ -22,7 +22,7 @@ from typing import Any
 
 import numpy as np
 
-from .errors import FullSlidingError, NoConvergenceError
+from ..errors import FullSlidingError, NoConvergenceError
 
 __all__ = ["coulomb_state", "RETRIES"]
 

@@ -22,8 +22,8 @@ from typing import Any, Callable
 import numpy as np
 from numpy.typing import ArrayLike
 
-from .errors import NoConvergenceError, SlipReversalError
-from .checks import finite
+from ..errors import NoConvergenceError, SlipReversalError
+from ..problem.checks import finite
 from .legendre import gauss01
 
 __all__ = ["check_sigma_bulk", "corrective_tilt", "slip_direction_margin", "slip_dissipation"]

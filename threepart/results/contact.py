@@ -19,15 +19,15 @@ import numpy as np
 from numpy.typing import ArrayLike
 from scipy.optimize import minimize_scalar
 
-from .material import NU   # the default Poisson's ratio of the stresses (its home, with why)
+from ..problem.material import NU   # the default Poisson's ratio of the stresses (its home, with why)
 from .answer import check_coulomb, check_pressure
-from .asymptotics import Edged
-from .punch import Punch
-from .checks import coordinates, finite, integer
+from .edges import Edged
+from ..problem.punch import Punch
+from ..problem.checks import coordinates, finite, integer
 from threepart.errors import InputError
 
 if TYPE_CHECKING:
-    from .stress import Stress
+    from ..stress.flamant import Stress
 
 __all__ = ["NormalResult", "SlipResult", "FrettingResult", "MasingCycle", "Peak", "Diagnostics", "SEGMENTS",
            "BRANCHES", "masing", "segments_in_contact", "PEAK_N", "PEAK_GRID"]
@@ -136,7 +136,7 @@ def interior_kinks(b: float, lo: float, hi: float, *more: float) -> list[float]:
 
 
 def _checked(method: Callable[..., Any], names: tuple[str, ...]) -> Callable[..., Any]:
-    """``method`` with its first ``len(names)`` arguments checked by :func:`~threepart.validate.coordinates`."""
+    """``method`` with its first ``len(names)`` arguments checked by :func:`~threepart.problem.validate.coordinates`."""
     if getattr(method, "_coordinates", False):
         return method
 
@@ -165,8 +165,8 @@ class Answer:
 
     A subclass's ``pressure``, ``shear``, ``slip``, ``slip_amplitude`` and ``stress``
     are wrapped when the class is made, so their ``x`` (and ``z``) pass
-    :func:`threepart.validate.coordinates` in every method. Each result is checked
-    when built (:meth:`check`, :mod:`threepart.answer`): a tensile pressure or a shear
+    :func:`threepart.problem.validate.coordinates` in every method. Each result is checked
+    when built (:meth:`check`, :mod:`threepart.results.answer`): a tensile pressure or a shear
     past Coulomb's bound is refused by name. A result that wraps someone else's
     numbers to be judged (the pytest plugin's, the referee's) sets
     ``checks_answer = False``: the comparison measures what it gets wrong instead.
@@ -233,7 +233,7 @@ class NormalResult(Edged, Answer):
         surface. ``nu`` is the substrate's Poisson ratio (plane strain), used
         for ``σyy`` and the derived stresses; an FE result uses its own.
         """
-        from .stress import stress
+        from ..stress.flamant import stress
         return stress(x, z, pressure=self.pressure, ends=(-self.a, self.c), nu=nu,
                       kinks=interior_kinks(self.punch.b, -self.a, self.c))
 
@@ -314,12 +314,12 @@ class NormalResult(Edged, Answer):
 
         See :meth:`threepart.Punch.max_slope`. Half-plane theory assumes it
         small; every solver refuses a contact past
-        ``threepart.validate.SLOPE_LIMIT``.
+        ``threepart.problem.validate.SLOPE_LIMIT``.
         """
         return self.punch.max_slope(self.a, self.c, self.alpha)
 
     def check(self) -> None:
-        """A compressive pressure over the contact (:func:`threepart.answer.check_pressure`)."""
+        """A compressive pressure over the contact (:func:`threepart.results.answer.check_pressure`)."""
         check_pressure(self)
 
 
@@ -409,13 +409,13 @@ class SlipResult(Edged, Answer):
 
     def stress(self, x: ArrayLike, z: ArrayLike, *, nu: float = NU) -> Stress:
         """Stresses in the substrate at ``(x, z)``: pressure, shear and ``sigma_bulk`` (see :meth:`NormalResult.stress`)."""
-        from .stress import stress
+        from ..stress.flamant import stress
         return stress(x, z, pressure=self.pressure, shear=self.shear, ends=(-self.a, self.c),
                       sigma_bulk=self.sigma_bulk, nu=nu,
                       kinks=interior_kinks(self.normal.punch.b, -self.a, self.c, *self.stick_zone))
 
     def check(self) -> None:
-        """Coulomb's law over the contact (:func:`threepart.answer.check_coulomb`); its normal was checked when built."""
+        """Coulomb's law over the contact (:func:`threepart.results.answer.check_coulomb`); its normal was checked when built."""
         check_coulomb(self)
 
 
@@ -498,7 +498,7 @@ class FrettingResult(Edged, Answer):
         ``sigma_bulk Q / Q_max`` (in phase with ``Q``); see
         :meth:`NormalResult.stress`.
         """
-        from .stress import stress
+        from ..stress.flamant import stress
         normal = self.normal
         return stress(x, z, pressure=normal.pressure, shear=lambda t: self.shear(t, Q, branch),
                       ends=(-normal.a, normal.c), sigma_bulk=self.sigma_bulk * float(Q) / self.Q_max,

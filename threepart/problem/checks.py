@@ -11,8 +11,8 @@ The contract, the same in every method:
   a float64, so that no solver computes in float16 or in object arithmetic.
 
 This module imports nothing of threepart's, so that the problem types
-(:mod:`threepart.punch`, :mod:`threepart.results`, :mod:`threepart.stress`) use it
-and the checks of a problem (:mod:`threepart.validate`, which re-exports these
+(:mod:`threepart.problem.punch`, :mod:`threepart.results`, :mod:`threepart.stress`) use it
+and the checks of a problem (:mod:`threepart.problem.validate`, which re-exports these
 names) can use the problem types, without an import circle.
 
 show            -- a value as a message quotes it

@@ -42,7 +42,7 @@ import numpy as np
 from .checks import (LENGTH_RANGE, NU_RANGE, TILTS, check_finite, check_positive, check_tilt, coordinates,
                      finite, flag, integer, poisson, positive, real, reals, show)
 from .punch import Punch
-from .results import NormalResult
+from ..results.contact import NormalResult
 from threepart.errors import InputError, InputTypeError
 
 __all__ = ["real", "finite", "positive", "check_finite", "check_positive", "TILTS", "check_tilt",
@@ -111,7 +111,7 @@ def check_contact(punch: Any, a: float, c: float, alpha: float) -> float:
     SlopeLimitError
         If the slope exceeds :data:`SLOPE_LIMIT`.
     """
-    from .errors import SlopeLimitError
+    from ..errors import SlopeLimitError
 
     check_arcs(punch, a, c)
     slope = punch.max_slope(a, c, alpha)
@@ -142,7 +142,7 @@ def check_arcs(punch: Any, a: float, c: float) -> None:
     The punch's profile ends there (eq. 2): half-plane theory has no answer.
     Part of :func:`check_contact`; alone, it holds the lift-off contacts.
     """
-    from .errors import ArcExtentError
+    from ..errors import ArcExtentError
 
     if a > punch.b + punch.R1:
         raise ArcExtentError(f"the contact end x = {-a:.6g} runs past the R1 arc's extent "
@@ -220,7 +220,7 @@ def shear_load(Q: Any, f: Any, P: float, name: str = "Q", what: str = "there is 
     method passes ``limit=SLIP_RATIO_LIMIT`` and ``|Q|/(fP)`` above it is a
     ``FullSlidingError`` that names that limit. Shared by every method.
     """
-    from .errors import FullSlidingError, full_sliding
+    from ..errors import FullSlidingError, full_sliding
 
     Q = positive(name, Q) if name == "Q_max" else finite(name, Q)
     f = positive("f", f)
@@ -230,7 +230,7 @@ def shear_load(Q: Any, f: Any, P: float, name: str = "Q", what: str = "there is 
     if ratio > limit:
         raise FullSlidingError(
             f"|`{name}`|/(f P) = {ratio!r} is within {1 - limit:.0e} of full sliding, past "
-            f"{limit!r} (threepart.validate.SLIP_RATIO_LIMIT), the closest to full sliding this "
+            f"{limit!r} (threepart.problem.validate.SLIP_RATIO_LIMIT), the closest to full sliding this "
             "method resolves the stick zone; the closed form has no such limit")
     return Q, f
 

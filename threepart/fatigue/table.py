@@ -39,12 +39,12 @@ from typing import Any, Callable, Mapping, Sequence
 import numpy as np
 from numpy.typing import ArrayLike
 
-from .fatigue import (K_FINDLEY, Cycle, History, Parameter, Ruiz, hot_spot_parameter, findley,
-                      findley_k, ruiz, stress_history, swt, von_mises_range)
-from .fatigue_history import as_history
-from .material import NU
-from .stress import Stress
-from .validate import finite, poisson, positive, reals
+from .functions import (K_FINDLEY, Cycle, History, Parameter, Ruiz, hot_spot_parameter, findley, findley_k,
+                        ruiz, stress_history, swt, von_mises_range)
+from .history import as_history
+from ..problem.material import NU
+from ..stress.flamant import Stress
+from ..problem.validate import finite, poisson, positive, reals
 from threepart.errors import InputError, InputTypeError
 
 __all__ = ["FatigueParameter", "register_parameter", "parameters", "parameter", "reported", "Inputs",
@@ -117,7 +117,7 @@ _TABLE: dict[str, FatigueParameter] = {}
 def register_parameter(row: FatigueParameter) -> FatigueParameter:
     """Add ``row`` to the table (replacing one of the same name) and return it."""
     if not isinstance(row, FatigueParameter):
-        raise InputTypeError(f"`row` must be a threepart.fatigue_parameters.FatigueParameter, not "
+        raise InputTypeError(f"`row` must be a threepart.fatigue.table.FatigueParameter, not "
                         f"{type(row).__name__}")
     _TABLE[row.name] = row
     return row
@@ -323,7 +323,7 @@ def fatigue(cycle: Cycle, x: ArrayLike, z: ArrayLike, *, E: float, nu: float = N
     k
         Findley's constant (default :data:`~threepart.fatigue.K_FINDLEY`).
     states
-        Indices of the states to use (default all; :func:`~threepart.fatigue.stress_history`).
+        Indices of the states to use (default all; :func:`~threepart.fatigue.history`).
     surface
         Surface points ``x`` for the surface parameters (Ruiz's). Default: the points of
         ``(x, z)`` at ``z = 0`` or, if there are none, the distinct ``x`` on the surface.

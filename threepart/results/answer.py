@@ -4,7 +4,7 @@ Every normal and partial-slip result, of every method (the closed form, the
 SIE, the FEM and any registered since), is checked here when it is built
 (:class:`threepart.results.NormalResult` calls :func:`check_pressure` and
 :class:`~threepart.results.SlipResult` :func:`check_coulomb` from their
-``__post_init__``; :class:`~threepart.cycles.SteadyStateResult` checks both of
+``__post_init__``; :class:`~threepart.results.cycles.SteadyStateResult` checks both of
 its ends), so that no solve returns a contact that pulls on the half-plane or a
 shear that exceeds friction, whatever the method's own checks missed (a
 tolerance too loose, a discretisation too coarse):
@@ -26,8 +26,8 @@ from typing import Any
 
 import numpy as np
 
-from .errors import CoulombError, NoConvergenceError, SeparationError
-from .tolerances import tolerance
+from ..errors import CoulombError, NoConvergenceError, SeparationError
+from ..tolerances import tolerance
 
 __all__ = ["check_pressure", "check_coulomb", "ANSWER_POINTS"]
 

@@ -4,7 +4,7 @@ Both build on the one result shape of :mod:`threepart.results` (their normal
 solutions are :class:`~threepart.results.NormalResult` records) and share its
 coordinate checks: every ``shear``, ``slip``, ``slip_amplitude`` and ``stress``
 checks its ``x`` (and ``z``), and a steady state's shear at both ends is checked
-against Coulomb's law when it is built (:mod:`threepart.answer`).
+against Coulomb's law when it is built (:mod:`threepart.results.answer`).
 
 Names
 -----
@@ -22,13 +22,13 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from .answer import check_coulomb
-from .punch import Punch
-from .asymptotics import Edged
-from .material import NU
-from .results import Diagnostics, NormalResult, Answer, interior_kinks
-from .checks import LENGTH_RANGE, show
-from .steady import common_contact
-from .stress import Stress, stress
+from ..problem.punch import Punch
+from .edges import Edged
+from ..problem.material import NU
+from .contact import Diagnostics, NormalResult, Answer, interior_kinks
+from ..problem.checks import LENGTH_RANGE, show
+from ..halfplane.steady import common_contact
+from ..stress.flamant import Stress, stress
 from threepart.errors import DisjointContactsError, InputError, InputTypeError, StickZoneError
 
 __all__ = ["SteadyStateResult", "HistoryResult", "MarchedSteadyResult"]
@@ -94,7 +94,7 @@ class SteadyStateResult(Edged, Answer):
 
     def check(self) -> None:
         """The stick zone inside both end contacts (:meth:`check_stick_zone`); Coulomb's law at both ends
-        of the cycle (:func:`threepart.answer.check_coulomb`), none in shakedown."""
+        of the cycle (:func:`threepart.results.answer.check_coulomb`), none in shakedown."""
         self.check_stick_zone()
         if not self.shakedown:
             for k in (0, 1):
@@ -109,7 +109,7 @@ class SteadyStateResult(Edged, Answer):
         Raises
         ------
         DisjointContactsError
-            If the end contacts do not overlap (:func:`threepart.steady.common_contact`).
+            If the end contacts do not overlap (:func:`threepart.halfplane.steady.common_contact`).
         StickZoneError
             If the zone is inverted or leaves the contacts' common part.
         """
@@ -201,7 +201,7 @@ class SteadyStateResult(Edged, Answer):
 
 
 def _in_range(x: ArrayLike, z: ArrayLike) -> None:
-    """Refuse points past :data:`threepart.checks.LENGTH_RANGE`, whose squares overflow, naming the coordinate."""
+    """Refuse points past :data:`threepart.problem.checks.LENGTH_RANGE`, whose squares overflow, naming the coordinate."""
     for name, v in (("x", x), ("z", z)):
         big = float(np.max(np.abs(np.asarray(v, dtype=float)), initial=0.0))
         if big > LENGTH_RANGE[1]:
@@ -211,7 +211,7 @@ def _in_range(x: ArrayLike, z: ArrayLike) -> None:
 
 @dataclass(frozen=True)
 class _End:
-    """One end ``k`` of a steady cycle, seen as a partial-slip answer by :func:`~threepart.answer.check_coulomb`."""
+    """One end ``k`` of a steady cycle, seen as a partial-slip answer by :func:`~threepart.results.answer.check_coulomb`."""
 
     cycle: SteadyStateResult
     k: int
@@ -273,7 +273,7 @@ class HistoryResult(Answer):
         that repeats its predecessor).
     energy
         Friction work per completed cycle, per unit length (:meth:`History.cycles
-        <threepart.history.History.cycles>`, the cycles in :attr:`cycles`).
+        <threepart.halfplane.load_history.History.cycles>`, the cycles in :attr:`cycles`).
     cycles
         ``(start, end)`` state indices of each completed cycle.
     work
@@ -432,7 +432,7 @@ class MarchedSteadyResult(SteadyStateResult):
 
     def check(self) -> None:
         """The stick intervals inside both end contacts; Coulomb's law held in every state of the march
-        (:func:`threepart.coulomb.coulomb_state` refuses a shear past its bound)."""
+        (:func:`threepart.halfplane.coulomb.coulomb_state` refuses a shear past its bound)."""
         if self.stick_intervals:
             self.check_stick_zone()
 

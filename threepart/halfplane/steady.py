@@ -33,10 +33,10 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from .bulk import psi
-from .errors import (DisjointContactsError, InputError, InputTypeError, NoConvergenceError, OneSidedSlipError,
-                     StickZoneError,                      full_sliding)
+from ..errors import (DisjointContactsError, InputError, InputTypeError, NoConvergenceError,
+                      OneSidedSlipError, StickZoneError, full_sliding)
 from .legendre import gauss01
-from .validate import finite, positive, show
+from ..problem.validate import finite, positive, show
 
 __all__ = ["STATE_KEYS", "state_values", "shakes_down", "common_contact", "cycle_states", "check_cycle_states", "ramp", "corrective_load", "corrective_tilt_cycle", "tilt_rate",
            "gap_rate", "cycle_margin", "half_cycle_work", "lam_rule", "WORK_RTOL", "WORK_NODES"]
@@ -167,7 +167,7 @@ def cycle_margin(left: ArrayLike, right: ArrayLike, a: ArrayLike, c: ArrayLike, 
     h, m = 0.5 * (right - left), 0.5 * (right + left)
     lead = -f * dP_star / math.pi
     tail = f / A * np.asarray(dalpha_star) * h
-    # ψ(ξ) = arccosh ξ/sqrt(ξ^2 - 1), as threepart.bulk's (of ξ - 1)
+    # ψ(ξ) = arccosh ξ/sqrt(ξ^2 - 1), as threepart.halfplane.bulk's (of ξ - 1)
     return (lead * psi((m + np.asarray(a)) / h - 1.0) - tail, lead * psi((np.asarray(c) - m) / h - 1.0) + tail)
 
 

@@ -18,11 +18,11 @@ from typing import Any, Sequence
 import numpy as np
 from numpy.typing import ArrayLike
 
-from .cycles import SteadyStateResult
-from .material import NU
-from .results import FrettingResult, MasingCycle, masing
-from .stress import Stress
-from .validate import integer, poisson, reals
+from ..results.cycles import SteadyStateResult
+from ..problem.material import NU
+from ..results.contact import FrettingResult, MasingCycle, masing
+from ..stress.flamant import Stress
+from ..problem.validate import integer, poisson, reals
 from threepart.errors import InputError, InputTypeError
 
 __all__ = ["History", "stress_history", "Cycle", "SAME_U"]
@@ -248,7 +248,7 @@ def _masing_history(cycle: FrettingResult, xb: np.ndarray, zb: np.ndarray, idx: 
     """The history of a Masing cycle from its loading states, by superposition (docs/FATIGUE.md).
 
     A state ``(Q, branch)`` carries the pressure, the shear
-    ``c_max q(Q_max) + c_u q(u)`` of :func:`threepart.results.masing` and the
+    ``c_max q(Q_max) + c_u q(u)`` of :func:`threepart.results.contact.masing` and the
     bulk stress ``sigma_bulk Q/Q_max``; the stresses are linear in the
     tractions, so they are the pressure's stresses (one evaluation) plus the
     same combination of the shear-only stresses of the loading states at
@@ -256,7 +256,7 @@ def _masing_history(cycle: FrettingResult, xb: np.ndarray, zb: np.ndarray, idx: 
     one traction for ``n`` loading states, instead of one of two tractions per
     state (``3n - 3`` distinct states).
     """
-    from .stress import stress
+    from ..stress.flamant import stress
 
     normal, Q_max = cycle.normal, cycle.Q_max
     ends = (-normal.a, normal.c)

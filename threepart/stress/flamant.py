@@ -56,8 +56,8 @@ from typing import Any, Callable, Iterator
 import numpy as np
 from numpy.typing import ArrayLike
 
-from .progress import heartbeat
-from .checks import finite, show
+from ..progress import heartbeat
+from ..problem.checks import finite, show
 from threepart.errors import InputError, InputTypeError
 
 __all__ = ["Stress", "stress", "hilbert", "flamant_normal", "flamant_tangential",
@@ -398,11 +398,11 @@ def _parts(xb: np.ndarray, zb: np.ndarray, funcs: dict[str, Traction], lo: float
            kinks: np.ndarray) -> Iterator[tuple[Any, dict[str, tuple[np.ndarray, ...]]]]:
     """``(where, integrals)`` over the flattened points, in parts of bounded memory.
 
-    A grid's rows deeper than :data:`threepart.stress_grid.GRID_DEPTH` of the contact's
-    width come one row at a time from :func:`threepart.stress_grid.grid_integrals`; every
+    A grid's rows deeper than :data:`threepart.stress.grid.GRID_DEPTH` of the contact's
+    width come one row at a time from :func:`threepart.stress.grid.grid_integrals`; every
     other point in chunks of :data:`POINTS_PER_CHUNK` from the pointwise rule.
     """
-    from .stress_grid import GRID_DEPTH, grid_integrals, is_grid
+    from .grid import GRID_DEPTH, grid_integrals, is_grid
 
     xf, zf = xb.ravel(), zb.ravel()
     grid = is_grid(xb, zb)
@@ -466,7 +466,7 @@ def stress(x: ArrayLike, z: ArrayLike, *, pressure: Traction | None, shear: Trac
         Vectorised callable ``p(x) >= 0`` (compressive), e.g. ``result.pressure``;
         only its values on ``ends`` are used. ``None``: the stresses of the shear
         alone (a part of a superposition, such as a fretting cycle's history
-        built from its loading states, :func:`threepart.fatigue.stress_history`).
+        built from its loading states, :func:`threepart.fatigue.history`).
     shear
         Vectorised callable ``q(x)``, the shear the punch exerts on the substrate
         along ``+x`` (e.g. ``slip.shear``); ``None`` for a frictionless contact.
@@ -486,7 +486,7 @@ def stress(x: ArrayLike, z: ArrayLike, *, pressure: Traction | None, shear: Trac
 
     Points that form a grid (``x`` the same on every row, one ``z`` per row, e.g.
     ``x`` of shape ``(1, nx)`` and ``z`` of ``(nz, 1)``) share one rule per depth
-    (:mod:`threepart.stress_grid`); the rest, and the grid's rows shallower than
+    (:mod:`threepart.stress.grid`); the rest, and the grid's rows shallower than
     ``GRID_DEPTH`` of the contact's width, take each point's own rule. Both agree
     to the quadrature's accuracy. The work is done in parts of bounded memory.
 

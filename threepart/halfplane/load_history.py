@@ -26,7 +26,7 @@ from typing import Any, Sequence
 import numpy as np
 
 from .steady import state_values
-from .validate import finite, integer, positive, show
+from ..problem.validate import finite, integer, positive, show
 from threepart.errors import InputError, InputTypeError, ReaderError
 from threepart.textfile import read_text
 
@@ -168,7 +168,7 @@ def check_history(history: Any) -> History:
     TypeError
         ``history`` is none of these, a state is neither a sequence of four nor a mapping with the
         keys ``P, s, Q, sigma_bulk``, or a value is not a real number (a bool, a string, a Decimal:
-        as :func:`threepart.steady.check_cycle_states`, through :mod:`threepart.checks`).
+        as :func:`threepart.halfplane.steady.check_cycle_states`, through :mod:`threepart.problem.checks`).
     ValueError
         Naming the state (counted from 0) and the value: ``P`` not > 0, a value not finite or past
         double precision, more than :data:`MAX_HISTORY` states.

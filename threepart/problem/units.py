@@ -25,7 +25,7 @@ UNITS: dict[str, str] = {
 }
 
 #: Young's moduli of engineering solids (MPa), the range a material ``(E, nu)`` may give
-#: (:func:`threepart.material.modulus`, every command's ``--E``, the catalogue): a value outside is
+#: (:func:`threepart.problem.material.modulus`, every command's ``--E``, the catalogue): a value outside is
 #: a unit slip. Low, 1 GPa: above every structural metal's and ceramic's modulus written in GPa
 #: (Mg 45 ... steel 210 ... WC 700 GPa), so that ``E = 210`` (steel in GPa) is refused, yet below
 #: the engineering polymers (PP 1.5, epoxy 3, nylon 2-4, PEEK 3.6 GPa); softer solids (PE, PTFE,

@@ -26,7 +26,7 @@ import math
 import numpy as np
 from numpy.typing import ArrayLike
 
-from .errors import InputError, MeshResolutionError
+from ..errors import InputError, MeshResolutionError
 
 __all__ = ["peak", "FIT_SAMPLES", "edge_multipliers", "WINDOWS", "DEGREES", "JOIN_SHARE", "MIN_NODES",
            "stick_ends", "STICK_MARGIN", "STICK_NODES", "STICK_LOAD", "contact_run", "CONTACT_LOAD"]

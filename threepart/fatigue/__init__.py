@@ -1,0 +1,35 @@
+"""Fretting-fatigue parameters from the stress history of a cycle, for any method (docs/FATIGUE.md).
+
+Modules
+-------
+history         -- the stresses of a cycle's states at points (x, z): :class:`History`
+functions       -- the parameters on a history: von Mises range, SWT, Findley, Ruiz; the hot spot
+table           -- the table of parameters that :func:`fatigue`, the command line and the report
+                    loop over (a new parameter is one row), Crossland's parameter
+
+Public names
+------------
+fatigue             -- every parameter of the table on points (x, z) of a cycle
+Fatigue             -- its record: each parameter's field and hot spot
+stress_history      -- the stresses of a cycle's states at points (x, z)
+History             -- stacked σxx, σzz, σxz of several states at the same points
+von_mises_range     -- max over pairs of states of the von Mises stress of the difference
+swt                 -- Smith–Watson–Topper on the critical plane
+findley             -- Findley on the critical plane, τa + k σn,max
+ruiz                -- Ruiz's FDP (τ δ) and FFDP (σxx τ δ) at the surface
+crossland           -- Crossland's parameter
+HotSpot             -- where a parameter is largest, how much, and on which plane
+Parameter, Ruiz     -- a parameter's field and hot spot; Ruiz's two
+critical_plane      -- max over plane angles of a function of (σn, τ) histories
+findley_k           -- Findley's constant checked
+K_FINDLEY           -- the default Findley constant
+"""
+from __future__ import annotations
+
+from .functions import (K_FINDLEY, HotSpot, Parameter, Ruiz, critical_plane, findley, findley_k, ruiz, swt,
+                        von_mises_range)
+from .history import History, stress_history
+from .table import Fatigue, crossland, fatigue
+
+__all__ = ["fatigue", "Fatigue", "stress_history", "History", "von_mises_range", "swt", "findley", "ruiz",
+           "crossland", "HotSpot", "Parameter", "Ruiz", "critical_plane", "findley_k", "K_FINDLEY"]

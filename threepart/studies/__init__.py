@@ -1,0 +1,1 @@
+"""Studies above the methods: the matching pad test (:mod:`threepart.studies.matching`)."""
