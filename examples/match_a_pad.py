@@ -15,7 +15,7 @@ closest to the flank's), its load ``P`` and shear ``Q`` (E9). At the command lin
 from __future__ import annotations
 
 from threepart import Punch, similar_pair, solve
-from threepart.results.edges import match
+from threepart.studies.matching import match
 
 A = similar_pair(E=210e3, nu=0.3)          # two steel bodies, eq. (4) [1/MPa]
 P, s, Q, f = 400.0, 0.1, 100.0, 0.5        # the flank's load [N/mm], lever arm [mm], shear [N/mm], friction

@@ -1,4 +1,4 @@
-"""The matching pad test (issue 32, docs/EDGES.md section 6): threepart.results.edges.match and `threepart match`.
+"""The matching pad test (issue 32, docs/EDGES.md section 6): threepart.studies.matching.match and `threepart match`.
 
 References, each independent of the code under test:
 
@@ -17,6 +17,7 @@ import pytest
 
 from threepart import Punch, similar_pair, solve
 from threepart.results import edges as asymptotics
+from threepart.studies.matching import match
 from threepart.problem.catalogue import get_case
 from threepart.errors import FullSlidingError
 from threepart.tolerances import tolerance
@@ -50,7 +51,7 @@ def _hertz_edge(A: float, R: float, P: float, Q: float, sigma: float, side: str)
 @pytest.mark.parametrize("sigma", [0.0, 20.0])
 def test_pad_reproduces_the_edge(side, size, sigma):
     flank = _flank(sigma=sigma)
-    m = asymptotics.match(flank, side, **size, fatigue=False)
+    m = match(flank, side, **size, fatigue=False)
     target = flank.edges()[("left", "right").index(side)]
     K_N, K_T = _hertz_edge(m.A, m.R, m.P, m.Q, m.sigma_bulk, side)
     assert K_N == pytest.approx(target.K_N, rel=MULTIPLIERS)
@@ -65,7 +66,7 @@ def test_pad_reproduces_the_edge(side, size, sigma):
 def test_surface_stress_and_fatigue_agree(side):
     """The pad of best σxx (neither R nor P): σxx within 5 % over the slip zone, the fatigue parameters
     within 1 %."""
-    m = asymptotics.match(_flank(0.05), side)
+    m = match(_flank(0.05), side)
     assert m.sxx_error <= SXX, f"{side}: {m.sxx_error:.3e}"
     for name, (flank, pad) in m.fatigue.items():
         assert abs(pad - flank) <= FATIGUE * abs(flank), f"{name}: {flank:.6g} against {pad:.6g}"
@@ -73,7 +74,7 @@ def test_surface_stress_and_fatigue_agree(side):
 
 def test_surface_stress_agreement_falls_with_the_slip_zone():
     """With R fixed the match is first order: σxx's disagreement shrinks with Q/fP, within 5 % at 0.02."""
-    errors = [asymptotics.match(_flank(ratio), "left", R=50.0, fatigue=False).sxx_error
+    errors = [match(_flank(ratio), "left", R=50.0, fatigue=False).sxx_error
               for ratio in (0.05, 0.02, 0.005)]
     assert errors[0] > errors[1] > errors[2]
     assert errors[1] <= SXX
@@ -82,15 +83,15 @@ def test_surface_stress_agreement_falls_with_the_slip_zone():
 def test_refusals():
     flank = _flank()
     with pytest.raises(TypeError, match="`flank_result` must be a partial-slip result"):
-        asymptotics.match(flank.normal, "left", R=50.0)
+        match(flank.normal, "left", R=50.0)
     with pytest.raises(ValueError, match="`edge` = 'middle' must be 'left' or 'right'"):
-        asymptotics.match(flank, "middle", R=50.0)
+        match(flank, "middle", R=50.0)
     with pytest.raises(ValueError, match="give at most one of `R`"):
-        asymptotics.match(flank, "left", R=50.0, P=100.0)
+        match(flank, "left", R=50.0, P=100.0)
     with pytest.raises(ValueError, match="`R` = -1.0 must be > 0"):
-        asymptotics.match(flank, "left", R=-1.0)
+        match(flank, "left", R=-1.0)
     with pytest.raises(FullSlidingError, match="the pad of `R` = 1 would need"):
-        asymptotics.match(_flank(0.2), "left", R=1.0)
+        match(_flank(0.2), "left", R=1.0)
 
 
 # --- the command line ---------------------------------------------------------------------------
@@ -158,9 +159,9 @@ def test_the_default_pad_is_the_one_of_least_surface_stress_error(name):
     judged = 0
     for k, side in enumerate(("left", "right")):
         target = flank.edges()[k]
-        wide = asymptotics.match(flank, side, R=math.sqrt(flank.normal.width) / (flank.normal.A * target.K_N),
+        wide = match(flank, side, R=math.sqrt(flank.normal.width) / (flank.normal.A * target.K_N),
                                  fatigue=False)
-        best = asymptotics.match(flank, side, fatigue=False)
+        best = match(flank, side, fatigue=False)
         assert best.sxx_error <= wide.sxx_error
         ratio = asymptotics.exact_slip(flank, k) / asymptotics.slip_zone(target.K_T, target.K_N, c.f)
         if ratio <= ASYMPTOTIC_REGIME:
@@ -189,7 +190,7 @@ def test_a_flank_without_a_slip_zone_is_refused_by_name_never_nan(Q, size):
         e = flank.edges()[k]
         assert 2 * abs(e.K_T) / (F * e.K_N) <= tolerance("match", "slip_zone_min").limit * flank.normal.width
         with pytest.raises(ValueError, match=f"`flank_result` has no slip zone to match at its {side} edge"):
-            asymptotics.match(flank, side, **size, fatigue=False)
+            match(flank, side, **size, fatigue=False)
 
 
 def test_the_command_line_refuses_a_flank_without_shear_with_one_line(capsys):

@@ -12,7 +12,7 @@ from __future__ import annotations
 from typing import Any, Sequence
 
 from threepart import registry
-from threepart.results.edges import exact_slip
+from threepart.results.edges import SIDES, exact_slip
 
 from .sections import Cell, Figure, Section, Status, Table, fmt, head_unit, unit_of, with_unit, words
 
@@ -112,7 +112,6 @@ def asymptote_study() -> dict[str, Any]:
     """
     import numpy as np
 
-    from threepart.results import edges as asymptotics
     from threepart.problem.catalogue import get_case
     from threepart.registry import REFERENCE, get
 
@@ -128,7 +127,7 @@ def asymptote_study() -> dict[str, Any]:
         W = normal.a + normal.c
         shear = get(REFERENCE).slip
         assert shear is not None           # the reference method computes partial slip
-        for k, side in enumerate(asymptotics.SIDES):
+        for k, side in enumerate(SIDES):
             slip, error = [], []
             for ratio in ASYMPTOTE_RATIOS:
                 try:

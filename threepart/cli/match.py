@@ -4,7 +4,7 @@ The flank is a catalogue case with a shear load (``--case``) or a punch, materia
 and loads; ``--edge`` picks its edge. The pad (a cylinder of radius ``R`` on a flat,
 the same material and ``f``, under the flank's bulk stress) gets the load ``P`` and
 shear ``Q`` whose edge has the flank's ``K_N`` and ``K_T``, hence its slip zone
-(:func:`threepart.results.edges.match`). Give the pad's radius (``--pad-R``) or its
+(:func:`threepart.studies.matching.match`). Give the pad's radius (``--pad-R``) or its
 load (``--pad-P``), or neither for the pad whose surface σxx over the slip zone is
 closest to the flank's. It prints
 both edges' multipliers, the pad's loads, the surface σxx agreement over the slip
@@ -113,8 +113,9 @@ def _line(label: str, value: float, key: str) -> str:
 
 def _print(pr: dict[str, Any], flank: Any, m: Any) -> None:
     """The flank's and the pad's edges, the pad's loads and how well the edge field agrees."""
-    from threepart.results import edges as asymptotics
+    from threepart.fatigue.table import parameter
     from threepart.problem.units import UNITS
+    from threepart.results.edges import exact_slip
 
     print(f"flank: {flank.method}, contact [{-flank.a:.6g}, {flank.c:.6g}] {UNITS['a']}, "
           f"Q = {flank.Q:.6g} {UNITS['Q']}, f = {flank.f:g}, sigma_bulk = {flank.sigma_bulk:g} {UNITS['sigma_bulk']}")
@@ -127,11 +128,9 @@ def _print(pr: dict[str, Any], flank: Any, m: Any) -> None:
         a, b = getattr(m.flank, key) + 0.0, getattr(m.pad, key) + 0.0   # + 0.0: no "-0"
         print(f"  {label:<24} {a:14.6g} {b:14.6g} {UNITS[key]}")
     k = ("left", "right").index(m.side)
-    exact = [asymptotics.exact_slip(r, k) for r in (flank, m.result)]
+    exact = [exact_slip(r, k) for r in (flank, m.result)]
     print(f"  {'slip zone (exact)':<24} {exact[0]:14.6g} {exact[1]:14.6g} {UNITS['slip_zone']}")
     print(f"surface sigma_xx over the slip zone: largest difference {m.sxx_error:.3g} of the flank's largest")
-    from threepart.fatigue.table import parameter
-
     for name, (a, b) in m.fatigue.items():
         label, unit = parameter(name).label, parameter(name).unit
         print(f"  {label:<24} {a:14.6g} {b:14.6g} {unit}  ({(b - a) / abs(a):+.2e})")
@@ -139,13 +138,13 @@ def _print(pr: dict[str, Any], flank: Any, m: Any) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Run ``threepart match``: check the input, solve the flank and the pad, print; the exit status."""
-    from threepart.results import edges as asymptotics
     from threepart import solve
+    from threepart.studies.matching import match
 
     pr = _problem(args)
     options: dict[str, Any] = {"nu": pr["nu"]} if args.method == "fem" else {}
     flank = solve(pr["punch"], pr["P"], pr["s"], A=pr["A"], Q=pr["Q"], f=pr["f"],
                   sigma_bulk=pr["sigma_bulk"], method=args.method, **options)
-    m = asymptotics.match(flank, args.edge, **pr["pad"], fatigue=args.fatigue, nu=pr["nu"])
+    m = match(flank, args.edge, **pr["pad"], fatigue=args.fatigue, nu=pr["nu"])
     _print(pr, flank, m)
     return 0

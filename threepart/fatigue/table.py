@@ -323,7 +323,7 @@ def fatigue(cycle: Cycle, x: ArrayLike, z: ArrayLike, *, E: float, nu: float = N
     k
         Findley's constant (default :data:`~threepart.fatigue.K_FINDLEY`).
     states
-        Indices of the states to use (default all; :func:`~threepart.fatigue.history`).
+        Indices of the states to use (default all; :func:`~threepart.fatigue.stress_history`).
     surface
         Surface points ``x`` for the surface parameters (Ruiz's). Default: the points of
         ``(x, z)`` at ``z = 0`` or, if there are none, the distinct ``x`` on the surface.

@@ -466,7 +466,7 @@ def stress(x: ArrayLike, z: ArrayLike, *, pressure: Traction | None, shear: Trac
         Vectorised callable ``p(x) >= 0`` (compressive), e.g. ``result.pressure``;
         only its values on ``ends`` are used. ``None``: the stresses of the shear
         alone (a part of a superposition, such as a fretting cycle's history
-        built from its loading states, :func:`threepart.fatigue.history`).
+        built from its loading states, :func:`threepart.fatigue.stress_history`).
     shear
         Vectorised callable ``q(x)``, the shear the punch exerts on the substrate
         along ``+x`` (e.g. ``slip.shear``); ``None`` for a frictionless contact.
