@@ -74,7 +74,8 @@ from threepart.errors import LiftOffError, NoConvergenceError, StickZoneError
 from threepart.halfplane.legendre import gauss01
 from threepart.problem.punch import Punch
 from threepart.results import Diagnostics, MasingCycle, NormalResult
-from threepart.problem.validate import check_shear, check_states
+from threepart.problem.validate import check_states
+from threepart.results.slip import check_shear
 
 from . import formulas
 

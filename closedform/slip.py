@@ -25,7 +25,7 @@ from scipy.optimize import minimize_scalar
 from . import formulas
 from threepart.halfplane.bulk import check_sigma_bulk, corrective_tilt, slip_direction_margin
 from threepart.errors import SlipReversalError, StickSeparationError, StickZoneError
-from threepart.problem.validate import check_shear
+from threepart.results.slip import check_shear
 from .newton import HALF_PI, SCALAR, bracketed_root, ray_state, solve_phi
 from threepart.results import Diagnostics, NormalResult, SlipResult
 

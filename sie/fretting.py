@@ -44,7 +44,8 @@ from threepart.errors import InputError, NoConvergenceError, StickSeparationErro
 from threepart.halfplane.legendre import gauss01
 from threepart.problem.punch import Punch
 from threepart.results import Diagnostics, MasingCycle, NormalResult
-from threepart.problem.validate import SLIP_RATIO_LIMIT, check_shear, check_states
+from threepart.problem.validate import SLIP_RATIO_LIMIT, check_states
+from threepart.results.slip import check_shear
 
 from .normal import DEFAULT_N, DEFAULT_SCHEME, check_scheme, solve_ends
 from .projection import slope_coefficients

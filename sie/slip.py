@@ -23,7 +23,8 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from threepart.halfplane.bulk import check_sigma_bulk, corrective_tilt, slip_direction_margin
-from threepart.problem.validate import SLIP_RATIO_LIMIT, check_shear
+from threepart.problem.validate import SLIP_RATIO_LIMIT
+from threepart.results.slip import check_shear
 from threepart.errors import (InputError, NoConvergenceError, SeparationError, SlipReversalError,
                               StickSeparationError)
 from threepart.results import Diagnostics, NormalResult, SlipResult

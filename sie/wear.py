@@ -65,7 +65,8 @@ from threepart.fretting_wear import WearResult, register_marcher
 from threepart.problem.punch import Punch
 from threepart.results import Diagnostics
 from threepart.halfplane.legendre import gauss01
-from threepart.problem.validate import SLIP_RATIO_LIMIT, check_shear, check_states
+from threepart.problem.validate import SLIP_RATIO_LIMIT, check_states
+from threepart.results.slip import check_shear
 
 from .fretting import SieFrettingResult, Zones, loop_integral
 from .profile import (DEFAULT_TERMS, ProfileNormalResult, WornProfile, profile_approach, profile_gap,

@@ -246,3 +246,34 @@ def test_the_scan_sees_lazy_and_relative_imports(tmp_path):
     assert [_layer(n) for n in ("threepart.calculix.read", "threepart.reports.map", "threepart.cli",
                                 "threepart.sie.normal", "threepart.results.fields", "numpy")] == \
         ["foreign", "reports", "cli", "solvers", "core", None]
+
+
+def test_the_core_has_no_import_cycle_at_any_depth():
+    """No chain of imports among the core's modules, counting imports inside functions, leads back to
+    where it started (issue 40): the data flow problem -> results -> stress -> fatigue -> methods ->
+    studies runs one way. The failure names the cycle."""
+    graph = _core_graph(module_level=False)
+    assert len(graph) > 30
+    cycle = _cycle(graph)
+    assert cycle is None, "import cycle: " + " -> ".join(cycle or ())
+
+
+def test_the_core_s_packages_import_one_another_one_way():
+    """Between the core's sub-packages too the imports run one way (problem -> halfplane -> stress ->
+    results -> fatigue -> methods -> studies): a module of one package never needs a package that
+    needs it. The failure names the packages' cycle."""
+    packages: dict[str, set[str]] = {}
+    for module, found in _core_graph(module_level=False).items():
+        own = module.split(".")[1] if "." in module else module
+        packages.setdefault(own, set()).update(m.split(".")[1] for m in found if "." in m and m.split(".")[1] != own)
+    assert {"problem", "results", "halfplane", "stress", "fatigue", "studies"} <= set(packages)
+    cycle = _cycle(packages)
+    assert cycle is None, "packages' import cycle: " + " -> ".join(cycle or ())
+
+
+def test_the_cycle_check_finds_a_cycle_through_a_function():
+    """The check itself: two modules of which one imports the other inside a function."""
+    assert _cycle({"a": {"b"}, "b": {"c"}, "c": set()}) is None
+    assert _cycle({"a": {"b"}, "b": {"a"}}) == ["a", "b", "a"]
+    graph = _core_graph(module_level=False)
+    assert "threepart.results.contact" in graph["threepart.results.cycles"]

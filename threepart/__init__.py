@@ -100,7 +100,7 @@ from typing import TYPE_CHECKING, Any
 _HOMES = {
     "Punch": "problem.punch", "compliance": "problem.material", "similar_pair": "problem.material",
     "rigid_punch": "problem.material", "material_compliance": "problem.material", "TILTS": "problem.validate",
-    "NormalResult": "results.contact", "SlipResult": "results.contact", "Peak": "results.contact",
+    "NormalResult": "results.contact", "SlipResult": "results.slip", "Peak": "results.contact",
     "SteadyStateResult": "results.cycles", "HistoryResult": "results.cycles",
     "LiftOffError": "errors", "SeparationError": "errors", "FullSlidingError": "errors",
     "StickZoneError": "errors", "StickSeparationError": "errors",
@@ -110,7 +110,7 @@ _HOMES = {
     "solve": "methods", "METHODS": "methods", "CHOICES": "methods",
     "Stress": "stress.flamant",
     "hilbert": "stress.flamant",
-    "stress_history": "fatigue.functions", "von_mises_range": "fatigue.functions",
+    "stress_history": "fatigue.history", "von_mises_range": "fatigue.functions",
     "swt": "fatigue.functions", "findley": "fatigue.functions", "ruiz": "fatigue.functions",
     "HotSpot": "fatigue.functions",
     "steady_state": "methods", "fretting": "methods",
@@ -128,9 +128,11 @@ if TYPE_CHECKING:   # pragma: no cover - for type checkers and IDEs only
     from .problem.material import compliance, material_compliance, rigid_punch, similar_pair
     from .methods import CHOICES, METHODS, fretting, solve, steady_state
     from .problem.punch import Punch
-    from .results.contact import NormalResult, Peak, SlipResult
+    from .results.contact import NormalResult, Peak
+    from .results.slip import SlipResult
     from .results.cycles import HistoryResult, SteadyStateResult
-    from .fatigue.functions import HotSpot, findley, ruiz, stress_history, swt, von_mises_range
+    from .fatigue.functions import HotSpot, findley, ruiz, swt, von_mises_range
+    from .fatigue.history import stress_history
     from .stress.flamant import Stress, hilbert
     from .fretting_wear import WearResult, wear
     from .problem.validate import TILTS

@@ -41,7 +41,8 @@ from .errors import (CycleSlipReversalError, DisjointContactsError, InputError, 
                      OneSidedSlipError, SeparationError, StickZoneError)
 from .problem.punch import Punch
 from .results.cycles import MarchedSteadyResult, SteadyStateResult
-from .results.contact import FrettingResult, NormalResult, SlipResult
+from .results.contact import NormalResult
+from .results.slip import FrettingResult, SlipResult
 from .halfplane.bulk import check_sigma_bulk
 from .problem.validate import check_positive, integer
 

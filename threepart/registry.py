@@ -67,7 +67,8 @@ from threepart.errors import InputError, InputTypeError
 if TYPE_CHECKING:  # pragma: no cover
     from .problem.punch import Punch
     from .results.cycles import HistoryResult, SteadyStateResult
-    from .results.contact import FrettingResult, NormalResult, SlipResult
+    from .results.contact import NormalResult
+    from .results.slip import FrettingResult, SlipResult
 
 __all__ = ["Method", "register", "get", "names", "lift_off", "BUILTIN", "REFERENCE"]
 

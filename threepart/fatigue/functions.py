@@ -27,14 +27,12 @@ findley             -- Findley on the critical plane: max_θ (τa + k σn,max)
 ruiz                -- Ruiz's FDP τδ and FFDP σxx τ δ at the surface (Ruiz, Boddington & Chen 1984)
 
 The table of parameters (name, label, unit, function, critical plane or not) that
-:func:`fatigue`, the command line and the report loop over, and Crossland's
-parameter, are in :mod:`threepart.fatigue.table`.
+:func:`threepart.fatigue.fatigue`, the command line and the report loop over, and
+Crossland's parameter, are in :mod:`threepart.fatigue.table`; a cycle's stress
+history (:class:`~threepart.fatigue.history.History`) in :mod:`threepart.fatigue.history`.
 
 Building blocks
 ---------------
-History             -- stacked σxx, σzz, σxz of several states at the same points
-stress_history      -- the history of a cycle's states at points (x, z)
-fatigue             -- every parameter of the table on points (x, z) (:mod:`threepart.fatigue.table`)
 HotSpot             -- where a parameter peaks, how much, and on which plane
 critical_plane      -- max over plane angles of a function of (σn, τ) histories
 findley_k           -- Findley's constant checked: a float in [0, 10]
@@ -49,15 +47,14 @@ from typing import Any, Callable, Sequence
 import numpy as np
 
 from ..results.cycles import SteadyStateResult
-from .history import Cycle, History, check_cycle, as_history, stress_history
-from ..results.contact import BRANCHES
+from .history import Cycle, History, check_cycle, as_history
+from ..results.slip import BRANCHES
 from ..stress.flamant import Stress
 from ..problem.validate import finite, positive
 from threepart.errors import InputError
 
-__all__ = ["HotSpot", "Parameter", "Ruiz", "Fatigue", "History", "stress_history",
-           "von_mises_range", "swt", "findley", "ruiz", "fatigue", "critical_plane",
-           "K_FINDLEY", "COARSE_ANGLES", "ZOOM_LEVELS", "HOT_SPOT_TIE", "findley_k"]
+__all__ = ["HotSpot", "Parameter", "Ruiz", "von_mises_range", "swt", "findley", "ruiz", "critical_plane",
+           "hot_spot_parameter", "K_FINDLEY", "COARSE_ANGLES", "ZOOM_LEVELS", "HOT_SPOT_TIE", "findley_k"]
 
 #: Findley's constant ``k`` by default: 0.3 is typical of steels and titanium alloys
 #: (Socie & Marquis, *Multiaxial Fatigue*, 2000, report 0.2–0.3); give the material's own
@@ -134,7 +131,7 @@ def von_mises_range(history: History | Sequence[Stress]) -> Parameter:
     Parameters
     ----------
     history
-        The states' stresses (:func:`stress_history`, or a sequence of ``Stress``).
+        The states' stresses (:func:`~threepart.fatigue.stress_history`, or a sequence of ``Stress``).
     """
     h = as_history(history)
     nu = h.nu
@@ -347,11 +344,3 @@ def ruiz(cycle: Cycle, history: History) -> Ruiz:
     zero = np.zeros_like(x)
     return Ruiz(x, sxx_max, q, delta, hot_spot_parameter("ruiz_fdp", x, zero, fdp),
                 hot_spot_parameter("ruiz_ffdp", x, zero, sxx_max * fdp))
-
-
-def __getattr__(name: str) -> Any:
-    """``fatigue`` and ``Fatigue`` live in :mod:`threepart.fatigue.table`, beside the table they loop over."""
-    if name in ("fatigue", "Fatigue"):
-        from . import table as fatigue_parameters
-        return getattr(fatigue_parameters, name)
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

@@ -20,7 +20,7 @@ from numpy.typing import ArrayLike
 
 from ..results.cycles import SteadyStateResult
 from ..problem.material import NU
-from ..results.contact import FrettingResult, MasingCycle, masing
+from ..results.slip import FrettingResult, MasingCycle, masing
 from ..stress.flamant import Stress
 from ..problem.validate import integer, poisson, reals
 from threepart.errors import InputError, InputTypeError
@@ -248,7 +248,7 @@ def _masing_history(cycle: FrettingResult, xb: np.ndarray, zb: np.ndarray, idx: 
     """The history of a Masing cycle from its loading states, by superposition (docs/FATIGUE.md).
 
     A state ``(Q, branch)`` carries the pressure, the shear
-    ``c_max q(Q_max) + c_u q(u)`` of :func:`threepart.results.contact.masing` and the
+    ``c_max q(Q_max) + c_u q(u)`` of :func:`threepart.results.slip.masing` and the
     bulk stress ``sigma_bulk Q/Q_max``; the stresses are linear in the
     tractions, so they are the pressure's stresses (one evaluation) plus the
     same combination of the shear-only stresses of the loading states at

@@ -39,9 +39,9 @@ from typing import Any, Callable, Mapping, Sequence
 import numpy as np
 from numpy.typing import ArrayLike
 
-from .functions import (K_FINDLEY, Cycle, History, Parameter, Ruiz, hot_spot_parameter, findley, findley_k,
-                        ruiz, stress_history, swt, von_mises_range)
-from .history import as_history
+from .functions import (K_FINDLEY, Parameter, Ruiz, hot_spot_parameter, findley, findley_k, ruiz, swt,
+                        von_mises_range)
+from .history import Cycle, History, as_history, stress_history
 from ..problem.material import NU
 from ..stress.flamant import Stress
 from ..problem.validate import finite, poisson, positive, reals

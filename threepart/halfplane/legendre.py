@@ -1,6 +1,7 @@
 """Gauss–Legendre rules on ``[0, 1]``: the one home of the rule every quadrature of a loop or a zone uses.
 
-gauss01 -- the ``n``-point rule's nodes in ``[0, 1]`` and weights (cached)
+gauss01  -- the ``n``-point rule's nodes in ``[0, 1]`` and weights (cached)
+graded01 -- ``n``-point rules on panels of ``[0, 1]`` graded geometrically toward ``u = 0`` (the stresses')
 """
 from __future__ import annotations
 
@@ -9,7 +10,7 @@ import functools
 import numpy as np
 import scipy.special
 
-__all__ = ["gauss01"]
+__all__ = ["gauss01", "graded01"]
 
 
 @functools.lru_cache(maxsize=32)
@@ -23,3 +24,15 @@ def gauss01(n: int) -> tuple[np.ndarray, np.ndarray]:
     nodes, weights = 0.5 * (t + 1), 0.5 * w
     nodes.flags.writeable = weights.flags.writeable = False
     return nodes, weights
+
+
+def graded01(n: int, ratio: float, levels: int) -> tuple[np.ndarray, np.ndarray]:
+    """Nodes ``u`` and weights on ``[0, 1]``: ``n``-point Gauss–Legendre panels ``[0, ratio**levels]``,
+    ``[ratio**levels, ratio**(levels - 1)]``, ..., ``[ratio, 1]``, graded geometrically toward ``u = 0``.
+
+    The rule of the stresses' remainder near each break point (:data:`threepart.stress.RULE`).
+    """
+    g, w = np.polynomial.legendre.leggauss(n)
+    edges = np.concatenate([[0.0], ratio ** np.arange(levels, -1, -1.0)])
+    lo, hi = edges[:-1, None], edges[1:, None]
+    return (0.5 * (hi - lo) * g + 0.5 * (hi + lo)).ravel(), (0.5 * (hi - lo) * w).ravel()

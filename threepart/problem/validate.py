@@ -26,9 +26,7 @@ SLOPE_WARNING       -- the slope past which the measured small-slope error excee
 MAX_STATES          -- the most recorded states per fretting branch (``check_states``)
 reals               -- an array of real numbers as float64 (the batch solvers' ``P`` and ``s``)
 load_scale          -- ``A P max(R1, R2, b)`` inside ``LENGTH_RANGE**2`` (the contact scale squared)
-check_normal        -- the ``normal`` argument of a slip or fretting solve: a NormalResult
 shear_load          -- ``Q`` (or ``Q_max``) and ``f`` for a load ``P``: ``|Q| < f P`` (FullSlidingError)
-check_shear         -- the same on a normal result (a half-plane slip or fretting solve)
 SLIP_RATIO_LIMIT    -- the largest ``|Q|/(fP)`` a numerical stick zone is solved for (1 - 1e-6)
 coordinates         -- the ``x`` (``z``) of a result's pressure, shear, slip or stress: finite reals
 flag                -- a yes/no option (``beyond_small_slopes``): a Python or numpy bool
@@ -42,13 +40,12 @@ import numpy as np
 from .checks import (LENGTH_RANGE, NU_RANGE, TILTS, check_finite, check_positive, check_tilt, coordinates,
                      finite, flag, integer, poisson, positive, real, reals, show)
 from .punch import Punch
-from ..results.contact import NormalResult
 from threepart.errors import InputError, InputTypeError
 
 __all__ = ["real", "finite", "positive", "check_finite", "check_positive", "TILTS", "check_tilt",
            "LENGTH_RANGE", "show", "NU_RANGE", "poisson", "integer", "lever_arm", "SLOPE_LIMIT",
            "SLOPE_WARNING", "check_contact", "check_punch", "MAX_STATES", "check_states", "reals",
-           "load_scale", "check_normal", "shear_load", "check_shear", "SLIP_RATIO_LIMIT", "coordinates",
+           "load_scale", "shear_load", "SLIP_RATIO_LIMIT", "coordinates",
            "flag", "check_arcs", "first_refused"]
 
 
@@ -191,18 +188,6 @@ def load_scale(punch: Any, P: Any, A: float, name: str = "P") -> None:
             f"outside [{lo:g}, {hi:g}] (length^2), the range this library computes in double precision")
 
 
-def check_normal(normal: Any, argument: str = "normal") -> Any:
-    """``normal`` if it is a :class:`threepart.results.NormalResult`, else ``TypeError``.
-
-    ``argument`` is the parameter's name in the caller (``"normal_solution"``
-    in the closed form), which the message names.
-    """
-    if not isinstance(normal, NormalResult):
-        raise InputTypeError(f"`{argument}` must be a NormalResult (from a solve_normal), not "
-                        f"{type(normal).__name__}")
-    return normal
-
-
 #: the largest ``|Q|/(f P)`` a numerical stick zone is solved for: closer to full sliding
 #: the stick zone is narrower than about 1e-3 of the contact and, where it straddles a
 #: join, its equations are too ill-conditioned to converge (the SIE failed on 16 of 211
@@ -233,12 +218,3 @@ def shear_load(Q: Any, f: Any, P: float, name: str = "Q", what: str = "there is 
             f"{limit!r} (threepart.problem.validate.SLIP_RATIO_LIMIT), the closest to full sliding this "
             "method resolves the stick zone; the closed form has no such limit")
     return Q, f
-
-
-def check_shear(normal: Any, Q: Any, f: Any, name: str = "Q", what: str = "there is no stick zone",
-                limit: float = 1.0, argument: str = "normal") -> tuple[float, float]:
-    """:func:`shear_load` on a normal result: ``normal`` must be a NormalResult (else ``TypeError``).
-
-    ``argument`` is the normal result's parameter name in the caller, for the message.
-    """
-    return shear_load(Q, f, check_normal(normal, argument).P, name, what, limit)

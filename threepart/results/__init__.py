@@ -7,7 +7,8 @@ special-case a method.
 
 Modules
 -------
-contact     -- normal, slip and fretting results, their diagnostics and peaks
+contact     -- the normal result, its diagnostics and peaks; what every result shares (Answer)
+slip        -- partial slip and the fretting cycle
 cycles      -- the steady state of a cycle, a marched load history, the marched steady state
 answer      -- the check of every answer: p >= 0, |q| <= f p
 edges       -- the edge multipliers K_N, K_T every result inherits (``edges()``), the slip zone
@@ -28,7 +29,8 @@ MarchedSteadyResult -- the steady state as the last cycle of a marched history
 """
 from __future__ import annotations
 
-from .contact import BRANCHES, Diagnostics, FrettingResult, MasingCycle, NormalResult, Peak, SlipResult
+from .contact import Diagnostics, NormalResult, Peak
+from .slip import BRANCHES, FrettingResult, MasingCycle, SlipResult
 from .cycles import HistoryResult, MarchedSteadyResult, SteadyStateResult
 
 __all__ = ["NormalResult", "SlipResult", "FrettingResult", "MasingCycle", "Peak", "Diagnostics", "BRANCHES",

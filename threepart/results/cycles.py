@@ -64,6 +64,8 @@ class SteadyStateResult(Edged, Answer):
     A subclass gives ``p*`` (:meth:`corrective`) and the gaps (:meth:`gap`); the shear and slip follow.
     """
 
+    edge_kind = "steady"   # its edge records (threepart.results.edges.EDGE_KINDS)
+
     normals: tuple[NormalResult, NormalResult]
     states: tuple[tuple[float, float, float, float], tuple[float, float, float, float]]
     f: float

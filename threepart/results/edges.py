@@ -27,7 +27,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, Callable, ClassVar
 
 from .. import registry
 from threepart.errors import InputError, InputTypeError
@@ -35,7 +35,8 @@ from threepart.errors import InputError, InputTypeError
 if TYPE_CHECKING:
     from .contact import NormalResult
 
-__all__ = ["Edge", "Edged", "edges", "K_T_stuck", "K_sigma", "slip_zone", "exact_slip", "hertz_K_N", "SIDES"]
+__all__ = ["Edge", "Edged", "edges", "K_T_stuck", "K_sigma", "slip_zone", "exact_slip", "hertz_K_N", "SIDES",
+           "EDGE_KINDS"]
 
 #: the two edges of a contact, in the order :func:`edges` returns them
 SIDES = ("left", "right")
@@ -150,7 +151,15 @@ def _with_shear(normals: tuple[NormalResult, ...], K_T: tuple[float, float],
 
 
 class Edged:
-    """What every normal, slip, fretting and steady-state result has: :meth:`edges`."""
+    """What every normal, slip, fretting and steady-state result has: :meth:`edges`.
+
+    A result class names the records :func:`edges` builds for it in :attr:`edge_kind`
+    (``"normal"``, ``"slip"``, ``"fretting"`` or ``"steady"``), so that this module needs
+    none of the result classes: they import it.
+    """
+
+    #: which records :func:`edges` builds (a key of :data:`EDGE_KINDS`); a subclass inherits it
+    edge_kind: ClassVar[str] = ""
 
     def edges(self) -> tuple[Edge, Edge]:
         """Multipliers of the edges ``-a`` and ``c``: K_N, K_T, slip zone (:func:`edges`)."""
@@ -177,23 +186,26 @@ def edges(result: Any) -> tuple[Edge, Edge]:
         no ``edges``), or as that method's ``edges`` raises (the FEM: too few
         nodes near an edge for the fit).
     """
-    from .cycles import SteadyStateResult
-    from .contact import FrettingResult, NormalResult, SlipResult
-    if isinstance(result, NormalResult):
-        return _edges_normal(result)
-    if isinstance(result, SlipResult):
-        n = result.normal
-        return _with_shear((n,), K_T_stuck(result.Q, result.sigma_bulk, n.a, n.c),
-                           K_sigma(result.sigma_bulk, n.a, n.c), result.sigma_bulk, result.f,
-                           "slip", result.method, cycle=False)
-    if isinstance(result, FrettingResult):
-        n, dQ, ds = result.normal, 2.0 * result.Q_max, 2.0 * result.sigma_bulk
-        return _with_shear((n,), K_T_stuck(dQ, ds, n.a, n.c), K_sigma(ds, n.a, n.c), ds, result.f,
-                           "fretting", result.method, cycle=True)
-    if isinstance(result, SteadyStateResult):
-        return _edges_steady(result)
-    raise InputTypeError(f"`result` must be a normal, slip, fretting or steady-state result, "
-                    f"not {type(result).__name__}")
+    build = EDGE_KINDS.get(result.edge_kind) if isinstance(result, Edged) else None
+    if build is None:
+        raise InputTypeError(f"`result` must be a normal, slip, fretting or steady-state result, "
+                             f"not {type(result).__name__}")
+    return build(result)
+
+
+def _edges_slip(result: Any) -> tuple[Edge, Edge]:
+    """Records of a partial-slip result: ``K_T`` of its ``Q`` and ``sigma_bulk`` (E3)."""
+    n = result.normal
+    return _with_shear((n,), K_T_stuck(result.Q, result.sigma_bulk, n.a, n.c),
+                       K_sigma(result.sigma_bulk, n.a, n.c), result.sigma_bulk, result.f,
+                       "slip", result.method, cycle=False)
+
+
+def _edges_fretting(result: Any) -> tuple[Edge, Edge]:
+    """Records of a fretting cycle: ``K_T`` of the change from ``-Q_max`` to ``Q_max`` (E7)."""
+    n, dQ, ds = result.normal, 2.0 * result.Q_max, 2.0 * result.sigma_bulk
+    return _with_shear((n,), K_T_stuck(dQ, ds, n.a, n.c), K_sigma(ds, n.a, n.c), ds, result.f,
+                       "fretting", result.method, cycle=True)
 
 
 def _edges_steady(result: Any) -> tuple[Edge, Edge]:
@@ -205,6 +217,11 @@ def _edges_steady(result: Any) -> tuple[Edge, Edge]:
     dT = (T1[0] - T0[0], T1[1] - T0[1])
     dS = (S1[0] - S0[0], S1[1] - S0[1])
     return _with_shear((n0, n1), dT, dS, s1 - s0, result.f, "steady", result.method, cycle=True)
+
+
+#: the records of each kind of result (:attr:`Edged.edge_kind`)
+EDGE_KINDS: dict[str, Callable[[Any], tuple[Edge, Edge]]] = {
+    "normal": _edges_normal, "slip": _edges_slip, "fretting": _edges_fretting, "steady": _edges_steady}
 
 
 def exact_slip(res: Any, k: int) -> float | None:

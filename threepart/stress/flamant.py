@@ -56,7 +56,9 @@ from typing import Any, Callable, Iterator
 import numpy as np
 from numpy.typing import ArrayLike
 
+from ..halfplane.legendre import graded01
 from ..progress import heartbeat
+from .grid import GRID_DEPTH, grid_integrals, is_grid
 from ..problem.checks import finite, show
 from threepart.errors import InputError, InputTypeError
 
@@ -261,14 +263,6 @@ def _ends_kinks(ends: Any, kinks: Any) -> tuple[float, float, np.ndarray]:
     return lo, hi, k
 
 
-def reference_rule(n: int, ratio: float, levels: int) -> tuple[np.ndarray, np.ndarray]:
-    """Nodes ``u`` and weights on ``[0, 1]``, panels graded geometrically toward ``u = 0``."""
-    g, w = np.polynomial.legendre.leggauss(n)
-    edges = np.concatenate([[0.0], ratio ** np.arange(levels, -1, -1.0)])
-    lo, hi = edges[:-1, None], edges[1:, None]
-    return (0.5 * (hi - lo) * g + 0.5 * (hi + lo)).ravel(), (0.5 * (hi - lo) * w).ravel()
-
-
 def _depth(x: np.ndarray, z: np.ndarray, lo: float, hi: float, kinks: np.ndarray,
            rule: dict[str, Any]) -> np.ndarray:
     """Grading levels each point needs: ``ratio**levels <= sqrt(ζ/W)/2``, within the rule's bounds.
@@ -349,7 +343,7 @@ def _integrals_at_depth(x: np.ndarray, z: np.ndarray, funcs: dict[str, Traction]
     whose tractions are evaluated once; the interval holding ``x`` is replaced, for each
     point, by its two parts on either side of ``x`` (clipped into the contact).
     """
-    U, Wu = reference_rule(rule["n"], rule["ratio"], rule["levels"])
+    U, Wu = graded01(rule["n"], rule["ratio"], rule["levels"])
     F = np.concatenate([[lo], kinks, [hi]])
     nint = F.size - 1
     sE, s_hu2, s_wt = _halves(F[:-1], F[1:], U, Wu)
@@ -402,7 +396,6 @@ def _parts(xb: np.ndarray, zb: np.ndarray, funcs: dict[str, Traction], lo: float
     width come one row at a time from :func:`threepart.stress.grid.grid_integrals`; every
     other point in chunks of :data:`POINTS_PER_CHUNK` from the pointwise rule.
     """
-    from .grid import GRID_DEPTH, grid_integrals, is_grid
 
     xf, zf = xb.ravel(), zb.ravel()
     grid = is_grid(xb, zb)

@@ -25,6 +25,8 @@ from typing import Any, Callable
 
 import numpy as np
 
+from ..halfplane.legendre import graded01
+
 __all__ = ["is_grid", "grid_integrals", "GRID_DEPTH", "GRID_NODES", "GRID_PANEL"]
 
 #: rows at depth ``z >= GRID_DEPTH W`` (``W`` the contact's width) take the grid path
@@ -55,9 +57,8 @@ def is_grid(xb: np.ndarray, zb: np.ndarray) -> tuple[np.ndarray, np.ndarray, lis
 
 def _row_rule(z: float, F: np.ndarray, rule: dict[str, Any]) -> tuple[np.ndarray, np.ndarray]:
     """Nodes and weights in ``t`` of the row at depth ``z`` over the intervals between break points ``F``."""
-    from .flamant import reference_rule
 
-    U, Wu = reference_rule(rule["n"], rule["ratio"], rule["min_levels"])
+    U, Wu = graded01(rule["n"], rule["ratio"], rule["min_levels"])
     g, w = np.polynomial.legendre.leggauss(GRID_NODES)
     nodes, weights = [], []
     for A, B in zip(F[:-1], F[1:]):

@@ -28,7 +28,7 @@ from ..methods import solve
 from ..problem.material import NU, similar_pair_modulus
 from ..problem.punch import Punch
 from ..problem.validate import positive, show
-from ..results.contact import SlipResult
+from ..results.slip import SlipResult
 from ..results.edges import SIDES, Edge, edges, exact_slip
 from ..tolerances import tolerance
 
