@@ -52,8 +52,9 @@ __all__ = ["METHODS", "CHOICES", "AUTO", "solve", "steady_state", "march_steady_
 METHODS = tuple(registry.BUILTIN)
 #: what ``method`` may be (and any method registered since, see :mod:`threepart.registry`)
 CHOICES = ("auto", *METHODS)
-#: ``method="auto"``: the first where it holds, else the second
-AUTO = ("closedform", "sie")
+#: ``method="auto"``: the first where it holds, else the second (:data:`threepart.registry.REFERENCE`
+#: and :data:`~threepart.registry.BEYOND_REFERENCE`)
+AUTO = (registry.REFERENCE, registry.BEYOND_REFERENCE)
 #: the closed form's refusals past its framework, on which ``auto`` falls back
 FALLBACK_ON = (LiftOffError, StickZoneError, SeparationError)
 #: the superposition's refusals of an admissible cycle (closed form and SIE), on which the steady

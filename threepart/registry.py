@@ -56,6 +56,7 @@ names       -- every method's name: the built-in ones first, in report order
 lift_off    -- the lift-off lever arms (s_min, s_max) by a method of a name
 BUILTIN     -- the built-in methods and the packages that register them
 REFERENCE   -- the method the others are compared with (the closed form)
+BEYOND_REFERENCE -- the reference past the closed form's framework, and ``auto``'s fallback (the SIE)
 """
 from __future__ import annotations
 
@@ -70,15 +71,19 @@ if TYPE_CHECKING:  # pragma: no cover
     from .results.contact import NormalResult
     from .results.slip import FrettingResult, SlipResult
 
-__all__ = ["Method", "register", "get", "names", "lift_off", "BUILTIN", "REFERENCE"]
+__all__ = ["Method", "register", "get", "names", "lift_off", "BUILTIN", "REFERENCE", "BEYOND_REFERENCE"]
 
 #: the built-in methods, in report order (the closed form is the reference of the others),
 #: and the package whose import registers each
 BUILTIN: dict[str, str] = {"closedform": "threepart.closedform", "sie": "threepart.sie",
                            "fem": "threepart.fem"}
-#: the method the others are compared with wherever it answers; a case past its framework names
-#: another (``Case.reference``), and the report tells such cases by that
+#: the method the others are compared with wherever it answers (the paper's closed form; also the
+#: one whose lift-off range resolves a catalogue case's lever-arm fraction); a case past its
+#: framework names another (``Case.reference``), and the report tells such cases by that
 REFERENCE = "closedform"
+#: the reference past the closed form's framework (lift-off, a stick zone on the central segment):
+#: ``Case.reference`` of such a case, and the method ``auto`` falls back on (``methods.AUTO``)
+BEYOND_REFERENCE = "sie"
 
 
 @dataclass(frozen=True)

@@ -14,7 +14,7 @@ from typing import Any, Mapping
 
 import numpy as np
 
-from threepart.fatigue import HotSpot
+from threepart.fatigue import HotSpot, hot_spot
 from threepart.problem.material import NU, similar_pair_modulus
 
 from ..compare import STRESS_REACH, is_steady, normal_of, surface_line
@@ -57,14 +57,13 @@ def hot_spots(result: Any, nu: float, ref: Any | None = None) -> dict[str, HotSp
     """
     ref = result if ref is None else ref
     xs = surface_line(ref)
-    surf = result.stress(xs, np.zeros_like(xs), nu=nu)
-    i = int(np.argmax(surf.sxx))
-    out = {"sxx": HotSpot(float(xs[i]), 0.0, float(surf.sxx[i]))}
+    zero = np.zeros_like(xs)
+    surf = result.stress(xs, zero, nu=nu)
+    out = {"sxx": hot_spot(xs, zero, surf.sxx)}
     x, z = field_grid(ref)
     st = result.stress(x, z, nu=nu)
     for name, values in (("von_mises", st.von_mises), ("max_shear", st.max_shear)):
-        j = np.unravel_index(int(np.argmax(values)), values.shape)
-        out[name] = HotSpot(float(x[j]), float(z[j]), float(values[j]))
+        out[name] = hot_spot(x, z, values)
     return out
 
 

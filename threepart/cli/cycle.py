@@ -25,9 +25,6 @@ from threepart.errors import InputError
 
 __all__ = ["add_parser", "run"]
 
-#: grid of the fatigue hot spots, as ``threepart fatigue``'s defaults: x over [-a - W/4, c + W/4]
-#: (nx points), z over [0, W] (nz points), Ruiz on NS surface points over the contact
-NX, NZ, NS = 41, 21, 201
 #: points over the larger contact at which the slip amplitude is sampled (its largest value, the CSV)
 PROFILE_POINTS = 2001
 #: two cycles' energies agree when they differ by at most this fraction of the larger: the
@@ -272,17 +269,11 @@ def _history_figures(res: Any) -> dict[str, Any]:
 
 
 def _hot_spots(res: Any, pr: dict[str, Any]) -> dict[str, Any]:
-    """The fatigue hot spots of the steady cycle on ``threepart fatigue``'s default grid."""
-    import numpy as np
+    """The fatigue hot spots of the steady cycle on the default grid (:func:`threepart.fatigue.table.grid`)."""
+    from threepart.fatigue.table import fatigue, grid
 
-    from threepart.fatigue import fatigue
-
-    lo, hi = min(-n.a for n in res.normals), max(n.c for n in res.normals)
-    W = hi - lo
-    x = np.linspace(lo - 0.25 * W, hi + 0.25 * W, NX)[None, :]
-    z = np.linspace(0.0, W, NZ)[:, None]
-    line = lo + W * (np.arange(NS) + 0.5) / NS    # inside: never on a contact end
-    F = fatigue(res, x, z, E=pr["E"], nu=pr["nu"], surface=np.union1d(np.ravel(x), line))
+    x, z, surface = grid(min(-n.a for n in res.normals), max(n.c for n in res.normals))
+    F = fatigue(res, x, z, E=pr["E"], nu=pr["nu"], surface=surface)
     out = {}
     for par in F.parameters.values():
         out[par.name] = par.hot

@@ -89,15 +89,16 @@ def _fatigue_args(p: argparse.ArgumentParser) -> None:
                          "(default 5; +-Q_max are always recorded); each distinct state costs one "
                          "stress evaluation")
     gr = p.add_argument_group("grid under the contact: x over [-a - W/4, c + W/4], z over [0, depth W]")
-    gr.add_argument("--nx", type=int, default=41, help="points along x, >= 2 (default 41)")
-    gr.add_argument("--nz", type=int, default=21, help="points in depth, >= 2 (default 21; the "
-                                                      "first row is the surface, z = 0)")
-    gr.add_argument("--ns", type=int, default=201,
+    # None: threepart.fatigue.table.GRID, read when used (as --k)
+    gr.add_argument("--nx", type=int, help="points along x, >= 2 (default {nx})")
+    gr.add_argument("--nz", type=int, help="points in depth, >= 2 (default {nz}; the "
+                                           "first row is the surface, z = 0)")
+    gr.add_argument("--ns", type=int,
                     help="surface points over the contact for Ruiz's parameters, >= 2 (default "
-                         "201, at the midpoints of equal parts, with the grid's surface row)")
-    gr.add_argument("--depth", type=float, default=1.0,
+                         "{ns}, at the midpoints of equal parts, with the grid's surface row)")
+    gr.add_argument("--depth", type=float,
                     help="depth of the grid as a multiple of the contact width W = a + c, > 0 "
-                         "(default 1)")
+                         "(default {depth})")
     out = p.add_argument_group("output files (each a new file, or one threepart wrote there and "
                                "that is unchanged; never over anything else)")
     out.add_argument("--csv", metavar="FILE", help="the fields at the grid points, as CSV")
@@ -108,17 +109,21 @@ def _fatigue_args(p: argparse.ArgumentParser) -> None:
 
 
 class _FatigueHelp(argparse.HelpFormatter):
-    """The help of ``fatigue``: Findley's default constant read only when help is shown.
+    """The help of ``fatigue``: Findley's default constant and the default grid read only when help is
+    shown.
 
     Building the parser loads no numpy (see :data:`threepart._HOMES`).
     """
 
     def _get_help_string(self, action: argparse.Action) -> str | None:
         text = super()._get_help_string(action)
-        if text and "{k_findley}" in text:
+        if text and "{" in text:
             from threepart.fatigue import K_FINDLEY
+            from threepart.fatigue.table import GRID
 
             text = text.replace("{k_findley}", f"{K_FINDLEY:g}")
+            for key, value in GRID.items():
+                text = text.replace(f"{{{key}}}", f"{value:g}")
         return text
 
 
@@ -153,6 +158,7 @@ def _fatigue_iv(args: argparse.Namespace) -> None:
     import math
 
     from threepart.fatigue import K_FINDLEY, findley_k
+    from threepart.fatigue.table import GRID
     from threepart.output import check_file
     from threepart.problem.validate import finite, integer, poisson, positive
 
@@ -160,6 +166,9 @@ def _fatigue_iv(args: argparse.Namespace) -> None:
     poisson(args.nu)
     _fatigue_loads_iv(args)
     args.k = findley_k(K_FINDLEY if args.k is None else args.k)
+    for key, value in GRID.items():
+        if getattr(args, key) is None:
+            setattr(args, key, value)
     args.constants = _constants_iv(args.constant)
     finite("--sigma-bulk", args.sigma_bulk)
     _bulk_stress_iv(args)
@@ -253,20 +262,9 @@ def _wider_normal(cycle: Any) -> Any:
     return cycle.normal if normals is None else max(normals, key=lambda n: float(n.a + n.c))
 
 
-def _fatigue_grid(args: argparse.Namespace, normal: Any) -> tuple[Any, Any]:
-    import numpy as np
-
-    W = normal.a + normal.c
-    x = np.linspace(-normal.a - 0.25 * W, normal.c + 0.25 * W, args.nx)
-    z = np.linspace(0.0, args.depth * W, args.nz)
-    return x[None, :], z[:, None]   # fields of shape (nz, nx): row 0 the surface
-
-
 def run(args: argparse.Namespace) -> int:
     """Run ``threepart fatigue``: check, solve the cycle, evaluate the parameters, write, print."""
-    import numpy as np
-
-    from threepart.fatigue import fatigue
+    from threepart.fatigue.table import fatigue, grid
     from threepart.problem.material import similar_pair
     from threepart.methods import describe
     from threepart.problem.punch import Punch
@@ -282,12 +280,10 @@ def run(args: argparse.Namespace) -> int:
                     f"the fretting cycle ({args.states} states per branch)"):
         cycle = _flight(args, punch, A) if steady else _fretting(args, punch, A)
     normal = _wider_normal(cycle)
-    x, z = _fatigue_grid(args, normal)
-    a, c = normal.a, normal.c
-    line = -a + (a + c) * (np.arange(args.ns) + 0.5) / args.ns   # inside: never on a contact end
+    x, z, surface = grid(-normal.a, normal.c, nx=args.nx, nz=args.nz, ns=args.ns, depth=args.depth)
     with heartbeat(say, lambda: f"the stresses of {2 if steady else cycle.Q.size} recorded states "
                                  f"at {args.nx * args.nz + args.ns} points"):
-        res = fatigue(cycle, x, z, E=args.E, nu=args.nu, k=args.k, surface=np.union1d(np.ravel(x), line),
+        res = fatigue(cycle, x, z, E=args.E, nu=args.nu, k=args.k, surface=surface,
                       **args.constants)
     if args.csv is not None:
         _fatigue_csv(args.csv, res)

@@ -220,11 +220,10 @@ def _peak(peak: Any, side: str) -> dict[str, Any]:
 
 def _lift_off(punch: Any, P: float, A: float) -> dict[str, float] | None:
     """The closed form's admissible lever arms at ``P`` (through the registry), or None where it has none."""
-    from threepart.problem.catalogue import LIFT_OFF_METHOD
-    from threepart.registry import lift_off
+    from threepart.registry import REFERENCE, lift_off
 
     try:
-        s_min, s_max = lift_off(LIFT_OFF_METHOD, punch, P, A)
+        s_min, s_max = lift_off(REFERENCE, punch, P, A)
     except ValueError:
         return None
     return {"s_min": s_min, "s_max": s_max}

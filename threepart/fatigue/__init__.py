@@ -19,6 +19,7 @@ findley             -- Findley on the critical plane, τa + k σn,max
 ruiz                -- Ruiz's FDP (τ δ) and FFDP (σxx τ δ) at the surface
 crossland           -- Crossland's parameter
 HotSpot             -- where a parameter is largest, how much, and on which plane
+hot_spot            -- the one hot-spot rule: the first point within a tie of the largest value
 Parameter, Ruiz     -- a parameter's field and hot spot; Ruiz's two
 critical_plane      -- max over plane angles of a function of (σn, τ) histories
 findley_k           -- Findley's constant checked
@@ -26,10 +27,10 @@ K_FINDLEY           -- the default Findley constant
 """
 from __future__ import annotations
 
-from .functions import (K_FINDLEY, HotSpot, Parameter, Ruiz, critical_plane, findley, findley_k, ruiz, swt,
-                        von_mises_range)
+from .functions import (K_FINDLEY, HotSpot, Parameter, Ruiz, critical_plane, findley, findley_k, hot_spot, ruiz,
+                        swt, von_mises_range)
 from .history import History, stress_history
 from .table import Fatigue, crossland, fatigue
 
 __all__ = ["fatigue", "Fatigue", "stress_history", "History", "von_mises_range", "swt", "findley", "ruiz",
-           "crossland", "HotSpot", "Parameter", "Ruiz", "critical_plane", "findley_k", "K_FINDLEY"]
+           "crossland", "HotSpot", "hot_spot", "Parameter", "Ruiz", "critical_plane", "findley_k", "K_FINDLEY"]

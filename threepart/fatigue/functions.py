@@ -34,6 +34,7 @@ history (:class:`~threepart.fatigue.history.History`) in :mod:`threepart.fatigue
 Building blocks
 ---------------
 HotSpot             -- where a parameter peaks, how much, and on which plane
+hot_spot            -- the one hot-spot rule: the first point within HOT_SPOT_TIE of the largest value
 critical_plane      -- max over plane angles of a function of (σn, τ) histories
 findley_k           -- Findley's constant checked: a float in [0, 10]
 K_FINDLEY           -- the default Findley constant k = 0.3
@@ -54,7 +55,7 @@ from ..problem.validate import finite, positive
 from threepart.errors import InputError
 
 __all__ = ["HotSpot", "Parameter", "Ruiz", "von_mises_range", "swt", "findley", "ruiz", "critical_plane",
-           "hot_spot_parameter", "K_FINDLEY", "COARSE_ANGLES", "ZOOM_LEVELS", "HOT_SPOT_TIE", "findley_k"]
+           "hot_spot", "hot_spot_parameter", "K_FINDLEY", "COARSE_ANGLES", "ZOOM_LEVELS", "HOT_SPOT_TIE", "findley_k"]
 
 #: Findley's constant ``k`` by default: 0.3 is typical of steels and titanium alloys
 #: (Socie & Marquis, *Multiaxial Fatigue*, 2000, report 0.2–0.3); give the material's own
@@ -111,15 +112,23 @@ class Parameter:
     hot: HotSpot
 
 
-def hot_spot_parameter(name: str, x: np.ndarray, z: np.ndarray, value: np.ndarray,
-               theta: np.ndarray | None = None) -> Parameter:
+def hot_spot(x: np.ndarray, z: np.ndarray, value: np.ndarray, theta: np.ndarray | None = None) -> HotSpot:
+    """Where ``value`` (at the points ``(x, z)``, of its shape) is largest: the one hot-spot rule.
+
+    The first point, in the points' order, within :data:`HOT_SPOT_TIE` of the largest value:
+    mirror-image peaks (a symmetric cycle) then give the same hot spot whatever the rounding
+    of each method. ``theta``: the plane at each point, if any.
+    """
     top = float(np.max(value))
-    # the first point within HOT_SPOT_TIE of the largest value: mirror-image peaks (a symmetric
-    # cycle) then give the same hot spot whatever the rounding of each method
     i = int(np.argmax(value >= top - HOT_SPOT_TIE * abs(top)))
-    hot = HotSpot(float(x.flat[i]), float(z.flat[i]), float(value.flat[i]),
-                  None if theta is None else float(theta.flat[i]))
-    return Parameter(name, x, z, value, theta, hot)
+    return HotSpot(float(x.flat[i]), float(z.flat[i]), float(value.flat[i]),
+                   None if theta is None else float(theta.flat[i]))
+
+
+def hot_spot_parameter(name: str, x: np.ndarray, z: np.ndarray, value: np.ndarray,
+                       theta: np.ndarray | None = None) -> Parameter:
+    """The :class:`Parameter` ``name`` of ``value`` at the points, with its :func:`hot_spot`."""
+    return Parameter(name, x, z, value, theta, hot_spot(x, z, value, theta))
 
 
 def von_mises_range(history: History | Sequence[Stress]) -> Parameter:

@@ -12,8 +12,10 @@ Adding a parameter
 ------------------
 Write its function (a history in, a :class:`~threepart.fatigue.Parameter` out)
 and register one row, as :func:`crossland` and its row below do; nothing else
-changes. A constant of the parameter (Crossland's ``kappa``) is a keyword of its
-function, named in the row's ``constants``: :func:`fatigue` then takes it too.
+changes. A constant of the parameter (Findley's ``k``, Crossland's ``kappa``) is a
+keyword of its function, named in the row's ``constants`` with its default
+(``defaults``) and its check (``checks``): :func:`fatigue` then takes it too, checks
+it before any stress is computed and reports it in :attr:`Fatigue.constants`.
 
 Names
 -----
@@ -25,7 +27,9 @@ reported           -- the names the verification report tabulates
 Inputs             -- what a row's function reads: the cycle, its histories, E, nu
 Fatigue            -- every parameter of one cycle on one set of points
 fatigue            -- evaluate every row on a cycle's points
+grid               -- the default points of a cycle's fatigue fields under a contact (GRID)
 crossland          -- Crossland: sqrt(J2,a) + kappa sigma_h,max
+crossland_kappa    -- Crossland's constant checked: a float in [0, 10]
 deviatoric_amplitude -- sqrt(J2,a): the radius of the smallest ball holding the deviatoric path
 KAPPA_CROSSLAND    -- Crossland's kappa by default
 """
@@ -47,8 +51,8 @@ from ..stress.flamant import Stress
 from ..problem.validate import finite, poisson, positive, reals
 from threepart.errors import InputError, InputTypeError
 
-__all__ = ["FatigueParameter", "register_parameter", "parameters", "parameter", "reported", "Inputs",
-           "Fatigue", "fatigue", "crossland", "deviatoric_amplitude", "KAPPA_CROSSLAND",
+__all__ = ["FatigueParameter", "register_parameter", "parameters", "parameter", "reported", "Inputs", "GRID", "grid",
+           "Fatigue", "fatigue", "crossland", "crossland_kappa", "deviatoric_amplitude", "KAPPA_CROSSLAND",
            "T_OVER_F_CROSSLAND"]
 
 
@@ -95,6 +99,11 @@ class FatigueParameter:
         True if the verification report tabulates its hot spots.
     constants
         The keywords of ``function`` that :func:`fatigue` passes on (e.g. ``("kappa",)``).
+    defaults
+        A constant's value when :func:`fatigue` is not given it (else the function's own default).
+    checks
+        A constant's check, ``check(value) -> float`` raising on a bad one, run by :func:`fatigue`
+        before any stress is computed.
     zero
         Where the command line says the hot spot is when the value is 0 (e.g. no slip), or "".
     """
@@ -109,6 +118,8 @@ class FatigueParameter:
     in_report: bool = True
     constants: tuple[str, ...] = ()
     zero: str = ""
+    defaults: Mapping[str, float] = field(default_factory=dict)
+    checks: Mapping[str, Callable[[Any], float]] = field(default_factory=dict)
 
 
 _TABLE: dict[str, FatigueParameter] = {}
@@ -221,6 +232,15 @@ def deviatoric_amplitude(history: History | Sequence[Stress]) -> np.ndarray:
     return radius.reshape(h.x.shape)
 
 
+def crossland_kappa(kappa: Any) -> float:
+    """Crossland's constant as a float in ``[0, 10]``, else ``ValueError`` naming ``kappa``."""
+    v = finite("kappa", kappa)
+    if not 0.0 <= v <= 10.0:
+        raise InputError(f"`kappa` = {kappa!r} must lie in [0, 10] (Crossland's constant, "
+                         "3 t-1/f-1 - sqrt(3))")
+    return v
+
+
 def crossland(history: History | Sequence[Stress], *, kappa: float = KAPPA_CROSSLAND) -> Parameter:
     """Crossland: ``sqrt(J2,a) + κ σh,max``.
 
@@ -241,10 +261,7 @@ def crossland(history: History | Sequence[Stress], *, kappa: float = KAPPA_CROSS
         :data:`KAPPA_CROSSLAND` = 0.368, from ``t-1/f-1`` = 0.7.
     """
     h = as_history(history)
-    kappa = finite("kappa", kappa)
-    if not 0.0 <= kappa <= 10.0:
-        raise InputError(f"`kappa` = {kappa!r} must lie in [0, 10] (Crossland's constant, "
-                         "3 t-1/f-1 - sqrt(3))")
+    kappa = crossland_kappa(kappa)
     sh = ((1.0 + h.nu) * (h.sxx + h.szz) / 3.0).max(axis=0)
     return hot_spot_parameter("crossland", h.x, h.z, deviatoric_amplitude(h) + kappa * sh)
 
@@ -257,7 +274,7 @@ register_parameter(FatigueParameter("swt", "SWT (critical plane)", "SWT", "MPa",
                                     lambda i: swt(i.history, E=i.E), critical_plane=True))
 register_parameter(FatigueParameter("findley", "Findley (critical plane)", "Findley", "MPa",
                                     lambda i, **c: findley(i.history, **c), critical_plane=True,
-                                    constants=("k",)))
+                                    constants=("k",), defaults={"k": K_FINDLEY}, checks={"k": findley_k}))
 register_parameter(FatigueParameter("ruiz_fdp", "Ruiz FDP q delta", "Ruiz FDP", "MPa mm",
                                     lambda i: i.ruiz.fdp, surface=True, in_report=False,
                                     zero="no surface point slips"))
@@ -265,7 +282,8 @@ register_parameter(FatigueParameter("ruiz_ffdp", "Ruiz FFDP s_xx q delta", "Ruiz
                                     lambda i: i.ruiz.ffdp, surface=True,
                                     zero="no surface point in tension where the contact slips"))
 register_parameter(FatigueParameter("crossland", "Crossland", "Crossland", "MPa",
-                                    lambda i, **c: crossland(i.history, **c), constants=("kappa",)))
+                                    lambda i, **c: crossland(i.history, **c), constants=("kappa",),
+                                    defaults={"kappa": KAPPA_CROSSLAND}, checks={"kappa": crossland_kappa}))
 
 
 # --- every parameter of a cycle -------------------------------------------------------------
@@ -281,19 +299,19 @@ class Fatigue:
         (``fat.swt``, ``fat.crossland``).
     ruiz
         Ruiz's record along the surface (its factors ``sxx_max``, ``q``, ``delta``).
-    E, nu, k
-        Young's modulus, Poisson's ratio and Findley's constant used.
+    E, nu
+        Young's modulus and Poisson's ratio used.
     states
         The number of states in the stress history.
     constants
-        Every constant passed to a row's function (``k``, ``kappa``, ...).
+        Every constant passed to a row's function, given or its row's default (Findley's
+        ``k``, Crossland's ``kappa``, ...).
     """
 
     parameters: Mapping[str, Parameter]
     ruiz: Ruiz
     E: float
     nu: float
-    k: float
     states: int
     constants: Mapping[str, float] = field(default_factory=dict)
 
@@ -307,8 +325,7 @@ class Fatigue:
 
 
 def fatigue(cycle: Cycle, x: ArrayLike, z: ArrayLike, *, E: float, nu: float = NU,
-            k: float = K_FINDLEY, states: Any = None, surface: ArrayLike | None = None,
-            **constants: float) -> Fatigue:
+            states: Any = None, surface: ArrayLike | None = None, **constants: float) -> Fatigue:
     """Every parameter of the table (:func:`parameters`) of ``cycle`` at ``(x, z)``.
 
     Parameters
@@ -320,8 +337,6 @@ def fatigue(cycle: Cycle, x: ArrayLike, z: ArrayLike, *, E: float, nu: float = N
         Points, broadcast against each other, ``z >= 0``.
     E, nu
         Young's modulus (> 0) and Poisson's ratio of the substrate (plane strain).
-    k
-        Findley's constant (default :data:`~threepart.fatigue.K_FINDLEY`).
     states
         Indices of the states to use (default all; :func:`~threepart.fatigue.stress_history`).
     surface
@@ -330,8 +345,10 @@ def fatigue(cycle: Cycle, x: ArrayLike, z: ArrayLike, *, E: float, nu: float = N
         Ruiz's tension lives in a narrow band at the slip zones' outer ends, so a grid's
         row is often too coarse for its hot spot: give a fine line here.
     **constants
-        The other parameters' constants, by the names in their rows' ``constants``
-        (``kappa=`` for Crossland); each row's function checks its own and defaults it.
+        The parameters' constants, by the names in their rows' ``constants``: ``k=`` for
+        Findley (default :data:`~threepart.fatigue.K_FINDLEY`), ``kappa=`` for Crossland
+        (default :data:`KAPPA_CROSSLAND`); each is checked by its row before any stress is
+        computed, and defaulted by it.
 
     Raises
     ------
@@ -345,8 +362,13 @@ def fatigue(cycle: Cycle, x: ArrayLike, z: ArrayLike, *, E: float, nu: float = N
                         f"{', '.join(sorted(known))})")
     E = positive("E", E)
     nu = poisson(nu)
-    k = findley_k(k)
-    given = {"k": k, **constants}
+    given: dict[str, float] = {}
+    for p in parameters():
+        for c in p.constants:
+            if c in constants:
+                given[c] = p.checks[c](constants[c]) if c in p.checks else constants[c]
+            elif c in p.defaults:
+                given[c] = p.defaults[c]
     xs = None if surface is None else reals("surface", surface)
     h = stress_history(cycle, x, z, states=states, nu=nu)
     if xs is None and np.any(h.z == 0):
@@ -357,4 +379,26 @@ def fatigue(cycle: Cycle, x: ArrayLike, z: ArrayLike, *, E: float, nu: float = N
     inputs = Inputs(cycle, h, top, E)
     values = {p.name: p.function(inputs, **{c: given[c] for c in p.constants if c in given})
               for p in parameters()}
-    return Fatigue(values, inputs.ruiz, E=E, nu=nu, k=k, states=h.states, constants=given)
+    return Fatigue(values, inputs.ruiz, E=E, nu=nu, states=h.states, constants=given)
+
+
+#: the default grid of a cycle's fatigue fields (``threepart fatigue``, ``threepart cycle``): points
+#: along x over ``[-a - W/4, c + W/4]`` and in depth over ``[0, depth W]`` (``W = a + c``), and
+#: Ruiz's surface points over the contact
+GRID: dict[str, Any] = {"nx": 41, "nz": 21, "ns": 201, "depth": 1.0}
+
+
+def grid(lo: float, hi: float, *, nx: int = GRID["nx"], nz: int = GRID["nz"], ns: int = GRID["ns"],
+         depth: float = GRID["depth"]) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The points of a cycle's fatigue fields under the contact ``[lo, hi]``: ``(x, z, surface)``.
+
+    ``x`` (shape ``(1, nx)``) over ``[lo - W/4, hi + W/4]`` and ``z`` (shape ``(nz, 1)``) over
+    ``[0, depth W]``, ``W = hi - lo``, so that the fields have shape ``(nz, nx)`` with row 0 the
+    surface; ``surface`` the grid's surface points and ``ns`` more at the midpoints of equal
+    parts of the contact (never on a contact end), for Ruiz's parameters (:func:`fatigue`).
+    """
+    W = hi - lo
+    x = np.linspace(lo - 0.25 * W, hi + 0.25 * W, nx)[None, :]
+    z = np.linspace(0.0, depth * W, nz)[:, None]
+    line = lo + W * (np.arange(ns) + 0.5) / ns
+    return x, z, np.union1d(np.ravel(x), line)

@@ -7,7 +7,7 @@ the solvers are called elsewhere (:mod:`threepart.reports.verify.runs`).
 
 A case given as a fraction of its lift-off lever arm is resolved
 (:meth:`Case.resolved`) with the lift-off range of the method
-:data:`LIFT_OFF_METHOD`, asked for through :mod:`threepart.registry` (this
+:data:`threepart.registry.REFERENCE`, asked for through :mod:`threepart.registry` (this
 module imports no solver); a case that the SIE or the FEM reads alone stores
 that lever arm, so they never load the closed form.
 """
@@ -21,18 +21,15 @@ from typing import Any
 
 from .material import BODIES, block_modulus, material_compliance, modulus
 from .punch import Punch
-from ..registry import lift_off
+from ..registry import BEYOND_REFERENCE, REFERENCE, lift_off
 from .validate import finite, positive, show
 from threepart.errors import InputError
 
-__all__ = ["Case", "Wear", "CASES_FILE", "SUITES", "LIFT_OFF_METHOD", "load_cases", "get_case", "slip_loads"]
+__all__ = ["Case", "Wear", "CASES_FILE", "SUITES", "load_cases", "get_case", "slip_loads"]
 
 CASES_FILE = Path(__file__).with_name("cases.json")
 #: who reads a case: the verification run, the FEM tests and benchmark, the SIE tests and benchmark
 SUITES = ("verify", "fem", "sie", "wear")
-#: the method whose lift-off range resolves ``s_lift_off_fraction``: the paper's closed form,
-#: whose framework (both contact ends on the edge arcs) the fraction measures
-LIFT_OFF_METHOD = "closedform"
 
 
 @dataclass(frozen=True)
@@ -99,7 +96,7 @@ class Case:
     @property
     def reference(self) -> str:
         """The method the others are compared with: the closed form, or the SIE past it."""
-        return "sie" if self.beyond else "closedform"
+        return BEYOND_REFERENCE if self.beyond else REFERENCE
 
     def __post_init__(self) -> None:
         if (self.material is None) == (self.compliance is None):
@@ -188,7 +185,9 @@ class Case:
             return self
         if frac >= 0 and self.s_max is not None:
             return replace(self, s=frac * self.s_max)
-        s_min, s_max = lift_off(LIFT_OFF_METHOD, self.punch, self.P, self.A)
+        # the paper's closed form: its framework (both contact ends on the edge arcs) is what the
+        # fraction measures
+        s_min, s_max = lift_off(REFERENCE, self.punch, self.P, self.A)
         s = frac * (s_max if frac >= 0 else -s_min)
         return replace(self, s=float(s))
 
