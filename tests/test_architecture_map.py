@@ -13,7 +13,11 @@ import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
 #: each package folder, and the row of the table that describes its modules
-ROWS = {"threepart": "threepart/", "threepart/output": "threepart/", "threepart/tolerances": "threepart/", "threepart/cli": "threepart/cli/",
+ROWS = {"threepart": "threepart/", "threepart/output": "threepart/", "threepart/tolerances": "threepart/",
+        "threepart/problem": "threepart/problem/", "threepart/results": "threepart/results/",
+        "threepart/halfplane": "threepart/halfplane/", "threepart/stress": "threepart/stress/",
+        "threepart/fatigue": "threepart/fatigue/", "threepart/studies": "threepart/studies/",
+        "threepart/cli": "threepart/cli/",
         "threepart/calculix": "threepart/calculix/", "threepart/getfem": "threepart/getfem/",
         "threepart/readers": "threepart/readers/", "closedform": "closedform/", "sie": "sie/",
         "fem": "fem/", "meshes": "meshes/", "reports": "reports/", "reports/verify": "reports/",

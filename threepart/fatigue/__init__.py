@@ -24,13 +24,27 @@ Parameter, Ruiz     -- a parameter's field and hot spot; Ruiz's two
 critical_plane      -- max over plane angles of a function of (σn, τ) histories
 findley_k           -- Findley's constant checked
 K_FINDLEY           -- the default Findley constant
+crossland_kappa     -- Crossland's constant checked
+KAPPA_CROSSLAND     -- the default Crossland constant
+
+The table (:mod:`threepart.fatigue.table`)
+---------
+FatigueParameter    -- a row: name, labels, unit, function, critical plane or not, constants
+register_parameter  -- add (or replace) a row: a new parameter is one row
+parameters          -- the rows, in registration order
+parameter           -- the row of a name
+reported            -- the names the verification report tabulates
+grid, GRID          -- the default points of a cycle's fatigue fields under a contact
 """
 from __future__ import annotations
 
 from .functions import (K_FINDLEY, HotSpot, Parameter, Ruiz, critical_plane, findley, findley_k, hot_spot, ruiz,
                         swt, von_mises_range)
 from .history import History, stress_history
-from .table import Fatigue, crossland, fatigue
+from .table import (GRID, KAPPA_CROSSLAND, Fatigue, FatigueParameter, crossland, crossland_kappa, fatigue, grid,
+                    parameter, parameters, register_parameter, reported)
 
 __all__ = ["fatigue", "Fatigue", "stress_history", "History", "von_mises_range", "swt", "findley", "ruiz",
-           "crossland", "HotSpot", "hot_spot", "Parameter", "Ruiz", "critical_plane", "findley_k", "K_FINDLEY"]
+           "crossland", "HotSpot", "hot_spot", "Parameter", "Ruiz", "critical_plane", "findley_k", "K_FINDLEY",
+           "FatigueParameter", "register_parameter", "parameters", "parameter", "reported", "grid", "GRID",
+           "crossland_kappa", "KAPPA_CROSSLAND"]

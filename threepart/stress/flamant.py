@@ -477,6 +477,8 @@ def stress(x: ArrayLike, z: ArrayLike, *, pressure: Traction | None, shear: Trac
         every :data:`PROGRESS_S` seconds of work, if given (the command line
         passes its stderr).
 
+    Notes
+    -----
     Points that form a grid (``x`` the same on every row, one ``z`` per row, e.g.
     ``x`` of shape ``(1, nx)`` and ``z`` of ``(nz, 1)``) share one rule per depth
     (:mod:`threepart.stress.grid`); the rest, and the grid's rows shallower than

@@ -147,7 +147,7 @@ def match(flank_result: Any, edge: str, R: float | None = None, P: float | None 
     R, P
         At most one: the pad's radius, or its load. Neither: the radius whose pad puts the
         surface σxx over the slip zone closest to the flank's (the largest difference over
-        the flank's largest |σxx| there, minimised over ``R`` from :data:`PAD_RANGE`'s
+        the flank's largest ``|σxx|`` there, minimised over ``R`` from :data:`PAD_RANGE`'s
         factors of the pad as wide as the flank's contact, ``R = √W/(A K_N)``): the
         multipliers fix the edge to first order, the radius its second-order terms.
     method
