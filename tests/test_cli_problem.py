@@ -22,7 +22,7 @@ ROUND_OFF = tolerance("closedform", "round_off").limit
 #: the stick-zone ends, the error falls as h^1.5 (tests/test_cli.py measures the pressure's below this)
 TRAPEZOID_LEVEL = 3e-5
 #: the catalogue file, read as plain JSON (not through threepart.problem.catalogue)
-CATALOGUE = json.loads((Path(__file__).resolve().parents[1] / "threepart" / "cases.json").read_text("utf-8"))
+CATALOGUE = json.loads((Path(__file__).resolve().parents[1] / "threepart" / "problem" / "cases.json").read_text("utf-8"))
 RAW = {c["name"]: c for c in CATALOGUE["cases"]}
 #: the commands that take a problem (issue 37: solve, slip and fatigue lacked --case)
 PROBLEM_COMMANDS = ("solve", "slip", "fatigue", "cycle", "match", "deck", "compare", "wear")
