@@ -24,7 +24,7 @@ def ccx_available() -> bool:
     return shutil.which("ccx") is not None
 
 
-def run_ccx(deck: str, workdir: Path, name: str = "job", timeout: float = 900.0) -> Path:
+def run_ccx(deck: str, workdir: str | Path, name: str = "job", timeout: float = 900.0) -> Path:
     """Write ``deck`` to ``workdir/name.inp`` and run ``ccx`` on one thread; the job's stem.
 
     Raises
@@ -36,6 +36,8 @@ def run_ccx(deck: str, workdir: Path, name: str = "job", timeout: float = 900.0)
     """
     if not ccx_available():
         raise CcxMissing("`ccx` (CalculiX) is not on the PATH: apt-get install calculix-ccx")
+    workdir = Path(workdir)
+    workdir.mkdir(parents=True, exist_ok=True)
     (workdir / f"{name}.inp").write_text(deck)
     env = dict(os.environ, OMP_NUM_THREADS="1", CCX_NPROC_EQUATION_SOLVER="1")
     proc = subprocess.run(["ccx", "-i", name], cwd=workdir, env=env, capture_output=True,
