@@ -475,6 +475,7 @@ def run_steps(punch: Punch, P: float, s: float, Qs: list[float], f: float, E: fl
     from ..material import compliance
     from ..methods import solve
     from .mesh import build_model
+    from ..cache import restored
     from .run import run_ccx
 
     normal = solve(punch, P, s, A=compliance(E, nu, E, nu), tilt=tilt)
@@ -486,7 +487,7 @@ def run_steps(punch: Punch, P: float, s: float, Qs: list[float], f: float, E: fl
     t0, c0 = time.perf_counter(), resource.getrusage(resource.RUSAGE_CHILDREN).ru_utime
     stem = run_ccx(text, workdir, name, timeout=7200.0)
     info = {"h": model.h0, "nodes": model.n_nodes, "stem": stem,
-            "wall": time.perf_counter() - t0,
+            "wall": time.perf_counter() - t0, "cached": restored(workdir),
             "cpu": resource.getrusage(resource.RUSAGE_CHILDREN).ru_utime - c0,
             "increments": step_increments(stem)}
     return model, stem, info
