@@ -154,8 +154,10 @@ def edge_multipliers(x: np.ndarray, p: np.ndarray, a: float, c: float, b: float
 #: a node sticks where ``1 - |q|/(f p)`` exceeds this: a penalty or augmented friction law leaves
 #: the slip zones' nodes a little below ``f p`` (CalculiX's, GetFEM's), and they must not enter the fit
 STICK_MARGIN = 0.02
-#: the sticking nodes next to each end that the fit of ``(1 - |q|/(f p))^2`` takes
-STICK_NODES = 6
+#: the sticking nodes next to each end that the fit of ``(f p - |q|)^2`` takes (past the end's own):
+#: ten average a field that oscillates from node to node (GetFEM's multiplier, +-8 % of ``f p*`` on
+#: slip_Q0.4 at W/h = 64), which six followed (docs/GETFEM.md's table of the fits)
+STICK_NODES = 10
 #: nodes loaded below this fraction of the peak pressure are not judged: next to a contact end (within
 #: ~1e-4 of its width) or outside it, where a code's noise in p makes q/p meaningless (GetFEM's
 #: multiplier at W/h = 32: p ~ 1e-4 of the peak outside the contact, with |q|/(f p) = 0.98)
@@ -203,10 +205,10 @@ def stick_ends(x: ArrayLike, p: ArrayLike, q: ArrayLike, f: float, *, margin: fl
     to node: GetFEM's multiplier at W/h = 32) and the end is midway between them. The run's end
     node itself is left out of the fit when the run is longer than ``k + 1``: the element
     holding the end smears the kink over it (GetFEM at W/h = 64 on Hertz: ``p*`` 5 % high
-    there, which moved the end by 3.3e-3 W; without it 3e-5 W). The ratio ``1 - |q|/(f p)``
-    squared, fitted before (it is not a polynomial where the stick zone's end nears the
-    contact's), read the exact Mindlin traction at W/h = 64 2.3e-3 W off. ``x`` ascending;
-    ``(nan, nan)`` if fewer than two nodes stick.
+    there, which moved the end by 3.3e-3 W; without it 4e-5 W). The ratio ``1 - |q|/(f p)``
+    squared, fitted before over six nodes (it is not a polynomial where the stick zone's end
+    nears the contact's), read the exact Mindlin traction at W/h = 64 2.3e-3 W off. ``x``
+    ascending; ``(nan, nan)`` if fewer than two nodes stick.
     """
     x, p, q = (np.asarray(v, dtype=float) for v in (x, p, q))
     on = p > STICK_LOAD * float(np.max(p, initial=0.0))
