@@ -78,7 +78,8 @@ def test_a_column_per_code_and_problem_and_its_errors_fall_with_h(stand_in):
         assert st.scheme == fs.RUN_SCHEME
         for q in ("stick_ends", "stick_width", "q_integral"):
             e = st.errors[q]
-            assert e[-1] < e[0] and e[-1] <= tolerance(*FRICTION_TARGETS[q]).limit, (name, q, e)
+            exact = e[-1] <= tolerance("convergence", "exact").limit    # read exactly (Hertz's ends: the fit holds Mindlin)
+            assert (e[-1] < e[0] or exact) and e[-1] <= tolerance(*FRICTION_TARGETS[q]).limit, (name, q, e)
     for name in ("slip_Q0.4_bulk", "fretting_Q0.4", "flight"):   # the full mode's rows
         assert by[m, name].scheme == fs.NOT_RUN["full"] and not by[m, name].values
 

@@ -302,6 +302,18 @@ def test_a_run_of_more_than_one_increment_is_diagnosed(tmp_path):
         assert (found[0].value if found else 1) == last, sta
 
 
+@pytest.mark.parametrize("normal", [1, 3])
+def test_a_friction_runs_increments_are_judged_on_its_normal_step(normal):
+    """A friction .frd gives each step's increments ({step: count}): the shear's steps take several
+    by design; only the normal step's (the first) cut into increments is named, with its count."""
+    c = Punch(R1=200.0, R2=200.0, b=1.0)
+    ref = solve(c, SMALL_P, 0.0, A=float(SMALL_ARGS[-1]))
+    x = np.linspace(-ref.a, ref.c, 81)
+    info = {"increments": {2: 4, 1: normal, 3: 8}}
+    found = [q for q in diagnose(from_points(x, ref.pressure(x), ref, info=info), ref) if q.name == "increments"]
+    assert [q.value for q in found] == ([] if normal == 1 else [normal])
+
+
 def test_cli_compare_reads_a_dat(tmp_path):
     dat = _small_dat(tmp_path)
     assert main(["compare", "--pressure", str(dat), *SMALL_ARGS, "--out", str(tmp_path / "rep")]) in (0, 1)

@@ -130,6 +130,32 @@ def _csv(path, x, p, q):
     return path
 
 
+def test_compare_reads_a_getfem_vtus_shear_and_judges_a_partial_slip_by_the_friction_rows(tmp_path, ref):
+    """GetFEM's deck writes contact_pressure and contact_shear: `--Q --f` judges that shear without
+    `--shear`, and a file of partial slip is judged by the ``referee-friction`` rows (its contact ends
+    as a friction model's nodal tractions give them), a pressure alone by the ``referee`` rows."""
+    import json
+
+    import meshio
+
+    from threepart.cli import main
+
+    x, p, q = _nodes(ref)
+    points = np.array([(xi, y, 0.0) for y in (0.0, -1.0) for xi in x])
+    n = len(x)
+    cells = np.array([(i, i + 1, n + i + 1, n + i) for i in range(n - 1)])
+    top = np.arange(2 * n) < n
+    fields = {"contact_pressure": np.where(top, np.tile(p, 2), 0.0), "contact_shear": np.where(top, np.tile(q, 2), 0.0)}
+    vtu = tmp_path / "job.vtu"
+    meshio.write(vtu, meshio.Mesh(points, [("quad", cells)], point_data=fields))
+    for extra, group in (([], "referee"), (["--Q", repr(ref.Q), "--f", repr(F)], "referee-friction")):
+        out = tmp_path / group
+        assert main(["compare", "--pressure", str(vtu), *HERTZ, *extra, "--out", str(out)]) == 0
+        limits = {c["quantity"]: c["limit"] for c in json.loads((out / "report.json").read_text())["checks"]}
+        assert limits["a"] == tolerance(group, "a").limit and limits["p_left"] == tolerance(group, "p_left").limit
+        assert ("q_integral" in limits) == bool(extra)
+
+
 @pytest.mark.parametrize("sign, status, line", [(1.0, 0, "PASSED"), (-1.0, 1, "pitfall shear-sign")])
 def test_compare_judges_a_partial_slip_from_a_csv(tmp_path, capsys, ref, sign, status, line):
     from threepart.cli import main

@@ -44,6 +44,8 @@ store          -- write an entry atomically; False if the directory cannot be wr
 Entry          -- one file of the cache: path, kind, size, whether it is threepart's own
 entries        -- the files of the cache directory, threepart's and others
 clear          -- remove threepart's entries; the number removed
+cached_run     -- run another code in a directory, or write back the files an identical run wrote
+restored       -- whether a directory's files came from the cache in this process
 """
 from __future__ import annotations
 
@@ -61,7 +63,7 @@ import numpy as np
 from threepart.errors import InputError
 
 __all__ = ["CACHE_VARIABLE", "FORMAT", "cache_dir", "key", "load", "store", "Entry", "entries",
-           "clear"]
+           "clear", "cached_run", "restored"]
 
 #: the environment variable that names the cache directory
 CACHE_VARIABLE = "THREEPART_CACHE"
@@ -260,3 +262,39 @@ def clear() -> int:
             _remove(Path(d.path))
             removed += 1
     return removed
+
+
+#: directories :func:`cached_run` filled from the cache in this process
+_RESTORED: set[Path] = set()
+
+
+def cached_run(kind: str, parts: Mapping[str, Any], workdir: Path, run: Callable[[], None]) -> bool:
+    """Run another code in ``workdir`` (``run()``), or write back the files an identical run wrote.
+
+    ``parts`` is everything the run's files depend on (its input's text, the code and
+    its version: :func:`key`). On a miss ``run()`` runs and every file it wrote or
+    changed in ``workdir`` is stored as one entry (its bytes, checksummed); a run
+    that raises stores nothing. On a hit those files are written into ``workdir``
+    as they were, and ``run()`` is not called: the readers read them as they would
+    the run's. True on a hit (:func:`restored` then names ``workdir``).
+    """
+    workdir = Path(workdir)
+    k = key(parts)
+    entry = load(kind, k)
+    if entry is not None:
+        for name, data in entry.items():
+            (workdir / name).write_bytes(np.asarray(data, dtype=np.uint8).tobytes())
+        _RESTORED.add(workdir.resolve())
+        return True
+    before = {f.name: f.stat().st_mtime_ns for f in workdir.iterdir() if f.is_file()}
+    run()
+    wrote = {f.name: np.frombuffer(f.read_bytes(), dtype=np.uint8) for f in sorted(workdir.iterdir())
+             if f.is_file() and not f.is_symlink() and before.get(f.name) != f.stat().st_mtime_ns}
+    store(kind, k, wrote)
+    _RESTORED.discard(workdir.resolve())
+    return False
+
+
+def restored(workdir: Path) -> bool:
+    """Whether :func:`cached_run` wrote ``workdir``'s files from the cache (in this process)."""
+    return Path(workdir).resolve() in _RESTORED

@@ -292,8 +292,8 @@ def _document(mode: str, engine: _Engine, st: Any, grid: Sequence[MapPoint], rec
         timings["overhead_per_task_s"] = max(
             0.0, (timings["sweep_s"] * engine.info["workers"] - task_s) / len(tasks))
     ctl = records[CONTROL_KEY]
-    mapped = [{k: {**records[p.key()], **point_columns(st, p, records)}.get(k) for k in COLUMNS}
-              for p in grid]
+    rows = ({**records[p.key()], **point_columns(st, p, records)} for p in grid)   # once a point
+    mapped = [{k: row.get(k) for k in COLUMNS} for row in rows]
     cap = STEP_CAP[mode]
     boundaries = [b.result(cap) for b in bisections]
     failed = (sum(p["error"] is not None for p in mapped) + (ctl["error"] is not None)

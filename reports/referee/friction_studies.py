@@ -248,6 +248,9 @@ def _column(code: Referee, problem: FrictionProblem, levels: tuple[float, ...],
             st = analyse(st, ERROR_ONLY, require_monotone=False)
     st.notes.extend(f"W/h = {lab}: the run failed, its errors are not known: {inf['failed']}"
                     for lab, inf in zip(st.labels, st.info) if "failed" in inf)
+    st.notes.extend(f"W/h = {lab}: {code.name}'s files from threepart's cache (the same input ran before; "
+                    "`threepart cache --clear` runs it again)" for lab, inf in zip(st.labels, st.info)
+                    if inf.get("cached"))
     ref = pr.get("slip")
     st.reference = {**({"d": ref.d, "e": ref.e, "q_integral": ref.Q} if ref is not None else {}),
                     **({"energy": pr[k].energy for k in ("cycle", "steady") if k in pr and problem.kind != "slip"})}
@@ -281,10 +284,12 @@ def run_level(code: Referee, problem: FrictionProblem, pr: dict[str, Any], n: fl
         nan = {q: math.nan for q in _judged(problem)}
         return W / n, nan, {"failed": f"{type(exc).__name__}: {exc}", "seconds": time.perf_counter() - t0}, nan
     seconds = time.perf_counter() - t0
-    h = float(getattr(run, "info", {}).get("h", W / n))
-    say(f"[study]   {code.name} {problem.name} W/h = {n:g} ({seconds:.0f} s): " +
+    info = getattr(run, "info", {})
+    h = float(info.get("h", W / n))
+    cached = bool(info.get("cached"))      # the same input ran before: its files from threepart's cache
+    say(f"[study]   {code.name} {problem.name} W/h = {n:g} ({seconds:.0f} s{', cached' if cached else ''}): " +
         ", ".join(f"{q} {e:.3g}" for q, e in err.items()))
-    return h, raw, {"seconds": seconds}, err
+    return h, raw, {"seconds": seconds, "cached": cached}, err
 
 
 def _judged(problem: FrictionProblem) -> tuple[str, ...]:

@@ -109,7 +109,12 @@ def _load(res: PointsResult, ref: NormalResult) -> list[Pitfall]:
 
 
 def _increments(res: PointsResult) -> list[Pitfall]:
+    """The normal step cut into increments. A friction run's ``.frd`` gives each step's count
+    (``{step: increments}``): its first step is the normal load, the later ones the shear's,
+    loaded in increments by design."""
     steps = res.info.get("increments")
+    if isinstance(steps, dict):
+        steps = steps[min(steps)] if steps else None
     if steps is None or steps <= 1:
         return []
     return [Pitfall("increments", float(steps), 1.0,

@@ -31,11 +31,14 @@ from .friction import SlipPointsResult, friction_pitfalls, slip_from_points
 from .pitfalls import diagnose
 from .points import PointsResult, from_points
 
-__all__ = ["COMPARISON", "judge", "edges", "document", "write_report", "main", "column_verdict",
+__all__ = ["COMPARISON", "FRICTION_COMPARISON", "judge", "edges", "document", "write_report", "main", "column_verdict",
            "FRICTION_TARGETS"]
 
 #: the tolerance table's rows a pressure from outside is judged by
 COMPARISON = "referee"
+#: the rows a file of partial slip is judged by: the referee's, its contact ends and peaks as a
+#: friction model's nodal tractions give them (threepart/tolerances/outside.py)
+FRICTION_COMPARISON = "referee-friction"
 #: issue 38's targets of the friction columns, by the quantity judged (units: ERROR_UNITS): the
 #: stick zone's ends, and its half-width and centre by the ends' row
 FRICTION_TARGETS = {"stick_ends": (COMPARISON, "stick_ends"), "stick_width": (COMPARISON, "stick_ends"),
@@ -120,14 +123,15 @@ def judge(res: PointsResult | SlipPointsResult, ref: NormalResult | SlipResult, 
     peak of the surface σxx that belongs to the interpolation, not to the code.
     """
     normal, ref_normal = normal_of(res), normal_of(ref)
-    checks = [c for c in compare(ref, res, COMPARISON, stresses=False)
+    friction = isinstance(ref, SlipResult) and isinstance(res, SlipPointsResult)
+    checks = [c for c in compare(ref, res, FRICTION_COMPARISON if friction else COMPARISON, stresses=False)
               if c.quantity != "alpha" or res.info.get("alpha_given")]
     pitfalls = diagnose(normal, ref_normal, penalty=penalty)
     reference = {"method": ref.method, "a": ref.a, "c": ref.c, "alpha": ref.alpha,
                  "P": ref.P, "s": ref.s, "note": ref.info.get("auto", "")}
     obtained = {"a": res.a, "c": res.c, "P": normal.P, "s": normal.s,
                 "points": int(normal.x_nodes.size)}
-    if isinstance(ref, SlipResult) and isinstance(res, SlipPointsResult):
+    if friction:
         pitfalls += friction_pitfalls(res, ref, stick_slope=stick_slope)
         reference.update(Q=ref.Q, f=ref.f, d=ref.d, e=ref.e, stick_zone=list(ref.stick_zone))
         obtained.update(d=res.d, e=res.e, stick_zone=list(res.stick_zone))

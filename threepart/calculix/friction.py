@@ -379,14 +379,19 @@ def contact_traction(state: dict[str, dict[int, np.ndarray]], xy: dict[int, np.n
 def contact_rows(state: dict[str, dict[int, np.ndarray]], xy: dict[int, np.ndarray]
                   ) -> tuple[np.ndarray, np.ndarray]:
     """The slave nodes' undeformed ``x`` (sorted) and their CONTACT rows (COPEN, CSLIP1, CSLIP2,
-    CPRESS, CSHEAR1, CSHEAR2), CPRESS and CSHEAR per unit undeformed length; nodes whose
-    output is all zero (never paired) left out.
+    CPRESS, CSHEAR1, CSHEAR2), CPRESS and CSHEAR turned into the traction's global components per
+    unit undeformed length; nodes whose output is all zero (never paired) left out.
 
-    ccx's contact stresses are per unit deformed length (its contact is solved on the
-    deformed faces): times the surface's stretch ``dx_deformed / dx`` (from DISP, when the
-    increment holds it) they are per unit undeformed length, as the half-plane theory's,
-    and ``∫p dx``, ``∫q dx`` are the contact's forces (the surface strain is about ``p/E``,
-    1e-3 on the small-slope cases: ``∫p`` read 7.7e-4 off ``P`` without it, 7e-5 with it).
+    ccx's contact stresses are per unit deformed length and along the deformed face (its contact
+    is solved on the deformed faces): CPRESS along the face's normal, CSHEAR1 along its tangent,
+    which turns by the surface's slope ``du_y/dx`` (up to 5e-3 on ``slip_Q0.4`` x 20). With
+    the deformed face's tangent ``(dx + du_x, du_y)`` per undeformed ``dx`` (from DISP, when the
+    increment holds it) the traction per unit undeformed length along ``x`` and ``-y`` is
+    ``q = q_t (1 + du_x/dx) + p_n du_y/dx`` and ``p = p_n (1 + du_x/dx) - q_t du_y/dx``: the
+    half-plane theory's ``σ_xy`` and ``-σ_yy`` at the material point, so that ``∫q dx = Q`` and
+    ``∫p dx = P`` (read along the face, ``∫q`` was 1.17e-3 off ``Q``, the pressure's share
+    ``∫p du_y/dx dx``; turned, 7e-5; without the stretch ``∫p`` read 7.7e-4 off ``P``, with it
+    1.6e-5; docs/CALCULIX.md). The stick zone moves by less than 5e-4 of W.
     """
     contact, disp = state["CONTACT"], state.get("DISP", {})
     nodes = [k for k, v in contact.items() if k in xy and np.any(v != 0.0)]
@@ -396,9 +401,13 @@ def contact_rows(state: dict[str, dict[int, np.ndarray]], xy: dict[int, np.ndarr
     v = np.array([contact[k] for k in nodes])
     order = np.argsort(x)
     x, v = x[order], v[order]
-    u = np.array([disp[k][0] if k in disp else 0.0 for k in np.asarray(nodes)[order]])
+    u = np.array([disp[k][:2] if k in disp else (0.0, 0.0) for k in np.asarray(nodes)[order]])
     if np.all(np.diff(x) > 0):
-        v[:, 3:] *= np.gradient(x + u, x)[:, None]
+        dx, dy = np.gradient(x + u[:, 0], x), np.gradient(u[:, 1], x)   # the deformed tangent per dx
+        p_n, q_t = v[:, 3].copy(), -v[:, 4]
+        v[:, 3] = p_n * dx - q_t * dy
+        v[:, 4] = -(q_t * dx + p_n * dy)
+        v[:, 5] *= np.hypot(dx, dy)
     return x, v
 
 
@@ -466,6 +475,7 @@ def run_steps(punch: Punch, P: float, s: float, Qs: list[float], f: float, E: fl
     from ..problem.material import compliance
     from ..methods import solve
     from .mesh import build_model
+    from ..cache import restored
     from .run import run_ccx
 
     normal = solve(punch, P, s, A=compliance(E, nu, E, nu), tilt=tilt)
@@ -477,7 +487,7 @@ def run_steps(punch: Punch, P: float, s: float, Qs: list[float], f: float, E: fl
     t0, c0 = time.perf_counter(), resource.getrusage(resource.RUSAGE_CHILDREN).ru_utime
     stem = run_ccx(text, workdir, name, timeout=7200.0)
     info = {"h": model.h0, "nodes": model.n_nodes, "stem": stem,
-            "wall": time.perf_counter() - t0,
+            "wall": time.perf_counter() - t0, "cached": restored(workdir),
             "cpu": resource.getrusage(resource.RUSAGE_CHILDREN).ru_utime - c0,
             "increments": step_increments(stem)}
     return model, stem, info

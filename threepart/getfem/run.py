@@ -8,7 +8,9 @@ Names
 PYTHON_VARIABLE  -- the environment variable naming the interpreter: ``THREEPART_GETFEM_PYTHON``
 getfem_python    -- the interpreter that imports ``getfem`` (the variable, else ``python3`` on the PATH, else /usr/bin/python3)
 getfem_available -- whether one does
-run_getfem       -- write a script to ``workdir/name.py``, run it there (one thread); the sidecar's path
+run_getfem       -- write a script to ``workdir/name.py``, run it there (one thread), or the files of the same
+                    run from threepart's cache; the sidecar's path
+getfem_version   -- the interpreter and its GetFEM version, part of a cached run's key
 GetfemError      -- the script ran but failed, or wrote no result (a RuntimeError)
 GetfemMissing    -- no interpreter imports ``getfem`` (an OSError)
 """
@@ -20,10 +22,11 @@ import shutil
 import subprocess
 from pathlib import Path
 
+from ..cache import cached_run
 from ..errors import GetfemError, GetfemMissing
 
-__all__ = ["PYTHON_VARIABLE", "getfem_python", "getfem_available", "run_getfem", "GetfemError",
-           "GetfemMissing"]
+__all__ = ["PYTHON_VARIABLE", "getfem_python", "getfem_available", "run_getfem", "getfem_version",
+           "GetfemError", "GetfemMissing"]
 
 #: the environment variable that names the interpreter with ``getfem``
 PYTHON_VARIABLE = "THREEPART_GETFEM_PYTHON"
@@ -73,8 +76,13 @@ def getfem_available() -> bool:
     return True
 
 
-def run_getfem(script: str, workdir: Path, name: str = "job", timeout: float = 3600.0) -> Path:
+def run_getfem(script: str, workdir: Path, name: str = "job", timeout: float = 3600.0, *,
+               cached: bool = True) -> Path:
     """Write ``script`` to ``workdir/name.py``, run it there on one thread; the path of ``name.getfem.json``.
+
+    With ``cached`` (default) a script GetFEM already ran (the same text, name, interpreter and
+    GetFEM version) is not run again: the files it wrote come back from threepart's cache
+    (:func:`threepart.cache.cached_run`; ``threepart cache --clear`` empties it).
 
     Raises
     ------
@@ -88,15 +96,30 @@ def run_getfem(script: str, workdir: Path, name: str = "job", timeout: float = 3
     workdir = Path(workdir)
     workdir.mkdir(parents=True, exist_ok=True)
     (workdir / f"{name}.py").write_text(script)
-    try:
-        proc = subprocess.run([python, f"{name}.py"], cwd=workdir, env=dict(os.environ, **ONE_THREAD),
-                              capture_output=True, text=True, timeout=timeout)
-    except subprocess.TimeoutExpired:
-        raise GetfemError(f"GetFEM ran {name}.py in {workdir} past the timeout of {timeout:g} s") from None
     out = workdir / f"{name}.getfem.json"
-    if proc.returncode != 0 or not out.exists():
-        failed = [ln for ln in proc.stderr.splitlines() if ln.startswith("GETFEM-FAILED")]
-        why = failed[0].removeprefix("GETFEM-FAILED: ") if failed else \
-            " | ".join(proc.stderr.strip().splitlines()[-2:]) or f"exit status {proc.returncode}, no result"
-        raise GetfemError(f"GetFEM failed on {name}.py in {workdir}: {why}")
+
+    def run() -> None:
+        try:
+            proc = subprocess.run([python, f"{name}.py"], cwd=workdir, env=dict(os.environ, **ONE_THREAD),
+                                  capture_output=True, text=True, timeout=timeout)
+        except subprocess.TimeoutExpired:
+            raise GetfemError(f"GetFEM ran {name}.py in {workdir} past the timeout of {timeout:g} s") from None
+        if proc.returncode != 0 or not out.exists():
+            failed = [ln for ln in proc.stderr.splitlines() if ln.startswith("GETFEM-FAILED")]
+            why = failed[0].removeprefix("GETFEM-FAILED: ") if failed else \
+                " | ".join(proc.stderr.strip().splitlines()[-2:]) or f"exit status {proc.returncode}, no result"
+            raise GetfemError(f"GetFEM failed on {name}.py in {workdir}: {why}")
+
+    if cached:
+        cached_run("getfem", {"script": script, "name": name, "getfem": getfem_version(python)}, workdir, run)
+    else:
+        run()
     return out
+
+
+@functools.lru_cache(maxsize=4)
+def getfem_version(python: str) -> str:
+    """The interpreter ``python`` and its ``getfem.__version__``: part of a cached run's key."""
+    proc = subprocess.run([python, "-c", "import getfem; print(getattr(getfem, '__version__', '?'))"],
+                          capture_output=True, text=True, timeout=60)
+    return f"{python}: {proc.stdout.strip()}"

@@ -17,6 +17,8 @@ from typing import Any
 
 import numpy as np
 
+from ..cache import restored
+from ..cache import restored
 from ..problem.checks import positive
 from ..problem.material import similar_pair
 from ..methods import solve
@@ -97,7 +99,8 @@ def _run(punch: Punch, P: float | None, s: float, f: float, E: float, nu: float,
 def _info(run: GetfemRun) -> dict[str, Any]:
     return {"h": run.params["h"], "dofs": run.dofs, "time": run.time, "newton": run.steps,
             "P_integral": run.last.resultant[0], "Q_integral": run.last.resultant[1],
-            "workdir": None if run.path is None else str(run.path.parent)}
+            "workdir": None if run.path is None else str(run.path.parent),
+            "cached": run.path is not None and restored(run.path.parent)}
 
 
 def partial_slip(punch: Punch, P: float, s: float, Q: float, f: float, E: float, nu: float, *,

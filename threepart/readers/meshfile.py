@@ -15,7 +15,8 @@ the pressure there from a point field: the option ``field``, or the first of
 ``surface``
     The contact nodes' set (default: the nodes at ``y = 0``).
 ``shear``
-    A point field of the shear traction, if wanted.
+    A point field of the shear traction; without it the first of :data:`SHEAR_FIELDS` the
+    file has (GetFEM's deck writes ``contact_shear``), else none.
 ``component``
     Which column of a field with several components (default: a field must have one):
     an integer in ``0..MAX_COMPONENT``.
@@ -43,6 +44,8 @@ __all__ = ["read_mesh_file", "FIELDS", "SURFACE_TOLERANCE", "MESHIO_FORMATS", "M
 
 #: the pressure fields looked for, in order, when the option ``field`` is not given
 FIELDS = ("contact_pressure", "CPRESS", "pressure", "contact pressure", "PRES", "p")
+#: the point fields read as the shear when ``shear`` is not given, in this order
+SHEAR_FIELDS = ("contact_shear", "CSHEAR")
 #: a node lies on the top surface y = 0 within this fraction of the mesh's extent (round-off of
 #: the writer's coordinates: single precision in some files, 1.2e-7)
 SURFACE_TOLERANCE = 1e-6
@@ -96,6 +99,8 @@ def read_mesh_file(path: Path, *, arg: str = "path", file_format: str = "vtu",
     nodes, x = nodes[order], x[order]
     p = _column(point_data[names[0]], options.get("component"), names[0], path, arg)[nodes]
     q = None
+    if not options.get("shear"):
+        options["shear"] = next((f for f in SHEAR_FIELDS if f in point_data), None)
     if options.get("shear"):
         if options["shear"] not in point_data:
             raise ReaderError(f"`{arg}` = {str(path)!r} has no point field {options['shear']!r} (shear); "

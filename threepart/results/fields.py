@@ -154,8 +154,10 @@ def edge_multipliers(x: np.ndarray, p: np.ndarray, a: float, c: float, b: float
 #: a node sticks where ``1 - |q|/(f p)`` exceeds this: a penalty or augmented friction law leaves
 #: the slip zones' nodes a little below ``f p`` (CalculiX's, GetFEM's), and they must not enter the fit
 STICK_MARGIN = 0.02
-#: the sticking nodes next to each end that the fit of ``(1 - |q|/(f p))^2`` takes
-STICK_NODES = 6
+#: the sticking nodes next to each end that the fit of ``(f p - |q|)^2`` takes (past the end's own):
+#: ten average a field that oscillates from node to node (GetFEM's multiplier, +-8 % of ``f p*`` on
+#: slip_Q0.4 at W/h = 64), which six followed (docs/GETFEM.md's table of the fits)
+STICK_NODES = 10
 #: nodes loaded below this fraction of the peak pressure are not judged: next to a contact end (within
 #: ~1e-4 of its width) or outside it, where a code's noise in p makes q/p meaningless (GetFEM's
 #: multiplier at W/h = 32: p ~ 1e-4 of the peak outside the contact, with |q|/(f p) = 0.98)
@@ -188,18 +190,25 @@ def contact_run(p: ArrayLike) -> np.ndarray:
 
 def stick_ends(x: ArrayLike, p: ArrayLike, q: ArrayLike, f: float, *, margin: float = STICK_MARGIN,
                k: int = STICK_NODES) -> tuple[float, float]:
-    """The stick zone's ends of nodal tractions: where ``1 - |q|/(f p)`` falls to 0, from a fit inside it.
+    """The stick zone's ends of nodal tractions: where ``f p - |q|`` falls to 0, from a fit inside it.
 
-    In a slip zone ``|q| = f p``; inside the stick zone ``f p - |q|`` rises from its
-    ends as a square root (Ciavarella–Jäger: the corrective pressure ``p*`` of eq.
-    integral_equation_2 is bounded at the stick zone's ends), so ``(1 - |q|/(f p))^2``
-    is linear in ``x`` there. The stick zone is the longest run of nodes loaded above
-    :data:`STICK_LOAD` of the peak whose ratio exceeds ``margin``; a polynomial of
-    degree up to 2 is fitted to the squared ratio over the ``k`` nodes of the run next
-    to each end, and its root nearest them, kept between the run's end node and its
-    outer neighbour, is the end: on Mindlin's traction at nodes ``h`` apart within
-    ``0.2 h`` (W/h = 50) and ``0.05 h`` (W/h = 100). ``x`` ascending; ``(nan, nan)`` if
-    fewer than two nodes stick.
+    In a slip zone ``|q| = f p``; inside the stick zone ``|q| = f (p - p*)``, with
+    ``p*`` the corrective pressure of eq. integral_equation_2 (Ciavarella–Jäger), the
+    pressure of a contact on the stick zone alone, bounded at its ends: ``p*`` rises
+    from each end as a square root times a smooth function, so ``p*^2 = (p - |q|/f)^2``
+    is a low polynomial there (exactly ``∝ c^2 - x^2`` on Mindlin's traction). The
+    stick zone is the longest run of nodes loaded above :data:`STICK_LOAD` of the peak
+    whose ``1 - |q|/(f p)`` exceeds ``margin``; a polynomial of degree up to 2 is fitted
+    to ``p*^2`` over ``k`` nodes of the run next to each end, and its root nearest them
+    is the end if it lies between the run's end node and its outer neighbour, where the
+    nodes place it; else the fit is not to be trusted (a field that oscillates from node
+    to node: GetFEM's multiplier at W/h = 32) and the end is midway between them. The run's end
+    node itself is left out of the fit when the run is longer than ``k + 1``: the element
+    holding the end smears the kink over it (GetFEM at W/h = 64 on Hertz: ``p*`` 5 % high
+    there, which moved the end by 3.3e-3 W; without it 4e-5 W). The ratio ``1 - |q|/(f p)``
+    squared, fitted before over six nodes (it is not a polynomial where the stick zone's end
+    nears the contact's), read the exact Mindlin traction at W/h = 64 2.3e-3 W off. ``x``
+    ascending; ``(nan, nan)`` if fewer than two nodes stick.
     """
     x, p, q = (np.asarray(v, dtype=float) for v in (x, p, q))
     on = p > STICK_LOAD * float(np.max(p, initial=0.0))
@@ -212,11 +221,14 @@ def stick_ends(x: ArrayLike, p: ArrayLike, q: ArrayLike, f: float, *, margin: fl
         return math.nan, math.nan
     longest = int(np.argmax(x[stops - 1] - x[starts]))
     run = np.arange(starts[longest], stops[longest])
+    corrective = (f * p - np.abs(q)) ** 2                  # (f p*)^2
+    skip = 1 if run.size > k + 1 else 0
     ends = []
-    for idx, outer in ((run[:k], run[0] - 1), (run[::-1][:k], run[-1] + 1)):
-        lo, hi = sorted((float(x[idx[0]]), float(x[min(max(outer, 0), len(x) - 1)])))
-        roots = np.roots(np.polyfit(x[idx], r[idx] ** 2, min(2, idx.size - 1)))
+    for side, outer in ((run, run[0] - 1), (run[::-1], run[-1] + 1)):
+        idx = side[skip:skip + k]
+        lo, hi = sorted((float(x[side[0]]), float(x[min(max(outer, 0), len(x) - 1)])))
+        roots = np.roots(np.polyfit(x[idx], corrective[idx], min(2, idx.size - 1)))
         roots = roots[np.isreal(roots)].real
-        end = float(roots[np.argmin(np.abs(roots - x[idx[0]]))]) if roots.size else float(x[idx[0]])
-        ends.append(min(max(end, lo), hi))
+        end = float(roots[np.argmin(np.abs(roots - x[side[0]]))]) if roots.size else math.nan
+        ends.append(end if lo <= end <= hi else 0.5 * (lo + hi))
     return ends[0], ends[1]
