@@ -22,7 +22,7 @@ from threepart.reports.verify import render
 from threepart.reports.verify import sections
 from threepart.reports.verify import report as verify
 from threepart.reports.verify.sections import Link, Status, Verdict
-from threepart.tolerances import ERROR_UNITS, NORMALISATION
+from threepart.tolerances import ERROR_UNITS, NORMALISATION, tolerance
 
 from threepart.cli import UNITS
 
@@ -531,3 +531,13 @@ def _drawn_texts(fig):
             lo, hi = sorted(axis.get_view_interval())
             out += [t.label1 for t in axis.get_major_ticks() if lo <= t.get_loc() <= hi]
     return [t for t in out if t.get_visible() and t.get_text().strip()]
+
+
+def test_the_outside_codes_stick_end_rows_are_fractions_of_W():
+    """The SIE's and FEM's histories count stick-end errors in elements h, the friction referees'
+    rows in W (the issue-38 target 5e-3 W): one quantity name, two units, each row its own."""
+    from threepart.tolerances import error_unit
+
+    assert error_unit("sie-history", "stick_end") == "h"
+    for group in ("getfem", "calculix-friction"):
+        assert error_unit(group, "stick_end") == "W" and "W" in tolerance(group, "stick_end").reason

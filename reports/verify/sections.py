@@ -25,7 +25,7 @@ from typing import Any, Sequence, Union
 from threepart.problem.units import UNITS
 from threepart import registry
 from threepart.registry import REFERENCE
-from threepart.tolerances import ERROR_UNITS, NORMALISATION, VALUE_UNITS
+from threepart.tolerances import ERROR_UNITS, NORMALISATION, VALUE_UNITS, error_unit
 
 from .cells import fmt, head_unit, physical, unit_of, with_unit
 from threepart.errors import InputError
@@ -494,7 +494,7 @@ def _map(map_link: str | None) -> Section:
 
 def _tolerances(doc: dict[str, Any]) -> Table:
     head = ("comparison", "quantity", "limit", "unit", "reason")
-    rows = tuple((t["comparison"], t["quantity"], fmt(t["limit"]), ERROR_UNITS.get(t["quantity"], ""),
+    rows = tuple((t["comparison"], t["quantity"], fmt(t["limit"]), error_unit(t["comparison"], t["quantity"]),
                   words(t["reason"])) for t in doc["tolerances"])
     return Table(head, rows, f"{len(rows)} entries, each with its reason", fold=True)
 

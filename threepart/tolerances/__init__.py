@@ -118,7 +118,7 @@ from dataclasses import dataclass
 from .outside import OUTSIDE
 
 __all__ = ["Tolerance", "TOLERANCES", "COMPARISONS", "QUANTITIES", "NORMAL_QUANTITIES",
-           "SLIP_QUANTITIES", "STRESS_QUANTITIES", "FRETTING_QUANTITIES", "STEADY_QUANTITIES", "tolerance", "fem_comparison", "VALUE_UNITS", "ERROR_UNITS",
+           "SLIP_QUANTITIES", "STRESS_QUANTITIES", "FRETTING_QUANTITIES", "STEADY_QUANTITIES", "tolerance", "fem_comparison", "VALUE_UNITS", "ERROR_UNITS", "ROW_UNITS", "error_unit",
            "NORMALISATION", "MAP_LIMIT", "MAP_LEVELS", "Baseline", "BASELINES"]
 
 
@@ -173,6 +173,19 @@ ERROR_UNITS: dict[str, str] = {
     # robustness study (reports.verify.robustness)
     "p_min": "peak", "wrong_refusals": "count", "no_convergence": "count",
 }
+#: a row whose unit is not its quantity's (:data:`ERROR_UNITS`): the outside codes' own rows
+ROW_UNITS: dict[tuple[str, str], str] = {
+    ("getfem", "stick_end"): "W", ("calculix-friction", "stick_end"): "W",
+    ("calculix-friction", "bulk_stick_end"): "W", ("calculix-friction", "cycle_q_integral"): "Q",
+    ("calculix-friction", "flight_energy"): "energy",
+}
+
+
+def error_unit(comparison: str, quantity: str) -> str:
+    """What the error of row ``(comparison, quantity)`` is a fraction of (``""``: a plain number)."""
+    return ROW_UNITS.get((comparison, quantity), ERROR_UNITS.get(quantity, ""))
+
+
 #: the normalisations of :data:`ERROR_UNITS`, in words (stated once at the top of the report)
 NORMALISATION: dict[str, str] = {
     "W": "contact width W = a + c of the reference solution (mm): a, c, s and the peak positions",
