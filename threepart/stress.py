@@ -56,6 +56,7 @@ from typing import Any, Callable, Iterator
 import numpy as np
 from numpy.typing import ArrayLike
 
+from .legendre import gauss01
 from .progress import heartbeat
 from .checks import finite, show
 from threepart.errors import InputError, InputTypeError
@@ -263,10 +264,10 @@ def _ends_kinks(ends: Any, kinks: Any) -> tuple[float, float, np.ndarray]:
 
 def reference_rule(n: int, ratio: float, levels: int) -> tuple[np.ndarray, np.ndarray]:
     """Nodes ``u`` and weights on ``[0, 1]``, panels graded geometrically toward ``u = 0``."""
-    g, w = np.polynomial.legendre.leggauss(n)
+    g, w = gauss01(n)
     edges = np.concatenate([[0.0], ratio ** np.arange(levels, -1, -1.0)])
     lo, hi = edges[:-1, None], edges[1:, None]
-    return (0.5 * (hi - lo) * g + 0.5 * (hi + lo)).ravel(), (0.5 * (hi - lo) * w).ravel()
+    return (lo + (hi - lo) * g).ravel(), ((hi - lo) * w).ravel()
 
 
 def _depth(x: np.ndarray, z: np.ndarray, lo: float, hi: float, kinks: np.ndarray,
