@@ -39,6 +39,7 @@ from threepart.progress import heartbeat
 from threepart.halfplane.load_history import History, check_history, check_period, step_work, stuck
 from threepart.problem.punch import Punch
 from threepart.results.cycles import HistoryResult
+from threepart.halfplane.legendre import gauss01
 from threepart.results import Diagnostics, NormalResult
 from threepart.problem.validate import check_punch, integer, lever_arm, load_scale, positive, shear_load, show
 
@@ -104,10 +105,10 @@ def element_loads(normal: SieNormalResult, edges: np.ndarray) -> np.ndarray:
     lo = np.clip((cuts[:-1] - m) / h, -1.0, 1.0)
     hi = np.clip((cuts[1:] - m) / h, -1.0, 1.0)
     th0, th1 = np.arccos(hi), np.arccos(lo)           # θ falls as x rises
-    s, w = np.polynomial.legendre.leggauss(PRESSURE_POINTS)
-    theta = th0[:, None] + (th1 - th0)[:, None] * 0.5 * (s + 1)[None, :]
+    s, w = gauss01(PRESSURE_POINTS)
+    theta = th0[:, None] + (th1 - th0)[:, None] * s[None, :]
     p = normal.pressure(m + h * np.cos(theta))
-    pieces = 0.5 * (th1 - th0) * np.sum(w[None, :] * p * h * np.sin(theta), axis=1)
+    pieces = (th1 - th0) * np.sum(w[None, :] * p * h * np.sin(theta), axis=1)
     return np.bincount(owner, weights=pieces, minlength=len(edges) - 1)
 
 

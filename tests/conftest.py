@@ -17,14 +17,73 @@ import pytest
 
 #: the temporary cache this run made (removed at its end), if ``THREEPART_CACHE`` was unset
 _RUN_CACHE: list[tempfile.TemporaryDirectory] = []
+#: the thread pools of the BLAS (NumPy's and SciPy's OpenBLAS, CHOLMOD's system OpenBLAS) and of
+#: OpenMP (libgomp): one thread each in an xdist worker, unless the variable is set already
+THREAD_VARIABLES = ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS")
+#: pytest's cache key of each test file's seconds (setup, call and teardown of its tests) in the
+#: runs so far: an order for the files only, never a limit of any test
+FILE_SECONDS = "threepart/file_seconds"
+#: the seconds of each file in this run (the controller's, or the single process's)
+_SECONDS: dict[str, float] = {}
+#: the files' seconds the controller read when the run began, handed to every worker
+_ORDER: dict[str, float] = {}
+
+
+def _file_seconds(config: pytest.Config) -> dict[str, float]:
+    """The files' seconds of the runs so far (empty on the first run or without the cache)."""
+    cache = getattr(config, "cache", None)
+    return dict(cache.get(FILE_SECONDS, {})) if cache is not None else {}
 
 
 def pytest_configure(config: pytest.Config) -> None:
-    """On the controller, before the xdist workers start: one temporary cache for the whole run."""
-    if hasattr(config, "workerinput") or os.environ.get("THREEPART_CACHE"):
+    """On the controller, before the xdist workers start: one BLAS thread a worker, one cache a run.
+
+    ``-n auto`` starts a worker per core; each worker's OpenBLAS would start a thread per core
+    too, and OpenBLAS's threads spin while they wait: on the 2-core machine a 350 x 350
+    ``numpy.linalg.solve`` took 28 ms with 2 threads a process at load 6 against 2.3 ms with one
+    (tests/steady_march.py solves hundreds). The workers (and their subprocesses) inherit the
+    variables; ``-n 0`` leaves the threads alone.
+    """
+    if hasattr(config, "workerinput"):
+        return
+    if getattr(config.option, "numprocesses", None):
+        for name in THREAD_VARIABLES:
+            os.environ.setdefault(name, "1")
+        _ORDER.update(_file_seconds(config))
+        if _ORDER:                     # the longest files first (below), not the most tests first
+            config.option.loadscopereorder = False
+    if os.environ.get("THREEPART_CACHE"):
         return
     _RUN_CACHE.append(tempfile.TemporaryDirectory(prefix="threepart-test-cache-"))
     os.environ["THREEPART_CACHE"] = _RUN_CACHE[0].name
+
+
+def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item]) -> None:
+    """The files that took longest in the runs so far first, each file's tests in their order.
+
+    ``--dist loadfile`` hands out whole files in this order (xdist's own order, by the number of
+    tests, left the mypy, wheel and wide-draw files of one to four long tests for last), so a
+    run does not end with one worker on a long file while the other idles. A file not timed yet
+    keeps its place after the timed ones. The workers take the seconds the controller read at the
+    start (:func:`pytest_configure_node`), not the cache, which another run may write meanwhile:
+    all collect alike.
+    """
+    worker = getattr(config, "workerinput", None)
+    seconds = worker.get(FILE_SECONDS, {}) if worker is not None else _file_seconds(config)
+    if seconds:
+        items.sort(key=lambda item: -seconds.get(item.nodeid.split("::")[0], 0.0))
+
+
+@pytest.hookimpl(optionalhook=True)
+def pytest_configure_node(node) -> None:
+    """pytest-xdist, on the controller: each worker gets the files' seconds read at the start."""
+    node.workerinput[FILE_SECONDS] = dict(_ORDER)
+
+
+def pytest_runtest_logreport(report: pytest.TestReport) -> None:
+    """Add a test's phase to its file's seconds (in the controller, the workers' reports too)."""
+    path = report.nodeid.split("::")[0]
+    _SECONDS[path] = _SECONDS.get(path, 0.0) + report.duration
 
 
 def pytest_unconfigure(config: pytest.Config) -> None:
@@ -61,5 +120,8 @@ def pytest_sessionfinish(session: pytest.Session) -> None:
     """
     import gc
 
+    cache = getattr(session.config, "cache", None)
+    if _SECONDS and cache is not None and not hasattr(session.config, "workerinput"):
+        cache.set(FILE_SECONDS, {**_file_seconds(session.config), **_SECONDS})
     gc.collect()
     gc.freeze()

@@ -26,6 +26,12 @@ from threepart import closedform as cf
 #: a panel next to a stick zone's end can be set to slip with a slip of rounding (~1e-18 mm
 #: against 4e-5 mm), while a true slip falls as (x - r)^(3/2) to the end, above this a panel away
 SLIP_FLOOR = 1e-9
+#: the active set's rounding, the same on both sides: a stick panel is freed when |q| exceeds f p by
+#: more than this of f p, a slip panel re-stuck when it slips backwards by more than this of the
+#: largest slip. (With 1e-15 on the slip, a panel at a stick zone's end whose |q| - f p and
+#: backward slip were both of rounding, 1.2e-12 and 4.2e-13, was freed and re-stuck for ever
+#: when LAPACK ran on one thread, as it does in each pytest-xdist worker.)
+ROUNDING = 1e-12
 
 
 def kernel(x: np.ndarray, edges: np.ndarray, A: float) -> np.ndarray:
@@ -68,22 +74,25 @@ def _step(K, x, h, p, Q, g, f, A, u_ref, stick, sign):
     """One state of the history: the active set of stick and slip panels, from the last one."""
     contact = np.flatnonzero(p > 0)
     n = contact.size
+    Kc = K[np.ix_(contact, contact)]
+    rows = np.arange(n)
     for _ in range(500):
+        # a stick panel's row: u_i = u_ref_i (K q + C + A g x/4); a slip panel's: q_i = ±f p_i
+        held = stick[contact]
         M, rhs = np.zeros((n + 1, n + 1)), np.zeros(n + 1)
-        for r, i in enumerate(contact):
-            if stick[i]:
-                M[r, :n], M[r, n], rhs[r] = K[i, contact], 1.0, u_ref[i] - A * g * x[i] / 4
-            else:
-                M[r, r], rhs[r] = 1.0, sign[i] * f * p[i]
+        M[:n, :n] = np.where(held[:, None], Kc, 0.0)
+        M[rows[~held], rows[~held]] = 1.0
+        M[:n, n] = held
+        rhs[:n] = np.where(held, u_ref[contact] - A * g * x[contact] / 4, sign[contact] * f * p[contact])
         M[n, :n], rhs[n] = h[contact], Q
         sol = np.linalg.solve(M, rhs)
         q = np.zeros(x.size)
         q[contact] = sol[:n]
         u = K @ q + sol[n] + A * g * x / 4
         du = u - u_ref
-        over = stick & (p > 0) & (np.abs(q) > f * p * (1 + 1e-12))
+        over = stick & (p > 0) & (np.abs(q) > f * p * (1 + ROUNDING))
         # q must oppose the substrate's slip relative to the punch: du and q of opposite signs
-        back = ~stick & (p > 0) & (du * sign > 1e-15 * max(float(np.abs(du).max()), 1e-300))
+        back = ~stick & (p > 0) & (du * sign > ROUNDING * max(float(np.abs(du).max()), 1e-300))
         if not over.any() and not back.any():
             return q, u, stick, sign
         if over.any():      # first free the overloaded panels, then re-stick the wrong slips

@@ -12,6 +12,7 @@ two-dimensional Newton step replaced; and it must take at most
 """
 from __future__ import annotations
 
+import functools
 import itertools
 import math
 import re
@@ -81,6 +82,13 @@ def _per_case(punch: Punch, A: float, P: np.ndarray, s: np.ndarray, tilt: str) -
     return out
 
 
+@functools.lru_cache(maxsize=None)
+def _solved(seed: int, centre: str, tilt: str) -> tuple[Punch, float, np.ndarray, np.ndarray, list]:
+    """The draw and its per-case answers, solved once a draw for every test of this file (read only)."""
+    punch, A, P, s = _draw(seed, centre, tilt)
+    return punch, A, P, s, _per_case(punch, A, P, s, tilt)
+
+
 def _stage(kind: type) -> int:
     return next(i for i, kinds in enumerate(STAGES) if issubclass(kind, kinds))
 
@@ -93,8 +101,7 @@ def _digits(message: str) -> str:
 @pytest.mark.parametrize("tilt", ["free", "suppressed"])
 @pytest.mark.parametrize("seed,centre", DRAWS)
 def test_batch_equals_per_case_and_refuses_alike(seed, centre, tilt):
-    punch, A, P, s = _draw(seed, centre, tilt)
-    single = _per_case(punch, A, P, s, tilt)
+    punch, A, P, s, single = _solved(seed, centre, tilt)
     refused = [i for i, r in enumerate(single) if isinstance(r, tuple)]
     if refused:   # the batch names the first case refused at its earliest stage, with that case's error
         first = min(refused, key=lambda i: (_stage(single[i][0]), i))
@@ -126,8 +133,8 @@ def test_batch_equals_per_case_and_refuses_alike(seed, centre, tilt):
 @pytest.mark.parametrize("tilt", ["free", "suppressed"])
 @pytest.mark.parametrize("seed,centre", DRAWS[:6])
 def test_batch_satisfies_the_forward_equations_and_equals_the_nested_roots(seed, centre, tilt):
-    punch, A, P, s = _draw(seed, centre, tilt)
-    ok = np.array([not isinstance(r, tuple) for r in _per_case(punch, A, P, s, tilt)])
+    punch, A, P, s, single = _solved(seed, centre, tilt)
+    ok = np.array([not isinstance(r, tuple) for r in single])
     P, s = P[ok], s[ok]
     if not P.size:
         return
@@ -153,8 +160,8 @@ def test_evaluation_count_on_the_wide_draw():
     """At most MAX_EVALUATIONS per case over the wide draw (9.1 measured; up to 21 with R1/R2 = 1/2700)."""
     if not EVALUATIONS:
         for (seed, centre), tilt in itertools.product(DRAWS, ("free", "suppressed")):
-            punch, A, P, s = _draw(seed, centre, tilt)
-            ok = np.array([not isinstance(r, tuple) for r in _per_case(punch, A, P, s, tilt)])
+            punch, A, P, s, single = _solved(seed, centre, tilt)
+            ok = np.array([not isinstance(r, tuple) for r in single])
             if ok.any():
                 EVALUATIONS.append(cf.solve_normal_batch(punch, P[ok], s[ok], A=A, tilt=tilt).evaluations)
     assert np.mean(EVALUATIONS) <= MAX_EVALUATIONS

@@ -227,13 +227,25 @@ def fake_solvers(monkeypatch):
     return cases
 
 
-def test_report_json_validates_against_its_schema(tmp_path, fake_solvers):
+def test_report_json_validates_against_its_schema(tmp_path, fake_solvers, monkeypatch):
     import jsonschema
+
+    from threepart.fretting_wear import wear_case
+    from threepart.reports.verify.speed import speed_record
+    from threepart.reports.verify.wear_section import WEAR_CASE, study_record
+
+    # the default mode's two extra records, each of the same shape, made small: the speed ratios at
+    # the quick sizes (tests/test_speed_report.py), and the catalogue's wear case over 1000 cycles
+    # (its whole march, 26 s, is threepart verify's, and the slow test_cli_wear.py's over 2e5 cycles)
+    monkeypatch.setattr(verify, "speed_record", lambda quick, say=None: speed_record(True, say))
+    monkeypatch.setattr(verify, "wear_study", lambda root, say: study_record(
+        wear_case(WEAR_CASE).run(cycles=1000), root, WEAR_CASE, 0.0))
     out = tmp_path / "rep"
     status = verify.main(mode="default", out=out, cases=fake_solvers, quiet=True)
     doc = json.loads((out / "report.json").read_text())
     jsonschema.validate(doc, verify.load_schema())
     assert status == 0 and doc["passed"]
+    assert doc["speed"]["figures"] and doc["wear"]["case"] == WEAR_CASE     # the default mode's records
     assert {p.name for p in (out / "plots").iterdir()} >= {"caseA_sym_overlay.png", "sie_plain_caseA_moment_convergence.png",
                                                             "fem_caseA_moment_convergence.png"}
     html = (out / "report.html").read_text()

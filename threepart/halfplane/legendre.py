@@ -32,7 +32,7 @@ def graded01(n: int, ratio: float, levels: int) -> tuple[np.ndarray, np.ndarray]
 
     The rule of the stresses' remainder near each break point (:data:`threepart.stress.RULE`).
     """
-    g, w = np.polynomial.legendre.leggauss(n)
+    g, w = gauss01(n)
     edges = np.concatenate([[0.0], ratio ** np.arange(levels, -1, -1.0)])
     lo, hi = edges[:-1, None], edges[1:, None]
-    return (0.5 * (hi - lo) * g + 0.5 * (hi + lo)).ravel(), (0.5 * (hi - lo) * w).ravel()
+    return (lo + (hi - lo) * g).ravel(), ((hi - lo) * w).ravel()

@@ -25,7 +25,7 @@ from typing import Any, Callable
 
 import numpy as np
 
-from ..halfplane.legendre import graded01
+from ..halfplane.legendre import gauss01, graded01
 
 __all__ = ["is_grid", "grid_integrals", "GRID_DEPTH", "GRID_NODES", "GRID_PANEL"]
 
@@ -59,7 +59,7 @@ def _row_rule(z: float, F: np.ndarray, rule: dict[str, Any]) -> tuple[np.ndarray
     """Nodes and weights in ``t`` of the row at depth ``z`` over the intervals between break points ``F``."""
 
     U, Wu = graded01(rule["n"], rule["ratio"], rule["min_levels"])
-    g, w = np.polynomial.legendre.leggauss(GRID_NODES)
+    g, w = gauss01(GRID_NODES)
     nodes, weights = [], []
     for A, B in zip(F[:-1], F[1:]):
         e = min(0.5 * z, 0.25 * (B - A))
@@ -69,8 +69,8 @@ def _row_rule(z: float, F: np.ndarray, rule: dict[str, Any]) -> tuple[np.ndarray
         m = max(1, math.ceil((B - A - 2 * e) / (GRID_PANEL * z)))
         edges = np.linspace(A + e, B - e, m + 1)
         lo, hi = edges[:-1, None], edges[1:, None]
-        nodes.append((0.5 * (hi - lo) * g + 0.5 * (hi + lo)).ravel())
-        weights.append((0.5 * (hi - lo) * w).ravel())
+        nodes.append((lo + (hi - lo) * g).ravel())
+        weights.append(((hi - lo) * w).ravel())
     return np.concatenate(nodes), np.concatenate(weights)
 
 
