@@ -131,7 +131,7 @@ def judge(res: PointsResult | SlipPointsResult, ref: NormalResult | SlipResult, 
                  "P": ref.P, "s": ref.s, "note": ref.info.get("auto", "")}
     obtained = {"a": res.a, "c": res.c, "P": normal.P, "s": normal.s,
                 "points": int(normal.x_nodes.size)}
-    if friction:
+    if isinstance(ref, SlipResult) and isinstance(res, SlipPointsResult):    # as `friction`, narrowed
         pitfalls += friction_pitfalls(res, ref, stick_slope=stick_slope)
         reference.update(Q=ref.Q, f=ref.f, d=ref.d, e=ref.e, stick_zone=list(ref.stick_zone))
         obtained.update(d=res.d, e=res.e, stick_zone=list(res.stick_zone))
