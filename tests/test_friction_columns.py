@@ -286,3 +286,13 @@ def test_getfem_hertz_column_at_coarse_levels():
     assert all(math.isfinite(e) for e in width) and width[-1] < width[0], width
     row = {r["quantity"]: r for r in rows}["q_integral"]
     assert row["passed"] and row["target_met"], row
+
+
+def test_both_outside_codes_run_every_full_problem():
+    """CalculiX and GetFEM both have a bulk stress and a load history (calculix.cycle.load_history,
+    getfem.load_history): no `--full` column of theirs is "not yet" (CalculiX's flight column once
+    looked for its load history in the wrong module and never ran)."""
+    fs._builtin()
+    for name in ("calculix", "getfem"):
+        code = fs.REFEREES[name]
+        assert all(fs.supports(code, p.needs) for p in fp.FRICTION_PROBLEMS if p.needs), name

@@ -104,7 +104,7 @@ def register_referee(referee: Referee) -> None:
 
 def _calculix() -> Referee:
     from threepart import calculix
-    from threepart.calculix import friction
+    from threepart.calculix import cycle, friction
     from threepart.errors import CcxError
 
     def fretting(*args: Any, **kwargs: Any) -> Any:
@@ -118,7 +118,7 @@ def _calculix() -> Referee:
                    {**rows, "stick_ends": ends, "stick_width": ends,
                     "flight/energy": ("calculix-friction", "flight_energy"),
                     "fretting_Q0.4/q_integral": ("calculix-friction", "cycle_q_integral")},
-                   getattr(friction, "load_history", None))
+                   cycle.load_history)
 
 
 #: GetFEM's steps from one state of a load history to the next in the flight column
