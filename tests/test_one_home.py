@@ -30,15 +30,7 @@ def _imports(path: Path, package: list[str] | None = None) -> set[str]:
     """
     if package is None:
         package = ["threepart", *path.parent.relative_to(SHARED).parts]
-    found: set[str] = set()
-    for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
-        if isinstance(node, ast.Import):
-            found |= {a.name for a in node.names}
-        elif isinstance(node, ast.ImportFrom):
-            base = package[:len(package) - node.level + 1] if node.level else []
-            module = ".".join([*base, *(node.module.split(".") if node.module else [])])
-            found |= {module, *(f"{module}.{a.name}" for a in node.names)}
-    return found
+    return _imports_of(list(ast.walk(ast.parse(path.read_text(encoding="utf-8")))), package)
 
 
 #: what sits above the core inside ``threepart/``: the command line and the foreign codes' toolkits
