@@ -27,8 +27,8 @@ from threepart.results.answer import check_pressure
 from threepart.errors import InputError, LiftOffError, NoConvergenceError, SeparationError
 from threepart.problem.punch import Punch
 from threepart.results import Diagnostics, NormalResult
-from threepart.problem.validate import (LENGTH_RANGE, check_arcs, check_contact, check_punch, check_tilt,
-                                        finite, first_refused, flag, lever_arm, load_scale, positive, reals)
+from threepart.problem.checks import LENGTH_RANGE, check_tilt, finite, flag, positive, reals
+from threepart.problem.validate import check_arcs, check_contact, check_punch, first_refused, lever_arm, load_scale
 
 from . import formulas
 from .newton import (HALF_PI, SCALAR, XTOL, XTOL_RANGE, State, r_guess, evaluations, ray_state, solve_phi,

@@ -22,8 +22,8 @@ from typing import Any
 
 from threepart.problem.material import rigid_punch, similar_pair
 from threepart.problem.punch import Punch
-from threepart.problem.validate import (check_punch, check_tilt, finite, integer, lever_arm, load_scale,
-                                        poisson, positive)
+from threepart.problem.checks import check_tilt, finite, integer, poisson, positive
+from threepart.problem.validate import check_punch, lever_arm, load_scale
 from threepart.errors import InputError, InputTypeError
 
 __all__ = ["FE_LENGTH_RANGE", "MAX_ITER", "STEPS", "MAX_FE_STATES", "H_FACTOR", "material", "load",

@@ -32,7 +32,7 @@ from scipy.linalg import cho_factor, cho_solve
 from threadpoolctl import threadpool_limits
 
 from threepart.errors import InputError, InputTypeError, NoConvergenceError
-from threepart.problem.validate import finite, integer, positive
+from threepart.problem.checks import finite, integer, positive
 
 from ._boundary import boundary
 from ._iv import MAX_ITER

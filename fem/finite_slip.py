@@ -45,7 +45,8 @@ from threepart.errors import ContactZoneError
 from threepart.meshes import SubstrateSpec
 from threepart.meshes.punch import PunchSpec
 from threepart.problem.punch import Punch
-from threepart.problem.validate import check_contact, integer, shear_load
+from threepart.problem.checks import integer
+from threepart.problem.validate import check_contact, shear_load
 
 from ._boundary import boundary
 from ._iv import STEPS

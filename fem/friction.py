@@ -65,7 +65,8 @@ from threepart.problem.punch import Punch
 from threepart.problem.material import NU
 from threepart.results import BRANCHES, FrettingResult, NormalResult, SlipResult
 from threepart.stress import Stress
-from threepart.problem.validate import check_states, finite, integer, shear_load
+from threepart.problem.checks import finite, integer
+from threepart.problem.validate import check_states, shear_load
 
 from .coulomb import Step, reversal
 from ._boundary import boundary

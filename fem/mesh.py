@@ -23,7 +23,7 @@ from threepart import cache
 from threepart.errors import InputError, InputTypeError, NoConvergenceError
 from threepart.meshes import SubstrateSpec, build_substrate
 from threepart.output import scratch_dir
-from threepart.problem.validate import finite
+from threepart.problem.checks import finite
 
 from ._boundary import boundary
 

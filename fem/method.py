@@ -24,7 +24,7 @@ from threepart.registry import Method, register
 from threepart.results.cycles import HistoryResult, SteadyStateResult
 from threepart.results import FrettingResult, NormalResult, SlipResult
 from threepart.tolerances import fem_comparison
-from threepart.problem.validate import poisson, positive
+from threepart.problem.checks import poisson, positive
 
 from .edges import edges
 from .friction import fretting_cycle, solve_partial_slip

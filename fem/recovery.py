@@ -24,7 +24,7 @@ from skfem import Basis, BilinearForm, ElementTriP2, ElementVector, LinearForm, 
 from threadpoolctl import threadpool_limits
 
 from threepart.stress import Stress
-from threepart.problem.validate import finite
+from threepart.problem.checks import finite
 
 from .export import plane_strain_stress
 from threepart.errors import InputError

@@ -24,7 +24,8 @@ from numpy.typing import ArrayLike
 
 from threepart.problem.punch import Punch
 
-from threepart.problem.validate import check_contact, integer
+from threepart.problem.checks import integer
+from threepart.problem.validate import check_contact
 from threepart.errors import ContactZoneError, InputError, InputTypeError, SeparationError
 from threepart.problem.material import rigid_punch
 from threepart.problem.material import NU

@@ -29,7 +29,8 @@ from threepart.results import Diagnostics
 from threepart.halfplane.steady import LoadState, check_cycle_states, ramp
 from threepart.stress import Stress
 from threepart.tolerances import tolerance
-from threepart.problem.validate import integer, shear_load
+from threepart.problem.checks import integer
+from threepart.problem.validate import shear_load
 
 from ._boundary import boundary
 from ._iv import mesh_arg, normal_iv

@@ -41,7 +41,8 @@ from threepart.problem.punch import Punch
 from threepart.results.cycles import HistoryResult
 from threepart.halfplane.legendre import gauss01
 from threepart.results import Diagnostics, NormalResult
-from threepart.problem.validate import check_punch, integer, lever_arm, load_scale, positive, shear_load, show
+from threepart.problem.checks import integer, positive, show
+from threepart.problem.validate import check_punch, lever_arm, load_scale, shear_load
 
 from .normal import DEFAULT_N, SieNormalResult, solve_normal
 

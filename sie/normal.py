@@ -30,8 +30,8 @@ from scipy.optimize import brentq
 
 from threepart.problem.punch import Punch
 
-from threepart.problem.validate import (check_arcs, check_contact, check_punch, check_tilt, lever_arm,
-                                        load_scale, positive)
+from threepart.problem.checks import check_tilt, positive
+from threepart.problem.validate import check_arcs, check_contact, check_punch, lever_arm, load_scale
 from threepart.errors import InputError, NoConvergenceError, SeparationError
 from threepart.results import Diagnostics, NormalResult
 

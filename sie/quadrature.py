@@ -26,7 +26,7 @@ from functools import lru_cache
 import numpy as np
 import scipy.linalg
 
-from threepart.problem.validate import integer
+from threepart.problem.checks import integer
 
 __all__ = ["GaussChebyshevRule", "gauss_chebyshev", "cauchy_matrix", "PlainFunctionals",
            "plain_functionals"]
@@ -64,7 +64,7 @@ MAX_N = 2**16
 
 
 def check_n(n: int) -> int:
-    """``n`` as an ``int`` in ``[2, MAX_N]`` (:func:`threepart.problem.validate.integer`).
+    """``n`` as an ``int`` in ``[2, MAX_N]`` (:func:`threepart.problem.checks.integer`).
 
     A bool or a non-integer is a ``TypeError``; at least 2 terms carry the
     load and the centroid (``T_1``, ``T_2``).

@@ -269,3 +269,19 @@ def test_the_cycle_check_finds_a_cycle_through_a_function():
     assert _cycle({"a": {"b"}, "b": {"a"}}) == ["a", "b", "a"]
     graph = _core_graph(module_level=False)
     assert "threepart.results.contact" in graph["threepart.results.cycles"]
+
+
+def test_the_plain_value_checks_are_imported_from_their_one_home():
+    """finite, positive, integer, poisson, ... live in threepart.problem.checks; validate (the checks of
+    a problem) uses them but does not re-export them, and no module imports them through it (issue 40:
+    one concept, two homes)."""
+    from threepart.problem import checks, validate
+
+    assert not set(checks.__all__) & set(validate.__all__)
+    root = SHARED.parent
+    through = [f"{path.relative_to(root)}:{node.lineno}" for top in ("threepart", "closedform", "sie", "fem", "reports")
+               for path in (root / top).rglob("*.py") if "build" not in path.parts
+               for node in ast.walk(ast.parse(path.read_text(encoding="utf-8")))
+               if isinstance(node, ast.ImportFrom) and (node.module or "").endswith("validate")
+               and any(a.name in checks.__all__ for a in node.names)]
+    assert not through, through

@@ -135,7 +135,7 @@ if TYPE_CHECKING:   # pragma: no cover - for type checkers and IDEs only
     from .fatigue.history import stress_history
     from .stress.flamant import Stress, hilbert
     from .fretting_wear import WearResult, wear
-    from .problem.validate import TILTS
+    from .problem.checks import TILTS
 
 
 def __getattr__(name: str) -> Any:

@@ -27,7 +27,8 @@ from threepart.problem.catalogue import Case
 from threepart.errors import InputError, InputTypeError
 from threepart.problem.punch import Punch
 from threepart.results import FrettingResult
-from threepart.problem.validate import check_punch, check_tilt, integer, lever_arm, positive
+from threepart.problem.checks import check_tilt, integer, positive
+from threepart.problem.validate import check_punch, lever_arm
 
 __all__ = ["wear", "WearResult", "register_marcher", "has_marcher", "WearCase", "wear_cases", "wear_case",
            "LAWS"]

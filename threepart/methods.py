@@ -44,7 +44,7 @@ from .results.cycles import MarchedSteadyResult, SteadyStateResult
 from .results.contact import NormalResult
 from .results.slip import FrettingResult, SlipResult
 from .halfplane.bulk import check_sigma_bulk
-from .problem.validate import check_positive, integer
+from .problem.checks import check_positive, integer
 
 __all__ = ["METHODS", "CHOICES", "AUTO", "solve", "steady_state", "march_steady_state", "fretting", "describe"]
 

@@ -127,11 +127,12 @@ def from_points(x: ArrayLike, p: ArrayLike, ref: NormalResult, *, alpha: float |
 def check_points(x: np.ndarray, p: np.ndarray, alpha: float | None) -> None:
     """Refuse points whose load or centroid overflows, and a tilt that is no small slope.
 
-    ``x`` and ``p`` stay within :data:`threepart.problem.validate.LENGTH_RANGE` in magnitude
+    ``x`` and ``p`` stay within :data:`threepart.problem.checks.LENGTH_RANGE` in magnitude
     (lengths and loads, so that ``∫p dx`` and ``∫x p dx`` stay finite); ``alpha``
     is finite and within :data:`threepart.problem.validate.SLOPE_LIMIT`.
     """
-    from threepart.problem.validate import LENGTH_RANGE, SLOPE_LIMIT, finite
+    from threepart.problem.checks import LENGTH_RANGE, finite
+    from threepart.problem.validate import SLOPE_LIMIT
 
     hi = LENGTH_RANGE[1]
     for name, v in (("x", x), ("p", p)):

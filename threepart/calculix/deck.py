@@ -23,7 +23,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from ..problem.material import compliance
-from ..problem.validate import check_tilt, finite, positive
+from ..problem.checks import check_tilt, finite, positive
 from threepart.errors import InputError, InputTypeError
 
 if TYPE_CHECKING:   # pragma: no cover - the models' types only; mesh.py imports this module

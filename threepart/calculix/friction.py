@@ -32,7 +32,7 @@ from typing import TYPE_CHECKING, Any, Sequence
 
 import numpy as np
 
-from ..problem.validate import finite, positive
+from ..problem.checks import finite, positive
 from .deck import (CONVENTIONS, DeckSettings, deck_head, lid_nodes, boundary_text, elements_text,
                    material_text, nodes_text, nset_text, surface_text)
 from threepart.errors import InputError

@@ -19,7 +19,7 @@ from typing import Any
 import numpy as np
 
 from ..problem.punch import Punch
-from ..problem.validate import positive
+from ..problem.checks import positive
 from .deck import DeckSettings
 from threepart.errors import InputError, InputTypeError
 

@@ -313,7 +313,7 @@ def given_punch_and_material(args: argparse.Namespace, needs: Sequence[str]) -> 
     import math
 
     from threepart.problem.punch import Punch
-    from threepart.problem.validate import poisson
+    from threepart.problem.checks import poisson
 
     need_options(args, needs)
     if args.A is not None and args.E is not None:

@@ -91,7 +91,8 @@ def run(args: argparse.Namespace) -> int:
 def _compare_iv(args: argparse.Namespace) -> str:
     """Check ``compare``'s own options before any numerics or any file is written; the cycle judged
     (``"fretting"``, ``"flight"``) or ``""``."""
-    from threepart.problem.validate import SLOPE_LIMIT, finite, positive
+    from threepart.problem.checks import finite, positive
+    from threepart.problem.validate import SLOPE_LIMIT
 
     cycle = _cycle_iv(args)
     if args.alpha is not None and not abs(finite("--alpha", args.alpha)) <= SLOPE_LIMIT:
@@ -113,7 +114,7 @@ def _compare_iv(args: argparse.Namespace) -> str:
 def _cycle_iv(args: argparse.Namespace) -> str:
     """The cycle judged (``"fretting"`` for ``--Q-max``, ``"flight"`` for ``--state0 --state1``) or ``""``;
     one line naming the option for a combination that judges nothing."""
-    from threepart.problem.validate import finite, positive
+    from threepart.problem.checks import finite, positive
 
     states = [k for k in (0, 1) if getattr(args, f"state{k}") is not None]
     if states and len(states) < 2:

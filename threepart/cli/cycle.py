@@ -110,7 +110,7 @@ def _case(args: argparse.Namespace) -> dict[str, Any]:
 def _given(args: argparse.Namespace) -> dict[str, Any]:
     """Punch, compliance, material, friction and states of the command line's options."""
     from threepart.problem.material import similar_pair
-    from threepart.problem.validate import positive
+    from threepart.problem.checks import positive
 
     punch, nu = given_punch_and_material(args, ("R1", "R2", "b", "f"))
     if args.A is not None:

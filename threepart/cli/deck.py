@@ -113,7 +113,7 @@ def _shear_iv(args: argparse.Namespace) -> dict[str, Any]:
     if len(modes) > 1:
         raise InputError(f"give one load of a friction deck, not {' and '.join(f'`{m}`' for m in modes)}")
     if args.sigma_bulk is not None:
-        from threepart.problem.validate import finite
+        from threepart.problem.checks import finite
 
         finite("--sigma-bulk", args.sigma_bulk)
         if args.Q is None and args.Q_max is None:

@@ -160,7 +160,7 @@ def _fatigue_iv(args: argparse.Namespace) -> None:
     from threepart.fatigue import K_FINDLEY, findley_k
     from threepart.fatigue.table import GRID
     from threepart.output import check_file
-    from threepart.problem.validate import finite, integer, poisson, positive
+    from threepart.problem.checks import finite, integer, poisson, positive
 
     positive("--E", args.E)
     poisson(args.nu)

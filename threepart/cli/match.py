@@ -71,7 +71,7 @@ def _flank_problem(args: argparse.Namespace) -> dict[str, Any]:
     """The flank's punch, compliance, Poisson ratio and loads, checked before any numerics."""
     from threepart.problem.catalogue import load_cases
     from threepart.problem.material import NU, similar_pair
-    from threepart.problem.validate import finite, positive
+    from threepart.problem.checks import finite, positive
 
     own = ("R1", "R2", "b", "R", "E", "nu", "A", "P", "s", "Q", "f", "sigma_bulk")
     if args.case is not None:
@@ -94,7 +94,8 @@ def _flank_problem(args: argparse.Namespace) -> dict[str, Any]:
 
 def _problem(args: argparse.Namespace) -> dict[str, Any]:
     """Every check of the input, before anything is solved: the flank's problem and the pad's size."""
-    from threepart.problem.validate import positive, shear_load
+    from threepart.problem.checks import positive
+    from threepart.problem.validate import shear_load
 
     if args.pad_R is not None and args.pad_P is not None:
         raise InputError("give `--pad-R` or `--pad-P` (or neither: the pad of least surface-stress "

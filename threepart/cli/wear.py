@@ -107,7 +107,7 @@ def _case(args: argparse.Namespace) -> dict[str, Any]:
 def _given(args: argparse.Namespace) -> dict[str, Any]:
     """The problem of the punch, material and load options."""
     from threepart.problem.material import NU, similar_pair
-    from threepart.problem.validate import finite, positive
+    from threepart.problem.checks import finite, positive
 
     punch, nu = given_punch_and_material(args, ("R1", "R2", "b", "P", "Q_max", "f"))
     A = positive("--A", args.A) if args.A is not None else similar_pair(positive("--E", args.E),
@@ -121,7 +121,7 @@ def _problem(args: argparse.Namespace) -> dict[str, Any]:
     """Every check of the input, before anything is solved; the problem and the march's settings."""
     from threepart.fretting_wear import MAX_CYCLES, has_marcher
     from threepart.output import check_out
-    from threepart.problem.validate import integer, positive
+    from threepart.problem.checks import integer, positive
 
     if not has_marcher(args.method):
         raise InputError(f"`--method` = {args.method}: no wear march yet (not yet built for this method; sie has one)")

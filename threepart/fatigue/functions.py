@@ -51,7 +51,7 @@ from ..results.cycles import SteadyStateResult
 from .history import Cycle, History, check_cycle, as_history
 from ..results.slip import BRANCHES
 from ..stress.flamant import Stress
-from ..problem.validate import finite, positive
+from ..problem.checks import finite, positive
 from threepart.errors import InputError
 
 __all__ = ["HotSpot", "Parameter", "Ruiz", "von_mises_range", "swt", "findley", "ruiz", "critical_plane",

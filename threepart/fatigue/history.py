@@ -22,7 +22,7 @@ from ..results.cycles import SteadyStateResult
 from ..problem.material import NU
 from ..results.slip import FrettingResult, MasingCycle, masing
 from ..stress.flamant import Stress
-from ..problem.validate import integer, poisson, reals
+from ..problem.checks import integer, poisson, reals
 from threepart.errors import InputError, InputTypeError
 
 __all__ = ["History", "stress_history", "Cycle", "SAME_U"]

@@ -48,7 +48,7 @@ from .functions import (K_FINDLEY, Parameter, Ruiz, hot_spot_parameter, findley,
 from .history import Cycle, History, as_history, stress_history
 from ..problem.material import NU
 from ..stress.flamant import Stress
-from ..problem.validate import finite, poisson, positive, reals
+from ..problem.checks import finite, poisson, positive, reals
 from threepart.errors import InputError, InputTypeError
 
 __all__ = ["FatigueParameter", "register_parameter", "parameters", "parameter", "reported", "Inputs", "GRID", "grid",

@@ -26,7 +26,7 @@ from typing import Any, Sequence
 import numpy as np
 
 from .steady import state_values
-from ..problem.validate import finite, integer, positive, show
+from ..problem.checks import finite, integer, positive, show
 from threepart.errors import InputError, InputTypeError, ReaderError
 from threepart.textfile import read_text
 

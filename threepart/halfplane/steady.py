@@ -36,7 +36,7 @@ from .bulk import psi
 from ..errors import (DisjointContactsError, InputError, InputTypeError, NoConvergenceError,
                       OneSidedSlipError, StickZoneError, full_sliding)
 from .legendre import gauss01
-from ..problem.validate import finite, positive, show
+from ..problem.checks import finite, positive, show
 
 __all__ = ["STATE_KEYS", "state_values", "shakes_down", "common_contact", "cycle_states", "check_cycle_states", "ramp", "corrective_load", "corrective_tilt_cycle", "tilt_rate",
            "gap_rate", "cycle_margin", "half_cycle_work", "lam_rule", "WORK_RTOL", "WORK_NODES"]

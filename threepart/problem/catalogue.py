@@ -22,7 +22,7 @@ from typing import Any
 from .material import BODIES, block_modulus, material_compliance, modulus
 from .punch import Punch
 from ..registry import BEYOND_REFERENCE, REFERENCE, lift_off
-from .validate import finite, positive, show
+from .checks import finite, positive, show
 from threepart.errors import InputError
 
 __all__ = ["Case", "Wear", "CASES_FILE", "SUITES", "load_cases", "get_case", "slip_loads"]

@@ -42,11 +42,10 @@ from .checks import (LENGTH_RANGE, NU_RANGE, TILTS, check_finite, check_positive
 from .punch import Punch
 from threepart.errors import InputError, InputTypeError
 
-__all__ = ["real", "finite", "positive", "check_finite", "check_positive", "TILTS", "check_tilt",
-           "LENGTH_RANGE", "show", "NU_RANGE", "poisson", "integer", "lever_arm", "SLOPE_LIMIT",
-           "SLOPE_WARNING", "check_contact", "check_punch", "MAX_STATES", "check_states", "reals",
-           "load_scale", "shear_load", "SLIP_RATIO_LIMIT", "coordinates",
-           "flag", "check_arcs", "first_refused"]
+#: the checks of a problem; the plain-value checks (finite, positive, integer, poisson, ...) are
+#: threepart.problem.checks's, their one home, imported from there
+__all__ = ["lever_arm", "SLOPE_LIMIT", "SLOPE_WARNING", "check_contact", "check_punch", "MAX_STATES",
+           "check_states", "load_scale", "shear_load", "SLIP_RATIO_LIMIT", "check_arcs", "first_refused"]
 
 
 def check_punch(punch: Any) -> Any:

@@ -133,7 +133,7 @@ def interior_kinks(b: float, lo: float, hi: float, *more: float) -> list[float]:
 
 
 def _checked(method: Callable[..., Any], names: tuple[str, ...]) -> Callable[..., Any]:
-    """``method`` with its first ``len(names)`` arguments checked by :func:`~threepart.problem.validate.coordinates`."""
+    """``method`` with its first ``len(names)`` arguments checked by :func:`~threepart.problem.checks.coordinates`."""
     if getattr(method, "_coordinates", False):
         return method
 
@@ -162,7 +162,7 @@ class Answer:
 
     A subclass's ``pressure``, ``shear``, ``slip``, ``slip_amplitude`` and ``stress``
     are wrapped when the class is made, so their ``x`` (and ``z``) pass
-    :func:`threepart.problem.validate.coordinates` in every method. Each result is checked
+    :func:`threepart.problem.checks.coordinates` in every method. Each result is checked
     when built (:meth:`check`, :mod:`threepart.results.answer`): a tensile pressure or a shear
     past Coulomb's bound is refused by name. A result that wraps someone else's
     numbers to be judged (the pytest plugin's, the referee's) sets

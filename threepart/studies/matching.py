@@ -27,7 +27,7 @@ from ..fatigue.table import fatigue as cycle_fatigue, reported
 from ..methods import solve
 from ..problem.material import NU, similar_pair_modulus
 from ..problem.punch import Punch
-from ..problem.validate import positive, show
+from ..problem.checks import positive, show
 from ..results.slip import SlipResult
 from ..results.edges import SIDES, Edge, edges, exact_slip
 from ..tolerances import tolerance
