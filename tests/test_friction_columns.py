@@ -296,3 +296,19 @@ def test_both_outside_codes_run_every_full_problem():
     for name in ("calculix", "getfem"):
         code = fs.REFEREES[name]
         assert all(fs.supports(code, p.needs) for p in fp.FRICTION_PROBLEMS if p.needs), name
+
+
+def test_calculix_adapters_hand_the_column_the_last_state_with_the_cycles_energy(monkeypatch):
+    """calculix.cycle.load_history (and friction.fretting_cycle) return every recorded state; the
+    column reads the energy from what its code returns, so the adapter hands it the last state,
+    whose info holds the energy of the last cycle (it once handed the list: energy NaN, run failed)."""
+    from types import SimpleNamespace
+
+    from threepart.calculix import cycle, friction
+
+    states = [SimpleNamespace(info={"energy": 0.25}), SimpleNamespace(info={"energy": 0.5})]
+    monkeypatch.setattr(cycle, "load_history", lambda *a, **k: states)
+    monkeypatch.setattr(friction, "fretting_cycle", lambda *a, **k: states)
+    code = fs._calculix()
+    assert code.load_history(None, None, 0.5, 1.0, 0.3) is states[-1]
+    assert code.fretting(None, 1.0, 0.0, 0.1, 0.5, 1.0, 0.3) is states[-1]

@@ -110,6 +110,9 @@ def _calculix() -> Referee:
     def fretting(*args: Any, **kwargs: Any) -> Any:
         return friction.fretting_cycle(*args, **kwargs)[-1]     # the last Q_max; info["energy"]
 
+    def load_history(*args: Any, **kwargs: Any) -> Any:
+        return cycle.load_history(*args, **kwargs)[-1]          # the last state; info["energy"]
+
     rows = {q: ("calculix-friction", q) for q in ("q_integral", "q_interior_max", "energy", "stick_shift")}
     ends = ("calculix-friction", "stick_end")
     return Referee("calculix", calculix.ccx_available, friction.partial_slip, fretting,
@@ -118,7 +121,7 @@ def _calculix() -> Referee:
                    {**rows, "stick_ends": ends, "stick_width": ends,
                     "flight/energy": ("calculix-friction", "flight_energy"),
                     "fretting_Q0.4/q_integral": ("calculix-friction", "cycle_q_integral")},
-                   cycle.load_history)
+                   load_history)
 
 
 #: GetFEM's steps from one state of a load history to the next in the flight column
