@@ -119,7 +119,6 @@ def _calculix() -> Referee:
                    "`ccx` (CalculiX) is not on the PATH (Debian: apt-get install calculix-ccx)",
                    (CcxError,), (50.0, 100.0),
                    {**rows, "stick_ends": ends, "stick_width": ends,
-                    "flight/energy": ("calculix-friction", "flight_energy"),
                     "fretting_Q0.4/q_integral": ("calculix-friction", "cycle_q_integral")},
                    load_history)
 
