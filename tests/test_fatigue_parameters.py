@@ -206,3 +206,17 @@ def test_a_new_row_reaches_the_core_the_command_line_the_report_and_its_schema(t
     line = next(ln for ln in capsys.readouterr().out.splitlines() if ln.strip().startswith("toy (scaled"))
     assert " MPa  at x = " in line
     assert "toy [MPa]" in csv.read_text().splitlines()[0].split(",")
+
+
+def test_the_fatigue_commands_help_shows_the_tables_default_constants(capsys):
+    """`threepart fatigue --help` prints Findley's k and Crossland's kappa from their one home, the
+    table (kappa = 3 t-1/f-1 - sqrt(3) at t-1/f-1 = T_OVER_F_CROSSLAND), not a number typed twice."""
+    import math
+
+    from threepart.cli import main
+    from threepart.fatigue import K_FINDLEY
+    from threepart.fatigue.table import T_OVER_F_CROSSLAND
+
+    assert main(["fatigue", "--help"]) == 0
+    text = " ".join(capsys.readouterr().out.split())
+    assert f"default {3 * T_OVER_F_CROSSLAND - math.sqrt(3):.3g})" in text and f"(default {K_FINDLEY:g})" in text

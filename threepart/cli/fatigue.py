@@ -67,7 +67,7 @@ def _fatigue_args(p: argparse.ArgumentParser) -> None:
     m.add_argument("--constant", action="append", default=[], type=constant_arg, metavar="NAME=VALUE",
                    help="another fatigue parameter's constant, by the name its row of "
                         "threepart.fatigue.table gives it, e.g. kappa=0.5 (Crossland's, in [0, 10]; "
-                        "default 0.368); repeatable")
+                        "default {kappa_crossland}); repeatable")
     ld = p.add_argument_group("loads, unless --case: P at s, then the cycle Q = 0 -> Q_max -> -Q_max -> "
                               "Q_max; or a flight cycle's two ends, --state0 and --state1")
     ld.add_argument("--P", type=float,
@@ -109,8 +109,8 @@ def _fatigue_args(p: argparse.ArgumentParser) -> None:
 
 
 class _FatigueHelp(argparse.HelpFormatter):
-    """The help of ``fatigue``: Findley's default constant and the default grid read only when help is
-    shown.
+    """The help of ``fatigue``: Findley's and Crossland's default constants and the default grid read
+    only when help is shown (their one home, threepart.fatigue.table).
 
     Building the parser loads no numpy (see :data:`threepart._HOMES`).
     """
@@ -119,9 +119,9 @@ class _FatigueHelp(argparse.HelpFormatter):
         text = super()._get_help_string(action)
         if text and "{" in text:
             from threepart.fatigue import K_FINDLEY
-            from threepart.fatigue.table import GRID
+            from threepart.fatigue.table import GRID, KAPPA_CROSSLAND
 
-            text = text.replace("{k_findley}", f"{K_FINDLEY:g}")
+            text = text.replace("{k_findley}", f"{K_FINDLEY:g}").replace("{kappa_crossland}", f"{KAPPA_CROSSLAND:.3g}")
             for key, value in GRID.items():
                 text = text.replace(f"{{{key}}}", f"{value:g}")
         return text
