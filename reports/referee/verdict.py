@@ -123,18 +123,19 @@ def judge(res: PointsResult | SlipPointsResult, ref: NormalResult | SlipResult, 
     peak of the surface σxx that belongs to the interpolation, not to the code.
     """
     normal, ref_normal = normal_of(res), normal_of(ref)
-    friction = isinstance(ref, SlipResult) and isinstance(res, SlipPointsResult)
-    checks = [c for c in compare(ref, res, FRICTION_COMPARISON if friction else COMPARISON, stresses=False)
+    slip = (ref, res) if isinstance(ref, SlipResult) and isinstance(res, SlipPointsResult) else None
+    checks = [c for c in compare(ref, res, COMPARISON if slip is None else FRICTION_COMPARISON, stresses=False)
               if c.quantity != "alpha" or res.info.get("alpha_given")]
     pitfalls = diagnose(normal, ref_normal, penalty=penalty)
     reference = {"method": ref.method, "a": ref.a, "c": ref.c, "alpha": ref.alpha,
                  "P": ref.P, "s": ref.s, "note": ref.info.get("auto", "")}
     obtained = {"a": res.a, "c": res.c, "P": normal.P, "s": normal.s,
                 "points": int(normal.x_nodes.size)}
-    if isinstance(ref, SlipResult) and isinstance(res, SlipPointsResult):    # as `friction`, narrowed
-        pitfalls += friction_pitfalls(res, ref, stick_slope=stick_slope)
-        reference.update(Q=ref.Q, f=ref.f, d=ref.d, e=ref.e, stick_zone=list(ref.stick_zone))
-        obtained.update(d=res.d, e=res.e, stick_zone=list(res.stick_zone))
+    if slip is not None:
+        sref, sres = slip
+        pitfalls += friction_pitfalls(sres, sref, stick_slope=stick_slope)
+        reference.update(Q=sref.Q, f=sref.f, d=sref.d, e=sref.e, stick_zone=list(sref.stick_zone))
+        obtained.update(d=sres.d, e=sres.e, stick_zone=list(sres.stick_zone))
     return json_safe({
         "tool": "threepart compare", "source": source,
         "reference": reference, "obtained": obtained,

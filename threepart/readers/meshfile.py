@@ -40,7 +40,7 @@ from . import Record, register_reader
 from threepart.problem.checks import integer
 from threepart.errors import InputError, ReaderError
 
-__all__ = ["read_mesh_file", "FIELDS", "SURFACE_TOLERANCE", "MESHIO_FORMATS", "MAX_COMPONENT"]
+__all__ = ["read_mesh_file", "FIELDS", "SHEAR_FIELDS", "SURFACE_TOLERANCE", "MESHIO_FORMATS", "MAX_COMPONENT"]
 
 #: the pressure fields looked for, in order, when the option ``field`` is not given
 FIELDS = ("contact_pressure", "CPRESS", "pressure", "contact pressure", "PRES", "p")
