@@ -31,6 +31,7 @@ from numpy.typing import ArrayLike
 from scipy.optimize import brentq
 
 from threepart.errors import NoConvergenceError, StickZoneError
+from threepart.problem.checks import finite
 from threepart.problem.punch import Punch
 from threepart.results import NormalResult
 
@@ -113,7 +114,7 @@ class WearLimit:
     P: float
     s: float
     worn_zone: tuple[float, float]
-    stick: str = "pinned"
+    stick: str | tuple[float, float] = "pinned"
 
     @property
     def K(self) -> tuple[float, float]:
@@ -249,8 +250,11 @@ def _pinned(normal: NormalResult, Q_max: float, f: float, held: tuple[float, flo
     return contact(z)
 
 
-def _place(normal: NormalResult, Q_max: float, f: float, stick: str) -> tuple[float, float]:
-    """``(a, c)`` of the limit's contact ``[-a, c]`` by the rule ``stick`` (:data:`STICK_RULES`)."""
+def _place(normal: NormalResult, Q_max: float, f: float, stick: str | tuple[float, float]
+           ) -> tuple[float, float]:
+    """``(a, c)`` of the limit's contact ``[-a, c]`` by the rule ``stick`` (:data:`STICK_RULES`), or given."""
+    if isinstance(stick, tuple):
+        return -stick[0], stick[1]
     held = _held(normal, Q_max, f)
     check_coulomb(normal, held[0], held[1], Q_max / (f * normal.P))
     if stick == "held" or normal.tilt != "free" or _terms(normal, *held)[1] == 0:
@@ -258,7 +262,20 @@ def _place(normal: NormalResult, Q_max: float, f: float, stick: str) -> tuple[fl
     return _pinned(normal, Q_max, f, held) if stick == "pinned" else _consistent(normal, Q_max, f, held)
 
 
-def wear_limit(normal: NormalResult, Q_max: float, f: float, *, stick: str = "pinned") -> WearLimit:
+def _given(normal: NormalResult, stick: tuple) -> tuple[float, float]:
+    """A given stick zone ``(x1, x2)``: finite, ordered, inside the contact, its ends on the outer segments."""
+    if len(stick) != 2:
+        raise ValueError(f"`stick` = {stick!r} must be a rule or a pair (x1, x2)")
+    x1, x2 = (finite("stick", v) for v in stick)
+    b = normal.punch.b
+    if not (-normal.a <= x1 < -b and b < x2 <= normal.c):
+        raise ValueError(f"`stick` = ({x1:.6g}, {x2:.6g}) must lie in the contact [{-normal.a:.6g}, "
+                         f"{normal.c:.6g}] with its ends on the outer segments, beyond [-b, b] = [{-b:g}, {b:g}]")
+    return x1, x2
+
+
+def wear_limit(normal: NormalResult, Q_max: float, f: float, *,
+               stick: str | tuple[float, float] = "pinned") -> WearLimit:
     """The worn limit of the fretting cycle ``±Q_max`` at the normal result's ``P`` and ``s`` (docs/WEAR.md).
 
     Parameters
@@ -280,7 +297,9 @@ def wear_limit(normal: NormalResult, Q_max: float, f: float, *, stick: str = "pi
         both ends move to the fixed point ``C1 = 0`` on the unworn profile (eq. W7).
         The true limit lies between ``"pinned"`` and ``"consistent"``; all three are the
         cycle's stick zone where ``C1 = 0`` (a symmetric contact, Hertz, ``tilt="suppressed"``,
-        where ``s`` becomes the support's lever arm).
+        where ``s`` becomes the support's lever arm). A pair ``(x1, x2)`` is a given stick
+        zone: the limit that a marched history reached there (eqs. W3-W6 on it), which
+        must lie on the outer segments.
 
     Returns
     -------
@@ -304,8 +323,10 @@ def wear_limit(normal: NormalResult, Q_max: float, f: float, *, stick: str = "pi
         the moment would make the limit's pressure tensile at an end (``K < 0``).
     """
     Q_max, f, _ = fretting_iv(normal, Q_max, f, 2)
-    if stick not in STICK_RULES:
-        raise ValueError(f"`stick` = {stick!r} must be one of {', '.join(STICK_RULES)}")
+    if isinstance(stick, tuple):
+        stick = _given(normal, stick)
+    elif stick not in STICK_RULES:
+        raise ValueError(f"`stick` = {stick!r} must be one of {', '.join(STICK_RULES)} or a pair (x1, x2)")
     punch, A = normal.punch, normal.A
     a_s, c_s = _place(normal, Q_max, f, stick)
     x1, x2 = -a_s, c_s

@@ -25,12 +25,12 @@ from threepart.problem.punch import Punch
 from threepart.problem.checks import check_tilt, finite, integer, poisson, positive
 from threepart.problem.validate import check_punch, lever_arm, load_scale
 from threepart.errors import InputError, InputTypeError
+from threepart.halfplane.surface import MAX_ITER
 
 __all__ = ["FE_LENGTH_RANGE", "MAX_ITER", "STEPS", "MAX_FE_STATES", "H_FACTOR", "material", "load",
            "mesh_arg", "normal_iv", "height_iv"]
 
 #: active-set iterations (each is one dense solve on the active set)
-MAX_ITER = (1, 10_000)
 #: equal load steps of ``Q`` in :func:`fem.solve_partial_slip` (each costs one contact solve)
 STEPS = (1, 1000)
 #: the most states per branch of :func:`fem.fretting_cycle` (each costs a contact solve)

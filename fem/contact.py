@@ -11,9 +11,8 @@ with the load and its lever arm prescribed::
     sum f_i = P,    sum x_i f_i = P s        (tilt "free": alpha unknown)
     sum f_i = P,    alpha = 0                (tilt "suppressed": s is an output)
 
-A primal-dual active-set iteration (Hintermueller, Ito & Kunisch 2002) solves it,
-with the translation ``delta`` and the tilt ``alpha`` as extra unknowns of the
-small linear system on the active set.
+The active-set solve is the core's, :func:`threepart.halfplane.surface.solve_contact`
+(the half-plane's wear march shares it); here it is wrapped at the FE package's boundary.
 
 **Contact kinematics** (:data:`KINEMATICS`). ``"small"`` is the half-plane
 theory's: the gap is measured vertically between the undeformed surfaces and
@@ -24,18 +23,16 @@ active-set solve takes a modified compliance.
 """
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
+from dataclasses import replace
 from typing import Any, Callable
 
 import numpy as np
-from scipy.linalg import cho_factor, cho_solve
-from threadpoolctl import threadpool_limits
 
 from threepart.errors import InputError, InputTypeError, NoConvergenceError
-from threepart.problem.checks import finite, integer, positive
+from threepart.halfplane.surface import ContactSolution
+from threepart.halfplane.surface import solve_contact as _solve_contact
 
 from ._boundary import boundary
-from ._iv import MAX_ITER
 
 __all__ = ["ContactSolution", "solve_contact", "KINEMATICS", "check_kinematics",
            "first_order_compliance", "solve_kinematic"]
@@ -108,222 +105,7 @@ def first_order_compliance(C2: np.ndarray, slope: np.ndarray) -> np.ndarray:
     return C_yy - C_yx * V[None, :] - V[:, None] * C_xy
 
 
-@dataclass(frozen=True, eq=False)
-class ContactSolution:
-    """Nodal solution of the discrete contact problem.
-
-    Attributes
-    ----------
-    f
-        Downward nodal contact forces (``>= 0``).
-    gap
-        Gap between punch and surface at the nodes (``>= 0``).
-    active
-        Nodes in contact.
-    delta, alpha
-        Rigid indentation and tilt of the punch.
-    iterations
-        Active-set iterations used.
-    residual
-        The largest complementarity violation left: tensile force (relative to
-        ``P/n``) or penetration (relative to the profile's range), >= 0.
-    slope
-        The surface slope ``v'(x_i)`` the forces act along (:func:`solve_kinematic`):
-        zeros for vertical forces (``kinematics = "small"``).
-    """
-
-    f: np.ndarray
-    gap: np.ndarray
-    active: np.ndarray
-    delta: float
-    alpha: float
-    iterations: int
-    residual: float = 0.0
-    slope: np.ndarray | None = None
-
-
-def _solve_active(C: np.ndarray, x: np.ndarray, g0: np.ndarray, active: np.ndarray,
-                  P: float, s: float, free_tilt: bool, symmetric: bool = False
-                  ) -> tuple[np.ndarray, float, float]:
-    """Forces on the active set with ``gap = 0`` there, plus the equilibrium rows.
-
-    The system ``C_AA f + B lam = -g0_A``, ``D^T f = e`` (``lam = (delta, alpha)``,
-    ``B = (-1, x)``, ``D = (1, x)``, ``e = (P, P s)``). A symmetric ``C``
-    (``symmetric``; the small-slope compliance) is positive definite: a Cholesky
-    factor of ``C_AA`` and the ``k x k`` Schur complement of the bordered rows
-    (half the work of an LU of the whole); otherwise, or if that factor fails,
-    one LU of the bordered matrix.
-    """
-    idx = np.flatnonzero(active)
-    m = len(idx)
-    k = 2 if free_tilt else 1
-    A = C[np.ix_(idx, idx)]
-    D = np.ones((m, k))
-    if free_tilt:
-        D[:, 1] = x[idx]
-    B = D.copy()
-    B[:, 0] = -1.0
-    e = np.array([P, P * s][:k])
-    f = np.zeros(len(x))
-    if symmetric:
-        try:
-            factor = cho_factor(A, lower=True, overwrite_a=True, check_finite=False)
-        except np.linalg.LinAlgError:
-            A = C[np.ix_(idx, idx)]
-        else:
-            Y = cho_solve(factor, np.column_stack([-g0[idx], B]), check_finite=False)
-            lam = np.linalg.solve(D.T @ Y[:, 1:], D.T @ Y[:, 0] - e)
-            f[idx] = Y[:, 0] - Y[:, 1:] @ lam
-            return f, float(lam[0]), float(lam[1]) if free_tilt else 0.0
-    M = np.zeros((m + k, m + k))
-    M[:m, :m], M[:m, m:], M[m:, :m] = A, B, D.T
-    sol = np.linalg.solve(M, np.concatenate([-g0[idx], e]))
-    f[idx] = sol[:m]
-    return f, float(sol[m]), float(sol[m + 1]) if free_tilt else 0.0
-
-
-@boundary
-def solve_contact(C: np.ndarray, x: np.ndarray, g0: np.ndarray, P: float, s: float = 0.0, *,
-                  free_tilt: bool = True, max_iter: int = 100,
-                  active: np.ndarray | None = None) -> ContactSolution:
-    """Primal-dual active-set solution of the load-controlled contact problem.
-
-    Parameters
-    ----------
-    C
-        Surface compliance on the candidate nodes, ``(n, n)``.
-    x
-        Node positions, ``(n,)``.
-    g0
-        Punch shape at the nodes (profile with ``alpha = delta = 0``).
-    P, s
-        Load and lever arm (``s`` is ignored when ``free_tilt`` is False).
-    free_tilt
-        Whether the tilt is an unknown (``True``) or suppressed (``alpha = 0``).
-    max_iter
-        Largest number of active-set iterations.
-    active
-        Initial active set; default all nodes.
-
-    Returns
-    -------
-    ContactSolution
-
-    Raises
-    ------
-    NoConvergenceError
-        If the active set does not settle within ``max_iter`` iterations, or the
-        settled set leaves a tensile force or a penetration above round-off, or
-        the iteration breaks down (an active set that cannot carry the load, a
-        singular system) from every start tried: the one given, all nodes, and
-        the nodes the punch's shape reaches (:func:`_start`).
-    """
-    P, s, max_iter, C, x, g0, active = _contact_iv(C, x, g0, P, s, max_iter, active)
-    starts = ["given" if active is not None else "all", "geometric"]
-    if active is not None:
-        starts.insert(1, "all")
-    failures = []
-    for start in starts:
-        act = _start(start, C, x, g0, P, active)
-        try:
-            return _iterate(C, x, g0, P, s, free_tilt, max_iter, act)
-        except _Breakdown as e:
-            failures.append(f"from the {start} start: {e}")
-    raise NoConvergenceError("contact active set broke down " + "; ".join(failures))
-
-
-def _contact_iv(C: Any, x: Any, g0: Any, P: Any, s: Any, max_iter: Any, active: Any
-                ) -> tuple[float, float, int, np.ndarray, np.ndarray, np.ndarray, np.ndarray | None]:
-    """The checked input of :func:`solve_contact`: finite arrays of matching shapes, ``P > 0``."""
-    P, s = positive("P", P), finite("s", s)
-    max_iter = integer("max_iter", max_iter, *MAX_ITER)
-    x = np.asarray(x, dtype=float)
-    n = len(x) if x.ndim == 1 else -1
-    C, g0 = np.asarray(C, dtype=float), np.asarray(g0, dtype=float)
-    if n < 1 or C.shape != (n, n) or g0.shape != (n,):
-        raise InputError(f"`C`, `x`, `g0` must have shapes (n, n), (n,), (n,); got {C.shape}, "
-                         f"{x.shape}, {g0.shape}")
-    for name, arr in (("C", C), ("x", x), ("g0", g0)):
-        if not np.all(np.isfinite(arr)):
-            raise InputError(f"`{name}` holds a non-finite value")
-    if active is not None:
-        active = np.asarray(active)
-        if active.shape != (n,) or active.dtype != bool:
-            raise InputError(f"`active` must be a bool array of shape ({n},)")
-    return P, s, max_iter, C, x, g0, active
-
-
-class _Breakdown(Exception):
-    """The active-set iteration left the admissible sets (it is not globally convergent)."""
-
-
-def _start(start: str, C: np.ndarray, x: np.ndarray, g0: np.ndarray, P: float,
-           active: np.ndarray | None) -> np.ndarray:
-    """An initial active set: the one given, every node, or the nodes the punch's shape reaches.
-
-    ``"geometric"``: the nodes whose initial gap lies within the largest
-    surface displacement of the load spread over all nodes, ``max C (P/n)``,
-    of its lowest point: a set about the size of the contact.
-    """
-    if start == "given":
-        return np.asarray(active, bool).copy()
-    if start == "all":
-        return np.ones(len(x), bool)
-    d = float(np.max(np.abs(C @ np.full(len(x), P / len(x)))))
-    return g0 - g0.min() <= max(d, 0.0)
-
-
-def _admissible(act: np.ndarray, x: np.ndarray, s: float, free_tilt: bool) -> str | None:
-    """Why the active-set system of ``act`` is singular, or None.
-
-    With a free tilt the forces must balance the moment ``P s`` too: one
-    active node makes the force and moment rows dependent.
-    """
-    m = int(act.sum())
-    if free_tilt and m < 2:
-        return (f"{m} active node at x = {x[act][0]:.6g} cannot balance the moment of the "
-                f"load at s = {s:.6g}")
-    return None
-
-
-def _iterate(C: np.ndarray, x: np.ndarray, g0: np.ndarray, P: float, s: float, free_tilt: bool,
-             max_iter: int, act: np.ndarray) -> ContactSolution:
-    """The primal-dual active-set iteration from ``act``; :class:`_Breakdown` if it leaves the admissible sets."""
-    n = len(x)
-    cpd = 1.0 / float(np.mean(np.diag(C)))  # force per unit gap: balances the two terms
-    symmetric = bool(np.array_equal(C, C.T))
-    with threadpool_limits(limits=1, user_api="blas"):
-        for it in range(1, max_iter + 1):
-            if not act.any():
-                act[np.argmin(g0)] = True
-            why = _admissible(act, x, s, free_tilt)
-            if why is not None:
-                raise _Breakdown(f"at iteration {it}: {why}")
-            try:
-                f, delta, alpha = _solve_active(C, x, g0, act, P, s, free_tilt, symmetric)
-            except np.linalg.LinAlgError:
-                raise _Breakdown(f"at iteration {it}: a singular active-set system "
-                                 f"({int(act.sum())} active nodes)") from None
-            gap = g0 + alpha * x - delta + C @ f
-            gap[act] = 0.0
-            new = f - cpd * gap > 0
-            if np.array_equal(new, act):
-                break
-            act = new
-        else:
-            raise NoConvergenceError(
-                f"contact active set did not settle within `max_iter` = {max_iter} iterations "
-                f"({int(np.sum(new != act))} nodes still changing)")
-    if not (np.all(np.isfinite(f)) and np.isfinite(delta) and np.isfinite(alpha)):
-        raise _Breakdown(f"at iteration {it}: non-finite forces")
-    scale_f, scale_g = P / n, float(np.ptp(g0)) + 1e-300
-    if f.min() < -1e-9 * scale_f * n or gap.min() < -1e-9 * scale_g:
-        raise NoConvergenceError(
-            f"active set settled after {it} iterations with min force {f.min():.3g} "
-            f"and min gap {gap.min():.3g}: not a contact solution")
-    residual = max(0.0, -float(f.min()) / scale_f, -float(gap.min()) / scale_g)
-    return ContactSolution(f=f, gap=gap, active=act, delta=delta, alpha=alpha, iterations=it,
-                           residual=residual)
+solve_contact = boundary(_solve_contact)
 
 
 #: fixed-point passes on the tilt's share of the slope in :func:`solve_kinematic` (and on the

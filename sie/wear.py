@@ -56,16 +56,18 @@ from __future__ import annotations
 import math
 import time
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
-from threepart.errors import (InputError, NoConvergenceError, SeparationError, StickSeparationError,
-                              StickZoneError)
+from threepart.errors import InputError, NoConvergenceError, StickSeparationError
 from threepart.fretting_wear import WearResult, register_marcher
 from threepart.problem.punch import Punch
 from threepart.results import Diagnostics
 from threepart.halfplane.legendre import gauss01
+from threepart.halfplane.surface import influence, solve_contact
 from threepart.problem.validate import SLIP_RATIO_LIMIT, check_states
+from threepart.results.fields import stick_ends
 from threepart.results.slip import check_shear
 
 from .fretting import SieFrettingResult, Zones, loop_integral
@@ -74,14 +76,15 @@ from .profile import (DEFAULT_TERMS, ProfileNormalResult, WornProfile, profile_a
 from .slip import SieSlipResult, stick_zone
 
 __all__ = ["ProfileFrettingResult", "solve_profile_slip", "profile_fretting_cycle", "wear_rate",
-           "march", "DEPTH_STEP", "STABILITY", "GRID_POINTS", "GRID_MARGIN"]
+           "march", "cell_state", "CellState", "DEPTH_STEP", "STABILITY", "CELLS",
+           "GRID_MARGIN"]
 
 #: the depth worn per jump, as a fraction of the elastic approach A P/π
 DEPTH_STEP = 0.01
 #: ΔN (Δw/p) π/(A Δx): Euler's stability bound for the grid's shortest ripple is 2
 STABILITY = 1.5
-#: knots of the worn depth over the unworn contact and its margins
-GRID_POINTS = 301
+#: cells of the march over the unworn contact and its margins
+CELLS = 400
 #: the grid reaches this fraction of the contact's width beyond each end (the scar outgrows it)
 GRID_MARGIN = 0.15
 #: Gauss–Legendre nodes per slip zone of the friction work, u = lo + L s^2 (3 - 2s)
@@ -258,86 +261,134 @@ def _step(rate: np.ndarray, travel: np.ndarray, k: float, A: float, P: float, sp
     return max(1, int(dN)) if math.isfinite(dN) else 0
 
 
-def knots(normal: ProfileNormalResult, stick: tuple[float, float], points: int) -> np.ndarray:
-    """Knots of the worn depth: ``points`` uniform over the contact and :data:`GRID_MARGIN` of it beyond,
-    and one at each end of the stick zone at ``Q_max``, so that no interpolated depth reaches into it."""
-    W = normal.a + normal.c
-    grid = np.linspace(-normal.a - GRID_MARGIN * W, normal.c + GRID_MARGIN * W, points)
-    return np.unique(np.concatenate([grid, stick]))
+def _cells(base: ProfileNormalResult, cells: int) -> np.ndarray:
+    """Cell edges of the march: ``cells`` uniform over the unworn contact and :data:`GRID_MARGIN` of it beyond."""
+    W = base.a + base.c
+    return np.linspace(-base.a - GRID_MARGIN * W, base.c + GRID_MARGIN * W, cells + 1)
 
 
-def _knot_pressure(normal: ProfileNormalResult, grid: np.ndarray) -> np.ndarray:
-    """The pressure at the knots: the series inside the contact, 0 outside."""
-    inside = (grid > -normal.a) & (grid < normal.c)
-    return np.where(inside, normal.pressure(np.where(inside, grid, 0.5 * (normal.c - normal.a))), 0.0)
+@dataclass(frozen=True)
+class CellState:
+    """One marched state on the cells: the normal contact and the corrective contact at ``Q_max``.
+
+    ``p`` and ``p_star`` are the cells' pressures (eq. integral_equation collocated at the
+    centres, uniform on each cell); ``travel`` is ``∮|ds| = 4 f G*`` on the cells that
+    slip, ``G*`` the corrective contact's gap; ``rate = p travel``.
+    """
+
+    normal: Any
+    corrective: Any
+    p: np.ndarray
+    p_star: np.ndarray
+    travel: np.ndarray
+    rate: np.ndarray
+    work: float
+    stick: tuple[float, float]
+    contact: tuple[float, float]
 
 
-def _stop_reason(exc: Exception) -> str:
-    """Why a march ended before its cycles: the state after the last recorded one is not trusted."""
-    if isinstance(exc, SeparationError):
-        return f"the worn profile's bounded contact is tensile past the march's floor: {exc}"
-    return f"the worn profile's contact or its stick zone at Q_max was not found ({type(exc).__name__}): {exc}"
+def cell_state(C: np.ndarray, edges: np.ndarray, g: np.ndarray, P: float, s: float, Q_max: float,
+               f: float, free_tilt: bool, start: tuple[Any, Any] | None = None) -> CellState:
+    """The normal contact of the worn profile ``g`` (at the cell centres) and its corrective contact at ``Q_max``.
+
+    Ciavarella–Jäger on the cells: the corrective contact is the same profile at the
+    normal tilt under ``P* = P - Q_max/f`` (eqs. integral_equation_2, horizontal_equilibrium);
+    its active cells are the stick zone, and a cell of the contact outside it slips
+    by ``f G*`` at ``Q_max`` (Masing: ``∮|ds| = 4 f G*`` per cycle).
+
+    Raises
+    ------
+    StickSeparationError
+        The corrective pressure exceeds the pressure on a cell (the stick zone is not one
+        interval of the contact).
+    NoConvergenceError
+        An active set that does not settle.
+    """
+    x, width = 0.5 * (edges[1:] + edges[:-1]), np.diff(edges)
+    normal = solve_contact(C, x, g, P, s, free_tilt=free_tilt,
+                           active=None if start is None else start[0].active.copy())
+    P_star = P - Q_max / f
+    cor = solve_contact(C, x, g + normal.alpha * x, P_star, 0.0, free_tilt=False,
+                        active=None if start is None else start[1].active.copy())
+    p, p_star = normal.f / width, cor.f / width
+    excess = p_star - p
+    if np.max(excess) > COULOMB_FLOOR * np.max(p) + 1e-9 * np.max(p):
+        i = int(np.argmax(excess))
+        raise StickSeparationError(f"`Q_max`/(f P) = {Q_max / (f * P):.6g} on the worn profile: the corrective "
+                                   f"pressure exceeds p by {excess[i]:.4g} at x = {x[i]:.6g}; the stick zone "
+                                   "is not one interval")
+    slips = normal.active & ~cor.active
+    travel = np.where(slips, 4.0 * f * np.maximum(cor.gap, 0.0), 0.0)
+    rate = p * travel
+    work = f * float(np.sum(rate * width))
+    on = np.flatnonzero(normal.active)
+    contact = (float(edges[on[0]]), float(edges[on[-1] + 1]))
+    lo, hi = stick_ends(x, p_star, np.zeros(x.size), f)      # the corrective contact's ends: p*^2 -> 0
+    return CellState(normal=normal, corrective=cor, p=p, p_star=p_star, travel=travel, rate=rate, work=work,
+                     stick=(lo, hi), contact=contact)
 
 
 def march(punch: Punch, P: float, s: float, Q_max: float, f: float, *, A: float, law: str, k: float,
           cycles: int, jump: int | None = None, tilt: str = "free", n: int = DEFAULT_TERMS,
-          points: int = GRID_POINTS) -> WearResult:
+          points: int = CELLS) -> WearResult:
     """Fretting wear at constant ``P``, ``s`` with ``Q`` between ``±Q_max``: threepart.wear's SIE march.
 
-    Input is checked by :func:`threepart.fretting_wear.wear`. Each step solves the
-    worn profile's normal contact (bounded ends), the stick zone at ``Q_max`` and
-    the slip, and grows the depth at :data:`GRID_POINTS` knots (``"pchip"``)
-    by ``ΔN`` cycles' wear: ``jump`` cycles, or the module docstring's control.
+    Input is checked by :func:`threepart.fretting_wear.wear`. The unworn contact comes
+    from the Gauss–Chebyshev SIE (``n`` terms); the march then collocates the same
+    integral equation in its displacement form (eq. 0.1 of docs/WEAR.md) on ``points``
+    uniform cells (:func:`threepart.halfplane.surface.influence`), where the depth grows.
+    Each step solves the normal contact and the corrective contact at ``Q_max``
+    (:func:`cell_state`) and grows the depth by ``ΔN`` cycles' wear: ``jump`` cycles, or
+    the module docstring's control. A global series resolves neither the pressure that
+    falls to 0 over the slip zones nor the singular ends that form at the stick zone's;
+    cells do, to their width (docs/WEAR.md, section 8).
     """
     t0 = time.perf_counter()
     law_factor = f if law == "energy" else 1.0
     base = solve_profile(WornProfile(punch, np.array([-1.0, 1.0]), np.zeros(2)), P, s, A=A, tilt=tilt, n=n)
-    grid = knots(base, wear_rate(base, Q_max, f, np.zeros(1))[2], points)
-    gaps = np.diff(grid)
-    spacing = np.minimum(np.concatenate([gaps[:1], gaps]), np.concatenate([gaps, gaps[-1:]]))
-    depth = np.zeros(grid.size)
-    N, start, least, stopped = 0, None, 0.0, ""
+    edges = _cells(base, points)
+    x, width = 0.5 * (edges[1:] + edges[:-1]), np.diff(edges)
+    C = influence(edges, A)
+    g = punch.profile(x)
+    depth = np.zeros(x.size)
+    N, state, stopped = 0, None, ""
     rec: dict[str, list] = {"cycles": [], "energy": [], "stick_zones": [], "depths": [], "volume": [],
                             "contacts": [], "alpha": [], "pressure": []}
     while True:
-        prof = WornProfile(punch, grid, depth)
         try:
-            trial = solve_profile(prof, P, s, A=A, tilt=tilt, n=n, start=start, tensile_floor=MARCH_TENSILE)
-            rated = wear_rate(trial, Q_max, f, grid)
-        except (SeparationError, NoConvergenceError, StickZoneError) as exc:
+            state = cell_state(C, edges, g + depth, P, s, Q_max, f, tilt == "free",
+                               None if state is None else (state.normal, state.corrective))
+        except (StickSeparationError, NoConvergenceError) as exc:
             if not rec["cycles"]:
                 raise
-            stopped = f"at cycle {N} {_stop_reason(exc)}"
-            break       # the knots do not resolve the limit's singular ends any further (module docstring)
-        normal = trial
-        least = min(least, normal.info["least"])
-        start = (0.5 * (normal.c - normal.a), 0.5 * (normal.a + normal.c))
-        rate, work, stick, travel = rated
-        for key, value in (("cycles", N), ("energy", work), ("stick_zones", stick), ("depths", depth.copy()),
-                           ("volume", float(np.trapezoid(depth, grid))), ("contacts", (-normal.a, normal.c)),
-                           ("alpha", normal.alpha), ("pressure", _knot_pressure(normal, grid))):
+            stopped = f"at cycle {N} the worn contact or its stick zone at Q_max was not found: {exc}"
+            break
+        for key, value in (("cycles", N), ("energy", state.work), ("stick_zones", state.stick),
+                           ("depths", depth.copy()), ("volume", float(np.sum(depth * width))),
+                           ("contacts", state.contact), ("alpha", state.normal.alpha), ("pressure", state.p)):
             rec[key].append(value)
         if N >= cycles:
             break
-        dN = jump if jump is not None else _step(rate, travel, k, A, P, spacing, law_factor)
+        dN = jump if jump is not None else _step(state.rate, state.travel, k, A, P, width, law_factor)
         if dN == 0:     # nothing slips: the worn limit
             dN = cycles - N
         dN = min(dN, cycles - N)
-        depth = depth + dN * k * law_factor * rate
+        depth = depth + dN * k * law_factor * state.rate
         N += dN
     if not np.all(np.isfinite(depth)):
         raise NoConvergenceError("sie wear: the worn depth is not finite; no result is returned")
-    last = normal
-    return WearResult(punch=punch, P=P, s=s, Q_max=Q_max, f=f, A=A, law=law, k=k, x=grid,
+    last = WornProfile(punch, x, depth)
+    return WearResult(punch=punch, P=P, s=s, Q_max=Q_max, f=f, A=A, law=law, k=k, x=x,
                       cycles=np.array(rec["cycles"]), energy=np.array(rec["energy"]),
                       stick_zones=np.array(rec["stick_zones"]), depths=np.array(rec["depths"]),
                       volumes=np.array(rec["volume"]), contacts=np.array(rec["contacts"]),
                       alphas=np.array(rec["alpha"]), method="sie",
-                      final_cycle=lambda: profile_fretting_cycle(last, Q_max, f),
+                      final_cycle=lambda: profile_fretting_cycle(
+                          solve_profile(last, P, s, A=A, tilt=tilt, n=n), Q_max, f),
                       pressures=np.array(rec["pressure"]),
                       info={"time": time.perf_counter() - t0, "steps": len(rec["cycles"]) - 1,
-                            "jump": "auto" if jump is None else jump, "n": n, "points": grid.size,
-                            "least": least, "stopped": stopped, "requested": cycles, "tilt": tilt})
+                            "jump": "auto" if jump is None else jump, "n": n, "points": x.size,
+                            "stopped": stopped, "requested": cycles, "tilt": tilt})
 
 
 register_marcher("sie", march)

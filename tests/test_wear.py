@@ -21,15 +21,15 @@ from threepart.errors import InputError, InputTypeError, ReaderError
 from threepart.fretting_wear import WearResult
 from threepart.sie import solve_normal as sie_normal
 from threepart.sie.profile import WornProfile, solve_profile
-from threepart.sie.wear import MARCH_TENSILE, profile_fretting_cycle, solve_profile_slip, wear_rate
+from threepart.sie.wear import profile_fretting_cycle, solve_profile_slip, wear_rate
 from threepart.tolerances import tolerance
 
 A = 4 * (1 - 0.09) / 210e3
 P, F = 400.0, 0.5
 HERTZ = Punch(R1=10, R2=10, b=0)
 ISSUE = Punch(R1=10, R2=5, b=1)
-#: a march short enough for the default run: Hertz, Q_max = f P/2, 301 knots, 1024 terms
-SHORT: dict[str, Any] = dict(k=1e-5, cycles=60, points=301, n=1024)
+#: a march short enough for the default run: Hertz, Q_max = f P/2, 300 cells, 1024 terms
+SHORT: dict[str, Any] = dict(k=1e-5, cycles=60, points=300, n=1024)
 #: rounding of a few operations on the same numbers
 ROUNDING = tolerance("wear-limit", "round_off").limit
 
@@ -219,27 +219,22 @@ def test_profile_refusals():
         solve_profile(_flat(HERTZ), P, 0.0, A=A, ends="open")
 
 
-#: cycles of the slow march at k = 1e-5 (dose k N = 8e-3; the pressure settles by N = 600)
-LONG_CYCLES = 800
+#: cycles of the slow march at Archard's k = 1e-5 (dose k N = 1.2e-2; the energy peaks at N = 66)
+LONG_CYCLES = 1200
 
 
 @pytest.fixture(scope="module")
 def long_march() -> WearResult:
-    return threepart.wear(HERTZ, P, 0.0, 0.5 * F * P, F, A=A, k=1e-5, cycles=LONG_CYCLES, points=151, n=1024)
+    return threepart.wear(HERTZ, P, 0.0, 0.5 * F * P, F, A=A, k=1e-5, cycles=LONG_CYCLES, points=200, n=1024)
 
 
-def _distances(r: WearResult, picks) -> list[float]:
-    """L2 distance of recorded states' pressure to eq. W11, over the stick zone less 10 % at each end."""
+def _distances(r: WearResult) -> np.ndarray:
+    """L2 distance of each recorded state's cell pressures to eq. W11, over the stick zone less 10 % at each end."""
     limit = wear_limit(cf_normal(HERTZ, P, 0.0, A=A), r.Q_max, r.f)
     x1, x2 = limit.stick_zone
-    xs = np.linspace(x1, x2, 1001)[100:-100]
-    ref = limit.pressure(xs)
-    out = []
-    for j in picks:
-        normal = solve_profile(WornProfile(HERTZ, r.x, r.depths[j]), P, 0.0, A=A, n=1024,
-                               tensile_floor=MARCH_TENSILE)
-        out.append(float(np.sqrt(np.mean((normal.pressure(xs) - ref) ** 2) / np.mean(ref ** 2))))
-    return out
+    inner = (r.x > x1 + 0.1 * (x2 - x1)) & (r.x < x2 - 0.1 * (x2 - x1))
+    ref = limit.pressure(r.x[inner])
+    return np.sqrt(np.mean((r.pressures[:, inner] - ref) ** 2, axis=1) / np.mean(ref ** 2))
 
 
 @pytest.mark.slow
@@ -247,8 +242,7 @@ def test_the_march_approaches_the_worn_limit(long_march):
     """Hertz, Q_max = f P/2: the pressure tends to eq. W11 over the stick zone, monotonically; the stick zone stays."""
     r = long_march
     assert not r.info["stopped"] and r.cycles[-1] == LONG_CYCLES
-    picks = np.unique(np.linspace(0, len(r.cycles) - 1, 8).astype(int))
-    dist = _distances(r, picks)
+    dist = _distances(r)
     assert dist[-1] <= tolerance("wear", "limit_L2").limit, dist
     assert np.all(np.diff(dist) < 0), dist
     W = r.contacts[0, 1] - r.contacts[0, 0]
@@ -256,13 +250,16 @@ def test_the_march_approaches_the_worn_limit(long_march):
 
 
 @pytest.mark.slow
-@pytest.mark.xfail(strict=True, reason="issue 39 target not met by the SIE march (measured, sie/wear.py): "
-                   "the energy per cycle first rises (+17 %: the punch approaches and the contact grows; "
-                   "the loop and the friction work agree) and then stalls at 23 % of its start, held in the "
-                   "sliver between the stick zone's end and the next knot, which bounded ends do not resolve")
 def test_the_energy_falls_monotonically_below_5_percent(long_march):
+    """Past its early peak (the punch approaches, the slip zones grow) the energy per cycle falls to below 5 %.
+
+    It falls at every record but where a cell joins the contact at its outer edge
+    (``("wear", "energy_monotone")``); eq. W14 says it tends to 0.
+    """
     r = long_march
-    assert np.all(np.diff(r.energy) <= 0)
+    peak = int(np.argmax(r.energy))
+    assert 0 < r.cycles[peak] < 0.1 * LONG_CYCLES
+    assert np.max(np.diff(r.energy[peak:])) <= tolerance("wear", "energy_monotone").limit * r.energy[peak]
     assert r.energy[-1] <= tolerance("wear", "energy_left").limit * r.energy[0]
 
 
@@ -272,18 +269,18 @@ def test_a_step_that_cannot_be_solved_ends_the_march_with_its_records(monkeypatc
     from threepart.errors import NoConvergenceError
 
     calls = {"n": 0}
-    real = sw.solve_profile
+    real = sw.cell_state
 
     def failing(*args, **kwargs):
         calls["n"] += 1
-        if calls["n"] > 4:     # the unworn profile that places the knots, then the states of cycles 0, 1, 2
-            raise NoConvergenceError("sie.profile: contact ends: line search failed (stand-in)")
+        if calls["n"] > 3:     # the states of cycles 0, 1, 2
+            raise NoConvergenceError("contact active set did not settle (stand-in)")
         return real(*args, **kwargs)
 
-    monkeypatch.setattr(sw, "solve_profile", failing)
+    monkeypatch.setattr(sw, "cell_state", failing)
     r = threepart.wear(HERTZ, P, 0.0, 0.5 * F * P, F, A=A, k=1e-5, cycles=10, jump=1, points=101, n=512)
     assert list(r.cycles) == [0, 1, 2] and r.info["requested"] == 10
-    assert "at cycle 3" in r.info["stopped"] and "NoConvergenceError" in r.info["stopped"]
+    assert "at cycle 3" in r.info["stopped"] and "stand-in" in r.info["stopped"]
     assert r.depths.shape == (3, r.x.size) and r.pressures.shape == (3, r.x.size)
     # the first step's failure is the caller's: nothing was recorded
     calls["n"] = 3

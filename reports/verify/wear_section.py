@@ -4,17 +4,18 @@ The march of :data:`WEAR_CASE` (:func:`threepart.fretting_wear.wear_case`, the S
 is set against the closed-form worn limit (:func:`threepart.closedform.wear_limit`)
 and its own identities, each judged by a row of the tolerance table:
 
-* the pressure's approach to the limit, L2 over the limit's stick zone less
-  :data:`INTERIOR` of it at each end, relative to the limit's (``("wear", "limit_L2")``),
-  and whether that distance falls at every recorded cycle;
-* the stick zone at ``Q_max`` against the limit's, of the unworn contact's width W
-  (``("wear", "stick_zone")``): issue 39 states it for a symmetric contact, where the limit's
-  is the cycle's (docs/WEAR.md, section 1); under a moment the limit's receding end moves
-  (the rule :data:`LIMIT_RULE`, section 3), and the march's drift from its start is shown beside;
-* the energy per cycle falling, monotonically, below ``("wear", "energy_left")`` of its start;
-* the volume identity, eq. W15: the worn area per cycle (the knots' increments,
-  trapezoidal) equals ``k W`` under the energy law; Archard's ``k`` is the energy
-  law's ``k/f`` (docs/WEAR.md, section 5), so ``k/f`` there (``("wear", "identity")``).
+* the pressure's approach to the limit on the stick zone the march reached (eqs. W3-W6
+  there), L2 over it less :data:`INTERIOR` at each end, relative to the limit's
+  (``("wear", "limit_L2")``), whether that distance falls at every recorded cycle, and its
+  largest difference of the unworn peak (``("wear", "limit_p0")``);
+* the stick zone at ``Q_max`` against the bracket of the limit's placements
+  (:data:`LIMIT_RULES`, docs/WEAR.md section 3; a point where ``C1 = 0``), of the unworn
+  contact's width W (``("wear", "stick_zone")``); the march's drift from its start beside;
+* the energy per cycle past its early peak falling at every record (``("wear",
+  "energy_monotone")``), below ``("wear", "energy_left")`` of its start;
+* the volume identity, eq. W15: the worn area per cycle (the cells' increments) equals
+  ``k W`` under the energy law; Archard's ``k`` is the energy law's ``k/f`` (docs/WEAR.md,
+  section 5), so ``k/f`` there (``("wear", "identity")``).
 
 Targets missed are shown as such, as the speed section does; they do not fail the run.
 
@@ -37,7 +38,7 @@ from threepart.tolerances import tolerance
 from .sections import Figure, Section, Status, Table, fmt
 
 __all__ = ["march_record", "draw", "wear_study", "study_record", "wear_section", "WEAR_CASE", "WEAR_PLOT", "INTERIOR",
-           "LIMIT_RULE", "TARGETS"]
+           "LIMIT_RULES", "TARGETS"]
 
 #: the catalogue's wear case the verification run marches
 WEAR_CASE = "fan_blade_flank_wear"
@@ -45,36 +46,60 @@ WEAR_CASE = "fan_blade_flank_wear"
 WEAR_PLOT = "plots/wear.png"
 #: the fraction of the limit's stick zone left out at each end of the L2 distance (its singular ends)
 INTERIOR = 0.1
-#: the placement of the limit's stick zone under a free tilt (closedform.wear.STICK_RULES; the default)
-LIMIT_RULE = "pinned"
+#: the bracket of the limit's placements under a free tilt (closedform.wear.STICK_RULES, docs/WEAR.md §3)
+LIMIT_RULES = ("pinned", "consistent")
 #: target -> (label, tolerance row or None for a yes/no figure)
 TARGETS: dict[str, tuple[str, tuple[str, str] | None]] = {
     "limit_L2": ("pressure's L2 distance to the worn limit at the last cycle", ("wear", "limit_L2")),
     "limit_monotone": ("that distance falls at every recorded cycle", None),
-    "stick_zone": ("stick zone at Q_max against the worn limit's, largest end difference, of W",
+    "limit_p0": ("largest pressure difference to the worn limit there, of the unworn peak", ("wear", "limit_p0")),
+    "stick_zone": ("stick zone at Q_max outside the bracket of the limit's placements (pinned, consistent), of W",
                    ("wear", "stick_zone")),
     "energy_left": ("energy per cycle at the last cycle, of its start", ("wear", "energy_left")),
-    "energy_monotone": ("energy per cycle falls at every recorded cycle", None),
+    "energy_monotone": ("largest rise of the energy per cycle past its peak, of the peak", ("wear", "energy_monotone")),
     "identity": ("worn area per cycle against k W (eq. W15), largest relative error", ("wear", "identity")),
 }
 #: recorded cycles drawn in the depth and pressure panels
 DRAWN = 7
 
 
-def _limit(r: Any) -> Any:
+def _limits(r: Any) -> tuple[Any, tuple[Any, Any]]:
+    """The closed-form limit on the march's own last stick zone, and the bracket ``(pinned, consistent)``.
+
+    Under a moment the limit's placement depends on the history (docs/WEAR.md, section 3):
+    the march's stick zone is judged against the bracket, its pressure against the limit on
+    the zone it reached (eqs. W3-W6 there). Where the zone cannot be given (an end off the
+    outer segments), the bracket's ``"pinned"`` is the limit.
+    """
     from threepart.closedform import solve_normal, wear_limit
 
     normal = solve_normal(r.punch, r.P, r.s, A=r.A, tilt=r.info.get("tilt", "free"))
-    return wear_limit(normal, r.Q_max, r.f, stick=LIMIT_RULE)
+    bracket = tuple(wear_limit(normal, r.Q_max, r.f, stick=rule) for rule in LIMIT_RULES)
+    try:
+        own = wear_limit(normal, r.Q_max, r.f, stick=tuple(float(v) for v in r.stick_zones[-1]))
+    except ValueError:
+        own = bracket[0]
+    return own, bracket
+
+
+def _inner(r: Any, limit: Any) -> np.ndarray:
+    x1, x2 = limit.stick_zone
+    return (r.x > x1 + INTERIOR * (x2 - x1)) & (r.x < x2 - INTERIOR * (x2 - x1))
 
 
 def _distances(r: Any, limit: Any) -> list[float]:
-    """L2 distance of each recorded pressure (at the knots) to the limit's, over the stick zone's interior."""
-    x1, x2 = limit.stick_zone
-    inner = (r.x > x1 + INTERIOR * (x2 - x1)) & (r.x < x2 - INTERIOR * (x2 - x1))
+    """L2 distance of each recorded pressure (at the cells) to the limit's, over the stick zone's interior."""
+    inner = _inner(r, limit)
     ref = limit.pressure(r.x[inner])
     norm = float(np.sqrt(np.mean(ref ** 2)))
     return [float(np.sqrt(np.mean((p[inner] - ref) ** 2)) / norm) for p in r.pressures]
+
+
+def _outside(zone: np.ndarray, bracket: tuple[Any, Any]) -> float:
+    """How far the march's stick-zone ends lie outside the bracket of the limit's placements (0 inside)."""
+    ends = np.array([lim.stick_zone for lim in bracket])
+    lo, hi = ends.min(axis=0), ends.max(axis=0)
+    return float(np.max(np.maximum(lo - zone, 0) + np.maximum(zone - hi, 0)))
 
 
 def _identity(r: Any) -> float:
@@ -89,14 +114,19 @@ def _identity(r: Any) -> float:
 
 def march_record(r: Any) -> dict[str, Any]:
     """A march's figures: the limit, the distances, the drift, the energy, the identity, each target judged."""
-    limit = _limit(r)
+    limit, bracket = _limits(r)
     distance = _distances(r, limit)
     W = float(r.contacts[0, 1] - r.contacts[0, 0])
     energy = np.asarray(r.energy)
+    peak = int(np.argmax(energy))
+    inner = _inner(r, limit)
+    p0 = float(np.max(r.pressures[0]))
     figures = {"limit_L2": distance[-1], "limit_monotone": bool(np.all(np.diff(distance) < 0)),
-               "stick_zone": float(np.max(np.abs(r.stick_zones[-1] - np.asarray(limit.stick_zone)))) / W,
+               "limit_p0": float(np.max(np.abs(r.pressures[-1][inner] - limit.pressure(r.x[inner])))) / p0,
+               "stick_zone": _outside(np.asarray(r.stick_zones[-1]), bracket) / W,
                "energy_left": float(energy[-1] / energy[0]),
-               "energy_monotone": bool(np.all(np.diff(energy) <= 0)), "identity": _identity(r)}
+               "energy_monotone": float(np.max(np.diff(energy[peak:]), initial=0.0)) / float(energy[peak]),
+               "identity": _identity(r)}
     targets: dict[str, dict[str, Any]] = {}
     for key, (_, row) in TARGETS.items():
         value = figures[key]
@@ -105,10 +135,12 @@ def march_record(r: Any) -> dict[str, Any]:
         else:
             lim = tolerance(*row).limit
             targets[key] = {"limit": lim, "met": bool(value <= lim)}
-    return {"limit": {"rule": LIMIT_RULE, "stick_zone": [float(v) for v in limit.stick_zone],
-                      "alpha": float(limit.alpha)},
+    return {"limit": {"rule": "the march's own stick zone", "stick_zone": [float(v) for v in limit.stick_zone],
+                      "alpha": float(limit.alpha),
+                      "bracket": {rule: [float(v) for v in b.stick_zone] for rule, b in zip(LIMIT_RULES, bracket)}},
             "distance": distance, "energy_ratio": figures["energy_left"],
-            "energy_monotone": figures["energy_monotone"],
+            "energy_monotone": figures["energy_monotone"] <= tolerance("wear", "energy_monotone").limit,
+            "energy_peak_cycle": int(r.cycles[peak]),
             "stick_drift": float(np.max(np.abs(r.stick_zones - r.stick_zones[0]))) / W,
             "identity": figures["identity"], "figures": figures, "targets": targets, "W": W,
             "_limit": limit}
@@ -211,9 +243,12 @@ def wear_section(doc: dict[str, Any]) -> Section | None:
     intro = (f"The catalogue's wear case {rec['case']} ({rec['law']} law, k = {rec['k']:g} mm²/N), marched "
              f"by the SIE over {rec['reached']:,} of its {rec['requested']:,} cycles in {rec['steps']} steps "
              f"({rec['time_s']:.1f} s), against the closed-form worn limit "
-             f"(closedform.wear_limit, stick zone '{rec['limit']['rule']}': "
-             f"[{rec['limit']['stick_zone'][0]:.6g}, {rec['limit']['stick_zone'][1]:.6g}] mm; docs/WEAR.md)."
-             f"{stopped} The stick zone at Q_max moved by {fmt(rec['stick_drift'])} W from its start. Each "
+             f"(closedform.wear_limit on {rec['limit']['rule']}, "
+             f"[{rec['limit']['stick_zone'][0]:.6g}, {rec['limit']['stick_zone'][1]:.6g}] mm; its placements "
+             + ", ".join(f"{k} [{v[0]:.6g}, {v[1]:.6g}]" for k, v in rec["limit"]["bracket"].items())
+             + " mm; docs/WEAR.md)."
+             f"{stopped} The energy per cycle peaks at cycle {rec['energy_peak_cycle']:,}. The stick zone at "
+             f"Q_max moved by {fmt(rec['stick_drift'])} W from its start. Each "
              "target is a row of the tolerance table; a target missed is shown, and does not fail the run.",)
     met = all(t["met"] for t in rec["targets"].values())
     return Section("Fretting wear", "wear", (intro,),

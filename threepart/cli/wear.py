@@ -177,7 +177,7 @@ def _summary(pr: dict[str, Any], res: Any, rec: dict[str, Any]) -> dict[str, Any
             "volume": float(res.volume),
             "depth_max": float(res.depths[-1].max()),
             "limit_stick_zone": rec["limit"]["stick_zone"], "limit_distance": rec["distance"][-1],
-            "identity_error": rec["identity"], "least_p_over_peak": float(res.info["least"]),
+            "identity_error": rec["identity"],
             "time_s": float(res.info["time"])}
 
 
@@ -204,13 +204,13 @@ def _print(pr: dict[str, Any], res: Any, rec: dict[str, Any]) -> None:
         print(f"stopped    {s['stopped']}")
     print(f"energy     {s['energy_start']:.6g} -> {s['energy_end']:.6g} N*mm/mm per cycle "
           f"({s['energy_end_over_start']:.4g} of the start; peak {s['energy_peak']:.6g}; "
-          f"{'falls monotonically' if s['energy_monotone'] else 'not monotone'})")
+          f"{'falls at every record past its peak' if s['energy_monotone'] else 'rises past its peak'})")
     (a0, b0), (a1, b1) = s["stick_start"], s["stick_end"]
     print(f"stick zone [{a0:.6g}, {b0:.6g}] -> [{a1:.6g}, {b1:.6g}] mm (drift {s['stick_drift_over_W']:.3g} W)")
-    x1, x2 = s["limit_stick_zone"]
-    print(f"worn limit stick zone [{x1:.6g}, {x2:.6g}] mm ({rec['limit']['rule']}; the march's is "
-          f"{s['stick_to_limit_over_W']:.3g} W from it); pressure L2 distance "
-          f"{s['limit_distance']:.4g} (stick zone less 10 % at each end)")
+    bracket = "; ".join(f"{k} [{v[0]:.6g}, {v[1]:.6g}]" for k, v in rec["limit"]["bracket"].items())
+    print(f"worn limit placements {bracket} mm: the march's stick zone lies {s['stick_to_limit_over_W']:.3g} W "
+          f"outside them; pressure L2 distance {s['limit_distance']:.4g} to the limit on it "
+          f"(stick zone less 10 % at each end)")
     print(f"worn       volume {s['volume']:.6g} mm^2, largest depth {s['depth_max']:.6g} mm; "
           f"volume per cycle against k' W: largest error {s['identity_error']:.3g}")
 
