@@ -81,3 +81,4 @@ __all__ = ["solve_normal", "FemResult", "solve_partial_slip", "fretting_cycle", 
            "convergence_study", "domain_study"]
 
 from . import method as _method  # registers this solver in threepart.registry
+from . import wear as _wear  # registers its wear march in threepart.fretting_wear

@@ -19,36 +19,26 @@ worn volume per cycle is ``k W`` (eq. W15). ``w`` is the two bodies' wear
 together, the combined depth of the gap (docs/WEAR.md, section 4): how they
 share it does not change the contact.
 
-Cycle jumping (``jump=None``): a step of ``ΔN`` cycles grows the depth by
-``ΔN Δw`` (explicit Euler in ``N``). ``ΔN`` is the largest whole number with
-
-* ``max ΔN Δw <= DEPTH_STEP A P/π`` (the depth per jump a fraction of the elastic
-  approach ``A P/π``), and
-* ``ΔN (Δw/p)_i <= STABILITY A Δx_i/π`` at every knot ``i`` (local spacing ``Δx_i``):
-  a depth ripple of wavenumber ``κ`` changes the pressure by ``κ/A`` times itself, so
-  Euler is stable for ``ΔN (Δw/p) κ/A < 2`` up to the knots' ``κ = π/Δx``;
-  :data:`STABILITY` < 2 keeps it so.
-
-The depth lives at knots (``"pchip"``): :data:`GRID_POINTS` uniform over the unworn
-contact and :data:`GRID_MARGIN` of it beyond each end (the scar outgrows the contact,
-docs/WEAR.md section 4), and one at each end of the unworn stick zone at ``Q_max``:
-without them the depth interpolated between two knots reached into the stick zone
-and moved it (6.4e-3 W on 151 knots). Knots graded towards the stick zone's ends,
-where the limit's depth rises like ``sqrt`` and its pressure is singular, made the
-bounded contact tensile there by 11 % of the peak: the march does not resolve the
-limit's singular ends (what is left is the energy stalling above 0). Each step's normal contact has
-bounded ends; as the slip zones unload, the truncated series rings below 0 next to
-the stick zone's ends (the limit's singular pressure forming) and at the scar's
-outer edge: a marched state accepts ``p >= -MARCH_TENSILE p_max`` there, wears
-only where ``p > 0``, and reports the least ``p/p_max`` as ``info["least"]``. Past
-that floor, or where a step's contact or stick zone is not found (a named error), the march ends
-early: ``cycles[-1]`` is the last state solved, and ``info["stopped"]`` says why (never silently:
-the requested count is ``info["requested"]``).
+The march (:func:`march`). The unworn contact comes from the Gauss–Chebyshev SIE;
+the depth then grows on :data:`CELLS` uniform cells over that contact and
+:data:`GRID_MARGIN` of it beyond each end (the scar outgrows the contact,
+docs/WEAR.md section 4). Each state collocates eq. (0.1) of docs/WEAR.md, the
+displacement form of eq. (integral_equation), at the cell centres with a pressure
+uniform on each cell (:func:`threepart.halfplane.surface.influence`), for the normal
+contact and for the corrective contact at ``Q_max`` (:func:`cell_state`), by the core's
+active-set solve. The global series of :func:`sie.profile.solve_profile` resolves neither
+a pressure that falls to 0 over the slip zones nor the singular ends that form at the
+stick zone's (its bounded contact turned tensile and the energy stalled at 23 % of its
+start, docs/WEAR.md section 8); the cells do, to their width. Cycle jumping
+(``jump=None``) is :func:`threepart.fretting_wear.jump_size`. Where a state is not found
+(a named error) the march ends early: ``cycles[-1]`` is the last state solved, and
+``info["stopped"]`` says why (never silently: the requested count is ``info["requested"]``).
 
 ProfileFrettingResult   -- SieFrettingResult on a worn profile
 solve_profile_slip      -- partial slip on a worn profile
 profile_fretting_cycle  -- the fretting cycle on a worn profile: energy from the loop (ln h/h*)
 wear_rate               -- the depth worn per cycle, the friction work and the stick zone at Q_max
+cell_state              -- the normal and corrective contacts of a worn profile on cells
 march                   -- the wear march of threepart.wear (registered as method "sie")
 """
 from __future__ import annotations
@@ -61,7 +51,7 @@ from typing import Any
 import numpy as np
 
 from threepart.errors import InputError, NoConvergenceError, StickSeparationError
-from threepart.fretting_wear import WearResult, register_marcher
+from threepart.fretting_wear import WearResult, jump_size, register_marcher
 from threepart.problem.punch import Punch
 from threepart.results import Diagnostics
 from threepart.halfplane.legendre import gauss01
@@ -76,13 +66,9 @@ from .profile import (DEFAULT_TERMS, ProfileNormalResult, WornProfile, profile_a
 from .slip import SieSlipResult, stick_zone
 
 __all__ = ["ProfileFrettingResult", "solve_profile_slip", "profile_fretting_cycle", "wear_rate",
-           "march", "cell_state", "CellState", "DEPTH_STEP", "STABILITY", "CELLS",
+           "march", "cell_state", "CellState", "CELLS",
            "GRID_MARGIN"]
 
-#: the depth worn per jump, as a fraction of the elastic approach A P/π
-DEPTH_STEP = 0.01
-#: ΔN (Δw/p) π/(A Δx): Euler's stability bound for the grid's shortest ripple is 2
-STABILITY = 1.5
 #: cells of the march over the unworn contact and its margins
 CELLS = 400
 #: the grid reaches this fraction of the contact's width beyond each end (the scar outgrows it)
@@ -91,11 +77,6 @@ GRID_MARGIN = 0.15
 WORK_NODES = 96
 #: Gauss–Legendre nodes per panel of the loop's energy, and the coarser level that checks it
 LOOP_NODES = (24, 48)
-#: a marched state's pressure may dip below 0 by this fraction of its peak (measured on Hertz,
-#: 151 knots: -12 % transiently, -3.6 % settled), in a lobe just outside the stick zone's ends
-#: where the limit's singular pressure forms and the bounded contact's series rings; wear acts
-#: only where p > 0; the least is WearResult.info["least"]
-MARCH_TENSILE = 0.15
 #: Coulomb's check: p - p* may fall below 0 by this fraction of the peak (the worn terms' truncation)
 COULOMB_FLOOR = 1e-6
 
@@ -245,22 +226,6 @@ def wear_rate(normal: ProfileNormalResult, Q_max: float, f: float, x: np.ndarray
     return rate, work, (lo, hi), tr
 
 
-def _step(rate: np.ndarray, travel: np.ndarray, k: float, A: float, P: float, spacing: np.ndarray,
-          law_factor: float) -> int:
-    """The jump's ``ΔN`` (module docstring): the depth bound and Euler's stability bound, at least 1.
-
-    The stability bound is taken knot by knot with the local spacing ``Δx_i``:
-    ``ΔN c_i π/(A Δx_i) <= STABILITY``, ``c_i = k ∮|ds|`` there.
-    """
-    top = k * law_factor * float(np.max(rate))
-    c = k * law_factor * travel
-    stiff = float(np.max(c / spacing))
-    bounds = [DEPTH_STEP * A * P / math.pi / top if top > 0 else math.inf,
-              STABILITY * A / (math.pi * stiff) if stiff > 0 else math.inf]
-    dN = min(bounds)
-    return max(1, int(dN)) if math.isfinite(dN) else 0
-
-
 def _cells(base: ProfileNormalResult, cells: int) -> np.ndarray:
     """Cell edges of the march: ``cells`` uniform over the unworn contact and :data:`GRID_MARGIN` of it beyond."""
     W = base.a + base.c
@@ -312,7 +277,7 @@ def cell_state(C: np.ndarray, edges: np.ndarray, g: np.ndarray, P: float, s: flo
                         active=None if start is None else start[1].active.copy())
     p, p_star = normal.f / width, cor.f / width
     excess = p_star - p
-    if np.max(excess) > COULOMB_FLOOR * np.max(p) + 1e-9 * np.max(p):
+    if np.max(excess) > COULOMB_FLOOR * np.max(p):
         i = int(np.argmax(excess))
         raise StickSeparationError(f"`Q_max`/(f P) = {Q_max / (f * P):.6g} on the worn profile: the corrective "
                                    f"pressure exceeds p by {excess[i]:.4g} at x = {x[i]:.6g}; the stick zone "
@@ -369,7 +334,7 @@ def march(punch: Punch, P: float, s: float, Q_max: float, f: float, *, A: float,
             rec[key].append(value)
         if N >= cycles:
             break
-        dN = jump if jump is not None else _step(state.rate, state.travel, k, A, P, width, law_factor)
+        dN = jump if jump is not None else jump_size(state.rate, state.travel, k, A, P, width, law_factor)
         if dN == 0:     # nothing slips: the worn limit
             dN = cycles - N
         dN = min(dN, cycles - N)

@@ -286,3 +286,33 @@ def test_a_step_that_cannot_be_solved_ends_the_march_with_its_records(monkeypatc
     calls["n"] = 3
     with pytest.raises(NoConvergenceError, match="stand-in"):
         threepart.wear(HERTZ, P, 0.0, 0.5 * F * P, F, A=A, k=1e-5, cycles=10, jump=1, points=101, n=512)
+
+
+@pytest.fixture(scope="module")
+def fem_pair() -> tuple[WearResult, WearResult]:
+    """Hertz, Archard k = 1e-5, 60 cycles one at a time: the SIE's cells and the FEM's two bodies (E, nu)."""
+    E, nu = 210e3, 0.3
+    kw = dict(law="archard", k=1e-5, cycles=60, jump=1)
+    sie = threepart.wear(HERTZ, P, 0.0, 0.5 * F * P, F, A=A, **kw)
+    fem = threepart.wear(HERTZ, P, 0.0, 0.5 * F * P, F, A=A, method="fem", E=E, nu=nu, **kw)
+    return sie, fem
+
+
+def test_the_fem_march_wears_as_the_sie(fem_pair):
+    """Issue 39: the FEM's worn depth (its own slip at Q_max, Masing) within 3 % of the SIE's largest depth."""
+    sie, fem = fem_pair
+    assert list(fem.cycles) == list(sie.cycles)
+    top = np.max(sie.depths[-1])
+    assert np.max(np.abs(np.interp(fem.x, sie.x, sie.depths[-1]) - fem.depths[-1])) <= \
+        tolerance("wear", "fem_depth").limit * top
+    W = fem.contacts[0, 1] - fem.contacts[0, 0]
+    assert np.max(np.abs(fem.stick_zones - fem.stick_zones[0])) <= tolerance("wear", "fem_stick_zone").limit * W
+    # both say the energy per cycle first rises: the punch approaches, the slip zones grow
+    assert fem.energy[-1] > fem.energy[0] and sie.energy[-1] > sie.energy[0]
+
+
+def test_the_fem_march_needs_the_pair():
+    with pytest.raises(InputError, match="`E` and `nu`"):
+        threepart.wear(HERTZ, P, 0.0, 0.5 * F * P, F, A=A, k=1e-5, cycles=1, method="fem")
+    with pytest.raises(InputError, match="`A`"):
+        threepart.wear(HERTZ, P, 0.0, 0.5 * F * P, F, A=2 * A, k=1e-5, cycles=1, method="fem", E=210e3, nu=0.3)

@@ -13,10 +13,12 @@ has_marcher      -- whether a method marches wear (its solver package loaded to 
 WearCase         -- a catalogue wear case: a fretting case of threepart/problem/cases.json with its law, ``k`` and cycles
 wear_cases       -- the catalogue's wear cases (suite ``"wear"``: fretting cases with a ``wear`` law, ``k``, cycles)
 wear_case        -- one of them by name
+jump_size        -- the cycle-jumping control every marcher uses (depth per jump, Euler's stability)
 LAWS             -- "archard" (``Δw = k p |slip|``) and "energy" (``Δw = k q·slip``, Fouvry)
 """
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 from functools import cached_property
 from typing import Any, Callable
@@ -31,13 +33,18 @@ from threepart.problem.checks import check_tilt, integer, positive
 from threepart.problem.validate import check_punch, lever_arm
 
 __all__ = ["wear", "WearResult", "register_marcher", "has_marcher", "WearCase", "wear_cases", "wear_case",
-           "LAWS"]
+           "LAWS", "jump_size", "DEPTH_STEP", "STABILITY"]
 
 LAWS = ("archard", "energy")
 #: the most cycles a march takes (a fan-blade flank's life is 1e6 to 1e8)
 MAX_CYCLES = 10**10
 
 _MARCHERS: dict[str, Callable[..., "WearResult"]] = {}
+
+#: the depth worn per jump, as a fraction of the elastic approach A P/π (:func:`jump_size`)
+DEPTH_STEP = 0.01
+#: ΔN (Δw/p) π/(A Δx): Euler's stability bound for the grid's shortest ripple is 2 (:func:`jump_size`)
+STABILITY = 1.5
 
 
 def register_marcher(name: str, march: Callable[..., "WearResult"]) -> None:
@@ -113,6 +120,35 @@ class WearResult:
     def depth(self, x: Any, record: int = -1) -> np.ndarray:
         """The worn depth at ``x`` at a recorded cycle (the last by default), linear between knots."""
         return np.interp(np.asarray(x, dtype=float), self.x, self.depths[record])
+
+
+def jump_size(rate: np.ndarray, travel: np.ndarray, k: float, A: float, P: float, spacing: np.ndarray,
+          law_factor: float) -> int:
+    """The jump's ``ΔN``: the depth bound and Euler's stability bound, at least 1 (0: nothing wears).
+
+    A step of ``ΔN`` cycles grows the depth by ``ΔN Δw`` (explicit Euler in ``N``);
+    ``ΔN`` is the largest whole number with
+
+    * ``max ΔN Δw <= DEPTH_STEP A P/π`` (the depth per jump a fraction of the elastic
+      approach ``A P/π``), and
+    * ``ΔN (Δw/p)_i <= STABILITY A Δx_i/π`` at every node ``i`` (local spacing ``Δx_i``):
+      a depth ripple of wavenumber ``κ`` changes the pressure by ``κ/A`` times itself, so
+      Euler is stable for ``ΔN (Δw/p) κ/A < 2`` up to the nodes' ``κ = π/Δx``;
+      :data:`STABILITY` < 2 keeps it so.
+
+    ``rate`` is ``p ∮|ds|`` and ``travel`` ``∮|ds|`` at the nodes, ``law_factor`` ``f`` for the
+    energy law and 1 for Archard's.
+
+    The stability bound is taken knot by knot with the local spacing ``Δx_i``:
+    ``ΔN c_i π/(A Δx_i) <= STABILITY``, ``c_i = k ∮|ds|`` there.
+    """
+    top = k * law_factor * float(np.max(rate))
+    c = k * law_factor * travel
+    stiff = float(np.max(c / spacing))
+    bounds = [DEPTH_STEP * A * P / math.pi / top if top > 0 else math.inf,
+              STABILITY * A / (math.pi * stiff) if stiff > 0 else math.inf]
+    dN = min(bounds)
+    return max(1, int(dN)) if math.isfinite(dN) else 0
 
 
 def _wear_iv(punch: Punch, P: float, s: float, Q_max: float, f: float, A: float, law: str, k: float,
