@@ -104,7 +104,7 @@ def march(punch: Punch, P: float, s: float, Q_max: float, f: float, *, A: float,
         rate = p * travel
         for key, value in (("cycles", N), ("energy", f * float(np.sum(st.fn * travel))),
                            ("stick_zones", model.stick_zone(st)), ("depths", depth.copy()),
-                           ("volume", float(np.trapezoid(depth, x))), ("contacts", model.contact_ends()),
+                           ("volume", float(np.sum(depth * weights))), ("contacts", model.contact_ends()),
                            ("alpha", model.normal.alpha), ("pressure", p)):
             rec[key].append(value)
         if N >= cycles:

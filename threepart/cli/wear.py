@@ -101,7 +101,8 @@ def _case(args: argparse.Namespace) -> dict[str, Any]:
         raise InputError(f"`--case` = {args.case!r} is a {case.kind} case: give a wear case or a fretting "
                          f"case of the catalogue ({', '.join(worn)})")
     return {"name": c.name, "punch": c.punch, "A": c.A, "P": c.P, "s": c.s_load, "Q_max": c.Q, "f": c.f,
-            "tilt": c.tilt, "law": law, "k": k, "cycles": n}
+            "tilt": c.tilt, "law": law, "k": k, "cycles": n,
+            "material": c.material if c.bodies == "similar pair" else None}
 
 
 def _given(args: argparse.Namespace) -> dict[str, Any]:
@@ -114,7 +115,8 @@ def _given(args: argparse.Namespace) -> dict[str, Any]:
                                                                        NU if nu is None else nu)
     return {"name": "", "punch": punch, "A": A, "P": positive("--P", args.P),
             "s": 0.0 if args.s is None else finite("--s", args.s), "Q_max": positive("--Q-max", args.Q_max),
-            "f": positive("--f", args.f), "tilt": "free", "law": "archard", "k": None, "cycles": None}
+            "f": positive("--f", args.f), "tilt": "free", "law": "archard", "k": None, "cycles": None,
+            "material": None if args.E is None else (positive("--E", args.E), NU if nu is None else nu)}
 
 
 def _problem(args: argparse.Namespace) -> dict[str, Any]:
@@ -124,8 +126,11 @@ def _problem(args: argparse.Namespace) -> dict[str, Any]:
     from threepart.problem.checks import integer, positive
 
     if not has_marcher(args.method):
-        raise InputError(f"`--method` = {args.method}: no wear march yet (not yet built for this method; sie has one)")
+        raise InputError(f"`--method` = {args.method}: no wear march yet (not yet built for this method)")
     pr = _case(args) if args.case is not None else _given(args)
+    if args.method == "fem" and pr["material"] is None:
+        raise InputError("`--method` = fem marches two similar bodies of a material: give `--E` and `--nu` "
+                         "(not `--A`), or a case with a material of a similar pair")
     if not pr["Q_max"] < pr["f"] * pr["P"]:
         raise InputError(f"`--Q-max` = {pr['Q_max']:g} must be below f P = {pr['f'] * pr['P']:g}: full "
                          "sliding, there is no stick zone to fret about")
@@ -151,7 +156,8 @@ def run(args: argparse.Namespace) -> int:
     pr = _problem(args)
     with heartbeat(_say, lambda: f"the wear march ({pr['cycles']} cycles, {args.method})"):
         res = wear(pr["punch"], pr["P"], pr["s"], pr["Q_max"], pr["f"], A=pr["A"], law=pr["law"], k=pr["k"],
-                   cycles=pr["cycles"], method=args.method, jump=pr["jump"], tilt=pr["tilt"])
+                   cycles=pr["cycles"], method=args.method, jump=pr["jump"], tilt=pr["tilt"],
+                   **(dict(zip(("E", "nu"), pr["material"])) if args.method == "fem" else {}))
     with heartbeat(_say, lambda: "the closed-form worn limit"):
         rec = march_record(res)
     if args.json:
