@@ -28,6 +28,7 @@ from __future__ import annotations
 
 import math
 import time
+from collections.abc import Callable
 
 import numpy as np
 
@@ -36,6 +37,7 @@ from threepart.fretting_wear import WearResult, jump_size, register_marcher
 from threepart.problem.checks import positive, poisson
 from threepart.problem.material import similar_pair
 from threepart.problem.punch import Punch
+from threepart.results import FrettingResult
 
 from ._progress import Progress
 from .mesh import MeshPreset
@@ -49,6 +51,13 @@ MARGIN = 0.2
 MESH = MeshPreset(n=100, growth=0.1, L=200.0, refine=1.0, margin=MARGIN)
 #: active-set iterations of each solve
 MAX_ITER = 200
+
+
+def _interpolated(x: np.ndarray, values: np.ndarray) -> Callable[[np.ndarray], np.ndarray]:
+    """The gap at any point: ``values`` at the nodes ``x``, linear between them."""
+    def gap(t: np.ndarray) -> np.ndarray:
+        return np.interp(t, x, values)
+    return gap
 
 
 def _spacing(x: np.ndarray) -> np.ndarray:
@@ -92,7 +101,7 @@ def march(punch: Punch, P: float, s: float, Q_max: float, f: float, *, A: float,
             if N > 0:
                 worn = g + depth
                 model = TwoBodyModel(punch, P, s, E, nu, tilt, first.lower, first.L, None, MAX_ITER, f,
-                                     gap=lambda t, worn=worn: np.interp(t, x, worn), one_zone=False)
+                                     gap=_interpolated(x, worn), one_zone=False)
             st = model.step(Q_max, "loading", 1, 1.0)
         except (NoConvergenceError, ValueError, RuntimeError) as exc:
             if not rec["cycles"]:
@@ -118,7 +127,7 @@ def march(punch: Punch, P: float, s: float, Q_max: float, f: float, *, A: float,
     if not np.all(np.isfinite(depth)):
         raise NoConvergenceError("fem wear: the worn depth is not finite; no result is returned")
 
-    def final() -> None:
+    def final() -> FrettingResult:
         raise InputError("the FEM's wear march keeps no fretting cycle of its last state; "
                          "use method='sie' for `final`")
 
@@ -133,4 +142,4 @@ def march(punch: Punch, P: float, s: float, Q_max: float, f: float, *, A: float,
                             "stopped": stopped, "requested": cycles, "tilt": tilt})
 
 
-register_marcher("fem", march)
+register_marcher("fem", march, material=True)

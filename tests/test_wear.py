@@ -221,6 +221,8 @@ def test_profile_refusals():
 
 #: cycles of the slow march at Archard's k = 1e-5 (dose k N = 1.2e-2; the energy peaks at N = 66)
 LONG_CYCLES = 1200
+#: the energy per cycle peaks within this share of the slow march's cycles (measured 66 of 1200)
+PEAK_SHARE = 0.1
 
 
 @pytest.fixture(scope="module")
@@ -258,7 +260,7 @@ def test_the_energy_falls_monotonically_below_5_percent(long_march):
     """
     r = long_march
     peak = int(np.argmax(r.energy))
-    assert 0 < r.cycles[peak] < 0.1 * LONG_CYCLES
+    assert 0 < r.cycles[peak] < PEAK_SHARE * LONG_CYCLES
     assert np.max(np.diff(r.energy[peak:])) <= tolerance("wear", "energy_monotone").limit * r.energy[peak]
     assert r.energy[-1] <= tolerance("wear", "energy_left").limit * r.energy[0]
 

@@ -9,7 +9,8 @@ fixed proportion: the contact sees only the sum (docs/WEAR.md, section 4).
 wear             -- the march: ``cycles``, ``energy``, ``stick_zones``, ``depths``, ``volume``, ``final``
 WearResult       -- its result
 register_marcher -- a method's march under its name
-has_marcher      -- whether a method marches wear (its solver package loaded to register it)
+has_marcher      -- whether a method marches wear
+marchers         -- every method that marches wear; needs_material: whether one takes E and nu (its solver package loaded to register it)
 WearCase         -- a catalogue wear case: a fretting case of threepart/problem/cases.json with its law, ``k`` and cycles
 wear_cases       -- the catalogue's wear cases (suite ``"wear"``: fretting cases with a ``wear`` law, ``k``, cycles)
 wear_case        -- one of them by name
@@ -33,13 +34,17 @@ from threepart.problem.checks import check_tilt, integer, positive
 from threepart.problem.validate import check_punch, lever_arm
 
 __all__ = ["wear", "WearResult", "register_marcher", "has_marcher", "WearCase", "wear_cases", "wear_case",
-           "LAWS", "jump_size", "DEPTH_STEP", "STABILITY"]
+           "LAWS", "jump_size", "DEPTH_STEP", "STABILITY", "marchers", "needs_material", "DEFAULT_MARCHER"]
 
 LAWS = ("archard", "energy")
 #: the most cycles a march takes (a fan-blade flank's life is 1e6 to 1e8)
 MAX_CYCLES = 10**10
 
 _MARCHERS: dict[str, Callable[..., "WearResult"]] = {}
+#: the marchers that model bodies of a material: they take ``E=`` and ``nu=`` besides ``A``
+_MATERIAL: set[str] = set()
+#: the method :func:`wear` marches with by default; the others are compared with it
+DEFAULT_MARCHER = "sie"
 
 #: the depth worn per jump, as a fraction of the elastic approach A P/π (:func:`jump_size`)
 DEPTH_STEP = 0.01
@@ -47,9 +52,14 @@ DEPTH_STEP = 0.01
 STABILITY = 1.5
 
 
-def register_marcher(name: str, march: Callable[..., "WearResult"]) -> None:
-    """Register ``march(punch, P, s, Q_max, f, *, A, law, k, cycles, jump, tilt, **options)`` as ``name``."""
+def register_marcher(name: str, march: Callable[..., "WearResult"], *, material: bool = False) -> None:
+    """Register ``march(punch, P, s, Q_max, f, *, A, law, k, cycles, jump, tilt, **options)`` as ``name``.
+
+    ``material``: the march models bodies of a material and takes ``E=`` and ``nu=`` (:func:`needs_material`).
+    """
     _MARCHERS[name] = march
+    if material:
+        _MATERIAL.add(name)
 
 
 @dataclass(frozen=True)
@@ -214,6 +224,19 @@ def wear(punch: Punch, P: float, s: float, Q_max: float, f: float, *, A: float, 
                          f"{', '.join(sorted(_MARCHERS)) or 'none'}")
     return _MARCHERS[method](punch, P, s, Q_max, f, A=A, law=law, k=k, cycles=cycles, jump=jump,
                              tilt=tilt, **options)
+
+
+def marchers() -> list[str]:
+    """Every method that marches wear, the built-in ones loaded first: :data:`DEFAULT_MARCHER` first."""
+    from threepart import registry
+    for name in registry.BUILTIN:
+        has_marcher(name)
+    return sorted(_MARCHERS, key=lambda name: (name != DEFAULT_MARCHER, name))
+
+
+def needs_material(method: str) -> bool:
+    """Whether ``method``'s march takes the bodies' ``E`` and ``nu`` (:func:`register_marcher`)."""
+    return has_marcher(method) and method in _MATERIAL
 
 
 def has_marcher(method: str) -> bool:

@@ -58,14 +58,14 @@ TARGETS: dict[str, tuple[str, tuple[str, str] | None]] = {
     "energy_left": ("energy per cycle at the last cycle, of its start", ("wear", "energy_left")),
     "energy_monotone": ("largest rise of the energy per cycle past its peak, of the peak", ("wear", "energy_monotone")),
     "identity": ("worn area per cycle against k W (eq. W15), largest relative error", ("wear", "identity")),
-    "fem_depth": ("the FEM's worn depth against the SIE's after the same cycles, largest, of the SIE's largest depth",
-                  ("wear", "fem_depth")),
+    "peer_depth": ("another method's worn depth (the FEM's) against the SIE's after the same cycles, largest, "
+                   "of the SIE's largest depth", ("wear", "fem_depth")),
 }
 #: recorded cycles drawn in the depth and pressure panels
 DRAWN = 7
 
 
-def _limits(r: Any) -> tuple[Any, tuple[Any, Any]]:
+def _limits(r: Any) -> tuple[Any, tuple[Any, ...]]:
     """The closed-form limit on the march's own last stick zone, and the bracket ``(pinned, consistent)``.
 
     Under a moment the limit's placement depends on the history (docs/WEAR.md, section 3):
@@ -78,7 +78,8 @@ def _limits(r: Any) -> tuple[Any, tuple[Any, Any]]:
     normal = solve_normal(r.punch, r.P, r.s, A=r.A, tilt=r.info.get("tilt", "free"))
     bracket = tuple(wear_limit(normal, r.Q_max, r.f, stick=rule) for rule in LIMIT_RULES)
     try:
-        own = wear_limit(normal, r.Q_max, r.f, stick=tuple(float(v) for v in r.stick_zones[-1]))
+        x1, x2 = (float(v) for v in r.stick_zones[-1])
+        own = wear_limit(normal, r.Q_max, r.f, stick=(x1, x2))
     except ValueError:
         own = bracket[0]
     return own, bracket
@@ -97,7 +98,7 @@ def _distances(r: Any, limit: Any) -> list[float]:
     return [float(np.sqrt(np.mean((p[inner] - ref) ** 2)) / norm) for p in r.pressures]
 
 
-def _outside(zone: np.ndarray, bracket: tuple[Any, Any]) -> float:
+def _outside(zone: np.ndarray, bracket: tuple[Any, ...]) -> float:
     """How far the march's stick-zone ends lie outside the bracket of the limit's placements (0 inside)."""
     ends = np.array([lim.stick_zone for lim in bracket])
     lo, hi = ends.min(axis=0), ends.max(axis=0)
@@ -114,21 +115,22 @@ def _identity(r: Any) -> float:
     return float(np.max(np.abs(rate - k * r.energy[:-1]) / (k * r.energy[:-1])))
 
 
-def fem_figures(r: Any, fem: Any) -> dict[str, Any]:
-    """The FEM's march of the same problem against the SIE's ``r``: the depth, the volume, the energy, its run."""
+def peer_figures(r: Any, peer: Any) -> dict[str, Any]:
+    """Another method's march of the same problem against ``r``: the depth, the volume, the energy, its run."""
     top = float(np.max(r.depths[-1]))
-    depth = np.interp(fem.x, r.x, r.depths[-1])
-    return {"depth": float(np.max(np.abs(depth - fem.depths[-1]))) / top,
-            "depth_L2": float(np.sqrt(np.mean((depth - fem.depths[-1]) ** 2) / np.mean(depth ** 2))),
-            "volume": float(fem.volumes[-1] / r.volumes[-1] - 1), "energy_ratio": float(fem.energy[-1] / fem.energy[0]),
-            "stick_zone": [float(v) for v in fem.stick_zones[-1]], "reached": int(fem.cycles[-1]),
-            "steps": int(fem.info["steps"]), "time_s": float(fem.info["time"]), "stopped": fem.info["stopped"]}
+    depth = np.interp(peer.x, r.x, r.depths[-1])
+    return {"depth": float(np.max(np.abs(depth - peer.depths[-1]))) / top,
+            "depth_L2": float(np.sqrt(np.mean((depth - peer.depths[-1]) ** 2) / np.mean(depth ** 2))),
+            "volume": float(peer.volumes[-1] / r.volumes[-1] - 1), "energy_ratio": float(peer.energy[-1] / peer.energy[0]),
+            "stick_zone": [float(v) for v in peer.stick_zones[-1]], "reached": int(peer.cycles[-1]),
+            "steps": int(peer.info["steps"]), "time_s": float(peer.info["time"]), "stopped": peer.info["stopped"],
+            "method": peer.method}
 
 
-def march_record(r: Any, fem: Any = None) -> dict[str, Any]:
+def march_record(r: Any, peer: Any = None) -> dict[str, Any]:
     """A march's figures: the limit, the distances, the drift, the energy, the identity, each target judged.
 
-    ``fem``, the FEM's march of the same problem and cycles, adds the target ``fem_depth``.
+    ``peer``, another method's march of the same problem and cycles, adds the target ``peer_depth``.
     """
     limit, bracket = _limits(r)
     distance = _distances(r, limit)
@@ -143,9 +145,9 @@ def march_record(r: Any, fem: Any = None) -> dict[str, Any]:
                "energy_left": float(energy[-1] / energy[0]),
                "energy_monotone": float(np.max(np.diff(energy[peak:]), initial=0.0)) / float(energy[peak]),
                "identity": _identity(r)}
-    fem_rec = None if fem is None else fem_figures(r, fem)
-    if fem_rec is not None:
-        figures["fem_depth"] = fem_rec["depth"]
+    peer_rec = None if peer is None else peer_figures(r, peer)
+    if peer_rec is not None:
+        figures["peer_depth"] = peer_rec["depth"]
     targets: dict[str, dict[str, Any]] = {}
     for key, (_, row) in TARGETS.items():
         if key not in figures:
@@ -164,7 +166,7 @@ def march_record(r: Any, fem: Any = None) -> dict[str, Any]:
             "energy_peak_cycle": int(r.cycles[peak]),
             "stick_drift": float(np.max(np.abs(r.stick_zones - r.stick_zones[0]))) / W,
             "identity": figures["identity"], "figures": figures, "targets": targets, "W": W,
-            "fem": fem_rec, "_limit": limit}
+            "peer": peer_rec, "_limit": limit}
 
 
 def _picks(n: int) -> list[int]:
@@ -226,22 +228,27 @@ def wear_study(root: Path, say: Callable[[str], None]) -> dict[str, Any]:
     """The catalogue's wear case marched, judged and drawn into ``root / WEAR_PLOT``: the report's record."""
     import time
 
-    from threepart.fretting_wear import wear_case
+    from threepart.fretting_wear import DEFAULT_MARCHER, marchers, needs_material, wear_case
 
     wc = wear_case(WEAR_CASE)
     t0 = time.perf_counter()
     r = wc.run()
     seconds = time.perf_counter() - t0
-    fem = wc.run(method="fem", **dict(zip(("E", "nu"), wc.case.material)))
-    rec = study_record(r, root, WEAR_CASE, seconds, fem)
+    peer = None
+    for name in marchers():
+        if name != DEFAULT_MARCHER and (wc.case.material is not None or not needs_material(name)):
+            material = wc.case.material if needs_material(name) else None
+            peer = wc.run(method=name, **({} if material is None else {"E": material[0], "nu": material[1]}))
+            break
+    rec = study_record(r, root, WEAR_CASE, seconds, peer)
     say(f"[study] wear: {WEAR_CASE}, {rec['reached']} of {rec['requested']} cycles in {rec['steps']} steps, "
-        f"{rec['time_s']:.1f} s (the FEM's {rec['fem']['time_s']:.1f} s)")
+        f"{rec['time_s']:.1f} s" + ("" if peer is None else f" ({peer.method}'s {rec['peer']['time_s']:.1f} s)"))
     return rec
 
 
-def study_record(r: Any, root: Path, name: str, seconds: float, fem: Any = None) -> dict[str, Any]:
+def study_record(r: Any, root: Path, name: str, seconds: float, peer: Any = None) -> dict[str, Any]:
     """A march's record for ``report.json`` (:func:`march_record` and the run), its plot drawn into ``root``."""
-    rec = march_record(r, fem)
+    rec = march_record(r, peer)
     (root / WEAR_PLOT).parent.mkdir(parents=True, exist_ok=True)
     draw(r, rec, root / WEAR_PLOT)
     rec.pop("_limit")
@@ -251,14 +258,15 @@ def study_record(r: Any, root: Path, name: str, seconds: float, fem: Any = None)
             "plot": WEAR_PLOT, **rec}
 
 
-def _fem_text(fem: dict[str, Any] | None) -> tuple[str, ...]:
-    if not fem:
+def _peer_text(peer: dict[str, Any] | None) -> tuple[str, ...]:
+    if not peer:
         return ()
-    return (f"The FEM's march of the same case (two similar bodies, its own Coulomb slip at Q_max; fem/wear.py) "
-            f"reached {fem['reached']:,} cycles in {fem['steps']} steps ({fem['time_s']:.1f} s); its energy per "
-            f"cycle ends at {fmt(fem['energy_ratio'])} of its start, its worn area {fem['volume']:+.3g} against "
-            f"the SIE's, its depth {fmt(fem['depth_L2'])} off in L2. Its stick zone ends at "
-            f"[{fem['stick_zone'][0]:.6g}, {fem['stick_zone'][1]:.6g}] mm: the limit's receding end is marginal "
+    return (f"The {peer['method']}'s march of the same case (for the FEM: two similar bodies, its own Coulomb "
+            "slip at Q_max; fem/wear.py) "
+            f"reached {peer['reached']:,} cycles in {peer['steps']} steps ({peer['time_s']:.1f} s); its energy per "
+            f"cycle ends at {fmt(peer['energy_ratio'])} of its start, its worn area {peer['volume']:+.3g} against "
+            f"the SIE's, its depth {fmt(peer['depth_L2'])} off in L2. Its stick zone ends at "
+            f"[{peer['stick_zone'][0]:.6g}, {peer['stick_zone'][1]:.6g}] mm: the limit's receding end is marginal "
             "(q/p tends to f there), and the FE block's tangential compliance, not the normal one, erodes it "
             "node by node (docs/WEAR.md, section 8).",)
 
@@ -287,7 +295,7 @@ def wear_section(doc: dict[str, Any]) -> Section | None:
              f"{stopped} The energy per cycle peaks at cycle {rec['energy_peak_cycle']:,}. The stick zone at "
              f"Q_max moved by {fmt(rec['stick_drift'])} W from its start. Each "
              "target is a row of the tolerance table; a target missed is shown, and does not fail the run.",
-             *_fem_text(rec.get("fem")))
+             *_peer_text(rec.get("peer")))
     met = all(t["met"] for t in rec["targets"].values())
     return Section("Fretting wear", "wear", (intro,),
                    (Table(("target", "measured", "limit", ""), tuple(rows)),),

@@ -216,8 +216,8 @@ def _contact_iv(C: Any, x: Any, g0: Any, P: Any, s: Any, max_iter: Any, active: 
     return P, s, max_iter, C, x, g0, active
 
 
-class _Breakdown(Exception):
-    """The active-set iteration left the admissible sets (it is not globally convergent)."""
+class _Breakdown(NoConvergenceError):
+    """The active-set iteration left the admissible sets (it is not globally convergent); caught inside."""
 
 
 def _start(start: str, C: np.ndarray, x: np.ndarray, g0: np.ndarray, P: float,
