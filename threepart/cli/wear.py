@@ -121,16 +121,16 @@ def _given(args: argparse.Namespace) -> dict[str, Any]:
 
 def _problem(args: argparse.Namespace) -> dict[str, Any]:
     """Every check of the input, before anything is solved; the problem and the march's settings."""
-    from threepart.fretting_wear import MAX_CYCLES, has_marcher
+    from threepart.fretting_wear import MAX_CYCLES, has_marcher, needs_material
     from threepart.output import check_out
     from threepart.problem.checks import integer, positive
 
     if not has_marcher(args.method):
         raise InputError(f"`--method` = {args.method}: no wear march yet (not yet built for this method)")
     pr = _case(args) if args.case is not None else _given(args)
-    if args.method == "fem" and pr["material"] is None:
-        raise InputError("`--method` = fem marches two similar bodies of a material: give `--E` and `--nu` "
-                         "(not `--A`), or a case with a material of a similar pair")
+    if needs_material(args.method) and pr["material"] is None:
+        raise InputError(f"`--method` = {args.method} marches two similar bodies of a material: give `--E` and "
+                         "`--nu` (not `--A`), or a case with a material of a similar pair")
     if not pr["Q_max"] < pr["f"] * pr["P"]:
         raise InputError(f"`--Q-max` = {pr['Q_max']:g} must be below f P = {pr['f'] * pr['P']:g}: full "
                          "sliding, there is no stick zone to fret about")
@@ -151,13 +151,14 @@ def _problem(args: argparse.Namespace) -> dict[str, Any]:
 def run(args: argparse.Namespace) -> int:
     """Run ``threepart wear``: check the input, march, judge against the worn limit, print, write; the status."""
     from threepart import wear
+    from threepart.fretting_wear import needs_material
     from threepart.reports.verify.wear_section import march_record
 
     pr = _problem(args)
     with heartbeat(_say, lambda: f"the wear march ({pr['cycles']} cycles, {args.method})"):
         res = wear(pr["punch"], pr["P"], pr["s"], pr["Q_max"], pr["f"], A=pr["A"], law=pr["law"], k=pr["k"],
                    cycles=pr["cycles"], method=args.method, jump=pr["jump"], tilt=pr["tilt"],
-                   **(dict(zip(("E", "nu"), pr["material"])) if args.method == "fem" else {}))
+                   **(dict(zip(("E", "nu"), pr["material"])) if needs_material(args.method) else {}))
     with heartbeat(_say, lambda: "the closed-form worn limit"):
         rec = march_record(res)
     if args.json:
