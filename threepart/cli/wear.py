@@ -3,13 +3,15 @@
 The problem is a catalogue wear case (``--case fan_blade_flank_wear``, with its
 law, ``k`` and cycles), a fretting case of the catalogue (``--case
 fretting_Q0.4`` with ``--k`` and ``--cycles``), or the punch, material and loads.
-The worn depth is marched by :func:`threepart.wear` (the SIE's march: each
-step solves the worn profile's contact, the stick zone at ``Q_max`` and the
-slip, and grows the depth by Archard's or the energy law with cycle jumping).
-It prints the energy per cycle at the start and the end, the stick zone's
-drift, the worn volume, and the distance of the last pressure to the
-closed-form worn limit (:func:`threepart.closedform.wear_limit`, L2 over the
-stick zone less 10 % of it at each end). ``--out DIR`` writes ``wear.csv``
+The worn depth is marched by :func:`threepart.wear` (``--method sie``, the
+default: the half-plane's contact on cells; ``--method fem``: two similar
+bodies with Coulomb friction): each step solves the worn profile's contact, the
+stick zone at ``Q_max`` and the slip, and grows the depth by Archard's or the
+energy law with cycle jumping. It prints the energy per cycle at the start and
+the end, the stick zone's drift and where it lies against the limit's placements,
+the worn volume, and the distance of the last pressure to the closed-form worn
+limit on the stick zone reached (:func:`threepart.closedform.wear_limit`, L2
+over the stick zone less 10 % of it at each end). ``--out DIR`` writes ``wear.csv``
 (cycle, energy, stick zone, volume), ``depths.csv`` (the worn depth at each
 recorded cycle) and ``wear.png``.
 
@@ -69,8 +71,10 @@ def add_parser(sub: Any) -> None:
     w.add_argument("--cycles", type=int, metavar="N", help="cycles to march in all, >= 1; default the case's")
     w.add_argument("--jump", type=int, metavar="DN",
                    help="cycles per step (cycle jumping); default: the march's step control (the depth per "
-                        "jump 1e-2 of the elastic approach A P/pi, and Euler's stability bound per knot)")
-    w.add_argument("--method", choices=METHODS, default="sie", help="the march (default sie)")
+                        "jump 1e-2 of the elastic approach A P/pi, and Euler's stability bound per cell or node)")
+    w.add_argument("--method", choices=METHODS, default="sie",
+                   help="the march: sie (the half-plane's contact on cells; default) or fem (two similar "
+                        "bodies with Coulomb friction; needs --E and --nu or a case's material)")
     p.add_argument("--json", action="store_true", help="print the figures as strict JSON")
     p.add_argument("--out", metavar="DIR",
                    help="write wear.csv, depths.csv and wear.png into DIR: new, empty, or threepart's own "
