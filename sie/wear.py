@@ -25,8 +25,9 @@ the depth then grows on :data:`CELLS` uniform cells over that contact and
 docs/WEAR.md section 4). Each state collocates eq. (0.1) of docs/WEAR.md, the
 displacement form of eq. (integral_equation), at the cell centres with a pressure
 uniform on each cell (:func:`threepart.halfplane.surface.influence`), for the normal
-contact and for the corrective contact at ``Q_max`` (:func:`cell_state`), by the core's
-active-set solve. The global series of :func:`sie.profile.solve_profile` resolves neither
+contact and for the corrective contact at ``Q_max`` (:func:`sie.cells.cell_state`), by the
+core's active-set solve; ``WearResult.final`` is the fretting cycle on the last state's cells
+(:func:`sie.cells.cell_fretting`). The global series of :func:`sie.profile.solve_profile` resolves neither
 a pressure that falls to 0 over the slip zones nor the singular ends that form at the
 stick zone's (its bounded contact turned tensile and the energy stalled at 23 % of its
 start, docs/WEAR.md section 8); the cells do, to their width. Cycle jumping
@@ -38,7 +39,6 @@ ProfileFrettingResult   -- SieFrettingResult on a worn profile
 solve_profile_slip      -- partial slip on a worn profile
 profile_fretting_cycle  -- the fretting cycle on a worn profile: energy from the loop (ln h/h*)
 wear_rate               -- the depth worn per cycle, the friction work and the stick zone at Q_max
-cell_state              -- the normal and corrective contacts of a worn profile on cells
 march                   -- the wear march of threepart.wear (registered as method "sie")
 """
 from __future__ import annotations
@@ -46,7 +46,6 @@ from __future__ import annotations
 import math
 import time
 from dataclasses import dataclass
-from typing import Any
 
 import numpy as np
 
@@ -55,18 +54,18 @@ from threepart.fretting_wear import WearResult, jump_size, register_marcher
 from threepart.problem.punch import Punch
 from threepart.results import Diagnostics
 from threepart.halfplane.legendre import gauss01
-from threepart.halfplane.surface import influence, solve_contact
+from threepart.halfplane.surface import influence
 from threepart.problem.validate import SLIP_RATIO_LIMIT, check_states
-from threepart.results.fields import stick_ends
 from threepart.results.slip import check_shear
 
+from .cells import COULOMB_FLOOR, cell_fretting, cell_state
 from .fretting import SieFrettingResult, Zones, loop_integral
 from .profile import (DEFAULT_TERMS, ProfileNormalResult, WornProfile, profile_approach, profile_gap,
                       solve_profile)
 from .slip import SieSlipResult, stick_zone
 
 __all__ = ["ProfileFrettingResult", "solve_profile_slip", "profile_fretting_cycle", "wear_rate",
-           "march", "cell_state", "CellState", "CELLS",
+           "march", "CELLS",
            "GRID_MARGIN"]
 
 #: cells of the march over the unworn contact and its margins
@@ -77,8 +76,6 @@ GRID_MARGIN = 0.15
 WORK_NODES = 96
 #: Gauss–Legendre nodes per panel of the loop's energy, and the coarser level that checks it
 LOOP_NODES = (24, 48)
-#: Coulomb's check: p - p* may fall below 0 by this fraction of the peak (the worn terms' truncation)
-COULOMB_FLOOR = 1e-6
 
 
 def _coulomb(normal: ProfileNormalResult, stick, lo: float, hi: float, Q: float, f: float) -> None:
@@ -232,67 +229,6 @@ def _cells(base: ProfileNormalResult, cells: int) -> np.ndarray:
     return np.linspace(-base.a - GRID_MARGIN * W, base.c + GRID_MARGIN * W, cells + 1)
 
 
-@dataclass(frozen=True)
-class CellState:
-    """One marched state on the cells: the normal contact and the corrective contact at ``Q_max``.
-
-    ``p`` and ``p_star`` are the cells' pressures (eq. integral_equation collocated at the
-    centres, uniform on each cell); ``travel`` is ``∮|ds| = 4 f G*`` on the cells that
-    slip, ``G*`` the corrective contact's gap; ``rate = p travel``.
-    """
-
-    normal: Any
-    corrective: Any
-    p: np.ndarray
-    p_star: np.ndarray
-    travel: np.ndarray
-    rate: np.ndarray
-    work: float
-    stick: tuple[float, float]
-    contact: tuple[float, float]
-
-
-def cell_state(C: np.ndarray, edges: np.ndarray, g: np.ndarray, P: float, s: float, Q_max: float,
-               f: float, free_tilt: bool, start: tuple[Any, Any] | None = None) -> CellState:
-    """The normal contact of the worn profile ``g`` (at the cell centres) and its corrective contact at ``Q_max``.
-
-    Ciavarella–Jäger on the cells: the corrective contact is the same profile at the
-    normal tilt under ``P* = P - Q_max/f`` (eqs. integral_equation_2, horizontal_equilibrium);
-    its active cells are the stick zone, and a cell of the contact outside it slips
-    by ``f G*`` at ``Q_max`` (Masing: ``∮|ds| = 4 f G*`` per cycle).
-
-    Raises
-    ------
-    StickSeparationError
-        The corrective pressure exceeds the pressure on a cell (the stick zone is not one
-        interval of the contact).
-    NoConvergenceError
-        An active set that does not settle.
-    """
-    x, width = 0.5 * (edges[1:] + edges[:-1]), np.diff(edges)
-    normal = solve_contact(C, x, g, P, s, free_tilt=free_tilt,
-                           active=None if start is None else start[0].active.copy())
-    P_star = P - Q_max / f
-    cor = solve_contact(C, x, g + normal.alpha * x, P_star, 0.0, free_tilt=False,
-                        active=None if start is None else start[1].active.copy())
-    p, p_star = normal.f / width, cor.f / width
-    excess = p_star - p
-    if np.max(excess) > COULOMB_FLOOR * np.max(p):
-        i = int(np.argmax(excess))
-        raise StickSeparationError(f"`Q_max`/(f P) = {Q_max / (f * P):.6g} on the worn profile: the corrective "
-                                   f"pressure exceeds p by {excess[i]:.4g} at x = {x[i]:.6g}; the stick zone "
-                                   "is not one interval")
-    slips = normal.active & ~cor.active
-    travel = np.where(slips, 4.0 * f * np.maximum(cor.gap, 0.0), 0.0)
-    rate = p * travel
-    work = f * float(np.sum(rate * width))
-    on = np.flatnonzero(normal.active)
-    contact = (float(edges[on[0]]), float(edges[on[-1] + 1]))
-    lo, hi = stick_ends(x, p_star, np.zeros(x.size), f)      # the corrective contact's ends: p*^2 -> 0
-    return CellState(normal=normal, corrective=cor, p=p, p_star=p_star, travel=travel, rate=rate, work=work,
-                     stick=(lo, hi), contact=contact)
-
-
 def march(punch: Punch, P: float, s: float, Q_max: float, f: float, *, A: float, law: str, k: float,
           cycles: int, jump: int | None = None, tilt: str = "free", n: int = DEFAULT_TERMS,
           points: int = CELLS) -> WearResult:
@@ -303,7 +239,7 @@ def march(punch: Punch, P: float, s: float, Q_max: float, f: float, *, A: float,
     integral equation in its displacement form (eq. 0.1 of docs/WEAR.md) on ``points``
     uniform cells (:func:`threepart.halfplane.surface.influence`), where the depth grows.
     Each step solves the normal contact and the corrective contact at ``Q_max``
-    (:func:`cell_state`) and grows the depth by ``ΔN`` cycles' wear: ``jump`` cycles, or
+    (:func:`sie.cells.cell_state`) and grows the depth by ``ΔN`` cycles' wear: ``jump`` cycles, or
     the module docstring's control. A global series resolves neither the pressure that
     falls to 0 over the slip zones nor the singular ends that form at the stick zone's;
     cells do, to their width (docs/WEAR.md, section 8).
@@ -342,14 +278,15 @@ def march(punch: Punch, P: float, s: float, Q_max: float, f: float, *, A: float,
         N += dN
     if not np.all(np.isfinite(depth)):
         raise NoConvergenceError("sie wear: the worn depth is not finite; no result is returned")
-    last = WornProfile(punch, x, depth)
+    last, worn = state, g + rec["depths"][-1]       # the last state solved and its profile
+    assert last is not None
     return WearResult(punch=punch, P=P, s=s, Q_max=Q_max, f=f, A=A, law=law, k=k, x=x,
                       cycles=np.array(rec["cycles"]), energy=np.array(rec["energy"]),
                       stick_zones=np.array(rec["stick_zones"]), depths=np.array(rec["depths"]),
                       volumes=np.array(rec["volume"]), contacts=np.array(rec["contacts"]),
                       alphas=np.array(rec["alpha"]), method="sie",
-                      final_cycle=lambda: profile_fretting_cycle(
-                          solve_profile(last, P, s, A=A, tilt=tilt, n=n), Q_max, f),
+                      final_cycle=lambda: cell_fretting(last, C, edges, worn, punch=punch, A=A, P=P, s=s,
+                                                        Q_max=Q_max, f=f, tilt=tilt),
                       pressures=np.array(rec["pressure"]),
                       info={"time": time.perf_counter() - t0, "steps": len(rec["cycles"]) - 1,
                             "jump": "auto" if jump is None else jump, "n": n, "points": x.size,

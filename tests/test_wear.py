@@ -318,3 +318,30 @@ def test_the_fem_march_needs_the_pair():
         threepart.wear(HERTZ, P, 0.0, 0.5 * F * P, F, A=A, k=1e-5, cycles=1, method="fem")
     with pytest.raises(InputError, match="`A`"):
         threepart.wear(HERTZ, P, 0.0, 0.5 * F * P, F, A=2 * A, k=1e-5, cycles=1, method="fem", E=210e3, nu=0.3)
+
+
+def test_the_final_cycle_of_an_unworn_march_is_the_closed_forms():
+    """WearResult.final on the cells (sie/cells.py) at N = 0: the closed-form fretting cycle (Masing, Ciavarella–Jäger).
+
+    The energy (the friction work) and the loop's area (delta of the corrective contacts' approaches)
+    are two routes to it; the stick zone at Q_max lies within a cell; the shear on the loading and
+    unloading branches, away from the stick zones' ends.
+    """
+    Q = 0.5 * F * P
+    r = threepart.wear(HERTZ, P, 0.0, Q, F, A=A, law="energy", k=1e-5, cycles=0)
+    cycle = r.final
+    ref = cf_fretting(cf_normal(HERTZ, P, 0.0, A=A), Q, F)
+    tol = tolerance("wear", "cells_cycle").limit
+    assert abs(cycle.energy - ref.energy) <= tol * ref.energy
+    q_loop, d_loop = cycle.loop()
+    back = cycle.branch != "loading"
+    assert abs(abs(np.trapezoid(d_loop[back], q_loop[back])) - ref.energy) <= tol * ref.energy
+    cell = float(np.diff(r.x)[0])
+    k = len(cycle.stick) // 3 - 1
+    assert np.allclose(cycle.stick[k], ref.stick[k], rtol=0, atol=cell)
+    x = np.linspace(-0.12, 0.12, 13)
+    scale = F * float(ref.normal.pressure(np.zeros(1))[0])
+    for Qv, branch in ((Q, "loading"), (0.0, "unloading")):
+        assert np.max(np.abs(cycle.shear(x, Qv, branch) - ref.shear(x, Qv, branch))) <= tol * scale
+    with pytest.raises(InputError, match="edges"):
+        cycle.edges()

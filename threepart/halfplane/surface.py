@@ -48,7 +48,7 @@ def influence(edges: np.ndarray, A: float) -> np.ndarray:
 
     Cells ``[edges[j], edges[j+1]]`` carry the force ``f_j = p_j (edges[j+1] - edges[j])``;
     the gap of eq. (0.1) of docs/WEAR.md at the cell centres ``x_i`` is then
-    ``g0_i + alpha x_i - delta + (C f)_i`` with
+    ``g0_i + alpha x_i - delta + (C f)_i`` with::
 
         C_ij = -(A/π) ∫_cell_j ln(|x_i - t|/L) dt / (edges[j+1] - edges[j]),
 
