@@ -25,7 +25,7 @@ PAGES = {"threepart": "threepart", "closedform": "threepart.closedform", "sie": 
          "fem": "threepart.fem", "meshes": "threepart.meshes", "readers": "threepart.readers",
          "calculix": "threepart.calculix", "getfem": "threepart.getfem",
          "reports": "threepart.reports", "results": "threepart.results", "stress": "threepart.stress",
-         "fatigue": "threepart.fatigue", "studies": "threepart.studies"}
+         "fatigue": "threepart.fatigue", "studies": "threepart.studies", "wear": "threepart.fretting_wear"}
 #: the build command of the docs (conf.py's docstring, the index and the README say it)
 BUILD = "python -m sphinx -W -b html docs docs/_build/html"
 

@@ -36,6 +36,7 @@ from threepart.problem.validate import check_punch, lever_arm
 __all__ = ["wear", "WearResult", "register_marcher", "has_marcher", "WearCase", "wear_cases", "wear_case",
            "LAWS", "jump_size", "DEPTH_STEP", "STABILITY", "marchers", "needs_material", "DEFAULT_MARCHER"]
 
+#: the wear laws: depth ``k p |slip|`` (Archard) and ``k q·slip`` (energy, Fouvry)
 LAWS = ("archard", "energy")
 #: the most cycles a march takes (a fan-blade flank's life is 1e6 to 1e8)
 MAX_CYCLES = 10**10
