@@ -94,7 +94,9 @@ def _closedform(size: dict[str, Any]) -> dict[str, float]:
     nn, ns = size["naive"], size["single"]
     t_naive = best_of(lambda: naive(punch, A, P[:nn], s[:nn])) / nn
     t_batch = best_of(lambda: cf.solve_normal_batch(punch, P, s, A=A)) / P.size
-    t_single = best_of(lambda: [cf.solve_normal(punch, 400.0, 0.1, A=A) for _ in range(ns)]) / ns
+    # one solve at a time over the random draw, not one case repeated (issue 41)
+    draw = [(float(Pi), float(si)) for Pi, si in zip(P[:ns], s[:ns])]
+    t_single = best_of(lambda: [cf.solve_normal(punch, Pi, si, A=A) for Pi, si in draw]) / ns
     t_paper = best_of(lambda: naive(punch, A, P[:nn], s[:nn], paper_equations)) / nn
     n0 = evaluations()
     batch = cf.solve_normal_batch(punch, P, s, A=A)

