@@ -15,6 +15,7 @@ from __future__ import annotations
 import functools
 import math
 import time
+import weakref
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, NamedTuple, Union
@@ -108,6 +109,8 @@ def _contact(sc: SurfaceCompliance, punch: Punch, P: float, s: float, tilt: str,
     """
     g0 = punch.profile(sc.x)
     active = None if guess is None else (sc.x >= guess[0]) & (sc.x <= guess[1])
+    if active is None and kinematics == "small":
+        active = _last_active(sc)          # another load on this condensed body: start from its last contact
     sol = solve_kinematic(sc.C, sc.x, g0, punch.slope(sc.x), P, s, kinematics=kinematics,
                           free_tilt=tilt == "free", max_iter=max_iter,
                           active=active if active is not None and active.any() else None,
@@ -117,7 +120,26 @@ def _contact(sc: SurfaceCompliance, punch: Punch, P: float, s: float, tilt: str,
             f"the contact reaches the candidate zone end [{sc.x[0]:.6g}, {sc.x[-1]:.6g}]; "
             "use a wider zone (a larger preset `margin`)")
     check_one_zone(sc.x, sol.active, P, s)
+    if kinematics == "small":
+        _LAST_ACTIVE[id(sc.C)] = (weakref.ref(sc.C), sol.active.copy())
+        while len(_LAST_ACTIVE) > LAST_ACTIVE_KEPT:
+            _LAST_ACTIVE.pop(next(iter(_LAST_ACTIVE)))
     return sol
+
+
+#: the last contact solved on each condensed body in memory (keyed by its compliance matrix, which the
+#: run's memory shares between the copies it hands out): the start of the next solve on it without a trial
+#: contact (another load on a given mesh, issue 41); the active set's answer does not depend on its start
+_LAST_ACTIVE: dict[int, tuple[weakref.ref, np.ndarray]] = {}
+#: condensed bodies whose last contact is kept
+LAST_ACTIVE_KEPT = 8
+
+
+def _last_active(sc: SurfaceCompliance) -> np.ndarray | None:
+    entry = _LAST_ACTIVE.get(id(sc.C))
+    if entry is None or entry[0]() is not sc.C or entry[1].shape != sc.x.shape:
+        return None
+    return entry[1].copy()
 
 
 def _guess(punch: Punch, P: float, s: float, A: float) -> tuple[float, float]:
