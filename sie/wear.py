@@ -65,8 +65,7 @@ from .profile import (DEFAULT_TERMS, ProfileNormalResult, WornProfile, profile_a
 from .slip import SieSlipResult, stick_zone
 
 __all__ = ["ProfileFrettingResult", "solve_profile_slip", "profile_fretting_cycle", "wear_rate",
-           "march", "CELLS",
-           "GRID_MARGIN"]
+           "march", "CELLS", "GRID_MARGIN"]
 
 #: cells of the march over the unworn contact and its margins
 CELLS = 400
