@@ -55,7 +55,7 @@ from __future__ import annotations
 import math
 import time
 from dataclasses import dataclass, field, replace
-from typing import Any
+from typing import Any, Callable, Optional
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -76,7 +76,7 @@ from .mesh import MeshPreset, Substrate
 from .recovery import StressField, model_nu
 from .solve import MeshArg
 from .twobody import TwoBodyModel, two_body_model
-from threepart.errors import InputError
+from threepart.errors import InputError, InputTypeError
 
 __all__ = ["FemSlipResult", "FemFrettingResult", "solve_partial_slip", "fretting_cycle"]
 
@@ -178,6 +178,17 @@ class FemFrettingResult(FrettingResult):
         return self.model.field(st, st.Q / self.Q_max).at(x, z)
 
 
+#: a worn depth ``w(x)``, or None (:func:`solve_partial_slip`)
+Depth = Optional[Callable[[np.ndarray], np.ndarray]]
+
+
+def _depth(depth: Any) -> Depth:
+    """``depth`` if None or callable; ``TypeError`` naming it otherwise."""
+    if depth is not None and not callable(depth):
+        raise InputTypeError(f"`depth` must be a function of x (the worn depth) or None, not {type(depth).__name__}")
+    return depth
+
+
 def _slip_iv(punch: Any, P: Any, s: Any, Q: Any, f: Any, E: Any, nu: Any, tilt: Any, mesh: Any,
              steps: Any, max_iter: Any, progress: Any, sigma_bulk: Any, name: str = "Q"
              ) -> tuple[Any, ...]:
@@ -196,7 +207,7 @@ def _slip_iv(punch: Any, P: Any, s: Any, Q: Any, f: Any, E: Any, nu: Any, tilt: 
 def solve_partial_slip(punch: Punch, P: float, s: float = 0.0, *, Q: float, f: float, E: float,
                        nu: float, tilt: str = "free", mesh: MeshArg = "default", steps: int = 10,
                        max_iter: int = 100, progress: ProgressArg = None,
-                       sigma_bulk: float = 0.0) -> FemSlipResult:
+                       sigma_bulk: float = 0.0, depth: Depth = None) -> FemSlipResult:
     """Two similar elastic bodies pressed by ``P`` at lever arm ``s``, then sheared by ``Q`` in steps.
 
     Parameters
@@ -224,6 +235,9 @@ def solve_partial_slip(punch: Punch, P: float, s: float = 0.0, *, Q: float, f: f
         faces, rising with ``Q`` in proportion (any finite value: the model is
         linear). Where it reverses the slip at one end the model still answers
         (the slip direction of each node comes out of the active set).
+    depth
+        A worn depth ``w(x)`` (both bodies together, ``>= 0``; docs/WEAR.md): the gap is
+        ``punch.profile(x) + w(x)``, any profile. None: the punch's own.
 
     Returns
     -------
@@ -246,7 +260,7 @@ def solve_partial_slip(punch: Punch, P: float, s: float = 0.0, *, Q: float, f: f
         punch, P, s, Q, f, E, nu, tilt, mesh, steps, max_iter, progress, sigma_bulk)
     say = Progress(progress)
     t0 = time.perf_counter()
-    model = two_body_model(punch, P, s, E, nu, tilt, pre, max_iter, f, Q, sigma_bulk, say)
+    model = two_body_model(punch, P, s, E, nu, tilt, pre, max_iter, f, Q, sigma_bulk, say, _depth(depth))
     return shear_path(model, Q, f, steps, say, t0)
 
 
@@ -282,7 +296,7 @@ def shear_path(model: TwoBodyModel, Q: float, f: float, steps: int, say: Progres
 def fretting_cycle(punch: Punch, P: float, s: float = 0.0, *, Q_max: float, f: float, E: float,
                    nu: float, tilt: str = "free", mesh: MeshArg = "default", states: int = 21,
                    max_iter: int = 100, progress: ProgressArg = None,
-                   sigma_bulk: float = 0.0) -> FemFrettingResult:
+                   sigma_bulk: float = 0.0, depth: Depth = None) -> FemFrettingResult:
     """One fretting cycle ``0 -> Q_max -> -Q_max -> Q_max`` of the two-body model, step by step.
 
     Each branch is stepped through ``states`` equally spaced values of ``Q``
@@ -294,14 +308,14 @@ def fretting_cycle(punch: Punch, P: float, s: float = 0.0, *, Q_max: float, f: f
     ``Q``–``xi`` loop, the same energy by the global balance when
     ``sigma_bulk = 0``.
 
-    Parameters and errors as :func:`solve_partial_slip`, with ``Q_max > 0``,
+    Parameters (``depth`` too: a worn profile's cycle) and errors as :func:`solve_partial_slip`, with ``Q_max > 0``,
     ``states`` in ``[2, 1000]`` and ``sigma_bulk`` the bulk stress at ``Q_max``.
     """
     P, s, Q_max, f, E, nu, tilt, pre, states, max_iter, progress, sigma_bulk = _slip_iv(
         punch, P, s, Q_max, f, E, nu, tilt, mesh, states, max_iter, progress, sigma_bulk, "Q_max")
     say = Progress(progress)
     t0 = time.perf_counter()
-    model = two_body_model(punch, P, s, E, nu, tilt, pre, max_iter, f, Q_max, sigma_bulk, say)
+    model = two_body_model(punch, P, s, E, nu, tilt, pre, max_iter, f, Q_max, sigma_bulk, say, _depth(depth))
     path = [("loading", np.linspace(0.0, Q_max, states), 1),
             ("unloading", np.linspace(Q_max, -Q_max, states), -1),
             ("reloading", np.linspace(-Q_max, Q_max, states), 1)]

@@ -19,7 +19,7 @@ from pathlib import Path
 import numpy as np
 from threadpoolctl import threadpool_limits
 
-from threepart.errors import NoConvergenceError
+from threepart.errors import InputError, NoConvergenceError
 from threepart.problem.material import similar_pair
 from threepart.meshes import SubstrateSpec
 from threepart.problem.punch import Punch
@@ -175,6 +175,16 @@ class TwoBodyModel:
         return contact_ends(self.itf.x, pstar, st.stick, (-self.punch.b, self.punch.b))
 
 
+def _worn(punch: Punch, depth: Callable[[np.ndarray], np.ndarray]) -> Callable[[np.ndarray], np.ndarray]:
+    """The gap of the punch worn by ``depth``: ``punch.profile(x) + w(x)``, ``w`` checked finite and >= 0."""
+    def gap(x: np.ndarray) -> np.ndarray:
+        w = np.asarray(depth(x), dtype=float)
+        if w.shape != np.shape(x) or not np.all(np.isfinite(w)) or np.any(w < 0):
+            raise InputError("`depth` must return finite values >= 0 of the shape of its argument")
+        return punch.profile(x) + w
+    return gap
+
+
 def with_nodes(spec: SubstrateSpec, ends: tuple[float, ...]) -> SubstrateSpec:
     """``spec`` with a node and fine elements at each of ``ends`` inside its zone (stick-zone ends).
 
@@ -188,7 +198,8 @@ def with_nodes(spec: SubstrateSpec, ends: tuple[float, ...]) -> SubstrateSpec:
 
 def two_body_model(punch: Punch, P: float, s: float, E: float, nu: float, tilt: str,
            mesh: MeshPreset | Path | SubstrateSpec | Substrate, max_iter: int, mu: float, Q: float,
-           sigma_bulk: float, say: Progress) -> TwoBodyModel:
+           sigma_bulk: float, say: Progress,
+           depth: Callable[[np.ndarray], np.ndarray] | None = None) -> TwoBodyModel:
     """The two-body model on the checked ``mesh``; a preset is refined at the stick-zone ends of ``Q`` too.
 
     The mirrored pair is a rigid punch on a block of half the modulus, so the
@@ -199,17 +210,21 @@ def two_body_model(punch: Punch, P: float, s: float, E: float, nu: float, tilt: 
     within ``MIN_END_ELEMENTS`` of a join refines the preset, or is refused, as
     in :func:`fem.solve_normal`. The normal contact is checked against the
     limits of half-plane theory (:func:`threepart.problem.validate.check_contact`)
-    before any shear is applied.
+    before any shear is applied. ``depth``: a worn depth ``w(x)`` (both bodies together)
+    that opens the gap to ``punch.profile(x) + w(x)``; the contact is located on the punch.
     """
     t0 = time.perf_counter()
     breaks = (-punch.b, punch.b)
     pre = mesh
+    gap = None if depth is None else _worn(punch, depth)
     lower, L, guess, t_locate = place_substrate(mesh, punch, P, s, 0.5 * E, nu, tilt, max_iter, say)
     ends: tuple[float, ...] = ()
     if isinstance(pre, MeshPreset) and pre.refine > 1 and Q != 0 and guess is not None:
         t1 = time.perf_counter()
         coarse = make_substrate(PRESETS["locate"].spec(*guess, breaks))
-        trial = TwoBodyModel(punch, P, s, E, nu, tilt, coarse, L, guess, max_iter, mu, sigma_bulk)
+        trial = TwoBodyModel(punch, P, s, E, nu, tilt, coarse, L, guess, max_iter, mu, sigma_bulk, gap=gap)
+        if gap is not None:         # a worn profile: its own contact, not the punch's, places the mesh
+            guess = trial.contact_ends()
         ends = trial.stick_zone(trial.step(Q, "loading", 1 if Q > 0 else -1, 1.0))
         t_locate += time.perf_counter() - t1
         say(f"locate: stick zone of Q = {Q:.6g} about [{ends[0]:.6g}, {ends[1]:.6g}] "
@@ -225,7 +240,7 @@ def two_body_model(punch: Punch, P: float, s: float, E: float, nu: float, tilt: 
         t2 = time.perf_counter()
         t_mesh += t2 - t1
         say(f"mesh: {lower.mesh.t.shape[1]} triangles a body ({t2 - t1:.1f} s)")
-        model = TwoBodyModel(punch, P, s, E, nu, tilt, lower, L, guess, max_iter, mu, sigma_bulk)
+        model = TwoBodyModel(punch, P, s, E, nu, tilt, lower, L, guess, max_iter, mu, sigma_bulk, gap=gap)
         left, right = model.contact_ends()
         say(f"condense and normal contact: {model.itf.dofs} DOFs, contact [{left:.6g}, "
             f"{right:.6g}] ({time.perf_counter() - t2:.1f} s)")
