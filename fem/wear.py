@@ -16,6 +16,9 @@ gives the travel per cycle, ``∮|ds| = 4 |slip(Q_max)|``; the depth grows by
 ``k' p ∮|ds|`` per cycle at the nodes (``k' = k`` for Archard, ``k f`` for the energy
 law), by the jumps of :func:`threepart.fretting_wear.jump_size` with the nodes' spacing.
 
+``WearResult.final`` is :func:`fem.fretting_cycle` on the last worn gap (``depth=``), on its
+own quick mesh.
+
 The mesh is a uniform candidate zone (:data:`MESH`: ``n`` elements across the unworn
 contact, :data:`MARGIN` of it beyond each end, where the scar outgrows the contact),
 not refined at the ends: the refined elements' spacing would set the jumps' stability
@@ -127,9 +130,12 @@ def march(punch: Punch, P: float, s: float, Q_max: float, f: float, *, A: float,
     if not np.all(np.isfinite(depth)):
         raise NoConvergenceError("fem wear: the worn depth is not finite; no result is returned")
 
+    worn = _interpolated(x, np.asarray(rec["depths"][-1]))
+
     def final() -> FrettingResult:
-        raise InputError("the FEM's wear march keeps no fretting cycle of its last state; "
-                         "use method='sie' for `final`")
+        """The fretting cycle on the last worn profile, on the friction model's own mesh (:func:`fem.fretting_cycle`)."""
+        from .friction import fretting_cycle
+        return fretting_cycle(punch, P, s, Q_max=Q_max, f=f, E=E, nu=nu, tilt=tilt, mesh="quick", depth=worn)
 
     return WearResult(punch=punch, P=P, s=s, Q_max=Q_max, f=f, A=A, law=law, k=k, x=x,
                       cycles=np.array(rec["cycles"]), energy=np.array(rec["energy"]),

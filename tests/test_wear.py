@@ -311,6 +311,8 @@ def test_the_fem_march_wears_as_the_sie(fem_pair):
     assert np.max(np.abs(fem.stick_zones - fem.stick_zones[0])) <= tolerance("wear", "fem_stick_zone").limit * W
     # both say the energy per cycle first rises: the punch approaches, the slip zones grow
     assert fem.energy[-1] > fem.energy[0] and sie.energy[-1] > sie.energy[0]
+    # the last worn state's fretting cycle: the FEM's stepped cycle on its worn gap against the SIE's cells
+    assert abs(fem.final.energy - sie.final.energy) <= tolerance("fem-quick", "energy").limit * sie.final.energy
 
 
 def test_the_fem_march_needs_the_pair():
