@@ -148,3 +148,11 @@ def test_the_fan_blade_flank_reaches_its_worn_limit(capsys):
     assert energy[-1] <= tolerance("wear", "energy_left").limit * energy[0]
     assert distance[-1] <= tolerance("wear", "limit_L2").limit
     assert doc["stick_to_limit_over_W"] <= tolerance("wear", "stick_zone").limit
+
+
+def test_the_parser_names_the_librarys_laws_and_marchers():
+    """``--law`` and ``--method`` choices (named in the parser, which loads no numpy) are the library's."""
+    from threepart.cli import wear as cli_wear
+    from threepart.fretting_wear import LAWS, marchers
+
+    assert cli_wear.LAWS == LAWS and sorted(cli_wear.METHODS) == sorted(marchers())
