@@ -130,12 +130,12 @@ def march(punch: Punch, P: float, s: float, Q_max: float, f: float, *, A: float,
     if not np.all(np.isfinite(depth)):
         raise NoConvergenceError("fem wear: the worn depth is not finite; no result is returned")
 
-    worn = _interpolated(x, np.asarray(rec["depths"][-1]))
+    last_depth = _interpolated(x, np.asarray(rec["depths"][-1]))
 
     def final() -> FrettingResult:
         """The fretting cycle on the last worn profile, on the friction model's own mesh (:func:`fem.fretting_cycle`)."""
         from .friction import fretting_cycle
-        return fretting_cycle(punch, P, s, Q_max=Q_max, f=f, E=E, nu=nu, tilt=tilt, mesh="quick", depth=worn)
+        return fretting_cycle(punch, P, s, Q_max=Q_max, f=f, E=E, nu=nu, tilt=tilt, mesh="quick", depth=last_depth)
 
     return WearResult(punch=punch, P=P, s=s, Q_max=Q_max, f=f, A=A, law=law, k=k, x=x,
                       cycles=np.array(rec["cycles"]), energy=np.array(rec["energy"]),
