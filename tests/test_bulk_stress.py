@@ -325,12 +325,16 @@ def test_cli_sigma_bulk_through_the_entry_point():
                                        ("5000", r"`sigma_bulk` = 5000 reverses the slip at the right end"),
                                        ("300 --E 2e5 --nu 0.3 --rigid",
                                         r"`--sigma-bulk` = 300 needs elastically similar bodies")])
-def test_cli_bad_sigma_bulk_is_one_line_and_exit_2(value, msg):
+def test_cli_bad_sigma_bulk_is_one_line_and_exit_2(value, msg, capsys):
+    """The console script's ``main`` in this process (the entry point itself runs above)."""
+    from threepart.cli import main
+
     cli = CLI if "--rigid" not in value else [t for t in CLI[:CLI.index("--A")]] + CLI[CLI.index("--A") + 2:]
-    out = subprocess.run([*cli, "--sigma-bulk", *value.split()], capture_output=True, text=True)
-    assert out.returncode == 2 and out.stdout == ""
-    lines = out.stderr.strip().splitlines()
-    assert len(lines) == 1 and re.search(msg, lines[0]), out.stderr
+    status = main([*cli[3:], "--sigma-bulk", *value.split()])         # after `python -m threepart`
+    out = capsys.readouterr()
+    assert status == 2 and out.out == ""
+    lines = out.err.strip().splitlines()
+    assert len(lines) == 1 and re.search(msg, lines[0]), out.err
 
 
 def _agree_or_refuse(punch, P_ratio, s_frac, tilt, ratio, f, bulk_frac):

@@ -181,10 +181,11 @@ def test_fretting_slip_amplitude_vanishes_in_the_stick_zone(cycle):
     assert amp[x < lo - h].min() > 0 and amp[x > hi + h].min() > 0
 
 
-def test_fretting_energy_converges_in_the_load_steps():
+def test_fretting_energy_converges_in_the_load_steps(cycle):
     """The energy's trapezoidal error falls as the step squared (observed order near 2)."""
+    # the middle one is the module's cycle (the same call, states=11), solved once
     energies = [fem.fretting_cycle(PUNCH, P, S, Q_max=0.4 * F * P, f=F, E=E, nu=NU, mesh="quick",
-                                   states=k).energy for k in (6, 11, 21)]
+                                   states=k).energy if k != 11 else cycle.energy for k in (6, 11, 21)]
     ratio = (energies[1] - energies[0]) / (energies[2] - energies[1])
     assert STEP_ORDER[0] < math.log2(ratio) < STEP_ORDER[1], energies
 

@@ -65,8 +65,16 @@ def test_the_permanent_stick_zone_and_energy_against_the_closed_form(general):
     assert not fe.shakedown and not ref.shakedown
 
 
-def test_p_and_q_alone_against_the_closed_form():
-    fe, ref = run(CASE_A, PQ), cf.steady_state(CASE_A, PQ, F, A=A)
+@pytest.fixture(scope="module")
+def p_and_q():
+    """The FEM's steady state of :data:`PQ` at the FEM method's modulus and ν for ``A`` (1 and 0.3
+    here, :func:`run`'s), computed once for its test against the closed form and the registry's."""
+    return fem.steady_state(CASE_A, PQ, F, E=pair_modulus(A), nu=FEM_NU, mesh="quick", progress=False)
+
+
+def test_p_and_q_alone_against_the_closed_form(p_and_q):
+    assert (pair_modulus(A), FEM_NU) == (E, NU)          # run()'s material, exactly
+    fe, ref = p_and_q, cf.steady_state(CASE_A, PQ, F, A=A)
     err = np.abs(np.array(fe.stick_zone) - np.array(ref.stick_zone))
     assert err.max() <= tol("stick_end") * fe.diagnostics.h, (fe.stick_zone, ref.stick_zone)
     assert abs(fe.energy / ref.energy - 1) <= tol("energy"), (fe.energy, ref.energy)
@@ -137,10 +145,9 @@ def test_shakedown_below_f_delta_p():
     assert err.max() <= tolerance("fem-quick", "a").limit * width(fe), (fe.stick_zone, ref.stick_zone)
 
 
-def test_the_registry_dispatches_to_the_fem():
+def test_the_registry_dispatches_to_the_fem(p_and_q):
     got = threepart.steady_state(CASE_A, PQ, F, A=A, method="fem", mesh="quick", progress=False)
-    want = fem.steady_state(CASE_A, PQ, F, E=pair_modulus(A), nu=FEM_NU, mesh="quick",
-                            progress=False)
+    want = p_and_q               # fem.steady_state(..., E=pair_modulus(A), nu=FEM_NU, mesh="quick")
     assert got.method == "fem"
     assert (got.d, got.e, got.energy) == (want.d, want.e, want.energy)
 
