@@ -12,6 +12,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, replace
 from functools import lru_cache
+from pathlib import Path
 
 import numpy as np
 from scipy.integrate import quad
@@ -182,3 +183,27 @@ def install_fakes(monkeypatch, **replacements: Method) -> None:
     """Register a fake for every built-in method (or the given replacement), undone after the test."""
     for method in registry.BUILTIN:
         monkeypatch.setitem(registry._REGISTRY, method, replacements.get(method, fake_solver(method)))
+
+
+#: the eight bytes every PNG file begins with
+PNG_SIGNATURE = b"\x89PNG\r\n\x1a\n"
+
+
+def sketch(*args, path, **kw) -> Path:
+    """A plot function's stand-in: the file at ``path`` holds a PNG's signature, nothing is drawn."""
+    Path(path).parent.mkdir(parents=True, exist_ok=True)
+    Path(path).write_bytes(PNG_SIGNATURE)
+    return Path(path)
+
+
+def unrendered(monkeypatch) -> None:
+    """The verification report's plots built but not rendered, undone after the test.
+
+    :func:`reports.verify.plots.save` (matplotlib's ``savefig`` and the palette PNG, 0.9 s a
+    plot, most of a report's writing) becomes :func:`sketch`: every plot is still drawn up,
+    written, listed and embedded in the page. For the tests that judge a report's verdicts, not
+    its pictures; tests/test_report.py and the schema test of tests/test_compare.py render them.
+    """
+    from threepart.reports.verify import plots
+
+    monkeypatch.setattr(plots, "save", lambda fig, path, dpi=None: sketch(path=path))

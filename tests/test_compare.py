@@ -19,7 +19,7 @@ from threepart.reports.compare import compare
 from threepart.tolerances import (COMPARISONS, FRETTING_QUANTITIES, NORMAL_QUANTITIES, QUANTITIES, STRESS_QUANTITIES,
                                   SLIP_QUANTITIES, TOLERANCES, tolerance)
 
-from .fakes import _normal, _slip, fake_solver, install_fakes
+from .fakes import _normal, _slip, fake_solver, install_fakes, unrendered
 
 PUNCH = Punch(R1=10.0, R2=10.0, b=1.0)
 A = rigid_punch(210e3, 0.3)   # rigid punch, steel half-plane, N and mm
@@ -261,6 +261,7 @@ def test_failed_tolerance_gives_nonzero_exit(tmp_path, fake_solvers, monkeypatch
     fake = fake_solver("sie")
     fake = replace(fake, normal=lambda *a, **k: replace(fake.normal(*a, **k), alpha=1e-3))
     install_fakes(monkeypatch, sie=fake)
+    unrendered(monkeypatch)
     status = verify.main(mode="quick", out=tmp_path / "rep", cases=fake_solvers, quiet=True)
     doc = json.loads((tmp_path / "rep" / "report.json").read_text())
     assert status == 1 and not doc["passed"]
@@ -272,6 +273,7 @@ def test_solver_error_is_reported_not_raised(tmp_path, fake_solvers, monkeypatch
         raise ImportError("fem not built")
 
     install_fakes(monkeypatch, fem=replace(fake_solver("fem"), normal=broken))
+    unrendered(monkeypatch)
     status = verify.main(mode="quick", out=tmp_path / "rep", cases=fake_solvers, quiet=True)
     doc = json.loads((tmp_path / "rep" / "report.json").read_text())
     assert status == 1 and doc["summary"]["errors"] == len(fake_solvers)

@@ -32,6 +32,8 @@ from threepart.reports.map.sweep import (COLUMNS, CONTROL_LIMIT, MAX_WORKERS, be
 from threepart.reports.map.schema import BOUNDARY_COLUMNS, POINT_FIELDS
 from threepart.reports.map.validity import EDGE_KEYS, RESULT_KEYS, MapPoint
 
+from .fakes import sketch
+
 ROOT = Path(__file__).resolve().parents[1]
 #: the fake grid: two R2/R1, one H/b, 3 x 3 in b/R1 and (a-b)/R1
 POINTS = [MapPoint(r, b, ab, 4.0) for r in (1.0, 0.5) for b in (0.1, 0.3, 1.0)
@@ -168,6 +170,21 @@ def counter(tmp_path):
     d = tmp_path / "calls"
     d.mkdir()
     return d
+
+
+@pytest.fixture
+def sketched(monkeypatch):
+    """The map's three plot functions replaced by :func:`sketch` in this process.
+
+    For the tests of resuming, refusing and replacing a map, which assert on its points, logs and
+    files, never on a plot's pixels: each file is still written, listed and checked through the
+    map directory (:class:`threepart.output.ResumableDir`) as a drawn one is. Drawing takes half a
+    sweep's time (two figures by matplotlib, 1.4 s). The drawn plots are checked on the module's
+    whole maps (``finished``, ``studied``), a failed point's and a failed study's map, and the
+    signed boundaries' map, which keep the real functions.
+    """
+    for name in ("contour", "stick_zone", "slope_plot"):
+        monkeypatch.setattr(map_mod, name, sketch)
 
 
 def sweep(out, scheduler, evaluate, **kw):
@@ -380,7 +397,7 @@ class StopAfter:
                 raise KeyboardInterrupt
 
 
-def test_an_interrupted_sweep_resumes_with_the_same_numbers(tmp_path, counter, scheduler, finished):
+def test_an_interrupted_sweep_resumes_with_the_same_numbers(sketched, tmp_path, counter, scheduler, finished):
     out = tmp_path / "map"
     with pytest.raises(KeyboardInterrupt):
         sweep(out, scheduler, FakeEvaluate(counter), say=StopAfter(7))
@@ -407,7 +424,7 @@ run_map(sys.argv[1], scheduler=sys.argv[2], evaluate=FakeEvaluate(Path(sys.argv[
 """
 
 
-def test_a_killed_run_resumes(tmp_path, counter, scheduler):
+def test_a_killed_run_resumes(sketched, tmp_path, counter, scheduler):
     out = tmp_path / "map"
     proc = subprocess.Popen([sys.executable, "-c", KILLED_RUN, str(out), scheduler, str(counter)],
                             cwd=ROOT, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
@@ -438,7 +455,7 @@ def test_a_quick_map_is_not_resumed_as_a_full_one(tmp_path, counter, scheduler):
 # ---------------------------------------------------------------------------------------
 # the output directory
 # ---------------------------------------------------------------------------------------
-def test_a_foreign_directory_is_refused_and_left_untouched(tmp_path, counter, scheduler, finished):
+def test_a_foreign_directory_is_refused_and_left_untouched(sketched, tmp_path, counter, scheduler, finished):
     plain = tmp_path / "plain"
     plain.mkdir()
     (plain / "notes.txt").write_text("mine")
@@ -474,7 +491,7 @@ def test_a_foreign_directory_is_refused_and_left_untouched(tmp_path, counter, sc
     assert calls(counter) == []                                  # refused before any work
 
 
-def test_force_replaces_a_finished_map_only(tmp_path, counter, scheduler):
+def test_force_replaces_a_finished_map_only(sketched, tmp_path, counter, scheduler):
     out = tmp_path / "map"
     sweep(out, scheduler, FakeEvaluate(counter))
     before = snapshot(out)
@@ -525,13 +542,13 @@ def test_a_failed_point_is_recorded_exits_1_and_is_retried(tmp_path, counter, sc
     assert exit_status(doc) == 0 and read_marker(out)["state"] == "complete"
 
 
-def test_a_control_beyond_its_limit_exits_1(tmp_path, counter, scheduler):
+def test_a_control_beyond_its_limit_exits_1(sketched, tmp_path, counter, scheduler):
     doc = sweep(tmp_path / "map", scheduler, FakeEvaluate(counter), control=bad_control)
     assert doc["summary"]["failed"] == 0 and doc["control_rel_error"] == 3 * CONTROL_LIMIT
     assert exit_status(doc) == 1
 
 
-def test_the_command_line_exit_status(tmp_path, counter, scheduler, monkeypatch, capsys):
+def test_the_command_line_exit_status(sketched, tmp_path, counter, scheduler, monkeypatch, capsys):
     fake = functools.partial(map_mod.run_map, evaluate=FakeEvaluate(counter, fail=frozenset({KEYS[0]})),
                              points=POINTS, control=fake_control)
     monkeypatch.setattr(map_mod, "run_map", fake)
@@ -586,7 +603,7 @@ def test_a_foreign_out_is_one_line_with_exit_status_2(tmp_path, capsys):
 # ---------------------------------------------------------------------------------------
 # the default engine
 # ---------------------------------------------------------------------------------------
-def test_the_default_engine_is_a_local_cluster_of_its_own(tmp_path, counter):
+def test_the_default_engine_is_a_local_cluster_of_its_own(sketched, tmp_path, counter):
     lines: list[str] = []
     doc = run_map(tmp_path / "map", workers=1, evaluate=FakeEvaluate(counter), points=POINTS[:6],
                   control=fake_control, say=lines.append)
@@ -647,7 +664,7 @@ if __name__ == "__main__":
 """
 
 
-def test_ctrl_c_prints_one_line_and_the_points_in_progress_are_rerun(tmp_path, counter, scheduler):
+def test_ctrl_c_prints_one_line_and_the_points_in_progress_are_rerun(sketched, tmp_path, counter, scheduler):
     """A terminal's Ctrl-C (SIGINT to the whole process group, workers included) on the default cluster."""
     out = tmp_path / "map"
     script = tmp_path / "run.py"
@@ -677,7 +694,8 @@ def test_ctrl_c_prints_one_line_and_the_points_in_progress_are_rerun(tmp_path, c
     assert [{k: p[k] for k in (*RESULT_KEYS, *EDGE_KEYS)} for p in doc["points"]] == [expected(p) for p in POINTS]
 
 
-def test_a_full_disk_while_the_map_is_written_leaves_nothing_half_written(tmp_path, counter, scheduler,
+def test_a_full_disk_while_the_map_is_written_leaves_nothing_half_written(sketched, tmp_path, counter,
+                                                                        scheduler,
                                                                         monkeypatch):
     import errno
     import fnmatch
@@ -956,7 +974,8 @@ run_map(sys.argv[1], scheduler=sys.argv[2], evaluate=SignedEvaluate(Path(sys.arg
 """
 
 
-def test_a_run_killed_in_the_bisection_resumes_with_its_finished_steps(tmp_path, counter, scheduler):
+def test_a_run_killed_in_the_bisection_resumes_with_its_finished_steps(sketched, tmp_path, counter,
+                                                                       scheduler):
     """SIGKILL once the grid is logged and the bisection's first steps are: nothing finished is redone."""
     out = tmp_path / "map"
     grid = {p.key() for p in SIGNED_POINTS}
@@ -1162,7 +1181,7 @@ def test_the_stick_zone_sentence_states_what_the_sign_means():
         [{"d_rel_error": 1e-5, "e_rel_error": 0.0, "slip_fem_error_estimate": 1e-4}])
 
 
-def test_an_interrupted_map_recomputes_none_of_its_finished_studies(tmp_path, scheduler, studied):
+def test_an_interrupted_map_recomputes_none_of_its_finished_studies(sketched, tmp_path, scheduler, studied):
     out = tmp_path / "map"
     first, second = tmp_path / "c1", tmp_path / "c2"
     first.mkdir()

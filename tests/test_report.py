@@ -26,7 +26,7 @@ from threepart.tolerances import ERROR_UNITS, NORMALISATION, tolerance
 
 from threepart.cli import UNITS
 
-from .fakes import fake_solver, install_fakes
+from .fakes import fake_solver, install_fakes, unrendered
 
 NAMES = ("caseA_sym", "slip_Q0.4", "caseA_moment", "beyond_edge_on_flat")
 #: a ratio recomputed from the report's JSON (17 digits) or a plotted end: rounding only
@@ -173,6 +173,7 @@ def test_the_case_past_lift_off_is_refused_correctly_and_judged_against_the_sie(
 
 def test_a_closed_form_that_answers_past_its_framework_fails_the_case(tmp_path, monkeypatch):
     install_fakes(monkeypatch)   # this fake closed form answers everything
+    unrendered(monkeypatch)      # its verdict is judged here, its plots on the module's report
     case = catalogue.get_case("beyond_edge_on_flat")
     assert verify.main(mode="quick", out=tmp_path / "rep", cases=[case], quiet=True) == 1
     doc = json.loads((tmp_path / "rep" / "report.json").read_text())
@@ -248,6 +249,7 @@ def test_the_map_is_linked_only_when_it_exists(report, tmp_path, monkeypatch):
     assert sections.MAP_COMMAND in (out / "report.md").read_text()
     # with a map beside the report directory, the link is there and resolves
     install_fakes(monkeypatch)
+    unrendered(monkeypatch)      # the page's link is judged here, its plots on the module's report
     (tmp_path / "map").mkdir()
     (tmp_path / "map" / "map.json").write_text("{}")
     case = catalogue.get_case("caseA_sym")

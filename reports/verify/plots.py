@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import math
 from pathlib import Path
-from typing import Any, Iterable
+from typing import TYPE_CHECKING, Any, Iterable, Mapping
 
 import numpy as np
 from matplotlib.backends.backend_agg import FigureCanvasAgg
@@ -25,7 +25,10 @@ from ..compare import EDGE_FRACTION, field_errors, is_slip, normal_of
 from .sections import ENERGY_UNIT, method_name, order_text
 from .studies import Study
 
-__all__ = ["new_figure", "save", "overlay", "error_curves", "stress_surface", "von_mises", "sie_convergence",
+if TYPE_CHECKING:
+    from .stress import StressFields
+
+__all__ = ["new_figure", "save", "fix_layout", "overlay", "error_curves", "stress_surface", "von_mises", "sie_convergence",
            "fem_convergence", "step_convergence", "fretting", "steady", "style", "friction_stick"]
 
 
@@ -48,31 +51,54 @@ def _sparse(method: str) -> bool:
     return m is not None and m.markers
 
 
-def new_figure(ncols: int = 1, nrows: int = 1, size: tuple[float, float] = (6.4, 4.0)) -> tuple[Figure, Any]:
-    """A figure with an Agg canvas and its axes (no global pyplot state)."""
-    fig = Figure(figsize=(size[0] * ncols, size[1] * nrows), layout="constrained")
-    FigureCanvasAgg(fig)
-    axes = fig.subplots(nrows, ncols, squeeze=False)
-    return fig, axes
-
-
 #: the plots' resolution: a one-panel plot (6.4 in) is 576 px wide, half the report's page,
 #: a two-panel one 1152 px, the whole page, so that the HTML shows both at their own size
 #: (7-point text 8.75 px high); at 110 dpi the report's HTML was 5.7 MB
 DPI = 90
+
+
+def new_figure(ncols: int = 1, nrows: int = 1, size: tuple[float, float] = (6.4, 4.0)) -> tuple[Figure, Any]:
+    """A figure with an Agg canvas and its axes (no global pyplot state), at :data:`DPI`.
+
+    Its constrained layout is computed once, by :func:`save`.
+    """
+    fig = Figure(figsize=(size[0] * ncols, size[1] * nrows), dpi=DPI, layout="constrained")
+    FigureCanvasAgg(fig)
+    axes = fig.subplots(nrows, ncols, squeeze=False)
+    return fig, axes
 #: colours of the PNG's palette: the plots' lines, fills and antialiasing fit in 256, and a
 #: palette PNG is about 0.4 x the size of matplotlib's RGBA one
 PALETTE = 256
 
 
+def fix_layout(fig: Figure, dpi: float = DPI) -> None:
+    """Run ``fig``'s layout engine once at ``dpi`` and keep the positions it gives.
+
+    ``savefig`` with a layout engine draws the figure twice (once, unrendered, for the
+    layout, then for the file) and runs the constrained layout each time; with the
+    positions fixed it draws once. The layout is the same: the engine's own, at the
+    saving resolution.
+    """
+    engine = fig.get_layout_engine()
+    if engine is None or not fig.axes:
+        return
+    fig.set_dpi(dpi)
+    engine.execute(fig)
+    fig.set_layout_engine(None)    # no engine: savefig draws once, at these positions
+
+
 def save(fig: Figure, path: str | Path, dpi: int = DPI) -> Path:
-    """Write ``fig`` as a palette PNG (:data:`PALETTE` colours) to ``path`` (parents created)."""
+    """Write ``fig`` as a palette PNG (:data:`PALETTE` colours) to ``path`` (parents created).
+
+    The layout is computed once (:func:`fix_layout`).
+    """
     from io import BytesIO
 
     from PIL import Image
 
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
+    fix_layout(fig, dpi)
     buf = BytesIO()
     fig.savefig(buf, dpi=dpi, format="png", facecolor="white")
     buf.seek(0)
@@ -422,12 +448,14 @@ def _stress_scales(results: dict[str, Any], reference: str,
 
 
 def stress_surface(results: dict[str, Any], title: str, path: str | Path, *, nu: float,
-                   reference: str = REFERENCE, physical: bool = False) -> Path:
+                   reference: str = REFERENCE, physical: bool = False,
+                   fields: Mapping[str, StressFields] | None = None) -> Path:
     """Surface stress ``σxx`` of every method along the contact and beyond its ends.
 
     In MPa against mm for a case with a material, else over the reference's
     peak pressure against x / W. The trailing edge's tension (x = -a for
-    Q > 0) is where fretting cracks start.
+    Q > 0) is where fretting cracks start. ``fields``: each method's stresses on
+    the surface line, if computed already (:func:`reports.verify.stress.stress_fields`).
     """
     from .stress import surface_line
 
@@ -436,8 +464,11 @@ def stress_surface(results: dict[str, Any], title: str, path: str | Path, *, nu:
     ax = axes[0, 0]
     x = surface_line(ref)
     for method, res in results.items():
-        xs = x[:: max(len(x) // N_MARKERS, 1)] if _sparse(method) else x
-        sxx = res.stress(xs, np.zeros_like(xs), nu=nu).sxx
+        every = max(len(x) // N_MARKERS, 1) if _sparse(method) else 1
+        xs = x[::every]
+        known = (fields or {}).get(method)
+        sxx = (known.surface.sxx[::every] if known is not None
+               else res.stress(xs, np.zeros_like(xs), nu=nu).sxx)
         ax.plot(xs / xscale, sxx / sscale, **style(method))
     for i, xe in enumerate((-nref.a, nref.c)):
         ax.axvline(xe / xscale, color="0.3", lw=0.8, ls="-.",
@@ -448,8 +479,8 @@ def stress_surface(results: dict[str, Any], title: str, path: str | Path, *, nu:
     ax.set_ylabel(f"surface σxx ({UNITS['p']}, tension positive)" if physical
                   else f"σxx / p_max  (peak pressure of the {name}; tension positive)")
     Qr = f", Q/fP = {ref.Q / (ref.f * ref.P):.2g}" if is_slip(ref) else ""
-    ax.set_title(f"{title}: surface stress σxx{Qr}, {_methods(results)}\n"
-                 f"(reference: the {name})", fontsize=10)
+    ax.set_title(f"{title}: surface stress σxx{Qr}\n"
+                 f"{_methods(results)} (reference: the {name})", fontsize=10)
     ax.legend(loc="best", fontsize=7)
     return save(fig, path)
 
@@ -460,17 +491,25 @@ def fmt_stress(value: float, physical: bool) -> str:
 
 
 def von_mises(results: dict[str, Any], title: str, path: str | Path, *, nu: float,
-              reference: str = REFERENCE, physical: bool = False) -> Path:
+              reference: str = REFERENCE, physical: bool = False,
+              fields: Mapping[str, StressFields] | None = None) -> Path:
     """Von Mises stress under the contact: the reference filled, every other method's contours on top.
 
     Depth ``z`` points down; the levels are the same for every method, so a
-    displaced line is a difference in the field.
+    displaced line is a difference in the field. ``fields``: each method's stresses
+    on the field grid, if computed already (:func:`reports.verify.stress.stress_fields`).
     """
     from .stress import field_grid
 
     ref, name, nref, (xscale, xlabel), sscale = _stress_scales(results, reference, physical)
     x, z = field_grid(ref)
-    vm = ref.stress(x, z, nu=nu).von_mises / sscale
+    fields = fields or {}
+
+    def field(method: str, res: Any) -> Any:
+        known = fields.get(method)
+        return known.field if known is not None else res.stress(x, z, nu=nu)
+
+    vm = field(reference, ref).von_mises / sscale
     levels = np.linspace(0.0, float(vm.max()), 11)[1:]
     fig, axes = new_figure(size=(6.4, 4.4))
     ax = axes[0, 0]
@@ -483,7 +522,7 @@ def von_mises(results: dict[str, Any], title: str, path: str | Path, *, nu: floa
     for method, res in results.items():
         if method == reference:
             continue
-        other = res.stress(x, z, nu=nu).von_mises / sscale
+        other = field(method, res).von_mises / sscale
         m = _method(method)
         colour = m.contour_color if m is not None else "w"
         ax.contour(x / xscale, z / xscale, other, levels=levels, colors=colour, linewidths=1.0,

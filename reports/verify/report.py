@@ -16,7 +16,8 @@ import platform
 import subprocess
 import sys
 import time
-from dataclasses import fields
+from dataclasses import dataclass, fields
+from functools import partial
 from importlib import metadata
 from pathlib import Path
 from typing import Any, Callable, Sequence
@@ -37,7 +38,7 @@ from .sections import MAP_JSON, plot_path, study_plot_path
 from .edges import ASYMPTOTE_PLOT, asymptote_study, draw_asymptote
 from .speed import speed_record
 from .wear_section import wear_study
-from .stress import case_hot_spots, fatigue_hot_spots, stress_nu
+from .stress import StressFields, case_hot_spots, fatigue_hot_spots, joined_fatigue, stress_fields, stress_nu
 from ..solvers import METHODS
 from .studies import STEP_STATES, Study, fem_slip_study, fem_step_study, fem_study, sie_study
 from threepart.errors import InputError
@@ -300,12 +301,15 @@ def build_report(mode: Mode, runs: Sequence[CaseRun], studies: Sequence[Study],
     return json_safe(doc)
 
 
-def stress_record(run: CaseRun) -> dict[str, Any]:
-    """The stress record of a partial-slip case: ν, the bulk stress and each method's hot spots."""
+def stress_record(run: CaseRun, fields: dict[str, StressFields] | None = None) -> dict[str, Any]:
+    """The stress record of a partial-slip case: ν, the bulk stress and each method's hot spots.
+
+    ``fields``: each method's stresses, if computed already (:func:`reports.verify.stress.stress_fields`).
+    """
     ref = run.results[run.case.reference]
     nu = stress_nu(run.case.material)
     return {"nu": nu, "sigma_bulk": float(getattr(ref, "sigma_bulk", 0.0)),
-            "hot_spots": case_hot_spots(run.results, nu, run.case.reference)}
+            "hot_spots": case_hot_spots(run.results, nu, run.case.reference, fields)}
 
 
 def load_schema() -> dict[str, Any]:
@@ -320,65 +324,196 @@ def validate(doc: dict[str, Any]) -> None:
     validate_json(doc, load_schema())
 
 
+#: a job of the report's drawing is named by a tuple: ("plot", case, kind), ("fields", case,
+#: method), ("fatigue", case, method), ("study", path), ("friction",), ("asymptote",)
+Key = tuple[str, ...]
+
+
+@dataclass(frozen=True)
+class Job:
+    """One piece of the report's drawing: a plot written, or the numbers of a case's hot spots.
+
+    ``run()`` does it (``run(given=...)`` if it ``needs`` other jobs' values: ``given`` maps
+    their keys to them) and returns a picklable value; ``cost`` (seconds, roughly) puts the dearest
+    jobs first, so that the workers finish together. ``here``: run in this process, never in a
+    forked worker: a result's stresses may call its solver again (the FE stress recovery
+    factorises the block by CHOLMOD, whose GNU OpenMP hangs in a child forked after the run used it).
+    """
+
+    key: Key
+    run: Callable[..., Any]
+    cost: float = 1.0
+    needs: tuple[Key, ...] = ()
+    here: bool = False
+
+
+#: the jobs of the running :func:`run_jobs`, read by its forked workers by index
+_JOBS: list[Job] = []
+#: the most processes :func:`run_jobs` forks (each holds a copy-on-write image of the run)
+MAX_WORKERS = 4
+
+
+def workers() -> int:
+    """The processes that draw the report: the CPUs this process may use (at most
+    :data:`MAX_WORKERS`) on Linux, else 1 (macOS's system libraries are not safe to fork)."""
+    import os
+
+    if not sys.platform.startswith("linux"):
+        return 1
+    return max(1, min(len(os.sched_getaffinity(0)), MAX_WORKERS))
+
+
+def _one_thread() -> None:
+    """A worker's BLAS on one thread: the workers share the cores."""
+    from threadpoolctl import threadpool_limits
+
+    threadpool_limits(limits=1)
+
+
+def _work(i: int, given: dict[Key, Any] | None) -> Any:
+    job = _JOBS[i]
+    return job.run(given=given) if job.needs else job.run()
+
+
+def run_jobs(jobs: Sequence[Job], processes: int) -> dict[Key, Any]:
+    """Every job's value by its key: in ``processes`` forked workers (dearest job first, a job
+    as soon as the jobs it needs are done), or one after another here for ``processes <= 1``.
+
+    The workers inherit the run (its results are never pickled); a job's value comes back
+    pickled. The jobs marked ``here`` run in this process meanwhile (a job that needs others
+    must not be one). A job that raises raises here, and the jobs not yet started are dropped.
+    """
+    from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
+    from multiprocessing import get_context
+
+    done: dict[Key, Any] = {}
+    if processes <= 1 or len(jobs) <= 1:
+        for job in sorted(jobs, key=lambda j: len(j.needs)):   # stable: inputs before their users
+            done[job.key] = job.run(given={k: done[k] for k in job.needs}) if job.needs else job.run()
+        return done
+    _JOBS[:] = jobs
+    waiting = [i for i, j in enumerate(jobs) if j.needs]
+    needed = {k for i in waiting for k in jobs[i].needs}     # those first: their users go to the workers
+    here = sorted((i for i, j in enumerate(jobs) if j.here and not j.needs),
+                  key=lambda i: (jobs[i].key not in needed, -jobs[i].cost))
+    pool = ProcessPoolExecutor(min(processes, len(jobs)), mp_context=get_context("fork"),
+                               initializer=_one_thread)
+    try:
+        pending = {pool.submit(_work, i, None): i
+                   for i in sorted(set(range(len(jobs))) - set(waiting) - set(here), key=lambda i: -jobs[i].cost)}
+        while pending or here:
+            if here:
+                i = here.pop(0)
+                done[jobs[i].key] = jobs[i].run()
+                finished = {f for f in pending if f.done()}
+            else:
+                finished, _ = wait(pending, return_when=FIRST_COMPLETED)
+            for future in finished:
+                done[jobs[pending.pop(future)].key] = future.result()
+            for i in [i for i in waiting if all(k in done for k in jobs[i].needs)]:
+                waiting.remove(i)
+                pending[pool.submit(_work, i, {k: done[k] for k in jobs[i].needs})] = i
+    finally:
+        pool.shutdown(wait=True, cancel_futures=True)
+        _JOBS.clear()
+    return done
+
+
+def _case_jobs(tmp: Path, r: CaseRun) -> list[Job]:
+    """A case's jobs: its plots, and for partial slip its stress fields, for a cycle its fatigue."""
+    from . import plots
+
+    name, ref, res = r.case.name, r.case.reference, r.results
+    kw: dict[str, Any] = {"reference": ref, "physical": r.case.material is not None}
+
+    def plot(kind: str, draw: Callable[..., Any], cost: float = 1.0, **more: Any) -> Job:
+        return Job(("plot", name, kind), partial(draw, res, name, tmp / plot_path(name, kind), **kw, **more),
+                   cost)
+
+    if r.case.kind in ("steady", "fretting"):
+        fatigue = [Job(("fatigue", name, m), partial(fatigue_hot_spots, res, r.case.material, ref, [m]), 10.0,
+                       here=True) for m in res]
+        drawn = (plot("steady", plots.steady, 2.0, histories=r.histories) if r.case.kind == "steady"
+                 else plot("cycle", plots.fretting, 2.0))
+        return [drawn, *fatigue]
+    jobs = [plot("overlay", plots.overlay)]
+    if len(res) > 1:
+        jobs.append(plot("errors", plots.error_curves))
+    if r.case.kind == "slip":
+        nu = stress_nu(r.case.material)
+        fields = tuple(("fields", name, m) for m in res)
+        jobs += [Job(k, partial(stress_fields, res[k[2]], nu, res[ref]), 3.0, here=True) for k in fields]
+        for kind, draw in (("stress", plots.stress_surface), ("von_mises", plots.von_mises)):
+            jobs.append(Job(("plot", name, kind), partial(_draw_with_fields, draw, res, name,
+                                                          tmp / plot_path(name, kind), nu=nu, **kw),
+                            needs=fields))
+    return jobs
+
+
+def _draw_with_fields(draw: Callable[..., Any], *args: Any, given: dict[Key, Any] | None = None,
+                      **kw: Any) -> Any:
+    """``draw`` given the case's :class:`StressFields` by method (the ``("fields", case, method)`` jobs)."""
+    return draw(*args, fields={k[2]: v for k, v in (given or {}).items()}, **kw)
+
+
+def _draw_jobs(tmp: Path, todo: Sequence[CaseRun], studies: Sequence[Study]) -> list[Job]:
+    """Every job of the report's drawing: the cases', the studies' plots, the friction referees'
+    and the edge asymptote's study and plot."""
+    from . import plots
+
+    jobs = [j for r in todo for j in _case_jobs(tmp, r)]
+    for st in studies:
+        if not st.values or st.method == "calculix" or st.method.endswith(FRICTION_METHOD):   # referees: tables only
+            continue
+        name = study_plot_path(st.method, st.scheme, st.case)
+        draw = {"n": plots.sie_convergence, "h": plots.fem_convergence, "dQ": plots.step_convergence}[st.param]
+        jobs.append(Job(("study", name), partial(draw, st, tmp / name)))
+    friction = friction_record(studies)     # issue 38: the friction referee columns
+    if friction and any(c["rows"] for c in friction["columns"]):
+        jobs.append(Job(("friction",), partial(plots.friction_stick, friction["columns"],
+                                               tolerance("referee", "stick_ends").limit, tmp / FRICTION_PLOT)))
+    jobs.append(Job(("asymptote",), partial(_asymptote, tmp / ASYMPTOTE_PLOT), 2.0))
+    return jobs
+
+
+def _asymptote(path: Path) -> dict[str, Any]:
+    """Issue 32's study of the asymptotic slip zone as Q/fP -> 0, drawn to ``path``."""
+    study = asymptote_study()
+    draw_asymptote(study, path)
+    return study
+
+
 def write_report(tmp: Path, mode: Mode, runs: Sequence[CaseRun], studies: Sequence[Study],
                  timings: dict[str, float], say: Callable[[str], None]) -> dict[str, Any]:
     """Draw the plots and write md, html and json into the directory ``tmp``.
 
-    The validity map is linked only when ``threepart map`` has written one
-    beside the report (``tmp`` is a sibling of the report directory).
+    The plots and the hot spots are drawn and computed by :func:`run_jobs` in
+    :func:`workers` processes. The validity map is linked only when ``threepart map``
+    has written one beside the report (``tmp`` is a sibling of the report directory).
     """
-    from . import plots
-
     t0 = time.perf_counter()
+    todo = [r for r in runs if r.case.reference in r.results]
+    jobs = _draw_jobs(tmp, todo, studies)
+    n = min(workers(), len(jobs))
+    say(f"[report] drawing the plots of {len(todo)} cases and {len(studies)} studies "
+        f"({len(jobs)} jobs, {n} process{'es' if n > 1 else ''}) ...")
+    with heartbeat(say, lambda: "[report] drawing the plots"):
+        done = run_jobs(jobs, n)
     drawn: dict[str, list[str]] = {}
     stressed: dict[str, dict[str, Any]] = {}
     tired: dict[str, dict[str, Any]] = {}
-    todo = [r for r in runs if r.case.reference in r.results]
-    say(f"[report] drawing the plots of {len(todo)} cases and {len(studies)} studies ...")
-    with heartbeat(say, lambda: "[report] drawing the plots"):
-        for r in todo:
-            name, ref, physical = r.case.name, r.case.reference, r.case.material is not None
-            if r.case.kind == "steady":
-                plots.steady(r.results, name, tmp / plot_path(name, "steady"), reference=ref,
-                             physical=physical, histories=r.histories)
-                drawn[name] = [plot_path(name, "steady")]
-                tired[name] = fatigue_hot_spots(r.results, r.case.material, ref)
-                continue
-            if r.case.kind == "fretting":
-                plots.fretting(r.results, name, tmp / plot_path(name, "cycle"), reference=ref,
-                               physical=physical)
-                drawn[name] = [plot_path(name, "cycle")]
-                tired[name] = fatigue_hot_spots(r.results, r.case.material, ref)
-                continue
-            plots.overlay(r.results, name, tmp / plot_path(name, "overlay"), reference=ref,
-                          physical=physical)
-            drawn[name] = [plot_path(name, "overlay")]
-            if len(r.results) > 1:
-                plots.error_curves(r.results, name, tmp / plot_path(name, "errors"), reference=ref,
-                                   physical=physical)
-                drawn[name].append(plot_path(name, "errors"))
-            if r.case.kind == "slip":
-                record = stress_record(r)
-                stressed[name] = record
-                for kind, draw in (("stress", plots.stress_surface), ("von_mises", plots.von_mises)):
-                    draw(r.results, name, tmp / plot_path(name, kind), nu=record["nu"], reference=ref,
-                         physical=physical)
-                    drawn[name].append(plot_path(name, kind))
-        drawn["_studies"] = []
-        for st in studies:
-            if not st.values or st.method == "calculix" or st.method.endswith(FRICTION_METHOD):   # referees: tables only
-                continue
-            name = study_plot_path(st.method, st.scheme, st.case)
-            {"n": plots.sie_convergence, "h": plots.fem_convergence,
-             "dQ": plots.step_convergence}[st.param](st, tmp / name)
-            drawn["_studies"].append(name)
-        friction = friction_record(studies)     # issue 38: the friction referee columns
-        if friction and any(c["rows"] for c in friction["columns"]):
-            plots.friction_stick(friction["columns"], tolerance("referee", "stick_ends").limit,
-                                 tmp / FRICTION_PLOT)
-            friction["plot"] = FRICTION_PLOT
-        edge_study = asymptote_study()          # issue 32: the asymptotic slip zone as Q/fP -> 0
-        draw_asymptote(edge_study, tmp / ASYMPTOTE_PLOT)
+    for r in todo:
+        name = r.case.name
+        drawn[name] = [plot_path(name, k[2]) for k in (j.key for j in jobs) if k[:2] == ("plot", name)]
+        if r.case.kind == "slip":
+            stressed[name] = stress_record(r, {m: done[("fields", name, m)] for m in r.results})
+        if r.case.kind in ("steady", "fretting"):
+            tired[name] = joined_fatigue([done[("fatigue", name, m)] for m in r.results])
+    drawn["_studies"] = [j.key[1] for j in jobs if j.key[0] == "study"]
+    friction = friction_record(studies)
+    if friction and ("friction",) in done:
+        friction["plot"] = FRICTION_PLOT
+    edge_study = done[("asymptote",)]
     timings = dict(timings, plots_s=time.perf_counter() - t0)
     timings["total_s"] = timings.get("solve_s", 0.0) + timings["plots_s"]
     doc = build_report(mode, runs, studies, timings, drawn, stressed, tired)

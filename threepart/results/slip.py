@@ -275,15 +275,21 @@ class MasingCycle(FrettingResult):
 
     def shear(self, x: ArrayLike, Q: float, branch: str) -> np.ndarray:
         """Shear ``q(x)`` at force ``Q`` on ``branch``: the superposed loading states' shear."""
-        x = np.asarray(x, dtype=float)
-        c_max, c_u, u = masing(self.Q_max, Q, branch)
-        return c_max * self._q_load(x, self.Q_max) + c_u * self._q_load(x, u)
+        return self._superposed(self._q_load, np.asarray(x, dtype=float), Q, branch)
 
     def slip(self, x: ArrayLike, Q: float, branch: str) -> np.ndarray:
         """Relative slip at ``x`` since the start of loading, positive in the direction of positive ``Q``."""
-        x = np.asarray(x, dtype=float)
+        return self._superposed(self._s_load, np.asarray(x, dtype=float), Q, branch)
+
+    def _superposed(self, load: Any, x: np.ndarray, Q: float, branch: str) -> np.ndarray:
+        """``c_max X(Q_max) + c_u X(u)`` of :func:`masing`; a state of weight 0 is not solved (on the
+        loading branch the state at ``Q_max`` is not: a lazily solved state costs a solve a call)."""
         c_max, c_u, u = masing(self.Q_max, Q, branch)
-        return c_max * self._s_load(x, self.Q_max) + c_u * self._s_load(x, u)
+        out = np.zeros(x.shape)
+        for c, at in ((c_max, self.Q_max), (c_u, u)):
+            if c != 0:
+                out = out + c * load(x, at)
+        return out
 
     def slip_amplitude(self, x: ArrayLike) -> np.ndarray:
         """Half the peak-to-peak relative slip over the cycle: the slip at ``Q_max`` on loading."""
