@@ -521,7 +521,7 @@ def write_report(tmp: Path, mode: Mode, runs: Sequence[CaseRun], studies: Sequen
     if friction:
         doc["friction_referees"] = json_safe(friction)
     if mode.name != "quick":   # issue 33: the speed ratios, measured in the run (reports/verify/speed.py)
-        doc["speed"] = json_safe(speed_record(False, say))
+        doc["speed"] = json_safe(speed_record(mode.name != "full", say))   # --full at the full sizes
         doc["wear"] = json_safe(wear_study(tmp, say))   # issue 39 (reports/verify/wear_section.py)
     validate(doc)
     map_link = MAP_JSON if (tmp / MAP_JSON).is_file() else None

@@ -59,6 +59,15 @@ def speed_record(quick: bool, say: Callable[[str], None] | None = None) -> dict[
     return rec
 
 
+def _sizes(sizes: dict[str, Any] | None) -> str:
+    """The measurement's sizes, as a clause: the default run's are the quick ones, ``--full``'s the full."""
+    if not sizes:
+        return ""
+    grid = sizes.get("fatigue") or ("?", "?")
+    return (f", at {sizes.get('batch')} batch cases, {sizes.get('single')} single solves of a random draw and "
+            f"a {grid[0]} x {grid[1]} fatigue grid")
+
+
 def speed_section(doc: dict[str, Any]) -> Section | None:
     """The report's section "Speed", or None when ``doc`` holds no speed record."""
     rec = doc.get("speed")
@@ -72,6 +81,7 @@ def speed_section(doc: dict[str, Any]) -> Section | None:
     intro = (f"Measured in this run, each ratio side by side in one process, on {rec.get('cpus')} "
              f"CPUs at a load average of {fmt(load[0])} before and {fmt(load[1])} after "
              "(reports/benchmark.py; benchmarks/bench_speed.py measures the same at the command "
-             "line, with the peak memory of the stress on 10^7 points).",)
+             "line, with the peak memory of the stress on 10^7 points)"
+             + _sizes(rec.get("sizes")) + ".",)
     table = Table(("figure", "measured", "target", ""), tuple(rows))
     return Section("Speed", "speed", (intro,), (table,))
