@@ -261,7 +261,7 @@ def study_record(r: Any, root: Path, name: str, seconds: float, peer: Any = None
 def _peer_text(peer: dict[str, Any] | None) -> tuple[str, ...]:
     if not peer:
         return ()
-    return (f"The {peer['method']}'s march of the same case (for the FEM: two similar bodies, its own Coulomb "
+    return (f"The {peer['method'].upper()}'s march of the same case (for the FEM: two similar bodies, its own Coulomb "
             "slip at Q_max; fem/wear.py) "
             f"reached {peer['reached']:,} cycles in {peer['steps']} steps ({peer['time_s']:.1f} s); its energy per "
             f"cycle ends at {fmt(peer['energy_ratio'])} of its start, its worn area {peer['volume']:+.3g} against "
@@ -294,10 +294,9 @@ def wear_section(doc: dict[str, Any]) -> Section | None:
              + " mm; docs/WEAR.md)."
              f"{stopped} The energy per cycle peaks at cycle {rec['energy_peak_cycle']:,}. The stick zone at "
              f"Q_max moved by {fmt(rec['stick_drift'])} W from its start. Each "
-             "target is a row of the tolerance table; a target missed is shown, and does not fail the run.",
-             *_peer_text(rec.get("peer")))
+             "target is a row of the tolerance table; a target missed is shown, and does not fail the run.",)
     met = all(t["met"] for t in rec["targets"].values())
-    return Section("Fretting wear", "wear", (intro,),
+    return Section("Fretting wear", "wear", (intro, *((text,) for text in _peer_text(rec.get("peer")))),
                    (Table(("target", "measured", "limit", ""), tuple(rows)),),
                    (Figure(rec["plot"], "the worn depth and the pressure at recorded cycles, the energy per "
                                         "cycle and the pressure's distance to the worn limit"),),
