@@ -135,7 +135,9 @@ def interface(lower: Substrate, upper: Substrate | None, E: float, nu: float) ->
 
     Sxx, Sxy, Syx, Syy = blocks(S, 1.0)
     Bxx, Bxy, Byx, Byy = blocks(B, -1.0 if upper is None else 1.0)
-    timings = {k: S.timings[k] + (0.0 if upper is None else B.timings[k]) for k in S.timings}
+    # a body read from the cache has a "cache" timing and no condensation's; one condensed now the reverse
+    keys = [*S.timings, *(k for k in B.timings if k not in S.timings)] if upper is not None else list(S.timings)
+    timings = {k: S.timings.get(k, 0.0) + (0.0 if upper is None else B.timings.get(k, 0.0)) for k in keys}
     return Interface(x=S.x, weights=S.weights, C_nn=Byy + Syy, C_nt=Byx + Syx, C_tn=Bxy + Sxy,
                      C_tt=Bxx + Sxx, h=S.h, dofs=S.dofs + B.dofs, timings=timings,
                      backend=S.backend, substrate=S)
