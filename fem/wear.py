@@ -36,7 +36,7 @@ from collections.abc import Callable
 import numpy as np
 
 from threepart.errors import InputError, NoConvergenceError
-from threepart.fretting_wear import WearResult, jump_size, register_marcher
+from threepart.fretting_wear import MarchState, WearResult, march_depth, register_marcher
 from threepart.problem.checks import positive, poisson
 from threepart.problem.material import similar_pair
 from threepart.problem.punch import Punch
@@ -93,43 +93,21 @@ def march(punch: Punch, P: float, s: float, Q_max: float, f: float, *, A: float,
     say = Progress(None)
     first = two_body_model(punch, P, s, E, nu, tilt, mesh, MAX_ITER, f, Q_max, 0.0, say)
     x, weights = first.itf.x, first.itf.weights
-    spacing = _spacing(x)
     g = punch.profile(x)
-    depth = np.zeros(x.size)
-    N, stopped, model = 0, "", first
-    rec: dict[str, list] = {"cycles": [], "energy": [], "stick_zones": [], "depths": [], "volume": [],
-                            "contacts": [], "alpha": [], "pressure": []}
-    while True:
-        try:
-            if N > 0:
-                worn = g + depth
-                model = TwoBodyModel(punch, P, s, E, nu, tilt, first.lower, first.L, None, MAX_ITER, f,
-                                     gap=_interpolated(x, worn), one_zone=False)
-            st = model.step(Q_max, "loading", 1, 1.0)
-        except (NoConvergenceError, ValueError, RuntimeError) as exc:
-            if not rec["cycles"]:
-                raise
-            stopped = f"at cycle {N} the worn contact or its slip at Q_max was not found: {exc}"
-            break
-        p = st.fn / weights
-        travel = np.where(st.fn > 0, 4.0 * np.abs(st.w - model.w0), 0.0)
-        rate = p * travel
-        for key, value in (("cycles", N), ("energy", f * float(np.sum(st.fn * travel))),
-                           ("stick_zones", model.stick_zone(st)), ("depths", depth.copy()),
-                           ("volume", float(np.sum(depth * weights))), ("contacts", model.contact_ends()),
-                           ("alpha", model.normal.alpha), ("pressure", p)):
-            rec[key].append(value)
-        if N >= cycles:
-            break
-        dN = jump if jump is not None else jump_size(rate, travel, k, A, P, spacing, law_factor)
-        if dN == 0:     # nothing slips: the worn limit
-            dN = cycles - N
-        dN = min(dN, cycles - N)
-        depth = depth + dN * k * law_factor * rate
-        N += dN
-    if not np.all(np.isfinite(depth)):
-        raise NoConvergenceError("fem wear: the worn depth is not finite; no result is returned")
 
+    def solve(depth: np.ndarray, last: TwoBodyModel | None) -> MarchState:
+        model = first if last is None else TwoBodyModel(      # a state's model shears once
+            punch, P, s, E, nu, tilt, first.lower, first.L, None, MAX_ITER, f, gap=_interpolated(x, g + depth),
+            one_zone=False)
+        st = model.step(Q_max, "loading", 1, 1.0)
+        travel = np.where(st.fn > 0, 4.0 * np.abs(st.w - model.w0), 0.0)
+        p = st.fn / weights
+        return MarchState(rate=p * travel, travel=travel, work=f * float(np.sum(st.fn * travel)),
+                          stick=model.stick_zone(st), contact=model.contact_ends(), alpha=model.normal.alpha,
+                          pressure=p, solved=model)
+
+    rec, stopped, _ = march_depth(solve, weights, _spacing(x), k=k, law_factor=law_factor, A=A, P=P,
+                                  cycles=cycles, jump=jump, failures=(NoConvergenceError, ValueError, RuntimeError))
     last_depth = _interpolated(x, np.asarray(rec["depths"][-1]))
 
     def final() -> FrettingResult:
@@ -137,12 +115,8 @@ def march(punch: Punch, P: float, s: float, Q_max: float, f: float, *, A: float,
         from .friction import fretting_cycle
         return fretting_cycle(punch, P, s, Q_max=Q_max, f=f, E=E, nu=nu, tilt=tilt, mesh="quick", depth=last_depth)
 
-    return WearResult(punch=punch, P=P, s=s, Q_max=Q_max, f=f, A=A, law=law, k=k, x=x,
-                      cycles=np.array(rec["cycles"]), energy=np.array(rec["energy"]),
-                      stick_zones=np.array(rec["stick_zones"]), depths=np.array(rec["depths"]),
-                      volumes=np.array(rec["volume"]), contacts=np.array(rec["contacts"]),
-                      alphas=np.array(rec["alpha"]), method="fem", final_cycle=final,
-                      pressures=np.array(rec["pressure"]),
+    return WearResult(punch=punch, P=P, s=s, Q_max=Q_max, f=f, A=A, law=law, k=k, x=x, method="fem",
+                      final_cycle=final, **rec,
                       info={"time": time.perf_counter() - t0, "steps": len(rec["cycles"]) - 1,
                             "jump": "auto" if jump is None else jump, "points": x.size, "E": E, "nu": nu,
                             "stopped": stopped, "requested": cycles, "tilt": tilt})

@@ -50,7 +50,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from threepart.errors import InputError, NoConvergenceError, StickSeparationError
-from threepart.fretting_wear import WearResult, jump_size, register_marcher
+from threepart.fretting_wear import MarchState, WearResult, march_depth, register_marcher
 from threepart.problem.punch import Punch
 from threepart.results import Diagnostics
 from threepart.halfplane.legendre import gauss01
@@ -58,7 +58,7 @@ from threepart.halfplane.surface import influence
 from threepart.problem.validate import SLIP_RATIO_LIMIT, check_states
 from threepart.results.slip import check_shear
 
-from .cells import COULOMB_FLOOR, cell_fretting, cell_state
+from .cells import COULOMB_FLOOR, CellState, cell_fretting, cell_state
 from .fretting import SieFrettingResult, Zones, loop_integral
 from .profile import (DEFAULT_TERMS, ProfileNormalResult, WornProfile, profile_approach, profile_gap,
                       solve_profile)
@@ -250,44 +250,20 @@ def march(punch: Punch, P: float, s: float, Q_max: float, f: float, *, A: float,
     x, width = 0.5 * (edges[1:] + edges[:-1]), np.diff(edges)
     C = influence(edges, A)
     g = punch.profile(x)
-    depth = np.zeros(x.size)
-    N, state, stopped = 0, None, ""
-    rec: dict[str, list] = {"cycles": [], "energy": [], "stick_zones": [], "depths": [], "volume": [],
-                            "contacts": [], "alpha": [], "pressure": []}
-    while True:
-        try:
-            state = cell_state(C, edges, g + depth, P, s, Q_max, f, tilt == "free",
-                               None if state is None else (state.normal, state.corrective))
-        except (StickSeparationError, NoConvergenceError) as exc:
-            if not rec["cycles"]:
-                raise
-            stopped = f"at cycle {N} the worn contact or its stick zone at Q_max was not found: {exc}"
-            break
-        for key, value in (("cycles", N), ("energy", state.work), ("stick_zones", state.stick),
-                           ("depths", depth.copy()), ("volume", float(np.sum(depth * width))),
-                           ("contacts", state.contact), ("alpha", state.normal.alpha), ("pressure", state.p)):
-            rec[key].append(value)
-        if N >= cycles:
-            break
-        dN = jump if jump is not None else jump_size(state.rate, state.travel, k, A, P, width, law_factor)
-        if dN == 0:     # nothing slips: the worn limit
-            dN = cycles - N
-        dN = min(dN, cycles - N)
-        depth = depth + dN * k * law_factor * state.rate
-        N += dN
-    if not np.all(np.isfinite(depth)):
-        raise NoConvergenceError("sie wear: the worn depth is not finite; no result is returned")
-    last, worn = state, g + rec["depths"][-1]       # the last state solved and its profile
-    assert last is not None
-    return WearResult(punch=punch, P=P, s=s, Q_max=Q_max, f=f, A=A, law=law, k=k, x=x,
-                      cycles=np.array(rec["cycles"]), energy=np.array(rec["energy"]),
-                      stick_zones=np.array(rec["stick_zones"]), depths=np.array(rec["depths"]),
-                      volumes=np.array(rec["volume"]), contacts=np.array(rec["contacts"]),
-                      alphas=np.array(rec["alpha"]), method="sie",
+
+    def solve(depth: np.ndarray, last: CellState | None) -> MarchState:
+        st = cell_state(C, edges, g + depth, P, s, Q_max, f, tilt == "free",
+                        None if last is None else (last.normal, last.corrective))
+        return MarchState(rate=st.rate, travel=st.travel, work=st.work, stick=st.stick, contact=st.contact,
+                          alpha=st.normal.alpha, pressure=st.p, solved=st)
+
+    rec, stopped, last = march_depth(solve, width, width, k=k, law_factor=law_factor, A=A, P=P, cycles=cycles,
+                                     jump=jump, failures=(StickSeparationError, NoConvergenceError))
+    worn = g + rec["depths"][-1]       # the last state's profile
+    return WearResult(punch=punch, P=P, s=s, Q_max=Q_max, f=f, A=A, law=law, k=k, x=x, method="sie",
                       final_cycle=lambda: cell_fretting(last, C, edges, worn, punch=punch, A=A, P=P, s=s,
                                                         Q_max=Q_max, f=f, tilt=tilt),
-                      pressures=np.array(rec["pressure"]),
-                      info={"time": time.perf_counter() - t0, "steps": len(rec["cycles"]) - 1,
+                      **rec, info={"time": time.perf_counter() - t0, "steps": len(rec["cycles"]) - 1,
                             "jump": "auto" if jump is None else jump, "n": n, "points": x.size,
                             "stopped": stopped, "requested": cycles, "tilt": tilt})
 

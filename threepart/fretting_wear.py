@@ -15,6 +15,7 @@ WearCase         -- a catalogue wear case: a fretting case of threepart/problem/
 wear_cases       -- the catalogue's wear cases (suite ``"wear"``: fretting cases with a ``wear`` law, ``k``, cycles)
 wear_case        -- one of them by name
 jump_size        -- the cycle-jumping control every marcher uses (depth per jump, Euler's stability)
+march_depth      -- the march every marcher shares, on its own states (MarchState)
 LAWS             -- "archard" (``Δw = k p |slip|``) and "energy" (``Δw = k q·slip``, Fouvry)
 """
 from __future__ import annotations
@@ -27,14 +28,14 @@ from typing import Any, Callable
 import numpy as np
 
 from threepart.problem.catalogue import Case
-from threepart.errors import InputError, InputTypeError
+from threepart.errors import InputError, InputTypeError, NoConvergenceError
 from threepart.problem.punch import Punch
 from threepart.results import FrettingResult
 from threepart.problem.checks import check_tilt, integer, positive
 from threepart.problem.validate import check_punch, lever_arm
 
 __all__ = ["wear", "WearResult", "register_marcher", "has_marcher", "WearCase", "wear_cases", "wear_case",
-           "LAWS", "jump_size", "DEPTH_STEP", "STABILITY", "marchers", "needs_material", "DEFAULT_MARCHER"]
+           "LAWS", "jump_size", "march_depth", "MarchState", "DEPTH_STEP", "STABILITY", "marchers", "needs_material", "DEFAULT_MARCHER"]
 
 #: the wear laws: depth ``k p |slip|`` (Archard) and ``k q·slip`` (energy, Fouvry)
 LAWS = ("archard", "energy")
@@ -160,6 +161,71 @@ def jump_size(rate: np.ndarray, travel: np.ndarray, k: float, A: float, P: float
               STABILITY * A / (math.pi * stiff) if stiff > 0 else math.inf]
     dN = min(bounds)
     return max(1, int(dN)) if math.isfinite(dN) else 0
+
+
+@dataclass(frozen=True)
+class MarchState:
+    """One worn state as a marcher gives it to :func:`march_depth`.
+
+    ``rate`` is ``p ∮|ds|`` and ``travel`` ``∮|ds|`` at the depth's points; ``work`` the
+    friction work per cycle; ``stick`` the stick zone at ``Q_max``; ``contact``, ``alpha`` and
+    ``pressure`` (at the points) the normal contact's; ``solved`` the marcher's own object.
+    """
+
+    rate: np.ndarray
+    travel: np.ndarray
+    work: float
+    stick: tuple[float, float]
+    contact: tuple[float, float]
+    alpha: float
+    pressure: np.ndarray
+    solved: Any = None
+
+
+def march_depth(solve: Callable[[np.ndarray, Any], MarchState], weights: np.ndarray, spacing: np.ndarray, *,
+                k: float, law_factor: float, A: float, P: float, cycles: int, jump: int | None,
+                failures: tuple[type[BaseException], ...]) -> tuple[dict[str, np.ndarray], str, Any]:
+    """The march every marcher shares: solve the worn state, record it, grow the depth by ``ΔN`` cycles.
+
+    ``solve(depth, last)`` is the marcher's state of the worn ``depth`` at its points (``last``: the
+    previous state's ``solved``, to start from); ``weights`` the points' shares of the length (the
+    worn area is ``Σ depth weights``); ``spacing`` their local spacing (:func:`jump_size`). A state
+    that raises one of ``failures`` ends the march early (never the first: its error is the caller's).
+
+    Returns
+    -------
+    records, stopped, solved
+        :class:`WearResult`'s fields ``cycles``, ``energy``, ``stick_zones``, ``depths``, ``volumes``,
+        ``contacts``, ``alphas``, ``pressures``; why the march ended early (``""``: it did not);
+        the last state's ``solved``.
+    """
+    rec: dict[str, list] = {name: [] for name in ("cycles", "energy", "stick_zones", "depths", "volumes",
+                                                  "contacts", "alphas", "pressures")}
+    depth, N, stopped, last = np.zeros(weights.size), 0, "", None
+    while True:
+        try:
+            state = solve(depth, last)
+        except failures as exc:
+            if not rec["cycles"]:
+                raise
+            stopped = f"at cycle {N} the worn contact or its stick zone at Q_max was not found: {exc}"
+            break
+        last = state.solved
+        for key, value in (("cycles", N), ("energy", state.work), ("stick_zones", state.stick),
+                           ("depths", depth.copy()), ("volumes", float(np.sum(depth * weights))),
+                           ("contacts", state.contact), ("alphas", state.alpha), ("pressures", state.pressure)):
+            rec[key].append(value)
+        if N >= cycles:
+            break
+        dN = jump if jump is not None else jump_size(state.rate, state.travel, k, A, P, spacing, law_factor)
+        if dN == 0:     # nothing slips: the worn limit
+            dN = cycles - N
+        dN = min(dN, cycles - N)
+        depth = depth + dN * k * law_factor * state.rate
+        N += dN
+    if not np.all(np.isfinite(depth)):
+        raise NoConvergenceError("wear: the worn depth is not finite; no result is returned")
+    return {key: np.array(values) for key, values in rec.items()}, stopped, last
 
 
 def _wear_iv(punch: Punch, P: float, s: float, Q_max: float, f: float, A: float, law: str, k: float,
