@@ -43,7 +43,7 @@ def march(method: str, profile: bool) -> object:
     print(f"  wall {wall:.1f} s, CPU {cpu:.1f} s (target {TARGETS_S[method]:g} s alone; load average "
           f"{load:.2f} before, {os.getloadavg()[0]:.2f} after, {os.cpu_count()} CPUs)")
     print(f"  {int(r.cycles[-1]):,} cycles reached in {r.info['steps']} steps ({len(r.x)} "
-          f"{'cells' if method == 'sie' else 'interface nodes'})")
+          f"{'nodes' if method == 'sie' else 'interface nodes'})")
     if r.info["stopped"]:
         print(f"  stopped: {r.info['stopped']}")
     print(f"  energy per cycle {r.energy[0]:.6g} -> {r.energy[-1]:.6g} N*mm/mm ({r.energy[-1] / r.energy[0]:.4f} "

@@ -31,8 +31,8 @@ import time
 from typing import Any, Callable
 
 import numpy as np
-from threadpoolctl import threadpool_limits
 
+from threepart.threads import one_blas_thread
 from threepart.halfplane.coulomb import coulomb_state
 from threepart.errors import FullSlidingError, InputTypeError
 from threepart.progress import heartbeat
@@ -339,7 +339,7 @@ def _march(states: np.ndarray, given: np.ndarray, f: float, A: float, C: np.ndar
     its_total, res_max = 0, 0.0
     k, held, step_work_sum = 0, np.ones(N, dtype=bool), 0.0
     # dense systems of a few hundred unknowns: BLAS threads only contend for the shared cores
-    with threadpool_limits(limits=1, user_api="blas"):
+    with one_blas_thread():
         for i, (_, _, Q, sb) in enumerate(states):
             at[0] = i
             bound = f * loads[i]

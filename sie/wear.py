@@ -20,17 +20,18 @@ together, the combined depth of the gap (docs/WEAR.md, section 4): how they
 share it does not change the contact.
 
 The march (:func:`march`). The unworn contact comes from the Gauss–Chebyshev SIE;
-the depth then grows on :data:`CELLS` uniform cells over that contact and
-:data:`GRID_MARGIN` of it beyond each end (the scar outgrows the contact,
-docs/WEAR.md section 4). Each state collocates eq. (0.1) of docs/WEAR.md, the
-displacement form of eq. (integral_equation), at the cell centres with a pressure
-uniform on each cell (:func:`threepart.halfplane.surface.influence`), for the normal
-contact and for the corrective contact at ``Q_max`` (:func:`sie.cells.cell_state`), by the
-core's active-set solve; ``WearResult.final`` is the fretting cycle on the last state's cells
-(:func:`sie.cells.cell_fretting`). The global series of :func:`sie.profile.solve_profile` resolves neither
-a pressure that falls to 0 over the slip zones nor the singular ends that form at the
-stick zone's (its bounded contact turned tensile and the energy stalled at 23 % of its
-start, docs/WEAR.md section 8); the cells do, to their width. Cycle jumping
+the depth then grows at :data:`NODES` nodes over that contact and :data:`GRID_MARGIN`
+of it beyond each end (the scar outgrows the contact, docs/WEAR.md section 4), graded
+towards the unworn stick zone's ends and the punch's joins (:func:`_grid`). Each state
+collocates eq. (0.1) of docs/WEAR.md, the displacement form of eq. (integral_equation),
+at the nodes with the pressure linear between them
+(:func:`threepart.halfplane.surface.influence`), for the normal contact and for the
+corrective contact at ``Q_max`` (:func:`sie.nodes.node_state`), by the core's active-set
+solve; ``WearResult.final`` is the fretting cycle on the last state's nodes
+(:func:`sie.nodes.node_fretting`). The global series of :func:`sie.profile.solve_profile`
+resolves neither a pressure that falls to 0 over the slip zones nor the singular ends that
+form at the stick zone's (its bounded contact turned tensile and the energy stalled at 23 %
+of its start, docs/WEAR.md section 8); the nodes do, to their spacing. Cycle jumping
 (``jump=None``) is :func:`threepart.fretting_wear.jump_size`. Where a state is not found
 (a named error) the march ends early: ``cycles[-1]`` is the last state solved, and
 ``info["stopped"]`` says why (never silently: the requested count is ``info["requested"]``).
@@ -58,17 +59,19 @@ from threepart.halfplane.surface import influence
 from threepart.problem.validate import SLIP_RATIO_LIMIT, check_states
 from threepart.results.slip import check_shear
 
-from .cells import COULOMB_FLOOR, CellState, cell_fretting, cell_state
+from .nodes import COULOMB_FLOOR, NodeState, node_fretting, node_state
 from .fretting import SieFrettingResult, Zones, loop_integral
 from .profile import (DEFAULT_TERMS, ProfileNormalResult, WornProfile, profile_approach, profile_gap,
                       solve_profile)
 from .slip import SieSlipResult, stick_zone
 
 __all__ = ["ProfileFrettingResult", "solve_profile_slip", "profile_fretting_cycle", "wear_rate",
-           "march", "CELLS", "GRID_MARGIN"]
+           "march", "NODES", "GRID_MARGIN"]
 
-#: cells of the march over the unworn contact and its margins
-CELLS = 400
+#: nodes of the march over the unworn contact and its margins
+NODES = 400
+#: the length, of the contact's width, over which the march's spacing grows back to uniform near a feature
+GRADING = 0.25
 #: the grid reaches this fraction of the contact's width beyond each end (the scar outgrows it)
 GRID_MARGIN = 0.15
 #: Gauss–Legendre nodes per slip zone of the friction work, u = lo + L s^2 (3 - 2s)
@@ -222,46 +225,74 @@ def wear_rate(normal: ProfileNormalResult, Q_max: float, f: float, x: np.ndarray
     return rate, work, (lo, hi), tr
 
 
-def _cells(base: ProfileNormalResult, cells: int) -> np.ndarray:
-    """Cell edges of the march: ``cells`` uniform over the unworn contact and :data:`GRID_MARGIN` of it beyond."""
+def _grid(base: ProfileNormalResult, points: int, features: tuple[float, ...] = ()) -> np.ndarray:
+    """The march's nodes: over the unworn contact and :data:`GRID_MARGIN` of it beyond each end.
+
+    Without ``features``, ``points`` uniform nodes. With them (the stick zone's ends at
+    ``Q_max``, the punch's joins), the spacing is ``h(x) ∝ sqrt(d(x)/l)``, capped at 1,
+    ``d`` the distance to the nearest feature and ``l`` :data:`GRADING` of the contact's
+    width: the ``(1 - cos)`` spacing of Gauss–Chebyshev points, which a square-root end
+    asks for (the worn state's pressure, docs/WEAR.md eq. W3; the slope at a curvature
+    jump). The nodes are the spacing's quantiles.
+    """
     W = base.a + base.c
-    return np.linspace(-base.a - GRID_MARGIN * W, base.c + GRID_MARGIN * W, cells + 1)
+    lo, hi = -base.a - GRID_MARGIN * W, base.c + GRID_MARGIN * W
+    if not features:
+        return np.linspace(lo, hi, points)
+    t = np.linspace(lo, hi, 40 * points)
+    d = np.min(np.abs(t[:, None] - np.asarray(features)[None, :]), axis=1)
+    density = 1.0 / np.sqrt(np.clip(d / (GRADING * W), 1e-12, 1.0))
+    cdf = np.concatenate([[0.0], np.cumsum(0.5 * (density[1:] + density[:-1]) * np.diff(t))])
+    x = np.interp(np.linspace(0.0, cdf[-1], points), cdf, t)
+    x[0], x[-1] = lo, hi
+    return x
+
+
+def _features(punch: Punch, stick: tuple[float, float]) -> tuple[float, ...]:
+    """Where the march's nodes gather (:func:`_grid`): the stick zone's ends and the joins ``±b`` with a curvature jump."""
+    joins = tuple(v for v, kappa in ((-punch.b, punch.kappa1), (punch.b, punch.kappa2)) if punch.b > 0 and kappa)
+    return (*stick, *joins)
 
 
 def march(punch: Punch, P: float, s: float, Q_max: float, f: float, *, A: float, law: str, k: float,
           cycles: int, jump: int | None = None, tilt: str = "free", n: int = DEFAULT_TERMS,
-          points: int = CELLS) -> WearResult:
+          points: int = NODES) -> WearResult:
     """Fretting wear at constant ``P``, ``s`` with ``Q`` between ``±Q_max``: threepart.wear's SIE march.
 
     Input is checked by :func:`threepart.fretting_wear.wear`. The unworn contact comes
     from the Gauss–Chebyshev SIE (``n`` terms); the march then collocates the same
-    integral equation in its displacement form (eq. 0.1 of docs/WEAR.md) on ``points``
-    uniform cells (:func:`threepart.halfplane.surface.influence`), where the depth grows.
-    Each step solves the normal contact and the corrective contact at ``Q_max``
-    (:func:`sie.cells.cell_state`) and grows the depth by ``ΔN`` cycles' wear: ``jump`` cycles, or
+    integral equation in its displacement form (eq. 0.1 of docs/WEAR.md) at ``points``
+    nodes with the pressure linear between them (:func:`threepart.halfplane.surface.influence`),
+    where the depth grows. The nodes are graded towards the unworn stick zone's ends at
+    ``Q_max`` (found first on uniform nodes) and the punch's joins (:func:`_grid`). Each step
+    solves the normal contact and the corrective contact at ``Q_max``
+    (:func:`sie.nodes.node_state`) and grows the depth by ``ΔN`` cycles' wear: ``jump`` cycles, or
     the module docstring's control. A global series resolves neither the pressure that
     falls to 0 over the slip zones nor the singular ends that form at the stick zone's;
-    cells do, to their width (docs/WEAR.md, section 8).
+    nodes do, to their spacing (docs/WEAR.md, section 8).
     """
     t0 = time.perf_counter()
     law_factor = f if law == "energy" else 1.0
     base = solve_profile(WornProfile(punch, np.array([-1.0, 1.0]), np.zeros(2)), P, s, A=A, tilt=tilt, n=n)
-    edges = _cells(base, points)
-    x, width = 0.5 * (edges[1:] + edges[:-1]), np.diff(edges)
-    C = influence(edges, A)
+    x = _grid(base, points)
+    C, w = influence(x, A)
+    first = node_state(C, x, w, punch.profile(x), P, s, Q_max, f, tilt == "free")
+    x = _grid(base, points, _features(punch, first.stick))
+    C, w = influence(x, A)
     g = punch.profile(x)
 
-    def solve(depth: np.ndarray, last: CellState | None) -> MarchState:
-        st = cell_state(C, edges, g + depth, P, s, Q_max, f, tilt == "free",
+    def solve(depth: np.ndarray, last: NodeState | None) -> MarchState:
+        st = node_state(C, x, w, g + depth, P, s, Q_max, f, tilt == "free",
                         None if last is None else (last.normal, last.corrective))
         return MarchState(rate=st.rate, travel=st.travel, work=st.work, stick=st.stick, contact=st.contact,
                           alpha=st.normal.alpha, pressure=st.p, solved=st)
 
-    rec, stopped, last = march_depth(solve, width, width, k=k, law_factor=law_factor, A=A, P=P, cycles=cycles,
+    spacing = np.gradient(x)
+    rec, stopped, last = march_depth(solve, w, spacing, k=k, law_factor=law_factor, A=A, P=P, cycles=cycles,
                                      jump=jump, failures=(StickSeparationError, NoConvergenceError))
     worn = g + rec["depths"][-1]       # the last state's profile
     return WearResult(punch=punch, P=P, s=s, Q_max=Q_max, f=f, A=A, law=law, k=k, x=x, method="sie",
-                      final_cycle=lambda: cell_fretting(last, C, edges, worn, punch=punch, A=A, P=P, s=s,
+                      final_cycle=lambda: node_fretting(last, C, x, w, worn, punch=punch, A=A, P=P, s=s,
                                                         Q_max=Q_max, f=f, tilt=tilt),
                       **rec, info={"time": time.perf_counter() - t0, "steps": len(rec["cycles"]) - 1,
                             "jump": "auto" if jump is None else jump, "n": n, "points": x.size,

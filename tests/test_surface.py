@@ -12,6 +12,7 @@ import numpy as np
 import pytest
 from scipy.integrate import quad
 
+from threepart.errors import InputError
 from threepart.halfplane.surface import influence, solve_contact
 from threepart.tolerances import tolerance
 
@@ -19,38 +20,56 @@ A = 4 * (1 - 0.09) / 210e3
 R, P = 10.0, 400.0
 #: Hertz: a^2 = 2 A P R/π (eq. 4's A, both bodies)
 a_H = math.sqrt(2 * A * P * R / math.pi)
+#: a repeated solve and a fresh one, a hat's area by the trapezoidal rule: the same arithmetic, to rounding
+ROUNDING = tolerance("wear-limit", "round_off").limit
 
 
-def _cells(n: int, s: float = 0.0) -> np.ndarray:
-    return np.linspace(s - 1.3 * a_H, s + 1.3 * a_H, n + 1)
+def _nodes(n: int, s: float = 0.0) -> np.ndarray:
+    return np.linspace(s - 1.3 * a_H, s + 1.3 * a_H, n)
+
+
+def _hat(x: np.ndarray, j: int):
+    """The hat of node ``j``: 1 there, linear to 0 at its neighbours."""
+    return lambda t: float(np.interp(t, x, np.eye(x.size)[j]))
 
 
 def test_the_influence_is_the_log_kernel_integrated():
-    """C_ij against QUADPACK of -(A/π) ln(|x_i - t|/L) over cell j, divided by its width."""
-    edges = np.array([-0.3, -0.1, 0.05, 0.2, 0.4])
-    C = influence(edges, A)
-    L = 10 * (edges[-1] - edges[0])
-    x = 0.5 * (edges[1:] + edges[:-1])
-    for i in range(4):
-        for j in range(4):
-            lo, hi = edges[j], edges[j + 1]
-            pts = [x[i]] if lo < x[i] < hi else None
-            ref = -A / math.pi * quad(lambda t: math.log(abs(x[i] - t) / L), lo, hi, points=pts,
-                                      epsabs=0, epsrel=1e-13, limit=200)[0] / (hi - lo)
+    """C_ij against QUADPACK of -(A/π) ln(|x_i - t|/L) times node j's hat, divided by the hat's area."""
+    x = np.array([-0.3, -0.1, 0.05, 0.2, 0.4, 0.43])
+    C, w = influence(x, A)
+    L = 10 * (x[-1] - x[0])
+    assert np.allclose(w, [np.trapezoid(np.eye(x.size)[j], x) for j in range(x.size)], rtol=ROUNDING, atol=0)
+    for i in range(x.size):
+        for j in range(x.size):
+            hat = _hat(x, j)
+            lo, hi = x[max(j - 1, 0)], x[min(j + 1, x.size - 1)]
+            pts = sorted({x[i], x[j]} & set(x[(x > lo) & (x < hi)]))
+            ref = -A / math.pi * quad(lambda t: hat(t) * math.log(abs(x[i] - t) / L), lo, hi, points=pts or None,
+                                      epsabs=0, epsrel=1e-13, limit=200)[0] / w[j]
             assert C[i, j] == pytest.approx(ref, rel=tolerance("surface", "kernel").limit)
-    assert np.all(np.linalg.eigvalsh(0.5 * (C + C.T)) > 0)       # positive definite: L is long enough
+    # the kernel's quadratic form is positive (L is long enough): on a symmetric grid K is symmetric
+    xs = np.linspace(-0.3, 0.3, 9)
+    Cs, ws = influence(xs, A)
+    assert np.all(np.linalg.eigvalsh(0.5 * ((Cs * ws) + (Cs * ws).T)) > 0)
+
+
+@pytest.mark.parametrize("bad", [np.array([0.0]), np.array([0.0, 0.0, 1.0]), np.array([1.0, 0.0])])
+def test_the_influence_refuses_nodes_out_of_order(bad):
+    """Fewer than two nodes or nodes not strictly increasing: a one-line InputError naming `x`."""
+    with pytest.raises(InputError, match="`x` must be at least 2 strictly increasing"):
+        influence(bad, A)
 
 
 @pytest.mark.parametrize("s", [0.0, 0.03])
-def test_hertz_on_cells(s):
-    """The cells' contact against Hertz: its width, its pressure away from the ends, and the tilt -s/R."""
-    edges = _cells(800, s)
-    x, w = 0.5 * (edges[1:] + edges[:-1]), np.diff(edges)
-    sol = solve_contact(influence(edges, A), x, x * x / (2 * R), P, s, free_tilt=True)
+def test_hertz_on_nodes(s):
+    """The nodes' contact against Hertz: its width, its pressure away from the ends, and the tilt -s/R."""
+    x = _nodes(800, s)
+    C, w = influence(x, A)
+    sol = solve_contact(C, x, x * x / (2 * R), P, s, free_tilt=True)
     p = sol.f / w
     on = np.flatnonzero(sol.active)
-    h = w[0]
-    assert abs(edges[on[0]] - (s - a_H)) <= h and abs(edges[on[-1] + 1] - (s + a_H)) <= h
+    h = x[1] - x[0]
+    assert abs(x[on[0]] - (s - a_H)) <= h and abs(x[on[-1]] - (s + a_H)) <= h
     p0 = 2 * P / (math.pi * a_H)
     inner = np.abs(x - s) < 0.8 * a_H
     ref = p0 * np.sqrt(1 - ((x[inner] - s) / a_H) ** 2)
@@ -58,3 +77,22 @@ def test_hertz_on_cells(s):
     assert abs(sol.alpha + s / R) <= tolerance("surface", "hertz").limit * a_H / R
     rounding = tolerance("wear-limit", "round_off").limit
     assert sum(sol.f) == pytest.approx(P, rel=rounding) and np.sum(x * sol.f) == pytest.approx(P * s, abs=rounding * P)
+
+
+def test_a_factor_is_reused_only_for_the_same_compliance_and_set():
+    """Two compliances, one the other's copy scaled: each solve equals a fresh solve's (the factor cache
+    never hands one compliance's factor to another, nor to an array that reuses a freed one's id)."""
+    from threepart.halfplane import surface
+
+    x = _nodes(200)
+    C, w = influence(x, A)
+    first = solve_contact(C, x, x * x / (2 * R), P)
+    for scale in (2.0, 0.5, 2.0):
+        D = C * scale
+        sol = solve_contact(D, x, x * x / (2 * R), P, active=first.active.copy())
+        surface._FACTORS.clear()
+        fresh = solve_contact(D.copy(), x, x * x / (2 * R), P, active=first.active.copy())
+        assert np.allclose(sol.f, fresh.f, rtol=0, atol=ROUNDING * P)
+        del D
+    again = solve_contact(C, x, x * x / (2 * R), P, active=first.active.copy())
+    assert np.allclose(again.f, first.f, rtol=0, atol=ROUNDING * P)

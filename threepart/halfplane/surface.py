@@ -3,7 +3,7 @@
 A surface of candidate nodes ``x_i`` with compliance ``C`` (``u_y = -C f``, ``f``
 the nodal forces) is what both the FEM and the half-plane's influence
 coefficients give: an elastic body condensed onto its surface
-(:func:`fem.elasticity.condense`), or the half-plane's log kernel on cells
+(:func:`fem.elasticity.condense`), or the half-plane's log kernel on nodes
 (:func:`influence`). A punch's lower surface is ``y_p = g0(x) + alpha x - delta``.
 The gap and the complementarity conditions are::
 
@@ -21,19 +21,21 @@ with ``free_tilt=False``.
 
 ContactSolution -- nodal forces, gap, active set, delta, alpha
 solve_contact   -- the active-set solve
-influence       -- the half-plane's compliance of uniform pressure on cells (eq. 0.1 of docs/WEAR.md)
+influence       -- the half-plane's compliance of a piecewise-linear pressure on nodes (eq. 0.1 of docs/WEAR.md)
 MAX_ITER        -- the range of active-set iterations a caller may ask for
 """
 from __future__ import annotations
 
 import math
+import weakref
+from collections import OrderedDict
 from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
-from scipy.linalg import cho_factor, cho_solve
-from threadpoolctl import threadpool_limits
+from scipy.linalg import cho_factor, cho_solve, lu_factor, lu_solve
 
+from threepart.threads import one_blas_thread
 from threepart.errors import InputError, NoConvergenceError
 from threepart.problem.checks import finite, integer, positive
 
@@ -43,33 +45,55 @@ __all__ = ["ContactSolution", "solve_contact", "influence", "MAX_ITER"]
 MAX_ITER = (1, 10_000)
 
 
-def influence(edges: np.ndarray, A: float) -> np.ndarray:
-    """The half-plane's surface compliance of uniform pressure on cells, per unit nodal force.
+def influence(x: np.ndarray, A: float) -> tuple[np.ndarray, np.ndarray]:
+    """The half-plane's surface compliance of a piecewise-linear pressure on nodes, per unit nodal force.
 
-    Cells ``[edges[j], edges[j+1]]`` carry the force ``f_j = p_j (edges[j+1] - edges[j])``;
-    the gap of eq. (0.1) of docs/WEAR.md at the cell centres ``x_i`` is then
-    ``g0_i + alpha x_i - delta + (C f)_i`` with::
+    The pressure is linear between the nodes ``x`` (strictly increasing):
+    ``p(t) = Σ p_j φ_j(t)``, ``φ_j`` the hat of node ``j``. Node ``j`` carries the
+    force ``f_j = p_j w_j``, ``w_j = ∫ φ_j`` (half its two elements' lengths). The gap of
+    eq. (0.1) of docs/WEAR.md at the nodes is then ``g0_i + alpha x_i - delta + (C f)_i`` with::
 
-        C_ij = -(A/π) ∫_cell_j ln(|x_i - t|/L) dt / (edges[j+1] - edges[j]),
+        C_ij = -(A/π) ∫ φ_j(t) ln(|x_i - t|/L) dt / w_j,
 
-    ``A = 4(1 - nu^2)/E`` of two similar bodies (eq. 4). ``ln |u|`` integrates to
-    ``u ln|u| - u``. The length ``L`` (ten times the span) only shifts ``delta``; it
-    makes ``C`` positive definite (the interval's logarithmic capacity, a quarter of its
-    length, is then below ``L``), so the active set's system takes a Cholesky factor.
+    ``A = 4(1 - nu^2)/E`` of two similar bodies (eq. 4). On an element ``[x_e, x_e+1]``
+    with ``u = t - x_i``, ``ln|u|`` integrates to ``u ln|u| - u`` and ``u ln|u|`` to
+    ``u^2 ln|u|/2 - u^2/4``. The length ``L`` (ten times the span) only shifts ``delta``;
+    it keeps the kernel's quadratic form positive (the interval's logarithmic capacity, a
+    quarter of its length, is then below ``L``). A linear pressure between the nodes
+    converges at second order away from a singular end, where a uniform one per cell is
+    first order (docs/WEAR.md, section 8).
+
+    Returns
+    -------
+    C, w
+        The compliance ``(n, n)`` and the nodes' shares of the length ``w`` (``Σ w`` is the span).
     """
-    edges = np.asarray(edges, dtype=float)
-    L = 10.0 * float(edges[-1] - edges[0])
-    x = 0.5 * (edges[1:] + edges[:-1])
-    width = np.diff(edges)
+    x = np.asarray(x, dtype=float)
+    if x.ndim != 1 or x.size < 2 or not np.all(np.diff(x) > 0):
+        raise InputError("`x` must be at least 2 strictly increasing node positions")
+    L = 10.0 * float(x[-1] - x[0])
+    h = np.diff(x)
 
-    def F(u: np.ndarray) -> np.ndarray:
+    def F0(u: np.ndarray) -> np.ndarray:      # ∫ ln(|u|/L) du
         v = np.abs(u) / L
         with np.errstate(divide="ignore", invalid="ignore"):
-            return L * np.where(v > 0, u / L * np.log(np.where(v > 0, v, 1.0)) - u / L, 0.0)
+            return np.where(v > 0, u * np.log(np.where(v > 0, v, 1.0)) - u, 0.0)
 
-    u = x[:, None] - edges[None, :]
-    I = F(u[:, :-1]) - F(u[:, 1:])        # ∫_cell ln(|x - t|/L) dt
-    return -(A / math.pi) * I / width[None, :]
+    def F1(u: np.ndarray) -> np.ndarray:      # ∫ u ln(|u|/L) du
+        v = np.abs(u) / L
+        with np.errstate(divide="ignore", invalid="ignore"):
+            return np.where(v > 0, 0.5 * u * u * np.log(np.where(v > 0, v, 1.0)) - 0.25 * u * u, 0.0)
+
+    lo, hi = x[None, :-1] - x[:, None], x[None, 1:] - x[:, None]     # each element's u-range from x_i
+    i0, i1 = F0(hi) - F0(lo), F1(hi) - F1(lo)
+    right = (i1 - lo * i0) / h[None, :]       # ∫ (t - x_e)/h ln: the element's share of its right node
+    I = np.zeros((x.size, x.size))
+    I[:, :-1] += i0 - right
+    I[:, 1:] += right
+    w = np.zeros(x.size)
+    w[:-1] += 0.5 * h
+    w[1:] += 0.5 * h
+    return -(A / math.pi) * I / w[None, :], w
 
 
 @dataclass(frozen=True, eq=False)
@@ -106,44 +130,89 @@ class ContactSolution:
     slope: np.ndarray | None = None
 
 
-def _solve_active(C: np.ndarray, x: np.ndarray, g0: np.ndarray, active: np.ndarray,
-                  P: float, s: float, free_tilt: bool, symmetric: bool = False
-                  ) -> tuple[np.ndarray, float, float]:
-    """Forces on the active set with ``gap = 0`` there, plus the equilibrium rows.
+#: the active-set systems' factors kept per compliance (:func:`_factor`): a march's or a cycle's steps
+#: return to the same active sets on the same compliance
+FACTORS_KEPT = 4
+_FACTORS: "OrderedDict[tuple[int, bool, bytes], tuple[weakref.ref, Any]]" = OrderedDict()
 
-    The system ``C_AA f + B lam = -g0_A``, ``D^T f = e`` (``lam = (delta, alpha)``,
-    ``B = (-1, x)``, ``D = (1, x)``, ``e = (P, P s)``). A symmetric ``C``
-    (``symmetric``; the small-slope compliance) is positive definite: a Cholesky
-    factor of ``C_AA`` and the ``k x k`` Schur complement of the bordered rows
-    (half the work of an LU of the whole); otherwise, or if that factor fails,
-    one LU of the bordered matrix.
+
+_SYMMETRIC: dict[int, tuple[weakref.ref, bool]] = {}
+
+
+def _symmetric(C: np.ndarray) -> bool:
+    """Whether ``C`` equals its transpose, found once per compliance (an n^2 comparison per solve otherwise)."""
+    hit = _SYMMETRIC.get(id(C))
+    if hit is None or hit[0]() is not C:
+        for key in [k for k, (ref, _) in _SYMMETRIC.items() if ref() is None]:
+            del _SYMMETRIC[key]
+        hit = _SYMMETRIC[id(C)] = (weakref.ref(C), bool(np.array_equal(C, C.T)))
+    return hit[1]
+
+
+def _factor(C: np.ndarray, x: np.ndarray, active: np.ndarray, free_tilt: bool, symmetric: bool) -> Any:
+    """The factor of the active set's bordered system, reused while ``C`` (the same object) and the set are.
+
+    Symmetric ``C`` (the small-slope compliance, positive definite): a Cholesky factor of
+    ``C_AA``, ``Y_B = C_AA^-1 B`` and the ``k x k`` Schur complement ``D^T Y_B`` (half the work
+    of an LU of the whole); otherwise, or if that factor fails, one LU of the bordered matrix.
+    ``C`` must not change in place between solves (a weak reference tells a new array from a
+    freed one whose id was reused).
     """
+    key = (id(C), free_tilt, active.tobytes())
+    hit = _FACTORS.get(key)
+    if hit is not None and hit[0]() is C:
+        _FACTORS.move_to_end(key)
+        return hit[1]
     idx = np.flatnonzero(active)
-    m = len(idx)
-    k = 2 if free_tilt else 1
+    m, k = len(idx), 2 if free_tilt else 1
     A = C[np.ix_(idx, idx)]
     D = np.ones((m, k))
     if free_tilt:
         D[:, 1] = x[idx]
     B = D.copy()
     B[:, 0] = -1.0
-    e = np.array([P, P * s][:k])
-    f = np.zeros(len(x))
+    factor: Any = None
     if symmetric:
         try:
-            factor = cho_factor(A, lower=True, overwrite_a=True, check_finite=False)
+            cho = cho_factor(A, lower=True, check_finite=False)
         except np.linalg.LinAlgError:
-            A = C[np.ix_(idx, idx)]
+            pass
         else:
-            Y = cho_solve(factor, np.column_stack([-g0[idx], B]), check_finite=False)
-            lam = np.linalg.solve(D.T @ Y[:, 1:], D.T @ Y[:, 0] - e)
-            f[idx] = Y[:, 0] - Y[:, 1:] @ lam
-            return f, float(lam[0]), float(lam[1]) if free_tilt else 0.0
-    M = np.zeros((m + k, m + k))
-    M[:m, :m], M[:m, m:], M[m:, :m] = A, B, D.T
-    sol = np.linalg.solve(M, np.concatenate([-g0[idx], e]))
-    f[idx] = sol[:m]
-    return f, float(sol[m]), float(sol[m + 1]) if free_tilt else 0.0
+            Y = cho_solve(cho, B, check_finite=False)
+            factor = ("cholesky", idx, D, cho, Y, lu_factor(D.T @ Y, check_finite=False))
+    if factor is None:
+        M = np.zeros((m + k, m + k))
+        M[:m, :m], M[:m, m:], M[m:, :m] = A, B, D.T
+        factor = ("lu", idx, D, lu_factor(M, check_finite=False))
+        if not np.all(np.isfinite(factor[3][0])) or np.any(np.diag(factor[3][0]) == 0):
+            raise np.linalg.LinAlgError("singular active-set system")
+    _FACTORS[key] = (weakref.ref(C), factor)
+    while len(_FACTORS) > FACTORS_KEPT:
+        _FACTORS.popitem(last=False)
+    return factor
+
+
+def _solve_active(C: np.ndarray, x: np.ndarray, g0: np.ndarray, active: np.ndarray,
+                  P: float, s: float, free_tilt: bool, symmetric: bool = False
+                  ) -> tuple[np.ndarray, float, float]:
+    """Forces on the active set with ``gap = 0`` there, plus the equilibrium rows.
+
+    The system ``C_AA f + B lam = -g0_A``, ``D^T f = e`` (``lam = (delta, alpha)``,
+    ``B = (-1, x)``, ``D = (1, x)``, ``e = (P, P s)``), by :func:`_factor`'s factor.
+    """
+    factor = _factor(C, x, active, free_tilt, symmetric)
+    idx, D = factor[1], factor[2]
+    k = D.shape[1]
+    e = np.array([P, P * s][:k])
+    f = np.zeros(len(x))
+    if factor[0] == "cholesky":
+        y = cho_solve(factor[3], -g0[idx], check_finite=False)
+        lam = lu_solve(factor[5], D.T @ y - e, check_finite=False)
+        f[idx] = y - factor[4] @ lam
+    else:
+        sol = lu_solve(factor[3], np.concatenate([-g0[idx], e]), check_finite=False)
+        f[idx], lam = sol[:-k], sol[-k:]
+    return f, float(lam[0]), float(lam[1]) if free_tilt else 0.0
 
 
 def solve_contact(C: np.ndarray, x: np.ndarray, g0: np.ndarray, P: float, s: float = 0.0, *,
@@ -254,8 +323,8 @@ def _iterate(C: np.ndarray, x: np.ndarray, g0: np.ndarray, P: float, s: float, f
     """The primal-dual active-set iteration from ``act``; :class:`_Breakdown` if it leaves the admissible sets."""
     n = len(x)
     cpd = 1.0 / float(np.mean(np.diag(C)))  # force per unit gap: balances the two terms
-    symmetric = bool(np.array_equal(C, C.T))
-    with threadpool_limits(limits=1, user_api="blas"):
+    symmetric = _symmetric(C)
+    with one_blas_thread():
         for it in range(1, max_iter + 1):
             if not act.any():
                 act[np.argmin(g0)] = True
@@ -270,13 +339,14 @@ def _iterate(C: np.ndarray, x: np.ndarray, g0: np.ndarray, P: float, s: float, f
             gap = g0 + alpha * x - delta + C @ f
             gap[act] = 0.0
             new = f - cpd * gap > 0
-            if np.array_equal(new, act):
+            changed = int(np.sum(new != act))
+            if not changed:
                 break
             act = new
         else:
             raise NoConvergenceError(
                 f"contact active set did not settle within `max_iter` = {max_iter} iterations "
-                f"({int(np.sum(new != act))} nodes still changing)")
+                f"({changed} nodes changed at the last)")
     if not (np.all(np.isfinite(f)) and np.isfinite(delta) and np.isfinite(alpha)):
         raise _Breakdown(f"at iteration {it}: non-finite forces")
     scale_f, scale_g = P / n, float(np.ptp(g0)) + 1e-300
