@@ -382,9 +382,15 @@ def test_a_convergence_legend_gives_an_order_only_for_a_monotone_curve(drawn):
 def test_a_long_stage_says_it_is_still_running(tmp_path, monkeypatch, capsys):
     """A solver that reports nothing for a while: the run prints a line per period meanwhile."""
     slow = fake_solver("fem")
+    seen: list[str] = []
 
     def sleepy(*args, **options):
-        time.sleep(0.5)
+        # until the run has said twice that the stage is still running: no fixed sleep that a loaded
+        # machine could outlast (a guard of a minute ends a run whose heartbeat never comes)
+        t0 = time.monotonic()
+        while "".join(seen).count("fem still running") < 2 and time.monotonic() - t0 < 60:
+            seen.append(capsys.readouterr().out)
+            time.sleep(0.02)
         return slow.normal(*args, **options)
 
     install_fakes(monkeypatch, fem=replace(slow, normal=sleepy))
@@ -393,7 +399,7 @@ def test_a_long_stage_says_it_is_still_running(tmp_path, monkeypatch, capsys):
         a[0], a[1], a[2], a[3], {}))
     case = catalogue.get_case("caseA_sym")
     verify.main(mode="quick", out=tmp_path / "rep", cases=[case])
-    lines = capsys.readouterr().out.splitlines()
+    lines = ("".join(seen) + capsys.readouterr().out).splitlines()
     beats = [line for line in lines if "caseA_sym" in line and "fem still running" in line]
     assert len(beats) >= 2, lines
     done = next(i for i, line in enumerate(lines) if re.search(r"caseA_sym\s+fem \d", line))

@@ -27,13 +27,15 @@ MAX_ITER        -- the range of active-set iterations a caller may ask for
 from __future__ import annotations
 
 import math
+import threading
+import warnings
 import weakref
 from collections import OrderedDict
 from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
-from scipy.linalg import cho_factor, cho_solve, lu_factor, lu_solve
+from scipy.linalg import LinAlgWarning, cho_factor, cho_solve, lu_factor, lu_solve
 
 from threepart.threads import one_blas_thread
 from threepart.errors import InputError, NoConvergenceError
@@ -134,6 +136,8 @@ class ContactSolution:
 #: return to the same active sets on the same compliance
 FACTORS_KEPT = 4
 _FACTORS: "OrderedDict[tuple[int, bool, bytes], tuple[weakref.ref, Any]]" = OrderedDict()
+#: the two caches are shared by a process's threads
+_LOCK = threading.Lock()
 
 
 _SYMMETRIC: dict[int, tuple[weakref.ref, bool]] = {}
@@ -141,12 +145,14 @@ _SYMMETRIC: dict[int, tuple[weakref.ref, bool]] = {}
 
 def _symmetric(C: np.ndarray) -> bool:
     """Whether ``C`` equals its transpose, found once per compliance (an n^2 comparison per solve otherwise)."""
-    hit = _SYMMETRIC.get(id(C))
-    if hit is None or hit[0]() is not C:
+    with _LOCK:
+        hit = _SYMMETRIC.get(id(C))
+        if hit is not None and hit[0]() is C:
+            return hit[1]
         for key in [k for k, (ref, _) in _SYMMETRIC.items() if ref() is None]:
             del _SYMMETRIC[key]
-        hit = _SYMMETRIC[id(C)] = (weakref.ref(C), bool(np.array_equal(C, C.T)))
-    return hit[1]
+        _SYMMETRIC[id(C)] = (weakref.ref(C), bool(np.array_equal(C, C.T)))
+        return _SYMMETRIC[id(C)][1]
 
 
 def _factor(C: np.ndarray, x: np.ndarray, active: np.ndarray, free_tilt: bool, symmetric: bool) -> Any:
@@ -159,10 +165,11 @@ def _factor(C: np.ndarray, x: np.ndarray, active: np.ndarray, free_tilt: bool, s
     freed one whose id was reused).
     """
     key = (id(C), free_tilt, active.tobytes())
-    hit = _FACTORS.get(key)
-    if hit is not None and hit[0]() is C:
-        _FACTORS.move_to_end(key)
-        return hit[1]
+    with _LOCK:
+        hit = _FACTORS.get(key)
+        if hit is not None and hit[0]() is C:
+            _FACTORS.move_to_end(key)
+            return hit[1]
     idx = np.flatnonzero(active)
     m, k = len(idx), 2 if free_tilt else 1
     A = C[np.ix_(idx, idx)]
@@ -183,12 +190,15 @@ def _factor(C: np.ndarray, x: np.ndarray, active: np.ndarray, free_tilt: bool, s
     if factor is None:
         M = np.zeros((m + k, m + k))
         M[:m, :m], M[:m, m:], M[m:, :m] = A, B, D.T
-        factor = ("lu", idx, D, lu_factor(M, check_finite=False))
+        with warnings.catch_warnings():     # a singular set is told by its zero pivot, below
+            warnings.simplefilter("ignore", LinAlgWarning)
+            factor = ("lu", idx, D, lu_factor(M, check_finite=False))
         if not np.all(np.isfinite(factor[3][0])) or np.any(np.diag(factor[3][0]) == 0):
             raise np.linalg.LinAlgError("singular active-set system")
-    _FACTORS[key] = (weakref.ref(C), factor)
-    while len(_FACTORS) > FACTORS_KEPT:
-        _FACTORS.popitem(last=False)
+    with _LOCK:
+        _FACTORS[key] = (weakref.ref(C), factor)
+        while len(_FACTORS) > FACTORS_KEPT:
+            _FACTORS.popitem(last=False)
     return factor
 
 
