@@ -181,7 +181,7 @@ def _summary(pr: dict[str, Any], res: Any, rec: dict[str, Any]) -> dict[str, Any
             "steps": int(res.info["steps"]), "stopped": res.info["stopped"] or None,
             "energy_start": float(res.energy[0]), "energy_end": float(res.energy[-1]),
             "energy_peak": float(max(res.energy)), "energy_end_over_start": rec["energy_ratio"],
-            "energy_monotone": rec["energy_monotone"],
+            "energy_monotone": rec["energy_monotone"], "energy_rise_past_peak": rec["figures"]["energy_monotone"],
             "stick_start": [float(v) for v in res.stick_zones[0]],
             "stick_end": [float(v) for v in res.stick_zones[-1]],
             "stick_drift_over_W": rec["stick_drift"], "stick_to_limit_over_W": rec["figures"]["stick_zone"],
@@ -215,7 +215,8 @@ def _print(pr: dict[str, Any], res: Any, rec: dict[str, Any]) -> None:
         print(f"stopped    {s['stopped']}")
     print(f"energy     {s['energy_start']:.6g} -> {s['energy_end']:.6g} N*mm/mm per cycle "
           f"({s['energy_end_over_start']:.4g} of the start; peak {s['energy_peak']:.6g}; "
-          f"{'falls at every record past its peak' if s['energy_monotone'] else 'rises past its peak'})")
+          f"{'falls past its peak' if s['energy_monotone'] else 'rises past its peak'}: largest rise "
+          f"{s['energy_rise_past_peak']:.2g} of the peak)")
     (a0, b0), (a1, b1) = s["stick_start"], s["stick_end"]
     print(f"stick zone [{a0:.6g}, {b0:.6g}] -> [{a1:.6g}, {b1:.6g}] mm (drift {s['stick_drift_over_W']:.3g} W)")
     bracket = "; ".join(f"{k} [{v[0]:.6g}, {v[1]:.6g}]" for k, v in rec["limit"]["bracket"].items())
