@@ -97,8 +97,8 @@ def march(punch: Punch, P: float, s: float, Q_max: float, f: float, *, A: float,
 
     def solve(depth: np.ndarray, last: TwoBodyModel | None) -> MarchState:
         model = first if last is None else TwoBodyModel(      # a state's model shears once
-            punch, P, s, E, nu, tilt, first.lower, first.L, None, MAX_ITER, f, gap=_interpolated(x, g + depth),
-            one_zone=False)
+            punch, P, s, E, nu, tilt, first.lower, first.L, last.contact_ends(), MAX_ITER, f,
+            gap=_interpolated(x, g + depth), one_zone=False)   # its normal contact starts from the last state's
         st = model.step(Q_max, "loading", 1, 1.0)
         travel = np.where(st.fn > 0, 4.0 * np.abs(st.w - model.w0), 0.0)
         p = st.fn / weights

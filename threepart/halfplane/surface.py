@@ -155,7 +155,7 @@ def _symmetric(C: np.ndarray) -> bool:
         return _SYMMETRIC[id(C)][1]
 
 
-def _factor(C: np.ndarray, x: np.ndarray, active: np.ndarray, free_tilt: bool, symmetric: bool) -> Any:
+def _factor(C: np.ndarray, x: np.ndarray, active: np.ndarray, free_tilt: bool, sym: bool) -> Any:
     """The factor of the active set's bordered system, reused while ``C`` (the same object) and the set are.
 
     Symmetric ``C`` (the small-slope compliance, positive definite): a Cholesky factor of
@@ -179,7 +179,7 @@ def _factor(C: np.ndarray, x: np.ndarray, active: np.ndarray, free_tilt: bool, s
     B = D.copy()
     B[:, 0] = -1.0
     factor: Any = None
-    if symmetric:
+    if sym:
         try:
             cho = cho_factor(A, lower=True, check_finite=False)
         except np.linalg.LinAlgError:
@@ -203,14 +203,15 @@ def _factor(C: np.ndarray, x: np.ndarray, active: np.ndarray, free_tilt: bool, s
 
 
 def _solve_active(C: np.ndarray, x: np.ndarray, g0: np.ndarray, active: np.ndarray,
-                  P: float, s: float, free_tilt: bool, symmetric: bool = False
+                  P: float, s: float, free_tilt: bool, sym: bool = False
                   ) -> tuple[np.ndarray, float, float]:
     """Forces on the active set with ``gap = 0`` there, plus the equilibrium rows.
 
     The system ``C_AA f + B lam = -g0_A``, ``D^T f = e`` (``lam = (delta, alpha)``,
     ``B = (-1, x)``, ``D = (1, x)``, ``e = (P, P s)``), by :func:`_factor`'s factor.
+    ``sym``: :func:`_symmetric` of ``C``.
     """
-    factor = _factor(C, x, active, free_tilt, symmetric)
+    factor = _factor(C, x, active, free_tilt, sym)
     idx, D = factor[1], factor[2]
     k = D.shape[1]
     e = np.array([P, P * s][:k])
@@ -333,7 +334,7 @@ def _iterate(C: np.ndarray, x: np.ndarray, g0: np.ndarray, P: float, s: float, f
     """The primal-dual active-set iteration from ``act``; :class:`_Breakdown` if it leaves the admissible sets."""
     n = len(x)
     cpd = 1.0 / float(np.mean(np.diag(C)))  # force per unit gap: balances the two terms
-    symmetric = _symmetric(C)
+    sym = _symmetric(C)
     with one_blas_thread():
         for it in range(1, max_iter + 1):
             if not act.any():
@@ -342,7 +343,7 @@ def _iterate(C: np.ndarray, x: np.ndarray, g0: np.ndarray, P: float, s: float, f
             if why is not None:
                 raise _Breakdown(f"at iteration {it}: {why}")
             try:
-                f, delta, alpha = _solve_active(C, x, g0, act, P, s, free_tilt, symmetric)
+                f, delta, alpha = _solve_active(C, x, g0, act, P, s, free_tilt, sym)
             except np.linalg.LinAlgError:
                 raise _Breakdown(f"at iteration {it}: a singular active-set system "
                                  f"({int(act.sum())} active nodes)") from None
