@@ -10,9 +10,10 @@ figure each by a known normalised size (see ``tests/test_compare.py``).
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 from functools import lru_cache
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 from scipy.integrate import quad
@@ -207,3 +208,26 @@ def unrendered(monkeypatch) -> None:
     from threepart.reports.verify import plots
 
     monkeypatch.setattr(plots, "save", lambda fig, path, dpi=None: sketch(path=path))
+
+
+@dataclass(frozen=True)
+class Stored:
+    """``base`` whose stress field is computed once per set of points, then kept.
+
+    The comparator (:func:`reports.compare.stress_figures`) evaluates the reference's
+    stresses at points that depend on the reference alone; a test comparing one reference
+    with several results computes them once. Every other attribute is ``base``'s.
+    """
+
+    base: Any
+    fields: dict = field(default_factory=dict)
+
+    def __getattr__(self, name: str) -> Any:
+        return getattr(self.base, name)
+
+    def stress(self, x: Any, z: Any, **kw: Any) -> Any:
+        x, z = np.broadcast_arrays(np.asarray(x, float), np.asarray(z, float))
+        key = (x.shape, x.tobytes(), z.tobytes(), tuple(sorted(kw.items())))
+        if key not in self.fields:
+            self.fields[key] = self.base.stress(x, z, **kw)
+        return self.fields[key]

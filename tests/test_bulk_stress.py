@@ -306,9 +306,15 @@ CLI = [sys.executable, "-m", "threepart", "slip", "--R1", "10", "--R2", "10", "-
        str(A), "--P", "400", "--Q", "100", "--f", "0.6"]
 
 
-def test_cli_sigma_bulk_through_the_entry_point():
-    """``threepart slip --sigma-bulk`` echoes it and moves the stick zone by Nowell & Hills' offset along Q."""
+def test_cli_sigma_bulk_through_the_entry_point(capsys):
+    """``threepart slip --sigma-bulk`` echoes it and moves the stick zone by Nowell & Hills' offset along Q.
+
+    The entry point runs in a subprocess once; the text echo is the console script's ``main`` in
+    this process.
+    """
     import json
+
+    from threepart.cli import main
     out = subprocess.run([*CLI, "--sigma-bulk", "300", "--json"], capture_output=True, text=True)
     assert out.returncode == 0, out.stderr
     doc = json.loads(out.stdout)
@@ -316,8 +322,8 @@ def test_cli_sigma_bulk_through_the_entry_point():
     p0 = 2 * 400 / (math.pi * a)
     assert doc["sigma_bulk"] == 300 and doc["units"]["sigma_bulk"] == "MPa"
     assert -doc["e"] == pytest.approx(a * 300 / (4 * 0.6 * p0), rel=CLI_OFFSET)
-    text = subprocess.run([*CLI, "--sigma-bulk", "-300"], capture_output=True, text=True).stdout
-    assert "sigma_bulk -300 MPa" in text
+    assert main([*CLI[3:], "--sigma-bulk", "-300"]) == 0         # after `python -m threepart`
+    assert "sigma_bulk -300 MPa" in capsys.readouterr().out
 
 
 @pytest.mark.parametrize("value,msg", [("nan", r"`sigma_bulk` = nan must be a finite number"),
