@@ -41,10 +41,10 @@ own shape.
 """
 from __future__ import annotations
 
+import functools
 import math
 import time
 from dataclasses import replace
-from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -52,38 +52,37 @@ import numpy as np
 from threepart.errors import ContactZoneError, InputError
 from threepart.problem.material import similar_pair
 from threepart.meshes import SubstrateSpec
-from threepart.output import scratch_dir
-from threepart.meshes.punch import PunchSpec, build_punch
+from threepart.meshes.punch import PunchSpec
 from threepart.problem.punch import Punch
 from threepart.results import Diagnostics
 from threepart.problem.validate import check_contact, check_punch
 
 from .contact import ContactSolution, check_kinematics, solve_kinematic
 from .elasticity import SurfaceCompliance, condense
-from .recovery import StressField
+from .recovery import lazy_field
 from .interface import check_matched, mirror
 from ._boundary import boundary
 from ._iv import height_iv, mesh_arg, normal_iv
 from ._progress import Progress, ProgressArg, progress_iv
 from .ends import REFINE_ATTEMPTS, check_one_zone, contact_ends, end_size, refined
-from .mesh import PRESETS, MeshPreset, Substrate, gmsh_failure, make_substrate, read_substrate
+from .mesh import PRESETS, MeshPreset, Substrate, make_punch, make_substrate
 from .solve import FemResult, TRIES_DEFAULT, locate_ends
 
 __all__ = ["solve_finite", "punch_body", "zone_margin"]
 
 
 def punch_body(spec: PunchSpec) -> Substrate:
-    """The punch of ``spec`` meshed with gmsh, its top (``"base"``) to be clamped."""
-    with scratch_dir("threepart-punch-") as tmp:   # marked: a killed run's is cleaned by the next
-        with gmsh_failure("the punch"):
-            return read_substrate(build_punch(spec, Path(tmp) / "punch.msh"))
+    """The punch of ``spec`` meshed with gmsh, its top (``"base"``) to be clamped; meshed once
+    per spec (:func:`fem.mesh.make_punch`)."""
+    return make_punch(spec)
 
 
 def _solve(punch: Punch, P: float, s: float, E: float, nu: float, tilt: str, max_iter: int,
            zone: SubstrateSpec, H: float | None, theta: float, profile: str,
            kinematics: str = "small"
-           ) -> tuple[ContactSolution, SurfaceCompliance, dict[str, float], int]:
-    """Contact of the punch body on the block, both meshed around ``zone``.
+           ) -> tuple[ContactSolution, SurfaceCompliance, dict[str, float], int, float]:
+    """Contact of the punch body on the block, both meshed around ``zone``; with the
+    condensed block, the timings, both bodies' DOFs and the block's width ``L``.
 
     ``H = None`` is the paper's model: the punch body is the block's mirror
     image (:func:`fem.friction.mirror`), a large body whose lower face carries
@@ -130,7 +129,7 @@ def _solve(punch: Punch, P: float, s: float, E: float, nu: float, tilt: str, max
             f"the contact reaches the candidate zone end [{S.x[0]:.6g}, {S.x[-1]:.6g}]")
     check_one_zone(S.x, sol.active, P, s)
     timings = {"mesh": t1 - t0, "condense": t2 - t1, "contact": time.perf_counter() - t2}
-    return sol, S, timings, S.dofs + B.dofs
+    return sol, S, timings, S.dofs + B.dofs, float(np.ptp(block.mesh.p[0]))
 
 
 def locate_finite(punch: Punch, P: float, s: float, E: float, nu: float, tilt: str,
@@ -143,15 +142,26 @@ def locate_finite(punch: Punch, P: float, s: float, E: float, nu: float, tilt: s
     (three times at most).
     """
     t0 = time.perf_counter()
-    breaks = (-punch.b, punch.b)
     left, right = locate_ends(punch, P, s, 0.5 * E, nu, tilt, max_iter, TRIES_DEFAULT)
     say(f"locate: half-plane contact about [{left:.6g}, {right:.6g}] "
         f"({time.perf_counter() - t0:.1f} s)")
+    return _located(punch, P, s, E, nu, tilt, max_iter, H, theta, profile, (left, right))
+
+
+@functools.lru_cache(maxsize=64)
+def _located(punch: Punch, P: float, s: float, E: float, nu: float, tilt: str, max_iter: int,
+             H: float | None, theta: float, profile: str, estimate: tuple[float, float]
+             ) -> tuple[float, float, MeshPreset]:
+    """:func:`locate_finite` from the half-plane ``estimate``: a pure function of its
+    arguments, kept for the run, so that the two meshes of a map point (and its
+    partial slip's) locate the contact once."""
+    left, right = estimate
+    breaks = (-punch.b, punch.b)
     locate = replace(PRESETS["locate"], margin=zone_margin(punch.b, left, right, 0.15))
     for _ in range(4):
         try:
-            sol, S, _, _ = _solve(punch, P, s, E, nu, tilt, max_iter,
-                                  locate.spec(left, right, breaks), H, theta, profile)
+            sol, S, _, _, _ = _solve(punch, P, s, E, nu, tilt, max_iter,
+                                     locate.spec(left, right, breaks), H, theta, profile)
             break
         except ContactZoneError:
             locate = replace(locate, margin=min(2.0, 2 * locate.margin))
@@ -252,9 +262,9 @@ def solve_finite(punch: Punch, P: float, s: float = 0.0, *, E: float, nu: float,
     pre = replace(pre, margin=zone_margin(punch.b, left, right, pre.margin))
     base = pre
     for attempt in range(REFINE_ATTEMPTS + 1):   # an end near a join refines the mesh there, as in solve_normal
-        sol, S, timings, dofs = _solve(punch, P, s, E, nu, tilt, max_iter,
-                                       pre.spec(left, right, breaks), H, theta, profile,
-                                       kinematics)
+        sol, S, timings, dofs, L = _solve(punch, P, s, E, nu, tilt, max_iter,
+                                          pre.spec(left, right, breaks), H, theta, profile,
+                                          kinematics)
         a_end, c_end = contact_ends(S.x, sol.f / S.weights, sol.active, breaks)
         finer = refined(punch, a_end, c_end, end_size(S.x, a_end, c_end), pre, attempt, base)
         if finer is None:
@@ -264,15 +274,22 @@ def solve_finite(punch: Punch, P: float, s: float = 0.0, *, E: float, nu: float,
     if H is None:
         check_contact(punch, -a_end, c_end, sol.alpha)
     timings = {"locate": t_locate, **timings, "total": time.perf_counter() - t_start}
-    return _finite_result(punch, E, nu, tilt, (H, theta, profile), mesh, kinematics, sol, S, dofs,
-                          (a_end, c_end), timings)
+    return _finite_result(punch, E, nu, tilt, (H, theta, profile), mesh, kinematics, sol, S,
+                          (dofs, L), (a_end, c_end), timings)
 
 
 def _finite_result(punch: Punch, E: float, nu: float, tilt: str, shape: tuple[float | None, float, str],
-                   mesh: Any, kinematics: str, sol: Any, S: Any, dofs: int, ends: tuple[float, float],
-                   timings: dict[str, float]) -> FemResult:
-    """The :class:`FemResult` of :func:`solve_finite`'s contact ``sol`` on the surface ``S``."""
+                   mesh: Any, kinematics: str, sol: Any, S: Any, size: tuple[int, float],
+                   ends: tuple[float, float], timings: dict[str, float]) -> FemResult:
+    """The :class:`FemResult` of :func:`solve_finite`'s contact ``sol`` on the surface ``S``
+    (``size``: both bodies' DOFs and the block's width).
+
+    Its stress field is made when first asked for (:func:`fem.recovery.lazy_field`): a
+    condensation read from the cache factorises the block only then (a map point asks
+    only for the surface's pressure).
+    """
     H, theta, profile = shape
+    dofs, L = size
     a_end, c_end = ends
     x = S.x
     p = sol.f / S.weights
@@ -283,12 +300,12 @@ def _finite_result(punch: Punch, E: float, nu: float, tilt: str, shape: tuple[fl
     if kinematics != "small":
         info["kinematics"] = kinematics
     diag = Diagnostics(h=h, h_end=end_size(x, a_end, c_end), dofs=dofs,
-                       L=float(np.ptp(S.basis.mesh.p[0])), iterations=sol.iterations,
+                       L=L, iterations=sol.iterations,
                        residual=sol.residual, timings=timings)
     # the block's nodal forces: downward f (small), or (v' f, -f) in the global directions
     F = sol.f if kinematics == "small" else np.concatenate([sol.slope * sol.f, -sol.f])
-    basis, u = S.displacement(F)
     return FemResult(punch=punch, A=similar_pair(E, nu), a=-a_end, c=c_end, alpha=sol.alpha,
                      P=float(np.sum(sol.f)), s=float(np.sum(x * sol.f) / np.sum(sol.f)),
                      tilt=tilt, method="fem", diagnostics=diag, info=info, delta=sol.delta,
-                     x_nodes=x, p_nodes=p, stress_field=StressField(basis=basis, u=u, E=E, nu=nu))
+                     x_nodes=x, p_nodes=p,
+                     stress_field=lazy_field(S.displacement_later(F), E, nu))

@@ -34,6 +34,7 @@ closed form's ``d`` errs by 9.8e-4 at ``H = 4 b`` and 4.9e-4 at ``H = 40 b``; it
 """
 from __future__ import annotations
 
+import functools
 import math
 import time
 from dataclasses import replace
@@ -179,16 +180,25 @@ def _stick_ends(punch: Punch, P: float, s: float, Q: float, f: float, E: float, 
                 max_iter: int, shape: tuple[float | None, float, str], locate: Any,
                 zone: tuple[float, float], say: Progress) -> tuple[float, ...]:
     """The stick zone of ``Q`` from a first shear solve on the locating mesh (its ends become nodes)."""
+    t1 = time.perf_counter()
+    ends = _trial_stick_zone(punch, P, s, Q, f, E, nu, tilt, max_iter, shape, locate, zone)
+    say(f"locate: stick zone of Q = {Q:.6g} about [{ends[0]:.6g}, {ends[1]:.6g}] "
+        f"({time.perf_counter() - t1:.1f} s)")
+    return ends
+
+
+@functools.lru_cache(maxsize=64)
+def _trial_stick_zone(punch: Punch, P: float, s: float, Q: float, f: float, E: float, nu: float,
+                      tilt: str, max_iter: int, shape: tuple[float | None, float, str], locate: Any,
+                      zone: tuple[float, float]) -> tuple[float, ...]:
+    """:func:`_stick_ends` without its line: a pure function of its arguments, kept for the
+    run, so that the two meshes of a map point's partial slip place the stick zone once."""
     H, theta, profile = shape
     left, right = zone
-    t1 = time.perf_counter()
     spec = replace(locate, margin=max(locate.margin, zone_margin(punch.b, left, right, 0.15)))
     trial = _model(punch, P, s, E, nu, tilt, max_iter, f, spec.spec(left, right, (-punch.b, punch.b)),
                    H, theta, profile, (left, right))
-    ends = trial.stick_zone(trial.step(Q, "loading", 1 if Q > 0 else -1, 1.0))
-    say(f"locate: stick zone of Q = {Q:.6g} about [{ends[0]:.6g}, {ends[1]:.6g}] "
-        f"({time.perf_counter() - t1:.1f} s)")
-    return tuple(ends)
+    return tuple(trial.stick_zone(trial.step(Q, "loading", 1 if Q > 0 else -1, 1.0)))
 
 
 def _refined_model(punch: Punch, P: float, s: float, f: float, E: float, nu: float, tilt: str,

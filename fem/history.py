@@ -23,7 +23,7 @@ import time
 from typing import Any, NamedTuple
 
 import numpy as np
-from threadpoolctl import threadpool_limits
+from threepart.threads import one_blas_thread
 
 from threepart.halfplane.coulomb import coulomb_state
 from threepart.errors import ContactZoneError, FullSlidingError
@@ -248,7 +248,7 @@ def march_states(model: TwoBodyModel, hist: History, f: float, sols: list[Contac
     w_prev, bound_prev, stick_prev, sign_prev, acc = carry
     its_total, res_max = 0, 0.0
     report = max(1, math.ceil(K / 10))
-    with threadpool_limits(limits=1, user_api="blas"):
+    with one_blas_thread():
         for k in range(K):
             _, _, Q, sb = hist.state(k)
             fn = sols[k].f

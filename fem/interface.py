@@ -15,12 +15,12 @@ import numpy as np
 import scipy.sparse.linalg as sla
 from skfem import FacetBasis, LinearForm, asm
 from skfem import condense as dirichlet
-from skfem.models.elasticity import lame_parameters, linear_elasticity
+from skfem.models.elasticity import lame_parameters
 from skfem import MeshTri
-from threadpoolctl import threadpool_limits
+from threepart.threads import one_blas_thread
 
 from ._boundary import boundary
-from .elasticity import SurfaceCompliance, condense
+from .elasticity import SurfaceCompliance, condense, stiffness
 from .mesh import Substrate
 from threepart.errors import InputError, InputTypeError
 
@@ -172,7 +172,7 @@ def bulk_field(sub: Substrate, sc: SurfaceCompliance, E: float, nu: float) -> np
                          "acts on the substrate's end faces")
     basis = sc.basis
     lam, mu = lame_parameters(E, nu)
-    K = asm(linear_elasticity(lam, mu), basis)
+    K = stiffness(basis, lam, mu)
     ends = np.concatenate([sub.boundaries["left"], sub.boundaries["right"]])
     fb = FacetBasis(basis.mesh, basis.elem, facets=ends)
     F = asm(LinearForm(lambda v, w: v[0] * w.n[0]), fb)
@@ -183,6 +183,6 @@ def bulk_field(sub: Substrate, sc: SurfaceCompliance, E: float, nu: float) -> np
     D = np.concatenate([uy, [pin]])
     u = np.zeros(basis.N)
     A, b, _, I = dirichlet(K, F, D=D)
-    with threadpool_limits(limits=1, user_api="blas"):
+    with one_blas_thread():
         u[I] = sla.spsolve(A.tocsc(), b)
     return u

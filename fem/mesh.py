@@ -21,13 +21,14 @@ from skfem import MeshTri
 
 from threepart import cache
 from threepart.errors import InputError, InputTypeError, NoConvergenceError
-from threepart.meshes import SubstrateSpec, build_substrate
+from threepart.meshes import PunchSpec, SubstrateSpec, build_punch, build_substrate
 from threepart.output import scratch_dir
 from threepart.problem.checks import finite
 
 from ._boundary import boundary
 
-__all__ = ["MeshPreset", "PRESETS", "Substrate", "read_substrate", "make_substrate", "preset"]
+__all__ = ["MeshPreset", "PRESETS", "Substrate", "read_substrate", "make_substrate", "make_punch",
+           "preset"]
 
 
 #: Bounds of a preset's parameters. The upper bound of ``n`` and the lower bound of
@@ -184,14 +185,14 @@ def read_substrate(path: str | Path) -> Substrate:
             AttributeError, TypeError) as e:
         why = " ".join(str(e).split()) or f"{type(e).__name__}, not an MSH file"
         raise InputError(f"`path` = {str(path)!r} is not a gmsh mesh meshio can read: {why}") from None
-    cells = m.cells_dict
+    cells, points = m.cells_dict, m.points
+    tags = m.cell_data_dict.get("gmsh:physical", {}).get("line")
+    groups = {k: (int(v[0]), int(v[1])) for k, v in m.field_data.items()}
     if "triangle" not in cells:
         raise InputError(f"`path` = {str(path)!r} holds no triangles")
-    mesh = MeshTri(np.ascontiguousarray(m.points[:, :2].T),
-                   np.ascontiguousarray(cells["triangle"].T))
-    tags = m.cell_data_dict.get("gmsh:physical", {}).get("line")
+    mesh = MeshTri(np.ascontiguousarray(points[:, :2].T), np.ascontiguousarray(cells["triangle"].T))
     lines = cells.get("line")
-    names = {int(v[0]): k for k, v in m.field_data.items() if int(v[1]) == 1}
+    names = {tag: name for name, (tag, dim) in groups.items() if dim == 1}
     # facet index of each (sorted) vertex pair
     key = mesh.facets[0].astype(np.int64) * mesh.p.shape[1] + mesh.facets[1]
     order = np.argsort(key)
@@ -227,9 +228,25 @@ def make_substrate(spec: SubstrateSpec) -> Substrate:
     return copy.deepcopy(_meshed(spec))
 
 
+@boundary
+def make_punch(spec: PunchSpec) -> Substrate:
+    """The punch body of ``spec`` (:func:`threepart.meshes.build_punch`), its top (``"base"``) to be
+    clamped; meshed once per spec and kept as :func:`make_substrate` keeps a block's mesh.
+
+    A map point solves its punch on the same meshes more than once (its locating
+    mesh for each of its two meshes, the small and first-order kinematics of
+    its small-slope study on one mesh), and gmsh's punch, one line per element
+    of the contact zone, costs as much as the block's.
+    """
+    if not isinstance(spec, PunchSpec):
+        raise InputTypeError(f"`spec` must be a PunchSpec, not {type(spec).__name__}")
+    return copy.deepcopy(_meshed(spec))
+
+
 @functools.lru_cache(maxsize=MESH_CACHE_SIZE)
-def _meshed(spec: SubstrateSpec) -> Substrate:
-    """The cached mesh of ``spec``; never handed out (:func:`make_substrate` copies it).
+def _meshed(spec: SubstrateSpec | PunchSpec) -> Substrate:
+    """The cached mesh of ``spec`` (a block's or a punch's); never handed out (:func:`make_substrate`
+    and :func:`make_punch` copy it).
 
     Kept on disk too, in threepart's cache (:func:`_from_disk`), so that gmsh runs once
     per spec across runs as well.
@@ -238,9 +255,11 @@ def _meshed(spec: SubstrateSpec) -> Substrate:
     sub = _from_disk(k)
     if sub is not None:
         return sub
+    punch = isinstance(spec, PunchSpec)
     with scratch_dir("threepart-mesh-") as tmp:   # marked: a killed run's is cleaned by the next
-        with gmsh_failure("the substrate"):
-            path = build_substrate(spec, Path(tmp) / "substrate.msh")
+        with gmsh_failure("the punch" if punch else "the substrate"):
+            path = (build_punch(spec, Path(tmp) / "punch.msh") if isinstance(spec, PunchSpec)
+                    else build_substrate(spec, Path(tmp) / "substrate.msh"))
             sub = read_substrate(path)
     cache.store(_KIND, k, {"p": sub.mesh.p, "t": sub.mesh.t,
                            **{f"group_{name}": f for name, f in sub.boundaries.items()}})
@@ -252,8 +271,9 @@ _KIND = "mesh"
 
 
 @functools.cache
-def _mesh_key(spec: SubstrateSpec) -> str:
-    """The cache key of the mesh of ``spec``: the spec, gmsh's version and the meshing code's source."""
+def _mesh_key(spec: SubstrateSpec | PunchSpec) -> str:
+    """The cache key of the mesh of ``spec``: the spec (its type and every field, a punch's block
+    zone too), gmsh's version and the meshing code's source."""
     import gmsh
 
     import threepart.meshes as meshes

@@ -21,7 +21,7 @@ import numpy as np
 import scipy.sparse.linalg as sla
 from numpy.typing import ArrayLike
 from skfem import Basis, BilinearForm, ElementTriP2, ElementVector, LinearForm, asm
-from threadpoolctl import threadpool_limits
+from threepart.threads import one_blas_thread
 
 from threepart.stress import Stress
 from threepart.problem.checks import finite
@@ -81,7 +81,7 @@ class StressField:
         M = asm(BilinearForm(lambda u, v, w: u * v), sb).tocsc()
         rhs = np.stack([asm(LinearForm(lambda v, w: w["s"] * v), sb, s=s) for s in comps.values()],
                        axis=1)
-        with threadpool_limits(limits=1, user_api="blas"):
+        with one_blas_thread():
             nodal = sla.splu(M).solve(rhs)
         self._nodal.update({k: nodal[:, i] for i, k in enumerate(comps)})
         self._nodal["_basis"] = sb   # type: ignore[assignment]

@@ -15,9 +15,10 @@ import time
 from collections.abc import Callable
 from dataclasses import replace
 from pathlib import Path
+from typing import Any
 
 import numpy as np
-from threadpoolctl import threadpool_limits
+from threepart.threads import one_blas_thread
 
 from threepart.errors import InputError, NoConvergenceError
 from threepart.problem.material import similar_pair
@@ -32,7 +33,7 @@ from .interface import bulk_field, interface
 from ._progress import Progress
 from .ends import REFINE_ATTEMPTS, check_one_zone, contact_ends, end_size, refined
 from .mesh import PRESETS, MeshPreset, Substrate, make_substrate
-from .recovery import StressField
+from .recovery import StressField, lazy_field
 from .solve import FemResult, place_substrate
 
 __all__ = ["TwoBodyModel", "two_body_model", "with_nodes"]
@@ -107,7 +108,7 @@ class TwoBodyModel:
         bulk = fraction * self.ub
         # dense systems of a few hundred nodes: BLAS threads only contend for the cores (on two
         # busy cores the finite body's shear path took 16 s in np.linalg.solve, 1 thread 0.3 s)
-        with threadpool_limits(limits=1, user_api="blas"):
+        with one_blas_thread():
             for _ in range(20):
                 w_fixed = self.itf.C_tn @ normal.f - bulk
                 t, xi, stick, its, res = tangential(self.itf, normal.f, self.w, w_fixed, Q,
@@ -127,13 +128,21 @@ class TwoBodyModel:
         return st
 
     def field(self, st: Step, fraction: float) -> StressField:
-        """The substrate's displacement in the state ``st`` with the bulk stress ``fraction sigma_bulk``."""
+        """The substrate's displacement in the state ``st`` with the bulk stress ``fraction sigma_bulk``.
+
+        Made when first asked for (:func:`fem.recovery.lazy_field`): a substrate read from the
+        cache factorises its stiffness only then.
+        """
         sc = self.itf.substrate
         assert sc is not None
-        basis, u = sc.displacement(np.concatenate([st.t, -st.fn]))
-        if self.u_bulk is not None:
-            u = u + fraction * self.sigma_bulk * self.u_bulk
-        return StressField(basis=basis, u=u, E=self.E, nu=self.nu)
+        later = sc.displacement_later(np.concatenate([st.t, -st.fn]))
+        bulk = None if self.u_bulk is None else fraction * self.sigma_bulk * self.u_bulk
+
+        def make() -> tuple[Any, np.ndarray]:
+            basis, u = later()
+            return basis, u if bulk is None else u + bulk
+
+        return lazy_field(make, self.E, self.nu)
 
     def contact_ends(self) -> tuple[float, float]:
         """Contact ends ``(-a, c)`` of the normal solution, as :func:`fem.solve_normal` finds them."""

@@ -339,3 +339,63 @@ def test_the_test_run_never_writes_the_users_cache():
 
     home = Path(os.environ.get("XDG_CACHE_HOME") or Path.home() / ".cache") / "threepart"
     assert cache_dir() != home and Path(tempfile.gettempdir()) in cache_dir().parents
+
+
+# --- the punch body's mesh and a finite body's lazy stress field (issue 41, the quick map) -------
+
+def test_a_punch_body_is_meshed_once_and_read_back_whole(own_cache, monkeypatch, tmp_path):
+    """gmsh's punch of a spec (:func:`fem.mesh.make_punch`): meshed once for the run, each caller a
+    copy, and a later run reads it from threepart's cache: the nodes, elements and groups of a
+    punch meshed afresh and read through meshio."""
+    from threepart.fem import mesh as fem_mesh
+    from threepart.meshes import PunchSpec, build_punch
+
+    spec = PunchSpec(zone=fem.PRESETS["quick"].scaled(0.5).spec(-1.4, 1.3, (-1.0, 1.0)), b=1.0,
+                     R1=10.0, R2=5.0, H=4.0)
+    fresh = fem.read_substrate(build_punch(spec, tmp_path / "fresh.msh"))   # no cache at all
+    built: list[PunchSpec] = []
+    monkeypatch.setattr(fem_mesh, "build_punch", lambda s, p: built.append(s) or build_punch(s, p))
+    fem_mesh._meshed.cache_clear()
+    first = fem_mesh.make_punch(spec)
+    first.mesh.p[1] += 1.0                                             # a caller changes its copy
+    again = fem_mesh.make_punch(spec)
+    fem_mesh._meshed.cache_clear()                                     # a later run: the disk only
+    read = fem_mesh.make_punch(spec)
+    assert built == [spec]
+    for got in (again, read):
+        np.testing.assert_array_equal(got.mesh.p, fresh.mesh.p)
+        np.testing.assert_array_equal(got.mesh.t, fresh.mesh.t)
+        assert got.boundaries.keys() == fresh.boundaries.keys()
+        for name, facets in fresh.boundaries.items():
+            np.testing.assert_array_equal(got.boundaries[name], facets)
+    fem_mesh._meshed.cache_clear()
+
+
+def test_a_finite_body_read_from_the_cache_factorises_only_for_its_stresses(own_cache, factorisations):
+    """:func:`fem.solve_finite` on condensations read from the cache: the same pressure, no
+    factorisation until a stress is asked for, and then the stresses of the run that condensed
+    (its factor still in memory): the same to round-off."""
+    from threepart.fem.finite import _located
+
+    punch = Punch(R1=10.0, R2=10.0, b=1.0)
+    mesh = fem.PRESETS["quick"].scaled(0.5)
+    x, z = np.linspace(-1.2, 1.2, 7), np.full(7, 0.3)
+
+    def solve():
+        return fem.solve_finite(punch, 0.05, 0.0, E=1.0, nu=NU, H=4.0, mesh=mesh)
+
+    cold = solve()
+    made = len(factorisations)
+    ref = cold.stress(x, z)
+    assert len(factorisations) == made                   # the factor made by the condensation
+    elasticity.forget()
+    _located.cache_clear()
+    warm = solve()
+    assert len(factorisations) == made                   # every body read from the cache
+    np.testing.assert_array_equal(warm.p_nodes, cold.p_nodes)
+    assert (warm.a, warm.c, warm.alpha) == (cold.a, cold.c, cold.alpha)
+    got = warm.stress(x, z)
+    assert len(factorisations) == made + 1               # the block, once, for its stresses
+    scale = np.abs(ref.szz).max()
+    for name in ("sxx", "szz", "sxz"):
+        assert np.abs(getattr(got, name) - getattr(ref, name)).max() <= SAME * scale, name

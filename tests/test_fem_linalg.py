@@ -105,6 +105,22 @@ def test_displacement_field_matches_dense_solve(substrate, reference, backend, c
                                rtol=0, atol=SAME * scale)
 
 
+@pytest.mark.parametrize("intorder", [2, None])
+def test_the_vectorised_stiffness_is_scikit_fems_bit_for_bit(substrate, intorder):
+    """:func:`fem.elasticity.stiffness` (the condensation's assembly, issue 41) against scikit-fem's
+    own ``asm(linear_elasticity)``: the same sparsity and the same entries, bit for bit, on the
+    condensation's rule (3 points) and on scikit-fem's default one (6 points)."""
+    basis = Basis(substrate.mesh, ElementVector(ElementTriP2()),
+                  **({} if intorder is None else {"intorder": intorder}))
+    lam, mu = E * NU / ((1 + NU) * (1 - 2 * NU)), E / (2 * (1 + NU))
+    ref = asm(linear_elasticity(lam, mu), basis)
+    got = elasticity.stiffness(basis, lam, mu)
+    assert got.shape == ref.shape
+    np.testing.assert_array_equal(got.indptr, ref.indptr)
+    np.testing.assert_array_equal(got.indices, ref.indices)
+    np.testing.assert_array_equal(got.data, ref.data)
+
+
 def test_backends_agree_through_a_whole_solve():
     """Each installed backend's quick-mesh solve: SciPy's mesh, and its a, c, alpha to 1e-10.
 

@@ -648,6 +648,27 @@ def test_killing_a_busy_worker_at_the_close_of_the_map_s_own_cluster_prints_noth
     assert not [m for level, m in nanny if level == "WARNING"], nanny
 
 
+def worker_heap_setting() -> str | None:
+    """The worker process's ``MALLOC_TRIM_THRESHOLD_`` (glibc reads it when the process starts)."""
+    return os.environ.get("MALLOC_TRIM_THRESHOLD_")
+
+
+def test_the_map_s_own_workers_keep_glibc_s_heap(monkeypatch):
+    """Issue 41: distributed starts its workers with ``MALLOC_TRIM_THRESHOLD_=65536`` (its own
+    default, read back here), which cost the quick map a third of its CPU in page faults; the
+    map's own cluster starts them without it, and leaves this process's environment as it was."""
+    import dask
+
+    from threepart.reports.map.engine import open_engine
+
+    monkeypatch.delenv("MALLOC_TRIM_THRESHOLD_", raising=False)
+    assert "MALLOC_TRIM_THRESHOLD_" in dask.config.get("distributed.nanny.pre-spawn-environ")
+    with open_engine(None, 1, map_mod.CONNECT_TIMEOUT) as (client, _):
+        seen = client.run(worker_heap_setting)
+    assert len(seen) == 1 and list(seen.values()) == [None]
+    assert "MALLOC_TRIM_THRESHOLD_" not in os.environ
+
+
 # ---------------------------------------------------------------------------------------
 # Ctrl-C, a full disk, the help
 # ---------------------------------------------------------------------------------------

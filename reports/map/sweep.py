@@ -226,13 +226,17 @@ class _Batch:
 
 def _pending(st: Any, grid: Sequence[MapPoint], records: dict[str, Any], quick: bool,
              evaluate: Evaluate, control: Callable[[bool], dict[str, Any]]) -> tuple[list[Task], int]:
-    """The tasks not yet done (the studies', the points', the control's) and the number of all."""
+    """The tasks not yet done (the control's, the studies', the points') and the number of all.
+
+    Longest first, so that none of them finishes last alone on a worker: the control (the
+    finite body's convergence study, about four points' work) and the studies (the
+    crossings first, :func:`~reports.map.studies.study_tasks`) before the grid's points.
+    """
     studied = study_tasks(st, quick)
-    tasks: list[Task] = [
-        *(t for t in studied if not done(records.get(t[0]))),
-        *((p.key(), evaluate, (p, quick), p) for p in grid if not done(records.get(p.key())))]
-    if not done(records.get(CONTROL_KEY)):
-        tasks.append((CONTROL_KEY, control, (quick,), None))
+    tasks: list[Task] = [] if done(records.get(CONTROL_KEY)) else [
+        (CONTROL_KEY, control, (quick,), None)]
+    tasks += [*(t for t in studied if not done(records.get(t[0]))),
+              *((p.key(), evaluate, (p, quick), p) for p in grid if not done(records.get(p.key())))]
     return tasks, len(grid) + 1 + len(studied)
 
 
