@@ -1,7 +1,8 @@
 """reports.verify: the verification run (``threepart verify``) and its tolerance report.
 
 :mod:`~reports.verify.runs` solves each catalogue case by every registered method and compares
-them (:mod:`reports.compare`); :mod:`~reports.verify.studies` runs the convergence studies,
+them (:mod:`reports.compare`); :mod:`~reports.verify.studies` runs the convergence studies
+(:mod:`~reports.verify.side`: beside the cases, in a second process, on more than one core),
 :mod:`~reports.verify.flight` the flight cycle's marched history, :mod:`~reports.verify.robustness`
 ``--full``'s wide random draw, :mod:`~reports.verify.stress` the stresses and fatigue hot spots;
 :mod:`~reports.verify.report` puts them into ``report.json`` (``report.schema.json``), and

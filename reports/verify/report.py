@@ -28,10 +28,9 @@ from threepart.registry import REFERENCE
 from threepart.progress import heartbeat
 from threepart.output import atomic_dir, json_safe, strict_json, validate_json
 
-from . import render
-from .runs import FRETTING_STATES, MODES, CaseRun, Mode, run_case
-from ..referee import CALCULIX_CASE, CALCULIX_K, CALCULIX_N, calculix_studies
-from ..referee.friction_studies import FRICTION_METHOD, friction_studies
+from . import render, side
+from .runs import FRETTING_STATES, MODES, CaseRun, Mode, judge_histories, run_case
+from ..referee.friction_studies import FRICTION_METHOD
 from .friction import FRICTION_PLOT, friction_record, friction_runs
 from ..compare import is_steady, normal_of
 from .sections import MAP_JSON, plot_path, study_plot_path
@@ -40,7 +39,7 @@ from .speed import speed_record
 from .wear_section import wear_study
 from .stress import StressFields, case_hot_spots, fatigue_hot_spots, joined_fatigue, stress_fields, stress_nu
 from ..solvers import METHODS
-from .studies import STEP_STATES, Study, fem_slip_study, fem_step_study, fem_study, sie_study
+from .studies import Study
 from threepart.errors import InputError
 from threepart.tolerances import tolerance
 
@@ -112,25 +111,39 @@ def _result_dict(res: Any, dt: float) -> dict[str, Any]:
 
 
 def run(mode: Mode, cases: Sequence[Case], say: Callable[[str], None],
-        calculix: bool = False, robustness: bool = False) -> tuple[list[CaseRun], list[Study], dict[str, float]]:
+        calculix: bool = False, robustness: bool = False,
+        aside: side.Side | None = None) -> tuple[list[CaseRun], list[Study], dict[str, float]]:
     """Solve and compare every case, then the convergence studies; return the numbers.
 
     ``calculix`` adds the CalculiX column (:func:`reports.referee.calculix_studies`),
     except in the quick mode; ``robustness`` adds, in the full mode only, the
     robustness study (:func:`reports.verify.robustness.study`) as one more run of checks.
+    ``aside``: the studies run beside the cases (:func:`reports.verify.side.beside`), read
+    when the cases are done; None: run here after them.
     """
     timings: dict[str, float] = {}
     t0 = time.perf_counter()
-    runs = _run_cases(mode, cases, say)
+    runs = _run_cases(mode, cases, say, histories=aside is None)
     timings["cases_s"] = time.perf_counter() - t0
     if robustness and mode.name == "full":
         _robustness(runs, timings, say)
-    studies = _studies(mode, cases, runs, say, calculix, timings)
+    if aside is None:
+        studies = _studies(mode, cases, runs, say, calculix, timings)
+    else:
+        done = aside.result()
+        for r in runs:   # the flight cycles' histories, marched beside the cases
+            if r.case.name in done.histories:
+                judge_histories(r, done.histories[r.case.name], say)
+        studies = done.studies
+        runs.extend(friction_runs(done.friction))   # each column's verdict, as _studies adds it
+        timings.update(done.timings)
     return runs, studies, timings
 
 
-def _run_cases(mode: Mode, cases: Sequence[Case], say: Callable[[str], None]) -> list[CaseRun]:
-    """Solve and compare every case, one progress line each (and a heartbeat while it runs)."""
+def _run_cases(mode: Mode, cases: Sequence[Case], say: Callable[[str], None],
+               histories: bool = True) -> list[CaseRun]:
+    """Solve and compare every case, one progress line each (and a heartbeat while it runs);
+    ``histories=False``: a flight cycle's marched histories are judged later (:func:`run`)."""
     runs: list[CaseRun] = []
     cache: dict[Any, Any] = {}
     for i, case in enumerate(cases, 1):
@@ -150,69 +163,26 @@ def _run_cases(mode: Mode, cases: Sequence[Case], say: Callable[[str], None]) ->
             return f"{tag}   {pending[0] if pending else 'comparison'}"
 
         with heartbeat(say, running):
-            r = run_case(case, mode, cache, progress=progress)
+            r = run_case(case, mode, cache, progress=progress, histories=histories)
         failed = r.failed()
         verdict = "PASS" if r.passed else (
             "FAIL " + ", ".join(f"{c.comparison}:{c.quantity}" for c in failed) if failed else "ERROR")
-        say(f"{tag} {verdict}  ({time.perf_counter() - tc:.2f} s)")
+        later = "; its marched history judged with the studies" if case.kind == "steady" and not histories else ""
+        say(f"{tag} {verdict}  ({time.perf_counter() - tc:.2f} s{later})")
         runs.append(r)
     return runs
 
 
 def _studies(mode: Mode, cases: Sequence[Case], runs: list[CaseRun], say: Callable[[str], None],
              calculix: bool, timings: dict[str, float]) -> list[Study]:
-    """The convergence studies of the mode, each timed into ``timings``."""
-    studies: list[Study] = []
-    study_case = next((c for c in cases if c.name == STUDY_CASE), cases[0] if cases else None)
-    if study_case is not None and mode.sie_study_n:
-        t1 = time.perf_counter()
-        for scheme in SIE_SCHEMES:
-            say(f"[study] SIE ({scheme}) convergence in n on {study_case.name}: n = {list(mode.sie_study_n)}")
-            with heartbeat(say, lambda: f"[study]   SIE ({scheme})"):
-                studies.append(sie_study(study_case, mode.sie_study_n, scheme=scheme,
-                                         progress=lambda m: say(f"[study]   {m}")))
-        timings["sie_study_s"] = time.perf_counter() - t1
-    if study_case is not None and mode.fem_study_n:
-        t1 = time.perf_counter()
-        say(f"[study] FEM convergence in h on {study_case.name}: W/h = {list(mode.fem_study_n)}")
-        with heartbeat(say, lambda: "[study]   FEM"):
-            studies.append(fem_study(study_case, mode.fem_study_n,
-                                     progress=lambda m: say(f"[study]   {m}")))
-        timings["fem_study_s"] = time.perf_counter() - t1
-    slip_case = next((c for c in cases if c.name == SLIP_STUDY_CASE), None)
-    if slip_case is not None and mode.fem_study_n:
-        t1 = time.perf_counter()
-        say(f"[study] two-body friction FEM convergence in h on {slip_case.name}: "
-            f"W/h = {list(mode.fem_study_n)}")
-        with heartbeat(say, lambda: "[study]   two-body friction FEM"):
-            studies.append(fem_slip_study(slip_case, mode.fem_study_n,
-                                          progress=lambda m: say(f"[study]   {m}")))
-        timings["fem_slip_study_s"] = time.perf_counter() - t1
-    if calculix and mode.name != "quick":
-        t1 = time.perf_counter()
-        say(f"[study] CalculiX convergence in h (W/h = {list(CALCULIX_N)}) and in the penalty "
-            f"(K = {list(CALCULIX_K)} E/h) on {CALCULIX_CASE}, scaled to small slopes")
-        with heartbeat(say, lambda: "[study]   CalculiX"):
-            studies.extend(calculix_studies(say))
-        timings["calculix_study_s"] = time.perf_counter() - t1
-        t1 = time.perf_counter()
-        say("[study] the friction referees (CalculiX, GetFEM): partial slip of two similar bodies "
-            "(Hertz, slip_Q0.4), converging in h" + (", its bulk-stress case, the fretting and the "
-                                                     "flight cycles" if mode.name == "full" else ""))
-        with heartbeat(say, lambda: "[study]   friction referees"):
-            friction = friction_studies(say, fretting=mode.name == "full")
-        studies.extend(friction)
-        runs.extend(friction_runs(friction))   # each column's verdict: checks counted in the total
-        timings["friction_referee_s"] = time.perf_counter() - t1
+    """The convergence studies of the mode, each timed into ``timings``; the friction columns'
+    verdicts join ``runs`` (:func:`reports.verify.side.study_run`, :func:`~reports.verify.side.step_study`)."""
+    studies, friction = side.study_run(mode, cases, say, calculix, timings, (STUDY_CASE, SLIP_STUDY_CASE),
+                                       SIE_SCHEMES)
+    runs.extend(friction_runs(friction))   # each column's verdict: checks counted in the total
     cycle = next((r for r in runs if r.case.kind == "fretting" and REFERENCE in r.results), None)
     if cycle is not None:
-        t1 = time.perf_counter()
-        say(f"[study] FEM fretting energy in the load step on {cycle.case.name} (quick mesh): "
-            f"states per branch = {list(STEP_STATES)}")
-        with heartbeat(say, lambda: "[study]   FEM fretting cycle"):
-            studies.append(fem_step_study(cycle.case, cycle.results[REFERENCE], "quick",
-                                          STEP_STATES, progress=lambda m: say(f"[study]   {m}")))
-        timings["fem_step_study_s"] = time.perf_counter() - t1
+        studies.append(side.step_study(cycle.case, cycle.results[REFERENCE], say, timings))
     return studies
 
 
@@ -376,14 +346,17 @@ def _work(i: int, given: dict[Key, Any] | None) -> Any:
 
 
 def run_jobs(jobs: Sequence[Job], processes: int) -> dict[Key, Any]:
-    """Every job's value by its key: in ``processes`` forked workers (dearest job first, a job
-    as soon as the jobs it needs are done), or one after another here for ``processes <= 1``.
+    """Every job's value by its key: in this process and ``processes - 1`` forked workers (dearest
+    job first, a job as soon as the jobs it needs are done), or one after another here for
+    ``processes <= 1``.
 
     The workers inherit the run (its results are never pickled); a job's value comes back
     pickled. The jobs marked ``here`` run in this process meanwhile (a job that needs others
-    must not be one). A job that raises raises here, and the jobs not yet started are dropped.
+    must not be one); then this process takes the cheapest jobs no worker has started, so that
+    it is one of the ``processes`` and no core is asked to run two. A job that raises raises
+    here, and the jobs not yet started are dropped.
     """
-    from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
+    from concurrent.futures import FIRST_COMPLETED, Future, ProcessPoolExecutor, wait
     from multiprocessing import get_context
 
     done: dict[Key, Any] = {}
@@ -396,27 +369,44 @@ def run_jobs(jobs: Sequence[Job], processes: int) -> dict[Key, Any]:
     needed = {k for i in waiting for k in jobs[i].needs}     # those first: their users go to the workers
     here = sorted((i for i, j in enumerate(jobs) if j.here and not j.needs),
                   key=lambda i: (jobs[i].key not in needed, -jobs[i].cost))
-    pool = ProcessPoolExecutor(min(processes, len(jobs)), mp_context=get_context("fork"),
-                               initializer=_one_thread)
+    pool = ProcessPoolExecutor(max(1, min(processes - 1, len(jobs) - len(here))),
+                               mp_context=get_context("fork"), initializer=_one_thread)
+    given: dict[int, dict[Key, Any] | None] = {}
+    pending: dict[Future[Any], int] = {}
+
+    def submit(i: int, inputs: dict[Key, Any] | None) -> None:
+        given[i] = inputs
+        pending[pool.submit(_work, i, inputs)] = i
+
     try:
-        pending = {pool.submit(_work, i, None): i
-                   for i in sorted(set(range(len(jobs))) - set(waiting) - set(here), key=lambda i: -jobs[i].cost)}
+        for i in sorted(set(range(len(jobs))) - set(waiting) - set(here), key=lambda i: -jobs[i].cost):
+            submit(i, None)
         while pending or here:
             if here:
                 i = here.pop(0)
                 done[jobs[i].key] = jobs[i].run()
-                finished = {f for f in pending if f.done()}
+            elif (stolen := _steal(pending, jobs)) is not None:   # a job no worker has started
+                done[jobs[stolen].key] = _work(stolen, given[stolen])
             else:
-                finished, _ = wait(pending, return_when=FIRST_COMPLETED)
-            for future in finished:
+                wait(pending, return_when=FIRST_COMPLETED)
+            for future in [f for f in pending if f.done()]:
                 done[jobs[pending.pop(future)].key] = future.result()
             for i in [i for i in waiting if all(k in done for k in jobs[i].needs)]:
                 waiting.remove(i)
-                pending[pool.submit(_work, i, {k: done[k] for k in jobs[i].needs})] = i
+                submit(i, {k: done[k] for k in jobs[i].needs})
     finally:
         pool.shutdown(wait=True, cancel_futures=True)
         _JOBS.clear()
     return done
+
+
+def _steal(pending: dict[Any, int], jobs: Sequence[Job]) -> int | None:
+    """The cheapest (latest submitted) pending job that no worker has started, taken from the
+    pool (its future cancelled and dropped from ``pending``), or None."""
+    for future in sorted(pending, key=lambda f: (jobs[pending[f]].cost, -pending[f])):
+        if future.cancel():
+            return pending.pop(future)
+    return None
 
 
 def _case_jobs(tmp: Path, r: CaseRun) -> list[Job]:
@@ -484,12 +474,15 @@ def _asymptote(path: Path) -> dict[str, Any]:
 
 
 def write_report(tmp: Path, mode: Mode, runs: Sequence[CaseRun], studies: Sequence[Study],
-                 timings: dict[str, float], say: Callable[[str], None]) -> dict[str, Any]:
+                 timings: dict[str, float], say: Callable[[str], None],
+                 wear: dict[str, Any] | None = None) -> dict[str, Any]:
     """Draw the plots and write md, html and json into the directory ``tmp``.
 
     The plots and the hot spots are drawn and computed by :func:`run_jobs` in
     :func:`workers` processes. The validity map is linked only when ``threepart map``
     has written one beside the report (``tmp`` is a sibling of the report directory).
+    ``wear``: the wear section's record if drawn into ``tmp`` already (the side process's),
+    else it is run here, except in the quick mode.
     """
     t0 = time.perf_counter()
     todo = [r for r in runs if r.case.reference in r.results]
@@ -522,7 +515,7 @@ def write_report(tmp: Path, mode: Mode, runs: Sequence[CaseRun], studies: Sequen
         doc["friction_referees"] = json_safe(friction)
     if mode.name != "quick":   # issue 33: the speed ratios, measured in the run (reports/verify/speed.py)
         doc["speed"] = json_safe(speed_record(mode.name != "full", say))   # --full at the full sizes
-        doc["wear"] = json_safe(wear_study(tmp, say))   # issue 39 (reports/verify/wear_section.py)
+        doc["wear"] = json_safe(wear_study(tmp, say) if wear is None else wear)   # issue 39 (wear_section.py)
     validate(doc)
     map_link = MAP_JSON if (tmp / MAP_JSON).is_file() else None
     (tmp / "report.json").write_text(strict_json(doc, indent=1), encoding="utf-8")
@@ -569,19 +562,20 @@ def main(mode: str = "default", out: str | Path = "report", force: bool = False,
         raise InputError(f"`mode` = {mode!r} must be one of {sorted(MODES)}")
     out = Path(out)
     t0 = time.perf_counter()
-
-    def say(msg: str) -> None:
-        if not quiet:
-            print(f"{time.perf_counter() - t0:7.1f}s  {msg}", flush=True)
-
+    say = side.sayer(t0, quiet)
     with atomic_dir(out, force, command="verify") as tmp:
         m = MODES[mode]
         whole = cases is None          # the CalculiX column goes with the whole catalogue
         cases = list(load_cases() if cases is None else cases)
         say(f"threepart verify --{mode}: {len(cases)} cases, FEM mesh {m.fem_mesh!r}, report -> {out}")
-        runs, studies, timings = run(m, cases, say, calculix=whole, robustness=whole)
+        # the whole catalogue's studies beside its cases (given cases, as a test's fakes, stay here)
+        with side.beside(m, cases, whole, (STUDY_CASE, SLIP_STUDY_CASE), SIE_SCHEMES,
+                         tmp if m.name != "quick" else None, t0, quiet,
+                         workers() if whole else 1) as aside:
+            runs, studies, timings = run(m, cases, say, calculix=whole, robustness=whole, aside=aside)
         timings["solve_s"] = time.perf_counter() - t0
-        doc = write_report(tmp, m, runs, studies, timings, say)
+        wear = {} if aside is None else {"wear": aside.wear}   # drawn beside the cases already
+        doc = write_report(tmp, m, runs, studies, timings, say, **wear)
     s = doc["summary"]
     verdict = "PASSED" if doc["passed"] else "FAILED"
     say(f"{verdict}: {s['checks'] - s['failed_checks']}/{s['checks']} checks within tolerance, "

@@ -13,6 +13,7 @@ Names
 Mode            -- the discretisation settings of one verification mode
 MODES           -- ``quick``, ``default`` and ``full``
 run_case        -- solve one case with every method and compare
+marched_histories, judge_histories -- a flight cycle's marched histories, and their checks
 CaseRun         -- every result, time, error and check of one case
 solve           -- one case by one method: normal, partial slip or a fretting cycle, timed
 solve_normal    -- the normal problem of one case by one method
@@ -37,7 +38,7 @@ from ..solvers import METHODS
 from threepart.errors import InputError
 
 __all__ = ["CaseRun", "Mode", "MODES", "run_case", "solve", "solve_normal", "METHODS",
-           "FRETTING_STATES"]
+           "FRETTING_STATES", "marched_histories", "judge_histories"]
 
 #: recorded states per branch of a fretting cycle (odd: Q = 0 is a state after each reversal)
 FRETTING_STATES = 21
@@ -159,13 +160,15 @@ def refusal_check(case: Case, raised: BaseException | None) -> Check:
 
 def run_case(case: Case, mode: Mode, cache: dict[Any, Any] | None = None,
              methods: tuple[str, ...] = METHODS,
-             progress: Callable[[str], None] | None = None) -> CaseRun:
+             progress: Callable[[str], None] | None = None, histories: bool = True) -> CaseRun:
     """Solve ``case`` with each method and compare the others with its reference method.
 
     The reference is the closed form; past its framework (``case.beyond``)
     it is the SIE, and the closed form must refuse with the error the case
     names. A solver that raises otherwise is recorded in ``errors`` (and
-    fails the case) rather than aborting the run.
+    fails the case) rather than aborting the run. ``histories=False`` leaves a
+    flight cycle's marched histories to the caller (:func:`marched_histories`,
+    :func:`judge_histories`: the verification run marches them beside its cases).
     """
     say = progress or (lambda msg: None)
     run = CaseRun(case)
@@ -208,24 +211,47 @@ def run_case(case: Case, mode: Mode, cache: dict[Any, Any] | None = None,
             run.checks.extend(compare(ref, run.results[method], judged_by(mode.options(method))))
         except Exception as exc:  # noqa: BLE001
             run.errors[f"compare-{method}"] = f"{type(exc).__name__}: {exc}"
-    if case.kind == "steady":
-        _march(run, ref, methods, say)
+    if case.kind == "steady" and histories:
+        judge_histories(run, marched_histories(run.case, methods, say), say)
     return run
 
 
-def _march(run: CaseRun, ref: Any, methods: tuple[str, ...], say: Callable[[str], None]) -> None:
-    """A flight cycle's marched histories (:data:`reports.verify.flight.HISTORY_METHODS`), judged against ``ref``."""
-    for method in (m for m in HISTORY_METHODS if m in methods):
+def marched_histories(case: Case, methods: tuple[str, ...] = METHODS,
+                      say: Callable[[str], None] | None = None) -> dict[str, Any]:
+    """A flight cycle's marched histories (:data:`reports.verify.flight.HISTORY_METHODS` among
+    ``methods``) by method; a march that raised: its message. ``case`` is resolved."""
+    say = say or (lambda msg: None)
+    out: dict[str, Any] = {}
+    for method in (m for m in HISTORY_METHODS if m in methods and registry.get(m).steady is not None):
         t0 = time.perf_counter()
         try:
-            hist = march(method, run.case)
+            out[method] = hist = march(method, case)
+        except Exception as exc:  # noqa: BLE001 - recorded in the report
+            out[method] = f"{type(exc).__name__}: {exc}"
+            say(f"{method} history FAILED ({out[method]})")
+            continue
+        say(f"{method} history, {len(hist.cycles)} cycles marched, {_fmt_time(time.perf_counter() - t0)}")
+    return out
+
+
+def judge_histories(run: CaseRun, marched: dict[str, Any], say: Callable[[str], None] | None = None) -> None:
+    """``marched`` (:func:`marched_histories`) judged against the reference's steady state of ``run``:
+    the checks, the histories and the errors of ``run``; nothing without its reference."""
+    ref = run.results.get(run.case.reference)
+    if ref is None:
+        return
+    for method, hist in marched.items():
+        try:
+            if isinstance(hist, str):
+                run.errors[f"{method}-history"] = hist
+                continue
             run.checks.extend(history_checks(ref, hist, method))
         except Exception as exc:  # noqa: BLE001 - recorded in the report
             run.errors[f"{method}-history"] = f"{type(exc).__name__}: {exc}"
-            say(f"{method} history FAILED ({type(exc).__name__}: {exc})")
+            if say:
+                say(f"{method} history FAILED ({type(exc).__name__}: {exc})")
             continue
         run.histories[method] = hist
-        say(f"{method} history, {len(hist.cycles)} cycles marched, {_fmt_time(time.perf_counter() - t0)}")
 
 
 def _fmt_time(dt: float) -> str:
