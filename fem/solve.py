@@ -15,7 +15,6 @@ from __future__ import annotations
 import functools
 import math
 import time
-import weakref
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, NamedTuple, Union
@@ -33,6 +32,8 @@ from threepart.problem.material import NU
 from threepart.results import Diagnostics, NormalResult
 from threepart.stress import Stress
 from threepart.meshes import SubstrateSpec
+
+from threepart.halfplane.surface import PerArray
 
 from .contact import ContactSolution, check_kinematics, solve_contact, solve_kinematic
 from .export import Fields, fields_of
@@ -121,25 +122,21 @@ def _contact(sc: SurfaceCompliance, punch: Punch, P: float, s: float, tilt: str,
             "use a wider zone (a larger preset `margin`)")
     check_one_zone(sc.x, sol.active, P, s)
     if kinematics == "small":
-        _LAST_ACTIVE[id(sc.C)] = (weakref.ref(sc.C), sol.active.copy())
-        while len(_LAST_ACTIVE) > LAST_ACTIVE_KEPT:
-            _LAST_ACTIVE.pop(next(iter(_LAST_ACTIVE)))
+        _LAST_ACTIVE.put(sc.C, None, sol.active.copy())
     return sol
 
 
 #: the last contact solved on each condensed body in memory (keyed by its compliance matrix, which the
 #: run's memory shares between the copies it hands out): the start of the next solve on it without a trial
 #: contact (another load on a given mesh, issue 41); the active set's answer does not depend on its start
-_LAST_ACTIVE: dict[int, tuple[weakref.ref, np.ndarray]] = {}
 #: condensed bodies whose last contact is kept
 LAST_ACTIVE_KEPT = 8
+_LAST_ACTIVE = PerArray(LAST_ACTIVE_KEPT)
 
 
 def _last_active(sc: SurfaceCompliance) -> np.ndarray | None:
-    entry = _LAST_ACTIVE.get(id(sc.C))
-    if entry is None or entry[0]() is not sc.C or entry[1].shape != sc.x.shape:
-        return None
-    return entry[1].copy()
+    last = _LAST_ACTIVE.get(sc.C)
+    return None if last is None or last.shape != sc.x.shape else last.copy()
 
 
 def _guess(punch: Punch, P: float, s: float, A: float) -> tuple[float, float]:

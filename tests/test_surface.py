@@ -96,3 +96,17 @@ def test_a_factor_is_reused_only_for_the_same_compliance_and_set():
         del D
     again = solve_contact(C, x, x * x / (2 * R), P, active=first.active.copy())
     assert np.allclose(again.f, first.f, rtol=0, atol=ROUNDING * P)
+
+
+def test_per_array_keeps_by_identity_and_drops_the_least_recent():
+    """PerArray: an equal but other array is not the key; the least recently used entry goes first."""
+    from threepart.halfplane.surface import PerArray
+
+    kept = PerArray(2)
+    a, b, c = np.zeros(3), np.zeros(3), np.ones(3)
+    kept.put(a, "k", 1)
+    assert kept.get(a, "k") == 1 and kept.get(b, "k") is None and kept.get(a, "other") is None
+    kept.put(b, "k", 2)
+    assert kept.get(a, "k") == 1        # a is now the more recent
+    kept.put(c, "k", 3)                 # b, the least recent, goes
+    assert kept.get(b, "k") is None and kept.get(a, "k") == 1 and kept.get(c, "k") == 3

@@ -21,6 +21,7 @@ with ``free_tilt=False``.
 
 ContactSolution -- nodal forces, gap, active set, delta, alpha
 solve_contact   -- the active-set solve
+PerArray        -- a bounded map keyed by an array's identity (what is kept per compliance)
 influence       -- the half-plane's compliance of a piecewise-linear pressure on nodes (eq. 0.1 of docs/WEAR.md)
 MAX_ITER        -- the range of active-set iterations a caller may ask for
 """
@@ -41,7 +42,7 @@ from threepart.threads import one_blas_thread
 from threepart.errors import InputError, NoConvergenceError
 from threepart.problem.checks import finite, integer, positive
 
-__all__ = ["ContactSolution", "solve_contact", "influence", "MAX_ITER"]
+__all__ = ["ContactSolution", "solve_contact", "influence", "PerArray", "MAX_ITER"]
 
 #: active-set iterations a caller may ask for, ``[1, 10000]``
 MAX_ITER = (1, 10_000)
@@ -132,27 +133,57 @@ class ContactSolution:
     slope: np.ndarray | None = None
 
 
-#: the active-set systems' factors kept per compliance (:func:`_factor`): a march's or a cycle's steps
-#: return to the same active sets on the same compliance
+class PerArray:
+    """A bounded, thread-safe map keyed by an array's identity (and a key of its own), least recent dropped.
+
+    The array is held by a weak reference, so that a new array whose ``id`` reuses a freed
+    one's is never taken for it; the array must not change in place while it is a key. The
+    home of what is kept per compliance: the active sets' factors and their symmetry
+    (:func:`_factor`, :func:`_symmetric`), the FEM's last contact per condensed body
+    (:mod:`fem.solve`).
+    """
+
+    def __init__(self, kept: int) -> None:
+        self.kept = kept
+        self._entries: "OrderedDict[tuple[int, Any], tuple[weakref.ref, Any]]" = OrderedDict()
+        self._lock = threading.Lock()
+
+    def get(self, array: np.ndarray, key: Any = None) -> Any:
+        """The value kept for ``array`` and ``key``, or None."""
+        with self._lock:
+            hit = self._entries.get((id(array), key))
+            if hit is None or hit[0]() is not array:
+                return None
+            self._entries.move_to_end((id(array), key))
+            return hit[1]
+
+    def clear(self) -> None:
+        """Forget every entry."""
+        with self._lock:
+            self._entries.clear()
+
+    def put(self, array: np.ndarray, key: Any, value: Any) -> Any:
+        """Keep ``value`` for ``array`` and ``key``; returns it."""
+        with self._lock:
+            self._entries[(id(array), key)] = (weakref.ref(array), value)
+            self._entries.move_to_end((id(array), key))
+            while len(self._entries) > self.kept:
+                self._entries.popitem(last=False)
+        return value
+
+
+#: the active-set systems' factors kept (:func:`_factor`): a march's or a cycle's steps return to the
+#: same active sets on the same compliance
 FACTORS_KEPT = 4
-_FACTORS: "OrderedDict[tuple[int, bool, bytes], tuple[weakref.ref, Any]]" = OrderedDict()
-#: the two caches are shared by a process's threads
-_LOCK = threading.Lock()
-
-
-_SYMMETRIC: dict[int, tuple[weakref.ref, bool]] = {}
+_FACTORS = PerArray(FACTORS_KEPT)
+#: compliances whose symmetry is known (an n^2 comparison per solve otherwise)
+_SYMMETRIC = PerArray(64)
 
 
 def _symmetric(C: np.ndarray) -> bool:
-    """Whether ``C`` equals its transpose, found once per compliance (an n^2 comparison per solve otherwise)."""
-    with _LOCK:
-        hit = _SYMMETRIC.get(id(C))
-        if hit is not None and hit[0]() is C:
-            return hit[1]
-        for key in [k for k, (ref, _) in _SYMMETRIC.items() if ref() is None]:
-            del _SYMMETRIC[key]
-        _SYMMETRIC[id(C)] = (weakref.ref(C), bool(np.array_equal(C, C.T)))
-        return _SYMMETRIC[id(C)][1]
+    """Whether ``C`` equals its transpose, found once per compliance."""
+    known = _SYMMETRIC.get(C)
+    return bool(known) if known is not None else _SYMMETRIC.put(C, None, bool(np.array_equal(C, C.T)))
 
 
 def _factor(C: np.ndarray, x: np.ndarray, active: np.ndarray, free_tilt: bool, sym: bool) -> Any:
@@ -164,12 +195,10 @@ def _factor(C: np.ndarray, x: np.ndarray, active: np.ndarray, free_tilt: bool, s
     ``C`` must not change in place between solves (a weak reference tells a new array from a
     freed one whose id was reused).
     """
-    key = (id(C), free_tilt, active.tobytes())
-    with _LOCK:
-        hit = _FACTORS.get(key)
-        if hit is not None and hit[0]() is C:
-            _FACTORS.move_to_end(key)
-            return hit[1]
+    key = (free_tilt, active.tobytes())
+    hit = _FACTORS.get(C, key)
+    if hit is not None:
+        return hit
     idx = np.flatnonzero(active)
     m, k = len(idx), 2 if free_tilt else 1
     A = C[np.ix_(idx, idx)]
@@ -195,11 +224,7 @@ def _factor(C: np.ndarray, x: np.ndarray, active: np.ndarray, free_tilt: bool, s
             factor = ("lu", idx, D, lu_factor(M, check_finite=False))
         if not np.all(np.isfinite(factor[3][0])) or np.any(np.diag(factor[3][0]) == 0):
             raise np.linalg.LinAlgError("singular active-set system")
-    with _LOCK:
-        _FACTORS[key] = (weakref.ref(C), factor)
-        while len(_FACTORS) > FACTORS_KEPT:
-            _FACTORS.popitem(last=False)
-    return factor
+    return _FACTORS.put(C, key, factor)
 
 
 def _solve_active(C: np.ndarray, x: np.ndarray, g0: np.ndarray, active: np.ndarray,
