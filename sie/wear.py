@@ -52,6 +52,7 @@ import numpy as np
 
 from threepart.errors import InputError, NoConvergenceError, StickSeparationError
 from threepart.fretting_wear import MarchState, WearResult, march_depth, register_marcher
+from threepart.problem.checks import integer
 from threepart.problem.punch import Punch
 from threepart.results import Diagnostics
 from threepart.halfplane.legendre import gauss01
@@ -66,10 +67,13 @@ from .profile import (DEFAULT_TERMS, ProfileNormalResult, WornProfile, profile_a
 from .slip import SieSlipResult, stick_zone
 
 __all__ = ["ProfileFrettingResult", "solve_profile_slip", "profile_fretting_cycle", "wear_rate",
-           "march", "NODES", "GRID_MARGIN"]
+           "march", "NODES", "POINTS", "GRID_MARGIN"]
 
 #: nodes of the march over the unworn contact and its margins
 NODES = 400
+#: the range of ``points`` a caller may ask for: fewer than 50 nodes leave a slip zone a handful; a
+#: dense solve of 5000 nodes per state is the most this machine's memory and a march's time allow
+POINTS = (50, 5000)
 #: the length, of the contact's width, over which the march's spacing grows back to uniform near a feature
 GRADING = 0.25
 #: the grid reaches this fraction of the contact's width beyond each end (the scar outgrows it)
@@ -271,6 +275,7 @@ def march(punch: Punch, P: float, s: float, Q_max: float, f: float, *, A: float,
     falls to 0 over the slip zones nor the singular ends that form at the stick zone's;
     nodes do, to their spacing (docs/WEAR.md, section 8).
     """
+    points = integer("points", points, *POINTS)
     t0 = time.perf_counter()
     law_factor = f if law == "energy" else 1.0
     base = solve_profile(WornProfile(punch, np.array([-1.0, 1.0]), np.zeros(2)), P, s, A=A, tilt=tilt, n=n)

@@ -200,6 +200,8 @@ def test_a_measured_profile_from_a_file(tmp_path):
     (dict(jump=0), InputError, "`jump`"),
     (dict(method="nonesuch"), InputError, "`method`"),
     (dict(k=0.0), InputError, "`k`"),
+    (dict(points=3), InputError, r"`points` = 3 must lie in \[50, 5000\]"),
+    (dict(points=2.5), InputTypeError, "`points`"),
 ])
 def test_wear_refuses_bad_input_by_name(kwargs, error, match):
     args = dict(punch=HERTZ, P=P, s=0.0, Q_max=0.5 * F * P, f=F, A=A, k=1e-5, cycles=1)
