@@ -35,7 +35,7 @@ from collections.abc import Callable
 
 import numpy as np
 
-from threepart.errors import InputError, NoConvergenceError
+from threepart.errors import InputError, InputTypeError, NoConvergenceError
 from threepart.fretting_wear import MarchState, WearResult, march_depth, register_marcher
 from threepart.problem.checks import positive, poisson
 from threepart.problem.material import similar_pair
@@ -86,6 +86,9 @@ def march(punch: Punch, P: float, s: float, Q_max: float, f: float, *, A: float,
     if E is None or nu is None:
         raise InputError("`E` and `nu` are required by the FEM's wear march (two similar bodies)")
     E, nu = positive("E", E), poisson(nu)
+    if not isinstance(mesh, MeshPreset):
+        raise InputTypeError(f"`mesh` must be a fem MeshPreset (the march's uniform zone, fem.wear.MESH), "
+                             f"not {type(mesh).__name__}")
     if not math.isclose(similar_pair(E, nu), A, rel_tol=1e-9):
         raise InputError(f"`A` = {A:.10g} must be the pair's 4 (1 - nu^2)/E = {similar_pair(E, nu):.10g}")
     t0 = time.perf_counter()

@@ -202,6 +202,8 @@ def test_a_measured_profile_from_a_file(tmp_path):
     (dict(k=0.0), InputError, "`k`"),
     (dict(points=3), InputError, r"`points` = 3 must lie in \[50, 5000\]"),
     (dict(points=2.5), InputTypeError, "`points`"),
+    (dict(bogus=1), InputTypeError, r"`bogus` is not an option of method 'sie'.*its options: n, points"),
+    (dict(method="fem", E=210e3, nu=0.3, mesh="quick"), InputTypeError, "`mesh` must be a fem MeshPreset"),
 ])
 def test_wear_refuses_bad_input_by_name(kwargs, error, match):
     args = dict(punch=HERTZ, P=P, s=0.0, Q_max=0.5 * F * P, f=F, A=A, k=1e-5, cycles=1)

@@ -281,7 +281,8 @@ def wear(punch: Punch, P: float, s: float, Q_max: float, f: float, *, A: float, 
     ValueError
         A bad value, named with its limit; ``Q_max >= f P``; an unknown ``law`` or ``method``.
     TypeError
-        ``punch`` not a Punch, ``cycles`` or ``jump`` not an integer.
+        ``punch`` not a Punch, ``cycles`` or ``jump`` not an integer; an option the method's
+        march does not take.
     """
     if not isinstance(method, str):
         raise InputTypeError(f"`method` must be a string, not {type(method).__name__}")
@@ -289,8 +290,25 @@ def wear(punch: Punch, P: float, s: float, Q_max: float, f: float, *, A: float, 
     if not has_marcher(method):
         raise InputError(f"`method` = {method!r} has no wear march (not yet); marchers: "
                          f"{', '.join(sorted(_MARCHERS)) or 'none'}")
-    return _MARCHERS[method](punch, P, s, Q_max, f, A=A, law=law, k=k, cycles=cycles, jump=jump,
-                             tilt=tilt, **options)
+    march = _MARCHERS[method]
+    own = _own_options(march)
+    unknown = sorted(set(options) - own)
+    if unknown:
+        raise InputTypeError(f"{', '.join(f'`{name}`' for name in unknown)} is not an option of method "
+                             f"{method!r}'s wear march (its options: {', '.join(sorted(own)) or 'none'})")
+    return march(punch, P, s, Q_max, f, A=A, law=law, k=k, cycles=cycles, jump=jump, tilt=tilt, **options)
+
+
+#: the arguments every marcher takes from :func:`wear` itself
+_COMMON = frozenset({"A", "law", "k", "cycles", "jump", "tilt"})
+
+
+def _own_options(march: Callable[..., Any]) -> set[str]:
+    """A marcher's own keyword options (``n``, ``points`` for the SIE; ``E``, ``nu``, ``mesh`` for the FEM)."""
+    import inspect
+
+    params = inspect.signature(march).parameters.values()
+    return {p.name for p in params if p.kind is p.KEYWORD_ONLY} - _COMMON
 
 
 def marchers() -> list[str]:
