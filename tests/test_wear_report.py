@@ -13,7 +13,8 @@ import threepart
 from threepart import Punch
 from threepart.reports.verify import build_report, render, validate
 from threepart.reports.verify.runs import MODES
-from threepart.reports.verify.wear_section import TARGETS, march_record, study_record, wear_section
+from threepart.reports.verify.wear_section import (TARGETS, depth_at, march_record, peer_depth, study_record,
+                                                   wear_section)
 from threepart.tolerances import tolerance
 
 A = 4 * (1 - 0.09) / 210e3
@@ -27,7 +28,7 @@ def march():
 
 def test_the_record_judges_each_target_by_its_tolerance_row(march):
     rec = march_record(march)
-    assert set(rec["targets"]) == set(TARGETS) - {"peer_depth"}      # no other method's march given: no target of it
+    assert set(rec["targets"]) == set(TARGETS) - {"peer_depth", "peer_depth_early"}      # no other method's march given: no target of it
     for key, t in rec["targets"].items():
         row = TARGETS[key][1]
         assert t["limit"] == (None if row is None else tolerance(*row).limit)
@@ -61,6 +62,25 @@ def test_the_section_renders_every_target_in_md_and_html(march, tmp_path):
     assert (tmp_path / doc["wear"]["plot"]).read_bytes()[:4] == b"\x89PNG"
     # before the environment, after the tolerance table
     assert md.index("## Fretting wear") < md.index("## Environment")
+
+
+def test_a_peer_is_compared_at_any_cycle_linearly_between_its_records(march):
+    """depth_at at a record is that record, half-way it is the two records' mean; a peer whose depth is
+    (1 + eps) times the march's, on other points of the same profile, is eps off at every cycle."""
+    from types import SimpleNamespace
+
+    i = len(march.cycles) // 2
+    assert np.array_equal(depth_at(march, march.cycles[i]), march.depths[i])
+    mid = 0.5 * (march.cycles[i] + march.cycles[i + 1])
+    assert np.allclose(depth_at(march, mid), 0.5 * (march.depths[i] + march.depths[i + 1]), rtol=1e-15, atol=0)
+    x = march.x[::3]
+    eps = 0.02
+    peer = SimpleNamespace(x=x, cycles=march.cycles,
+                           depths=(1 + eps) * np.array([np.interp(x, march.x, d) for d in march.depths]))
+    for N in (march.cycles[1], mid, march.cycles[-1]):
+        expected = eps * np.max(np.interp(x, march.x, depth_at(march, N))) / np.max(depth_at(march, N))
+        assert peer_depth(march, peer, N) == pytest.approx(expected, rel=1e-12)
+    assert peer_depth(march, march, mid) == 0.0
 
 
 def test_no_wear_record_no_section():
