@@ -21,6 +21,7 @@ import numpy as np
 import scipy.sparse.linalg as sla
 from numpy.typing import ArrayLike
 from skfem import Basis, BilinearForm, ElementTriP2, ElementVector, LinearForm, asm
+from threepart.halfplane.surface import PerArray
 from threepart.threads import one_blas_thread
 
 from threepart.stress import Stress
@@ -73,16 +74,13 @@ class StressField:
         """``sxx``, ``syy``, ``sxy`` (mesh axes) as continuous P2 DOFs, by L2 projection (cached)."""
         if self._nodal:
             return self._nodal
-        mesh = self.basis.mesh
-        vb = Basis(mesh, ElementVector(ElementTriP2()), intorder=4)   # exact for P2 x P2
-        sb = vb.with_element(ElementTriP2())
+        vb, sb, mass = _projection(self.basis.mesh)
         sxx, syy, sxy, _ = plane_strain_stress(vb.interpolate(self.u).grad, self.E, self.nu)
         comps = {"sxx": sxx, "syy": syy, "sxy": sxy}
-        M = asm(BilinearForm(lambda u, v, w: u * v), sb).tocsc()
         rhs = np.stack([asm(LinearForm(lambda v, w: w["s"] * v), sb, s=s) for s in comps.values()],
                        axis=1)
         with one_blas_thread():
-            nodal = sla.splu(M).solve(rhs)
+            nodal = mass.solve(rhs)
         self._nodal.update({k: nodal[:, i] for i, k in enumerate(comps)})
         self._nodal["_basis"] = sb   # type: ignore[assignment]
         return self._nodal
@@ -120,6 +118,31 @@ class StressField:
         return Stress(x=xb.copy(), z=zb.copy(), sxx=(probe @ nodal["sxx"]).reshape(shape),
                       szz=(probe @ nodal["syy"]).reshape(shape),
                       sxz=-(probe @ nodal["sxy"]).reshape(shape), nu=self.nu)
+
+
+#: the meshes whose projection (:func:`_projection`) is kept: a cycle's states, a load history's
+#: steps and the substrate of a run's cases share a few meshes
+PROJECTIONS_KEPT = 4
+_PROJECTIONS = PerArray(PROJECTIONS_KEPT)
+
+
+def _projection(mesh: Any) -> tuple[Basis, Basis, Any]:
+    """The vector and scalar P2 bases of ``mesh`` and the factor of its scalar P2 mass matrix.
+
+    Every state of a cycle or a history on one mesh projects onto the same space:
+    the mass matrix is factorised once per mesh (kept by the identity of its
+    nodes, :class:`threepart.halfplane.surface.PerArray`), not once per stress call.
+    """
+    kept = _PROJECTIONS.get(mesh.p)
+    if kept is not None and kept[0] is mesh.t:
+        return kept[1:]
+    vb = Basis(mesh, ElementVector(ElementTriP2()), intorder=4)   # exact for P2 x P2
+    sb = vb.with_element(ElementTriP2())
+    M = asm(BilinearForm(lambda u, v, w: u * v), sb).tocsc()
+    with one_blas_thread():
+        mass = sla.splu(M)
+    _PROJECTIONS.put(mesh.p, None, (mesh.t, vb, sb, mass))
+    return vb, sb, mass
 
 
 class _LazyField(StressField):

@@ -46,7 +46,7 @@ from .ends import REFINE_ATTEMPTS, check_one_zone, contact_ends, end_size, refin
 from .mesh import PRESETS, MeshPreset, Substrate, make_substrate, read_substrate
 
 __all__ = ["FemResult", "solve_normal", "deformed_ends", "locate_contact", "locate_ends",
-           "place_substrate", "MeshArg", "TRIES_DEFAULT", "TRIES"]
+           "place_substrate", "preset_ends", "MeshArg", "TRIES_DEFAULT", "TRIES"]
 
 MeshArg = Union[str, Path, MeshPreset, SubstrateSpec, Substrate]
 
@@ -220,13 +220,21 @@ def place_substrate(mesh: MeshPreset | Path | SubstrateSpec | Substrate, punch: 
         sub = read_substrate(mesh)
     else:
         if guess is None:
-            t0 = time.perf_counter()
-            guess = locate_ends(punch, P, s, E, nu, tilt, max_iter, TRIES_DEFAULT)
-            t_locate = time.perf_counter() - t0
-            say(f"locate: contact about [{guess[0]:.6g}, {guess[1]:.6g}] ({t_locate:.1f} s)")
+            guess, t_locate = preset_ends(punch, P, s, E, nu, tilt, max_iter, say)
         sub = make_substrate(mesh.spec(*guess, (-punch.b, punch.b)))
     L = float(np.ptp(sub.mesh.p[0]))
     return sub, L, guess, t_locate
+
+
+def preset_ends(punch: Punch, P: float, s: float, E: float, nu: float, tilt: str, max_iter: int,
+                say: Progress) -> tuple[tuple[float, float], float]:
+    """The contact a preset is meshed around (:func:`locate_ends`) and the seconds spent locating it;
+    for a caller that meshes the preset itself (:func:`place_substrate` without the mesh)."""
+    t0 = time.perf_counter()
+    guess = locate_ends(punch, P, s, E, nu, tilt, max_iter, TRIES_DEFAULT)
+    t_locate = time.perf_counter() - t0
+    say(f"locate: contact about [{guess[0]:.6g}, {guess[1]:.6g}] ({t_locate:.1f} s)")
+    return guess, t_locate
 
 
 class _Refined(NamedTuple):

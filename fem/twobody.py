@@ -34,7 +34,7 @@ from ._progress import Progress
 from .ends import REFINE_ATTEMPTS, check_one_zone, contact_ends, end_size, refined
 from .mesh import PRESETS, MeshPreset, Substrate, make_substrate
 from .recovery import StressField, lazy_field
-from .solve import FemResult, place_substrate
+from .solve import FemResult, place_substrate, preset_ends
 
 __all__ = ["TwoBodyModel", "two_body_model", "with_nodes"]
 
@@ -226,7 +226,15 @@ def two_body_model(punch: Punch, P: float, s: float, E: float, nu: float, tilt: 
     breaks = (-punch.b, punch.b)
     pre = mesh
     gap = None if depth is None else _worn(punch, depth)
-    lower, L, guess, t_locate = place_substrate(mesh, punch, P, s, 0.5 * E, nu, tilt, max_iter, say)
+    lower: Substrate | None
+    guess: tuple[float, float] | None
+    if isinstance(mesh, MeshPreset) and mesh.refine > 1 and Q != 0:
+        # meshed below with the stick zone's ends as nodes: the preset's plain mesh is not made
+        guess, t_locate = preset_ends(punch, P, s, 0.5 * E, nu, tilt, max_iter, say)
+        lower, L = None, mesh.spec(*guess, breaks).L    # the block's width, as its mesh spans it
+    else:
+        lower, L, guess, t_locate = place_substrate(mesh, punch, P, s, 0.5 * E, nu, tilt, max_iter,
+                                                    say)
     ends: tuple[float, ...] = ()
     if isinstance(pre, MeshPreset) and pre.refine > 1 and Q != 0 and guess is not None:
         t1 = time.perf_counter()
@@ -248,6 +256,7 @@ def two_body_model(punch: Punch, P: float, s: float, E: float, nu: float, tilt: 
             lower = make_substrate(spec)
         t2 = time.perf_counter()
         t_mesh += t2 - t1
+        assert lower is not None
         say(f"mesh: {lower.mesh.t.shape[1]} triangles a body ({t2 - t1:.1f} s)")
         model = TwoBodyModel(punch, P, s, E, nu, tilt, lower, L, guess, max_iter, mu, sigma_bulk, gap=gap)
         left, right = model.contact_ends()

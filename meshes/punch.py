@@ -14,7 +14,8 @@ each of the substrate's surface vertices (:meth:`SubstrateSpec.contact_vertices`
 on the exact curve, one gmsh line per element: the two bodies' interface nodes
 match, so :mod:`fem.finite` pairs them node by node. Physical groups: ``"contact"``
 (the zone), ``"face"`` (the rest of the lower face), ``"flank"``, ``"base"``
-(curves) and ``"punch"`` (the surface).
+(curves) and ``"punch"`` (the surface); the file holds one entity per group
+(:func:`meshes.substrate.write_grouped`), which meshio reads in one block each.
 """
 from __future__ import annotations
 
@@ -25,7 +26,7 @@ from pathlib import Path
 import gmsh
 import numpy as np
 
-from .substrate import SubstrateSpec, gmsh_session, size_field
+from .substrate import SubstrateSpec, gmsh_session, size_field, write_grouped
 from threepart.errors import InputError, InputTypeError
 
 __all__ = ["PunchSpec", "build_punch", "PROFILES"]
@@ -156,7 +157,7 @@ def _geometry(spec: PunchSpec) -> dict[str, list[int]]:
             continue
         gmsh.model.addPhysicalGroup(1, tags, name=name)
     gmsh.model.addPhysicalGroup(2, [surface], name="punch")
-    return groups
+    return {**groups, "punch": [surface]}
 
 
 def _size_field(spec: PunchSpec, contact: list[int]) -> None:
@@ -176,5 +177,6 @@ def build_punch(spec: PunchSpec, path: str | Path) -> Path:
         groups = _geometry(spec)
         _size_field(spec, groups["contact"])
         gmsh.model.mesh.generate(2)
-        gmsh.write(str(path))
+        surface = groups.pop("punch")[0]
+        write_grouped(path, groups, ("punch", surface))
     return path

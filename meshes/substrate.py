@@ -31,7 +31,8 @@ import gmsh
 import numpy as np
 from threepart.errors import InputError, InputTypeError
 
-__all__ = ["SubstrateSpec", "build_substrate", "gmsh_session", "size_field", "PHYSICAL_CURVES"]
+__all__ = ["SubstrateSpec", "build_substrate", "gmsh_session", "size_field", "write_grouped",
+           "PHYSICAL_CURVES"]
 
 #: Bounds that keep a mesh within this machine's memory and time: the size growth rate
 #: away from the zone, the zone's elements, the block in elements of the zone, and
@@ -269,6 +270,43 @@ def size_field(contact: list[int], *, h: float, growth: float, sampling: int,
     opt("Mesh.MshFileVersion", 4.1)
 
 
+def write_grouped(path: Path, curves: dict[str, list[int]], surface: tuple[str, int]) -> None:
+    """Write the meshed model to ``path`` as one gmsh entity per physical group.
+
+    A graded contact zone is built of one curve per element (the element ends are
+    placed exactly), and MSH 4.1 writes each curve, and each of its end points, as
+    an entity block of its own, which meshio reads one by one (most of its time on
+    such a mesh). The same nodes, in the order gmsh would write them (those of no
+    element of a group left out, as gmsh leaves them out), and the same elements
+    in their order are moved into one discrete surface holding every node and one
+    discrete curve per group of ``curves``; ``surface`` names the triangles'
+    group and its entity.
+    """
+    model = gmsh.model
+    tags, xyz, _ = model.mesh.getNodes()
+    blocks: dict[str, tuple[int, int, np.ndarray]] = {}
+    for name, dim, entities in [(surface[0], 2, [surface[1]]),
+                                *((n, 1, ts) for n, ts in curves.items() if ts)]:
+        kind = 2 if dim == 2 else 1       # gmsh's element types: 3-node triangle, 2-node line
+        per_entity = [model.mesh.getElementsByType(kind, e)[1] for e in entities]
+        blocks[name] = (dim, kind, np.concatenate(per_entity).astype(np.int64))
+    used = np.zeros(int(tags.max()) + 1, dtype=bool)
+    for _, _, nodes in blocks.values():
+        used[nodes] = True
+    keep = used[tags.astype(np.int64)]
+    renumber = np.zeros(used.size, dtype=np.int64)
+    renumber[tags[keep].astype(np.int64)] = np.arange(1, int(keep.sum()) + 1)
+    model.add(f"{model.getCurrent()}-grouped")
+    body = model.addDiscreteEntity(2)
+    model.mesh.addNodes(2, body, renumber[tags[keep].astype(np.int64)],
+                        xyz.reshape(-1, 3)[keep].ravel())
+    for name, (dim, kind, nodes) in blocks.items():
+        entity = body if dim == 2 else model.addDiscreteEntity(1)
+        model.mesh.addElementsByType(entity, kind, [], renumber[nodes])
+        model.addPhysicalGroup(dim, [entity], name=name)
+    gmsh.write(str(path))
+
+
 def _size_field(spec: SubstrateSpec, contact: list[int]) -> None:
     """Size ``h + growth * distance(contact zone)``, refined around ``refine_at``, capped at ``size_max``."""
     n_zone = (spec.x_hi - spec.x_lo) / spec.h
@@ -299,5 +337,6 @@ def build_substrate(spec: SubstrateSpec, path: str | Path) -> Path:
         groups = _geometry(spec)
         _size_field(spec, groups["contact"])
         gmsh.model.mesh.generate(2)
-        gmsh.write(str(path))
+        surface = groups.pop("substrate")[0]
+        write_grouped(path, groups, ("substrate", surface))
     return path

@@ -112,3 +112,39 @@ def test_gmsh_finalized_after_success(tmp_path):
 def test_spec_validation(kwargs, match):
     with pytest.raises(ValueError, match=match):
         SubstrateSpec(**kwargs)
+
+
+def _blocks(path: Path) -> tuple[meshio.Mesh, dict[str, set[tuple[int, ...]]]]:
+    """meshio's mesh of ``path`` and each physical group's cells as sets of sorted node tuples."""
+    m = meshio.gmsh.read(str(path))
+    tags = m.cell_data_dict["gmsh:physical"]
+    groups = {}
+    for name, (tag, dim) in m.field_data.items():
+        kind = "line" if int(dim) == 1 else "triangle"
+        groups[name] = {tuple(sorted(c)) for c in m.cells_dict[kind][tags[kind] == tag]}
+    return m, groups
+
+
+@pytest.mark.parametrize("body", ["substrate", "punch"])
+def test_one_entity_per_group_holds_gmsh_own_file(tmp_path, monkeypatch, body):
+    """A graded zone is one gmsh curve per element; the file holds one entity per physical group
+    (meshio reads it in one block each) and the very nodes and elements gmsh's own writing of the
+    model holds (the reference: gmsh.write of the meshed model, the old path)."""
+    from threepart.meshes import PunchSpec, build_punch
+    from threepart.meshes import punch as punch_module, substrate as substrate_module
+
+    zone = SubstrateSpec(x_lo=-0.6, x_hi=0.6, h=0.05, L=40.0, growth=0.3, breakpoints=(-0.25, 0.25),
+                         refine_at=(-0.25, 0.25), h_fine=0.01)
+    if body == "punch":
+        build = lambda path: build_punch(PunchSpec(zone=zone, b=0.25, R1=2.0, R2=1.0, H=1.0), path)
+    else:
+        build = lambda path: build_substrate(zone, path)
+    grouped, groups = _blocks(build(tmp_path / "grouped.msh"))
+    assert len(grouped.cells) == len(grouped.field_data)        # one block per group
+    for module in (punch_module, substrate_module):
+        monkeypatch.setattr(module, "write_grouped", lambda path, curves, surface: gmsh.write(str(path)))
+    plain, plain_groups = _blocks(build(tmp_path / "plain.msh"))
+    assert len(plain.cells) > 2 * len(plain.field_data)          # the per-element curves
+    assert np.array_equal(grouped.points, plain.points)
+    assert np.array_equal(grouped.cells_dict["triangle"], plain.cells_dict["triangle"])
+    assert groups == plain_groups
