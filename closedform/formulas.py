@@ -19,11 +19,12 @@ from __future__ import annotations
 
 import numpy as np
 from numpy.typing import ArrayLike
-from scipy.special import xlogy
 
 from threepart.problem.punch import Punch
 
 from .kernel import chi_v as _chi
+from .kernel import f0 as _f0
+from .kernel import pressure_v as _pressure
 from .kernel import psi_v as _psi
 
 __all__ = ["beta", "F0", "load", "tilt", "moment", "lever_arm", "pressure",
@@ -97,19 +98,6 @@ def lever_arm(punch: Punch, a: ArrayLike, c: ArrayLike) -> np.ndarray:
     return moment(punch, a, c, 1.0) / load(punch, a, c, 1.0)
 
 
-def _log_ratio(x: np.ndarray, a: np.ndarray, c: np.ndarray, b: float, sign: int) -> np.ndarray:
-    """``(x + sign b) ln|(a+c)(x + sign b)/N|`` with ``N`` the paper's denominator of F1/F3.
-
-    ``N = (sqrt((c-x)(a - sign b)) + sqrt((x+a)(c + sign b)))^2`` is the printed
-    ``2 sqrt(...) + 2(ac ± bx) + (a-c)(b ∓ x)`` written as a perfect square.
-    """
-    g = x + sign * b
-    n = (np.sqrt((c - x) * np.maximum(a - sign * b, 0.0))
-         + np.sqrt((x + a) * np.maximum(c + sign * b, 0.0))) ** 2
-    with np.errstate(divide="ignore", invalid="ignore"):  # at an edge on a join: masked by the caller
-        return xlogy(g, np.abs(g)) + g * np.log((a + c) / n)
-
-
 def on_contact(x: ArrayLike, a: ArrayLike, c: ArrayLike
                ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """``(a, c, inside, x_clipped, w)`` for evaluating a pressure at ``x`` on ``[-a, c]``.
@@ -131,15 +119,16 @@ def pressure(punch: Punch, a: ArrayLike, c: ArrayLike, A: ArrayLike, x: ArrayLik
 
     ``-p(x) = [w F0 + k1/R1 (x+b) F1(x) + k2/R2 (x-b) F3(x)] / (pi A)``,
 
-    where ``(x±b) ln|x±b|`` is continuous at the joins. ``a``, ``c`` broadcast
-    against ``x``.
+    where ``(x±b) ln|x±b|`` is continuous at the joins. ``a``, ``c`` (and ``A``)
+    broadcast against ``x``. Evaluated point by point, compiled
+    (:func:`closedform.kernel.pressure_v`): a scalar costs a microsecond, as the
+    least-pressure searches need.
     """
-    a, c, inside, xi, w = on_contact(x, a, c)
-    b = punch.b
-    val = (w * F0(punch, a, c)
-           + punch.kappa1 * _log_ratio(xi, a, c, b, +1)
-           - punch.kappa2 * _log_ratio(xi, a, c, b, -1)) / (np.pi * np.asarray(A, float))
-    return np.where(inside, val, 0.0)
+    if isinstance(a, (float, int)) and isinstance(c, (float, int)):    # one contact: F0 once, on floats
+        f0 = _f0(punch.b, punch.kappa0, punch.kappa1, punch.kappa2, float(a), float(c))
+    else:
+        f0 = F0(punch, a, c)
+    return np.asarray(_pressure(x, a, c, A, f0, punch.kappa1, punch.kappa2, punch.b))
 
 
 # -- the appendix's F-functions, as printed (for the errata checks) ------------

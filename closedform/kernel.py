@@ -15,6 +15,8 @@ states          -- the same on arrays (a compiled loop), one row per field
 newton_2d       -- the 2-D Newton iteration of one case in ``(r, phi)``
 newton_2d_many  -- the same for arrays of cases
 psi, chi        -- ``2x - sin 2x`` and ``sin x - x cos x`` without cancellation (floats; ``psi_v``, ``chi_v`` on arrays)
+pressure_v      -- the compressive pressure of eq. (pressure_abbreviated) at one point, a numpy ufunc (``formulas.pressure``)
+f0              -- ``F0`` of eq. (f0) of one contact, on floats
 
 Run with ``NUMBA_DISABLE_JIT=1`` the same functions run as plain Python (for a
 debugger); the answers agree to rounding.
@@ -27,7 +29,7 @@ import numpy as np
 from numba import njit, vectorize
 
 __all__ = ["FIELDS", "state", "states", "newton_2d", "newton_2d_many", "psi", "chi", "psi_v", "chi_v",
-           "MOMENT", "TILT", "STALL"]
+           "f0", "pressure_v", "MOMENT", "TILT", "STALL"]
 
 #: the fields of :func:`state`, in order (the attributes of :class:`closedform.newton.State`)
 FIELDS = ("a", "c", "h", "m", "dAP", "AP", "AP_h", "AP_m", "F0", "T", "T_h", "T_m",
@@ -61,9 +63,54 @@ def _chi(x: float) -> float:
 psi = _compiled(_psi)
 #: ``sin x - x cos x``, with its series below ``x = 0.01``: the tilt's angle function
 chi = _compiled(_chi)
-#: :func:`psi` and :func:`chi` as numpy ufuncs (``formulas.load`` and ``formulas.tilt``)
-psi_v = vectorize(["float64(float64)"], cache=True)(_psi)
-chi_v = vectorize(["float64(float64)"], cache=True)(_chi)
+#: :func:`psi` and :func:`chi` as numpy ufuncs (``formulas.load`` and ``formulas.tilt``); numba's
+#: vectorize gives a DUFunc whose Python-level ``__call__`` costs 5 µs, its ``ufunc`` is plain numpy's
+psi_v = vectorize(["float64(float64)"], cache=True)(_psi).ufunc
+chi_v = vectorize(["float64(float64)"], cache=True)(_chi).ufunc
+
+
+@_compiled
+def _log_ratio(x: float, a: float, c: float, b: float, sign: float) -> float:
+    """``(x + sign b) ln|(a+c)(x + sign b)/N|`` with ``N`` the paper's denominator of F1/F3.
+
+    ``N = (sqrt((c-x)(a - sign b)) + sqrt((x+a)(c + sign b)))^2`` is the printed
+    ``2 sqrt(...) + 2(ac ± bx) + (a-c)(b ∓ x)`` written as a perfect square;
+    ``(x ± b) ln|x ± b|`` is 0 at the join.
+    """
+    g = x + sign * b
+    root = math.sqrt((c - x) * max(a - sign * b, 0.0)) + math.sqrt((x + a) * max(c + sign * b, 0.0))
+    n = root * root
+    glog = 0.0 if g == 0.0 else g * math.log(abs(g))
+    return glog + g * math.log((a + c) / n)
+
+
+@_compiled
+def f0(b: float, k0: float, k1: float, k2: float, a: float, c: float) -> float:
+    """``F0 = k1/R1 beta1 + k2/R2 beta2 + pi/R`` of one contact (eq. f0; ``formulas.F0`` on floats).
+
+    The join angles as ``2 atan2(sqrt(a-b), sqrt(c+b))``, exact also with an edge at a join.
+    """
+    b1 = 2.0 * math.atan2(math.sqrt(max(a - b, 0.0)), math.sqrt(c + b))
+    b2 = 2.0 * math.atan2(math.sqrt(max(c - b, 0.0)), math.sqrt(a + b))
+    return k1 * b1 + k2 * b2 + math.pi * k0
+
+
+def _pressure(x: float, a: float, c: float, A: float, F0: float, k1: float, k2: float, b: float) -> float:
+    """Compressive pressure ``-p(x)`` of eq. (pressure_abbreviated) on ``[-a, c]``, 0 at and beyond the edges.
+
+    ``-p(x) = [w F0 + k1/R1 (x+b) F1(x) + k2/R2 (x-b) F3(x)] / (pi A)`` with
+    ``w = sqrt((x+a)(c-x))``, ``F0`` of the contact (:func:`f0`, eq. f0) and the
+    logarithms of :func:`_log_ratio` (``k1, k2`` = ``k1/R1``, ``k2/R2``).
+    """
+    if not (x > -a and x < c):
+        return 0.0
+    w = math.sqrt((x + a) * (c - x))
+    return (w * F0 + k1 * _log_ratio(x, a, c, b, 1.0) - k2 * _log_ratio(x, a, c, b, -1.0)) / (math.pi * A)
+
+
+#: :func:`_pressure` as a numpy ufunc: broadcasts ``x``, ``a``, ``c``, ``A``, ``F0`` (``formulas.pressure``)
+pressure_v = vectorize(["float64(float64, float64, float64, float64, float64, float64, float64, float64)"],
+                       cache=True)(_pressure).ufunc
 
 
 @_compiled

@@ -144,8 +144,7 @@ class State:
             EVALUATIONS[0] += u1.size
             rows = kernel.states(*const, np.ravel(u1), np.ravel(u2))
             values = [row.reshape(u1.shape) if u1.ndim else row[0] for row in rows]
-        for name, value in zip(kernel.FIELDS, values):
-            setattr(self, name, value)
+        self.__dict__.update(zip(kernel.FIELDS, values))     # one attribute per field
 
 
 @functools.lru_cache(maxsize=64)

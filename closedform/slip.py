@@ -236,17 +236,33 @@ def _least_margin(normal: NormalResult, Q: float, f: float, sigma_bulk: float,
     return (left[1], "left") if left[1] < right[1] else (right[1], "right")
 
 
+#: bisection steps of :func:`_bound`, and how many of them one call of the vectorised roots takes
+_BOUND_STEPS, _BOUND_TREE = 60, 5
+
+
 def _bound(normal: NormalResult, Q: float, f: float, sigma_bulk: float) -> float:
-    """Largest ``|Q|/(fP)`` (``sigma_bulk`` in proportion) at which the stick zone covers ``[-b, b]``."""
+    """Largest ``|Q|/(fP)`` (``sigma_bulk`` in proportion) at which the stick zone covers ``[-b, b]``.
+
+    A bisection on the load fraction, :data:`_BOUND_STEPS` steps; every midpoint the next
+    :data:`_BOUND_TREE` steps could probe (``2^5 - 1``, each halving exactly as a step would)
+    goes to :func:`stick_zones_on_path` at once, and the bisection walks their flags.
+    """
     if sigma_bulk == 0:
         return stick_zone_bound(normal)
     lo, hi = 0.0, 1.0
-    for _ in range(60):
-        mid = 0.5 * (lo + hi)
-        if stick_zones_on_path(normal, Q, f, sigma_bulk, [mid])[2][0]:
-            hi = mid
-        else:
-            lo = mid
+    rest = _BOUND_STEPS % _BOUND_TREE
+    for depth in [_BOUND_TREE] * (_BOUND_STEPS // _BOUND_TREE) + ([rest] if rest else []):
+        nodes, mids = [(lo, hi)], []
+        for _ in range(depth):            # the tree of midpoints, level by level (node i: 2i+1, 2i+2)
+            mids += [0.5 * (a + b) for a, b in nodes]
+            nodes = [pair for a, b in nodes for pair in ((a, 0.5 * (a + b)), (0.5 * (a + b), b))]
+        flags = stick_zones_on_path(normal, Q, f, sigma_bulk, mids)[2]
+        i = 0
+        for _ in range(depth):
+            if flags[i]:
+                hi, i = mids[i], 2 * i + 1
+            else:
+                lo, i = mids[i], 2 * i + 2
     return lo * abs(Q) / (f * normal.P)
 
 

@@ -40,7 +40,7 @@ from .quadrature import MAX_N, check_n
 from .roots import bracket_root, newton
 from .schemes import Plain, Projected, make_scheme
 from threepart.tolerances import tolerance
-from .series import ChebyshevPressure
+from .series import ChebyshevPressure, power_series
 
 __all__ = ["SieNormalResult", "solve_normal", "solve_ends", "lift_off", "DEFAULT_N", "DEFAULT_SCHEME",
            "check_scheme", "check_single_contact", "scan_ends", "two_level_estimate"]
@@ -165,7 +165,7 @@ def _gap_slope_outside(punch: Punch, m: float, h: float, alpha: float, xi: np.nd
     """
     G = slope_coefficients(punch, m, h, nterms)[0]
     rho = xi - np.sign(xi) * np.sqrt(xi * xi - 1.0)
-    series = rho * np.polynomial.polynomial.polyval(rho, G[1:])    # Σ_{k>=1} G_k ρ^k, Horner
+    series = rho * power_series(G[1:], rho)    # Σ_{k>=1} G_k ρ^k, Horner
     return punch.slope(m + h * xi, alpha) - series
 
 

@@ -101,7 +101,15 @@ def slope_coefficients(punch: Punch, m: float, h: float, kmax: int
     -------
     G, dG_dm, dG_dh
         Arrays of length ``kmax + 1``.
+
+    Notes
+    -----
+    Up to ``kmax = 2`` (the three moments a Newton step on the contact ends needs, called
+    thousands of times a solve) the same sums run on plain floats (:func:`_low_coefficients`).
     """
+    if kmax <= 2:
+        G, dm, dh = _low_coefficients(punch, m, h)
+        return np.array(G[:kmax + 1]), np.array(dm[:kmax + 1]), np.array(dh[:kmax + 1])
     k = np.arange(kmax + 1)
     e0 = (k == 0).astype(float)
     e1 = (k == 1).astype(float)
@@ -124,6 +132,47 @@ def slope_coefficients(punch: Punch, m: float, h: float, kmax: int
         G = G - k1 * h * r + k1 * (b + m) * e0 + k1 * h * e1
         dm = dm + k1 * dr + k1 * e0
         dh = dh - k1 * (r - beta * dr) + k1 * e1
+    return G, dm, dh
+
+
+def _low_ramp(beta: float) -> tuple[list[float], list[float]]:
+    """:func:`ramp_coefficients` and :func:`ramp_coefficients_dbeta` for ``k = 0, 1, 2``, on floats.
+
+    The same expressions, term by term, as the array functions (they agree to rounding).
+    """
+    if beta >= 1.0:
+        return [0.0, 0.0, 0.0], [0.0, 0.0, 0.0]
+    if beta <= -1.0:
+        return [-beta, 1.0, 0.0], [-1.0, 0.0, 0.0]
+    tb = math.acos(beta)
+    sb, cb = math.sin(tb), beta
+    c2, s2 = math.cos(2.0 * tb), math.sin(2.0 * tb)
+    r = [(sb - tb * cb) / math.pi, (tb - sb * cb) / math.pi,
+         2.0 / math.pi * (-sb * c2 / 3.0 + cb * s2 / 6.0)]
+    dr = [-tb / math.pi, -2.0 / math.pi * math.sin(tb), -2.0 / math.pi * s2 / 2.0]
+    return r, dr
+
+
+def _low_coefficients(punch: Punch, m: float, h: float
+                      ) -> tuple[list[float], list[float], list[float]]:
+    """``G_0..G_2`` of ``g'(m + h s)`` and their ``(m, h)`` gradients: :func:`slope_coefficients` on floats."""
+    k0, k1, k2, b = punch.kappa0, punch.kappa1, punch.kappa2, punch.b
+    G, dm, dh = [k0 * m, k0 * h, 0.0], [k0, 0.0, 0.0], [0.0, k0, 0.0]
+    if k2 != 0.0:       # right ramp κ2 (x - b)_+ = κ2 h (s - β2)_+
+        beta = (b - m) / h
+        r, dr = _low_ramp(beta)
+        G = [G[i] + k2 * h * r[i] for i in range(3)]
+        dm = [dm[i] - k2 * dr[i] for i in range(3)]
+        dh = [dh[i] + k2 * (r[i] - beta * dr[i]) for i in range(3)]
+    if k1 != 0.0:       # left ramp -κ1 (-b - x)_+ = -κ1 h [(s - β1)_+ - (s - β1)]
+        beta = (-b - m) / h
+        r, dr = _low_ramp(beta)
+        G = [G[i] - k1 * h * r[i] for i in range(3)]
+        G[0], G[1] = G[0] + k1 * (b + m), G[1] + k1 * h
+        dm = [dm[i] + k1 * dr[i] for i in range(3)]
+        dm[0] = dm[0] + k1
+        dh = [dh[i] - k1 * (r[i] - beta * dr[i]) for i in range(3)]
+        dh[1] = dh[1] + k1
     return G, dm, dh
 
 

@@ -37,9 +37,9 @@ import scipy.fft
 
 from threepart.problem.punch import Punch
 
-from .projection import kinks, ramp_remainder, slope_coefficients
+from .projection import kinks, slope_coefficients
 from .quadrature import plain_functionals
-from .series import ChebyshevPressure
+from .series import ChebyshevPressure, kinked_sums, sine_series
 from threepart.errors import InputError
 
 __all__ = ["SCHEMES", "Plain", "Projected", "make_scheme", "KinkedPressure"]
@@ -63,16 +63,19 @@ class KinkedPressure(ChebyshevPressure):
     remainders: tuple[tuple[float, float], ...] = ()
 
     def __call__(self, x: ArrayLike) -> np.ndarray:
+        """The pressure at ``x``: the sine series, the kinks and their remainders summed in one
+        compiled pass (:func:`sie.series.kinked_sums`; as :func:`sie.projection.ramp_remainder` term by term)."""
         x = np.asarray(x, dtype=float)
-        p = super().__call__(x)
         if not self.remainders:
-            return p
+            return super().__call__(x)
         s = np.clip((x - self.m) / self.h, -1.0, 1.0)
         theta = np.arccos(s)
-        extra = sum((w * ramp_remainder(theta, tb) for w, tb in self.remainders),
-                    np.zeros_like(theta))
         inside = (x > self.m - self.h) & (x < self.m + self.h) & (np.abs(s) < 1.0)
-        return np.where(inside, p + extra, 0.0)
+        w, tw = (np.array([k[i] for k in self.kinks], dtype=float) for i in (0, 1))
+        v, tv = (np.array([r[i] for r in self.remainders], dtype=float) for i in (0, 1))
+        flat = np.ascontiguousarray(theta).ravel()
+        p = kinked_sums(flat, sine_series(self.g, flat), w, tw, v, tv).reshape(theta.shape)
+        return np.where(inside, p, 0.0)
 
 
 @dataclass(frozen=True)
@@ -111,7 +114,7 @@ class Projected:
     def moments(self, punch: Punch, m: float, h: float) -> tuple[np.ndarray, np.ndarray]:
         """Exact ``(G_0, G_1, G_2)`` and their ``(m, h)`` Jacobian."""
         G, dm, dh = slope_coefficients(punch, m, h, 2)
-        return G, np.column_stack([dm, dh])
+        return G, np.array([dm, dh]).T
 
     def pressure(self, punch: Punch, A: float, m: float, h: float) -> tuple[ChebyshevPressure, dict]:
         """Pressure from the exact coefficients, kinks summed in closed form."""

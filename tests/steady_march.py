@@ -71,23 +71,24 @@ def history(punch, states, f: float, A: float, edges: np.ndarray, *, steps: int 
 
 
 def _step(K, x, h, p, Q, g, f, A, u_ref, stick, sign):
-    """One state of the history: the active set of stick and slip panels, from the last one."""
+    """One state of the history: the active set of stick and slip panels, from the last one.
+
+    A slip panel's shear is known (``q_i = ±f p_i``), so each iteration solves for the stick
+    panels' shear and the shift ``C`` alone: their rows ``u_i = u_ref_i`` and ``Σ q h = Q``,
+    the slip panels' shear moved to the right-hand side.
+    """
     contact = np.flatnonzero(p > 0)
-    n = contact.size
-    Kc = K[np.ix_(contact, contact)]
-    rows = np.arange(n)
     for _ in range(500):
-        # a stick panel's row: u_i = u_ref_i (K q + C + A g x/4); a slip panel's: q_i = ±f p_i
-        held = stick[contact]
-        M, rhs = np.zeros((n + 1, n + 1)), np.zeros(n + 1)
-        M[:n, :n] = np.where(held[:, None], Kc, 0.0)
-        M[rows[~held], rows[~held]] = 1.0
-        M[:n, n] = held
-        rhs[:n] = np.where(held, u_ref[contact] - A * g * x[contact] / 4, sign[contact] * f * p[contact])
-        M[n, :n], rhs[n] = h[contact], Q
-        sol = np.linalg.solve(M, rhs)
+        held, free = contact[stick[contact]], contact[~stick[contact]]
         q = np.zeros(x.size)
-        q[contact] = sol[:n]
+        q[free] = sign[free] * f * p[free]
+        n = held.size
+        M, rhs = np.zeros((n + 1, n + 1)), np.zeros(n + 1)
+        M[:n, :n], M[:n, n] = K[np.ix_(held, held)], 1.0
+        rhs[:n] = u_ref[held] - A * g * x[held] / 4 - K[np.ix_(held, free)] @ q[free]
+        M[n, :n], rhs[n] = h[held], Q - h[free] @ q[free]
+        sol = np.linalg.solve(M, rhs)
+        q[held] = sol[:n]
         u = K @ q + sol[n] + A * g * x / 4
         du = u - u_ref
         over = stick & (p > 0) & (np.abs(q) > f * p * (1 + ROUNDING))

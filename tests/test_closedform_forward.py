@@ -109,6 +109,31 @@ def test_pressure_abbreviated_as_printed_equals_reduced_form(name):
     assert np.allclose(-printed, formulas.pressure(punch, a, c, A, x), rtol=ROUND_OFF, atol=EXACT)
 
 
+@pytest.mark.parametrize("name", [k for k, v in CASES.items() if v[0].b > 0])
+def test_pressure_at_a_scalar_and_broadcast_is_the_printed_form(name):
+    """The compiled pressure (a numpy ufunc) at one float ``x``, as the least-pressure searches call
+    it, and broadcast over a column of contacts, against eq. (pressure_abbreviated) as printed."""
+    punch, a, c = CASES[name]
+    x = np.linspace(-a, c, 9)[1:-1]
+    x = x[np.abs(np.abs(x) - punch.b) > 1e-9]
+    contacts = np.array([[a, c], [1.1 * a, 1.05 * c]])      # both edges on the outer segments
+    for aj, cj in contacts:
+        alpha = formulas.tilt(punch, aj, cj)
+        w = np.sqrt((x + aj) * (cj - x))
+        printed = (w / (math.pi * A)) * (
+            formulas.F0(punch, aj, cj)
+            + (alpha * punch.R1 + punch.b * punch.k1 + x) / (punch.R1 * w) * formulas.F1(x, aj, cj, punch.b)
+            + (alpha + x * punch.kappa0) / w * formulas.F2(x, aj, cj, punch.b)
+            - (-alpha * punch.R2 + punch.b * punch.k2 - x) / (punch.R2 * w) * formulas.F3(x, aj, cj, punch.b))
+        one = np.array([formulas.pressure(punch, float(aj), float(cj), A, float(xi)) for xi in x])
+        assert np.allclose(one, printed, rtol=ROUND_OFF, atol=EXACT)
+        assert formulas.pressure(punch, float(aj), float(cj), A, 0.0).shape == ()
+    grid = formulas.pressure(punch, contacts[:, :1], contacts[:, 1:], A, x[None, :])
+    assert grid.shape == (2, x.size)
+    for j, (aj, cj) in enumerate(contacts):
+        assert np.allclose(grid[j], [formulas.pressure(punch, aj, cj, A, xi) for xi in x], rtol=0, atol=0)
+
+
 # -- anchors -------------------------------------------------------------------------
 @pytest.mark.parametrize("P,R,Av", [(0.1, 1.0, 1.0), (400.0, 10.0, 8.67e-6), (3e-3, 50.0, 2.0)])
 def test_hertz_anchor(P, R, Av):

@@ -87,11 +87,13 @@ PROGRESS_S = 1.0
 def _kernels(s: np.ndarray, z: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """The four Flamant kernels ``z s²/r⁴, z³/r⁴, z² s/r⁴, s³/r⁴`` without their ``-2/π``.
 
-    ``r = 0`` (only at the nodes of an empty interval, weight 0) gives 0.
+    ``r = 0`` (only at the nodes of an empty interval, weight 0) gives 0. ``s³`` is ``s·s·s``:
+    numpy's ``s ** 3`` calls ``pow`` at every node, 30 times the cost, for the same value to rounding.
     """
-    r2 = s * s + z * z
+    s2 = s * s
+    r2 = s2 + z * z
     inv = 1.0 / np.where(r2 > 0, r2 * r2, np.inf)
-    return z * s * s * inv, z ** 3 * inv, z * z * s * inv, s ** 3 * inv
+    return z * s * s * inv, z ** 3 * inv, z * z * s * inv, s2 * s * inv
 
 
 def flamant_normal(s: ArrayLike, z: ArrayLike) -> tuple[np.ndarray, np.ndarray, np.ndarray]:

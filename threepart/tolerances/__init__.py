@@ -360,6 +360,10 @@ TOLERANCES: dict[tuple[str, str], Tolerance] = {
     ("sie-quadrature", "slope_gradient"): _T(1e-8, "central differences with step 1e-6: truncation 1e-12, rounding 1e-10"),
     ("sie-quadrature", "log_kink"): _T(1e-10, "direct sum truncated at k = 4e5: its tail is O(1/(k^2 phi))"),
     ("sie-quadrature", "sine_series"): _T(1e-12, "40-term sine series vs a direct matrix product: rounding"),
+    ("sie-quadrature", "sine_series_long"): _T(1e-12, "2048-term compiled Clenshaw sum vs the geometric series' closed form r sin θ/(1 - 2r cos θ + r^2), of its peak: the recurrence's rounding grows with n near θ = 0, π (measured 3.6e-14)"),
+    ("sie-quadrature", "power_series"): _T(1e-13, "2048-term compiled Horner sum vs the geometric sum's closed form, relative: rounding (measured 1.2e-15)"),
+    ("sie-quadrature", "kinked_sums"): _T(1e-14, "the compiled kink and remainder sums vs numpy's log_kink and ramp_remainder term by term, of the peak: the same operations (measured 0)"),
+    ("sie-quadrature", "gap_sums"): _T(1e-14, "the stick gap's Σ G_k J_k of 16384 geometric G_k vs mpmath quadrature (30 digits) of its integrand, relative: rounding (measured <= 2.2e-16)"),
     # --- the closed form: identities, limits and the quadrature reference --------------------------
     ("closedform", "quadrature"): _T(1e-10, "closed-form P, P s, α, p and the special cases against adaptive quadrature of the paper's integrals (tests/quad_reference.py, epsrel 1e-13): the issue's acceptance bound"),
     ("closedform", "round_off"): _T(1e-12, "an identity, limit or symmetry of the cancellation-free closed form in double precision: rounding of a few dozen operations"),
