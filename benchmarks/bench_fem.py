@@ -22,7 +22,6 @@ from __future__ import annotations
 
 import contextlib
 import os
-import sys
 import tempfile
 import time
 from dataclasses import replace
@@ -334,11 +333,24 @@ def backends(meshes: list[str], repeat: int = 2) -> None:
 
 
 if __name__ == "__main__":
-    tables = {"--peer": peer, "--backends": backends, "--pressure": lambda _: pressure()}
-    chosen = [a for a in sys.argv[1:] if a not in tables] or ["quick", "default"]
-    only = [flag for flag in tables if flag in sys.argv[1:]]
+    import argparse
+
+    from threepart.fem.mesh import PRESETS
+
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("meshes", nargs="*", metavar="MESH",
+                        help=f"mesh presets (default: quick default), of {', '.join(sorted(PRESETS))}")
+    tables = {"peer": peer, "backends": backends, "pressure": lambda _: pressure()}
+    for flag in tables:
+        parser.add_argument(f"--{flag}", action="store_true", help=f"only the {flag} table")
+    args = parser.parse_args()
+    unknown = [m for m in args.meshes if m not in PRESETS]
+    if unknown:
+        parser.error(f"`MESH` = {unknown[0]!r} is not a mesh preset (the presets: {', '.join(sorted(PRESETS))})")
+    chosen = args.meshes or ["quick", "default"]
+    only = [flag for flag in tables if getattr(args, flag)]
     if not only:   # everything but the pressure study
         main(chosen)
-        only = ["--peer", "--backends"]
+        only = ["peer", "backends"]
     for flag in only:
         tables[flag](chosen)

@@ -25,7 +25,6 @@ bulk default`` runs only this part.
 from __future__ import annotations
 
 import math
-import sys
 import time
 
 import numpy as np
@@ -118,8 +117,18 @@ def bulk(meshes: list[str], E: float = 210e3, nu: float = 0.3, R: float = 50.0, 
 
 
 if __name__ == "__main__":
-    args = sys.argv[1:]
-    if args[:1] == ["bulk"]:     # only the bulk-stress part: bench_friction.py bulk default
-        bulk(args[1:] or ["quick", "default"])
-    else:
-        main(args or ["quick", "default"])
+    import argparse
+
+    from threepart.fem.mesh import PRESETS
+
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("meshes", nargs="*", metavar="MESH",
+                        help=f"mesh presets (default: quick default), of {', '.join(sorted(PRESETS))}; "
+                             "a first word 'bulk' runs only the bulk-stress part")
+    args = parser.parse_args().meshes
+    only_bulk = args[:1] == ["bulk"]     # only the bulk-stress part: bench_friction.py bulk default
+    meshes = args[1:] if only_bulk else args
+    unknown = [m for m in meshes if m not in PRESETS]
+    if unknown:
+        parser.error(f"`MESH` = {unknown[0]!r} is not a mesh preset (the presets: {', '.join(sorted(PRESETS))})")
+    (bulk if only_bulk else main)(meshes or ["quick", "default"])

@@ -12,7 +12,6 @@ from __future__ import annotations
 import cProfile
 import os
 import pstats
-import sys
 import time
 
 import numpy as np
@@ -63,4 +62,8 @@ def main(profile: bool) -> None:
 
 
 if __name__ == "__main__":
-    main("--profile" in sys.argv[1:])
+    import argparse
+
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--profile", action="store_true", help="where the time goes (cProfile of each march)")
+    main(parser.parse_args().profile)
