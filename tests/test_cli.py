@@ -62,10 +62,21 @@ def test_bad_input_is_a_clear_error_with_exit_status_2(capsys):
     assert "needs `--A`" in capsys.readouterr().err
 
 
-def test_console_script_runs_as_a_module():
-    out = subprocess.run([sys.executable, "-m", "threepart.cli", "solve", *GEOM, "--json"],
-                         capture_output=True, text=True, check=True)
-    assert json.loads(out.stdout)["tilt"] == "free"
+def test_console_script_runs_as_a_module(capsys, monkeypatch):
+    """``python -m threepart.cli solve ... --json``, run in this process as the interpreter runs a
+    module (its ``__main__`` under that name, the arguments in ``sys.argv``): status 0 and the JSON.
+    ``python -m threepart.cli`` in a fresh interpreter: the broken-pipe test below."""
+    import runpy
+
+    import threepart.cli
+
+    # run_path, not run_module: pytest's assertion rewriter holds the threepart package (a plugin)
+    # and cannot hand runpy a module's code
+    monkeypatch.setattr(sys, "argv", ["threepart.cli", "solve", *GEOM, "--json"])
+    with pytest.raises(SystemExit) as done:
+        runpy.run_path(str(Path(threepart.cli.__file__).with_name("__main__.py")), run_name="__main__")
+    assert done.value.code == 0
+    assert json.loads(capsys.readouterr().out)["tilt"] == "free"
 
 
 # ---------------------------------------------------------------------------------------

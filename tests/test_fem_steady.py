@@ -145,9 +145,22 @@ def test_shakedown_below_f_delta_p():
     assert err.max() <= tolerance("fem-quick", "a").limit * width(fe), (fe.stick_zone, ref.stick_zone)
 
 
-def test_the_registry_dispatches_to_the_fem(p_and_q):
+def test_the_registry_dispatches_to_the_fem(p_and_q, monkeypatch):
+    """The registry's "fem" calls fem.steady_state with the fixture's arguments exactly (the modulus
+    and ν for ``A``, the options as given): its answer is the fixture's march, not marched again."""
+    from threepart.fem import method as fem_method
+
+    calls = []
+
+    def march(*args, **kwargs):
+        calls.append((args, kwargs))
+        return p_and_q
+
+    assert fem_method.steady_state is fem.steady_state    # the adapter's own name for it
+    monkeypatch.setattr(fem_method, "steady_state", march)
     got = threepart.steady_state(CASE_A, PQ, F, A=A, method="fem", mesh="quick", progress=False)
     want = p_and_q               # fem.steady_state(..., E=pair_modulus(A), nu=FEM_NU, mesh="quick")
+    assert calls == [((CASE_A, PQ, F), dict(E=pair_modulus(A), nu=FEM_NU, mesh="quick", progress=False))]
     assert got.method == "fem"
     assert (got.d, got.e, got.energy) == (want.d, want.e, want.energy)
 
