@@ -185,14 +185,13 @@ def read_substrate(path: str | Path) -> Substrate:
             AttributeError, TypeError) as e:
         why = " ".join(str(e).split()) or f"{type(e).__name__}, not an MSH file"
         raise InputError(f"`path` = {str(path)!r} is not a gmsh mesh meshio can read: {why}") from None
-    cells, points = m.cells_dict, m.points
-    tags = m.cell_data_dict.get("gmsh:physical", {}).get("line")
-    groups = {k: (int(v[0]), int(v[1])) for k, v in m.field_data.items()}
+    cells = m.cells_dict
     if "triangle" not in cells:
         raise InputError(f"`path` = {str(path)!r} holds no triangles")
-    mesh = MeshTri(np.ascontiguousarray(points[:, :2].T), np.ascontiguousarray(cells["triangle"].T))
+    mesh = MeshTri(np.ascontiguousarray(m.points[:, :2].T), np.ascontiguousarray(cells["triangle"].T))
+    tags = m.cell_data_dict.get("gmsh:physical", {}).get("line")
     lines = cells.get("line")
-    names = {tag: name for name, (tag, dim) in groups.items() if dim == 1}
+    names = {int(v[0]): k for k, v in m.field_data.items() if int(v[1]) == 1}
     # facet index of each (sorted) vertex pair
     key = mesh.facets[0].astype(np.int64) * mesh.p.shape[1] + mesh.facets[1]
     order = np.argsort(key)
@@ -258,7 +257,7 @@ def _meshed(spec: SubstrateSpec | PunchSpec) -> Substrate:
     punch = isinstance(spec, PunchSpec)
     with scratch_dir("threepart-mesh-") as tmp:   # marked: a killed run's is cleaned by the next
         with gmsh_failure("the punch" if punch else "the substrate"):
-            path = (build_punch(spec, Path(tmp) / "punch.msh") if isinstance(spec, PunchSpec)
+            path = (build_punch(spec, Path(tmp) / "punch.msh") if punch
                     else build_substrate(spec, Path(tmp) / "substrate.msh"))
             sub = read_substrate(path)
     cache.store(_KIND, k, {"p": sub.mesh.p, "t": sub.mesh.t,
