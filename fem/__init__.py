@@ -30,6 +30,7 @@ MeshPreset, PRESETS -- mesh density relative to the contact width ("quick", "def
 Substrate           -- a scikit-fem triangle mesh with boundaries by physical-group name
 read_substrate      -- read a gmsh ``.msh`` through meshio
 make_substrate      -- mesh a SubstrateSpec with gmsh and read it back
+make_punch          -- mesh a PunchSpec (a finite punch body) with gmsh and read it back, once per spec
 SurfaceCompliance   -- elastic body condensed onto the candidate contact nodes
 condense            -- P2 plane-strain stiffness, condensed by one ordered factorisation
 choose_backend, backends -- CHOLMOD (scikit-sparse, the `fast` extra) or SciPy's SuperLU
@@ -66,7 +67,7 @@ from .interface import Interface, bulk_field, interface, mirror
 from .recovery import StressField
 from .finite import solve_finite
 from .finite_slip import solve_finite_slip
-from .mesh import PRESETS, MeshPreset, Substrate, make_substrate, read_substrate
+from .mesh import PRESETS, MeshPreset, Substrate, make_punch, make_substrate, read_substrate
 from .solve import FemResult, locate_contact, solve_normal
 from .steady import FemSteadyResult, steady_state
 from .studies import convergence_study, domain_study
@@ -76,7 +77,7 @@ __all__ = ["solve_normal", "FemResult", "solve_partial_slip", "fretting_cycle", 
            "FemFrettingResult", "solve_finite", "solve_finite_slip", "Interface", "interface", "mirror", "bulk_field", "Step", "tangential",
            "StressField", "NoConvergenceError", "ContactZoneError", "SeparationError",
            "MeshResolutionError", "locate_contact", "MeshPreset", "PRESETS", "Substrate", "read_substrate",
-           "make_substrate", "SurfaceCompliance", "condense", "choose_backend", "backends",
+           "make_substrate", "make_punch", "SurfaceCompliance", "condense", "choose_backend", "backends",
            "solve_contact", "ContactSolution", "Fields", "write_fields", "to_meshio",
            "convergence_study", "domain_study"]
 

@@ -65,16 +65,10 @@ from ._boundary import boundary
 from ._iv import height_iv, mesh_arg, normal_iv
 from ._progress import Progress, ProgressArg, progress_iv
 from .ends import REFINE_ATTEMPTS, check_one_zone, contact_ends, end_size, refined
-from .mesh import PRESETS, MeshPreset, Substrate, make_punch, make_substrate
+from .mesh import PRESETS, MeshPreset, make_punch, make_substrate
 from .solve import FemResult, TRIES_DEFAULT, locate_ends
 
-__all__ = ["solve_finite", "punch_body", "zone_margin"]
-
-
-def punch_body(spec: PunchSpec) -> Substrate:
-    """The punch of ``spec`` meshed with gmsh, its top (``"base"``) to be clamped; meshed once
-    per spec (:func:`fem.mesh.make_punch`)."""
-    return make_punch(spec)
+__all__ = ["solve_finite", "zone_margin"]
 
 
 def _solve(punch: Punch, P: float, s: float, E: float, nu: float, tilt: str, max_iter: int,
@@ -96,7 +90,7 @@ def _solve(punch: Punch, P: float, s: float, E: float, nu: float, tilt: str, max
     else:
         spec = PunchSpec(zone=zone, b=punch.b, R1=punch.R1, R2=punch.R2, H=H, theta=theta,
                          profile=profile, growth=zone.growth)
-        body = punch_body(spec)
+        body = make_punch(spec)
     t1 = time.perf_counter()
     components = ("u^2",) if kinematics == "small" else ("u^1", "u^2")
     S, B = condense(block, E, nu, components), condense(body, E, nu, components)

@@ -53,9 +53,9 @@ from ._boundary import boundary
 from ._iv import STEPS
 from ._progress import Progress, ProgressArg
 from .ends import REFINE_ATTEMPTS, end_size, refined
-from .finite import finite_iv, locate_finite, punch_body, zone_margin
+from .finite import finite_iv, locate_finite, zone_margin
 from .friction import FemSlipResult, shear_path
-from .mesh import MeshPreset, make_substrate
+from .mesh import MeshPreset, make_punch, make_substrate
 from .twobody import TwoBodyModel, with_nodes
 
 __all__ = ["solve_finite_slip"]
@@ -76,7 +76,7 @@ def _model(punch: Punch, P: float, s: float, E: float, nu: float, tilt: str, max
         spec = PunchSpec(zone=zone, b=punch.b, R1=punch.R1, R2=punch.R2, H=H, theta=theta,
                          profile=profile, growth=zone.growth)
         # the exact face over every node, as in fem.solve_finite
-        upper, gap = punch_body(spec), spec.height
+        upper, gap = make_punch(spec), spec.height
     t_mesh = time.perf_counter() - t0
     model = TwoBodyModel(punch, P, s, E, nu, tilt, block, float(np.ptp(block.mesh.p[0])), guess,
                          max_iter, f, upper=upper, gap=gap)

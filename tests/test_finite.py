@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 from threepart import closedform, fem
-from threepart.fem.finite import punch_body
+from threepart.fem.mesh import make_punch
 from threepart.fem.mesh import PRESETS
 from threepart.problem.material import similar_pair
 from threepart.meshes.punch import PunchSpec
@@ -46,7 +46,7 @@ def zone():
 
 def test_the_face_follows_the_circles_and_pairs_with_the_block_node_for_node():
     spec = PunchSpec(zone=zone(), b=1.0, R1=10.0, R2=5.0, H=4.0)
-    body = punch_body(spec)
+    body = make_punch(spec)
     m = body.mesh
     nodes = np.unique(m.facets[:, body.boundaries["contact"]])
     x, y = m.p[0, nodes], m.p[1, nodes]
