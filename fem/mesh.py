@@ -254,10 +254,9 @@ def _meshed(spec: SubstrateSpec | PunchSpec) -> Substrate:
     sub = _from_disk(k)
     if sub is not None:
         return sub
-    punch = isinstance(spec, PunchSpec)
     with scratch_dir("threepart-mesh-") as tmp:   # marked: a killed run's is cleaned by the next
-        with gmsh_failure("the punch" if punch else "the substrate"):
-            path = (build_punch(spec, Path(tmp) / "punch.msh") if punch
+        with gmsh_failure("the punch" if isinstance(spec, PunchSpec) else "the substrate"):
+            path = (build_punch(spec, Path(tmp) / "punch.msh") if isinstance(spec, PunchSpec)  # mypy narrows here
                     else build_substrate(spec, Path(tmp) / "substrate.msh"))
             sub = read_substrate(path)
     cache.store(_KIND, k, {"p": sub.mesh.p, "t": sub.mesh.t,
