@@ -50,6 +50,17 @@ def test_the_entry_point_loads_the_plugin(request):
     assert request.config.pluginmanager.has_plugin("threepart")
 
 
+def test_loading_the_plugin_loads_no_solver_and_no_numpy():
+    """pytest loads the plugin in every run of any project in this environment (issue 41): it
+    loads the errors it names and nothing of the solvers, numpy or scipy (the fixtures load the
+    catalogue when a test asks for a case)."""
+    code = ("import sys, threepart.reports.plugin; print(' '.join(sorted(m for m in sys.modules "
+            "if m.split('.')[0] in ('threepart', 'numpy', 'scipy', 'matplotlib', 'dask'))))")
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert done.stdout.split() == ["threepart", "threepart.errors", "threepart.reports",
+                                   "threepart.reports.plugin"]
+
+
 def test_the_sie_passes_and_the_margins_are_printed(pytester):
     pytester.makepyfile(TOY + '''
 @pytest.mark.threepart_cases("caseA_moment", "slip_Q0.4")
