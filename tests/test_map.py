@@ -73,14 +73,21 @@ LIMITS_1PCT = {(1.0, 0.1): 0.03, (1.0, 0.3): 0.01, (1.0, 1.0): None,
 
 
 class FakeEvaluate:
-    """``evaluate(point, quick)`` of :func:`expected`; touches ``calls/<key>.<id>`` per call."""
+    """``evaluate(point, quick)`` of :func:`expected`; touches ``calls/<key>.<id>`` per call.
 
-    def __init__(self, calls: Path, fail: frozenset[str] = frozenset(), sleep: float = 0.0):
-        self.calls, self.fail, self.sleep = calls, fail, sleep
+    ``hold_after``: the calls after the first ``hold_after`` (counted by the files touched, over
+    all workers) stay in progress until their worker is killed, a run interrupted meanwhile.
+    """
+
+    def __init__(self, calls: Path, fail: frozenset[str] = frozenset(), sleep: float = 0.0,
+                 hold_after: int | None = None):
+        self.calls, self.fail, self.sleep, self.hold_after = calls, fail, sleep, hold_after
 
     def __call__(self, point: MapPoint, quick: bool) -> dict[str, float]:
         (self.calls / f"{point.key()}.{uuid.uuid4().hex}").touch()
         time.sleep(self.sleep)
+        if self.hold_after is not None and len(os.listdir(self.calls)) > self.hold_after:
+            time.sleep(BUSY_S)     # the close of the map's own cluster kills it (tested below)
         if point.key() in self.fail:
             raise RuntimeError(f"mesh failed at {point.key()}")
         return expected(point)
@@ -680,7 +687,7 @@ from threepart.reports.map import sweep as map_mod
 from threepart.cli import main
 if __name__ == "__main__":
     map_mod.run_map = functools.partial(map_mod.run_map, points=POINTS, control=fake_control,
-                                        evaluate=FakeEvaluate(Path(sys.argv[2]), sleep=5.0))
+                                        evaluate=FakeEvaluate(Path(sys.argv[2]), hold_after=2))
     sys.exit(main(["map", "--out", sys.argv[1], "--workers", "2"]))
 """
 
@@ -696,7 +703,7 @@ def test_ctrl_c_prints_one_line_and_the_points_in_progress_are_rerun(sketched, t
                             env={**os.environ, "PYTHONPATH": str(ROOT)}, start_new_session=True,
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
                             preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
-    # two points done and a next one in progress (started, 5 s of fake work from done)
+    # two points done and a next one in progress (held until the interrupt ends its worker)
     wait_until(lambda: len(logged_so_far(out)) >= 2
                and bool(set(calls(counter)) - set(logged_so_far(out)) - {"control"}), proc,
                "2 logged points and one in progress")
