@@ -28,13 +28,14 @@ _SECONDS: dict[str, float] = {}
 #: the files' seconds the controller read when the run began, handed to every worker
 _ORDER: dict[str, float] = {}
 #: a first run's order (a fresh clone: no seconds cached yet), the longest files of a measured run
-#: first (issue 41: test_map 56 s, the wheel 24.5 s, mypy 19.7 s, ..., 8 s): xdist's own order, by
-#: the number of tests, would start the wheel's 3 tests and mypy's 1 near the end of the run
-FIRST_RUN_ORDER = ("tests/test_map.py", "tests/test_install.py", "tests/test_typing.py",
-                   "tests/test_fem.py", "tests/test_finite.py", "tests/test_finite_slope.py",
-                   "tests/test_examples.py", "tests/test_fem_friction.py", "tests/test_cli.py",
-                   "tests/test_fem_steady.py", "tests/test_verify_speed.py",
-                   "tests/test_cli_cycle.py", "tests/test_plots_speed.py")
+#: first (issue 41, 2026-11-29: test_map 53 s, mypy 20 s, test_fem 20 s, ..., the wheel 11 s):
+#: xdist's own order, by the number of tests, would start mypy's 1 test and the wheel's 3 near
+#: the end of the run
+FIRST_RUN_ORDER = ("tests/test_map.py", "tests/test_typing.py", "tests/test_fem.py",
+                   "tests/test_finite_slope.py", "tests/test_fem_friction.py", "tests/test_fem_steady.py",
+                   "tests/test_finite.py", "tests/test_cli.py", "tests/test_cli_cycle.py",
+                   "tests/test_examples.py", "tests/test_plots_speed.py", "tests/test_verify_speed.py",
+                   "tests/test_install.py")
 
 
 def _file_seconds(config: pytest.Config) -> dict[str, float]:
