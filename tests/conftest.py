@@ -72,7 +72,8 @@ def pytest_configure(config: pytest.Config) -> None:
     too, and OpenBLAS's threads spin while they wait: on the 2-core machine a 350 x 350
     ``numpy.linalg.solve`` took 28 ms with 2 threads a process at load 6 against 2.3 ms with one
     (tests/steady_march.py solves hundreds). The workers (and their subprocesses) inherit the
-    variables; ``-n 0`` leaves the threads alone.
+    variables; ``-n 0`` leaves the threads alone. In every process, before any test file is
+    imported: pytest rewrites the tests' asserts only (:func:`_rewrite_only_tests`).
     """
     _rewrite_only_tests(config)
     if hasattr(config, "workerinput"):

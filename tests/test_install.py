@@ -39,7 +39,7 @@ def wheel(tmp_path_factory) -> Path:
     return path
 
 
-def dependencies(requires: list[str], extras: frozenset[str] = frozenset()) -> list[metadata.Distribution]:
+def dependencies(requires: list[str]) -> list[metadata.Distribution]:
     """The distributions of this environment that ``requires`` names, and theirs in turn.
 
     Each requirement's markers are evaluated for this interpreter and the extras asked
@@ -48,7 +48,7 @@ def dependencies(requires: list[str], extras: frozenset[str] = frozenset()) -> l
     """
     found: dict[str, metadata.Distribution] = {}
     extras_of: dict[str, set[str]] = {}
-    todo = [(text, extras) for text in requires]
+    todo: list[tuple[str, frozenset[str]]] = [(text, frozenset()) for text in requires]
     while todo:
         text, asked = todo.pop()
         req = Requirement(text)

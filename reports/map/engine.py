@@ -181,19 +181,20 @@ def _stop_workers(cluster: Any) -> None:
     """Stop the worker processes of the map's own ``cluster`` with :data:`CLOSE_GRACE_S` of grace.
 
     Each nanny's close (distributed's ``Nanny.close``) asks its worker to close, kills it
-    when the grace is over, and closes the nanny; the cluster's close then finds them closed. Whatever
-    goes wrong here is left to that close, which stops them with distributed's own grace.
+    when the grace is over, and closes the nanny; the cluster's close then finds them
+    closed. Whatever goes wrong here is left to that close, which stops them with
+    distributed's own grace.
     """
     from distributed import Nanny
 
     nannies = [w for w in cluster.workers.values() if isinstance(w, Nanny)]
 
-    async def kill() -> None:
+    async def close_all() -> None:
         await asyncio.gather(*(n.close(timeout=CLOSE_GRACE_S, reason="threepart-map-close")
                                for n in nannies))
 
     try:
-        cluster.sync(kill)
+        cluster.sync(close_all)
     except Exception:            # noqa: BLE001 - the close below stops them all the same
         pass
 
