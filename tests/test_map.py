@@ -75,8 +75,9 @@ LIMITS_1PCT = {(1.0, 0.1): 0.03, (1.0, 0.3): 0.01, (1.0, 1.0): None,
 class FakeEvaluate:
     """``evaluate(point, quick)`` of :func:`expected`; touches ``calls/<key>.<id>`` per call.
 
-    ``hold_after``: the calls after the first ``hold_after`` (counted by the files touched, over
-    all workers) stay in progress until their worker is killed, a run interrupted meanwhile.
+    ``hold_after``: only the first ``hold_after`` calls over all workers (each takes one of as
+    many slots, files made exclusively beside ``calls``) return; the later ones stay in progress
+    until their worker is killed, a run interrupted meanwhile.
     """
 
     def __init__(self, calls: Path, fail: frozenset[str] = frozenset(), sleep: float = 0.0,
@@ -86,11 +87,24 @@ class FakeEvaluate:
     def __call__(self, point: MapPoint, quick: bool) -> dict[str, float]:
         (self.calls / f"{point.key()}.{uuid.uuid4().hex}").touch()
         time.sleep(self.sleep)
-        if self.hold_after is not None and len(os.listdir(self.calls)) > self.hold_after:
+        if self.hold_after is not None and not self._slot(self.hold_after):
             time.sleep(BUSY_S)     # the close of the map's own cluster kills it (tested below)
         if point.key() in self.fail:
             raise RuntimeError(f"mesh failed at {point.key()}")
         return expected(point)
+
+    def _slot(self, n: int) -> bool:
+        """Whether this call takes one of the ``n`` slots (a count of the calls' files would race:
+        a worker slow between its touch and its count counts a later call of the other's)."""
+        slots = self.calls.with_name(f"{self.calls.name}-slots")
+        slots.mkdir(exist_ok=True)
+        for k in range(n):
+            try:
+                (slots / str(k)).touch(exist_ok=False)
+                return True
+            except FileExistsError:
+                continue
+        return False
 
 
 def fake_control(quick: bool) -> dict[str, object]:
@@ -141,13 +155,17 @@ POLL_S = 0.02
 
 
 def wait_until(reached: Callable[[], bool], proc: subprocess.Popen, what: str) -> None:
-    """Poll until ``reached()``; fail if ``proc`` ends first or the guard runs out."""
+    """Poll until ``reached()``; fail if ``proc`` ends first or the guard runs out (then ``proc``
+    and the processes of its own session, a map's workers, are killed: none outlives the test)."""
     t0 = time.monotonic()
     while not reached():
         if proc.poll() is not None:
             pytest.fail(f"the child ended (status {proc.returncode}) before {what}: "
                         f"{proc.stderr.read() if proc.stderr else ''}")
         if time.monotonic() - t0 > REACH_GUARD_S:
+            if os.getsid(proc.pid) == proc.pid:
+                os.killpg(proc.pid, signal.SIGKILL)
+            proc.kill()
             pytest.fail(f"the child did not reach {what} within {REACH_GUARD_S} s")
         time.sleep(POLL_S)
 
