@@ -16,7 +16,7 @@ newton_2d       -- the 2-D Newton iteration of one case in ``(r, phi)``
 newton_2d_many  -- the same for arrays of cases
 psi, chi        -- ``2x - sin 2x`` and ``sin x - x cos x`` without cancellation (floats; ``psi_v``, ``chi_v`` on arrays)
 pressure_v      -- the compressive pressure of eq. (pressure_abbreviated) at one point, a numpy ufunc (``formulas.pressure``)
-f0              -- ``F0`` of eq. (f0) of one contact, on floats
+f0_v            -- ``F0`` of eq. (f0), a numpy ufunc (``formulas.F0``)
 
 Run with ``NUMBA_DISABLE_JIT=1`` the same functions run as plain Python (for a
 debugger); the answers agree to rounding.
@@ -29,7 +29,7 @@ import numpy as np
 from numba import njit, vectorize
 
 __all__ = ["FIELDS", "state", "states", "newton_2d", "newton_2d_many", "psi", "chi", "psi_v", "chi_v",
-           "f0", "pressure_v", "MOMENT", "TILT", "STALL"]
+           "f0_v", "pressure_v", "MOMENT", "TILT", "STALL"]
 
 #: the fields of :func:`state`, in order (the attributes of :class:`closedform.newton.State`)
 FIELDS = ("a", "c", "h", "m", "dAP", "AP", "AP_h", "AP_m", "F0", "T", "T_h", "T_m",
@@ -84,22 +84,26 @@ def _log_ratio(x: float, a: float, c: float, b: float, sign: float) -> float:
     return glog + g * math.log((a + c) / n)
 
 
-@_compiled
-def f0(b: float, k0: float, k1: float, k2: float, a: float, c: float) -> float:
-    """``F0 = k1/R1 beta1 + k2/R2 beta2 + pi/R`` of one contact (eq. f0; ``formulas.F0`` on floats).
+def _f0(b: float, k0: float, k1: float, k2: float, a: float, c: float) -> float:
+    """``F0 = k1/R1 beta1 + k2/R2 beta2 + pi/R`` of one contact (eq. f0).
 
-    The join angles as ``2 atan2(sqrt(a-b), sqrt(c+b))``, exact also with an edge at a join.
+    The join angles as ``2 atan2(sqrt(a-b), sqrt(c+b))`` (``formulas.beta``), exact also
+    with an edge at a join.
     """
     b1 = 2.0 * math.atan2(math.sqrt(max(a - b, 0.0)), math.sqrt(c + b))
     b2 = 2.0 * math.atan2(math.sqrt(max(c - b, 0.0)), math.sqrt(a + b))
     return k1 * b1 + k2 * b2 + math.pi * k0
 
 
+#: :func:`_f0` as a numpy ufunc, on a float or arrays of contacts (``formulas.F0``, its one home)
+f0_v = vectorize(["float64(float64, float64, float64, float64, float64, float64)"], cache=True)(_f0).ufunc
+
+
 def _pressure(x: float, a: float, c: float, A: float, F0: float, k1: float, k2: float, b: float) -> float:
     """Compressive pressure ``-p(x)`` of eq. (pressure_abbreviated) on ``[-a, c]``, 0 at and beyond the edges.
 
     ``-p(x) = [w F0 + k1/R1 (x+b) F1(x) + k2/R2 (x-b) F3(x)] / (pi A)`` with
-    ``w = sqrt((x+a)(c-x))``, ``F0`` of the contact (:func:`f0`, eq. f0) and the
+    ``w = sqrt((x+a)(c-x))``, ``F0`` of the contact (:func:`_f0`, eq. f0) and the
     logarithms of :func:`_log_ratio` (``k1, k2`` = ``k1/R1``, ``k2/R2``).
     """
     if not (x > -a and x < c):

@@ -122,7 +122,7 @@ def _kink_and_rest(phi: float) -> tuple[float, float]:
     s, log_s, sin_phi, cos_phi = _chord(phi)
     if s > 0:
         return sin_phi * (0.25 - log_s), s * (0.5 * s) * log_s + 0.75 * cos_phi - 0.5
-    return 0.0, 0.0 + 0.75 * cos_phi - 0.5
+    return 0.0, 0.75 * cos_phi - 0.5
 
 
 @compiled

@@ -12,8 +12,7 @@ import numpy as np
 import pytest
 
 from threepart import closedform, fem
-from threepart.fem.mesh import make_punch
-from threepart.fem.mesh import PRESETS
+from threepart.fem.mesh import PRESETS, make_punch
 from threepart.problem.material import similar_pair
 from threepart.meshes.punch import PunchSpec
 from threepart.problem.punch import Punch

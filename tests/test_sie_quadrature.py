@@ -9,10 +9,9 @@ from scipy.integrate import quad
 from scipy.special import beta as beta_fn
 
 from threepart.problem.punch import Punch
-from threepart.sie.projection import ramp_coefficients, slope_coefficients
+from threepart.sie.projection import ramp_coefficients, ramp_remainder, slope_coefficients
 from threepart.sie.quadrature import cauchy_matrix, gauss_chebyshev, plain_functionals
 from threepart.sie.fretting import GAP_TERMS, _gap_sums
-from threepart.sie.projection import ramp_remainder
 from threepart.sie.series import kinked_sums, log_kink, power_series, sine_series
 from threepart.tolerances import tolerance
 
