@@ -35,10 +35,9 @@ load_refs       -- read a dataset back, every CSV checked against its JSON bit f
 """
 from __future__ import annotations
 
-import importlib
-import sys
-import types
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
+
+from threepart.lazy import lazy_names
 
 #: each public name and the module that defines it, loaded on first use (PEP 562), as in
 #: :mod:`threepart`: the pytest plugin (:mod:`reports.plugin`), which pytest imports in every run
@@ -59,30 +58,4 @@ if TYPE_CHECKING:   # pragma: no cover - for type checkers and IDEs only
     from .verify.studies import fem_study, sie_study
 
 
-def __getattr__(name: str) -> Any:
-    if name in _HOMES:
-        value = getattr(importlib.import_module(f".{_HOMES[name]}", __name__), name)
-        globals()[name] = value
-        return value
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
-
-
-def __dir__() -> list[str]:
-    return sorted({*globals(), *_HOMES})
-
-
-class _Package(types.ModuleType):
-    """This package, whose public names stay the functions of :data:`_HOMES` once their modules load.
-
-    Importing a submodule binds it as the package's attribute: ``reports.compare`` would
-    become the module :mod:`reports.compare` instead of its function ``compare`` (the eager
-    ``from .compare import compare`` this package had rebound the name after the import).
-    """
-
-    def __setattr__(self, name: str, value: Any) -> None:
-        if name in _HOMES and isinstance(value, types.ModuleType):
-            return
-        super().__setattr__(name, value)
-
-
-sys.modules[__name__].__class__ = _Package
+__getattr__, __dir__ = lazy_names(__name__, _HOMES)

@@ -91,8 +91,9 @@ ReaderError         -- another code's file that cannot be read, named with why (
 """
 from __future__ import annotations
 
-import importlib
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
+
+from .lazy import lazy_names
 
 #: each public name and the module that defines it; loaded on first use (PEP 562), so that
 #: ``import threepart`` (and the console script, before it parses its arguments) loads
@@ -138,15 +139,4 @@ if TYPE_CHECKING:   # pragma: no cover - for type checkers and IDEs only
     from .problem.checks import TILTS
 
 
-def __getattr__(name: str) -> Any:
-    if name in _HOMES:
-        value = getattr(importlib.import_module(f".{_HOMES[name]}", __name__), name)
-        globals()[name] = value
-        return value
-    if name in _SUBPACKAGES:
-        return importlib.import_module(f".{name}", __name__)
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
-
-
-def __dir__() -> list[str]:
-    return sorted({*globals(), *_HOMES, *_SUBPACKAGES})
+__getattr__, __dir__ = lazy_names(__name__, _HOMES, _SUBPACKAGES)
