@@ -8,6 +8,8 @@ method's declared options.
 from __future__ import annotations
 
 import ast
+import subprocess
+import sys
 from pathlib import Path
 
 import pytest
@@ -285,3 +287,17 @@ def test_the_plain_value_checks_are_imported_from_their_one_home():
                if isinstance(node, ast.ImportFrom) and (node.module or "").endswith("validate")
                and any(a.name in checks.__all__ for a in node.names)]
     assert not through, through
+
+
+#: the packages of the commands (``threepart verify``, ``compare``, ``map``, ``figures``' reports), each
+#: imported first in a fresh interpreter, where no earlier import has set the order: an import
+#: cycle shows only there (``threepart compare`` once failed so, once ``threepart.reports`` loaded
+#: its names on first use)
+COMMAND_PACKAGES = ("threepart.reports.verify", "threepart.reports.referee", "threepart.reports.map",
+                    "threepart.reports.figures")
+
+
+@pytest.mark.parametrize("name", COMMAND_PACKAGES)
+def test_each_command_s_package_imports_first_in_a_fresh_interpreter(name):
+    done = subprocess.run([sys.executable, "-c", f"import {name}"], capture_output=True, text=True)
+    assert done.returncode == 0, done.stderr[-2000:]

@@ -17,6 +17,17 @@ load_schema   -- the JSON schema of ``report.json``
 """
 from __future__ import annotations
 
-from .report import build_report, load_schema, main, validate, write_report
+from typing import TYPE_CHECKING
 
-__all__ = ["main", "build_report", "write_report", "validate", "load_schema"]
+from threepart.lazy import lazy_names
+
+#: each public name and its module, loaded on first use: importing a leaf of this package
+#: (:mod:`~reports.verify.sections`, as :mod:`reports.referee.verdict` does) loads no run
+_HOMES = {name: "report" for name in ("main", "build_report", "write_report", "validate", "load_schema")}
+
+__all__ = list(_HOMES)
+
+if TYPE_CHECKING:   # pragma: no cover - for type checkers and IDEs only
+    from .report import build_report, load_schema, main, validate, write_report
+
+__getattr__, __dir__ = lazy_names(__name__, _HOMES)
