@@ -23,6 +23,7 @@ from typing import Any
 import numpy as np
 
 from ..errors import FullSlidingError, NoConvergenceError
+from .surface import _solve_active, _symmetric
 
 __all__ = ["coulomb_state", "RETRIES"]
 
@@ -108,22 +109,16 @@ def _active_set(C: np.ndarray, bound: np.ndarray, w_prev: np.ndarray, w_fixed: n
     sign = np.zeros(len(bound)) if sign0 is None else np.where(touch & ~stick, sign0, 0.0)
     if not stick.any():   # start from the point that carries the most force
         stick[np.argmax(bound)] = True
+    sym = _symmetric(C)
+    zero = np.zeros(len(bound))
     for it in range(1, max_iter + 1):
         slip = touch & ~stick
-        S = np.flatnonzero(stick)
         t_slip = np.where(slip, sign * bound, 0.0)
-        m = len(S)
-        M = np.zeros((m + 1, m + 1))
-        M[:m, :m] = -C[np.ix_(S, S)]
-        M[:m, m] = 1.0
-        M[m, :m] = 1.0
-        rhs = np.empty(m + 1)
-        rhs[:m] = w_prev[S] - w_fixed[S] + C[S] @ t_slip
-        rhs[m] = Q - t_slip.sum()
-        sol = np.linalg.solve(M, rhs)
-        t = t_slip.copy()
-        t[S] = sol[:m]
-        xi = float(sol[m])
+        # the stick points: C_SS t_S - xi = -(w_prev - w_fixed + C t_slip)_S, sum t_S = Q - sum t_slip,
+        # the bordered system of the normal problem's fixed tilt (its factor, kept per set)
+        t, xi, _ = _solve_active(C, zero, w_prev - w_fixed + C @ t_slip, stick,
+                                 Q - float(t_slip.sum()), 0.0, False, sym)
+        t += t_slip
         z = t + c * (xi + w_fixed - C @ t - w_prev)
         # a slip point whose |z| falls below its bound only by rounding stays a slip point: such a
         # point (t at the bound, no slip increment) otherwise toggles with the rounding

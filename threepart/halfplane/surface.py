@@ -174,7 +174,7 @@ class PerArray:
 
 #: the active-set systems' factors kept (:func:`_factor`): a march's or a cycle's steps return to the
 #: same active sets on the same compliance
-FACTORS_KEPT = 4
+FACTORS_KEPT = 8
 _FACTORS = PerArray(FACTORS_KEPT)
 #: compliances whose symmetry is known (an n^2 comparison per solve otherwise)
 _SYMMETRIC = PerArray(64)
