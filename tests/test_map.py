@@ -254,7 +254,10 @@ def test_the_map_holds_the_fake_numbers_and_validates(finished, scheduler):
     assert steps(doc) and not steps(doc) & set(KEYS)
     assert exit_status(doc) == 0
     progress = [m for m in lines if m.startswith("[")]
-    assert len(progress) == 19 + len(steps(doc)) and progress[18].startswith("[19/19]")
+    # one line a task; the bisection's steps join the count as its curves start, mid-grid
+    n = 19 + len(steps(doc))
+    assert len(progress) == n and progress[-1].startswith(f"[{n}/{n}]")
+    assert [int(m[1:m.index("/")]) for m in progress] == list(range(1, n + 1))
     assert all("elapsed" in m and "ETA" in m for m in progress)
 
 
@@ -915,7 +918,7 @@ def test_the_map_locates_each_signed_boundary_and_resumes_its_bisection(tmp_path
         assert r["crossed_once"] and r["status"] in ("converged", "capped") and r["steps"]
         assert all(math.isfinite(s["peak_rel_error"]) for s in r["steps"])
     assert exit_status(doc) == 0
-    # stopped in the second wave of the bisection, then resumed: no step is computed twice
+    # stopped in the bisection (its first steps logged), then resumed: no step is computed twice
     grid = len(SIGNED_POINTS) + 1
     counter = fresh(counter)
     out = tmp_path / "stopped"
@@ -1026,7 +1029,8 @@ run_map(sys.argv[1], scheduler=sys.argv[2], evaluate=SignedEvaluate(Path(sys.arg
 
 def test_a_run_killed_in_the_bisection_resumes_with_its_finished_steps(sketched, tmp_path, counter,
                                                                        scheduler):
-    """SIGKILL once the grid is logged and the bisection's first steps are: nothing finished is redone."""
+    """SIGKILL once the bisection's first steps are logged (the grid's last point may still be running,
+    as each curve's bisection starts when its own points are in): nothing finished is redone."""
     out = tmp_path / "map"
     grid = {p.key() for p in SIGNED_POINTS}
     proc = subprocess.Popen([sys.executable, "-c", KILLED_IN_BISECTION, str(out), scheduler, str(counter)],
@@ -1035,7 +1039,7 @@ def test_a_run_killed_in_the_bisection_resumes_with_its_finished_steps(sketched,
     proc.send_signal(signal.SIGKILL)
     proc.communicate()
     done = logged(out)
-    assert grid <= set(done) and len(set(done) - grid) >= 2, proc.stderr
+    assert len(set(done) - grid) >= 2, proc.stderr
     counter = fresh(counter)
     doc = run_map(out, scheduler=scheduler, evaluate=SignedEvaluate(counter), quick=True,
                   points=SIGNED_POINTS, control=fake_control, say=lambda m: None)

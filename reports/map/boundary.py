@@ -6,8 +6,9 @@ and ``b/R1``): the signed peak-pressure error as a function of the overhang
 crossing is bracketed by two adjacent grid points, a :class:`Bisection`
 halves the bracket in ``log((a - b)/R1)`` until it is within
 :data:`REL_WIDTH` (relative) or after :data:`STEP_CAP` steps. The map runs
-the steps in waves, all curves' step ``k`` in parallel, each step one point
-with its own key (so a resumed map reuses the finished steps). Nothing here
+each curve's bisections once its grid points are in, each step one point
+with its own key, submitted when the step before is logged (so a resumed map
+reuses the finished steps). Nothing here
 runs the FEM: a step's point is evaluated by the map's engine, and
 :func:`locate` runs the same bisection serially on any function (the tests).
 
@@ -197,7 +198,7 @@ def locate(f: Callable[[float], tuple[float, float]], samples: Sequence[Sample],
 
     ``f(x)`` returns the signed error and the FEM estimate at the overhang
     ``x``; ``samples`` are the curve's grid samples. The map itself runs the
-    same :class:`Bisection` in waves on its engine.
+    same :class:`Bisection` on its engine, step by step as results arrive.
     """
     found = brackets(sorted(samples, key=lambda s: s.x), level)
     results = []

@@ -3,7 +3,8 @@
 Names
 -----
 open_engine -- context manager: a client on a new local cluster or on a scheduler, closed on exit
-sweep       -- submit every task, log each result as it arrives, report progress
+sweep       -- submit every task, log each result as it arrives (and submit its follow-ups), report progress
+Task        -- a task of a sweep: its key, the function a worker runs, its arguments, and what it is
 """
 from __future__ import annotations
 
@@ -24,9 +25,12 @@ from dask.distributed import Client, LocalCluster, as_completed
 from .log import control_record, one_line, point_record
 from .schema import pct
 
-__all__ = ["open_engine", "sweep"]
+__all__ = ["open_engine", "sweep", "Task"]
 
 Say = Callable[[str], None]
+#: a task of a sweep: its key, the function a worker runs, its arguments, and what it is (see
+#: :func:`sweep`)
+Task = tuple[str, Callable[..., Any], tuple[Any, ...], Any]
 
 
 @contextmanager
@@ -212,28 +216,38 @@ def connect(scheduler: str, timeout: float) -> Any:
     raise OSError(f"cannot reach the dask scheduler `--scheduler` = {scheduler!r}: {reason}")
 
 
-def sweep(client: Any, tasks: list[tuple[str, Callable[..., Any], tuple[Any, ...], Any]],
-           log: Callable[[dict[str, Any]], None], mode: str, done0: int, total: int,
-           say: Say) -> list[dict[str, Any]]:
+def sweep(client: Any, tasks: list[Task], log: Callable[[dict[str, Any]], None], mode: str, done0: int,
+          total: int, say: Say, follow: Callable[[dict[str, Any]], list[Task]] | None = None
+          ) -> list[dict[str, Any]]:
     """Submit every task, log each result as it arrives, and report progress; return the records.
 
     A task is ``(key, fn, args, what)``: ``what`` is the grid point (its line is
     :func:`~reports.map.log.point_record`), ``None`` (the control), or a callable
     ``what(result, exc, mode)`` that makes the line of a study task
-    (:func:`~reports.map.log.task_record`).
+    (:func:`~reports.map.log.task_record`). ``follow(record)``, if given, returns
+    the tasks that a logged record makes possible (the next step of a bisection);
+    they are submitted at once and counted into ``total``, and their records are
+    returned too.
     """
     futures = {}
-    for key, fn, args, point in tasks:
-        fut = client.submit(fn, *args, pure=False, key=f"threepart-map-{key}-{uuid.uuid4().hex[:8]}")
-        futures[fut] = (key, point)
+
+    def submit(batch: list[Task]) -> list[Any]:
+        new = []
+        for key, fn, args, point in batch:
+            fut = client.submit(fn, *args, pure=False, key=f"threepart-map-{key}-{uuid.uuid4().hex[:8]}")
+            futures[fut] = (key, point)
+            new.append(fut)
+        return new
+
+    pending = as_completed(submit(tasks))
     records: list[dict[str, Any]] = []
     t0 = time.perf_counter()
     stop, lost = threading.Event(), list[str]()
-    watch = threading.Thread(target=_watch_workers, args=(client, list(futures), stop, lost),
+    watch = threading.Thread(target=_watch_workers, args=(client, futures, stop, lost),
                              name="threepart-map-workers", daemon=True)
     watch.start()
     try:
-        for fut in as_completed(list(futures)):
+        for fut in pending:
             if lost:
                 raise RuntimeError(lost[0])
             key, point = futures[fut]
@@ -250,6 +264,10 @@ def sweep(client: Any, tasks: list[tuple[str, Callable[..., Any], tuple[Any, ...
                        else point_record(point, result, error, mode))
             log(rec)
             records.append(rec)
+            more = follow(rec) if follow is not None else []
+            for new in submit(more):
+                pending.add(new)
+            total += len(more)
             done = done0 + len(records)
             elapsed = time.perf_counter() - t0
             eta = elapsed / len(records) * (total - done)
@@ -269,7 +287,7 @@ def sweep(client: Any, tasks: list[tuple[str, Callable[..., Any], tuple[Any, ...
     return records
 
 
-def _watch_workers(client: Any, futures: list[Any], stop: threading.Event, lost: list[str]) -> None:
+def _watch_workers(client: Any, futures: dict[Any, Any], stop: threading.Event, lost: list[str]) -> None:
     """Until ``stop``: every :data:`WORKER_CHECK_S`, count the cluster's workers; after
     :data:`NO_WORKERS_S` without one, say why in ``lost`` and cancel the pending ``futures``
     (their results then arrive as cancelled, and :func:`sweep` raises ``lost``'s reason)."""
@@ -285,7 +303,7 @@ def _watch_workers(client: Any, futures: list[Any], stop: threading.Event, lost:
                         "pending tasks cannot run; start workers (or a new cluster) and rerun: the "
                         "map resumes where it stopped")
             try:
-                client.cancel([f for f in futures if not f.done()])
+                client.cancel([f for f in list(futures) if not f.done()])
             except Exception:
                 pass
             return

@@ -12,12 +12,13 @@ as ``map.json`` (valid against ``reports/map/map.schema.json``), ``map.csv`` (th
 same points, one row each), ``boundaries.csv`` and ``plots/*.png``, one contour
 map of the signed peak-pressure error per ``R2/R1``, ``H/b`` and ``s/s_lift-off``.
 
-After the grid, the boundary (issue 23) is located: for each curve of the
-grid (the group axes and ``b/R1``) and each level of
+Alongside the grid, the boundary (issue 23) is located: for each curve of
+the grid (the group axes and ``b/R1``) and each level of
 :data:`reports.map.boundary.LEVELS` bracketed by two adjacent grid points,
-a bisection in ``log((a - b)/R1)`` runs in waves (all curves' step ``k`` in
-parallel), each step one more point in ``points.jsonl`` with its own key, so
-that a resumed map reuses the finished steps.
+a bisection in ``log((a - b)/R1)`` starts once the curve's grid points are
+in (:class:`_Boundary`), each step one more point in ``points.jsonl`` with
+its own key, submitted as soon as the step before it is logged, so that no
+curve waits for another and a resumed map reuses the finished steps.
 
 The output directory
 --------------------
@@ -66,6 +67,7 @@ from __future__ import annotations
 
 import os
 import time
+import uuid
 from contextlib import ExitStack
 from pathlib import Path
 from typing import Any, Callable, Sequence
@@ -76,8 +78,8 @@ from threepart.output import ResumableDir, json_safe, strict_json
 from threepart.tolerances import tolerance
 
 from . import validity
-from .engine import open_engine, sweep
-from .boundary import LEVELS, REL_WIDTH, STEP_CAP, X, Bisection, Sample, start
+from .engine import Task, open_engine, sweep
+from .boundary import CURVE_AXES, LEVELS, REL_WIDTH, STEP_CAP, X, Bisection, Sample, start
 from .log import CONTROL_KEY, POINTS_FILE, done, read_log
 from .plots import below_level, contour, designer_sentence, slope_plot, stick_sentence, stick_zone
 from .studies import Studies, failures, point_columns, referee_section, small_slope, study_tasks
@@ -132,36 +134,61 @@ def _plan(rd: ResumableDir, plots: Sequence[str]) -> None:
     rd.mkdir("plots")
 
 
-def _draw(rd: ResumableDir, doc: dict[str, Any], say: Say) -> None:
-    """Draw one contour map per group of points into ``out/plots`` and list them in ``doc``.
+#: a plot of the map: its file, the function that draws it (``draw(..., path=path)``) and its
+#: arguments but the path
+Plot = tuple[str, Callable[..., None], dict[str, Any]]
+
+
+def _plots(doc: dict[str, Any]) -> list[Plot]:
+    """The map's plots, each listed in ``doc``: one contour map per group of points, a stick-zone
+    plot per group with partial slip, and the small-slope plot.
 
     A group is one combination of values of :data:`reports.map.schema.GROUP_AXES`.
     """
-    points = doc["points"]
+    points, out = doc["points"], list[Plot]()
     for values in groups(points):
         where = dict(zip(GROUP_AXES, values))
         rel = plot_name(values)
         group = [p for p in points if all(p[a] == v for a, v in where.items())]
         lines = [b for b in doc["boundaries"] if all(b[a] == v for a, v in where.items())]
         sentence = designer_sentence(group, **where, boundaries=lines)
-        rd.write(rel, lambda path: contour(group, **where, sentence=sentence, path=path,
-                                           boundaries=lines))
+        out.append((rel, contour, {"points": group, **where, "sentence": sentence, "boundaries": lines}))
         doc["plots"].append({"file": rel, **where, "sentence": sentence,
                              "below_1_percent": [{k: row[k] for k in ("b_over_R1", "limit", "stop")}
                                                  for row in below_level(group)]})
-        say(f"  {rel}: {sentence}")
         slipped = [p for p in group if p["d_rel_error"] is not None]
         if slipped:
             rel = plot_name(values, "stick_zone")
             sentence = stick_sentence(slipped)
-            rd.write(rel, lambda path: stick_zone(slipped, **where, sentence=sentence, path=path))
+            out.append((rel, stick_zone, {"points": slipped, **where, "sentence": sentence}))
             doc["stick_zone_plots"].append({"file": rel, **where, "sentence": sentence})
-            say(f"  {rel}: {sentence}")
     sloped = [p for p in points if p["slope_peak_rel_error"] is not None]
     if sloped:
         rel = "plots/small_slope.png"
-        rd.write(rel, lambda path: slope_plot(sloped, doc["small_slope"], path=path))
+        out.append((rel, slope_plot, {"points": sloped, "section": doc["small_slope"]}))
         doc["small_slope"]["plot"] = rel
+    return out
+
+
+def _png(draw: Callable[..., None], kw: dict[str, Any]) -> bytes:
+    """One plot drawn into a temporary file: its PNG bytes (run on a worker of the map's engine)."""
+    import tempfile
+
+    with tempfile.TemporaryDirectory(prefix="threepart-map-plot-") as tmp:
+        path = Path(tmp) / "plot.png"
+        draw(**kw, path=path)
+        return path.read_bytes()
+
+
+def _render(plots: Sequence[Plot], client: Any) -> list[bytes]:
+    """The plots' PNG bytes: drawn side by side on the engine's workers while it is open (each plot
+    takes matplotlib about a second), else here, one after another (a resumed map with nothing left
+    to compute starts no cluster for its plots)."""
+    if client is None or len(plots) < 2:
+        return [_png(draw, kw) for _, draw, kw in plots]
+    return client.gather([client.submit(_png, draw, kw, pure=False,
+                                        key=f"threepart-map-plot-{i}-{uuid.uuid4().hex[:8]}")
+                          for i, (_, draw, kw) in enumerate(plots)])
 
 
 def _step_point(b: Bisection, x: float) -> MapPoint:
@@ -174,9 +201,6 @@ def _task_time(rec: dict[str, Any]) -> float:
     res: dict[str, Any] = rec["result"] if isinstance(rec.get("result"), dict) else rec
     times = [v for k, v in res.items() if k.startswith("time") or k.endswith("time_s")]
     return sum(v for v in times if finite(v))
-
-#: a task of the sweep: its key, the function a worker runs, its arguments, and its map point
-Task = tuple[str, Callable[..., Any], tuple[Any, ...], Any]
 
 
 class _Engine:
@@ -216,11 +240,17 @@ class _Batch:
                  mode: str) -> None:
         self.engine, self.records, self.log, self.mode = engine, records, log, mode
 
-    def run(self, batch: list[Task], done0: int, of: int) -> None:
+    def run(self, batch: list[Task], done0: int, of: int,
+            follow: Callable[[dict[str, Any]], list[Task]] | None = None) -> None:
+        """Run ``batch`` (and what ``follow`` makes of each record), keeping each record as it arrives."""
         client = self.engine.ready()
         t2 = time.perf_counter()
-        for rec in sweep(client, batch, self.log, self.mode, done0, of, self.engine.say):
-            self.records[rec["key"]] = rec
+
+        def arrived(rec: dict[str, Any]) -> list[Task]:
+            self.records[rec["key"]] = rec     # before the follow-ups, which read it
+            return follow(rec) if follow is not None else []
+
+        sweep(client, batch, self.log, self.mode, done0, of, self.engine.say, arrived)
         self.engine.timings["sweep_s"] += time.perf_counter() - t2
 
 
@@ -255,31 +285,96 @@ def _studied(st: Any, n: int) -> str:
             f"small slope, {len(st.slope_curves or ())} crossings, {len(st.referee_points or ())} CalculiX)")
 
 
-def _bisect(bisections: list[Bisection], cap: int, batch: _Batch, tasks: list[Task],
-            evaluate: Evaluate, quick: bool, say: Say) -> int:
-    """Bisect every crossing in waves of at most ``cap`` steps; the steps taken (``tasks`` grows)."""
-    records = batch.records
-    steps_done = 0
-    for wave in range(1, cap + 1):
-        # this wave's step of each open bisection (two levels of one curve may share a point)
-        steps = [(b, x, _step_point(b, x)) for b in bisections if (x := b.next_x(cap)) is not None]
-        want = {pt.key(): pt for _, _, pt in steps}
-        if not want:
-            break
-        todo: list[Task] = [(k, evaluate, (p, quick), p) for k, p in want.items() if not done(records.get(k))]
-        say(f"boundary, wave {wave}: {len(want)} steps of {len(bisections)} crossings "
-            f"({len(want) - len(todo)} already done)")
-        if todo:
-            batch.run(todo, len(want) - len(todo), len(want))
-            tasks += todo
-        steps_done += len(want)
-        for b, x, pt in steps:
-            rec = records[pt.key()]
-            if rec.get("error") is not None or not finite(rec.get("peak_rel_error")):
-                b.fail(rec.get("error") or "no finite peak error")
-            else:
-                b.take(Sample(x, rec["peak_rel_error"], rec.get("fem_error_estimate") or 0.0, rec["key"]))
-    return steps_done
+def _curve(p: MapPoint) -> tuple[float, ...]:
+    """The curve of a grid point (:data:`reports.map.boundary.CURVE_AXES`), as :func:`~reports.map.boundary.curves` keys it."""
+    return tuple(float(getattr(p, a)) for a in CURVE_AXES)
+
+
+class _Boundary:
+    """The bisection of every bracketed crossing, run alongside the grid as its curves finish.
+
+    A curve's bisections start (:func:`reports.map.boundary.start`) once its last
+    grid point is logged, and each one's next step is submitted as soon as its
+    step before is logged: no curve waits for another, nor for the rest of the
+    grid. A step already logged (a resumed map) is taken at once; two levels of
+    one curve that want the same point share its one task. ``tasks`` collects
+    the steps submitted; ``steps`` is the number of distinct step points.
+    """
+
+    def __init__(self, grid: Sequence[MapPoint], records: dict[str, Any], cap: int,
+                 evaluate: Evaluate, quick: bool, say: Say) -> None:
+        self.grid, self.records, self.cap, self.evaluate, self.quick, self.say = (
+            grid, records, cap, evaluate, quick, say)
+        self.curve_of = {p.key(): _curve(p) for p in grid}
+        self.left: dict[tuple[float, ...], set[str]] = {}
+        for k, c in self.curve_of.items():
+            self.left.setdefault(c, set()).add(k)
+        self.started: dict[tuple[float, ...], list[Bisection]] = {}
+        self.waiting: dict[str, list[tuple[Bisection, float]]] = {}
+        self.keys: set[str] = set()
+        self.tasks: list[Task] = []
+
+    def ready(self, pending: set[str]) -> list[Task]:
+        """The first steps of every curve none of whose grid points is among the ``pending`` keys
+        (each has its record: a resumed map's log)."""
+        out: list[Task] = []
+        for k in self.curve_of:
+            if k not in pending:
+                out += self._grid_point(k)
+        return out
+
+    def arrived(self, rec: dict[str, Any]) -> list[Task]:
+        """The tasks a logged record makes possible: the next steps of the bisections waiting for it,
+        or, for a curve's last grid point, that curve's first steps."""
+        out: list[Task] = []
+        for b, x in self.waiting.pop(rec["key"], []):
+            self._take(b, x, rec)
+            out += self._ask(b)
+        return out + self._grid_point(rec["key"])
+
+    def bisections(self) -> list[Bisection]:
+        """Every bisection, in the order of :func:`~reports.map.boundary.start` on the whole grid."""
+        return [b for c in dict.fromkeys(map(_curve, self.grid)) for b in self.started.get(c, [])]
+
+    def _grid_point(self, key: str) -> list[Task]:
+        """The first steps of ``key``'s curve if ``key`` was the last of its grid points to arrive."""
+        c = self.curve_of.get(key)
+        if c is None or key not in self.left[c]:
+            return []
+        self.left[c].discard(key)
+        return [] if self.left[c] else self._start(c)
+
+    def _start(self, c: tuple[float, ...]) -> list[Task]:
+        points = [{k: self.records[p.key()].get(k) for k in COLUMNS} for p in self.grid if _curve(p) == c]
+        self.started[c] = found = start(points)
+        if found:
+            self.say(f"boundary: {len(found)} crossing{'s' * (len(found) > 1)} at "
+                     + ", ".join(f"{a} = {v:g}" for a, v in zip(CURVE_AXES, c)))
+        return [t for b in found for t in self._ask(b)]
+
+    def _ask(self, b: Bisection) -> list[Task]:
+        """``b``'s next step: a new task, or none (finished, shared with a step in flight, or logged)."""
+        while (x := b.next_x(self.cap)) is not None:
+            pt = _step_point(b, x)
+            k = pt.key()
+            self.keys.add(k)
+            if k in self.waiting:
+                self.waiting[k].append((b, x))
+                return []
+            if not done(self.records.get(k)):
+                self.waiting[k] = [(b, x)]
+                task: Task = (k, self.evaluate, (pt, self.quick), pt)
+                self.tasks.append(task)
+                return [task]
+            self._take(b, x, self.records[k])
+        return []
+
+    @staticmethod
+    def _take(b: Bisection, x: float, rec: dict[str, Any]) -> None:
+        if rec.get("error") is not None or not finite(rec.get("peak_rel_error")):
+            b.fail(rec.get("error") or "no finite peak error")
+        else:
+            b.take(Sample(x, rec["peak_rel_error"], rec.get("fem_error_estimate") or 0.0, rec["key"]))
 
 
 def _document(mode: str, engine: _Engine, st: Any, grid: Sequence[MapPoint], records: dict[str, Any],
@@ -318,16 +413,19 @@ def _document(mode: str, engine: _Engine, st: Any, grid: Sequence[MapPoint], rec
 
 
 def _write(rd: ResumableDir, doc: dict[str, Any], mapped: list[dict[str, Any]],
-           boundaries: list[dict[str, Any]], timings: dict[str, float], say: Say) -> None:
-    """The plots, ``map.csv`` and ``boundaries.csv`` into the map directory (``map.json`` follows)."""
+           boundaries: list[dict[str, Any]], plots: Sequence[tuple[Plot, bytes]],
+           timings: dict[str, float], say: Say) -> None:
+    """The drawn plots, ``map.csv`` and ``boundaries.csv`` into the map directory (``map.json`` follows)."""
     t3 = time.perf_counter()
     _plan(rd, [*(plot_name(g, kind) for g in groups(mapped) for kind in ("peak_error", "stick_zone")),
                "plots/small_slope.png"])
-    _draw(rd, doc, say)
+    for (rel, _, kw), png in plots:
+        rd.write(rel, png)
+        if "sentence" in kw:
+            say(f"  {rel}: {kw['sentence']}")
     rd.write("map.csv", csv_text(mapped))
     rd.write("boundaries.csv", boundaries_csv(boundaries))
-    timings["write_s"] = time.perf_counter() - t3
-
+    timings["write_s"] = timings.get("write_s", 0.0) + time.perf_counter() - t3
 
 
 def exit_status(doc: dict[str, Any]) -> int:
@@ -405,13 +503,19 @@ def run_map(out: str | Path, *, quick: bool = False, scheduler: str | None = Non
         say(f"threepart map --{mode}: {len(grid)} points, the control and {_studied(st, total - len(grid) - 1)}"
             f" -> {out} ({rd.action}; {total - len(tasks)} of {total} already done)")
         batch = _Batch(engine, records, lambda rec: rd.append(POINTS_FILE, strict_json(rec)), mode)
-        if tasks:
-            batch.run(tasks, total - len(tasks), total)
-        # the boundary: every bracketed crossing bisected in waves, step k of every curve at once
-        bisections = start([{k: records[p.key()].get(k) for k in COLUMNS} for p in grid])
-        steps_done = _bisect(bisections, STEP_CAP[mode], batch, tasks, evaluate, quick, say)
-    doc, mapped, boundaries = _document(mode, engine, st, grid, records, tasks, bisections, steps_done)
-    _write(rd, doc, mapped, boundaries, engine.timings, say)
+        # the boundary: each curve's crossings bisected as soon as its grid points are in
+        boundary = _Boundary(grid, records, STEP_CAP[mode], evaluate, quick, say)
+        first = boundary.ready({t[0] for t in tasks})
+        if tasks or first:
+            batch.run([*tasks, *first], total - len(tasks), total + len(first), boundary.arrived)
+        tasks += boundary.tasks
+        doc, mapped, boundaries = _document(mode, engine, st, grid, records, tasks,
+                                            boundary.bisections(), len(boundary.keys))
+        t3 = time.perf_counter()
+        plots = _plots(doc)
+        drawn = list(zip(plots, _render(plots, engine.client)))   # before the engine closes
+        engine.timings["write_s"] = time.perf_counter() - t3
+    _write(rd, doc, mapped, boundaries, drawn, engine.timings, say)
     doc["timings"]["total_s"] = doc["summary"]["run_time_s"] = time.perf_counter() - t0
     validate(doc := json_safe(doc))
     rd.write("map.json", strict_json(doc, indent=1) + "\n")
