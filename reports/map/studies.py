@@ -40,6 +40,7 @@ from typing import Any, Callable, Sequence
 from threepart.calculix import CcxMissing
 
 from . import validity
+from .engine import Task
 from .log import task_key, task_record
 from .referee import REFEREE_POINTS, referee
 from .schema import COORDINATES, SLIP_COLUMNS, SLOPE_COLUMNS
@@ -57,7 +58,6 @@ REFEREE_KEYS = ("calculix", "fem", "closed_form", "fem_minus_calculix", "closed_
 #: the figures of each of those, read by name
 FIGURES = ("p_left", "p_right", "a", "c")
 
-Task = tuple[str, Callable[..., Any], tuple[Any, ...], Any]
 
 
 @dataclass(frozen=True)
