@@ -180,6 +180,16 @@ def _png(draw: Callable[..., None], kw: dict[str, Any]) -> bytes:
         return path.read_bytes()
 
 
+def _drawn(doc: dict[str, Any], engine: _Engine) -> list[tuple[Plot, bytes]]:
+    """The map's plots (:func:`_plots`) with their PNG bytes (:func:`_render`); the seconds start
+    the timings' ``write_s``."""
+    t3 = time.perf_counter()
+    plots = _plots(doc)
+    drawn = list(zip(plots, _render(plots, engine.client)))
+    engine.timings["write_s"] = time.perf_counter() - t3
+    return drawn
+
+
 def _render(plots: Sequence[Plot], client: Any) -> list[bytes]:
     """The plots' PNG bytes: drawn side by side on the engine's workers while it is open (each plot
     takes matplotlib about a second), else here, one after another (a resumed map with nothing left
@@ -322,6 +332,14 @@ class _Boundary:
             if k not in pending:
                 out += self._grid_point(k)
         return out
+
+    def run(self, batch: _Batch, tasks: list[Task], total: int) -> list[Task]:
+        """Run the ``tasks`` of the map (``total`` in all) and the bisection alongside them: the
+        steps it submitted."""
+        first = self.ready({t[0] for t in tasks})
+        if tasks or first:
+            batch.run([*tasks, *first], total - len(tasks), total + len(first), self.arrived)
+        return self.tasks
 
     def arrived(self, rec: dict[str, Any]) -> list[Task]:
         """The tasks a logged record makes possible: the next steps of the bisections waiting for it,
@@ -505,16 +523,10 @@ def run_map(out: str | Path, *, quick: bool = False, scheduler: str | None = Non
         batch = _Batch(engine, records, lambda rec: rd.append(POINTS_FILE, strict_json(rec)), mode)
         # the boundary: each curve's crossings bisected as soon as its grid points are in
         boundary = _Boundary(grid, records, STEP_CAP[mode], evaluate, quick, say)
-        first = boundary.ready({t[0] for t in tasks})
-        if tasks or first:
-            batch.run([*tasks, *first], total - len(tasks), total + len(first), boundary.arrived)
-        tasks += boundary.tasks
+        tasks += boundary.run(batch, tasks, total)
         doc, mapped, boundaries = _document(mode, engine, st, grid, records, tasks,
                                             boundary.bisections(), len(boundary.keys))
-        t3 = time.perf_counter()
-        plots = _plots(doc)
-        drawn = list(zip(plots, _render(plots, engine.client)))   # before the engine closes
-        engine.timings["write_s"] = time.perf_counter() - t3
+        drawn = _drawn(doc, engine)   # before the engine closes: on its workers
     _write(rd, doc, mapped, boundaries, drawn, engine.timings, say)
     doc["timings"]["total_s"] = doc["summary"]["run_time_s"] = time.perf_counter() - t0
     validate(doc := json_safe(doc))

@@ -23,7 +23,7 @@ from typing import Any
 import numpy as np
 
 from ..errors import FullSlidingError, NoConvergenceError
-from .surface import _solve_active, _symmetric
+from .surface import solve_active, symmetric
 
 __all__ = ["coulomb_state", "RETRIES"]
 
@@ -109,14 +109,14 @@ def _active_set(C: np.ndarray, bound: np.ndarray, w_prev: np.ndarray, w_fixed: n
     sign = np.zeros(len(bound)) if sign0 is None else np.where(touch & ~stick, sign0, 0.0)
     if not stick.any():   # start from the point that carries the most force
         stick[np.argmax(bound)] = True
-    sym = _symmetric(C)
+    sym = symmetric(C)
     zero = np.zeros(len(bound))
     for it in range(1, max_iter + 1):
         slip = touch & ~stick
         t_slip = np.where(slip, sign * bound, 0.0)
         # the stick points: C_SS t_S - xi = -(w_prev - w_fixed + C t_slip)_S, sum t_S = Q - sum t_slip,
         # the bordered system of the normal problem's fixed tilt (its factor, kept per set)
-        t, xi, _ = _solve_active(C, zero, w_prev - w_fixed + C @ t_slip, stick,
+        t, xi, _ = solve_active(C, zero, w_prev - w_fixed + C @ t_slip, stick,
                                  Q - float(t_slip.sum()), 0.0, False, sym)
         t += t_slip
         z = t + c * (xi + w_fixed - C @ t - w_prev)

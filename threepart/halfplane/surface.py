@@ -21,6 +21,8 @@ with ``free_tilt=False``.
 
 ContactSolution -- nodal forces, gap, active set, delta, alpha
 solve_contact   -- the active-set solve
+solve_active    -- one active set's bordered system (a factor kept per set; the Coulomb stick set's too)
+symmetric       -- whether a compliance equals its transpose, found once per array
 PerArray        -- a bounded map keyed by an array's identity (what is kept per compliance)
 influence       -- the half-plane's compliance of a piecewise-linear pressure on nodes (eq. 0.1 of docs/WEAR.md)
 MAX_ITER        -- the range of active-set iterations a caller may ask for
@@ -42,7 +44,8 @@ from threepart.threads import one_blas_thread
 from threepart.errors import InputError, NoConvergenceError
 from threepart.problem.checks import finite, integer, positive
 
-__all__ = ["ContactSolution", "solve_contact", "influence", "PerArray", "MAX_ITER"]
+__all__ = ["ContactSolution", "solve_contact", "solve_active", "symmetric", "influence", "PerArray",
+           "MAX_ITER"]
 
 #: active-set iterations a caller may ask for, ``[1, 10000]``
 MAX_ITER = (1, 10_000)
@@ -139,7 +142,7 @@ class PerArray:
     The array is held by a weak reference, so that a new array whose ``id`` reuses a freed
     one's is never taken for it; the array must not change in place while it is a key. The
     home of what is kept per compliance: the active sets' factors and their symmetry
-    (:func:`_factor`, :func:`_symmetric`), the FEM's last contact per condensed body
+    (:func:`_factor`, :func:`symmetric`), the FEM's last contact per condensed body
     (:mod:`fem.solve`).
     """
 
@@ -180,7 +183,7 @@ _FACTORS = PerArray(FACTORS_KEPT)
 _SYMMETRIC = PerArray(64)
 
 
-def _symmetric(C: np.ndarray) -> bool:
+def symmetric(C: np.ndarray) -> bool:
     """Whether ``C`` equals its transpose, found once per compliance."""
     known = _SYMMETRIC.get(C)
     return bool(known) if known is not None else _SYMMETRIC.put(C, None, bool(np.array_equal(C, C.T)))
@@ -227,14 +230,14 @@ def _factor(C: np.ndarray, x: np.ndarray, active: np.ndarray, free_tilt: bool, s
     return _FACTORS.put(C, key, factor)
 
 
-def _solve_active(C: np.ndarray, x: np.ndarray, g0: np.ndarray, active: np.ndarray,
+def solve_active(C: np.ndarray, x: np.ndarray, g0: np.ndarray, active: np.ndarray,
                   P: float, s: float, free_tilt: bool, sym: bool = False
                   ) -> tuple[np.ndarray, float, float]:
     """Forces on the active set with ``gap = 0`` there, plus the equilibrium rows.
 
     The system ``C_AA f + B lam = -g0_A``, ``D^T f = e`` (``lam = (delta, alpha)``,
     ``B = (-1, x)``, ``D = (1, x)``, ``e = (P, P s)``), by :func:`_factor`'s factor.
-    ``sym``: :func:`_symmetric` of ``C``.
+    ``sym``: :func:`symmetric` of ``C``.
     """
     factor = _factor(C, x, active, free_tilt, sym)
     idx, D = factor[1], factor[2]
@@ -359,7 +362,7 @@ def _iterate(C: np.ndarray, x: np.ndarray, g0: np.ndarray, P: float, s: float, f
     """The primal-dual active-set iteration from ``act``; :class:`_Breakdown` if it leaves the admissible sets."""
     n = len(x)
     cpd = 1.0 / float(np.mean(np.diag(C)))  # force per unit gap: balances the two terms
-    sym = _symmetric(C)
+    sym = symmetric(C)
     with one_blas_thread():
         for it in range(1, max_iter + 1):
             if not act.any():
@@ -368,7 +371,7 @@ def _iterate(C: np.ndarray, x: np.ndarray, g0: np.ndarray, P: float, s: float, f
             if why is not None:
                 raise _Breakdown(f"at iteration {it}: {why}")
             try:
-                f, delta, alpha = _solve_active(C, x, g0, act, P, s, free_tilt, sym)
+                f, delta, alpha = solve_active(C, x, g0, act, P, s, free_tilt, sym)
             except np.linalg.LinAlgError:
                 raise _Breakdown(f"at iteration {it}: a singular active-set system "
                                  f"({int(act.sum())} active nodes)") from None
