@@ -65,10 +65,23 @@ def _rewrite_only_tests(config: pytest.Config) -> None:
                                   if name.split(".")[0] in LIBRARIES_NOT_REWRITTEN})
 
 
+#: xdist workers of ``-n auto`` beyond the cores: a worker waiting on a subprocess, a cluster or
+#: a file leaves its core to another (issue 41, 2026-11-29, 2 cores: alone 224 s against 226 s
+#: with a worker per core; beside two CPU-bound jobs 6 min 15 s against 7 min 23 s, a larger
+#: share of a shared machine). ``--maxprocesses`` still caps the count
+WORKERS_BEYOND_CORES = 1
+
+
+def pytest_xdist_auto_num_workers(config: pytest.Config) -> int:
+    """``-n auto``: one worker per core this process may run on, and :data:`WORKERS_BEYOND_CORES`."""
+    cores = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count() or 1
+    return cores + WORKERS_BEYOND_CORES
+
+
 def pytest_configure(config: pytest.Config) -> None:
     """On the controller, before the xdist workers start: one BLAS thread a worker, one cache a run.
 
-    ``-n auto`` starts a worker per core; each worker's OpenBLAS would start a thread per core
+    ``-n auto`` starts a worker per core and one more; each worker's OpenBLAS would start a thread per core
     too, and OpenBLAS's threads spin while they wait: on the 2-core machine a 350 x 350
     ``numpy.linalg.solve`` took 28 ms with 2 threads a process at load 6 against 2.3 ms with one
     (tests/steady_march.py solves hundreds). The workers (and their subprocesses) inherit the

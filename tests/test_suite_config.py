@@ -51,3 +51,13 @@ def test_pytest_rewrites_the_tests_asserts_but_not_the_libraries():
     assert "@py_builtins" in vars(sys.modules[__name__])
     for module in (threepart.fem.solve, threepart.reports.verify.report):
         assert "@py_builtins" not in vars(module), module.__name__
+
+
+def test_auto_starts_a_worker_per_core_and_one_more(request):
+    """``-n auto`` (the test command's addopts) asks pytest-xdist's hook for its count: the cores this
+    process may run on and one more (tests/conftest.py), so that a worker waiting on a subprocess
+    leaves its core to another."""
+    import os
+
+    cores = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count()
+    assert request.config.hook.pytest_xdist_auto_num_workers(config=request.config) == cores + 1
