@@ -308,7 +308,7 @@ class _Boundary:
     step before is logged: no curve waits for another, nor for the rest of the
     grid. A step already logged (a resumed map) is taken at once; two levels of
     one curve that want the same point share its one task. ``tasks`` collects
-    the steps submitted; ``steps`` is the number of distinct step points.
+    the steps submitted; ``keys`` holds every step's point, logged before or now.
     """
 
     def __init__(self, grid: Sequence[MapPoint], records: dict[str, Any], cap: int,
