@@ -1,4 +1,5 @@
-"""A package's public names loaded on first use (PEP 562): one home for ``threepart`` and ``threepart.reports``.
+"""A package's public names loaded on first use (PEP 562): one home for ``threepart``, ``threepart.reports``
+and ``threepart.reports.verify``.
 
 Names
 -----

@@ -3,7 +3,7 @@
 Names
 -----
 open_engine -- context manager: a client on a new local cluster or on a scheduler, closed on exit
-sweep       -- submit every task, log each result as it arrives (and submit its follow-ups), report progress
+sweep       -- submit every task, log each result as it arrives, hand it on (and submit its follow-ups), report progress
 Task        -- a task of a sweep: its key, the function a worker runs, its arguments, and what it is
 """
 from __future__ import annotations
@@ -217,17 +217,15 @@ def connect(scheduler: str, timeout: float) -> Any:
 
 
 def sweep(client: Any, tasks: list[Task], log: Callable[[dict[str, Any]], None], mode: str, done0: int,
-          total: int, say: Say, follow: Callable[[dict[str, Any]], list[Task]] | None = None
-          ) -> list[dict[str, Any]]:
-    """Submit every task, log each result as it arrives, and report progress; return the records.
+          total: int, say: Say, arrived: Callable[[dict[str, Any]], list[Task]]) -> None:
+    """Submit every task, log each result as it arrives, hand it to ``arrived``, and report progress.
 
     A task is ``(key, fn, args, what)``: ``what`` is the grid point (its line is
     :func:`~reports.map.log.point_record`), ``None`` (the control), or a callable
     ``what(result, exc, mode)`` that makes the line of a study task
-    (:func:`~reports.map.log.task_record`). ``follow(record)``, if given, returns
-    the tasks that a logged record makes possible (the next step of a bisection);
-    they are submitted at once and counted into ``total``, and their records are
-    returned too.
+    (:func:`~reports.map.log.task_record`). ``arrived(record)`` keeps a logged
+    record and returns the tasks it makes possible (the next step of a
+    bisection); they are submitted at once and counted into ``total``.
     """
     futures = {}
 
@@ -240,7 +238,7 @@ def sweep(client: Any, tasks: list[Task], log: Callable[[dict[str, Any]], None],
         return new
 
     pending = as_completed(submit(tasks))
-    records: list[dict[str, Any]] = []
+    n = 0
     t0 = time.perf_counter()
     stop, lost = threading.Event(), list[str]()
     watch = threading.Thread(target=_watch_workers, args=(client, futures, stop, lost),
@@ -263,14 +261,14 @@ def sweep(client: Any, tasks: list[Task], log: Callable[[dict[str, Any]], None],
                 rec = (control_record(result, error, mode) if point is None
                        else point_record(point, result, error, mode))
             log(rec)
-            records.append(rec)
-            more = follow(rec) if follow is not None else []
+            n += 1
+            more = arrived(rec)
             for new in submit(more):
                 pending.add(new)
             total += len(more)
-            done = done0 + len(records)
+            done = done0 + n
             elapsed = time.perf_counter() - t0
-            eta = elapsed / len(records) * (total - done)
+            eta = elapsed / n * (total - done)
             status = "FAILED " + rec["error"] if rec["error"] else (
                 rec.get("note") or "done" if callable(point) else
                 f"peak error {pct(rec.get('peak_rel_error'))}" if point is not None
@@ -284,7 +282,6 @@ def sweep(client: Any, tasks: list[Task], log: Callable[[dict[str, Any]], None],
             client.cancel([f for f in futures if not f.done()])
         except Exception:   # the scheduler is gone already: nothing to cancel
             pass
-    return records
 
 
 def _watch_workers(client: Any, futures: dict[Any, Any], stop: threading.Event, lost: list[str]) -> None:

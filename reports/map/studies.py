@@ -59,7 +59,6 @@ REFEREE_KEYS = ("calculix", "fem", "closed_form", "fem_minus_calculix", "closed_
 FIGURES = ("p_left", "p_right", "a", "c")
 
 
-
 @dataclass(frozen=True)
 class Studies:
     """The studies' functions and the points they run on.

@@ -194,7 +194,7 @@ def _render(plots: Sequence[Plot], client: Any) -> list[bytes]:
     """The plots' PNG bytes: drawn side by side on the engine's workers while it is open (each plot
     takes matplotlib about a second), else here, one after another (a resumed map with nothing left
     to compute starts no cluster for its plots)."""
-    if client is None or len(plots) < 2:
+    if client is None:
         return [_png(draw, kw) for _, draw, kw in plots]
     return client.gather([client.submit(_png, draw, kw, pure=False,
                                         key=f"threepart-map-plot-{i}-{uuid.uuid4().hex[:8]}")
@@ -251,14 +251,14 @@ class _Batch:
         self.engine, self.records, self.log, self.mode = engine, records, log, mode
 
     def run(self, batch: list[Task], done0: int, of: int,
-            follow: Callable[[dict[str, Any]], list[Task]] | None = None) -> None:
-        """Run ``batch`` (and what ``follow`` makes of each record), keeping each record as it arrives."""
+            follow: Callable[[dict[str, Any]], list[Task]]) -> None:
+        """Run ``batch`` (and the tasks ``follow`` makes of each record), keeping each record as it arrives."""
         client = self.engine.ready()
         t2 = time.perf_counter()
 
         def arrived(rec: dict[str, Any]) -> list[Task]:
             self.records[rec["key"]] = rec     # before the follow-ups, which read it
-            return follow(rec) if follow is not None else []
+            return follow(rec)
 
         sweep(client, batch, self.log, self.mode, done0, of, self.engine.say, arrived)
         self.engine.timings["sweep_s"] += time.perf_counter() - t2
@@ -352,7 +352,7 @@ class _Boundary:
 
     def bisections(self) -> list[Bisection]:
         """Every bisection, in the order of :func:`~reports.map.boundary.start` on the whole grid."""
-        return [b for c in dict.fromkeys(map(_curve, self.grid)) for b in self.started.get(c, [])]
+        return [b for c in self.left for b in self.started.get(c, [])]   # the grid's curve order
 
     def _grid_point(self, key: str) -> list[Task]:
         """The first steps of ``key``'s curve if ``key`` was the last of its grid points to arrive."""

@@ -232,8 +232,8 @@ def _factor(C: np.ndarray, x: np.ndarray, active: np.ndarray, free_tilt: bool, s
 
 
 def solve_active(C: np.ndarray, x: np.ndarray, g0: np.ndarray, active: np.ndarray,
-                  P: float, s: float, free_tilt: bool, sym: bool = False
-                  ) -> tuple[np.ndarray, float, float]:
+                 P: float, s: float, free_tilt: bool, sym: bool = False
+                 ) -> tuple[np.ndarray, float, float]:
     """Forces on the active set with ``gap = 0`` there, plus the equilibrium rows.
 
     The system ``C_AA f + B lam = -g0_A``, ``D^T f = e`` (``lam = (delta, alpha)``,
